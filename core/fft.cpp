@@ -1,0 +1,161 @@
+#include "core/fft.hpp"
+
+#include <fftw3.h>
+
+#include <map>
+#include <mutex>
+#include <string>
+#include <tuple>
+
+#include "core/error.hpp"
+
+namespace pinmask {
+namespace {
+
+enum class Kind { kR2C, kC2R, kC2CForward, kC2CBackward };
+
+std::mutex& planner_mutex() {
+    static std::mutex m;
+    return m;
+}
+
+// Returns the cached plan for (kind, rows, cols), creating it on first use. Planning happens on
+// scratch buffers; execution uses the new-array interface, which FFTW_UNALIGNED makes valid for
+// any buffer.
+fftw_plan cached_plan(Kind kind, int rows, int cols) {
+    static std::map<std::tuple<Kind, int, int>, fftw_plan> cache;
+    std::lock_guard<std::mutex> lock(planner_mutex());
+    const auto key = std::make_tuple(kind, rows, cols);
+    if (auto it = cache.find(key); it != cache.end()) return it->second;
+
+    const std::size_t n_real = static_cast<std::size_t>(rows) * cols;
+    const std::size_t n_half = static_cast<std::size_t>(rows) * (cols / 2 + 1);
+    const unsigned flags = FFTW_ESTIMATE | FFTW_UNALIGNED;
+    fftw_plan plan = nullptr;
+    switch (kind) {
+        case Kind::kR2C: {
+            double* in = fftw_alloc_real(n_real);
+            fftw_complex* out = fftw_alloc_complex(n_half);
+            plan = fftw_plan_dft_r2c_2d(rows, cols, in, out, flags);
+            fftw_free(in);
+            fftw_free(out);
+            break;
+        }
+        case Kind::kC2R: {
+            fftw_complex* in = fftw_alloc_complex(n_half);
+            double* out = fftw_alloc_real(n_real);
+            plan = fftw_plan_dft_c2r_2d(rows, cols, in, out, flags);
+            fftw_free(in);
+            fftw_free(out);
+            break;
+        }
+        case Kind::kC2CForward:
+        case Kind::kC2CBackward: {
+            fftw_complex* in = fftw_alloc_complex(n_real);
+            fftw_complex* out = fftw_alloc_complex(n_real);
+            plan = fftw_plan_dft_2d(rows, cols, in, out,
+                                    kind == Kind::kC2CForward ? FFTW_FORWARD : FFTW_BACKWARD,
+                                    flags);
+            fftw_free(in);
+            fftw_free(out);
+            break;
+        }
+    }
+    if (plan == nullptr) {
+        throw RuntimeFailure("FFTW could not create a plan for " + std::to_string(rows) + " x " +
+                             std::to_string(cols));
+    }
+    cache.emplace(key, plan);
+    return plan;
+}
+
+void check_size(int rows, int cols) {
+    if (rows < 1 || cols < 1) {
+        throw InvalidInput("FFT size " + std::to_string(rows) + " x " + std::to_string(cols) +
+                           ": both dimensions must be >= 1");
+    }
+}
+
+fftw_complex* as_fftw(std::complex<double>* p) { return reinterpret_cast<fftw_complex*>(p); }
+
+}  // namespace
+
+Fft2::Fft2(int rows, int cols) : rows_(rows), cols_(cols) {
+    check_size(rows, cols);
+    r2c_ = cached_plan(Kind::kR2C, rows, cols);
+    c2r_ = cached_plan(Kind::kC2R, rows, cols);
+}
+
+ComplexPlane Fft2::forward(const Plane& x) const {
+    ComplexPlane out;
+    forward(x, out);
+    return out;
+}
+
+void Fft2::forward(const Plane& x, ComplexPlane& out) const {
+    if (x.rows() != rows_ || x.cols() != cols_) {
+        throw InvalidInput("FFT input is " + std::to_string(x.rows()) + " x " +
+                           std::to_string(x.cols()) + ", plan is " + std::to_string(rows_) +
+                           " x " + std::to_string(cols_));
+    }
+    out.resize(rows_, half_cols());
+    // r2c with the default FFTW_PRESERVE_INPUT leaves the input untouched.
+    fftw_execute_dft_r2c(static_cast<fftw_plan>(r2c_), const_cast<double*>(x.data()),
+                         as_fftw(out.data()));
+}
+
+Plane Fft2::inverse(const ComplexPlane& spectrum) const {
+    Plane out;
+    ComplexPlane scratch;
+    inverse(spectrum, out, scratch);
+    return out;
+}
+
+void Fft2::inverse(const ComplexPlane& spectrum, Plane& out, ComplexPlane& scratch) const {
+    if (spectrum.rows() != rows_ || spectrum.cols() != half_cols()) {
+        throw InvalidInput("inverse FFT input is " + std::to_string(spectrum.rows()) + " x " +
+                           std::to_string(spectrum.cols()) + ", expected half spectrum " +
+                           std::to_string(rows_) + " x " + std::to_string(half_cols()));
+    }
+    scratch = spectrum;  // multi-dimensional c2r destroys its input
+    out.resize(rows_, cols_);
+    fftw_execute_dft_c2r(static_cast<fftw_plan>(c2r_), as_fftw(scratch.data()), out.data());
+    out *= 1.0 / (static_cast<double>(rows_) * cols_);  // the one place 1/N is applied
+}
+
+FftC2::FftC2(int rows, int cols) : rows_(rows), cols_(cols) {
+    check_size(rows, cols);
+    fwd_ = cached_plan(Kind::kC2CForward, rows, cols);
+    bwd_ = cached_plan(Kind::kC2CBackward, rows, cols);
+}
+
+ComplexPlane FftC2::forward(const ComplexPlane& x) const {
+    ComplexPlane in = x, out(rows_, cols_);
+    fftw_execute_dft(static_cast<fftw_plan>(fwd_), as_fftw(in.data()), as_fftw(out.data()));
+    return out;
+}
+
+ComplexPlane FftC2::inverse(const ComplexPlane& x) const {
+    ComplexPlane in = x, out(rows_, cols_);
+    fftw_execute_dft(static_cast<fftw_plan>(bwd_), as_fftw(in.data()), as_fftw(out.data()));
+    out *= 1.0 / (static_cast<double>(rows_) * cols_);
+    return out;
+}
+
+ComplexPlane expand_half_spectrum(const ComplexPlane& half, int cols) {
+    const Eigen::Index rows = half.rows();
+    ComplexPlane full(rows, cols);
+    const int hc = cols / 2 + 1;
+    for (Eigen::Index k = 0; k < rows; ++k) {
+        for (int l = 0; l < cols; ++l) {
+            if (l < hc) {
+                full(k, l) = half(k, l);
+            } else {
+                full(k, l) = std::conj(half((rows - k) % rows, cols - l));
+            }
+        }
+    }
+    return full;
+}
+
+}  // namespace pinmask
