@@ -11,8 +11,10 @@
 namespace pinmask::cli {
 
 struct Registration {
-    // order sorts the subcommands in --help; setup adds the subcommand to the app.
-    Registration(int order, std::string name, std::function<void(CLI::App&)> setup);
+    // order sorts the subcommands in --help; setup adds the subcommand to `parent_app`, which is
+    // the top-level app, or the subcommand named `parent` (e.g. "bench" for `pinmask bench X`).
+    Registration(int order, std::string name, std::function<void(CLI::App& parent_app)> setup,
+                 std::string parent = "");
 };
 
 void set_exit_code(int code);

@@ -13,6 +13,7 @@ struct Entry {
     int order;
     std::string name;
     std::function<void(CLI::App&)> setup;
+    std::string parent;
 };
 
 std::vector<Entry>& registry() {
@@ -24,8 +25,9 @@ int g_exit_code = 0;
 
 }  // namespace
 
-Registration::Registration(int order, std::string name, std::function<void(CLI::App&)> setup) {
-    registry().push_back({order, std::move(name), std::move(setup)});
+Registration::Registration(int order, std::string name, std::function<void(CLI::App&)> setup,
+                           std::string parent) {
+    registry().push_back({order, std::move(name), std::move(setup), std::move(parent)});
 }
 
 void set_exit_code(int code) { g_exit_code = code; }
@@ -45,7 +47,12 @@ int main(int argc, char** argv) {
     auto& entries = cli::registry();
     std::sort(entries.begin(), entries.end(),
               [](const auto& a, const auto& b) { return a.order < b.order; });
-    for (auto& e : entries) e.setup(app);
+    for (auto& e : entries) {
+        if (e.parent.empty()) e.setup(app);
+    }
+    for (auto& e : entries) {
+        if (!e.parent.empty()) e.setup(*app.get_subcommand(e.parent));
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -20,7 +20,7 @@ void write_bytes_atomic(const std::filesystem::path& path, std::string_view byte
 // A group of files that appear together or not at all: stage() writes each to a temporary name,
 // commit() renames them all; destroying an uncommitted group removes every temporary file.
 class StagedFiles {
-public:
+  public:
     StagedFiles() = default;
     StagedFiles(const StagedFiles&) = delete;
     StagedFiles& operator=(const StagedFiles&) = delete;
@@ -32,7 +32,7 @@ public:
     void commit();
     const std::vector<std::filesystem::path>& final_paths() const { return finals_; }
 
-private:
+  private:
     std::vector<std::filesystem::path> temps_, finals_;
     bool committed_ = false;
 };

@@ -9,26 +9,26 @@ namespace pinmask {
 
 // Base of every error the libraries throw on purpose.
 class Error : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
 // The caller's input is wrong: a field, a value and the rule it breaks. Exit code 2.
 class InvalidInput : public Error {
-public:
+  public:
     using Error::Error;
 };
 
 // A request that would exceed a resource bound (memory, size); refused before allocating.
 // Counts as invalid input (exit 2): the request, not the machine, is at fault.
 class ResourceLimit : public InvalidInput {
-public:
+  public:
     using InvalidInput::InvalidInput;
 };
 
 // Something failed while doing valid work (I/O error, solver breakdown). Exit code 1.
 class RuntimeFailure : public Error {
-public:
+  public:
     using Error::Error;
 };
 

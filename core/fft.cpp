@@ -53,9 +53,9 @@ fftw_plan cached_plan(Kind kind, int rows, int cols) {
         case Kind::kC2CBackward: {
             fftw_complex* in = fftw_alloc_complex(n_real);
             fftw_complex* out = fftw_alloc_complex(n_real);
-            plan = fftw_plan_dft_2d(rows, cols, in, out,
-                                    kind == Kind::kC2CForward ? FFTW_FORWARD : FFTW_BACKWARD,
-                                    flags);
+            plan =
+                fftw_plan_dft_2d(rows, cols, in, out,
+                                 kind == Kind::kC2CForward ? FFTW_FORWARD : FFTW_BACKWARD, flags);
             fftw_free(in);
             fftw_free(out);
             break;
@@ -95,8 +95,8 @@ ComplexPlane Fft2::forward(const Plane& x) const {
 void Fft2::forward(const Plane& x, ComplexPlane& out) const {
     if (x.rows() != rows_ || x.cols() != cols_) {
         throw InvalidInput("FFT input is " + std::to_string(x.rows()) + " x " +
-                           std::to_string(x.cols()) + ", plan is " + std::to_string(rows_) +
-                           " x " + std::to_string(cols_));
+                           std::to_string(x.cols()) + ", plan is " + std::to_string(rows_) + " x " +
+                           std::to_string(cols_));
     }
     out.resize(rows_, half_cols());
     // r2c with the default FFTW_PRESERVE_INPUT leaves the input untouched.

@@ -19,7 +19,7 @@ namespace pinmask {
 
 // Real 2-D transform pair of one size (rows x cols, both >= 1).
 class Fft2 {
-public:
+  public:
     Fft2(int rows, int cols);
 
     int rows() const { return rows_; }
@@ -35,7 +35,7 @@ public:
     // Allocation-free form: `scratch` is resized on first use and reused (c2r destroys input).
     void inverse(const ComplexPlane& spectrum, Plane& out, ComplexPlane& scratch) const;
 
-private:
+  private:
     int rows_, cols_;
     void* r2c_;  // fftw_plan, owned by the process-wide cache
     void* c2r_;
@@ -43,14 +43,14 @@ private:
 
 // Complex 2-D transform pair of one size (full spectrum, same conventions).
 class FftC2 {
-public:
+  public:
     FftC2(int rows, int cols);
     int rows() const { return rows_; }
     int cols() const { return cols_; }
     ComplexPlane forward(const ComplexPlane& x) const;
     ComplexPlane inverse(const ComplexPlane& x) const;  // includes 1/(rows cols)
 
-private:
+  private:
     int rows_, cols_;
     void* fwd_;
     void* bwd_;

@@ -54,7 +54,7 @@ double parse_length_m(std::string_view token, std::string_view field, AllowInfin
         throw bad_token(field, token, "infinity is not allowed here");
     }
     static const std::vector<std::pair<std::string_view, double>> kLength = {
-        {"", 1.0},    {"m", 1.0},       {"cm", 1e-2}, {"mm", 1e-3},
+        {"", 1.0},    {"m", 1.0},          {"cm", 1e-2}, {"mm", 1e-3},
         {"um", 1e-6}, {"\xC2\xB5m", 1e-6}, {"nm", 1e-9}};
     return scaled(token, field, kLength, " (expected a length such as 440um, 55mm, 6m, 550nm)");
 }

@@ -28,8 +28,8 @@ void validate(const Camera& c) {
     require_positive("pixel_pitch_m", c.pixel_pitch_m, false);
     require_positive("pinhole_m", c.pinhole_m, false);
     if (c.sensor_cols < 1 || c.sensor_rows < 1) {
-        throw invalid_field("sensor", std::to_string(c.sensor_cols) + "x" +
-                                          std::to_string(c.sensor_rows),
+        throw invalid_field("sensor",
+                            std::to_string(c.sensor_cols) + "x" + std::to_string(c.sensor_rows),
                             "width and height must be >= 1");
     }
 }

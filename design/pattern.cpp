@@ -83,9 +83,9 @@ void validate(const Pattern& p, bool allow_spacing_violations) {
     for (std::size_t i = 0; i < p.pinholes.size(); ++i) {
         const Cell c = p.pinholes[i];
         if (c.row < 0 || c.row >= p.n || c.col < 0 || c.col >= p.n) {
-            throw invalid_field("pattern.pinholes[" + std::to_string(i) + "]", cell_text(c),
-                                "outside the " + std::to_string(p.n) + " x " +
-                                    std::to_string(p.n) + " grid");
+            throw invalid_field(
+                "pattern.pinholes[" + std::to_string(i) + "]", cell_text(c),
+                "outside the " + std::to_string(p.n) + " x " + std::to_string(p.n) + " grid");
         }
         auto& s = seen[static_cast<std::size_t>(c.row) * p.n + c.col];
         if (s) {
@@ -99,8 +99,8 @@ void validate(const Pattern& p, bool allow_spacing_violations) {
         if (!v.empty()) {
             std::ostringstream msg;
             msg << v.size() << " pair(s) closer than " << p.min_spacing_cells
-                << " cells on the torus, first " << cell_text(v[0].a) << " - "
-                << cell_text(v[0].b) << " at " << v[0].distance_cells << " cells";
+                << " cells on the torus, first " << cell_text(v[0].a) << " - " << cell_text(v[0].b)
+                << " at " << v[0].distance_cells << " cells";
             throw invalid_field("pattern.min_spacing_cells", std::to_string(p.min_spacing_cells),
                                 msg.str());
         }

@@ -33,14 +33,16 @@ ComplexPlane direct_dft(const ComplexPlane& x, int sign) {
         for (Eigen::Index l = 0; l < C; ++l) {
             std::complex<double> s = 0;
             for (Eigen::Index c = 0; c < C; ++c)
-                s += x(r, c) * std::polar(1.0, sign * 2 * std::numbers::pi * double((l * c) % C) / C);
+                s += x(r, c) *
+                     std::polar(1.0, sign * 2 * std::numbers::pi * double((l * c) % C) / C);
             t(r, l) = s;
         }
     for (Eigen::Index l = 0; l < C; ++l)
         for (Eigen::Index k = 0; k < R; ++k) {
             std::complex<double> s = 0;
             for (Eigen::Index r = 0; r < R; ++r)
-                s += t(r, l) * std::polar(1.0, sign * 2 * std::numbers::pi * double((k * r) % R) / R);
+                s += t(r, l) *
+                     std::polar(1.0, sign * 2 * std::numbers::pi * double((k * r) % R) / R);
             y(k, l) = s;
         }
     return y;

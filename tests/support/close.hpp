@@ -25,9 +25,9 @@ double max_rel_error(const A& a, const B& ref) {
 }  // namespace pinmask::test
 
 // CHECK_CLOSE(a, b, tol): relative comparison, printing both values and the tolerance on failure.
-#define CHECK_CLOSE(a, b, tol)                                                      \
-    do {                                                                            \
-        const double pm_a_ = (a), pm_b_ = (b);                                      \
-        INFO(#a " = " << pm_a_ << ", " #b " = " << pm_b_ << ", tol = " << (tol));  \
-        CHECK(::pinmask::test::close_rel(pm_a_, pm_b_, (tol)));                     \
+#define CHECK_CLOSE(a, b, tol)                                                    \
+    do {                                                                          \
+        const double pm_a_ = (a), pm_b_ = (b);                                    \
+        INFO(#a " = " << pm_a_ << ", " #b " = " << pm_b_ << ", tol = " << (tol)); \
+        CHECK(::pinmask::test::close_rel(pm_a_, pm_b_, (tol)));                   \
     } while (0)

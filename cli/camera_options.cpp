@@ -1,0 +1,57 @@
+#include "cli/camera_options.hpp"
+
+#include "core/error.hpp"
+#include "core/units.hpp"
+
+namespace pinmask::cli {
+
+void add_camera_options(CLI::App& cmd, CameraOptions& o) {
+    cmd.add_option("--preset", o.preset,
+                   "Camera preset: paper (u 6m, f' 120mm, f 55mm, d 440um, "
+                   "w 30um, 720x480, 550nm)")
+        ->check(CLI::IsMember({"paper"}))
+        ->capture_default_str();
+    cmd.add_option("--lens-focal", o.lens_focal,
+                   "Lens focal length f' (e.g. 120mm; inf = no lens)");
+    cmd.add_option("--sensor-distance", o.sensor_distance, "Lens-to-sensor distance f (e.g. 55mm)");
+    cmd.add_option("--object-distance", o.object_distance, "Object distance u (e.g. 6m, or inf)");
+    cmd.add_option("--wavelength", o.wavelength, "Design wavelength (e.g. 550nm)");
+    cmd.add_option("--pixel-pitch", o.pixel_pitch, "Sensor pixel pitch w (e.g. 30um)");
+    cmd.add_option("--pinhole", o.pinhole, "Pinhole side d = cell side (e.g. 440um)");
+    cmd.add_option("--sensor", o.sensor, "Sensor size in pixels, WIDTHxHEIGHT (e.g. 720x480)");
+}
+
+Camera resolve_camera(const CameraOptions& o) {
+    Camera c = paper_camera();  // the only preset so far
+    if (o.lens_focal)
+        c.lens_focal_m = parse_length_m(*o.lens_focal, "--lens-focal", AllowInfinity::kYes);
+    if (o.sensor_distance)
+        c.sensor_distance_m = parse_length_m(*o.sensor_distance, "--sensor-distance");
+    if (o.object_distance) {
+        c.object_distance_m =
+            parse_length_m(*o.object_distance, "--object-distance", AllowInfinity::kYes);
+    }
+    if (o.wavelength) c.wavelength_m = parse_length_m(*o.wavelength, "--wavelength");
+    if (o.pixel_pitch) c.pixel_pitch_m = parse_length_m(*o.pixel_pitch, "--pixel-pitch");
+    if (o.pinhole) c.pinhole_m = parse_length_m(*o.pinhole, "--pinhole");
+    if (o.sensor) {
+        const Size2 s = parse_size(*o.sensor, "--sensor");
+        c.sensor_cols = s.cols;
+        c.sensor_rows = s.rows;
+    }
+    validate(c);
+    return c;
+}
+
+void add_geometry_options(CLI::App& cmd, GeometryOptions& o) {
+    cmd.add_option("--grid", o.grid, "Pattern size n (n x n cells, 1..4096)")
+        ->capture_default_str();
+    cmd.add_option("--holes", o.holes, "Number of pinholes K")->capture_default_str();
+    cmd.add_option("--tiles", o.tiles, "Tiles per side of the cyclic mask")->capture_default_str();
+    cmd.add_option("--spacing", o.spacing,
+                   "Minimum pinhole centre spacing in cells, on the torus (2 = no two pinholes in "
+                   "each other's 8-neighbourhood)")
+        ->capture_default_str();
+}
+
+}  // namespace pinmask::cli

@@ -1,0 +1,41 @@
+// Image file I/O: TIFF (8/16-bit unsigned, 32-bit float; 1 or 3 channels), PNG (8/16-bit grey or
+// RGB), .npy (float32/float64, little-endian, C order, shape (rows, cols) or (rows, cols, 3)).
+// Integer files are read as raw counts (a 16-bit pixel of 40000 reads as 40000.0); `full_scale`
+// tells the caller the largest representable count (255, 65535; 1.0 for float files) so it can
+// normalise. Writers take values in the target's own units for float formats and values in
+// [0, 1] (clamped, rounded to nearest) for integer formats. Every write is atomic.
+#pragma once
+
+#include <filesystem>
+
+#include "core/image.hpp"
+
+namespace pinmask {
+
+enum class SampleFormat { kUint8, kUint16, kFloat32, kFloat64 };
+
+struct LoadedImage {
+    Image image;
+    SampleFormat format = SampleFormat::kFloat64;
+    double full_scale = 1.0;
+};
+
+// Reads by content (magic bytes), not by extension. Throws InvalidInput naming the file and the
+// problem for: missing/empty/truncated files, unsupported layouts (bit depths, channel counts,
+// compression we cannot decode, big-endian npy, Fortran order), declared sizes beyond
+// kMaxImagePixels, NaN/Inf in float data is *not* an error here (callers decide).
+LoadedImage read_image(const std::filesystem::path& path);
+
+// Largest image (rows * cols * channels) the readers accept before allocating: 2^28 samples
+// (2 GiB as double).
+inline constexpr long long kMaxImageSamples = 1LL << 28;
+
+void write_tiff(const std::filesystem::path& path, const Image& image, SampleFormat format);
+void write_png(const std::filesystem::path& path, const Image& image, int bits);  // 8 or 16
+void write_npy(const std::filesystem::path& path, const Image& image, SampleFormat format);
+
+// Writes by extension: .tif/.tiff -> float32 TIFF, .png -> 16-bit PNG, .npy -> float32 npy.
+// Throws InvalidInput for an unknown extension.
+void write_image(const std::filesystem::path& path, const Image& image);
+
+}  // namespace pinmask

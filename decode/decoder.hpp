@@ -1,0 +1,64 @@
+// Decoding one channel of a capture with a known PSF: the facade over the algorithms of decode/
+// (one concept per file: wiener, tikhonov, tv_l2, tvqc, richardson_lucy, convolution models).
+//
+// Notation for decode/: p the capture (one period for the cyclic model, the sensor window for the
+// linear model), a the PSF, x the scene estimate, A x = a (*) x the forward operator, N = number
+// of pixels of x. deconvwnr parity: the PSF is zero-padded to the working size and circularly
+// shifted so its central element (0-based index floor(size/2) per axis) lands at the origin.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "core/image.hpp"
+
+namespace pinmask {
+
+enum class DecodeMethod { kWiener, kTikhonov, kTv, kTvqc, kRichardsonLucy };
+
+// cyclic: circular convolution over one period (the paper; x has the capture's size).
+// linear: zero-padded linear convolution followed by a crop to the capture's size (non-cyclic
+//         masks and ordinary lensless captures; x lives on the padded grid and is cropped back).
+enum class ConvModel { kCyclic, kLinear };
+
+enum class TikhonovRegulariser { kIdentity, kGradient };
+
+// One row of an iterative solver's record, for error-against-run-time plots.
+struct IterationRecord {
+    int iteration = 0;
+    double seconds = 0.0;    // since the solver started
+    double objective = 0.0;  // the method's own objective (see each solver)
+    double residual = 0.0;   // ||A x - p||_2 (TVQC: relative to eps; see tvqc.hpp)
+};
+
+struct DecodeOptions {
+    DecodeMethod method = DecodeMethod::kWiener;
+    ConvModel model = ConvModel::kCyclic;
+    double nsr = 0.01;                       // Wiener: scalar noise-to-signal power ratio
+    std::optional<Plane> nsr_per_frequency;  // Wiener: per-frequency NSR (working size)
+    double lambda = 1e-3;                    // Tikhonov / TV-L2 regularisation weight
+    TikhonovRegulariser regulariser = TikhonovRegulariser::kIdentity;
+    std::optional<double> eps;          // TVQC: ||A x - p||_2 <= eps
+    std::optional<double> noise_sigma;  // TVQC: eps from the noise level when eps unset
+    bool nonnegative = false;           // TV-L2 / TVQC: add x >= 0
+    int max_iterations = 200;
+    double tolerance = 1e-4;          // relative change of x between iterations
+    std::optional<Plane> warm_start;  // initial x (working size)
+    bool record_history = true;
+};
+
+struct DecodeResult {
+    Plane image;                           // the estimate, same size as the capture
+    std::vector<IterationRecord> history;  // empty for closed-form methods
+    int iterations = 0;
+    double objective = 0.0;
+    double residual = 0.0;
+    bool converged = true;
+    double seconds = 0.0;
+};
+
+// Decodes one channel. Throws InvalidInput for non-finite inputs, a PSF with zero or negative
+// sum, a PSF larger than the working size, or options out of range (naming the option).
+DecodeResult decode_plane(const Plane& capture, const Plane& psf, const DecodeOptions& options);
+
+}  // namespace pinmask

@@ -1,0 +1,40 @@
+// Mask geometry for fabrication, in integer nanometres on the manufacturing grid (database unit
+// 1 nm), origin at the mask centre, y upwards (as in GDSII/DXF/Gerber; SVG/PDF writers flip).
+// Exact integer coordinates make the design-rule check and the round-trip comparison exact.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace pinmask {
+
+struct PointNm {
+    std::int64_t x = 0;
+    std::int64_t y = 0;
+    bool operator==(const PointNm&) const = default;
+};
+
+// A simple closed polygon: the last vertex connects back to the first (not repeated).
+// Orientation: counter-clockwise.
+using Ring = std::vector<PointNm>;
+
+struct BoxNm {
+    std::int64_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // x0 <= x1, y0 <= y1
+};
+
+enum class Tone { kClear, kDark };  // clear: polygons are the transparent pinholes
+
+// The polygons of one exported mask and what they mean.
+struct Layout {
+    std::vector<Ring> polygons;     // the drawn (tone) polygons, pinholes or opaque pieces
+    std::vector<Ring> annotations;  // marks and label polygons, outside the active area
+    BoxNm active_area;              // the tiled pattern's extent
+    BoxNm extent;                   // everything incl. frame, marks and label
+    Tone tone = Tone::kClear;
+    bool mirrored = false;     // right-reading with chrome/emulsion down
+    std::int64_t grid_nm = 1;  // manufacturing grid the coordinates are snapped to
+    std::string mask_hash;     // geometry_hash of the source mask
+};
+
+}  // namespace pinmask
