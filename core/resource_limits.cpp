@@ -1,0 +1,65 @@
+#include "core/resource_limits.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "core/error.hpp"
+
+namespace pinmask {
+namespace {
+
+std::size_t parse_limit(const char* text) {
+    char* end = nullptr;
+    const double v = std::strtod(text, &end);
+    double scale = 1.0;
+    if (end && *end) {
+        switch (*end) {
+            case 'K':
+            case 'k':
+                scale = 1024.0;
+                break;
+            case 'M':
+            case 'm':
+                scale = 1024.0 * 1024.0;
+                break;
+            case 'G':
+            case 'g':
+                scale = 1024.0 * 1024.0 * 1024.0;
+                break;
+            default:
+                throw invalid_field("PINMASK_MEMORY_LIMIT", text,
+                                    "expected bytes, e.g. 8G or 512M");
+        }
+    }
+    if (!(v > 0.0)) throw invalid_field("PINMASK_MEMORY_LIMIT", text, "must be > 0");
+    return static_cast<std::size_t>(v * scale);
+}
+
+std::string gib(double bytes) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.3g GiB", bytes / (1024.0 * 1024.0 * 1024.0));
+    return buf;
+}
+
+}  // namespace
+
+std::size_t memory_limit_bytes() {
+    if (const char* env = std::getenv("PINMASK_MEMORY_LIMIT")) return parse_limit(env);
+    const long pages = ::sysconf(_SC_PHYS_PAGES);
+    const long page = ::sysconf(_SC_PAGE_SIZE);
+    if (pages <= 0 || page <= 0) return std::size_t{4} << 30;
+    return static_cast<std::size_t>(pages) * static_cast<std::size_t>(page) / 2;
+}
+
+void check_memory(double bytes, const std::string& what) {
+    const double limit = static_cast<double>(memory_limit_bytes());
+    if (bytes > limit) {
+        throw ResourceLimit(what + " needs " + gib(bytes) + ", more than the memory bound " +
+                            gib(limit) + " (set PINMASK_MEMORY_LIMIT to change it)");
+    }
+}
+
+}  // namespace pinmask
