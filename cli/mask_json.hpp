@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "design/mask.hpp"
 
@@ -19,6 +20,9 @@ struct MaskReadOptions {
 
 Mask mask_from_json(const nlohmann::json& j, const MaskReadOptions& options = {});
 nlohmann::json mask_to_json(const Mask& mask);
+
+// The exact bytes write_mask_file writes (validated by reading them back first).
+std::string mask_file_text(const Mask& mask);
 
 Mask read_mask_file(const std::filesystem::path& path, const MaskReadOptions& options = {});
 // Atomic write, pretty-printed with 2-space indent, keys in a fixed order; byte-identical for

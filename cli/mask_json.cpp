@@ -1,0 +1,495 @@
+// The `*.mask.json` codec. Layout (DESIGN.md section 4; every key below is written, and every key
+// is required on reading unless marked optional):
+//   {"format": "pinmask-mask", "version": 1,
+//    "pattern": {"n", "pinholes": [[row, col], ...], "tiles": [rows, cols], "min_spacing_cells"},
+//    "optics": {"object_distance_m" (number or "inf"), "lens_focal_m" (number or "inf"),
+//               "sensor_distance_m", "wavelength_m", "pixel_pitch_m", "pinhole_m",
+//               "sensor_px": [cols, rows]},
+//    "psf": {"kernel": {"model", "measured_path" (optional), "wavelengths" (optional):
+//                       [[wavelength_m, weight], ...]}, "pixels_per_cell"},
+//    "provenance": {"seed", "generator", "family", "spacing_violations_allowed" (optional,
+//                   default false), "scores" (optional, name -> number),
+//                   "geometry_hash" (optional; checked against the geometry when present)}}
+// Output format: 2-space indent, keys in the order above, arrays of scalars on one line (one
+// pinhole per line), numbers in nlohmann's shortest round-trip form, pinholes sorted.
+#include "cli/mask_json.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/resource_limits.hpp"
+
+namespace pinmask::cli {
+namespace {
+
+using Json = nlohmann::json;
+using OrderedJson = nlohmann::ordered_json;
+
+constexpr const char* kFormat = "pinmask-mask";
+constexpr int kVersion = 1;
+// Kernel models named by design/mask.hpp's KernelSpec.
+const std::vector<std::string> kKernelModels = {"auto",    "box",         "fraunhofer",
+                                                "fresnel", "paper-fig3b", "measured"};
+// Parsed nlohmann values take roughly this many bytes per byte of JSON text for our layout (an
+// array node per pinhole plus two number nodes); used to refuse files that cannot be held.
+constexpr double kParsedBytesPerTextByte = 16.0;
+
+[[noreturn]] void fail(const std::string& key_path, const std::string& rule) {
+    throw InvalidInput((key_path.empty() ? std::string("(root)") : key_path) + ": " + rule);
+}
+
+std::string join_path(const std::string& parent, const std::string& key) {
+    return parent.empty() ? key : parent + "." + key;
+}
+
+std::string indexed(const std::string& path, std::size_t i) {
+    return path + "[" + std::to_string(i) + "]";
+}
+
+// The keys of one JSON object: required/optional lookup and rejection of keys not in `known`.
+class ObjectReader {
+  public:
+    ObjectReader(const Json& j, std::string path, std::initializer_list<const char*> known)
+        : j_(j), path_(std::move(path)), known_(known.begin(), known.end()) {
+        if (!j_.is_object()) fail(path_, std::string("must be an object, got ") + j_.type_name());
+    }
+
+    void reject_unknown() const {
+        for (const auto& item : j_.items()) {
+            if (std::find(known_.begin(), known_.end(), item.key()) == known_.end()) {
+                std::string list;
+                for (const auto& k : known_) list += (list.empty() ? "" : ", ") + k;
+                fail(join_path(path_, item.key()), "unknown key (known here: " + list + ")");
+            }
+        }
+    }
+
+    const Json& required(const std::string& key) const {
+        const auto it = j_.find(key);
+        if (it == j_.end()) fail(join_path(path_, key), "missing required key");
+        return *it;
+    }
+
+    const Json* optional(const std::string& key) const {
+        const auto it = j_.find(key);
+        return it == j_.end() ? nullptr : &*it;
+    }
+
+    std::string path(const std::string& key) const { return join_path(path_, key); }
+
+  private:
+    const Json& j_;
+    std::string path_;
+    std::vector<std::string> known_;
+};
+
+int read_int(const Json& j, const std::string& path) {
+    if (!j.is_number_integer()) {
+        fail(path, std::string("must be an integer, got ") + j.type_name() + " " + j.dump());
+    }
+    if (j.is_number_unsigned()) {
+        const auto v = j.get<std::uint64_t>();
+        if (v > static_cast<std::uint64_t>(INT_MAX)) fail(path, j.dump() + " is out of range");
+        return static_cast<int>(v);
+    }
+    const auto v = j.get<std::int64_t>();
+    if (v < INT_MIN || v > INT_MAX) fail(path, j.dump() + " is out of range");
+    return static_cast<int>(v);
+}
+
+double read_number(const Json& j, const std::string& path) {
+    if (!j.is_number()) fail(path, std::string("must be a number, got ") + j.type_name());
+    const double v = j.get<double>();
+    if (!std::isfinite(v)) fail(path, "must be a finite number (got " + j.dump() + ")");
+    return v;
+}
+
+// A length that may be infinite, written as the string "inf".
+double read_length_or_inf(const Json& j, const std::string& path) {
+    if (j.is_string()) {
+        if (j.get<std::string>() == "inf") return INFINITY;
+        fail(path, "must be a number or the string \"inf\", got " + j.dump());
+    }
+    return read_number(j, path);
+}
+
+std::string read_string(const Json& j, const std::string& path) {
+    if (!j.is_string()) fail(path, std::string("must be a string, got ") + j.type_name());
+    return j.get<std::string>();
+}
+
+bool read_bool(const Json& j, const std::string& path) {
+    if (!j.is_boolean()) fail(path, std::string("must be true or false, got ") + j.type_name());
+    return j.get<bool>();
+}
+
+std::pair<int, int> read_int_pair(const Json& j, const std::string& path, const char* what) {
+    if (!j.is_array() || j.size() != 2) {
+        fail(path, std::string("must be a two-element array ") + what + ", got " + j.dump());
+    }
+    return {read_int(j[0], indexed(path, 0)), read_int(j[1], indexed(path, 1))};
+}
+
+Pattern read_pattern(const Json& j) {
+    ObjectReader r(j, "pattern", {"n", "pinholes", "tiles", "min_spacing_cells"});
+    r.reject_unknown();
+    Pattern p;
+    p.n = read_int(r.required("n"), r.path("n"));
+    if (p.n < 1 || p.n > kMaxGrid) {
+        fail(r.path("n"),
+             std::to_string(p.n) + " must be between 1 and " + std::to_string(kMaxGrid));
+    }
+    const Json& holes = r.required("pinholes");
+    if (!holes.is_array()) {
+        fail(r.path("pinholes"),
+             std::string("must be an array of [row, col], got ") + holes.type_name());
+    }
+    p.pinholes.reserve(holes.size());
+    for (std::size_t i = 0; i < holes.size(); ++i) {
+        const auto [row, col] =
+            read_int_pair(holes[i], indexed(r.path("pinholes"), i), "[row, col]");
+        p.pinholes.push_back({row, col});
+    }
+    const auto [tr, tc] = read_int_pair(r.required("tiles"), r.path("tiles"), "[rows, cols]");
+    p.tiles_rows = tr;
+    p.tiles_cols = tc;
+    p.min_spacing_cells = read_number(r.required("min_spacing_cells"), r.path("min_spacing_cells"));
+    return p;
+}
+
+Camera read_optics(const Json& j) {
+    ObjectReader r(j, "optics",
+                   {"object_distance_m", "lens_focal_m", "sensor_distance_m", "wavelength_m",
+                    "pixel_pitch_m", "pinhole_m", "sensor_px"});
+    r.reject_unknown();
+    Camera c;
+    c.object_distance_m =
+        read_length_or_inf(r.required("object_distance_m"), r.path("object_distance_m"));
+    c.lens_focal_m = read_length_or_inf(r.required("lens_focal_m"), r.path("lens_focal_m"));
+    c.sensor_distance_m = read_number(r.required("sensor_distance_m"), r.path("sensor_distance_m"));
+    c.wavelength_m = read_number(r.required("wavelength_m"), r.path("wavelength_m"));
+    c.pixel_pitch_m = read_number(r.required("pixel_pitch_m"), r.path("pixel_pitch_m"));
+    c.pinhole_m = read_number(r.required("pinhole_m"), r.path("pinhole_m"));
+    const auto [cols, rows] =
+        read_int_pair(r.required("sensor_px"), r.path("sensor_px"), "[cols, rows]");
+    c.sensor_cols = cols;
+    c.sensor_rows = rows;
+    try {
+        validate(c);
+    } catch (const InvalidInput& e) {
+        throw InvalidInput(std::string("optics.") + e.what());
+    }
+    return c;
+}
+
+KernelSpec read_kernel(const Json& j) {
+    ObjectReader r(j, "psf.kernel", {"model", "measured_path", "wavelengths"});
+    r.reject_unknown();
+    KernelSpec k;
+    k.model = read_string(r.required("model"), r.path("model"));
+    if (std::find(kKernelModels.begin(), kKernelModels.end(), k.model) == kKernelModels.end()) {
+        std::string list;
+        for (const auto& m : kKernelModels) list += (list.empty() ? "" : ", ") + m;
+        fail(r.path("model"), "\"" + k.model + "\" is not a kernel model (one of: " + list + ")");
+    }
+    if (const Json* mp = r.optional("measured_path")) {
+        k.measured_path = read_string(*mp, r.path("measured_path"));
+        if (k.model != "measured") {
+            fail(r.path("measured_path"),
+                 "only used with model \"measured\" (model is \"" + k.model + "\")");
+        }
+    }
+    if (k.model == "measured" && k.measured_path.empty()) {
+        fail(r.path("measured_path"), "model \"measured\" needs a non-empty measured_path");
+    }
+    if (const Json* wl = r.optional("wavelengths")) {
+        const std::string path = r.path("wavelengths");
+        if (!wl->is_array() || wl->empty()) {
+            fail(path, "must be a non-empty array of [wavelength_m, weight]");
+        }
+        double total = 0.0;
+        for (std::size_t i = 0; i < wl->size(); ++i) {
+            const Json& e = (*wl)[i];
+            const std::string ep = indexed(path, i);
+            if (!e.is_array() || e.size() != 2) fail(ep, "must be [wavelength_m, weight]");
+            const double w = read_number(e[0], indexed(ep, 0));
+            const double weight = read_number(e[1], indexed(ep, 1));
+            if (w <= 0.0) fail(indexed(ep, 0), "wavelength must be > 0");
+            if (weight < 0.0) fail(indexed(ep, 1), "weight must be >= 0");
+            total += weight;
+            k.wavelengths.emplace_back(w, weight);
+        }
+        if (total <= 0.0) fail(path, "weights must not all be zero");
+    }
+    return k;
+}
+
+PsfSpec read_psf(const Json& j) {
+    ObjectReader r(j, "psf", {"kernel", "pixels_per_cell"});
+    r.reject_unknown();
+    PsfSpec s;
+    s.kernel = read_kernel(r.required("kernel"));
+    s.pixels_per_cell = read_int(r.required("pixels_per_cell"), r.path("pixels_per_cell"));
+    if (s.pixels_per_cell < 1) {
+        fail(r.path("pixels_per_cell"), std::to_string(s.pixels_per_cell) + " must be >= 1");
+    }
+    return s;
+}
+
+// Returns the provenance and, through `hash`, the recorded geometry hash ("" when absent).
+Provenance read_provenance(const Json& j, std::string& hash) {
+    ObjectReader r(
+        j, "provenance",
+        {"seed", "generator", "family", "spacing_violations_allowed", "scores", "geometry_hash"});
+    r.reject_unknown();
+    Provenance p;
+    const Json& seed = r.required("seed");
+    if (!seed.is_number_unsigned()) {
+        fail(r.path("seed"), "must be a non-negative integer, got " + seed.dump());
+    }
+    p.seed = seed.get<std::uint64_t>();
+    p.generator = read_string(r.required("generator"), r.path("generator"));
+    p.family = read_string(r.required("family"), r.path("family"));
+    if (const Json* a = r.optional("spacing_violations_allowed")) {
+        p.spacing_violations_allowed = read_bool(*a, r.path("spacing_violations_allowed"));
+    }
+    if (const Json* s = r.optional("scores")) {
+        if (!s->is_object()) fail(r.path("scores"), "must be an object of name -> number");
+        for (const auto& item : s->items()) {
+            p.scores[item.key()] = read_number(item.value(), r.path("scores") + "." + item.key());
+        }
+    }
+    hash.clear();
+    if (const Json* h = r.optional("geometry_hash")) {
+        hash = read_string(*h, r.path("geometry_hash"));
+    }
+    return p;
+}
+
+template <class J>
+J length_or_inf(double v) {
+    return std::isinf(v) ? J("inf") : J(v);
+}
+
+template <class J>
+J build_json(const Mask& m) {
+    J j;
+    j["format"] = kFormat;
+    j["version"] = kVersion;
+    J pattern;
+    pattern["n"] = m.pattern.n;
+    J holes = J::array();
+    for (const Cell& c : sorted_pinholes(m.pattern)) holes.push_back(J::array({c.row, c.col}));
+    pattern["pinholes"] = std::move(holes);
+    pattern["tiles"] = J::array({m.pattern.tiles_rows, m.pattern.tiles_cols});
+    pattern["min_spacing_cells"] = m.pattern.min_spacing_cells;
+    j["pattern"] = std::move(pattern);
+
+    const Camera& c = m.camera;
+    J optics;
+    optics["object_distance_m"] = length_or_inf<J>(c.object_distance_m);
+    optics["lens_focal_m"] = length_or_inf<J>(c.lens_focal_m);
+    optics["sensor_distance_m"] = c.sensor_distance_m;
+    optics["wavelength_m"] = c.wavelength_m;
+    optics["pixel_pitch_m"] = c.pixel_pitch_m;
+    optics["pinhole_m"] = c.pinhole_m;
+    optics["sensor_px"] = J::array({c.sensor_cols, c.sensor_rows});
+    j["optics"] = std::move(optics);
+
+    J kernel;
+    kernel["model"] = m.psf.kernel.model;
+    if (!m.psf.kernel.measured_path.empty()) kernel["measured_path"] = m.psf.kernel.measured_path;
+    if (!m.psf.kernel.wavelengths.empty()) {
+        J wl = J::array();
+        for (const auto& [w, weight] : m.psf.kernel.wavelengths)
+            wl.push_back(J::array({w, weight}));
+        kernel["wavelengths"] = std::move(wl);
+    }
+    J psf;
+    psf["kernel"] = std::move(kernel);
+    psf["pixels_per_cell"] = m.psf.pixels_per_cell;
+    j["psf"] = std::move(psf);
+
+    const Provenance& p = m.provenance;
+    J prov;
+    prov["seed"] = p.seed;
+    prov["generator"] = p.generator;
+    prov["family"] = p.family;
+    prov["spacing_violations_allowed"] = p.spacing_violations_allowed;
+    J scores = J::object();
+    for (const auto& [name, value] : p.scores) scores[name] = value;
+    prov["scores"] = std::move(scores);
+    prov["geometry_hash"] = geometry_hash(m);
+    j["provenance"] = std::move(prov);
+    return j;
+}
+
+bool is_scalar(const OrderedJson& j) { return !j.is_array() && !j.is_object(); }
+
+// Pretty printer: 2-space indent; an array holding only scalars goes on one line.
+void pretty(const OrderedJson& j, int indent, std::string& out) {
+    const std::string pad(static_cast<std::size_t>(indent + 2), ' ');
+    if (j.is_object()) {
+        if (j.empty()) {
+            out += "{}";
+            return;
+        }
+        out += "{\n";
+        bool first = true;
+        for (const auto& item : j.items()) {
+            if (!first) out += ",\n";
+            first = false;
+            out += pad + OrderedJson(item.key()).dump() + ": ";
+            pretty(item.value(), indent + 2, out);
+        }
+        out += "\n" + std::string(static_cast<std::size_t>(indent), ' ') + "}";
+    } else if (j.is_array()) {
+        if (std::all_of(j.begin(), j.end(), is_scalar)) {
+            out += "[";
+            for (std::size_t i = 0; i < j.size(); ++i) out += (i ? ", " : "") + j[i].dump();
+            out += "]";
+            return;
+        }
+        out += "[\n";
+        for (std::size_t i = 0; i < j.size(); ++i) {
+            if (i) out += ",\n";
+            out += pad;
+            pretty(j[i], indent + 2, out);
+        }
+        out += "\n" + std::string(static_cast<std::size_t>(indent), ' ') + "]";
+    } else {
+        out += j.dump();
+    }
+}
+
+// Parses text, rejecting repeated keys in one object (nlohmann would keep the last silently).
+Json parse_strict(const std::string& text) {
+    struct Level {
+        std::set<std::string> keys;
+        std::string last_key;
+    };
+    std::vector<Level> stack;
+    auto cb = [&stack](int, Json::parse_event_t event, Json& parsed) {
+        switch (event) {
+            case Json::parse_event_t::object_start:
+                stack.emplace_back();
+                break;
+            case Json::parse_event_t::object_end:
+                if (!stack.empty()) stack.pop_back();
+                break;
+            case Json::parse_event_t::key: {
+                const std::string key = parsed.get<std::string>();
+                std::string path;
+                for (std::size_t i = 0; i + 1 < stack.size(); ++i) {
+                    path = join_path(path, stack[i].last_key);
+                }
+                path = join_path(path, key);
+                if (!stack.back().keys.insert(key).second) {
+                    fail(path, "duplicate key (each key may appear once per object)");
+                }
+                stack.back().last_key = key;
+                break;
+            }
+            default:
+                break;
+        }
+        return true;
+    };
+    return Json::parse(text, cb);
+}
+
+}  // namespace
+
+Mask mask_from_json(const Json& j, const MaskReadOptions& options) {
+    ObjectReader top(j, "", {"format", "version", "pattern", "optics", "psf", "provenance"});
+    const Json& format = top.required("format");
+    if (!format.is_string() || format.get<std::string>() != kFormat) {
+        fail("format",
+             format.dump() + " is not \"" + std::string(kFormat) + "\" (not a pinmask mask file)");
+    }
+    const Json& version = top.required("version");
+    if (!version.is_number_integer() || version.get<std::int64_t>() != kVersion) {
+        fail("version", version.dump() + " is not supported (this build reads version " +
+                            std::to_string(kVersion) + ")");
+    }
+    top.reject_unknown();
+    Mask m;
+    m.pattern = read_pattern(top.required("pattern"));
+    m.camera = read_optics(top.required("optics"));
+    m.psf = read_psf(top.required("psf"));
+    std::string recorded_hash;
+    m.provenance = read_provenance(top.required("provenance"), recorded_hash);
+    validate(m.pattern,
+             options.allow_spacing_violations || m.provenance.spacing_violations_allowed);
+    m.pattern.pinholes = sorted_pinholes(m.pattern);
+    if (!recorded_hash.empty()) {
+        const std::string actual = geometry_hash(m);
+        if (recorded_hash != actual) {
+            fail("provenance.geometry_hash",
+                 "\"" + recorded_hash + "\" does not match the geometry in the file (\"" + actual +
+                     "\"): the pattern or pinhole size was edited without updating the hash; "
+                     "remove the key to accept the edit");
+        }
+    }
+    return m;
+}
+
+Json mask_to_json(const Mask& mask) { return build_json<Json>(mask); }
+
+std::string mask_file_text(const Mask& mask) {
+    // Round trip through the reader so that no file is written that could not be read back.
+    MaskReadOptions opts;
+    opts.allow_spacing_violations = mask.provenance.spacing_violations_allowed;
+    mask_from_json(mask_to_json(mask), opts);
+    std::string out;
+    pretty(build_json<OrderedJson>(mask), 0, out);
+    out += "\n";
+    return out;
+}
+
+Mask read_mask_file(const std::filesystem::path& path, const MaskReadOptions& options) {
+    const std::string name = path.string();
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec) throw InvalidInput(name + ": cannot read mask file (" + ec.message() + ")");
+    check_memory(static_cast<double>(size) * kParsedBytesPerTextByte, "parsing mask file " + name);
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InvalidInput(name + ": cannot open mask file for reading");
+    std::ostringstream buf;
+    buf << in.rdbuf();
+    Json j;
+    try {
+        j = parse_strict(buf.str());
+    } catch (const Json::parse_error& e) {
+        throw InvalidInput(name + ": invalid JSON (byte " + std::to_string(e.byte) +
+                           "): " + e.what());
+    } catch (const InvalidInput& e) {
+        throw InvalidInput(name + ": " + e.what());
+    }
+    try {
+        return mask_from_json(j, options);
+    } catch (const InvalidInput& e) {
+        throw InvalidInput(name + ": " + e.what());
+    }
+}
+
+void write_mask_file(const std::filesystem::path& path, const Mask& mask) {
+    std::string text;
+    try {
+        text = mask_file_text(mask);
+    } catch (const InvalidInput& e) {
+        throw InvalidInput("refusing to write " + path.string() + ": " + e.what());
+    }
+    write_bytes_atomic(path, text);
+}
+
+}  // namespace pinmask::cli
