@@ -1,0 +1,137 @@
+#include "optimize/pattern_state.hpp"
+
+#include <cassert>
+#include <cmath>
+#include <numbers>
+
+#include "core/fft.hpp"
+
+namespace pinmask {
+namespace {
+
+int wrap(int v, int n) { return ((v % n) + n) % n; }
+
+}  // namespace
+
+ComplexPlane pattern_spectrum(const Pattern& p) {
+    Plane occ = Plane::Zero(p.n, p.n);
+    for (const Cell& c : p.pinholes) occ(c.row, c.col) = 1.0;
+    return expand_half_spectrum(Fft2(p.n, p.n).forward(occ), p.n);
+}
+
+std::vector<int> pattern_autocorrelation(const Pattern& p) {
+    const Fft2 fft(p.n, p.n);
+    Plane occ = Plane::Zero(p.n, p.n);
+    for (const Cell& c : p.pinholes) occ(c.row, c.col) = 1.0;
+    const ComplexPlane half = fft.forward(occ);
+    // R(d) = sum_x o(x) o(x + d): inverse DFT of |P^|^2 (conj(P^) P^ in this sign convention).
+    const ComplexPlane power = half.abs2().cast<std::complex<double>>();
+    const Plane r = fft.inverse(power);
+    std::vector<int> out(static_cast<std::size_t>(p.n) * p.n);
+    for (int i = 0; i < p.n * p.n; ++i) out[i] = static_cast<int>(std::lround(r.data()[i]));
+    return out;
+}
+
+PatternState::PatternState(const Pattern& p) : pattern_(p) {
+    validate(p);
+    const int n = p.n;
+    occupied_ = occupancy(p);
+    exclusion_.assign(static_cast<std::size_t>(n) * n, 0);
+    // Offsets (dr, dc) with torus-reduced distance below the rule, each cell of the torus once.
+    const int reach = std::min(static_cast<int>(std::ceil(p.min_spacing_cells)), n / 2);
+    for (int dr = -reach; dr <= reach; ++dr) {
+        for (int dc = -reach; dc <= reach; ++dc) {
+            const Cell off{wrap(dr, n), wrap(dc, n)};
+            bool seen = false;
+            for (const Cell& s : stencil_) seen = seen || (s == off);
+            if (seen) continue;
+            if (torus_distance_cells({0, 0}, off, n) < p.min_spacing_cells - kSpacingTolerance) {
+                stencil_.push_back(off);
+            }
+        }
+    }
+    // A cell holds one pinhole, so (0, 0) is excluded even for spacing 0.
+    bool has_origin = false;
+    for (const Cell& s : stencil_) has_origin = has_origin || (s == Cell{0, 0});
+    if (!has_origin) stencil_.push_back({0, 0});
+    for (const Cell& c : p.pinholes) add_exclusion(c, +1);
+    twiddle_.resize(n);
+    for (int m = 0; m < n; ++m) twiddle_[m] = std::polar(1.0, -2.0 * std::numbers::pi * m / n);
+    row_wave_.resize(n);
+    col_wave_.resize(n);
+    recompute();
+}
+
+void PatternState::recompute() {
+    spectrum_ = pattern_spectrum(pattern_);
+    autocorr_ = pattern_autocorrelation(pattern_);
+}
+
+int PatternState::autocorrelation_at(int dr, int dc) const {
+    return autocorr_[static_cast<std::size_t>(wrap(dr, n())) * n() + wrap(dc, n())];
+}
+
+void PatternState::add_exclusion(Cell c, int delta) {
+    const int n = pattern_.n;
+    for (const Cell& s : stencil_) {
+        exclusion_[static_cast<std::size_t>((c.row + s.row) % n) * n + (c.col + s.col) % n] +=
+            delta;
+    }
+}
+
+bool PatternState::excludes(Cell c, Cell t) const {
+    const int n = pattern_.n;
+    const Cell off{wrap(t.row - c.row, n), wrap(t.col - c.col, n)};
+    for (const Cell& s : stencil_) {
+        if (s == off) return true;
+    }
+    return false;
+}
+
+bool PatternState::is_legal_move(int j, Cell to) const {
+    if (to.row < 0 || to.row >= n() || to.col < 0 || to.col >= n()) return false;
+    if (occupied_[index(to)]) return false;
+    const Cell from = pattern_.pinholes[static_cast<std::size_t>(j)];
+    return exclusion_[index(to)] - (excludes(from, to) ? 1 : 0) == 0;
+}
+
+void PatternState::add_plane_wave(Cell c, double sign) {
+    const int n = pattern_.n;
+    for (int k = 0; k < n; ++k) {
+        row_wave_[k] = sign * twiddle_[static_cast<std::size_t>(k) * c.row % n];
+        col_wave_[k] = twiddle_[static_cast<std::size_t>(k) * c.col % n];
+    }
+    for (int k = 0; k < n; ++k) {
+        std::complex<double>* row = &spectrum_(k, 0);
+        const std::complex<double> a = row_wave_[k];
+        for (int l = 0; l < n; ++l) row[l] += a * col_wave_[l];
+    }
+}
+
+void PatternState::add_autocorrelation(int j, Cell at, int delta) {
+    const int n = pattern_.n;
+    for (int i = 0; i < holes(); ++i) {
+        if (i == j) continue;
+        const Cell q = pattern_.pinholes[static_cast<std::size_t>(i)];
+        const int dr = wrap(at.row - q.row, n), dc = wrap(at.col - q.col, n);
+        autocorr_[static_cast<std::size_t>(dr) * n + dc] += delta;
+        autocorr_[static_cast<std::size_t>(wrap(-dr, n)) * n + wrap(-dc, n)] += delta;
+    }
+}
+
+void PatternState::move(int j, Cell to) {
+    assert(is_legal_move(j, to));
+    Cell& slot = pattern_.pinholes[static_cast<std::size_t>(j)];
+    const Cell from = slot;
+    add_autocorrelation(j, from, -1);
+    add_exclusion(from, -1);
+    occupied_[index(from)] = 0;
+    add_plane_wave(from, -1.0);
+    slot = to;
+    add_autocorrelation(j, to, +1);
+    add_exclusion(to, +1);
+    occupied_[index(to)] = 1;
+    add_plane_wave(to, +1.0);
+}
+
+}  // namespace pinmask

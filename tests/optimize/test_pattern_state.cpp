@@ -1,0 +1,96 @@
+#include <doctest/doctest.h>
+
+#include <random>
+
+#include "design/pattern.hpp"
+#include "optimize/pattern_state.hpp"
+
+using namespace pinmask;
+
+namespace {
+
+// 10^4 rank-one updates of unit-modulus terms: round-off grows like sqrt(moves) * K * eps; 1e-9
+// absolute leaves three orders of magnitude of margin for K <= 100.
+constexpr double kIncrementalSpectrumTol = 1e-9;
+
+// A deterministic legal starting pattern: pinholes on a lattice of step `step`.
+Pattern lattice_pattern(int n, int holes, int step, double spacing) {
+    Pattern p;
+    p.n = n;
+    p.min_spacing_cells = spacing;
+    for (int r = 0; r + step <= n && static_cast<int>(p.pinholes.size()) < holes; r += step)
+        for (int c = 0; c + step <= n && static_cast<int>(p.pinholes.size()) < holes; c += step)
+            p.pinholes.push_back({r, c});
+    return p;
+}
+
+// Independent legality check: brute-force torus distances to every other pinhole.
+bool brute_force_legal(const Pattern& p, int j, Cell to) {
+    if (p.pinholes[j] == to) return false;  // staying put is not a move
+    for (int i = 0; i < static_cast<int>(p.pinholes.size()); ++i) {
+        if (i == j) continue;
+        if (p.pinholes[i] == to) return false;
+        if (torus_distance_cells(p.pinholes[i], to, p.n) < p.min_spacing_cells - kSpacingTolerance)
+            return false;
+    }
+    return true;
+}
+
+void run_random_moves(int n, int holes, int step, double spacing, int moves, unsigned seed) {
+    PatternState state(lattice_pattern(n, holes, step, spacing));
+    REQUIRE(state.holes() == holes);
+    std::mt19937_64 rng(seed);
+    std::uniform_int_distribution<int> pick_hole(0, holes - 1), pick_cell(0, n - 1);
+    int accepted = 0;
+    for (int m = 0; m < moves; ++m) {
+        const int j = pick_hole(rng);
+        const Cell to{pick_cell(rng), pick_cell(rng)};
+        const bool legal = state.is_legal_move(j, to);
+        REQUIRE(legal == brute_force_legal(state.pattern(), j, to));
+        if (legal) {
+            state.move(j, to);
+            ++accepted;
+        }
+    }
+    INFO("n " << n << ", K " << holes << ", accepted " << accepted << " of " << moves);
+    CHECK(accepted > moves / 20);
+    CHECK(spacing_violations(state.pattern()).empty());
+    const ComplexPlane full = pattern_spectrum(state.pattern());
+    CHECK((state.spectrum() - full).abs().maxCoeff() <= kIncrementalSpectrumTol);
+    CHECK(state.autocorrelation() == pattern_autocorrelation(state.pattern()));
+}
+
+}  // namespace
+
+TEST_CASE("incremental spectrum and autocorrelation equal full recomputation after 10^4 moves") {
+    run_random_moves(16, 20, 2, 2.0, 10000, 1);   // the paper's geometry
+    run_random_moves(17, 12, 3, 2.5, 10000, 2);   // odd (prime) n, real-valued spacing
+    run_random_moves(64, 100, 4, 2.0, 10000, 3);  // larger torus
+    run_random_moves(5, 3, 2, 1.0, 10000, 4);     // tiny torus: wrap-around everywhere
+}
+
+TEST_CASE("autocorrelation against a direct pair count") {
+    Pattern p = lattice_pattern(9, 7, 3, 2.0);
+    const auto r = pattern_autocorrelation(p);
+    for (int dr = 0; dr < 9; ++dr)
+        for (int dc = 0; dc < 9; ++dc) {
+            int count = 0;
+            for (const Cell& a : p.pinholes)
+                for (const Cell& b : p.pinholes)
+                    count += ((b.row - a.row + 9) % 9 == dr && (b.col - a.col + 9) % 9 == dc);
+            CHECK(r[static_cast<std::size_t>(dr) * 9 + dc] == count);
+        }
+    CHECK(r[0] == 7);
+}
+
+TEST_CASE("moves across the seam respect the torus spacing rule") {
+    Pattern p;
+    p.n = 8;
+    p.pinholes = {{0, 0}, {4, 4}};
+    PatternState s(p);
+    CHECK_FALSE(s.is_legal_move(1, {7, 7}));  // diagonal neighbour of (0,0) across the corner
+    CHECK_FALSE(s.is_legal_move(1, {0, 7}));
+    CHECK(s.is_legal_move(1, {0, 6}));        // distance 2 across the seam: legal
+    CHECK(s.is_legal_move(0, {0, 1}));        // a pinhole's own exclusion does not block it
+    CHECK_FALSE(s.is_legal_move(0, {4, 4}));  // occupied
+}
