@@ -1,0 +1,80 @@
+// DiffuserCam-style preprocessing: corner background, 2x2 box downsampling, L2 normalisation.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/error.hpp"
+#include "decode/preprocess.hpp"
+#include "tests/support/close.hpp"
+
+using namespace pinmask;
+
+namespace {
+
+// Sums of a few hundred doubles of order 1: round-off is a few ulps times the count.
+constexpr double kSumRoundoffTol = 1e-13;
+
+Plane random_plane(int rows, int cols, unsigned seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1.0, 2.0);
+    Plane p(rows, cols);
+    for (Eigen::Index i = 0; i < p.size(); ++i) p.data()[i] = u(rng);
+    return p;
+}
+
+}  // namespace
+
+TEST_CASE("corner_background is the mean of rows and cols 5..14") {
+    const Plane p = random_plane(20, 23, 1);
+    double sum = 0.0;
+    for (int r = 5; r <= 14; ++r)
+        for (int c = 5; c <= 14; ++c) sum += p(r, c);
+    CHECK_CLOSE(corner_background(p), sum / 100.0, kSumRoundoffTol);
+    // The patch needs 15 x 15 pixels.
+    CHECK_NOTHROW(corner_background(random_plane(15, 15, 2)));
+    CHECK_THROWS_AS(corner_background(random_plane(14, 40, 2)), InvalidInput);
+    CHECK_THROWS_AS(patch_mean(p, -1, 0, 3), InvalidInput);
+}
+
+TEST_CASE("box_downsample_2x averages 2x2 blocks and drops an odd last row/column") {
+    for (const auto& size :
+         {std::pair{8, 8}, std::pair{7, 11}, std::pair{13, 2}, std::pair{2, 3}}) {
+        const Plane p = random_plane(size.first, size.second, 3);
+        const Plane d = box_downsample_2x(p);
+        INFO("size " << size.first << " x " << size.second);
+        REQUIRE(d.rows() == size.first / 2);
+        REQUIRE(d.cols() == size.second / 2);
+        for (int r = 0; r < d.rows(); ++r)
+            for (int c = 0; c < d.cols(); ++c) {
+                const double ref = (p(2 * r, 2 * c) + p(2 * r + 1, 2 * c) + p(2 * r, 2 * c + 1) +
+                                    p(2 * r + 1, 2 * c + 1)) /
+                                   4.0;
+                CHECK_CLOSE(d(r, c), ref, kSumRoundoffTol);
+            }
+    }
+    CHECK_THROWS_AS(box_downsample_2x(random_plane(1, 5, 4)), InvalidInput);
+}
+
+TEST_CASE("box_downsample by k rounds equals a 2^k block mean") {
+    const Plane p = random_plane(48, 40, 5);
+    const Plane d = box_downsample(p, 3);
+    REQUIRE(d.rows() == 6);
+    REQUIRE(d.cols() == 5);
+    for (int r = 0; r < 6; ++r)
+        for (int c = 0; c < 5; ++c)
+            CHECK_CLOSE(d(r, c), p.block(8 * r, 8 * c, 8, 8).mean(), kSumRoundoffTol);
+    CHECK((box_downsample(p, 0) == p).all());
+    CHECK_THROWS_AS(box_downsample(p, -1), InvalidInput);
+    CHECK_THROWS_AS(box_downsample(p, 6), InvalidInput);  // 48 -> 0 rows after 6 rounds
+}
+
+TEST_CASE("l2_normalized gives unit norm and refuses a zero image") {
+    const Plane p = random_plane(9, 17, 6);
+    const Plane n = l2_normalized(p, "capture");
+    double sq = 0.0;
+    for (Eigen::Index i = 0; i < n.size(); ++i) sq += n.data()[i] * n.data()[i];
+    CHECK_CLOSE(std::sqrt(sq), 1.0, kSumRoundoffTol);
+    CHECK_CLOSE(n(4, 5) / p(4, 5), n(0, 0) / p(0, 0), kSumRoundoffTol);
+    CHECK_THROWS_AS(l2_normalized(Plane::Zero(3, 3), "capture"), InvalidInput);
+}

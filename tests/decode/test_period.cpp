@@ -1,0 +1,196 @@
+// Period estimation from the autocorrelation, and the check against the PSF size.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "core/error.hpp"
+#include "decode/period.hpp"
+#include "tests/support/close.hpp"
+
+using namespace pinmask;
+
+namespace {
+
+// FFT round-off relative to the zero-lag sum, amplified at large lags by the division by the
+// overlap count (up to the side length, a few hundred here).
+constexpr double kProfileVsDirectTol = 1e-10;
+// A parabola through three samples of a peak whose true top lies between samples: its bias is a
+// fraction of the sample spacing for the triangular-ish peaks of sums of cosines.
+constexpr double kSubPixelTol = 0.25;
+
+Plane random_plane(int rows, int cols, unsigned seed, double lo = 0.0, double hi = 1.0) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(lo, hi);
+    Plane p(rows, cols);
+    for (Eigen::Index i = 0; i < p.size(); ++i) p.data()[i] = u(rng);
+    return p;
+}
+
+// rho(d) by the definition in period.hpp: direct sums over the overlapping pairs.
+std::vector<double> direct_profile(const Plane& x0, Axis axis) {
+    const Plane x = x0 - x0.mean();
+    const int R = static_cast<int>(x.rows()), C = static_cast<int>(x.cols());
+    const int size = axis == Axis::kRows ? R : C;
+    std::vector<double> mean_product(static_cast<std::size_t>(size));
+    for (int d = 0; d < size; ++d) {
+        double s = 0.0;
+        long count = 0;
+        for (int r = 0; r < R; ++r)
+            for (int c = 0; c < C; ++c) {
+                const int r2 = axis == Axis::kRows ? r + d : r,
+                          c2 = axis == Axis::kCols ? c + d : c;
+                if (r2 >= R || c2 >= C) continue;
+                s += x(r, c) * x(r2, c2);
+                ++count;
+            }
+        mean_product[static_cast<std::size_t>(d)] = s / count;
+    }
+    for (int d = size - 1; d >= 0; --d)
+        mean_product[static_cast<std::size_t>(d)] /= mean_product[0];
+    return mean_product;
+}
+
+// `tile` repeated over a rows x cols frame starting at phase (r0, c0) inside the tile.
+Plane tiled(const Plane& tile, int rows, int cols, int r0, int c0) {
+    Plane out(rows, cols);
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c)
+            out(r, c) = tile((r + r0) % tile.rows(), (c + c0) % tile.cols());
+    return out;
+}
+
+// Circular convolution of scene and psf (same size), by the direct O(N^2) sum.
+Plane circular_convolution(const Plane& scene, const Plane& psf) {
+    const int R = static_cast<int>(scene.rows()), C = static_cast<int>(scene.cols());
+    Plane out = Plane::Zero(R, C);
+    for (int r = 0; r < R; ++r)
+        for (int c = 0; c < C; ++c)
+            for (int i = 0; i < R; ++i)
+                for (int j = 0; j < C; ++j)
+                    out(r, c) += scene(i, j) * psf(((r - i) % R + R) % R, ((c - j) % C + C) % C);
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("autocorrelation_profile matches the direct sum (odd, prime, power-of-two sizes)") {
+    for (const auto& size : {std::pair{16, 32}, std::pair{13, 17}, std::pair{9, 1}, std::pair{1, 7},
+                             std::pair{31, 24}}) {
+        const Plane x = random_plane(size.first, size.second, 7u * size.first + size.second);
+        for (Axis axis : {Axis::kRows, Axis::kCols}) {
+            const auto fast = autocorrelation_profile(x, axis);
+            const auto ref = direct_profile(x, axis);
+            REQUIRE(fast.size() == ref.size());
+            INFO("size " << size.first << " x " << size.second);
+            for (std::size_t d = 0; d < ref.size(); ++d)
+                CHECK(std::fabs(fast[d] - ref[d]) <=
+                      kProfileVsDirectTol * std::max(1.0, std::fabs(ref[d])));
+        }
+    }
+    const auto flat = autocorrelation_profile(Plane::Constant(8, 8, 3.0), Axis::kRows);
+    CHECK(flat[0] == 1.0);
+    CHECK(flat[5] == 0.0);
+}
+
+TEST_CASE("strongest_repeat picks the first repeat, not its multiples or the central lobe") {
+    // A central lobe decaying to 0.1, a repeat at 10 (0.8), a slightly larger one at 20 (0.85).
+    std::vector<double> p(40, 0.1);
+    for (int d = 0; d < 4; ++d) p[d] = 1.0 - 0.3 * d;
+    p[9] = 0.5;
+    p[10] = 0.8;
+    p[11] = 0.5;
+    p[19] = 0.5;
+    p[20] = 0.85;
+    p[21] = 0.5;
+    const auto pk = strongest_repeat(p, 30, 0.1);
+    REQUIRE(pk.has_value());
+    CHECK(pk->lag == doctest::Approx(10.0));
+    CHECK(pk->rise == doctest::Approx(0.7));
+    // Out of the search range, or too small a rise: no repeat.
+    CHECK_FALSE(strongest_repeat(p, 8, 0.1).has_value());
+    CHECK_FALSE(strongest_repeat(p, 30, 0.9).has_value());
+    // An asymmetric peak moves the parabola's vertex towards the larger neighbour.
+    p[11] = 0.7;
+    const auto pk2 = strongest_repeat(p, 15, 0.1);
+    REQUIRE(pk2.has_value());
+    CHECK(pk2->lag > 10.0);
+    CHECK(pk2->lag < 10.5);
+}
+
+TEST_CASE("check_period finds the period of a tiled coded capture with noise") {
+    // One period: a sparse pinhole-like PSF (4 x 4 pixel spots) convolved with a smooth scene;
+    // the sensor sees that period repeated, starting at an arbitrary phase, plus noise.
+    const int P = 32;
+    Plane psf = Plane::Zero(P, P);
+    const int holes[][2] = {{0, 0}, {3, 5}, {1, 6}, {6, 2}, {5, 7}, {7, 4}};
+    for (const auto& h : holes) psf.block(4 * h[0], 4 * h[1], 4, 4) = 1.0;
+    Plane scene(P, P);
+    for (int r = 0; r < P; ++r)
+        for (int c = 0; c < P; ++c)
+            scene(r, c) = 1.0 + std::sin(2 * std::numbers::pi * r / P) *
+                                    std::cos(2 * std::numbers::pi * c / P);
+    const Plane period = circular_convolution(scene, psf);
+    Plane capture = tiled(period, 101, 150, 7, 19);
+    std::mt19937_64 rng(11);
+    std::normal_distribution<double> noise(0.0, 0.05 * period.mean());
+    for (Eigen::Index i = 0; i < capture.size(); ++i) capture.data()[i] += noise(rng);
+
+    const PeriodCheck ok = check_period(capture, P, P);
+    CHECK(ok.checked());
+    CHECK(ok.rows.checked);
+    CHECK(ok.cols.checked);
+    CHECK(ok.rows.found);
+    CHECK(ok.cols.found);
+    CHECK(std::fabs(ok.rows.measured_px - P) <= kSubPixelTol);
+    CHECK(std::fabs(ok.cols.measured_px - P) <= kSubPixelTol);
+    CHECK(ok.matches());
+
+    // The same capture checked against a PSF of another size: a mismatch with the true figure.
+    const PeriodCheck bad = check_period(capture, 28, 36);
+    CHECK_FALSE(bad.matches());
+    CHECK(std::fabs(bad.rows.measured_px - P) <= kSubPixelTol);
+    CHECK(std::fabs(bad.cols.measured_px - P) <= kSubPixelTol);
+}
+
+TEST_CASE("check_period measures a non-integer period to sub-pixel accuracy") {
+    // Rows repeat every 21.4 px, columns every 16 px (cosine sums with harmonics: sharp peaks).
+    const double pr = 21.4, pc = 16.0;
+    Plane x(128, 96);
+    for (int r = 0; r < x.rows(); ++r)
+        for (int c = 0; c < x.cols(); ++c) {
+            double v = 0.0;
+            for (int k = 1; k <= 4; ++k)
+                v += std::cos(2 * std::numbers::pi * k * r / pr) +
+                     std::cos(2 * std::numbers::pi * k * c / pc + k);
+            x(r, c) = v;
+        }
+    const PeriodCheck check = check_period(x, 21, 16);
+    REQUIRE(check.rows.found);
+    REQUIRE(check.cols.found);
+    CHECK(std::fabs(check.rows.measured_px - pr) <= kSubPixelTol);
+    CHECK(std::fabs(check.cols.measured_px - pc) <= kSubPixelTol);
+    CHECK(check.cols.matches);
+    CHECK(check.rows.matches);  // 21.4 rounds to 21: within half a pixel
+    const PeriodCheck far = check_period(x, 20, 16);
+    CHECK_FALSE(far.rows.matches);  // 21.4 vs 20
+    CHECK_FALSE(far.matches());
+}
+
+TEST_CASE("check_period skips an axis with fewer than two periods, and finds none in noise") {
+    const Plane x = random_plane(60, 100, 3);
+    const PeriodCheck one = check_period(x, 31, 40);
+    CHECK_FALSE(one.rows.checked);  // 60 < 2 * 31
+    CHECK(one.rows.skip_reason.find("1.94 periods") != std::string::npos);
+    CHECK(one.cols.checked);
+    CHECK_FALSE(one.cols.found);  // white noise does not repeat
+    CHECK_FALSE(one.matches());
+
+    const PeriodCheck none = check_period(x, 60, 100);
+    CHECK_FALSE(none.checked());
+    CHECK(none.matches());  // nothing checked, nothing contradicted
+
+    CHECK_THROWS_AS(check_period(x, 0, 10), InvalidInput);
+    CHECK_THROWS_AS(check_period(Plane(0, 0), 1, 1), InvalidInput);
+}
