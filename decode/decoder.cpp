@@ -1,0 +1,118 @@
+// decode_plane: validates the inputs once, builds the convolution model and dispatches to the
+// algorithm of decode/. Solvers work on the model's working grid; the image returned is the
+// capture window of the estimate.
+#include "decode/decoder.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "core/error.hpp"
+#include "decode/convolution.hpp"
+#include "decode/tikhonov.hpp"
+#include "decode/wiener.hpp"
+
+namespace pinmask {
+namespace {
+
+std::string num(double v) {
+    std::ostringstream s;
+    s.precision(17);
+    s << v;
+    return s.str();
+}
+
+std::string size_text(Eigen::Index r, Eigen::Index c) {
+    return std::to_string(r) + " x " + std::to_string(c);
+}
+
+void check_nonnegative(const char* field, double v) {
+    if (!(v >= 0.0) || !std::isfinite(v))
+        throw invalid_field(field, num(v), "must be finite and >= 0");
+}
+
+void validate(const Plane& capture, const Plane& psf, const DecodeOptions& o) {
+    if (capture.size() == 0) throw invalid_field("capture", "empty", "needs at least one pixel");
+    if (!is_all_finite(capture)) {
+        throw invalid_field("capture", "non-finite values", "every pixel must be finite");
+    }
+    if (psf.size() == 0) throw invalid_field("psf", "empty", "needs at least one pixel");
+    if (!is_all_finite(psf))
+        throw invalid_field("psf", "non-finite values", "every pixel must be finite");
+    if (!(psf.sum() > 0.0)) throw invalid_field("psf sum", num(psf.sum()), "must be > 0");
+    check_nonnegative("nsr", o.nsr);
+    check_nonnegative("lambda", o.lambda);
+    if (o.eps) check_nonnegative("eps", *o.eps);
+    if (o.noise_sigma) check_nonnegative("noise_sigma", *o.noise_sigma);
+    check_nonnegative("tolerance", o.tolerance);
+    if (o.max_iterations < 0) {
+        throw invalid_field("max_iterations", std::to_string(o.max_iterations), "must be >= 0");
+    }
+}
+
+void check_work_plane(const char* field, const Plane& p, const ConvGeometry& g) {
+    if (p.rows() != g.work_rows || p.cols() != g.work_cols) {
+        throw invalid_field(field, size_text(p.rows(), p.cols()),
+                            "must have the working size " + size_text(g.work_rows, g.work_cols));
+    }
+    if (!is_all_finite(p)) throw invalid_field(field, "non-finite values", "must be finite");
+}
+
+// Closed-form methods: x = G p on the working grid (capture zero-padded for the linear model).
+DecodeResult decode_closed_form(const Plane& capture, const Plane& psf, const DecodeOptions& o,
+                                const ConvGeometry& g) {
+    const Plane padded = pad_to_work(g, capture);
+    const ConvolutionOperator op(psf, g);
+    DecodeResult r;
+    Plane x;
+    double penalty = 0.0;
+    if (o.method == DecodeMethod::kWiener) {
+        if (o.nsr_per_frequency) {
+            check_work_plane("nsr_per_frequency", *o.nsr_per_frequency, g);
+            x = WienerFilter(psf, g.work_rows, g.work_cols, *o.nsr_per_frequency).apply(padded);
+            // (1/N) sum_k NSR(k) |X(k)|^2 over the full spectrum (Parseval form of nsr ||x||^2).
+            const ComplexPlane xs = expand_half_spectrum(op.fft().forward(x), g.work_cols);
+            penalty = (o.nsr_per_frequency->cast<std::complex<double>>() * xs * xs.conjugate())
+                          .real()
+                          .sum() /
+                      static_cast<double>(x.size());
+        } else {
+            x = WienerFilter(psf, g.work_rows, g.work_cols, o.nsr).apply(padded);
+            penalty = o.nsr * x.square().sum();
+        }
+    } else {
+        x = make_tikhonov_filter(psf, g.work_rows, g.work_cols, o.lambda, o.regulariser)
+                .apply(padded);
+        penalty = tikhonov_penalty(x, o.lambda, o.regulariser);
+    }
+    const double res2 = (op.apply(x) - capture).square().sum();
+    r.residual = std::sqrt(res2);
+    r.objective = res2 + penalty;
+    r.image = crop_to_capture(g, x);
+    return r;
+}
+
+}  // namespace
+
+DecodeResult decode_plane(const Plane& capture, const Plane& psf, const DecodeOptions& options) {
+    const auto t0 = std::chrono::steady_clock::now();
+    validate(capture, psf, options);
+    const ConvGeometry g = make_conv_geometry(
+        options.model, static_cast<int>(capture.rows()), static_cast<int>(capture.cols()),
+        static_cast<int>(psf.rows()), static_cast<int>(psf.cols()));
+    if (options.warm_start) check_work_plane("warm_start", *options.warm_start, g);
+    DecodeResult r;
+    switch (options.method) {
+        case DecodeMethod::kWiener:
+        case DecodeMethod::kTikhonov:
+            r = decode_closed_form(capture, psf, options, g);
+            break;
+        default:
+            throw InvalidInput("method: this build decodes with wiener and tikhonov only so far");
+    }
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return r;
+}
+
+}  // namespace pinmask
