@@ -1,0 +1,304 @@
+#include "optimize/search.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include "core/error.hpp"
+
+namespace pinmask {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// SplitMix64: decorrelated per-chain seeds from (seed, chain).
+std::uint64_t chain_seed(std::uint64_t seed, int chain) {
+    std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(chain + 1);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+}
+
+// The best `capacity` distinct patterns seen by one chain, best first.
+class TopList {
+  public:
+    explicit TopList(int capacity) : capacity_(static_cast<std::size_t>(capacity)) {}
+
+    double worst() const { return items_.size() < capacity_ ? INFINITY : items_.back().objective; }
+    void offer(const Pattern& p, double objective) {
+        if (objective >= worst()) return;
+        std::vector<Cell> key = sorted_pinholes(p);
+        for (const auto& it : items_) {
+            if (it.key == key) return;
+        }
+        Item item{std::move(key), p, objective};
+        const auto pos = std::upper_bound(items_.begin(), items_.end(), item,
+                                          [](const Item& a, const Item& b) { return less(a, b); });
+        items_.insert(pos, std::move(item));
+        if (items_.size() > capacity_) items_.pop_back();
+    }
+    struct Item {
+        std::vector<Cell> key;
+        Pattern pattern;
+        double objective;
+    };
+    static bool less(const Item& a, const Item& b) {
+        return a.objective < b.objective || (a.objective == b.objective && a.key < b.key);
+    }
+    const std::vector<Item>& items() const { return items_; }
+
+  private:
+    std::size_t capacity_;
+    std::vector<Item> items_;
+};
+
+struct ChainShared {
+    std::atomic<std::int64_t> evaluations{0};
+    std::atomic<double> best{INFINITY};
+};
+
+class Chain {
+  public:
+    Chain(const SearchOptions& o, const SearchObjective& obj,
+          const std::function<Pattern(std::mt19937_64&)>& sample, int index,
+          const std::atomic<bool>* cancel, const std::atomic<bool>* time_up, ChainShared* shared)
+        : o_(o),
+          obj_(obj),
+          sample_(sample),
+          rng_(chain_seed(o.seed, index)),
+          cancel_(cancel),
+          time_up_(time_up),
+          shared_(shared),
+          top_(o.top) {
+        for (const Cell& c : o.keep_out) keep_out_.push_back(c);
+    }
+
+    void run() {
+        if (o_.strategy == SearchStrategy::kRandom) {
+            while (!should_stop()) {
+                const PatternState s(sample_(rng_));
+                record(s, obj_.evaluate(s));
+            }
+        } else {
+            while (!should_stop()) anneal_once();
+        }
+    }
+    const TopList& top() const { return top_; }
+    std::int64_t evaluations() const { return evaluations_; }
+
+  private:
+    bool should_stop() const {
+        if (o_.max_evaluations > 0 && evaluations_ >= o_.max_evaluations) return true;
+        if (cancel_ && cancel_->load(std::memory_order_relaxed)) return true;
+        return time_up_->load(std::memory_order_relaxed);
+    }
+
+    void record(const PatternState& s, double value) {
+        ++evaluations_;
+        shared_->evaluations.store(evaluations_, std::memory_order_relaxed);
+        if (value < top_.worst()) top_.offer(s.pattern(), value);
+        if (value < shared_->best.load(std::memory_order_relaxed)) {
+            shared_->best.store(value, std::memory_order_relaxed);
+        }
+    }
+
+    bool blocked(Cell c) const {
+        return std::find(keep_out_.begin(), keep_out_.end(), c) != keep_out_.end();
+    }
+
+    // Proposes a legal move (j, to); false when none was found in a bounded number of draws.
+    bool propose(const PatternState& s, int& j, Cell& to) {
+        std::uniform_int_distribution<int> hole(0, s.holes() - 1), cell(0, s.n() - 1);
+        for (int attempt = 0; attempt < 64; ++attempt) {
+            j = hole(rng_);
+            to = {cell(rng_), cell(rng_)};
+            if (!blocked(to) && s.is_legal_move(j, to)) return true;
+        }
+        return false;
+    }
+
+    // One annealing restart: a fresh random start, a geometric temperature schedule over a fixed
+    // number of moves (independent of the budget, so runs are reproducible by evaluation count).
+    void anneal_once() {
+        PatternState s(sample_(rng_));
+        double current = obj_.evaluate(s);
+        record(s, current);
+        // Temperature scale: mean |change| of a few trial moves (applied and reverted).
+        double sum = 0.0;
+        int count = 0;
+        for (int t = 0; t < 32 && !should_stop(); ++t) {
+            int j;
+            Cell to;
+            if (!propose(s, j, to)) break;
+            const Cell from = s.pattern().pinholes[static_cast<std::size_t>(j)];
+            s.move(j, to);
+            const double v = obj_.evaluate(s);
+            record(s, v);
+            sum += std::fabs(v - current);
+            ++count;
+            s.move(j, from);
+        }
+        const double t0 = count > 0 && sum > 0.0 ? sum / count : 1.0;
+        std::uniform_real_distribution<double> uniform(0.0, 1.0);
+        const std::int64_t moves = o_.anneal_restart_moves;
+        for (std::int64_t m = 0; m < moves && !should_stop(); ++m) {
+            if ((m & 4095) == 4095) s.recompute();  // bound accumulated round-off in P^
+            int j;
+            Cell to;
+            if (!propose(s, j, to)) return;  // stuck: restart
+            const double temperature =
+                t0 * std::pow(o_.anneal_final_temperature_ratio, static_cast<double>(m) / moves);
+            const Cell from = s.pattern().pinholes[static_cast<std::size_t>(j)];
+            s.move(j, to);
+            const double v = obj_.evaluate(s);
+            record(s, v);
+            if (v <= current || uniform(rng_) < std::exp((current - v) / temperature)) {
+                current = v;
+            } else {
+                s.move(j, from);
+            }
+        }
+    }
+
+    const SearchOptions& o_;
+    const SearchObjective& obj_;
+    const std::function<Pattern(std::mt19937_64&)>& sample_;
+    std::mt19937_64 rng_;
+    const std::atomic<bool>* cancel_;
+    const std::atomic<bool>* time_up_;
+    ChainShared* shared_;
+    TopList top_;
+    std::vector<Cell> keep_out_;
+    std::int64_t evaluations_ = 0;
+};
+
+}  // namespace
+
+void SearchOptions::validate() const {
+    if (threads < 1 || threads > 1024) {
+        throw invalid_field("threads", std::to_string(threads), "must be between 1 and 1024");
+    }
+    if (!(time_budget_s >= 0.0) || !std::isfinite(time_budget_s)) {
+        throw invalid_field("time_budget_s", std::to_string(time_budget_s), "must be >= 0");
+    }
+    if (max_evaluations < 0) {
+        throw invalid_field("max_evaluations", std::to_string(max_evaluations), "must be >= 0");
+    }
+    if (time_budget_s == 0.0 && max_evaluations == 0) {
+        throw InvalidInput("search needs a budget: a time budget > 0 or an evaluation budget > 0");
+    }
+    if (top < 1) throw invalid_field("top", std::to_string(top), "must be >= 1");
+    if (anneal_restart_moves < 1) {
+        throw invalid_field("anneal_restart_moves", std::to_string(anneal_restart_moves),
+                            "must be >= 1");
+    }
+    if (!(anneal_final_temperature_ratio > 0.0 && anneal_final_temperature_ratio <= 1.0)) {
+        throw invalid_field("anneal_final_temperature_ratio",
+                            std::to_string(anneal_final_temperature_ratio), "must be in (0, 1]");
+    }
+    if (!(log_interval_s > 0.0)) {
+        throw invalid_field("log_interval_s", std::to_string(log_interval_s), "must be > 0");
+    }
+}
+
+SearchSummary run_search(const SearchObjective& objective, const SearchOptions& options,
+                         const std::function<Pattern(std::mt19937_64&)>& sample,
+                         const std::atomic<bool>* cancel, const SearchProgress& progress) {
+    options.validate();
+    const auto t0 = Clock::now();
+    std::atomic<bool> time_up{false};
+    std::vector<ChainShared> shared(static_cast<std::size_t>(options.threads));
+    std::vector<std::unique_ptr<Chain>> chains;
+    for (int c = 0; c < options.threads; ++c) {
+        chains.push_back(std::make_unique<Chain>(options, objective, sample, c, cancel, &time_up,
+                                                 &shared[static_cast<std::size_t>(c)]));
+    }
+    std::vector<std::exception_ptr> errors(chains.size());
+    std::atomic<int> running{options.threads};
+    std::vector<std::thread> workers;
+    for (std::size_t c = 0; c < chains.size(); ++c) {
+        workers.emplace_back([&, c] {
+            try {
+                chains[c]->run();
+            } catch (...) {
+                errors[c] = std::current_exception();
+                time_up = true;  // stop the others too
+            }
+            --running;
+        });
+    }
+    SearchSummary summary;
+    auto sample_log = [&] {
+        SearchLogRow row;
+        row.seconds = seconds_since(t0);
+        row.best_objective = INFINITY;
+        for (const auto& s : shared) {
+            row.evaluations += s.evaluations.load(std::memory_order_relaxed);
+            row.best_objective = std::min(row.best_objective, s.best.load());
+        }
+        summary.log.push_back(row);
+        return row;
+    };
+    double next_log = 0.0;
+    while (running.load() > 0) {
+        const double now = seconds_since(t0);
+        if (options.time_budget_s > 0.0 && now >= options.time_budget_s) time_up = true;
+        if (now >= next_log) {
+            const SearchLogRow row = sample_log();
+            double fraction = 0.0;
+            if (options.time_budget_s > 0.0) fraction = now / options.time_budget_s;
+            if (options.max_evaluations > 0) {
+                fraction = std::max(
+                    fraction, static_cast<double>(row.evaluations) /
+                                  (static_cast<double>(options.max_evaluations) * options.threads));
+            }
+            if (progress) progress(row, std::min(fraction, 1.0));
+            next_log = now + options.log_interval_s;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    for (auto& w : workers) w.join();
+    for (const auto& e : errors) {
+        if (e) std::rethrow_exception(e);
+    }
+    sample_log();
+    summary.seconds = seconds_since(t0);
+
+    std::vector<TopList::Item> all;
+    for (const auto& chain : chains) {
+        summary.evaluations_per_chain.push_back(chain->evaluations());
+        summary.evaluations += chain->evaluations();
+        for (const auto& item : chain->top().items()) all.push_back(item);
+    }
+    std::sort(all.begin(), all.end(), TopList::less);
+    for (const auto& item : all) {
+        if (static_cast<int>(summary.ranked.size()) == options.top) break;
+        const bool seen =
+            std::any_of(summary.ranked.begin(), summary.ranked.end(),
+                        [&](const Candidate& c) { return sorted_pinholes(c.pattern) == item.key; });
+        if (seen) continue;
+        Candidate c;
+        c.pattern = item.pattern;
+        c.objective = item.objective;
+        c.terms = objective.terms(PatternState(item.pattern));
+        summary.ranked.push_back(std::move(c));
+    }
+    if (cancel && cancel->load()) {
+        summary.stop_reason = "interrupted";
+    } else if (options.max_evaluations > 0 &&
+               std::all_of(summary.evaluations_per_chain.begin(),
+                           summary.evaluations_per_chain.end(),
+                           [&](std::int64_t e) { return e >= options.max_evaluations; })) {
+        summary.stop_reason = "evaluation budget";
+    } else {
+        summary.stop_reason = "time budget";
+    }
+    return summary;
+}
+
+}  // namespace pinmask

@@ -1,0 +1,84 @@
+// Mask search over cyclic patterns under the spacing rule (issue: search strategies).
+//   random: sample valid random patterns and keep the best (the paper's approach; the baseline).
+//   anneal: simulated annealing moving one pinhole to a legal empty cell, fixed-length restarts.
+// Chains are independent, one per thread, each with its own generator seeded from (seed, chain).
+// With an evaluation budget the result is identical for the same seed and thread count. With a
+// time budget the amount of work depends on the machine; the summary records the evaluations
+// each chain made so the run can be repeated exactly with that evaluation budget.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "design/pattern.hpp"
+#include "optimize/pattern_state.hpp"
+
+namespace pinmask {
+
+// What search minimises. Implementations must be thread-safe for concurrent const calls.
+class SearchObjective {
+  public:
+    virtual ~SearchObjective() = default;
+    // The objective of the state's pattern; lower is better.
+    virtual double evaluate(const PatternState& state) const = 0;
+    // The named terms behind evaluate() (for provenance and reports), names carry units.
+    virtual std::map<std::string, double> terms(const PatternState& state) const = 0;
+};
+
+enum class SearchStrategy { kRandom, kAnneal };
+
+struct SearchOptions {
+    SearchStrategy strategy = SearchStrategy::kAnneal;
+    int threads = 1;                   // independent chains, >= 1
+    double time_budget_s = 20.0;       // wall-clock budget; 0 = none (then evaluations rule)
+    std::int64_t max_evaluations = 0;  // per chain; 0 = none (then time rules)
+    std::uint64_t seed = 1;
+    int top = 5;                                // candidates returned, >= 1
+    std::int64_t anneal_restart_moves = 20000;  // moves per annealing restart
+    double anneal_final_temperature_ratio = 1e-3;
+    std::vector<Cell> keep_out;    // cells no pinhole may occupy
+    double log_interval_s = 0.25;  // run-log sampling period
+
+    // Throws InvalidInput naming the field, value and rule.
+    void validate() const;
+};
+
+struct Candidate {
+    Pattern pattern;
+    double objective = 0.0;
+    std::map<std::string, double> terms;
+};
+
+struct SearchLogRow {
+    double seconds = 0.0;
+    std::int64_t evaluations = 0;  // all chains
+    double best_objective = 0.0;
+};
+
+struct SearchSummary {
+    std::vector<Candidate> ranked;  // best first, distinct patterns
+    std::vector<SearchLogRow> log;
+    std::vector<std::int64_t> evaluations_per_chain;
+    std::int64_t evaluations = 0;
+    double seconds = 0.0;
+    std::string stop_reason;  // "time budget", "evaluation budget", "interrupted"
+};
+
+// Progress reported about every log_interval_s from the calling thread.
+using SearchProgress = std::function<void(const SearchLogRow& row, double budget_fraction)>;
+
+// Runs the search. `sample` draws a valid random pattern (the random family with the wanted n,
+// K, spacing and keep-out cells), used by the random strategy and for annealing starts; annealing
+// moves keep K and the spacing rule and avoid options.keep_out.
+// `cancel` (may be null) stops all chains cleanly; the best so far is returned.
+SearchSummary run_search(const SearchObjective& objective, const SearchOptions& options,
+                         const std::function<Pattern(std::mt19937_64& rng)>& sample,
+                         const std::atomic<bool>* cancel = nullptr,
+                         const SearchProgress& progress = {});
+
+}  // namespace pinmask
