@@ -1,0 +1,98 @@
+// Design-rule check of exported mask geometry (rings in integer nanometres, export/layout.hpp).
+// Every verdict is exact: vertices are integers, and distances are compared squared in 128-bit
+// integer arithmetic (coordinates within +-kMaxCoordNm, export/xor_area.hpp); only the reported
+// measurements are rounded to double. Rules (DrcViolation::rule):
+//   ring              fewer than 3 vertices, or the last vertex repeats the first
+//   vertices          more than max_vertices vertices (GDSII record limits, export/vendor_rules)
+//   self_intersection not a simple polygon (CGAL::is_simple_2; repeated vertices count)
+//   orientation       clockwise ring (every ring must be counter-clockwise)
+//   area              a vertex outside the allowed area
+//   feature           width below min_feature_nm: the distance between two non-adjacent edges
+//                     of one ring that face each other across its interior (outward normals
+//                     more than 90 degrees apart, each edge on the interior side of the other).
+//                     For rectangles this is the shorter side; for rectilinear shapes the
+//                     narrowest bar. Not measured: triangles (all edges adjacent), acute tips.
+//   gap               distinct polygons closer than min_gap_nm (edge-to-edge, Euclidean), or a
+//                     notch of one ring (facing edges with the exterior between them) narrower
+//   touching          distinct polygons whose boundaries meet without overlapping interiors
+//   overlap           distinct polygons whose interiors overlap (incl. one inside the other)
+//   spacing           polygon centroids closer than min_center_spacing_nm (the mask's spacing
+//                     rule, measured in the plane of the tiled mask, where the tiling makes the
+//                     torus rule visible as plain distances)
+// Candidate pairs come from CGAL's box-intersection sweep, so ~100k squares take about a second.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "design/mask.hpp"
+#include "export/layout.hpp"
+#include "export/vendor_rules.hpp"
+#include "export/xor_area.hpp"
+
+namespace pinmask {
+
+// Centroids are computed in double from exact vertices; at |coordinate| <= 2^30 nm their error
+// is below 1e-6 nm, so a pair counts as too close only when short by more than this.
+inline constexpr double kCentroidToleranceNm = 1e-3;
+
+struct DrcRules {
+    double min_center_spacing_nm = 0.0;  // 0: not checked
+    std::int64_t min_gap_nm = 1;         // >= 1 (touching is always a violation)
+    std::int64_t min_feature_nm = 0;     // 0: not checked
+    std::size_t max_vertices = kGdsHardMaxVertices;
+    std::optional<BoxNm> allowed_area;  // unset: run_drc(Layout) uses the layout's areas
+    double spacing_tolerance_nm = kCentroidToleranceNm;
+    std::size_t max_reported_per_rule = 100;  // further violations are counted, not listed
+};
+
+inline constexpr std::size_t kNoPolygon = std::numeric_limits<std::size_t>::max();
+
+struct DrcViolation {
+    std::string rule;                    // one of the rule names above
+    std::string message;                 // for people: polygons, measured value and limit in um
+    PointNm where;                       // location of the problem
+    std::size_t polygon_a = kNoPolygon;  // index of the polygon(s) involved
+    std::size_t polygon_b = kNoPolygon;
+    double value = 0.0;  // measured: nm for distances, a count for `vertices`
+    double limit = 0.0;  // the rule's limit in the same unit
+};
+
+// Smallest values seen. Pairs are examined only near the rule's limit, so +inf means "nothing
+// closer than the search radius" (about the rule), not "no neighbour at all".
+struct DrcMeasured {
+    double min_center_spacing_nm = std::numeric_limits<double>::infinity();
+    double min_gap_nm = std::numeric_limits<double>::infinity();
+    double min_feature_nm = std::numeric_limits<double>::infinity();
+};
+
+struct DrcReport {
+    std::vector<DrcViolation> violations;       // at most max_reported_per_rule per rule
+    std::map<std::string, std::size_t> counts;  // rule -> number of violations found
+    bool truncated = false;  // the pair scan stopped early (a flood of violations)
+    std::size_t polygons_checked = 0;
+    DrcMeasured measured;
+    bool clean() const { return counts.empty() && !truncated; }
+};
+
+// Checks `polygons` (all of them take part in every rule; the area rule only if allowed_area
+// is set). Throws InvalidInput for rules out of range or coordinates beyond +-kMaxCoordNm.
+DrcReport run_drc(const std::vector<Ring>& polygons, const DrcRules& rules);
+
+// Checks a layout: polygons and annotations together for the geometric rules, indices in
+// violations counting polygons first, then annotations (index - polygons.size()). The spacing
+// rule applies to clear-tone polygons only (dark-tone pieces are not pinholes). Without an
+// allowed_area, polygons must lie in active_area and annotations in extent.
+DrcReport run_drc(const Layout& layout, const DrcRules& rules);
+
+// Rules for a mask made at a vendor: centre spacing = min_spacing_cells * pinhole side (the
+// side rounded to whole nanometres, as in geometry_hash), gap, feature and vertex limits from
+// the vendor.
+DrcRules rules_for_mask(const Mask& mask, const VendorRules& vendor);
+
+}  // namespace pinmask

@@ -1,0 +1,32 @@
+// Exact area comparisons of polygon sets (rings in integer nanometres, export/layout.hpp), for
+// golden comparisons of exported files against their design and for the design-rule check.
+// The Boolean operations run in CGAL with an exact kernel (Epeck); only the final area is
+// rounded to double (relative error <= 2^-53). Areas in nm^2.
+//
+// Input rings must be simple (no self-intersection) with at least 3 vertices and coordinates
+// within +-kMaxCoordNm; either orientation is accepted (clockwise rings are reversed). Rings of
+// one set may overlap or touch: each set is the union of its rings.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "export/layout.hpp"
+
+namespace pinmask {
+
+// Largest |coordinate| the exact geometry code accepts: 2^30 nm (about 1.07 m), which keeps
+// every squared distance and cross product of the design-rule check inside 128-bit integers.
+inline constexpr std::int64_t kMaxCoordNm = std::int64_t{1} << 30;
+
+// Area of the symmetric difference of union(a) and union(b), in nm^2. 0 iff the sets cover the
+// same region (up to measure zero). Throws InvalidInput naming the set and ring of a bad ring.
+double xor_area_nm2(const std::vector<Ring>& a, const std::vector<Ring>& b);
+
+// Area of union(a) intersected with union(b), in nm^2 (regularised: touching boundaries give 0).
+double intersection_area_nm2(const std::vector<Ring>& a, const std::vector<Ring>& b);
+
+// Area of union(a), in nm^2.
+double union_area_nm2(const std::vector<Ring>& a);
+
+}  // namespace pinmask
