@@ -59,6 +59,8 @@ PatternState::PatternState(const Pattern& p) : pattern_(p) {
     for (int m = 0; m < n; ++m) twiddle_[m] = std::polar(1.0, -2.0 * std::numbers::pi * m / n);
     row_wave_.resize(n);
     col_wave_.resize(n);
+    row_old_.resize(n);
+    col_old_.resize(n);
     recompute();
 }
 
@@ -74,8 +76,10 @@ int PatternState::autocorrelation_at(int dr, int dc) const {
 void PatternState::add_exclusion(Cell c, int delta) {
     const int n = pattern_.n;
     for (const Cell& s : stencil_) {
-        exclusion_[static_cast<std::size_t>((c.row + s.row) % n) * n + (c.col + s.col) % n] +=
-            delta;
+        int r = c.row + s.row, q = c.col + s.col;  // stencil offsets are in [0, n)
+        if (r >= n) r -= n;
+        if (q >= n) q -= n;
+        exclusion_[static_cast<std::size_t>(r) * n + q] += delta;
     }
 }
 
@@ -91,31 +95,61 @@ bool PatternState::excludes(Cell c, Cell t) const {
 bool PatternState::is_legal_move(int j, Cell to) const {
     if (to.row < 0 || to.row >= n() || to.col < 0 || to.col >= n()) return false;
     if (occupied_[index(to)]) return false;
-    const Cell from = pattern_.pinholes[static_cast<std::size_t>(j)];
-    return exclusion_[index(to)] - (excludes(from, to) ? 1 : 0) == 0;
+    const int e = exclusion_[index(to)];
+    if (e == 0) return true;
+    if (e > 1) return false;
+    // Exactly one pinhole excludes `to`: legal only if it is the one that moves.
+    return excludes(pattern_.pinholes[static_cast<std::size_t>(j)], to);
 }
 
-void PatternState::add_plane_wave(Cell c, double sign) {
+void PatternState::update_spectrum(Cell from, Cell to) {
+    // P^(k, l) += w^(k to.r) w^(l to.c) - w^(k from.r) w^(l from.c), one fused pass over the
+    // n x n array with explicit real arithmetic (std::complex multiplication goes through the
+    // NaN-safe library routine without -ffast-math). Twiddle indices advance by addition.
     const int n = pattern_.n;
+    const std::complex<double>* w = twiddle_.data();
+    int ia = 0, ib = 0, ja = 0, jb = 0;
     for (int k = 0; k < n; ++k) {
-        row_wave_[k] = sign * twiddle_[static_cast<std::size_t>(k) * c.row % n];
-        col_wave_[k] = twiddle_[static_cast<std::size_t>(k) * c.col % n];
+        row_wave_[k] = w[ib];  // w^(k to.r)
+        col_wave_[k] = w[jb];  // w^(k to.c)
+        row_old_[k] = w[ia];   // w^(k from.r)
+        col_old_[k] = w[ja];   // w^(k from.c)
+        ib += to.row;
+        if (ib >= n) ib -= n;
+        jb += to.col;
+        if (jb >= n) jb -= n;
+        ia += from.row;
+        if (ia >= n) ia -= n;
+        ja += from.col;
+        if (ja >= n) ja -= n;
     }
+    const double* cb = reinterpret_cast<const double*>(col_wave_.data());
+    const double* ca = reinterpret_cast<const double*>(col_old_.data());
     for (int k = 0; k < n; ++k) {
-        std::complex<double>* row = &spectrum_(k, 0);
-        const std::complex<double> a = row_wave_[k];
-        for (int l = 0; l < n; ++l) row[l] += a * col_wave_[l];
+        double* row = reinterpret_cast<double*>(&spectrum_(k, 0));
+        const double br = row_wave_[k].real(), bi = row_wave_[k].imag();
+        const double ar = row_old_[k].real(), ai = row_old_[k].imag();
+        for (int l = 0; l < n; ++l) {
+            const double xr = cb[2 * l], xi = cb[2 * l + 1];
+            const double yr = ca[2 * l], yi = ca[2 * l + 1];
+            row[2 * l] += (br * xr - bi * xi) - (ar * yr - ai * yi);
+            row[2 * l + 1] += (br * xi + bi * xr) - (ar * yi + ai * yr);
+        }
     }
 }
 
 void PatternState::add_autocorrelation(int j, Cell at, int delta) {
     const int n = pattern_.n;
+    int* r = autocorr_.data();
     for (int i = 0; i < holes(); ++i) {
         if (i == j) continue;
         const Cell q = pattern_.pinholes[static_cast<std::size_t>(i)];
-        const int dr = wrap(at.row - q.row, n), dc = wrap(at.col - q.col, n);
-        autocorr_[static_cast<std::size_t>(dr) * n + dc] += delta;
-        autocorr_[static_cast<std::size_t>(wrap(-dr, n)) * n + wrap(-dc, n)] += delta;
+        int dr = at.row - q.row, dc = at.col - q.col;  // in (-n, n)
+        if (dr < 0) dr += n;
+        if (dc < 0) dc += n;
+        const int mr = dr == 0 ? 0 : n - dr, mc = dc == 0 ? 0 : n - dc;
+        r[dr * n + dc] += delta;
+        r[mr * n + mc] += delta;
     }
 }
 
@@ -126,12 +160,11 @@ void PatternState::move(int j, Cell to) {
     add_autocorrelation(j, from, -1);
     add_exclusion(from, -1);
     occupied_[index(from)] = 0;
-    add_plane_wave(from, -1.0);
     slot = to;
     add_autocorrelation(j, to, +1);
     add_exclusion(to, +1);
     occupied_[index(to)] = 1;
-    add_plane_wave(to, +1.0);
+    update_spectrum(from, to);
 }
 
 }  // namespace pinmask

@@ -45,7 +45,7 @@ class PatternState {
   private:
     std::size_t index(Cell c) const { return static_cast<std::size_t>(c.row) * pattern_.n + c.col; }
     void add_exclusion(Cell c, int delta);
-    void add_plane_wave(Cell c, double sign);
+    void update_spectrum(Cell from, Cell to);
     void add_autocorrelation(int j, Cell at, int delta);
     // Exclusion that pinhole at `c` alone contributes to cell `t` (0 or 1).
     bool excludes(Cell c, Cell t) const;
@@ -57,7 +57,7 @@ class PatternState {
     std::vector<std::complex<double>> twiddle_;  // w^m, m = 0 .. n-1
     ComplexPlane spectrum_;
     std::vector<int> autocorr_;
-    std::vector<std::complex<double>> row_wave_, col_wave_;  // scratch
+    std::vector<std::complex<double>> row_wave_, col_wave_, row_old_, col_old_;  // scratch
 };
 
 // The full n x n spectrum and autocorrelation of a pattern computed from scratch (FFT of the
