@@ -10,7 +10,10 @@
 
 #include "core/error.hpp"
 #include "decode/convolution.hpp"
+#include "decode/richardson_lucy.hpp"
 #include "decode/tikhonov.hpp"
+#include "decode/tv_l2.hpp"
+#include "decode/tvqc.hpp"
 #include "decode/wiener.hpp"
 
 namespace pinmask {
@@ -93,6 +96,54 @@ DecodeResult decode_closed_form(const Plane& capture, const Plane& psf, const De
     return r;
 }
 
+void copy_iterative(const DecodeOptions& o, IterativeOptions& it) {
+    it.max_iterations = o.max_iterations;
+    it.tolerance = o.tolerance;
+    it.record_history = o.record_history;
+}
+
+// Iterative methods on the working grid; the result's image is cropped to the capture.
+DecodeResult decode_iterative(const Plane& capture, const Plane& psf, const DecodeOptions& o,
+                              const ConvGeometry& g) {
+    const ConvolutionOperator op(psf, g);
+    const Plane* warm = o.warm_start ? &*o.warm_start : nullptr;
+    DecodeResult r;
+    switch (o.method) {
+        case DecodeMethod::kTv: {
+            TvL2Options t;
+            copy_iterative(o, t);
+            t.lambda = o.lambda;
+            t.nonnegative = o.nonnegative;
+            r = solve_tv_l2(op, capture, t, warm);
+            break;
+        }
+        case DecodeMethod::kTvqc: {
+            TvqcOptions t;
+            copy_iterative(o, t);
+            t.nonnegative = o.nonnegative;
+            if (o.eps) {
+                t.eps = *o.eps;
+            } else if (o.noise_sigma) {
+                t.eps = tvqc_eps_from_sigma(*o.noise_sigma, capture.size());
+            } else {
+                throw invalid_field("eps", "unset",
+                                    "TVQC needs eps or noise_sigma (eps = sigma sqrt(N) "
+                                    "sqrt(1 + 2 sqrt(2 / N)))");
+            }
+            r = solve_tvqc(op, capture, t, warm);
+            break;
+        }
+        default: {
+            RichardsonLucyOptions t;
+            copy_iterative(o, t);
+            r = solve_richardson_lucy(op, psf, capture, t, warm);
+            break;
+        }
+    }
+    r.image = crop_to_capture(g, r.image);
+    return r;
+}
+
 }  // namespace
 
 DecodeResult decode_plane(const Plane& capture, const Plane& psf, const DecodeOptions& options) {
@@ -109,7 +160,8 @@ DecodeResult decode_plane(const Plane& capture, const Plane& psf, const DecodeOp
             r = decode_closed_form(capture, psf, options, g);
             break;
         default:
-            throw InvalidInput("method: this build decodes with wiener and tikhonov only so far");
+            r = decode_iterative(capture, psf, options, g);
+            break;
     }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return r;

@@ -1,0 +1,42 @@
+// Shared plumbing of the iterative solvers of decode/ (tv_l2, tvqc, richardson_lucy): the
+// stopping rule, the clock of the iteration records, and option checks.
+//
+// Stopping rule: after iteration k >= 1 a solver stops when ||x_k - x_{k-1}||_2 <= tolerance *
+// ||x_k||_2 (relative change of x; 0 / 0 counts as 0) or when k = max_iterations.
+#pragma once
+
+#include <chrono>
+
+#include "core/image.hpp"
+#include "decode/convolution.hpp"
+
+namespace pinmask {
+
+// Options every iterative solver shares.
+struct IterativeOptions {
+    int max_iterations = 200;    // >= 0; 0 returns the starting point
+    double tolerance = 1e-4;     // >= 0; relative change of x that ends the iteration
+    bool record_history = true;  // fill DecodeResult::history (costs an objective per iteration)
+};
+
+// Throws InvalidInput naming max_iterations or tolerance when out of range.
+void validate_iterative_options(const IterativeOptions& options);
+
+// Throws InvalidInput (field "warm_start") unless the plane has the working size and is finite.
+void check_warm_start(const Plane& warm_start, const ConvGeometry& geometry);
+
+// ||a - b||_2 / ||a||_2, 0 when both are zero, +inf when only a is zero.
+double relative_change(const Plane& a, const Plane& b);
+
+// Seconds since construction (steady clock), for IterationRecord::seconds.
+class SolverClock {
+  public:
+    double seconds() const {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+    }
+
+  private:
+    std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace pinmask

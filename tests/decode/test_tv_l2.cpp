@@ -1,0 +1,164 @@
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "core/error.hpp"
+#include "decode/gradient.hpp"
+#include "decode/tv_l2.hpp"
+#include "tests/decode/test_decode_support.hpp"
+#include "tests/support/close.hpp"
+
+using namespace pinmask;
+using namespace pinmask::test;
+
+namespace {
+
+// ADMM run to a 1e-10 relative change against the smoothed-TV Newton reference (whose own error
+// is below lambda N 1e-9): the bound on the objective gap.
+constexpr double kTvObjectiveTol = 1e-4;
+
+// A piecewise-constant scene (two blocks) blurred by a positive PSF, plus seeded noise.
+struct Problem {
+    Plane psf, x_true, p;
+    ConvGeometry g;
+};
+
+Problem make_problem(ConvModel model, int R, int C, int pr, int pc, unsigned seed) {
+    Problem P;
+    P.g = make_conv_geometry(model, R, C, pr, pc);
+    P.psf = random_plane(pr, pc, seed, 0.0, 1.0);
+    P.psf /= P.psf.sum();
+    P.x_true = Plane::Zero(P.g.work_rows, P.g.work_cols);
+    P.x_true.block(P.g.crop_row + R / 4, P.g.crop_col + C / 3, R / 2, C / 2) = 1.0;
+    P.x_true.block(P.g.crop_row + 1, P.g.crop_col + 1, 3, 3) = 0.5;
+    const Eigen::MatrixXd A = dense_model(P.psf, P.g);
+    P.p = as_plane(A * as_vector(P.x_true), R, C) + 0.02 * random_plane(R, C, seed + 1);
+    return P;
+}
+
+TvL2Options tight(double lambda) {
+    TvL2Options o;
+    o.lambda = lambda;
+    o.max_iterations = 20000;
+    o.tolerance = 1e-10;
+    o.record_history = false;
+    return o;
+}
+
+}  // namespace
+
+TEST_CASE("TV-L2 reaches the smoothed-TV Newton reference objective (cyclic 16 x 16, 13 x 11)") {
+    for (auto [R, C, seed] : {std::tuple{16, 16, 1u}, {13, 11, 2u}}) {
+        const Problem P = make_problem(ConvModel::kCyclic, R, C, 5, 4, seed);
+        const double lambda = 0.02;
+        const Eigen::MatrixXd A = dense_model(P.psf, P.g);
+        const Plane x_ref = as_plane(smoothed_tv_reference(A, as_vector(P.p), lambda, R, C), R, C);
+        const ConvolutionOperator op(P.psf, P.g);
+        const double f_ref = tv_l2_objective(op, P.p, x_ref, lambda);
+        const DecodeResult r = solve_tv_l2(op, P.p, tight(lambda));
+        INFO(R << " x " << C << ": admm " << r.objective << " ref " << f_ref << " after "
+               << r.iterations);
+        CHECK(r.converged);
+        CHECK(r.objective <= f_ref * (1.0 + kTvObjectiveTol));
+        CHECK(r.objective >= f_ref * (1.0 - kTvObjectiveTol));
+        CHECK_CLOSE(r.objective, tv_l2_objective(op, P.p, r.image, lambda), 1e-14);
+    }
+}
+
+TEST_CASE("TV-L2 on the linear model reaches the Newton reference with the dense crop operator") {
+    const Problem P = make_problem(ConvModel::kLinear, 8, 9, 3, 4, 3);
+    const double lambda = 0.02;
+    const Eigen::MatrixXd A = dense_model(P.psf, P.g);
+    const Plane x_ref =
+        as_plane(smoothed_tv_reference(A, as_vector(P.p), lambda, P.g.work_rows, P.g.work_cols),
+                 P.g.work_rows, P.g.work_cols);
+    const ConvolutionOperator op(P.psf, P.g);
+    const double f_ref = tv_l2_objective(op, P.p, x_ref, lambda);
+    const DecodeResult r = solve_tv_l2(op, P.p, tight(lambda));
+    INFO("admm " << r.objective << " ref " << f_ref << " after " << r.iterations);
+    CHECK(r.image.rows() == P.g.work_rows);
+    CHECK(r.objective <= f_ref * (1.0 + kTvObjectiveTol));
+    CHECK(r.objective >= f_ref * (1.0 - kTvObjectiveTol));
+}
+
+TEST_CASE("TV-L2 with x >= 0: feasible, between the unconstrained optimum and its clipped copy") {
+    const Problem P = make_problem(ConvModel::kCyclic, 16, 16, 5, 5, 4);
+    const ConvolutionOperator op(P.psf, P.g);
+    const double lambda = 0.05;
+    const DecodeResult free = solve_tv_l2(op, P.p, tight(lambda));
+    TvL2Options o = tight(lambda);
+    o.nonnegative = true;
+    const DecodeResult nn = solve_tv_l2(op, P.p, o);
+    CHECK(nn.image.minCoeff() >= 0.0);
+    CHECK(nn.objective >= free.objective * (1.0 - kTvObjectiveTol));
+    CHECK(nn.objective <=
+          tv_l2_objective(op, P.p, free.image.max(0.0), lambda) * (1.0 + kTvObjectiveTol));
+}
+
+TEST_CASE("TV-L2 limits: lambda -> 0 is least squares, huge lambda is the best constant") {
+    const Plane psf = random_psf(4, 4, 5);  // |H| >= 1/3: least squares is the exact inverse
+    const ConvGeometry g = make_conv_geometry(ConvModel::kCyclic, 12, 10, 4, 4);
+    const ConvolutionOperator op(psf, g);
+    const Plane x_true = random_plane(12, 10, 6);
+    const Plane p = op.apply(x_true);
+    TvL2Options o = tight(1e-12);
+    const DecodeResult small = solve_tv_l2(op, p, o);
+    constexpr double kLeastSquaresTol = 1e-6;  // lambda TV bias ~1e-10 plus ADMM stopping error
+    CHECK(max_rel_error(small.image, x_true) <= kLeastSquaresTol);
+
+    o = tight(1e6);
+    const DecodeResult big = solve_tv_l2(op, p, o);
+    // argmin_c 1/2 ||A c 1 - p||^2 = mean(p) / sum(psf) = mean(p) for a unit-sum PSF.
+    const double c = p.mean() / psf.sum();
+    constexpr double kConstantTol = 1e-8;  // TV term forces exact flatness; ADMM stopping error
+    CHECK((big.image - c).abs().maxCoeff() <= kConstantTol * std::max(1.0, std::abs(c)));
+    CHECK(is_all_finite(big.image));
+}
+
+TEST_CASE("TV-L2 history, warm start and iteration cap") {
+    const Problem P = make_problem(ConvModel::kCyclic, 16, 16, 5, 5, 7);
+    const ConvolutionOperator op(P.psf, P.g);
+    TvL2Options o;
+    o.lambda = 0.02;
+    o.tolerance = 1e-6;
+    o.max_iterations = 3000;
+    const DecodeResult cold = solve_tv_l2(op, P.p, o);
+    REQUIRE(cold.history.size() == static_cast<std::size_t>(cold.iterations));
+    for (std::size_t i = 1; i < cold.history.size(); ++i) {
+        CHECK(cold.history[i].iteration == cold.history[i - 1].iteration + 1);
+        CHECK(cold.history[i].seconds >= cold.history[i - 1].seconds);
+    }
+    CHECK_CLOSE(cold.history.back().objective, cold.objective, 1e-12);
+    CHECK_CLOSE(cold.history.back().residual, cold.residual, 1e-12);
+    CHECK(cold.history.back().objective < cold.history.front().objective);
+
+    const DecodeResult warm = solve_tv_l2(op, P.p, o, &cold.image);
+    CHECK(warm.iterations < cold.iterations);
+
+    o.max_iterations = 5;
+    o.record_history = false;
+    const DecodeResult capped = solve_tv_l2(op, P.p, o);
+    CHECK(capped.iterations == 5);
+    CHECK_FALSE(capped.converged);
+    CHECK(capped.history.empty());
+}
+
+TEST_CASE("TV-L2 validates lambda, rho, sizes and warm start") {
+    const Problem P = make_problem(ConvModel::kCyclic, 8, 8, 3, 3, 8);
+    const ConvolutionOperator op(P.psf, P.g);
+    TvL2Options o;
+    o.lambda = -1.0;
+    CHECK_THROWS_WITH_AS(solve_tv_l2(op, P.p, o), doctest::Contains("lambda"), InvalidInput);
+    o.lambda = 0.1;
+    o.rho = -2.0;
+    CHECK_THROWS_WITH_AS(solve_tv_l2(op, P.p, o), doctest::Contains("rho"), InvalidInput);
+    o.rho = 0.0;
+    o.max_iterations = -1;
+    CHECK_THROWS_WITH_AS(solve_tv_l2(op, P.p, o), doctest::Contains("max_iterations"),
+                         InvalidInput);
+    o.max_iterations = 10;
+    const Plane bad = Plane::Zero(7, 8);
+    CHECK_THROWS_WITH_AS(solve_tv_l2(op, P.p, o, &bad), doctest::Contains("warm_start"),
+                         InvalidInput);
+    CHECK_THROWS_WITH_AS(solve_tv_l2(op, bad, o), doctest::Contains("capture"), InvalidInput);
+}
