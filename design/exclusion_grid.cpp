@@ -1,0 +1,91 @@
+#include "design/exclusion_grid.hpp"
+
+#include <bit>
+#include <cassert>
+#include <cmath>
+
+namespace pinmask {
+
+std::vector<Offset> exclusion_offsets(double min_spacing_cells) {
+    std::vector<Offset> out;
+    const double limit = min_spacing_cells - kSpacingTolerance;
+    if (!(limit > 0.0)) return {{0, 0}};
+    const double limit2 = limit * limit;
+    const int reach = static_cast<int>(std::ceil(limit));
+    for (int dr = -reach; dr <= reach; ++dr) {
+        for (int dc = -reach; dc <= reach; ++dc) {
+            if ((dr == 0 && dc == 0) || static_cast<double>(dr * dr + dc * dc) < limit2) {
+                out.push_back({dr, dc});
+            }
+        }
+    }
+    return out;
+}
+
+ExclusionGrid::ExclusionGrid(int n, double min_spacing_cells, Index index)
+    : n_(n),
+      offsets_(exclusion_offsets(min_spacing_cells)),
+      free_count_(static_cast<std::size_t>(n) * n) {
+    const std::size_t cells = free_count_;
+    const std::size_t nwords = (cells + 63) / 64;
+    words_.assign(nwords, ~std::uint64_t{0});
+    if (cells % 64) words_.back() = (std::uint64_t{1} << (cells % 64)) - 1;
+    if (index == Index::kRank) {
+        // Linear-time Fenwick construction: each node passes its sum to its parent.
+        fenwick_.assign(nwords + 1, 0);
+        for (std::size_t w = 0; w < nwords; ++w) {
+            fenwick_[w + 1] += static_cast<std::uint32_t>(std::popcount(words_[w]));
+            const std::size_t parent = (w + 1) + ((w + 1) & (~(w + 1) + 1));
+            if (parent <= nwords) fenwick_[parent] += fenwick_[w + 1];
+        }
+    }
+}
+
+void ExclusionGrid::fenwick_add(std::size_t word, std::uint32_t minus) {
+    for (std::size_t i = word + 1; i < fenwick_.size(); i += i & (~i + 1)) fenwick_[i] -= minus;
+}
+
+std::size_t ExclusionGrid::nth_free(std::size_t r) const {
+    assert(!fenwick_.empty() && r < free_count_);
+    const std::size_t nwords = fenwick_.size() - 1;
+    std::size_t pos = 0;
+    for (std::size_t step = std::bit_floor(nwords); step; step >>= 1) {
+        if (pos + step <= nwords && fenwick_[pos + step] <= r) {
+            pos += step;
+            r -= fenwick_[pos];
+        }
+    }
+    // pos = the word holding the r-th free cell; select its r-th set bit.
+    std::uint64_t w = words_[pos];
+    for (std::size_t k = 0; k < r; ++k) w &= w - 1;
+    return pos * 64 + static_cast<std::size_t>(std::countr_zero(w));
+}
+
+void ExclusionGrid::place(Cell c) {
+    const bool ranked = !fenwick_.empty();
+    std::size_t pending_word = 0;
+    std::uint32_t pending = 0;  // blocked cells in pending_word not yet in the Fenwick tree
+    for (const Offset& o : offsets_) {
+        // |offset| <= ceil(s) <= n, so one correction wraps it.
+        int r = c.row + o.dr;
+        int k = c.col + o.dc;
+        r += r < 0 ? n_ : (r >= n_ ? -n_ : 0);
+        k += k < 0 ? n_ : (k >= n_ ? -n_ : 0);
+        const std::size_t i = static_cast<std::size_t>(r) * n_ + k;
+        const std::uint64_t bit = std::uint64_t{1} << (i & 63);
+        std::uint64_t& word = words_[i >> 6];
+        if (!(word & bit)) continue;
+        word &= ~bit;
+        --free_count_;
+        if (!ranked) continue;
+        if (pending && pending_word != (i >> 6)) {
+            fenwick_add(pending_word, pending);
+            pending = 0;
+        }
+        pending_word = i >> 6;
+        ++pending;
+    }
+    if (pending) fenwick_add(pending_word, pending);
+}
+
+}  // namespace pinmask
