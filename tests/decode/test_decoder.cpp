@@ -1,0 +1,130 @@
+// decode_plane: input validation naming the option, and the facade's plumbing (working grid,
+// crop, warm start, per-frequency NSR) against the algorithm objects it wraps.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "core/error.hpp"
+#include "decode/convolution.hpp"
+#include "decode/decoder.hpp"
+#include "decode/wiener.hpp"
+#include "tests/decode/test_decode_support.hpp"
+#include "tests/support/close.hpp"
+
+using namespace pinmask;
+using namespace pinmask::test;
+
+namespace {
+
+// Same computation along the facade and along the direct object: rounding only.
+constexpr double kSamePathTol = 1e-14;
+
+void check_rejects(const Plane& capture, const Plane& psf, const DecodeOptions& o,
+                   const char* field) {
+    INFO("expecting an error naming " << field);
+    CHECK_THROWS_WITH_AS(decode_plane(capture, psf, o), doctest::Contains(field), InvalidInput);
+}
+
+}  // namespace
+
+TEST_CASE("decode_plane rejects bad inputs, naming the option") {
+    const Plane p = random_plane(8, 8, 80, 0.0, 1.0);
+    const Plane psf = random_psf(3, 3, 81);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    DecodeOptions o;
+    Plane bad = p;
+    bad(2, 3) = nan;
+    check_rejects(bad, psf, o, "capture");
+    bad = p;
+    bad(0, 0) = std::numeric_limits<double>::infinity();
+    check_rejects(bad, psf, o, "capture");
+    Plane bad_psf = psf;
+    bad_psf(1, 1) = nan;
+    check_rejects(p, bad_psf, o, "psf");
+    check_rejects(p, Plane::Zero(3, 3), o, "psf sum");
+    check_rejects(p, -psf, o, "psf sum");
+    check_rejects(p, random_psf(9, 3, 82), o, "psf");  // larger than the cyclic working size
+    check_rejects(Plane(0, 0), psf, o, "capture");
+
+    // One option out of range at a time, on fresh defaults.
+    auto with = [&](auto set, const char* field) {
+        DecodeOptions fresh;
+        set(fresh);
+        check_rejects(p, psf, fresh, field);
+    };
+    with([](DecodeOptions& x) { x.nsr = -0.1; }, "nsr");
+    with([](DecodeOptions& x) { x.lambda = -1.0; }, "lambda");
+    with([](DecodeOptions& x) { x.eps = -1.0; }, "eps");
+    with([](DecodeOptions& x) { x.noise_sigma = -1.0; }, "noise_sigma");
+    with([](DecodeOptions& x) { x.max_iterations = -3; }, "max_iterations");
+    with([](DecodeOptions& x) { x.tolerance = -1e-3; }, "tolerance");
+    with([](DecodeOptions& x) { x.warm_start = Plane::Zero(7, 8); }, "warm_start");
+    with([](DecodeOptions& x) { x.nsr_per_frequency = Plane::Constant(8, 9, 0.1); },
+         "nsr_per_frequency");
+    with([](DecodeOptions& x) { x.method = DecodeMethod::kTvqc; }, "eps");  // no eps, no sigma
+    o.method = DecodeMethod::kRichardsonLucy;
+    Plane neg_psf = psf;
+    neg_psf(0, 0) = -0.01;
+    check_rejects(p, neg_psf, o, "psf");
+}
+
+TEST_CASE("decode_plane Wiener equals WienerFilter, scalar and per-frequency NSR") {
+    const Plane p = random_plane(12, 9, 83);
+    const Plane psf = random_psf(4, 3, 84);
+    DecodeOptions o;
+    o.nsr = 0.03;
+    const DecodeResult r = decode_plane(p, psf, o);
+    CHECK(r.image.rows() == 12);
+    CHECK(r.image.cols() == 9);
+    CHECK(r.history.empty());
+    CHECK(max_rel_error(r.image, WienerFilter(psf, 12, 9, 0.03).apply(p)) <= kSamePathTol);
+    CHECK_CLOSE(r.objective, r.residual * r.residual + 0.03 * r.image.square().sum(), 1e-12);
+
+    o.nsr_per_frequency = Plane::Constant(12, 9, 0.03);
+    const DecodeResult rf = decode_plane(p, psf, o);
+    CHECK(max_rel_error(rf.image, r.image) <= 1e-12);
+    CHECK_CLOSE(rf.objective, r.objective, 1e-12);  // Parseval form of nsr ||x||^2
+}
+
+TEST_CASE("linear model: Wiener on the padded grid, image cropped to the capture size") {
+    const Plane p = random_plane(10, 12, 85);
+    const Plane psf = random_psf(10, 12, 86);  // DiffuserCam-like: PSF as large as the capture
+    DecodeOptions o;
+    o.model = ConvModel::kLinear;
+    o.nsr = 0.01;
+    const DecodeResult r = decode_plane(p, psf, o);
+    const ConvGeometry g = make_conv_geometry(ConvModel::kLinear, 10, 12, 10, 12);
+    const Plane ref = crop_to_capture(
+        g, WienerFilter(psf, g.work_rows, g.work_cols, 0.01).apply(pad_to_work(g, p)));
+    CHECK(r.image.rows() == 10);
+    CHECK(r.image.cols() == 12);
+    CHECK(max_rel_error(r.image, ref) <= kSamePathTol);
+}
+
+TEST_CASE("iterative methods through the facade: history, warm start of the working size") {
+    const Plane p = random_plane(16, 16, 87, 0.0, 1.0);
+    const Plane psf = random_psf(5, 5, 88);
+    for (DecodeMethod m : {DecodeMethod::kTv, DecodeMethod::kTvqc, DecodeMethod::kRichardsonLucy}) {
+        for (ConvModel model : {ConvModel::kCyclic, ConvModel::kLinear}) {
+            DecodeOptions o;
+            o.method = m;
+            o.model = model;
+            o.eps = 0.05;
+            o.max_iterations = 40;
+            const DecodeResult r = decode_plane(p, psf, o);
+            INFO("method " << int(m) << " model " << int(model));
+            CHECK(r.image.rows() == 16);
+            CHECK(r.image.cols() == 16);
+            CHECK(r.history.size() == static_cast<std::size_t>(r.iterations));
+            CHECK(r.iterations >= 1);
+            CHECK(r.seconds >= 0.0);
+            const ConvGeometry g = make_conv_geometry(model, 16, 16, 5, 5);
+            o.warm_start = Plane::Constant(g.work_rows, g.work_cols, 0.5);
+            o.record_history = false;
+            const DecodeResult w = decode_plane(p, psf, o);
+            CHECK(w.history.empty());
+            CHECK(is_all_finite(w.image));
+        }
+    }
+}
