@@ -140,14 +140,42 @@ struct RingInfo {
     std::int64_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
 
-// What run_drc checks: rings with, per ring, the box it must stay in and whether it is a pinhole
-// for the spacing rule. Rings at or after first_annotation are named "annotation".
-struct DrcInput {
-    std::vector<const Ring*> rings;
-    std::vector<std::optional<BoxNm>> area;
-    std::vector<char> spacing;
-    std::size_t first_annotation = 0;
+// Where a ring comes from. Pairs are checked between polygons and annotations of any kind,
+// except: dark-tone pieces tile the opaque area (they may share edges with each other and with
+// the clear regions they leave), and clear regions are compared only with each other.
+enum class Group { kPolygon, kAnnotation, kPiece, kClearRegion };
+const char* group_name(Group g) {
+    switch (g) {
+        case Group::kPolygon:
+            return "polygon";
+        case Group::kAnnotation:
+            return "annotation";
+        case Group::kPiece:
+            return "piece";
+        case Group::kClearRegion:
+            return "clear region";
+    }
+    return "?";
+}
+bool pair_checked(Group a, Group b) {
+    if (a == Group::kPiece || b == Group::kPiece) {
+        return a == Group::kAnnotation || b == Group::kAnnotation;
+    }
+    if (a == Group::kClearRegion || b == Group::kClearRegion) return a == b;
+    return true;
+}
+
+// One ring to check: the box it must stay in, whether it is a pinhole for the spacing rule and
+// whether its own width and notches are checked (not for pieces of a tiling).
+struct DrcItem {
+    const Ring* ring = nullptr;
+    std::optional<BoxNm> area;
+    bool spacing = false;
+    bool own_shape = true;
+    Group group = Group::kPolygon;
+    std::size_t index = 0;  // within its group
 };
+using DrcInput = std::vector<DrcItem>;
 
 class Checker {
   public:
@@ -156,10 +184,9 @@ class Checker {
 
   private:
     std::string name(std::size_t i) const {
-        return i < in_.first_annotation ? "polygon " + std::to_string(i)
-                                        : "annotation " + std::to_string(i - in_.first_annotation);
+        return std::string(group_name(in_[i].group)) + " " + std::to_string(in_[i].index);
     }
-    const Ring& ring(std::size_t i) const { return *in_.rings[i]; }
+    const Ring& ring(std::size_t i) const { return *in_[i].ring; }
     void add(const std::string& rule, const std::string& message, PointNm where, std::size_t a,
              std::size_t b, double value, double limit);
     void check_ring(std::size_t i);
@@ -258,7 +285,7 @@ void Checker::check_ring(std::size_t i) {
                 i, kNoPolygon, 0, 0);
         }
     }
-    if (const auto& box = in_.area[i]) {
+    if (const auto& box = in_[i].area) {
         for (const PointNm& p : r) {
             if (p.x >= box->x0 && p.x <= box->x1 && p.y >= box->y0 && p.y <= box->y1) continue;
             add("area",
@@ -269,7 +296,7 @@ void Checker::check_ring(std::size_t i) {
             break;
         }
     }
-    if (info.simple) check_width(i);
+    if (info.simple && in_[i].own_shape) check_width(i);
 }
 
 // Width (edges facing across the interior) and notch (facing across the exterior) of edges e, f
@@ -413,7 +440,7 @@ void Checker::check_spacing() {
     const double limit = s - rules_.spacing_tolerance_nm;
     std::vector<Box> boxes;
     for (std::size_t i = 0; i < info_.size(); ++i) {
-        if (!info_[i].usable || !in_.spacing[i]) continue;
+        if (!info_[i].usable || !in_[i].spacing) continue;
         const RingInfo& p = info_[i];
         boxes.emplace_back(
             CGAL::Bbox_2(p.cx - 0.5 * s, p.cy - 0.5 * s, p.cx + 0.5 * s, p.cy + 0.5 * s), i);
@@ -434,7 +461,7 @@ void Checker::check_spacing() {
 }
 
 DrcReport Checker::run() {
-    const std::size_t n = in_.rings.size();
+    const std::size_t n = in_.size();
     report_.polygons_checked = n;
     info_.assign(n, {});
     for (std::size_t i = 0; i < n; ++i) check_ring(i);
@@ -450,6 +477,7 @@ DrcReport Checker::run() {
                                i);
         }
         CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& u, const Box& v) {
+            if (!pair_checked(in_[u.info()].group, in_[v.info()].group)) return;
             check_pair(std::min(u.info(), v.info()), std::max(u.info(), v.info()));
         });
         check_spacing();
@@ -495,11 +523,11 @@ void validate_rules(const DrcRules& r) {
 }
 
 void validate_coordinates(const DrcInput& in) {
-    for (std::size_t i = 0; i < in.rings.size(); ++i) {
-        for (const PointNm& p : *in.rings[i]) {
+    for (const DrcItem& item : in) {
+        for (const PointNm& p : *item.ring) {
             if (std::max(std::abs(p.x), std::abs(p.y)) <= kMaxCoordNm) continue;
             throw invalid_field(
-                "polygon " + std::to_string(i) + " vertex",
+                std::string(group_name(item.group)) + " " + std::to_string(item.index) + " vertex",
                 std::to_string(p.x) + ", " + std::to_string(p.y) + " nm",
                 "coordinates must be within +-" + std::to_string(kMaxCoordNm) + " nm");
         }
@@ -516,25 +544,42 @@ DrcReport run_checked(const DrcInput& in, const DrcRules& rules) {
 
 DrcReport run_drc(const std::vector<Ring>& polygons, const DrcRules& rules) {
     DrcInput in;
-    for (const Ring& r : polygons) in.rings.push_back(&r);
-    in.area.assign(polygons.size(), rules.allowed_area);
-    in.spacing.assign(polygons.size(), 1);
-    in.first_annotation = polygons.size();
+    for (std::size_t i = 0; i < polygons.size(); ++i) {
+        in.push_back({&polygons[i], rules.allowed_area, true, true, Group::kPolygon, i});
+    }
     return run_checked(in, rules);
 }
 
 DrcReport run_drc(const Layout& layout, const DrcRules& rules) {
+    validate_rules(rules);
+    const bool clear = layout.tone == Tone::kClear;
+    const auto area = [&](const BoxNm& box) { return rules.allowed_area.value_or(box); };
     DrcInput in;
-    for (const Ring& r : layout.polygons) {
-        in.rings.push_back(&r);
-        in.area.push_back(rules.allowed_area ? *rules.allowed_area : layout.active_area);
-        in.spacing.push_back(layout.tone == Tone::kClear);
+    for (std::size_t i = 0; i < layout.polygons.size(); ++i) {
+        // Dark-tone pieces include the frame around the active area: they stay in the extent.
+        in.push_back({&layout.polygons[i], area(clear ? layout.active_area : layout.extent), clear,
+                      clear, clear ? Group::kPolygon : Group::kPiece, i});
     }
-    in.first_annotation = layout.polygons.size();
-    for (const Ring& r : layout.annotations) {
-        in.rings.push_back(&r);
-        in.area.push_back(rules.allowed_area ? *rules.allowed_area : layout.extent);
-        in.spacing.push_back(0);
+    for (std::size_t i = 0; i < layout.annotations.size(); ++i) {
+        in.push_back(
+            {&layout.annotations[i], area(layout.extent), false, true, Group::kAnnotation, i});
+    }
+    // Dark tone: the pinholes are the outline (the pieces' bounding box) minus the pieces; they
+    // take the clear-tone rules (spacing, width, gaps between pinholes = opaque web width).
+    std::vector<Ring> holes;
+    if (!clear && !layout.polygons.empty()) {
+        validate_coordinates(in);
+        BoxNm outline{kMaxCoordNm, kMaxCoordNm, -kMaxCoordNm, -kMaxCoordNm};
+        for (const Ring& r : layout.polygons) {
+            for (const PointNm& p : r) {
+                outline = {std::min(outline.x0, p.x), std::min(outline.y0, p.y),
+                           std::max(outline.x1, p.x), std::max(outline.y1, p.y)};
+            }
+        }
+        holes = box_minus_union(outline, layout.polygons);
+        for (std::size_t i = 0; i < holes.size(); ++i) {
+            in.push_back({&holes[i], area(layout.active_area), true, true, Group::kClearRegion, i});
+        }
     }
     return run_checked(in, rules);
 }

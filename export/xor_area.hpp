@@ -1,5 +1,6 @@
-// Exact area comparisons of polygon sets (rings in integer nanometres, export/layout.hpp), for
-// golden comparisons of exported files against their design and for the design-rule check.
+// Exact Boolean operations and areas of polygon sets (rings in integer nanometres,
+// export/layout.hpp), for golden comparisons of exported files against their design and for the
+// design-rule check.
 // The Boolean operations run in CGAL with an exact kernel (Epeck); only the final area is
 // rounded to double (relative error <= 2^-53). Areas in nm^2.
 //
@@ -28,5 +29,11 @@ double intersection_area_nm2(const std::vector<Ring>& a, const std::vector<Ring>
 
 // Area of union(a), in nm^2.
 double union_area_nm2(const std::vector<Ring>& a);
+
+// The regions of `box` not covered by union(opaque), as counter-clockwise rings (the clear
+// pinholes of a dark-tone layout). Exact; throws InvalidInput when a region has an island of
+// `opaque` inside it (not expressible as one ring) or a vertex off the 1 nm grid (pieces that
+// cross between grid points).
+std::vector<Ring> box_minus_union(const BoxNm& box, const std::vector<Ring>& opaque);
 
 }  // namespace pinmask

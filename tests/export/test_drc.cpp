@@ -290,3 +290,31 @@ TEST_CASE("performance sanity: 100k pinholes of a tiled mask check clean") {
     CHECK(r.measured.min_center_spacing_nm == 880'000.0);
     CHECK(r.measured.min_feature_nm == 440'000.0);
 }
+
+TEST_CASE("dark tone: touching pieces are fine, the clear regions between them are checked") {
+    // Outline 4000 x 4000 with two 1000 nm square holes 500 nm apart, drawn as five opaque
+    // pieces sharing edges.
+    Layout l;
+    l.tone = Tone::kDark;
+    l.active_area = {0, 0, 4000, 4000};
+    l.extent = l.active_area;
+    l.polygons = {rect(0, 0, 4000, 1000), rect(0, 2000, 4000, 4000), rect(0, 1000, 1000, 2000),
+                  rect(2000, 1000, 2500, 2000), rect(3500, 1000, 4000, 2000)};
+    DrcRules rules;
+    rules.min_gap_nm = 500;
+    rules.min_center_spacing_nm = 1500;
+    rules.min_feature_nm = 1000;
+    auto r = run_drc(l, rules);
+    CHECK(r.clean());
+    CHECK(r.polygons_checked == 7);  // five pieces and the two clear regions
+    CHECK(r.measured.min_center_spacing_nm == 1500.0);
+    rules.min_gap_nm = 501;
+    rules.min_center_spacing_nm = 1501;
+    rules.min_feature_nm = 1001;
+    r = run_drc(l, rules);
+    CHECK(count(r, "gap") == 1);
+    CHECK(count(r, "spacing") == 1);
+    CHECK(count(r, "feature") == 4);  // each region: width and height
+    CHECK(r.violations.back().message.find("clear region 0 and clear region 1") !=
+          std::string::npos);
+}

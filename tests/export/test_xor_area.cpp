@@ -110,3 +110,17 @@ TEST_CASE("bad rings are invalid input naming the set and ring") {
     CHECK_THROWS_AS(xor_area_nm2({{{0, 0}, {1, 1}}}, {}), InvalidInput);
     CHECK_THROWS_AS(xor_area_nm2({rect(0, 0, kMaxCoordNm + 1, 10)}, {}), InvalidInput);
 }
+
+TEST_CASE("box minus opaque pieces gives the clear regions exactly") {
+    // Five pieces sharing edges leave two square holes.
+    const std::vector<Ring> pieces = {rect(0, 0, 4000, 1000), rect(0, 2000, 4000, 4000),
+                                      rect(0, 1000, 1000, 2000), rect(2000, 1000, 2500, 2000),
+                                      rect(3500, 1000, 4000, 2000)};
+    const auto holes = box_minus_union({0, 0, 4000, 4000}, pieces);
+    REQUIRE(holes.size() == 2);
+    CHECK(xor_area_nm2(holes, {rect(1000, 1000, 2000, 2000), rect(2500, 1000, 3500, 2000)}) ==
+          kExactArea);
+    // An opaque island inside a clear region cannot be one ring.
+    CHECK_THROWS_AS(box_minus_union({0, 0, 4000, 4000}, {rect(1000, 1000, 2000, 2000)}),
+                    InvalidInput);
+}
