@@ -1,0 +1,149 @@
+#include "optimize/simulated_metrics.hpp"
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/fft.hpp"
+#include "decode/decoder.hpp"
+#include "decode/psf2otf.hpp"
+#include "decode/wiener.hpp"
+#include "optimize/image_quality.hpp"
+#include "optimize/noise_model.hpp"
+#include "optimize/nsr_tuning.hpp"
+
+namespace pinmask {
+namespace {
+
+std::string size_text(Eigen::Index r, Eigen::Index c) {
+    return std::to_string(r) + " x " + std::to_string(c);
+}
+
+void check_weight(const char* field, const WeightChoice& w) {
+    if (!w.tuned && (!(w.value > 0.0) || !std::isfinite(w.value))) {
+        throw invalid_field(field, std::to_string(w.value), "must be finite and > 0 (or tuned)");
+    }
+}
+
+// One noisy capture of one channel of one scene.
+struct Trial {
+    int scene = 0;
+    const Plane* truth = nullptr;
+    Plane capture;
+};
+
+}  // namespace
+
+void SimulatedMetricsOptions::validate() const {
+    if (noise_seeds < 1) {
+        throw invalid_field("noise_seeds", std::to_string(noise_seeds), "must be >= 1");
+    }
+    check_weight("wiener_nsr", wiener_nsr);
+    check_weight("tv_lambda", tv_lambda);
+    if (tv_iterations < 1) {
+        throw invalid_field("tv_iterations", std::to_string(tv_iterations), "must be >= 1");
+    }
+    if (!(tv_tolerance >= 0.0)) {
+        throw invalid_field("tv_tolerance", std::to_string(tv_tolerance), "must be >= 0");
+    }
+}
+
+SimulatedQuality simulated_quality(const Plane& psf, const std::vector<NamedScene>& scenes,
+                                   double snr_db, SimulatedDecoder decoder,
+                                   const SimulatedMetricsOptions& options) {
+    options.validate();
+    if (scenes.empty()) throw InvalidInput("simulated metrics: no scenes");
+    if (psf.size() == 0 || !psf.isFinite().all() || !(psf.sum() > 0.0)) {
+        throw InvalidInput("simulated metrics: the PSF must be non-empty, finite, with sum > 0");
+    }
+    const int rows = static_cast<int>(psf.rows()), cols = static_cast<int>(psf.cols());
+    const Fft2 fft(rows, cols);
+    const ComplexPlane otf = psf2otf(psf, rows, cols);
+    NoiseModel noise;
+    noise.kind = NoiseKind::kGaussianSnr;
+    noise.snr_db = snr_db;
+    validate(noise);
+
+    std::vector<Trial> trials;
+    std::vector<int> per_scene(scenes.size(), 0);
+    for (std::size_t s = 0; s < scenes.size(); ++s) {
+        const Image& img = scenes[s].image;
+        if (img.rows() != rows || img.cols() != cols || img.n_channels() < 1) {
+            throw InvalidInput("simulated metrics: scene '" + scenes[s].name + "' is " +
+                               size_text(img.rows(), img.cols()) + ", the period is " +
+                               size_text(rows, cols));
+        }
+        for (int ch = 0; ch < img.n_channels(); ++ch) {
+            const Plane clean = fft.inverse(fft.forward(img.channels[ch]) * otf);
+            for (int k = 0; k < options.noise_seeds; ++k) {
+                std::seed_seq seq{static_cast<std::uint32_t>(options.seed),
+                                  static_cast<std::uint32_t>(options.seed >> 32),
+                                  static_cast<std::uint32_t>(s), static_cast<std::uint32_t>(ch),
+                                  static_cast<std::uint32_t>(k)};
+                std::mt19937_64 rng(seq);
+                trials.push_back(
+                    {static_cast<int>(s), &img.channels[ch], add_noise(clean, noise, 1, 1, rng)});
+                ++per_scene[s];
+            }
+        }
+    }
+
+    SimulatedQuality q;
+    // Decodes every trial with weight w.
+    auto decode_all = [&](double w) {
+        std::vector<Plane> out;
+        out.reserve(trials.size());
+        if (decoder == SimulatedDecoder::kWiener) {
+            const WienerFilter filter(psf, rows, cols, w);
+            WienerFilter::Workspace ws;
+            for (const Trial& t : trials) {
+                Plane x;
+                filter.apply(t.capture, x, ws);
+                out.push_back(std::move(x));
+            }
+        } else {
+            DecodeOptions o;
+            o.method = DecodeMethod::kTv;
+            o.model = ConvModel::kCyclic;
+            o.lambda = w;
+            o.max_iterations = options.tv_iterations;
+            o.tolerance = options.tv_tolerance;
+            o.record_history = false;
+            for (const Trial& t : trials) out.push_back(decode_plane(t.capture, psf, o).image);
+        }
+        q.decodes += static_cast<long long>(trials.size());
+        return out;
+    };
+    auto mean_mse = [&](double w) {
+        const std::vector<Plane> est = decode_all(w);
+        double sum = 0.0;
+        for (std::size_t i = 0; i < trials.size(); ++i) sum += mse(est[i], *trials[i].truth);
+        return sum / static_cast<double>(trials.size());
+    };
+    const WeightChoice& choice =
+        decoder == SimulatedDecoder::kWiener ? options.wiener_nsr : options.tv_lambda;
+    q.weight = choice.tuned ? tune_log_weight(mean_mse).x : choice.value;
+
+    const std::vector<Plane> est = decode_all(q.weight);
+    const bool has_ssim = rows >= kSsimWindow && cols >= kSsimWindow;
+    std::vector<double> mse_sum(scenes.size(), 0.0), ssim_sum(scenes.size(), 0.0);
+    for (std::size_t i = 0; i < trials.size(); ++i) {
+        mse_sum[trials[i].scene] += mse(est[i], *trials[i].truth);
+        if (has_ssim) ssim_sum[trials[i].scene] += ssim(est[i], *trials[i].truth);
+    }
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t s = 0; s < scenes.size(); ++s) {
+        SceneQuality sq;
+        sq.scene = scenes[s].name;
+        sq.psnr_db = psnr_from_mse(mse_sum[s] / per_scene[s]);
+        sq.ssim = has_ssim ? ssim_sum[s] / per_scene[s] : nan;
+        q.mean_psnr_db += sq.psnr_db / static_cast<double>(scenes.size());
+        q.mean_ssim += sq.ssim / static_cast<double>(scenes.size());
+        q.scenes.push_back(sq);
+    }
+    return q;
+}
+
+}  // namespace pinmask
