@@ -1,0 +1,67 @@
+#include "design/kernel_model.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <utility>
+
+#include "core/error.hpp"
+
+namespace pinmask {
+namespace {
+
+constexpr std::array<std::pair<KernelModel, const char*>, 6> kNames = {{
+    {KernelModel::kAuto, "auto"},
+    {KernelModel::kBox, "box"},
+    {KernelModel::kFraunhofer, "fraunhofer"},
+    {KernelModel::kFresnel, "fresnel"},
+    {KernelModel::kPaperFig3b, "paper-fig3b"},
+    {KernelModel::kMeasured, "measured"},
+}};
+
+std::string number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    return buf;
+}
+
+}  // namespace
+
+KernelModel parse_kernel_model(std::string_view name, std::string_view field) {
+    std::string list;
+    for (const auto& [model, text] : kNames) {
+        if (name == text) return model;
+        list += (list.empty() ? "" : ", ") + std::string(text);
+    }
+    throw invalid_field(std::string(field), "'" + std::string(name) + "'",
+                        "must be one of " + list);
+}
+
+std::string kernel_model_name(KernelModel model) {
+    for (const auto& [m, text] : kNames) {
+        if (m == model) return text;
+    }
+    return "unknown";
+}
+
+KernelChoice choose_kernel_model(double fresnel_number) {
+    if (std::isnan(fresnel_number)) {
+        throw invalid_field("Fresnel number", "nan", "must be a number");
+    }
+    const double n = std::fabs(fresnel_number);
+    const std::string l1 = " (L1 error <= " + number(kAutoL1Target) + ")";
+    if (n <= kAutoFraunhoferMaxN) {
+        return {KernelModel::kFraunhofer, "N = " + number(n) +
+                                              " <= " + number(kAutoFraunhoferMaxN) +
+                                              ": far field, sinc^2 is accurate" + l1};
+    }
+    if (n >= kAutoBoxMinN) {
+        return {KernelModel::kBox, "N = " + number(n) + " >= " + number(kAutoBoxMinN) +
+                                       ": geometric spot, the box is accurate" + l1};
+    }
+    return {KernelModel::kFresnel,
+            "N = " + number(n) + " is between " + number(kAutoFraunhoferMaxN) + " and " +
+                number(kAutoBoxMinN) + ": neither limit is accurate, full Fresnel pattern"};
+}
+
+}  // namespace pinmask
