@@ -564,19 +564,12 @@ DrcReport run_drc(const Layout& layout, const DrcRules& rules) {
         in.push_back(
             {&layout.annotations[i], area(layout.extent), false, true, Group::kAnnotation, i});
     }
-    // Dark tone: the pinholes are the outline (the pieces' bounding box) minus the pieces; they
-    // take the clear-tone rules (spacing, width, gaps between pinholes = opaque web width).
+    // Dark tone: the pinholes are the holes of the union of the pieces; they take the clear-tone
+    // rules (spacing, width, and gaps between pinholes = width of the opaque web).
     std::vector<Ring> holes;
     if (!clear && !layout.polygons.empty()) {
         validate_coordinates(in);
-        BoxNm outline{kMaxCoordNm, kMaxCoordNm, -kMaxCoordNm, -kMaxCoordNm};
-        for (const Ring& r : layout.polygons) {
-            for (const PointNm& p : r) {
-                outline = {std::min(outline.x0, p.x), std::min(outline.y0, p.y),
-                           std::max(outline.x1, p.x), std::max(outline.y1, p.y)};
-            }
-        }
-        holes = box_minus_union(outline, layout.polygons);
+        holes = union_holes(layout.polygons);
         for (std::size_t i = 0; i < holes.size(); ++i) {
             in.push_back({&holes[i], area(layout.active_area), true, true, Group::kClearRegion, i});
         }

@@ -69,7 +69,7 @@ PointNm grid_point(const Kernel::Point_2& p) {
     const auto on_grid = [](const Kernel::FT& v) {
         const std::int64_t n = std::llround(CGAL::to_double(v));
         if (Kernel::FT(static_cast<double>(n)) != v) {
-            throw invalid_field("opaque pieces", "a vertex near " + std::to_string(n) + " nm",
+            throw invalid_field("opaque pieces", "a hole vertex near " + std::to_string(n) + " nm",
                                 "the clear regions must have vertices on the 1 nm grid");
         }
         return n;
@@ -93,25 +93,21 @@ double intersection_area_nm2(const std::vector<Ring>& a, const std::vector<Ring>
 
 double union_area_nm2(const std::vector<Ring>& a) { return area_nm2(make_set(a, "a")); }
 
-std::vector<Ring> box_minus_union(const BoxNm& box, const std::vector<Ring>& opaque) {
-    const Ring outline = {{box.x0, box.y0}, {box.x1, box.y0}, {box.x1, box.y1}, {box.x0, box.y1}};
-    PolygonSet set = make_set({outline}, "box");
-    set.difference(make_set(opaque, "opaque"));
+std::vector<Ring> union_holes(const std::vector<Ring>& opaque) {
+    const PolygonSet set = make_set(opaque, "opaque");
     std::vector<PolygonWithHoles> parts;
     set.polygons_with_holes(std::back_inserter(parts));
     std::vector<Ring> out;
     for (const PolygonWithHoles& part : parts) {
-        if (part.is_unbounded() || part.number_of_holes() != 0) {
-            throw invalid_field("opaque pieces", "an opaque island inside a clear region",
-                                "clear regions must be hole-free to be checked");
+        for (auto h = part.holes_begin(); h != part.holes_end(); ++h) {
+            Polygon hole = *h;
+            if (hole.is_clockwise_oriented()) hole.reverse_orientation();
+            Ring ring;
+            for (auto v = hole.vertices_begin(); v != hole.vertices_end(); ++v) {
+                ring.push_back(grid_point(*v));
+            }
+            out.push_back(std::move(ring));
         }
-        Ring ring;
-        Polygon boundary = part.outer_boundary();
-        if (boundary.is_clockwise_oriented()) boundary.reverse_orientation();
-        for (auto v = boundary.vertices_begin(); v != boundary.vertices_end(); ++v) {
-            ring.push_back(grid_point(*v));
-        }
-        out.push_back(std::move(ring));
     }
     return out;
 }

@@ -30,10 +30,10 @@ double intersection_area_nm2(const std::vector<Ring>& a, const std::vector<Ring>
 // Area of union(a), in nm^2.
 double union_area_nm2(const std::vector<Ring>& a);
 
-// The regions of `box` not covered by union(opaque), as counter-clockwise rings (the clear
-// pinholes of a dark-tone layout). Exact; throws InvalidInput when a region has an island of
-// `opaque` inside it (not expressible as one ring) or a vertex off the 1 nm grid (pieces that
-// cross between grid points).
-std::vector<Ring> box_minus_union(const BoxNm& box, const std::vector<Ring>& opaque);
+// The holes of union(opaque), as counter-clockwise rings: the clear pinholes of a dark-tone
+// layout, whose opaque pieces share edges. Exact; throws InvalidInput when a hole has a vertex
+// off the 1 nm grid (pieces that cross between grid points). A clear region open to the
+// outside (a pinhole cut into the outline's edge) is not a hole and is not returned.
+std::vector<Ring> union_holes(const std::vector<Ring>& opaque);
 
 }  // namespace pinmask

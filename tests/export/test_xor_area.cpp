@@ -111,16 +111,24 @@ TEST_CASE("bad rings are invalid input naming the set and ring") {
     CHECK_THROWS_AS(xor_area_nm2({rect(0, 0, kMaxCoordNm + 1, 10)}, {}), InvalidInput);
 }
 
-TEST_CASE("box minus opaque pieces gives the clear regions exactly") {
+TEST_CASE("the holes of a union of opaque pieces are the clear regions, exactly") {
     // Five pieces sharing edges leave two square holes.
     const std::vector<Ring> pieces = {rect(0, 0, 4000, 1000), rect(0, 2000, 4000, 4000),
                                       rect(0, 1000, 1000, 2000), rect(2000, 1000, 2500, 2000),
                                       rect(3500, 1000, 4000, 2000)};
-    const auto holes = box_minus_union({0, 0, 4000, 4000}, pieces);
+    const auto holes = union_holes(pieces);
     REQUIRE(holes.size() == 2);
     CHECK(xor_area_nm2(holes, {rect(1000, 1000, 2000, 2000), rect(2500, 1000, 3500, 2000)}) ==
           kExactArea);
-    // An opaque island inside a clear region cannot be one ring.
-    CHECK_THROWS_AS(box_minus_union({0, 0, 4000, 4000}, {rect(1000, 1000, 2000, 2000)}),
-                    InvalidInput);
+    // A piece further away adds no hole; a notch open to the outside is not a hole.
+    auto more = pieces;
+    more.push_back(rect(6000, 0, 7000, 1000));
+    more.erase(more.begin() + 4);  // hole 1 now opens to the right edge
+    CHECK(union_holes(more).size() == 1);
+    // A hole whose vertices fall between grid points (crossing diagonals) is refused.
+    const std::vector<Ring> skew = {{{0, 0}, {3, 0}, {3, 1}},
+                                    {{3, 0}, {3, 3}, {2, 3}},
+                                    {{3, 3}, {0, 3}, {0, 2}},
+                                    {{0, 3}, {0, 0}, {1, 0}}};
+    CHECK_THROWS_AS(union_holes(skew), InvalidInput);
 }
