@@ -4,6 +4,14 @@
 // tells the caller the largest representable count (255, 65535; 1.0 for float files) so it can
 // normalise. Writers take values in the target's own units for float formats and values in
 // [0, 1] (clamped, rounded to nearest) for integer formats. Every write is atomic.
+//
+// What the readers accept beyond that (details at the top of tiff_io.cpp, png_io.cpp, npy_io.cpp):
+// - TIFF: the first page only; 64-bit float too; strips or tiles, contiguous or separate planes,
+//   any compression the installed libtiff decodes; extra samples (alpha) are dropped.
+// - PNG: palette images expand to 8-bit RGB, 1/2/4-bit grey to 8-bit grey (full scale 255);
+//   alpha (grey+alpha, RGBA, palette transparency) is dropped; no gamma is applied.
+// - npy: versions 1.0/2.0/3.0; also dtypes '|u1' and '<u2' (integer counts) and shape
+//   (rows, cols, 1).
 #pragma once
 
 #include <filesystem>
@@ -23,7 +31,8 @@ struct LoadedImage {
 // Reads by content (magic bytes), not by extension. Throws InvalidInput naming the file and the
 // problem for: missing/empty/truncated files, unsupported layouts (bit depths, channel counts,
 // compression we cannot decode, big-endian npy, Fortran order), declared sizes beyond
-// kMaxImagePixels, NaN/Inf in float data is *not* an error here (callers decide).
+// kMaxImageSamples or the memory bound (ResourceLimit, checked before allocating). NaN/Inf in
+// float data is *not* an error here (callers decide).
 LoadedImage read_image(const std::filesystem::path& path);
 
 // Largest image (rows * cols * channels) the readers accept before allocating: 2^28 samples
