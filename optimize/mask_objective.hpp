@@ -1,0 +1,46 @@
+// The search objective (lower is better), a weighted sum of terms each of which is computed only
+// when its weight is non-zero:
+//   analytic_wiener   -expected Wiener PSNR in dB (optimize/analytic_error: closed form from the
+//                     OTF A^ = P^ K^, the scene prior and the noise model; O(m^2), no FFT)
+//   max_sidelobe      max autocorrelation sidelobe / K (0 .. 1)
+//   sidelobe_energy   integrated sidelobe level sum_{d != 0} R(d)^2 / K^2
+//   min_spectrum      -min_{k != 0} |P^(k)| / sqrt(K)  (sqrt(K) is |P^| of a flat spectrum with
+//                     the same energy, so the term is about -1 for a good pattern)
+// Terms and their values are reported under these names (plus "analytic_wiener_psnr_db").
+#pragma once
+
+#include <memory>
+
+#include "optimize/analytic_error.hpp"
+#include "optimize/search.hpp"
+
+namespace pinmask {
+
+struct ObjectiveWeights {
+    double analytic_wiener = 1.0;
+    double max_sidelobe = 0.0;
+    double sidelobe_energy = 0.0;
+    double min_spectrum = 0.0;
+
+    // Throws InvalidInput for a negative or non-finite weight, or when all are zero.
+    void validate() const;
+};
+
+class MaskObjective : public SearchObjective {
+  public:
+    // `model` may be null only when weights.analytic_wiener == 0 (InvalidInput otherwise).
+    MaskObjective(ObjectiveWeights weights, std::shared_ptr<const AnalyticWienerModel> model,
+                  WienerFilterSpec filter);
+
+    double evaluate(const PatternState& state) const override;
+    std::map<std::string, double> terms(const PatternState& state) const override;
+
+    const ObjectiveWeights& weights() const { return weights_; }
+
+  private:
+    ObjectiveWeights weights_;
+    std::shared_ptr<const AnalyticWienerModel> model_;
+    WienerFilterSpec filter_;
+};
+
+}  // namespace pinmask
