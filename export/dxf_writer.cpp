@@ -1,0 +1,125 @@
+#include "export/dxf_writer.hpp"
+
+#include <cctype>
+
+#include "core/error.hpp"
+#include "export/decimal.hpp"
+#include "export/geometry.hpp"
+
+namespace pinmask {
+namespace {
+
+constexpr int kMicrometreDigits = 3;
+
+class Dxf {
+  public:
+    explicit Dxf(std::string& out) : out_(out) {}
+    void group(int code, std::string_view value) {
+        code_(code);
+        out_ += value;
+        out_.push_back('\n');
+    }
+    void coord(int code, std::int64_t nm) {
+        code_(code);
+        append_scaled(out_, nm, kMicrometreDigits);
+        out_.push_back('\n');
+    }
+
+  private:
+    void code_(int code) {  // right-aligned in three columns, as AutoCAD writes them
+        if (code < 100) out_.push_back(' ');
+        if (code < 10) out_.push_back(' ');
+        out_ += std::to_string(code);
+        out_.push_back('\n');
+    }
+    std::string& out_;
+};
+
+void check_layer(const std::string& name) {
+    bool ok = !name.empty() && name.size() <= 31 && name != "0";
+    for (char c : name)
+        ok =
+            ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '$');
+    if (!ok)
+        throw invalid_field("dxf layer", "'" + name + "'",
+                            "must be 1..31 characters of A-Z a-z 0-9 _ - $ and not \"0\"");
+}
+
+}  // namespace
+
+std::string dxf_document(const Layout& layout, const DxfOptions& o) {
+    check_layer(o.layer);
+    std::string out;
+    std::size_t vertices = 0;
+    for (const Ring& r : layout.polygons) vertices += r.size();
+    out.reserve(1024 + vertices * 60 + layout.polygons.size() * 80);
+    Dxf d(out);
+    d.group(999,
+            "pinmask fabrication drawing, scale 1:1, units micrometres (1 drawing unit = 1 um)");
+    d.group(999, std::string("closed polylines are the ") +
+                     (layout.tone == Tone::kClear ? "clear (transparent)" : "opaque") +
+                     " areas of the mask");
+    d.group(999, "pinmask " + layout_info(layout, "um"));
+    d.group(0, "SECTION");
+    d.group(2, "HEADER");
+    d.group(9, "$ACADVER");
+    d.group(1, "AC1009");
+    d.group(9, "$MEASUREMENT");
+    d.group(70, "1");
+    d.group(9, "$EXTMIN");
+    d.coord(10, layout.extent.x0);
+    d.coord(20, layout.extent.y0);
+    d.group(9, "$EXTMAX");
+    d.coord(10, layout.extent.x1);
+    d.coord(20, layout.extent.y1);
+    d.group(0, "ENDSEC");
+    d.group(0, "SECTION");
+    d.group(2, "TABLES");
+    d.group(0, "TABLE");
+    d.group(2, "LTYPE");
+    d.group(70, "1");
+    d.group(0, "LTYPE");
+    d.group(2, "CONTINUOUS");
+    d.group(70, "0");
+    d.group(3, "Solid line");
+    d.group(72, "65");
+    d.group(73, "0");
+    d.group(40, "0.0");
+    d.group(0, "ENDTAB");
+    d.group(0, "TABLE");
+    d.group(2, "LAYER");
+    d.group(70, "1");
+    d.group(0, "LAYER");
+    d.group(2, o.layer);
+    d.group(70, "0");
+    d.group(62, "7");
+    d.group(6, "CONTINUOUS");
+    d.group(0, "ENDTAB");
+    d.group(0, "ENDSEC");
+    d.group(0, "SECTION");
+    d.group(2, "ENTITIES");
+    for (const auto* set : {&layout.polygons, &layout.annotations})
+        for (const Ring& r : *set) {
+            d.group(0, "POLYLINE");
+            d.group(8, o.layer);
+            d.group(66, "1");
+            d.group(10, "0.0");
+            d.group(20, "0.0");
+            d.group(30, "0.0");
+            d.group(70, "1");
+            for (const PointNm& p : r) {
+                d.group(0, "VERTEX");
+                d.group(8, o.layer);
+                d.coord(10, p.x);
+                d.coord(20, p.y);
+                d.group(30, "0.0");
+            }
+            d.group(0, "SEQEND");
+            d.group(8, o.layer);
+        }
+    d.group(0, "ENDSEC");
+    d.group(0, "EOF");
+    return out;
+}
+
+}  // namespace pinmask

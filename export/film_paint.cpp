@@ -1,0 +1,53 @@
+#include "export/film_paint.hpp"
+
+#include "core/error.hpp"
+
+namespace pinmask {
+namespace {
+
+void add_rings(cairo_t* cr, const std::vector<Ring>& rings) {
+    for (const Ring& r : rings) {
+        if (r.empty()) continue;
+        cairo_move_to(cr, double(r[0].x), double(r[0].y));
+        for (std::size_t i = 1; i < r.size(); ++i)
+            cairo_line_to(cr, double(r[i].x), double(r[i].y));
+        cairo_close_path(cr);
+    }
+}
+
+}  // namespace
+
+void fill_rings(cairo_t* cr, const std::vector<Ring>& rings) {
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    add_rings(cr, rings);
+    cairo_fill(cr);
+}
+
+void paint_film(cairo_t* cr, const Layout& layout) {
+    cairo_set_fill_rule(cr, CAIRO_FILL_RULE_WINDING);
+    const bool clear = layout.tone == Tone::kClear;
+    if (clear) {
+        const BoxNm& e = layout.extent;
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        cairo_rectangle(cr, double(e.x0), double(e.y0), double(e.x1 - e.x0), double(e.y1 - e.y0));
+        cairo_fill(cr);
+    }
+    cairo_set_source_rgb(cr, clear ? 1 : 0, clear ? 1 : 0, clear ? 1 : 0);
+    add_rings(cr, layout.polygons);
+    add_rings(cr, layout.annotations);
+    cairo_fill(cr);
+}
+
+void check_cairo(cairo_t* cr, const std::string& what) {
+    const cairo_status_t s = cairo_status(cr);
+    if (s != CAIRO_STATUS_SUCCESS)
+        throw RuntimeFailure(what + ": cairo: " + cairo_status_to_string(s));
+}
+
+void check_cairo_surface(cairo_surface_t* surface, const std::string& what) {
+    const cairo_status_t s = cairo_surface_status(surface);
+    if (s != CAIRO_STATUS_SUCCESS)
+        throw RuntimeFailure(what + ": cairo: " + cairo_status_to_string(s));
+}
+
+}  // namespace pinmask

@@ -1,0 +1,28 @@
+// Paints a layout as the physical film looks (black = opaque, white = clear) into a Cairo
+// context, shared by the PDF writer and the PNG preview. The caller sets the context's matrix so
+// user space is the layout's nanometres with y up.
+//   clear tone: the extent is filled black (the plate is opaque wherever nothing is drawn), then
+//               every polygon and annotation is filled white;
+//   dark tone:  every polygon and annotation is filled black (the rest stays clear).
+// All rings go into one path and one fill, which keeps Cairo fast for 10^5 polygons.
+#pragma once
+
+#include <cairo.h>
+
+#include <string>
+#include <vector>
+
+#include "export/layout.hpp"
+
+namespace pinmask {
+
+void paint_film(cairo_t* cr, const Layout& layout);
+
+// Fills the rings black (nanometre user space), one path.
+void fill_rings(cairo_t* cr, const std::vector<Ring>& rings);
+
+// Throws RuntimeFailure naming `what` when the surface or context is in an error state.
+void check_cairo(cairo_t* cr, const std::string& what);
+void check_cairo_surface(cairo_surface_t* surface, const std::string& what);
+
+}  // namespace pinmask

@@ -1,0 +1,33 @@
+// GDSII stream (release 6.0.0) of a layout: one library "PINMASK" with one top structure
+// "PINMASK_<hash>", UNITS of 1e-3 user units per database unit and 1e-9 m per database unit
+// (user unit 1 um, database unit 1 nm: coordinates are the layout's integers). Each ring is a
+// BOUNDARY on the given layer/datatype with its first point repeated at the end (<= 8191
+// points per XY record). One TEXT element on the same layer and texttype 0 carries the info
+// tokens (export/geometry layout_info). BGNLIB/BGNSTR timestamps are pinned to 2000-01-01
+// 00:00:00 so the stream is byte-identical for identical layouts.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "export/layout.hpp"
+
+namespace pinmask {
+
+struct GdsOptions {
+    int layer = 1;     // 0..32767
+    int datatype = 0;  // 0..32767
+};
+
+// The complete stream. Throws InvalidInput for layer/datatype out of range, a ring of more than
+// 8190 vertices or a coordinate outside the 32-bit range.
+std::string gds_stream(const Layout& layout, const GdsOptions& options = {});
+
+// GDSII 8-byte real: sign bit, 7-bit excess-64 base-16 exponent, 56-bit mantissa m with
+// value = (-1)^s * m / 2^56 * 16^(e - 64), normalised so 1/16 <= m / 2^56 < 1 (0 is all zero).
+// Big-endian bit layout in the returned integer. Rounds to nearest; |value| must be below
+// 16^63 and finite (InvalidInput otherwise); values below 16^-65 become 0.
+std::uint64_t gds_real8_bits(double value);
+double gds_real8_value(std::uint64_t bits);
+
+}  // namespace pinmask

@@ -1,0 +1,31 @@
+// PDF of a layout for film plotters and people, exactly 1:1 (1 pt = 1/72 in; print at 100%):
+// the film as it looks (export/film_paint: black opaque, white clear) with a margin, and below
+// it, outside the extent, a scale bar and a title block (hash, tone, mirroring, scale), drawn
+// with the built-in bar font (export/marks) so no system font is involved. Rendered by Cairo's
+// PDF surface with its creation and modification dates pinned (cairo_pdf_surface_set_metadata),
+// so the same layout gives the same bytes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "export/layout.hpp"
+
+namespace pinmask {
+
+struct PdfOptions {
+    double margin_m = 10e-3;               // white border around everything
+    std::vector<std::string> title_lines;  // empty: hash, tone, mirroring and scale
+};
+
+// The default title block lines for a layout.
+std::vector<std::string> default_title_lines(const Layout& layout);
+
+// The complete PDF file. Throws InvalidInput for a negative margin.
+std::string pdf_document(const Layout& layout, const PdfOptions& options = {});
+
+// Length of the scale bar for an extent of width w_nm: the largest 1, 2 or 5 x 10^k nm that is
+// at most half the width (at least 1 nm).
+std::int64_t scale_bar_nm(std::int64_t width_nm);
+
+}  // namespace pinmask

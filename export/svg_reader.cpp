@@ -1,0 +1,155 @@
+#include "export/svg_reader.hpp"
+
+#include <cctype>
+#include <string>
+
+#include "core/error.hpp"
+#include "export/decimal.hpp"
+#include "export/geometry.hpp"
+
+namespace pinmask {
+namespace {
+
+constexpr int kMicrometreDigits = 3;
+
+InvalidInput bad(std::size_t offset, const std::string& rule) {
+    return InvalidInput("svg: at byte " + std::to_string(offset) + ": " + rule);
+}
+
+// The value of attribute `name` inside the tag text, or npos-marked empty view.
+bool attribute(std::string_view tag, std::string_view name, std::string_view& value) {
+    std::size_t pos = 0;
+    while ((pos = tag.find(name, pos)) != std::string_view::npos) {
+        const bool starts = pos > 0 && std::isspace(static_cast<unsigned char>(tag[pos - 1]));
+        const std::size_t q = pos + name.size();
+        if (starts && q + 1 < tag.size() && tag[q] == '=' && tag[q + 1] == '"') {
+            const std::size_t end = tag.find('"', q + 2);
+            if (end == std::string_view::npos) return false;
+            value = tag.substr(q + 2, end - q - 2);
+            return true;
+        }
+        pos = q;
+    }
+    return false;
+}
+
+class PathParser {
+  public:
+    PathParser(std::string_view d, std::size_t offset, std::vector<Ring>& out)
+        : d_(d), offset_(offset), out_(out) {}
+
+    void parse_path() {
+        char cmd = 0;
+        while (skip_separators(), i_ < d_.size()) {
+            const char c = d_[i_];
+            if (std::isalpha(static_cast<unsigned char>(c))) {
+                ++i_;
+                if (c == 'Z') {
+                    close();
+                    cmd = 0;
+                    continue;
+                }
+                if (c != 'M' && c != 'L' && c != 'H' && c != 'V')
+                    throw bad(offset_, std::string("path command '") + c +
+                                           "' is not supported (absolute M L H V Z only)");
+                cmd = c;
+                if (c == 'M') {
+                    if (!current_.empty()) throw bad(offset_, "subpath not closed with Z");
+                    const std::int64_t x = number(), y = -number();
+                    current_.push_back({x, y});
+                    cmd = 'L';  // further pairs are implicit line-tos
+                }
+                continue;
+            }
+            if (cmd == 0 || current_.empty())
+                throw bad(offset_, "path data must start each subpath with M");
+            PointNm p = current_.back();
+            if (cmd == 'L') {
+                p.x = number();
+                p.y = -number();
+            } else if (cmd == 'H') {
+                p.x = number();
+            } else {
+                p.y = -number();
+            }
+            current_.push_back(p);
+        }
+        if (!current_.empty()) throw bad(offset_, "subpath not closed with Z");
+    }
+
+    void parse_points() {
+        while (skip_separators(), i_ < d_.size()) {
+            const std::int64_t x = number(), y = -number();
+            current_.push_back({x, y});
+        }
+        close();
+    }
+
+  private:
+    void skip_separators() {
+        while (i_ < d_.size() &&
+               (d_[i_] == ',' || std::isspace(static_cast<unsigned char>(d_[i_]))))
+            ++i_;
+    }
+
+    std::int64_t number() {
+        skip_separators();
+        const std::size_t start = i_;
+        if (i_ < d_.size() && (d_[i_] == '-' || d_[i_] == '+')) ++i_;
+        while (i_ < d_.size() &&
+               (std::isdigit(static_cast<unsigned char>(d_[i_])) || d_[i_] == '.'))
+            ++i_;
+        if (i_ == start) throw bad(offset_, "expected a number in path data");
+        return parse_scaled(d_.substr(start, i_ - start), kMicrometreDigits, "svg coordinate");
+    }
+
+    void close() {
+        if (current_.size() >= 2 && current_.front() == current_.back()) current_.pop_back();
+        if (current_.size() < 3) throw bad(offset_, "a closed subpath needs 3 or more vertices");
+        out_.push_back(std::move(current_));
+        current_.clear();
+    }
+
+    std::string_view d_;
+    std::size_t offset_;
+    std::vector<Ring>& out_;
+    std::size_t i_ = 0;
+    Ring current_;
+};
+
+}  // namespace
+
+FileGeometry read_svg(std::string_view text) {
+    FileGeometry g;
+    const std::size_t root = text.find("<svg");
+    if (root == std::string_view::npos) throw bad(0, "no <svg> element: not an SVG document");
+    std::size_t end = text.find_last_not_of(" \t\r\n");
+    if (end == std::string_view::npos || text.substr(0, end + 1).ends_with("</svg>") == false)
+        throw bad(text.size(), "the document does not end with </svg> (truncated?)");
+    const std::size_t meta = text.find("<metadata>");
+    if (meta != std::string_view::npos) {
+        const std::size_t stop = text.find("</metadata>", meta);
+        if (stop == std::string_view::npos) throw bad(meta, "<metadata> is not closed");
+        g.info = parse_info(text.substr(meta + 10, stop - meta - 10));
+    }
+    for (std::size_t pos = root; (pos = text.find('<', pos)) != std::string_view::npos; ++pos) {
+        const bool is_path = text.substr(pos, 6) == "<path " || text.substr(pos, 6) == "<path\n";
+        const bool is_polygon = text.substr(pos, 9) == "<polygon ";
+        if (!is_path && !is_polygon) continue;
+        const std::size_t close = text.find('>', pos);
+        if (close == std::string_view::npos) throw bad(pos, "element is not closed");
+        const std::string_view tag = text.substr(pos, close - pos);
+        std::string_view data;
+        if (!attribute(tag, is_path ? "d" : "points", data))
+            throw bad(pos, is_path ? "<path> without a d attribute" : "<polygon> without points");
+        PathParser parser(data, pos, g.rings);
+        if (is_path)
+            parser.parse_path();
+        else
+            parser.parse_points();
+        pos = close;
+    }
+    return g;
+}
+
+}  // namespace pinmask
