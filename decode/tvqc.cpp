@@ -15,10 +15,12 @@ namespace {
 // residual ratio that triggers a change, and the residual scale.
 constexpr double kAlpha0 = 0.5;
 constexpr double kEta = 0.95;
+// Below this adaptivity the balance is left alone (saves its extra FFT pair per iteration).
+constexpr double kAlphaStop = 1e-3;
 constexpr double kDelta = 1.5;
 // |H| below this fraction of max|H| counts as a spectral zero in the pseudo-inverse.
 constexpr double kPinvRelThreshold = 1e-10;
-// 0.99 / L: strictly inside tau sigma L^2 < 1.
+// tau = sigma = 0.99 initially: strictly inside tau sigma < 1 (preconditioned, norm <= 1).
 constexpr double kStepSafety = 0.99;
 
 double norm2(const Plane& a) { return std::sqrt(a.square().sum()); }
@@ -32,6 +34,73 @@ double feasibility_step(const Plane& r, const Plane& d, double eps) {
     if (disc < 0.0 || b >= 0.0) return std::clamp(-b / a, 0.0, 1.0);  // no crossing
     const double t = c / (-b + std::sqrt(disc));  // smaller root, cancellation-free
     return t <= 1.0 ? t : std::clamp(-b / a, 0.0, 1.0);
+}
+
+// Bisection steps in log lambda over kLambdaDecades decades around mean |H|^2 (resolution
+// 24 / 2^16 decades), and the fraction of eps the starting point's residual aims at.
+constexpr int kLambdaBisections = 16;
+constexpr double kLambdaDecades = 12.0;  // each side of mean |H|^2
+constexpr double kStartResidualFraction = 0.99;
+
+struct FeasiblePoint {
+    Plane x;
+    Plane residual;  // A x - p
+    double norm = 0.0;
+};
+
+// x_lambda = IFFT[conj(H) P / (|H|^2 + lambda |D|^2)] (0 where the denominator is 0) with the
+// largest lambda whose residual ||A x - p|| is <= kStartResidualFraction eps: feasible, and as
+// smooth as a quadratic-gradient estimate allows. Returns the lambda = 0 estimate when even that
+// misses the target (the problem may then be infeasible) and the constant estimate when it fits.
+FeasiblePoint smooth_feasible_point(const ConvolutionOperator& op, const Plane& capture,
+                                    double eps) {
+    const ConvGeometry& g = op.geometry();
+    const Fft2& fft = op.fft();
+    const ComplexPlane& H = op.otf();
+    const ComplexPlane hp = H.conjugate() * fft.forward(pad_to_work(g, capture));
+    const Plane h2 = H.abs2();
+    const Plane gram = gradient_gram_symbol(g.work_rows, g.work_cols);
+    ComplexPlane spec(H.rows(), H.cols()), scratch;
+    Plane work;
+    auto solve = [&](double lambda, FeasiblePoint& f) {
+        for (Eigen::Index i = 0; i < spec.size(); ++i) {
+            const double d = h2.data()[i] + lambda * gram.data()[i];
+            spec.data()[i] = d > 0.0 ? hp.data()[i] / d : 0.0;
+        }
+        fft.inverse(ComplexPlane(H * spec), work, scratch);
+        f.residual = crop_to_capture(g, work) - capture;
+        f.norm = norm2(f.residual);
+    };
+    const double target = kStartResidualFraction * eps;
+    const double mid = std::log10(std::max(h2.mean(), 1e-300));
+    double lo = mid - kLambdaDecades, hi = mid + kLambdaDecades;
+    FeasiblePoint best, trial;
+    solve(std::pow(10.0, hi), trial);
+    double chosen = std::pow(10.0, hi);
+    if (trial.norm <= target) {
+        best = std::move(trial);
+    } else {
+        solve(0.0, best);
+        chosen = 0.0;
+        if (best.norm <= target) {
+            for (int i = 0; i < kLambdaBisections; ++i) {
+                const double m = 0.5 * (lo + hi);
+                solve(std::pow(10.0, m), trial);
+                if (trial.norm <= target) {
+                    lo = m;
+                    chosen = std::pow(10.0, m);
+                    std::swap(best, trial);
+                } else {
+                    hi = m;
+                }
+            }
+        }
+    }
+    solve(chosen, trial);  // recompute the spectrum of the chosen estimate
+    fft.inverse(spec, best.x, scratch);
+    best.residual = std::move(trial.residual);
+    best.norm = trial.norm;
+    return best;
 }
 
 }  // namespace
@@ -77,88 +146,117 @@ DecodeResult solve_tvqc(const ConvolutionOperator& op, const Plane& capture, con
 
     const Fft2& fft = op.fft();
     const ComplexPlane& H = op.otf();
-    const double beta = std::sqrt(8.0) / op.otf_max_abs();
-    const double L = 4.0;  // sqrt(8 + beta^2 max|H|^2)
-    double tau = kStepSafety / L, sigma = kStepSafety / L, alpha = kAlpha0;
+    const bool nn = o.nonnegative;
+    // Block weights: beta for A, gamma for I. beta = sqrt(8) / rms|H| puts the typical gain of
+    // beta A at the gradient's bound sqrt 8, so the two dual blocks have comparable scales (the
+    // preconditioner below makes convergence hold for any beta; this choice makes it fast).
+    const double beta = std::sqrt(8.0) / std::sqrt(std::max(H.abs2().mean(), 1e-300));
+    const double gamma = nn ? 1.0 : 0.0;
+    // Fourier-diagonal preconditioner T = M^-1, M = grad^T grad + beta^2 H^* H + gamma^2 I >=
+    // K^T K (C^T C <= I), so ||K M^-1/2|| <= 1 and tau sigma < 1 suffices.
+    const Plane m_inv = 1.0 / (gradient_gram_symbol(g.work_rows, g.work_cols) +
+                               beta * beta * H.abs2() + gamma * gamma)
+                                  .max(1e-300);
+    double tau = kStepSafety, sigma = kStepSafety, alpha = kAlpha0;
     const Plane center = beta * capture;
     const double radius = beta * eps;
 
-    ComplexPlane spec, scratch;
+    ComplexPlane spec, spec2, scratch;
     Plane work;
-    // A x and A^T y through the cached spectra.
-    auto apply_a = [&](const Plane& x, Plane& out) {
+    auto apply_a = [&](const Plane& x, Plane& out) {  // out = A x
         fft.forward(x, spec);
         spec *= H;
         fft.inverse(spec, work, scratch);
         out = crop_to_capture(g, work);
     };
-    auto apply_at = [&](const Plane& y, Plane& out) {
-        fft.forward(pad_to_work(g, y), spec);
-        spec *= H.conjugate();
-        fft.inverse(spec, out, scratch);
-    };
 
-    Plane x = warm_start ? *warm_start : Plane::Zero(g.work_rows, g.work_cols);
-    if (o.nonnegative) x = x.max(0.0);
-    Plane kx_r, kx_c, kx_q;  // K x
+    const FeasiblePoint start =
+        eps > 0.0 ? smooth_feasible_point(op, capture, eps) : FeasiblePoint{};
+    Plane x = warm_start  ? *warm_start
+              : eps > 0.0 ? start.x
+                          : Plane::Zero(g.work_rows, g.work_cols);
+    // K x = (grad x, beta A x, gamma x); the gamma block is x itself.
+    Plane kx_r, kx_c, ax;
     gradient(x, kx_r, kx_c);
-    apply_a(x, kx_q);
-    kx_q *= beta;
-    Plane y_r = Plane::Zero(g.work_rows, g.work_cols), y_c = y_r;
+    apply_a(x, ax);
+    Plane y_r = Plane::Zero(g.work_rows, g.work_cols), y_c = y_r, y_w;
     Plane y_q = Plane::Zero(g.capture_rows, g.capture_cols);
-    Plane kty = Plane::Zero(g.work_rows, g.work_cols);  // K^T y
+    if (nn) y_w = Plane::Zero(g.work_rows, g.work_cols);
 
-    Plane x_new, nr, nc, nq, atq, kty_new;
+    Plane x_new, nr, nc, ax_new, dx, adx;
     r.converged = false;
     for (int k = 1; k <= o.max_iterations; ++k) {
-        // Primal step.
-        x_new = x - tau * kty;
-        if (o.nonnegative) x_new = x_new.max(0.0);
+        // Primal step x_new = x - tau M^-1 K^T y, in Fourier space: K^T y = -div y1 +
+        // beta A^T y_q + gamma y_w.
+        work = -divergence(y_r, y_c);
+        if (nn) work += gamma * y_w;
+        fft.forward(work, spec2);
+        fft.forward(pad_to_work(g, y_q), spec);
+        spec2 += beta * H.conjugate() * spec;
+        spec2 *= m_inv.cast<std::complex<double>>();
+        fft.inverse(spec2, dx, scratch);
+        spec2 *= H;
+        fft.inverse(spec2, work, scratch);
+        adx = crop_to_capture(g, work);
+        x_new = x - tau * dx;
+        ax_new = ax - tau * adx;
         gradient(x_new, nr, nc);
-        apply_a(x_new, nq);
-        nq *= beta;
-        // Dual step at xbar = 2 x_new - x (K xbar from the cached K x).
+
+        // Dual step at xbar = 2 x_new - x, K xbar from the cached K x.
         Plane yr_new = y_r + sigma * (2.0 * nr - kx_r);
         Plane yc_new = y_c + sigma * (2.0 * nc - kx_c);
         const Plane scale = (yr_new.square() + yc_new.square()).sqrt().max(1.0);
         yr_new /= scale;
         yc_new /= scale;
-        Plane v = y_q + sigma * (2.0 * nq - kx_q);
+        Plane v = y_q + sigma * beta * (2.0 * ax_new - ax);
         {
-            Plane z = v / sigma - center;  // proj_B(v / sigma) = center + z min(1, radius/|z|)
+            Plane z = v / sigma - center;  // proj_B(v / sigma) = center + z min(1, radius / |z|)
             const double zn = norm2(z);
             if (zn > radius) z *= (zn > 0.0 ? radius / zn : 0.0);
             v -= sigma * (center + z);
         }
-        apply_at(v, atq);
-        kty_new = -divergence(yr_new, yc_new) + beta * atq;
+        Plane yw_new;
+        if (nn) yw_new = (y_w + sigma * gamma * (2.0 * x_new - x)).min(0.0);
 
-        // Adaptive step balance (tau sigma constant).
-        const double pres = norm2((x - x_new) / tau - (kty - kty_new));
-        const double dres = std::sqrt(((y_r - yr_new) / sigma - (kx_r - nr)).square().sum() +
-                                      ((y_c - yc_new) / sigma - (kx_c - nc)).square().sum() +
-                                      ((y_q - v) / sigma - (kx_q - nq)).square().sum());
-        if (pres > kDelta * dres) {
-            tau /= 1.0 - alpha;
-            sigma *= 1.0 - alpha;
-            alpha *= kEta;
-        } else if (pres < dres / kDelta) {
-            tau *= 1.0 - alpha;
-            sigma /= 1.0 - alpha;
-            alpha *= kEta;
+        // Adaptive balance of tau and sigma (product constant): primal residual K^T y_new
+        // (G = 0), dual residual (y - y_new) / sigma - K (x - x_new), both in the l2 norm.
+        if (alpha > kAlphaStop) {
+            work = -divergence(yr_new, yc_new);
+            if (nn) work += gamma * yw_new;
+            Plane atq;
+            fft.forward(pad_to_work(g, v), spec);
+            spec *= H.conjugate();
+            fft.inverse(spec, atq, scratch);
+            const double pres = norm2(work + beta * atq);
+            double d2 = ((y_r - yr_new) / sigma - (kx_r - nr)).square().sum() +
+                        ((y_c - yc_new) / sigma - (kx_c - nc)).square().sum() +
+                        ((y_q - v) / sigma - beta * (ax - ax_new)).square().sum();
+            if (nn) d2 += ((y_w - yw_new) / sigma - gamma * (x - x_new)).square().sum();
+            const double dres = std::sqrt(d2);
+            if (pres > kDelta * dres) {
+                tau /= 1.0 - alpha;
+                sigma *= 1.0 - alpha;
+                alpha *= kEta;
+            } else if (pres < dres / kDelta) {
+                tau *= 1.0 - alpha;
+                sigma /= 1.0 - alpha;
+                alpha *= kEta;
+            }
         }
 
         const double change = relative_change(x_new, x);
         x.swap(x_new);
+        ax.swap(ax_new);
         kx_r.swap(nr);
         kx_c.swap(nc);
-        kx_q.swap(nq);
         y_r.swap(yr_new);
         y_c.swap(yc_new);
         y_q.swap(v);
-        kty.swap(kty_new);
+        if (nn) y_w.swap(yw_new);
 
-        const double res = norm2(kx_q / beta - capture);
+        const double res = norm2(ax - capture);
+        const double viol =
+            nn ? std::max(res - eps, 0.0) + norm2(x.min(0.0)) : std::max(res - eps, 0.0);
         r.iterations = k;
         if (o.record_history) {
             IterationRecord rec;
@@ -168,27 +266,35 @@ DecodeResult solve_tvqc(const ConvolutionOperator& op, const Plane& capture, con
             rec.seconds = clock.seconds();
             r.history.push_back(rec);
         }
-        if (change <= o.tolerance && res - eps <= o.tolerance * std::max(eps, p_norm)) {
+        // k >= 2: the first primal step starts from y = 0 and does not move x.
+        if (k >= 2 && change <= o.tolerance && viol <= o.tolerance * std::max(eps, p_norm)) {
             r.converged = true;
             break;
         }
     }
     if (o.max_iterations == 0) r.converged = true;
 
-    // Feasibility restoration along the pseudo-inverse correction.
-    Plane ax;
+    // Feasibility restoration: eps > 0, the smallest step towards the feasible smooth point
+    // (TV convex: TV rises by at most t (TV(x_f) - TV(x))); eps = 0, the pseudo-inverse
+    // correction (the orthogonal projection on A x = p for the cyclic model).
+    if (nn) x = x.max(0.0);  // x >= 0 is a dual block: exact only in the limit
     apply_a(x, ax);
     Plane res_x = ax - capture;
     if (norm2(res_x) > eps) {
-        const double thr = kPinvRelThreshold * op.otf_max_abs();
-        fft.forward(pad_to_work(g, Plane(-res_x)), spec);
-        for (Eigen::Index i = 0; i < spec.size(); ++i) {
-            const std::complex<double> h = H.data()[i];
-            spec.data()[i] = std::abs(h) > thr ? spec.data()[i] / h : 0.0;
-        }
         Plane delta, a_delta;
-        fft.inverse(spec, delta, scratch);
-        apply_a(delta, a_delta);
+        if (eps > 0.0) {
+            delta = start.x - x;
+            a_delta = start.residual - res_x;
+        } else {
+            const double thr = kPinvRelThreshold * op.otf_max_abs();
+            fft.forward(pad_to_work(g, Plane(-res_x)), spec);
+            for (Eigen::Index i = 0; i < spec.size(); ++i) {
+                const std::complex<double> h = H.data()[i];
+                spec.data()[i] = std::abs(h) > thr ? spec.data()[i] / h : 0.0;
+            }
+            fft.inverse(spec, delta, scratch);
+            apply_a(delta, a_delta);
+        }
         const double t = feasibility_step(res_x, a_delta, eps);
         if (t > 0.0) {
             Plane x_fix = x + t * delta;
