@@ -17,6 +17,7 @@
 #include "cli/mask_json.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
+#include "design/exclusion_grid.hpp"
 #include "design/families.hpp"
 #include "design/mask.hpp"
 #include "design/mura.hpp"
@@ -112,7 +113,7 @@ Pattern make_pattern(const GenerateOptions& o, const CLI::App& cmd, Family famil
                          "a MURA of order " + std::to_string(g.grid) +
                              " has (p^2 - 1) / 2 = " + std::to_string(open) + " pinholes");
     }
-    violations = spacing_violations(p).size();
+    violations = count_spacing_violations(p);
     if (violations > 0 && !o.allow_violations) {
         std::ostringstream v;
         v << p.min_spacing_cells;

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <initializer_list>
 #include <set>
@@ -132,6 +133,23 @@ bool read_bool(const Json& j, const std::string& path) {
     return j.get<bool>();
 }
 
+// v as an int when it is an integer within int range (no message: the fast path).
+bool small_int(const Json& v, int& out) {
+    if (v.is_number_unsigned()) {
+        const auto u = v.get<std::uint64_t>();
+        if (u > static_cast<std::uint64_t>(INT_MAX)) return false;
+        out = static_cast<int>(u);
+        return true;
+    }
+    if (v.is_number_integer()) {
+        const auto i = v.get<std::int64_t>();
+        if (i < INT_MIN || i > INT_MAX) return false;
+        out = static_cast<int>(i);
+        return true;
+    }
+    return false;
+}
+
 std::pair<int, int> read_int_pair(const Json& j, const std::string& path, const char* what) {
     if (!j.is_array() || j.size() != 2) {
         fail(path, std::string("must be a two-element array ") + what + ", got " + j.dump());
@@ -139,7 +157,9 @@ std::pair<int, int> read_int_pair(const Json& j, const std::string& path, const 
     return {read_int(j[0], indexed(path, 0)), read_int(j[1], indexed(path, 1))};
 }
 
-Pattern read_pattern(const Json& j) {
+// `streamed`: the pinholes already taken out of the tree by parse_strict (nullptr: read them
+// from the tree).
+Pattern read_pattern(const Json& j, const std::vector<Cell>* streamed) {
     ObjectReader r(j, "pattern", {"n", "pinholes", "tiles", "min_spacing_cells"});
     r.reject_unknown();
     Pattern p;
@@ -153,11 +173,15 @@ Pattern read_pattern(const Json& j) {
         fail(r.path("pinholes"),
              std::string("must be an array of [row, col], got ") + holes.type_name());
     }
-    p.pinholes.reserve(holes.size());
-    for (std::size_t i = 0; i < holes.size(); ++i) {
-        const auto [row, col] =
-            read_int_pair(holes[i], indexed(r.path("pinholes"), i), "[row, col]");
-        p.pinholes.push_back({row, col});
+    if (streamed) {
+        p.pinholes = *streamed;
+    } else {
+        p.pinholes.reserve(holes.size());
+        for (std::size_t i = 0; i < holes.size(); ++i) {
+            const auto [row, col] =
+                read_int_pair(holes[i], indexed(r.path("pinholes"), i), "[row, col]");
+            p.pinholes.push_back({row, col});
+        }
     }
     const auto [tr, tc] = read_int_pair(r.required("tiles"), r.path("tiles"), "[rows, cols]");
     p.tiles_rows = tr;
@@ -280,15 +304,19 @@ J length_or_inf(double v) {
     return std::isinf(v) ? J("inf") : J(v);
 }
 
+// The file's JSON. Without pinholes (the array left empty), for the writer, which prints them
+// directly: a million pinholes as JSON nodes would cost seconds and hundreds of MB.
 template <class J>
-J build_json(const Mask& m) {
+J build_json(const Mask& m, bool with_pinholes = true) {
     J j;
     j["format"] = kFormat;
     j["version"] = kVersion;
     J pattern;
     pattern["n"] = m.pattern.n;
     J holes = J::array();
-    for (const Cell& c : sorted_pinholes(m.pattern)) holes.push_back(J::array({c.row, c.col}));
+    if (with_pinholes) {
+        for (const Cell& c : sorted_pinholes(m.pattern)) holes.push_back(J::array({c.row, c.col}));
+    }
     pattern["pinholes"] = std::move(holes);
     pattern["tiles"] = J::array({m.pattern.tiles_rows, m.pattern.tiles_cols});
     pattern["min_spacing_cells"] = m.pattern.min_spacing_cells;
@@ -335,9 +363,28 @@ J build_json(const Mask& m) {
 
 bool is_scalar(const OrderedJson& j) { return !j.is_array() && !j.is_object(); }
 
-// Pretty printer: 2-space indent; an array holding only scalars goes on one line.
-void pretty(const OrderedJson& j, int indent, std::string& out) {
+// Pretty printer: 2-space indent; an array holding only scalars goes on one line. The value at
+// key path "pattern.pinholes" is printed from `cells`, one [row, col] per line.
+void pretty(const OrderedJson& j, const std::string& path, int indent,
+            const std::vector<Cell>& cells, std::string& out) {
     const std::string pad(static_cast<std::size_t>(indent + 2), ' ');
+    const std::string close_pad(static_cast<std::size_t>(indent), ' ');
+    if (path == "pattern.pinholes") {
+        if (cells.empty()) {
+            out += "[]";
+            return;
+        }
+        out += "[\n";
+        char buf[32];
+        for (std::size_t i = 0; i < cells.size(); ++i) {
+            if (i) out += ",\n";
+            std::snprintf(buf, sizeof buf, "[%d, %d]", cells[i].row, cells[i].col);
+            out += pad;
+            out += buf;
+        }
+        out += "\n" + close_pad + "]";
+        return;
+    }
     if (j.is_object()) {
         if (j.empty()) {
             out += "{}";
@@ -349,9 +396,9 @@ void pretty(const OrderedJson& j, int indent, std::string& out) {
             if (!first) out += ",\n";
             first = false;
             out += pad + OrderedJson(item.key()).dump() + ": ";
-            pretty(item.value(), indent + 2, out);
+            pretty(item.value(), join_path(path, item.key()), indent + 2, cells, out);
         }
-        out += "\n" + std::string(static_cast<std::size_t>(indent), ' ') + "}";
+        out += "\n" + close_pad + "}";
     } else if (j.is_array()) {
         if (std::all_of(j.begin(), j.end(), is_scalar)) {
             out += "[";
@@ -363,53 +410,93 @@ void pretty(const OrderedJson& j, int indent, std::string& out) {
         for (std::size_t i = 0; i < j.size(); ++i) {
             if (i) out += ",\n";
             out += pad;
-            pretty(j[i], indent + 2, out);
+            pretty(j[i], indexed(path, i), indent + 2, cells, out);
         }
-        out += "\n" + std::string(static_cast<std::size_t>(indent), ' ') + "]";
+        out += "\n" + close_pad + "]";
     } else {
         out += j.dump();
     }
 }
 
+constexpr const char* kPinholesPath = "pattern.pinholes";
+
 // Parses text, rejecting repeated keys in one object (nlohmann would keep the last silently).
-Json parse_strict(const std::string& text) {
-    struct Level {
+// The elements of "pattern.pinholes" are checked and moved into `pinholes` as they are parsed
+// and left out of the returned tree: a large mask then costs 8 bytes per pinhole, not a JSON
+// node per number.
+Json parse_strict(const std::string& text, std::vector<Cell>& pinholes) {
+    struct Frame {
+        bool object = false;
+        bool pinhole = false;  // an element of pattern.pinholes: path built only when needed
+        std::string path;
         std::set<std::string> keys;
         std::string last_key;
+        std::size_t count = 0;  // elements so far (arrays); the element index for `pinhole`
     };
-    std::vector<Level> stack;
-    auto cb = [&stack](int, Json::parse_event_t event, Json& parsed) {
+    std::vector<Frame> stack;
+    const auto path_of = [](Frame& f) -> const std::string& {
+        if (f.pinhole && f.path.empty()) f.path = indexed(kPinholesPath, f.count);
+        return f.path;
+    };
+    // A finished value: true keeps it in the tree.
+    const auto finished = [&](const Json& value) {
+        if (stack.empty() || stack.back().object) return true;
+        Frame& parent = stack.back();
+        const std::size_t index = parent.count++;
+        if (parent.path != kPinholesPath) return true;
+        int rc[2];
+        if (value.is_array() && value.size() == 2 && small_int(value[0], rc[0]) &&
+            small_int(value[1], rc[1])) {
+            pinholes.push_back({rc[0], rc[1]});
+        } else {  // fails with the key path and the rule
+            read_int_pair(value, indexed(parent.path, index), "[row, col]");
+        }
+        return false;
+    };
+    auto cb = [&](int, Json::parse_event_t event, Json& parsed) {
         switch (event) {
             case Json::parse_event_t::object_start:
-                stack.emplace_back();
-                break;
+            case Json::parse_event_t::array_start: {
+                Frame f;
+                f.object = event == Json::parse_event_t::object_start;
+                if (!stack.empty()) {
+                    Frame& parent = stack.back();
+                    if (parent.object) {
+                        f.path = join_path(path_of(parent), parent.last_key);
+                    } else if (parent.path == kPinholesPath) {
+                        f.pinhole = true;
+                        f.count = parent.count;
+                    } else {
+                        f.path = indexed(path_of(parent), parent.count);
+                    }
+                }
+                if (f.pinhole) f.count = stack.back().count;
+                stack.push_back(std::move(f));
+                return true;
+            }
             case Json::parse_event_t::object_end:
+            case Json::parse_event_t::array_end:
                 if (!stack.empty()) stack.pop_back();
-                break;
+                return finished(parsed);
             case Json::parse_event_t::key: {
                 const std::string key = parsed.get<std::string>();
-                std::string path;
-                for (std::size_t i = 0; i + 1 < stack.size(); ++i) {
-                    path = join_path(path, stack[i].last_key);
+                Frame& f = stack.back();
+                if (!f.keys.insert(key).second) {
+                    fail(join_path(path_of(f), key),
+                         "duplicate key (each key may appear once per object)");
                 }
-                path = join_path(path, key);
-                if (!stack.back().keys.insert(key).second) {
-                    fail(path, "duplicate key (each key may appear once per object)");
-                }
-                stack.back().last_key = key;
-                break;
+                f.last_key = key;
+                return true;
             }
-            default:
-                break;
+            case Json::parse_event_t::value:
+                return finished(parsed);
         }
         return true;
     };
     return Json::parse(text, cb);
 }
 
-}  // namespace
-
-Mask mask_from_json(const Json& j, const MaskReadOptions& options) {
+Mask from_json(const Json& j, const MaskReadOptions& options, const std::vector<Cell>* streamed) {
     ObjectReader top(j, "", {"format", "version", "pattern", "optics", "psf", "provenance"});
     const Json& format = top.required("format");
     if (!format.is_string() || format.get<std::string>() != kFormat) {
@@ -423,7 +510,7 @@ Mask mask_from_json(const Json& j, const MaskReadOptions& options) {
     }
     top.reject_unknown();
     Mask m;
-    m.pattern = read_pattern(top.required("pattern"));
+    m.pattern = read_pattern(top.required("pattern"), streamed);
     m.camera = read_optics(top.required("optics"));
     m.psf = read_psf(top.required("psf"));
     std::string recorded_hash;
@@ -443,15 +530,27 @@ Mask mask_from_json(const Json& j, const MaskReadOptions& options) {
     return m;
 }
 
+}  // namespace
+
+Mask mask_from_json(const Json& j, const MaskReadOptions& options) {
+    return from_json(j, options, nullptr);
+}
+
 Json mask_to_json(const Mask& mask) { return build_json<Json>(mask); }
 
 std::string mask_file_text(const Mask& mask) {
-    // Round trip through the reader so that no file is written that could not be read back.
+    // Nothing is written that could not be read back: everything but the pinholes goes through
+    // the reader, the pinholes through the same pattern validation the reader runs.
+    const bool allow = mask.provenance.spacing_violations_allowed;
+    Json check = build_json<Json>(mask, /*with_pinholes=*/false);
+    check["provenance"].erase("geometry_hash");
     MaskReadOptions opts;
-    opts.allow_spacing_violations = mask.provenance.spacing_violations_allowed;
-    mask_from_json(mask_to_json(mask), opts);
+    opts.allow_spacing_violations = allow;
+    mask_from_json(check, opts);
+    validate(mask.pattern, allow);
     std::string out;
-    pretty(build_json<OrderedJson>(mask), 0, out);
+    pretty(build_json<OrderedJson>(mask, /*with_pinholes=*/false), "", 0,
+           sorted_pinholes(mask.pattern), out);
     out += "\n";
     return out;
 }
@@ -467,8 +566,9 @@ Mask read_mask_file(const std::filesystem::path& path, const MaskReadOptions& op
     std::ostringstream buf;
     buf << in.rdbuf();
     Json j;
+    std::vector<Cell> pinholes;
     try {
-        j = parse_strict(buf.str());
+        j = parse_strict(buf.str(), pinholes);
     } catch (const Json::parse_error& e) {
         throw InvalidInput(name + ": invalid JSON (byte " + std::to_string(e.byte) +
                            "): " + e.what());
@@ -478,7 +578,7 @@ Mask read_mask_file(const std::filesystem::path& path, const MaskReadOptions& op
         throw InvalidInput(name + ": " + e.what());
     }
     try {
-        return mask_from_json(j, options);
+        return from_json(j, options, &pinholes);
     } catch (const InvalidInput& e) {
         throw InvalidInput(name + ": " + e.what());
     }

@@ -22,6 +22,29 @@ std::vector<Offset> exclusion_offsets(double min_spacing_cells) {
     return out;
 }
 
+std::size_t count_spacing_violations(const Pattern& p) {
+    const double limit = p.min_spacing_cells - kSpacingTolerance;
+    const int reach = limit > 0.0 ? static_cast<int>(std::ceil(limit)) : 0;
+    // On tori too small for every offset within reach to be the unique shortest one (and when
+    // pinholes clash with their own copies), the listing function's bookkeeping is needed.
+    if (p.n < 2 * reach + 1) return spacing_violations(p).size();
+    const auto occ = occupancy(p);
+    const int n = p.n;
+    std::size_t count = 0;
+    for (const Offset& o : exclusion_offsets(p.min_spacing_cells)) {
+        // One offset of each +-pair, so that every close pair is counted once.
+        if (o.dr < 0 || (o.dr == 0 && o.dc <= 0)) continue;
+        for (const Cell& c : p.pinholes) {
+            int r = c.row + o.dr;
+            int k = c.col + o.dc;
+            r += r >= n ? -n : 0;
+            k += k < 0 ? n : (k >= n ? -n : 0);
+            count += occ[static_cast<std::size_t>(r) * n + k];
+        }
+    }
+    return count;
+}
+
 ExclusionGrid::ExclusionGrid(int n, double min_spacing_cells, Index index)
     : n_(n),
       offsets_(exclusion_offsets(min_spacing_cells)),

@@ -21,6 +21,11 @@ struct Offset {
 // (dr, dc) order: placing a pinhole at c blocks c + each offset (mod n). |dr|, |dc| <= ceil(s).
 std::vector<Offset> exclusion_offsets(double min_spacing_cells);
 
+// Number of pinhole pairs closer than the rule, equal to spacing_violations(p).size() but
+// without listing them (a MURA of order 4093 has 1.7e7 such pairs): O(K s^2) time, n^2 bytes.
+// Pinholes must be inside the grid and distinct (see validate()).
+std::size_t count_spacing_violations(const Pattern& p);
+
 class ExclusionGrid {
   public:
     // kRank keeps a Fenwick tree of free cells per 64-cell word so that nth_free() is

@@ -205,6 +205,30 @@ TEST_CASE("file-level errors name the file: syntax with position, duplicate keys
         Contains("big.mask.json: invalid JSON: [json.exception.out_of_range.406] number overflow"),
         InvalidInput);
 
+    // Pinholes are checked as they stream out of the parser: same key paths and rules.
+    const auto with_pinhole = [&](const std::string& name, const std::string& element) {
+        std::string t = good;
+        t.replace(t.find("[5, 9]"), 6, element);
+        write_text(dir / name, t);
+        return dir / name;
+    };
+    CHECK_THROWS_WITH_AS(read_mask_file(with_pinhole("p1.mask.json", "[5, \"a\"]")),
+                         Contains("pattern.pinholes[2][1]: must be an integer"), InvalidInput);
+    CHECK_THROWS_WITH_AS(read_mask_file(with_pinhole("p2.mask.json", "[5, 9, 1]")),
+                         Contains("pattern.pinholes[2]: must be a two-element array"),
+                         InvalidInput);
+    CHECK_THROWS_WITH_AS(read_mask_file(with_pinhole("p3.mask.json", "7")),
+                         Contains("pattern.pinholes[2]: must be a two-element array"),
+                         InvalidInput);
+    CHECK_THROWS_WITH_AS(read_mask_file(with_pinhole("p4.mask.json", "[5, 10000000000]")),
+                         Contains("pattern.pinholes[2][1]: 10000000000 is out of range"),
+                         InvalidInput);
+    CHECK_THROWS_WITH_AS(read_mask_file(with_pinhole("p5.mask.json", "{\"a\": 1, \"a\": 2}")),
+                         Contains("pattern.pinholes[2].a: duplicate key"), InvalidInput);
+    CHECK_THROWS_WITH_AS(read_mask_file(with_pinhole("p6.mask.json", "[0, 13]")),
+                         Contains("pattern.pinholes[2] = (0, 13): duplicate pinhole"),
+                         InvalidInput);
+
     CHECK_THROWS_WITH_AS(read_mask_file(dir / "missing.mask.json"),
                          Contains("missing.mask.json: cannot read mask file"), InvalidInput);
     write_text(dir / "array.mask.json", "[1, 2]");

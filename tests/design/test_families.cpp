@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "design/exclusion_grid.hpp"
 #include "design/families.hpp"
 #include "design/mura.hpp"
 
@@ -72,6 +73,17 @@ TEST_CASE("MURA breaks spacing 2 but not spacing 1") {
         CHECK_NOTHROW(validate(m, /*allow_spacing_violations=*/true));
         m.min_spacing_cells = 1.0;
         CHECK(spacing_violations(m).empty());
+    }
+}
+
+TEST_CASE("counting violations agrees with listing them, small tori included") {
+    for (const int p : {5, 13, 17, 29}) {
+        for (const double s : {0.0, 1.0, 1.5, 2.0, 3.0, 4.5, 7.0}) {
+            CAPTURE(p);
+            CAPTURE(s);
+            const Pattern m = mura_pattern(p, s);
+            CHECK(count_spacing_violations(m) == spacing_violations(m).size());
+        }
     }
 }
 
