@@ -1,0 +1,132 @@
+#include "optimize/simulate.hpp"
+
+#include <limits>
+#include <random>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/fft.hpp"
+#include "core/resource_limits.hpp"
+#include "decode/psf2otf.hpp"
+
+namespace pinmask {
+namespace {
+
+std::string size_text(Eigen::Index r, Eigen::Index c) {
+    return std::to_string(r) + " x " + std::to_string(c);
+}
+
+// Floor division and modulo for possibly negative numerators.
+int floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+int pos_mod(int a, int b) { return ((a % b) + b) % b; }
+
+std::mt19937_64 stream_rng(std::uint64_t seed, std::uint32_t stream, int channel) {
+    std::seed_seq seq{static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32),
+                      stream, static_cast<std::uint32_t>(channel)};
+    return std::mt19937_64(seq);
+}
+
+constexpr std::uint32_t kCaptureStream = 0;
+constexpr std::uint32_t kDarkStream = 1;
+
+}  // namespace
+
+void SimulationOptions::validate() const {
+    pinmask::validate(noise);
+    if (full_sensor && (sensor_rows < 1 || sensor_cols < 1)) {
+        throw invalid_field("sensor size",
+                            std::to_string(sensor_cols) + "x" + std::to_string(sensor_rows),
+                            "must be at least 1 x 1 pixels");
+    }
+    if (dark_frame && noise.kind != NoiseKind::kPhoton) {
+        throw invalid_field("dark_frame", "true",
+                            "needs the photon noise model: the Gaussian SNR model and the "
+                            "noiseless capture have no leak, dark current or read noise to record");
+    }
+}
+
+Plane cyclic_capture(const Plane& scene, const Plane& psf) {
+    if (psf.size() == 0 || !psf.isFinite().all() || !(psf.sum() > 0.0)) {
+        throw InvalidInput("simulate: the PSF must be non-empty and finite, with sum > 0");
+    }
+    if (scene.rows() != psf.rows() || scene.cols() != psf.cols()) {
+        throw InvalidInput("simulate: the scene is " + size_text(scene.rows(), scene.cols()) +
+                           ", the period (the PSF) is " + size_text(psf.rows(), psf.cols()) +
+                           ": they must be equal");
+    }
+    if (!scene.isFinite().all()) throw InvalidInput("simulate: the scene has non-finite values");
+    const int rows = static_cast<int>(psf.rows()), cols = static_cast<int>(psf.cols());
+    const Fft2 fft(rows, cols);
+    Plane c = fft.inverse(fft.forward(scene) * psf2otf(psf, rows, cols));
+    if (scene.minCoeff() >= 0.0 && psf.minCoeff() >= 0.0) c = c.max(0.0);
+    return c;
+}
+
+TileOrigin centred_tile_origin(int frame_rows, int frame_cols, int period_rows, int period_cols) {
+    return {floor_div(frame_rows - period_rows, 2), floor_div(frame_cols - period_cols, 2)};
+}
+
+Plane tile_period(const Plane& period, int rows, int cols, TileOrigin origin) {
+    if (rows < 1 || cols < 1) {
+        throw invalid_field("frame size", size_text(rows, cols), "must be at least 1 x 1");
+    }
+    if (period.size() == 0) throw InvalidInput("tile_period: the period is empty");
+    check_memory(8.0 * rows * cols, "the " + size_text(rows, cols) + " sensor frame");
+    const int pr = static_cast<int>(period.rows()), pc = static_cast<int>(period.cols());
+    Plane out(rows, cols);
+    for (int r = 0; r < rows; ++r) {
+        const int sr = pos_mod(r - origin.row, pr);
+        for (int c = 0; c < cols; ++c) out(r, c) = period(sr, pos_mod(c - origin.col, pc));
+    }
+    return out;
+}
+
+SimulatedCapture simulate_capture(const Image& scene, const Plane& psf, int open_cells,
+                                  int total_cells, const SimulationOptions& options) {
+    options.validate();
+    if (scene.empty()) throw InvalidInput("simulate: the scene is empty");
+    const int pr = static_cast<int>(psf.rows()), pc = static_cast<int>(psf.cols());
+    SimulatedCapture out;
+    int rows = pr, cols = pc;
+    if (options.full_sensor) {
+        rows = options.sensor_rows;
+        cols = options.sensor_cols;
+        out.origin = centred_tile_origin(rows, cols, pr, pc);
+        out.whole_period_on_sensor = rows >= pr && cols >= pc;
+    }
+    // Frames held at once: clean, capture and dark per channel, plus one working plane.
+    check_memory(8.0 * rows * cols * (3.0 * scene.n_channels() + 1.0), "the simulated frames");
+    const NoiseModel& m = options.noise;
+    const double scale = m.photons_per_pinhole * open_cells;  // electrons per normalised unit
+    for (int ch = 0; ch < scene.n_channels(); ++ch) {
+        Plane clean = cyclic_capture(scene.channels[ch], psf);
+        if (options.full_sensor) clean = tile_period(clean, rows, cols, out.origin);
+        std::mt19937_64 rng = stream_rng(options.seed, kCaptureStream, ch);
+        Plane noisy = add_noise(clean, m, open_cells, total_cells, rng);
+        double background = 0.0;
+        double offset_e = 0.0;
+        if (m.kind == NoiseKind::kPhoton) {
+            const CaptureStats stats{clean.mean(), clean.square().mean(), open_cells, total_cells};
+            offset_e = dark_offset_e(m, stats);
+            background = offset_e / scale;
+            noisy += background;
+        }
+        if (options.dark_frame) {
+            // All-opaque film: the leak and the dark current as one Poisson mean, no signal.
+            NoiseModel dark_model = m;
+            dark_model.film_optical_density = std::numeric_limits<double>::infinity();
+            dark_model.dark_current_e = offset_e;
+            std::mt19937_64 dark_rng = stream_rng(options.seed, kDarkStream, ch);
+            Plane dark =
+                add_noise(Plane::Zero(rows, cols), dark_model, open_cells, total_cells, dark_rng);
+            dark += offset_e / scale;
+            out.dark.channels.push_back(std::move(dark));
+        }
+        out.capture.channels.push_back(std::move(noisy));
+        out.clean.channels.push_back(std::move(clean));
+        out.background.push_back(background);
+    }
+    return out;
+}
+
+}  // namespace pinmask
