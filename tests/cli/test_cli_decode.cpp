@@ -1,0 +1,252 @@
+// `pinmask decode` end to end on synthetic captures made here: a PSF from a small pinhole
+// pattern, the capture its circular convolution with a known scene (direct sum, deconvwnr
+// centring), tiled over a frame larger than one period where the test needs it.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <random>
+
+#include "core/fft.hpp"
+#include "core/image_io.hpp"
+#include "tests/support/cli_run.hpp"
+
+using namespace pinmask;
+using pinmask::test::run_cli;
+using pinmask::test::TempDir;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Noise-free capture, NSR 1e-9 against |H| >= kMinOtfAbs: the Wiener estimate differs from the
+// scene by ~NSR / |H|^2 relative per frequency plus float32 file round-off (~6e-8) amplified by
+// at most 1 / kMinOtfAbs, far above 60 dB; 60 dB still fails for any wrong shift, crop or
+// centring convention (those give ~10-20 dB).
+constexpr double kExactDecodePsnrDb = 60.0;
+constexpr double kNsr = 1e-9;
+// The test PSF's smallest |H| (0.0157, measured when the pattern was chosen): well clear of the
+// exact zeros a box pinhole whose width divides the period would put into H.
+constexpr double kMinOtfAbs = 0.01;
+
+// The test pattern: a 25 x 25 PSF (odd: exercises the floor(n/2) centring) of 2 x 2 pinholes.
+constexpr int kN = 25;
+
+Plane pattern_psf() {
+    Plane psf = Plane::Zero(kN, kN);
+    const int holes[][2] = {{5, 7}, {14, 20}, {5, 20}, {15, 0}, {19, 17}, {15, 21}, {6, 17}};
+    for (const auto& h : holes) psf.block(h[0], h[1], 2, 2) = 1.0;
+    return psf / psf.sum();
+}
+
+Plane smooth_scene(int n, double phase) {
+    Plane s(n, n);
+    for (int r = 0; r < n; ++r)
+        for (int c = 0; c < n; ++c)
+            s(r, c) = 2.0 + std::sin(2 * std::numbers::pi * r / n + phase) +
+                      0.5 * std::cos(4 * std::numbers::pi * c / n) + (r > n / 2 && c < n / 3);
+    return s;
+}
+
+// p(r, c) = sum_{i, j} x(i, j) a((r - i + n/2) mod n, (c - j + n/2) mod n): circular
+// convolution with the PSF's central element at the origin (deconvwnr / imfilter 'circular').
+Plane circular_capture(const Plane& x, const Plane& a) {
+    const int n = static_cast<int>(x.rows()), h = n / 2;
+    Plane p = Plane::Zero(n, n);
+    for (int r = 0; r < n; ++r)
+        for (int c = 0; c < n; ++c)
+            for (int i = 0; i < n; ++i)
+                for (int j = 0; j < n; ++j)
+                    p(r, c) += x(i, j) * a(((r - i + h) % n + n) % n, ((c - j + h) % n + n) % n);
+    return p;
+}
+
+// The period repeated over rows x cols, frame pixel (r, c) = period((r + r0) mod n, (c + c0) mod
+// n).
+Plane tile(const Plane& period, int rows, int cols, int r0, int c0) {
+    Plane out(rows, cols);
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c)
+            out(r, c) = period((r + r0) % period.rows(), (c + c0) % period.cols());
+    return out;
+}
+
+double psnr_db(const Plane& x, const Plane& ref) {
+    const double mse = (x - ref).square().mean();
+    return 10.0 * std::log10(ref.square().maxCoeff() / std::max(mse, 1e-300));
+}
+
+void write_float(const std::string& path, const Image& img) {
+    write_tiff(path, img, SampleFormat::kFloat32);
+}
+
+nlohmann::json read_json(const std::string& path) {
+    std::ifstream in(path);
+    return nlohmann::json::parse(in);
+}
+
+}  // namespace
+
+TEST_CASE("decode of one period returns the scene (Wiener, float TIFF out, stats keys)") {
+    TempDir dir("cli-decode");
+    const Plane psf = pattern_psf();
+    REQUIRE(Fft2(kN, kN).forward(psf).abs().minCoeff() >= kMinOtfAbs);
+    const Plane scene = smooth_scene(kN, 0.3);
+    write_float(dir / "psf.tiff", Image(psf));
+    write_float(dir / "cap.tiff", Image(circular_capture(scene, psf)));
+    const auto r = run_cli("decode " + dir / "cap.tiff" + " --psf " + dir / "psf.tiff" +
+                           " --nsr 1e-9 -o " + dir / "x.tiff" + " --stats " + dir / "s.json");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const Plane x = read_image(dir / "x.tiff").image.channels.at(0);
+    CHECK(psnr_db(x, scene) >= kExactDecodePsnrDb);
+
+    const auto s = read_json(dir / "s.json");
+    for (const char* k : {"load", "dark", "preprocess", "period_check", "crop", "decode",
+                          "decode_channels", "write", "total"})
+        CHECK_MESSAGE(s["timings_s"].contains(k), k);
+    CHECK(s["method"] == "wiener");
+    CHECK(s["config"]["nsr"] == kNsr);
+    CHECK(s["channels"].size() == 1);
+    for (const char* k : {"iterations", "objective", "residual", "converged", "seconds"})
+        CHECK_MESSAGE(s["channels"][0].contains(k), k);
+    // One period in the frame: the period check is skipped, with the reason.
+    CHECK(s["period_check"]["checked"] == false);
+    CHECK(s["period_check"]["rows"]["skip_reason"].get<std::string>().find("needs at least 2") !=
+          std::string::npos);
+    // The resolved configuration sits next to the output.
+    const auto cfg = read_json(dir / "x.tiff.config.json");
+    CHECK(cfg["method"] == "wiener");
+    CHECK(cfg["crop"] == "center");
+    CHECK(cfg["model"] == "cyclic");
+}
+
+TEST_CASE("decode crops the centred period of a tiled RGB frame and checks the period") {
+    TempDir dir("cli-decode-rgb");
+    const Plane psf = pattern_psf();
+    const int rows = 2 * kN + 13, cols = 3 * kN + 5, r0 = 7, c0 = 11;
+    Image cap(rows, cols, 3);
+    std::vector<Plane> scenes;
+    for (int ch = 0; ch < 3; ++ch) {
+        scenes.push_back(smooth_scene(kN, 1.1 * ch));
+        cap.channels[ch] = tile(circular_capture(scenes[ch], psf), rows, cols, r0, c0);
+    }
+    write_float(dir / "psf.tiff", Image(psf));
+    write_float(dir / "cap.tiff", cap);
+    const auto r = run_cli("decode " + dir / "cap.tiff" + " --psf " + dir / "psf.tiff" +
+                           " --nsr 1e-9 -o " + dir / "x.tiff" + " --stats " + dir / "s.json");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.find("warning") == std::string::npos);
+    const Image x = read_image(dir / "x.tiff").image;
+    REQUIRE(x.n_channels() == 3);
+    // The window starts at ((R - N) / 2, (C - N) / 2); it holds the period shifted by the
+    // window corner plus the tiling phase, and so does the scene it decodes to.
+    const int wr = (rows - kN) / 2, wc = (cols - kN) / 2;
+    for (int ch = 0; ch < 3; ++ch) {
+        const Plane expected = tile(scenes[ch], kN, kN, (wr + r0) % kN, (wc + c0) % kN);
+        INFO("channel " << ch);
+        CHECK(psnr_db(x.channels[ch], expected) >= kExactDecodePsnrDb);
+    }
+    const auto s = read_json(dir / "s.json");
+    CHECK(s["window"]["x"] == wc);
+    CHECK(s["window"]["y"] == wr);
+    CHECK(s["channels"].size() == 3);
+    CHECK(s["period_check"]["checked"] == true);
+    CHECK(s["period_check"]["matches"] == true);
+    CHECK(s["period_check"]["rows"]["checked"] == true);
+    CHECK(s["period_check"]["cols"]["checked"] == true);
+
+    // X,Y picks the corner: column X, row Y.
+    const auto rc = run_cli("decode " + dir / "cap.tiff" + " --psf " + dir / "psf.tiff" +
+                            " --crop 3,2 --nsr 1e-9 -o " + dir / "y.tiff");
+    REQUIRE(rc.exit_code == 0);
+    const Image y = read_image(dir / "y.tiff").image;
+    CHECK(psnr_db(y.channels[1], tile(scenes[1], kN, kN, (2 + r0) % kN, (3 + c0) % kN)) >=
+          kExactDecodePsnrDb);
+}
+
+TEST_CASE("a capture repeating with another period than the PSF's is reported") {
+    TempDir dir("cli-decode-period");
+    const int m = 29;  // the capture's true period; the PSF is kN = 25
+    Plane other = Plane::Zero(m, m);
+    other.block(0, 0, 4, 4) = 1.0;
+    other.block(10, 17, 4, 4) = 1.0;
+    other.block(20, 6, 4, 4) = 1.0;
+    const Plane cap = tile(circular_capture(smooth_scene(m, 0.0), other), 100, 90, 3, 4);
+    write_float(dir / "psf.tiff", Image(pattern_psf()));
+    write_float(dir / "cap.tiff", Image(cap));
+    const auto r = run_cli("decode " + dir / "cap.tiff" + " --psf " + dir / "psf.tiff" + " -o " +
+                           dir / "x.png" + " --stats " + dir / "s.json");
+    REQUIRE(r.exit_code == 0);  // reported, not refused
+    CHECK(r.err.find("warning") != std::string::npos);
+    CHECK(r.err.find("PSF period is 25") != std::string::npos);
+    const auto s = read_json(dir / "s.json");
+    CHECK(s["period_check"]["matches"] == false);
+    CHECK(std::fabs(s["period_check"]["rows"]["measured_px"].get<double>() - m) <= 0.5);
+    CHECK(std::fabs(s["period_check"]["cols"]["measured_px"].get<double>() - m) <= 0.5);
+    // PNG output: scaled by the maximum, so the brightest pixel is full white.
+    const LoadedImage png = read_image(dir / "x.png");
+    CHECK(png.format == SampleFormat::kUint8);
+    CHECK(png.image.channels[0].maxCoeff() == 255.0);
+}
+
+TEST_CASE("bad input exits 2 naming the problem and leaves no output") {
+    TempDir dir("cli-decode-bad");
+    const Plane psf = pattern_psf();
+    const Plane cap = circular_capture(smooth_scene(kN, 0.2), psf);
+    write_float(dir / "psf.tiff", Image(psf));
+    write_float(dir / "cap.tiff", Image(cap));
+    write_float(dir / "zero.tiff", Image(Plane::Zero(kN, kN)));
+    write_float(dir / "neg.tiff", Image(Plane(-psf)));
+    write_float(dir / "small.tiff", Image(Plane(cap.topLeftCorner(kN - 1, kN))));
+    write_float(dir / "dark_other.tiff", Image(Plane::Zero(kN + 1, kN)));
+    Plane nan = cap;
+    nan(3, 4) = std::numeric_limits<double>::quiet_NaN();
+    write_float(dir / "nan.tiff", Image(nan));
+    Plane inf = cap;
+    inf(5, 6) = std::numeric_limits<double>::infinity();
+    write_float(dir / "inf.tiff", Image(inf));
+    { std::ofstream(dir / "empty.tiff"); }
+    {
+        const std::string bytes = test::slurp(dir / "cap.tiff");
+        std::ofstream(dir / "trunc.tiff", std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+    }
+    const std::string psf_arg = " --psf " + dir / "psf.tiff";
+    const std::pair<std::string, std::string> cases[] = {
+        {dir / "small.tiff" + psf_arg, "smaller than one period"},
+        {dir / "nan.tiff" + psf_arg, "NaN"},
+        {dir / "inf.tiff" + psf_arg, "infinite"},
+        {dir / "empty.tiff" + psf_arg, "empty.tiff"},
+        {dir / "trunc.tiff" + psf_arg, "trunc.tiff"},
+        {dir / "cap.tiff --psf " + dir / "zero.tiff", "all zeros"},
+        {dir / "cap.tiff --psf " + dir / "neg.tiff", "positive sum"},
+        {dir / "cap.tiff" + psf_arg + " --method magic", "magic"},
+        {dir / "cap.tiff" + psf_arg + " --dark " + dir / "dark_other.tiff", "dark frame"},
+        {dir / "cap.tiff" + psf_arg + " --crop 1,0", "crop"},
+        {dir / "cap.tiff" + psf_arg + " --crop middle", "--crop"},
+        {dir / "cap.tiff" + psf_arg + " --scale -1", "--scale"},
+        {dir / "cap.tiff", "PSF"},
+    };
+    for (const auto& [args, needle] : cases) {
+        const auto r =
+            run_cli("decode " + args + " -o " + dir / "out.png" + " --stats " + dir / "s.json");
+        INFO(args);
+        INFO(r.err);
+        CHECK(r.exit_code == 2);
+        CHECK(r.err.find(needle) != std::string::npos);
+        CHECK_FALSE(fs::exists(dir / "out.png"));
+        CHECK_FALSE(fs::exists(dir / "out.png.config.json"));
+        CHECK_FALSE(fs::exists(dir / "s.json"));
+    }
+    // An unknown output extension is refused before any work.
+    const auto r = run_cli("decode " + dir / "cap.tiff" + psf_arg + " -o " + dir / "out.jpg");
+    CHECK(r.exit_code == 2);
+    CHECK_FALSE(fs::exists(dir / "out.jpg"));
+    // Only our files and the inputs remain: no temporaries.
+    for (const auto& e : fs::directory_iterator(dir.path))
+        CHECK(e.path().string().find(".tmp-") == std::string::npos);
+}
