@@ -15,16 +15,14 @@
 #include "cli/mask_json.hpp"
 
 #include <algorithm>
-#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <initializer_list>
-#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "cli/json_strict.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/resource_limits.hpp"
@@ -32,130 +30,17 @@
 namespace pinmask::cli {
 namespace {
 
-using Json = nlohmann::json;
-using OrderedJson = nlohmann::ordered_json;
+using namespace json_strict;
 
 constexpr const char* kFormat = "pinmask-mask";
 constexpr int kVersion = 1;
 // Kernel models named by design/mask.hpp's KernelSpec.
 const std::vector<std::string> kKernelModels = {"auto",    "box",         "fraunhofer",
                                                 "fresnel", "paper-fig3b", "measured"};
-// Parsed nlohmann values take roughly this many bytes per byte of JSON text for our layout (an
-// array node per pinhole plus two number nodes); used to refuse files that cannot be held.
-constexpr double kParsedBytesPerTextByte = 16.0;
-
-[[noreturn]] void fail(const std::string& key_path, const std::string& rule) {
-    throw InvalidInput((key_path.empty() ? std::string("(root)") : key_path) + ": " + rule);
-}
-
-std::string join_path(const std::string& parent, const std::string& key) {
-    return parent.empty() ? key : parent + "." + key;
-}
-
-std::string indexed(const std::string& path, std::size_t i) {
-    return path + "[" + std::to_string(i) + "]";
-}
-
-// The keys of one JSON object: required/optional lookup and rejection of keys not in `known`.
-class ObjectReader {
-  public:
-    ObjectReader(const Json& j, std::string path, std::initializer_list<const char*> known)
-        : j_(j), path_(std::move(path)), known_(known.begin(), known.end()) {
-        if (!j_.is_object()) fail(path_, std::string("must be an object, got ") + j_.type_name());
-    }
-
-    void reject_unknown() const {
-        for (const auto& item : j_.items()) {
-            if (std::find(known_.begin(), known_.end(), item.key()) == known_.end()) {
-                std::string list;
-                for (const auto& k : known_) list += (list.empty() ? "" : ", ") + k;
-                fail(join_path(path_, item.key()), "unknown key (known here: " + list + ")");
-            }
-        }
-    }
-
-    const Json& required(const std::string& key) const {
-        const auto it = j_.find(key);
-        if (it == j_.end()) fail(join_path(path_, key), "missing required key");
-        return *it;
-    }
-
-    const Json* optional(const std::string& key) const {
-        const auto it = j_.find(key);
-        return it == j_.end() ? nullptr : &*it;
-    }
-
-    std::string path(const std::string& key) const { return join_path(path_, key); }
-
-  private:
-    const Json& j_;
-    std::string path_;
-    std::vector<std::string> known_;
-};
-
-int read_int(const Json& j, const std::string& path) {
-    if (!j.is_number_integer()) {
-        fail(path, std::string("must be an integer, got ") + j.type_name() + " " + j.dump());
-    }
-    if (j.is_number_unsigned()) {
-        const auto v = j.get<std::uint64_t>();
-        if (v > static_cast<std::uint64_t>(INT_MAX)) fail(path, j.dump() + " is out of range");
-        return static_cast<int>(v);
-    }
-    const auto v = j.get<std::int64_t>();
-    if (v < INT_MIN || v > INT_MAX) fail(path, j.dump() + " is out of range");
-    return static_cast<int>(v);
-}
-
-double read_number(const Json& j, const std::string& path) {
-    if (!j.is_number()) fail(path, std::string("must be a number, got ") + j.type_name());
-    const double v = j.get<double>();
-    if (!std::isfinite(v)) fail(path, "must be a finite number (got " + j.dump() + ")");
-    return v;
-}
-
-// A length that may be infinite, written as the string "inf".
-double read_length_or_inf(const Json& j, const std::string& path) {
-    if (j.is_string()) {
-        if (j.get<std::string>() == "inf") return INFINITY;
-        fail(path, "must be a number or the string \"inf\", got " + j.dump());
-    }
-    return read_number(j, path);
-}
-
-std::string read_string(const Json& j, const std::string& path) {
-    if (!j.is_string()) fail(path, std::string("must be a string, got ") + j.type_name());
-    return j.get<std::string>();
-}
-
-bool read_bool(const Json& j, const std::string& path) {
-    if (!j.is_boolean()) fail(path, std::string("must be true or false, got ") + j.type_name());
-    return j.get<bool>();
-}
-
-// v as an int when it is an integer within int range (no message: the fast path).
-bool small_int(const Json& v, int& out) {
-    if (v.is_number_unsigned()) {
-        const auto u = v.get<std::uint64_t>();
-        if (u > static_cast<std::uint64_t>(INT_MAX)) return false;
-        out = static_cast<int>(u);
-        return true;
-    }
-    if (v.is_number_integer()) {
-        const auto i = v.get<std::int64_t>();
-        if (i < INT_MIN || i > INT_MAX) return false;
-        out = static_cast<int>(i);
-        return true;
-    }
-    return false;
-}
-
-std::pair<int, int> read_int_pair(const Json& j, const std::string& path, const char* what) {
-    if (!j.is_array() || j.size() != 2) {
-        fail(path, std::string("must be a two-element array ") + what + ", got " + j.dump());
-    }
-    return {read_int(j[0], indexed(path, 0)), read_int(j[1], indexed(path, 1))};
-}
+// Reading holds the text twice (stream buffer and string), the pinholes (8 bytes per ~10 bytes
+// of text, streamed out of the parser) and their sorted copy: about this many bytes per byte of
+// text. Used to refuse files that cannot be held.
+constexpr double kParsedBytesPerTextByte = 4.0;
 
 // `streamed`: the pinholes already taken out of the tree by parse_strict (nullptr: read them
 // from the tree).
@@ -361,140 +246,7 @@ J build_json(const Mask& m, bool with_pinholes = true) {
     return j;
 }
 
-bool is_scalar(const OrderedJson& j) { return !j.is_array() && !j.is_object(); }
-
-// Pretty printer: 2-space indent; an array holding only scalars goes on one line. The value at
-// key path "pattern.pinholes" is printed from `cells`, one [row, col] per line.
-void pretty(const OrderedJson& j, const std::string& path, int indent,
-            const std::vector<Cell>& cells, std::string& out) {
-    const std::string pad(static_cast<std::size_t>(indent + 2), ' ');
-    const std::string close_pad(static_cast<std::size_t>(indent), ' ');
-    if (path == "pattern.pinholes") {
-        if (cells.empty()) {
-            out += "[]";
-            return;
-        }
-        out += "[\n";
-        char buf[32];
-        for (std::size_t i = 0; i < cells.size(); ++i) {
-            if (i) out += ",\n";
-            std::snprintf(buf, sizeof buf, "[%d, %d]", cells[i].row, cells[i].col);
-            out += pad;
-            out += buf;
-        }
-        out += "\n" + close_pad + "]";
-        return;
-    }
-    if (j.is_object()) {
-        if (j.empty()) {
-            out += "{}";
-            return;
-        }
-        out += "{\n";
-        bool first = true;
-        for (const auto& item : j.items()) {
-            if (!first) out += ",\n";
-            first = false;
-            out += pad + OrderedJson(item.key()).dump() + ": ";
-            pretty(item.value(), join_path(path, item.key()), indent + 2, cells, out);
-        }
-        out += "\n" + close_pad + "}";
-    } else if (j.is_array()) {
-        if (std::all_of(j.begin(), j.end(), is_scalar)) {
-            out += "[";
-            for (std::size_t i = 0; i < j.size(); ++i) out += (i ? ", " : "") + j[i].dump();
-            out += "]";
-            return;
-        }
-        out += "[\n";
-        for (std::size_t i = 0; i < j.size(); ++i) {
-            if (i) out += ",\n";
-            out += pad;
-            pretty(j[i], indexed(path, i), indent + 2, cells, out);
-        }
-        out += "\n" + close_pad + "]";
-    } else {
-        out += j.dump();
-    }
-}
-
 constexpr const char* kPinholesPath = "pattern.pinholes";
-
-// Parses text, rejecting repeated keys in one object (nlohmann would keep the last silently).
-// The elements of "pattern.pinholes" are checked and moved into `pinholes` as they are parsed
-// and left out of the returned tree: a large mask then costs 8 bytes per pinhole, not a JSON
-// node per number.
-Json parse_strict(const std::string& text, std::vector<Cell>& pinholes) {
-    struct Frame {
-        bool object = false;
-        bool pinhole = false;  // an element of pattern.pinholes: path built only when needed
-        std::string path;
-        std::set<std::string> keys;
-        std::string last_key;
-        std::size_t count = 0;  // elements so far (arrays); the element index for `pinhole`
-    };
-    std::vector<Frame> stack;
-    const auto path_of = [](Frame& f) -> const std::string& {
-        if (f.pinhole && f.path.empty()) f.path = indexed(kPinholesPath, f.count);
-        return f.path;
-    };
-    // A finished value: true keeps it in the tree.
-    const auto finished = [&](const Json& value) {
-        if (stack.empty() || stack.back().object) return true;
-        Frame& parent = stack.back();
-        const std::size_t index = parent.count++;
-        if (parent.path != kPinholesPath) return true;
-        int rc[2];
-        if (value.is_array() && value.size() == 2 && small_int(value[0], rc[0]) &&
-            small_int(value[1], rc[1])) {
-            pinholes.push_back({rc[0], rc[1]});
-        } else {  // fails with the key path and the rule
-            read_int_pair(value, indexed(parent.path, index), "[row, col]");
-        }
-        return false;
-    };
-    auto cb = [&](int, Json::parse_event_t event, Json& parsed) {
-        switch (event) {
-            case Json::parse_event_t::object_start:
-            case Json::parse_event_t::array_start: {
-                Frame f;
-                f.object = event == Json::parse_event_t::object_start;
-                if (!stack.empty()) {
-                    Frame& parent = stack.back();
-                    if (parent.object) {
-                        f.path = join_path(path_of(parent), parent.last_key);
-                    } else if (parent.path == kPinholesPath) {
-                        f.pinhole = true;
-                        f.count = parent.count;
-                    } else {
-                        f.path = indexed(path_of(parent), parent.count);
-                    }
-                }
-                if (f.pinhole) f.count = stack.back().count;
-                stack.push_back(std::move(f));
-                return true;
-            }
-            case Json::parse_event_t::object_end:
-            case Json::parse_event_t::array_end:
-                if (!stack.empty()) stack.pop_back();
-                return finished(parsed);
-            case Json::parse_event_t::key: {
-                const std::string key = parsed.get<std::string>();
-                Frame& f = stack.back();
-                if (!f.keys.insert(key).second) {
-                    fail(join_path(path_of(f), key),
-                         "duplicate key (each key may appear once per object)");
-                }
-                f.last_key = key;
-                return true;
-            }
-            case Json::parse_event_t::value:
-                return finished(parsed);
-        }
-        return true;
-    };
-    return Json::parse(text, cb);
-}
 
 Mask from_json(const Json& j, const MaskReadOptions& options, const std::vector<Cell>* streamed) {
     ObjectReader top(j, "", {"format", "version", "pattern", "optics", "psf", "provenance"});
@@ -548,11 +300,28 @@ std::string mask_file_text(const Mask& mask) {
     opts.allow_spacing_violations = allow;
     mask_from_json(check, opts);
     validate(mask.pattern, allow);
-    std::string out;
-    pretty(build_json<OrderedJson>(mask, /*with_pinholes=*/false), "", 0,
-           sorted_pinholes(mask.pattern), out);
-    out += "\n";
-    return out;
+    const std::vector<Cell> cells = sorted_pinholes(mask.pattern);
+    const auto write_pinholes = [&cells](std::string& out, int indent) {
+        if (cells.empty()) {
+            out += "[]";
+            return;
+        }
+        const std::string pad(static_cast<std::size_t>(indent + 2), ' ');
+        out += "[\n";
+        char buf[32];
+        for (std::size_t i = 0; i < cells.size(); ++i) {
+            std::snprintf(buf, sizeof buf, "[%d, %d]", cells[i].row, cells[i].col);
+            if (i) out += ",\n";
+            out += pad;
+            out += buf;
+        }
+        out += '\n';
+        out.append(static_cast<std::size_t>(indent), ' ');
+        out += ']';
+    };
+    return pretty(build_json<OrderedJson>(mask, /*with_pinholes=*/false), kPinholesPath,
+                  write_pinholes) +
+           "\n";
 }
 
 Mask read_mask_file(const std::filesystem::path& path, const MaskReadOptions& options) {
@@ -568,7 +337,14 @@ Mask read_mask_file(const std::filesystem::path& path, const MaskReadOptions& op
     Json j;
     std::vector<Cell> pinholes;
     try {
-        j = parse_strict(buf.str(), pinholes);
+        j = parse_strict(buf.str(), kPinholesPath, [&pinholes](const Json& e, std::size_t i) {
+            int rc[2];
+            if (e.is_array() && e.size() == 2 && small_int(e[0], rc[0]) && small_int(e[1], rc[1])) {
+                pinholes.push_back({rc[0], rc[1]});
+            } else {  // throws with the key path and the rule
+                read_int_pair(e, indexed(kPinholesPath, i), "[row, col]");
+            }
+        });
     } catch (const Json::parse_error& e) {
         throw InvalidInput(name + ": invalid JSON (byte " + std::to_string(e.byte) +
                            "): " + e.what());

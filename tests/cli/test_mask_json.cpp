@@ -7,7 +7,8 @@
 #include <fstream>
 
 // The codec lives in the pinmask executable's sources (cli/ is not a library); it is compiled
-// into this test executable here, once, and the other tests/cli files may use its header.
+// into this test executable here, once, and the other tests/cli files may use its headers.
+#include "cli/json_strict.cpp"
 #include "cli/mask_json.cpp"
 #include "core/error.hpp"
 #include "tests/support/cli_run.hpp"

@@ -1,0 +1,73 @@
+// Strict JSON reading and deterministic JSON writing for pinmask's own file formats (the mask
+// codec first). Reading: every error is InvalidInput "<key path>: <rule>", key paths written
+// like "pattern.pinholes[3][0]" ("(root)" for the document); repeated keys are rejected instead
+// of silently keeping the last; unknown keys are rejected by ObjectReader. Writing: 2-space
+// indent, keys in the order of the ordered_json, arrays of scalars on one line, numbers in
+// nlohmann's shortest round-trip form.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace pinmask::cli::json_strict {
+
+using Json = nlohmann::json;
+using OrderedJson = nlohmann::ordered_json;
+
+// Throws InvalidInput("<key_path>: <rule>").
+[[noreturn]] void fail(const std::string& key_path, const std::string& rule);
+
+// "a" + "b" -> "a.b" ("" + "b" -> "b"); "a" + 3 -> "a[3]".
+std::string join_path(const std::string& parent, const std::string& key);
+std::string indexed(const std::string& path, std::size_t i);
+
+// The keys of one JSON object (throws unless j is an object): required/optional lookup, and
+// rejection of keys not in `known`, naming the key and listing the known ones.
+class ObjectReader {
+  public:
+    ObjectReader(const Json& j, std::string path, std::initializer_list<const char*> known);
+    void reject_unknown() const;
+    const Json& required(const std::string& key) const;
+    const Json* optional(const std::string& key) const;  // nullptr when absent
+    std::string path(const std::string& key) const { return join_path(path_, key); }
+
+  private:
+    const Json& j_;
+    std::string path_;
+    std::vector<std::string> known_;
+};
+
+// Typed reads; each throws InvalidInput naming `path` and the rule it breaks.
+int read_int(const Json& j, const std::string& path);               // an integer within int range
+double read_number(const Json& j, const std::string& path);         // any finite number
+double read_length_or_inf(const Json& j, const std::string& path);  // number or "inf" -> +inf
+std::string read_string(const Json& j, const std::string& path);
+bool read_bool(const Json& j, const std::string& path);
+// A two-element integer array; `what` names the elements in the message, e.g. "[row, col]".
+std::pair<int, int> read_int_pair(const Json& j, const std::string& path, const char* what);
+// j as an int when it is an integer within int range; false (no message) otherwise.
+bool small_int(const Json& j, int& out);
+
+// Parses text, rejecting repeated keys in an object. Each element of the array at key path
+// `streamed_path` (if any) is passed to on_element(element, index) as soon as it is parsed and
+// left out of the returned tree, so a long array costs what the caller keeps, not a JSON node
+// per number. Throws InvalidInput for repeated keys (and whatever on_element throws), and
+// nlohmann's parse_error / out_of_range for syntax errors and overflowing numbers.
+Json parse_strict(const std::string& text, const std::string& streamed_path = "",
+                  const std::function<void(const Json&, std::size_t)>& on_element = {});
+
+// Writes the value at key path `raw_path` in place of the tree's: called with the output and
+// the indent (spaces) of the line where the value starts.
+using RawWriter = std::function<void(std::string& out, int indent)>;
+
+// Pretty-prints j (see the file comment); the value at raw_path, if any, comes from raw.
+// No trailing newline.
+std::string pretty(const OrderedJson& j, const std::string& raw_path = "",
+                   const RawWriter& raw = {});
+
+}  // namespace pinmask::cli::json_strict
