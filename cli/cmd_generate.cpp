@@ -150,7 +150,8 @@ void run(const GenerateOptions& o, const CLI::App& cmd) {
     m.psf.kernel.measured_path = o.kernel_path;
     std::size_t violations = 0;
     m.pattern = make_pattern(o, cmd, family, violations);
-    m.provenance.seed = o.seed;
+    // A MURA does not depend on the seed: recording 0 keeps its file independent of --seed.
+    m.provenance.seed = family == Family::kMura ? 0 : o.seed;
     m.provenance.generator = kGenerator;
     m.provenance.family = family_name(family);
     m.provenance.spacing_violations_allowed = violations > 0;  // only reached when allowed
@@ -162,7 +163,7 @@ void run(const GenerateOptions& o, const CLI::App& cmd) {
         const nlohmann::ordered_json j = {{"path", o.output},
                                           {"geometry_hash", hash},
                                           {"family", m.provenance.family},
-                                          {"seed", o.seed},
+                                          {"seed", m.provenance.seed},
                                           {"n", m.pattern.n},
                                           {"holes", k},
                                           {"tiles", {m.pattern.tiles_rows, m.pattern.tiles_cols}},
@@ -226,7 +227,8 @@ void setup(CLI::App& app) {
         ->capture_default_str();
     add_geometry_options(*cmd, o->geometry);
     cmd->add_option("--seed", o->seed,
-                    "Seed of the random generator (random, paper); recorded in the file")
+                    "Seed of the random generator (random, paper); recorded in the file (mura: "
+                    "ignored, recorded as 0)")
         ->capture_default_str();
     cmd->add_option("--attempts", o->attempts,
                     "random/paper: restarts when random sequential placement runs out of free "

@@ -116,6 +116,11 @@ TEST_CASE("generate: mura with permission, and the camera flags are recorded") {
     CHECK(m.pattern.pinholes.size() == 84);  // (13^2 - 1) / 2
     CHECK(m.provenance.spacing_violations_allowed);
     CHECK(m.provenance.family == "mura");
+    CHECK(m.provenance.seed == 0);  // a MURA does not depend on the seed
+    REQUIRE(run_cli("generate --family mura --grid 13 --allow-violations --seed 9 -o " +
+                    (dir / "mura9.mask.json"))
+                .exit_code == 0);
+    CHECK(slurp(dir / "mura.mask.json") == slurp(dir / "mura9.mask.json"));
     // At spacing 1 a MURA meets the rule and needs no permission.
     REQUIRE(run_cli("generate --family mura --grid 5 --spacing 1 -o " + (dir / "m1.mask.json"))
                 .exit_code == 0);
