@@ -1,23 +1,26 @@
 #include "design/exclusion_grid.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cassert>
 #include <cmath>
 
 namespace pinmask {
 
-std::vector<Offset> exclusion_offsets(double min_spacing_cells) {
-    std::vector<Offset> out;
+std::vector<ExclusionRow> exclusion_rows(double min_spacing_cells) {
     const double limit = min_spacing_cells - kSpacingTolerance;
     if (!(limit > 0.0)) return {{0, 0}};
     const double limit2 = limit * limit;
     const int reach = static_cast<int>(std::ceil(limit));
+    std::vector<ExclusionRow> out;
     for (int dr = -reach; dr <= reach; ++dr) {
-        for (int dc = -reach; dc <= reach; ++dc) {
-            if ((dr == 0 && dc == 0) || static_cast<double>(dr * dr + dc * dc) < limit2) {
-                out.push_back({dr, dc});
-            }
-        }
+        const double rest = limit2 - static_cast<double>(dr) * dr;
+        if (dr != 0 && !(rest > 0.0)) continue;
+        // Largest w with dr^2 + w^2 < limit2, from the square root then corrected exactly.
+        int w = rest > 0.0 ? static_cast<int>(std::sqrt(rest)) : 0;
+        while (w > 0 && static_cast<double>(w) * w >= rest) --w;
+        while (static_cast<double>(w + 1) * (w + 1) < rest) ++w;
+        out.push_back({dr, w});
     }
     return out;
 }
@@ -31,15 +34,19 @@ std::size_t count_spacing_violations(const Pattern& p) {
     const auto occ = occupancy(p);
     const int n = p.n;
     std::size_t count = 0;
-    for (const Offset& o : exclusion_offsets(p.min_spacing_cells)) {
-        // One offset of each +-pair, so that every close pair is counted once.
-        if (o.dr < 0 || (o.dr == 0 && o.dc <= 0)) continue;
+    for (const ExclusionRow& row : exclusion_rows(p.min_spacing_cells)) {
+        // Offsets in the half plane dr > 0 or (dr = 0, dc > 0): every close pair once.
+        if (row.dr < 0) continue;
+        const int dc_lo = row.dr == 0 ? 1 : -row.half_width;
         for (const Cell& c : p.pinholes) {
-            int r = c.row + o.dr;
-            int k = c.col + o.dc;
-            r += r >= n ? -n : 0;
-            k += k < 0 ? n : (k >= n ? -n : 0);
-            count += occ[static_cast<std::size_t>(r) * n + k];
+            int r = c.row + row.dr;
+            r -= r >= n ? n : 0;
+            const std::uint8_t* line = &occ[static_cast<std::size_t>(r) * n];
+            for (int dc = dc_lo; dc <= row.half_width; ++dc) {
+                int k = c.col + dc;
+                k += k < 0 ? n : (k >= n ? -n : 0);
+                count += line[k];
+            }
         }
     }
     return count;
@@ -47,7 +54,7 @@ std::size_t count_spacing_violations(const Pattern& p) {
 
 ExclusionGrid::ExclusionGrid(int n, double min_spacing_cells, Index index)
     : n_(n),
-      offsets_(exclusion_offsets(min_spacing_cells)),
+      rows_(exclusion_rows(min_spacing_cells)),
       free_count_(static_cast<std::size_t>(n) * n) {
     const std::size_t cells = free_count_;
     const std::size_t nwords = (cells + 63) / 64;
@@ -86,29 +93,35 @@ std::size_t ExclusionGrid::nth_free(std::size_t r) const {
 
 void ExclusionGrid::place(Cell c) {
     const bool ranked = !fenwick_.empty();
-    std::size_t pending_word = 0;
-    std::uint32_t pending = 0;  // blocked cells in pending_word not yet in the Fenwick tree
-    for (const Offset& o : offsets_) {
-        // |offset| <= ceil(s) <= n, so one correction wraps it.
-        int r = c.row + o.dr;
-        int k = c.col + o.dc;
+    for (const ExclusionRow& row : rows_) {
+        // |dr|, half_width <= ceil(s) <= n, so one correction wraps them; a row segment wider
+        // than the torus is the whole row, visited once.
+        int r = c.row + row.dr;
         r += r < 0 ? n_ : (r >= n_ ? -n_ : 0);
-        k += k < 0 ? n_ : (k >= n_ ? -n_ : 0);
-        const std::size_t i = static_cast<std::size_t>(r) * n_ + k;
-        const std::uint64_t bit = std::uint64_t{1} << (i & 63);
-        std::uint64_t& word = words_[i >> 6];
-        if (!(word & bit)) continue;
-        word &= ~bit;
-        --free_count_;
-        if (!ranked) continue;
-        if (pending && pending_word != (i >> 6)) {
-            fenwick_add(pending_word, pending);
-            pending = 0;
+        const int width = std::min(2 * row.half_width + 1, n_);
+        int k = c.col - row.half_width;
+        k += k < 0 ? n_ : 0;
+        if (width == n_) k = 0;
+        const std::size_t base = static_cast<std::size_t>(r) * n_;
+        std::size_t pending_word = 0;
+        std::uint32_t pending = 0;  // cells blocked in pending_word, not yet in the Fenwick tree
+        for (int step = 0; step < width; ++step, k = k + 1 == n_ ? 0 : k + 1) {
+            const std::size_t i = base + static_cast<std::size_t>(k);
+            const std::uint64_t bit = std::uint64_t{1} << (i & 63);
+            std::uint64_t& word = words_[i >> 6];
+            if (!(word & bit)) continue;
+            word &= ~bit;
+            --free_count_;
+            if (!ranked) continue;
+            if (pending && pending_word != (i >> 6)) {
+                fenwick_add(pending_word, pending);
+                pending = 0;
+            }
+            pending_word = i >> 6;
+            ++pending;
         }
-        pending_word = i >> 6;
-        ++pending;
+        if (pending) fenwick_add(pending_word, pending);
     }
-    if (pending) fenwick_add(pending_word, pending);
 }
 
 }  // namespace pinmask

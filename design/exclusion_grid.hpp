@@ -11,15 +11,15 @@
 
 namespace pinmask {
 
-// A cell offset (rows, cols).
-struct Offset {
+// One row of the exclusion disc: the offsets (dr, dc), |dc| <= half_width, are closer than the
+// rule (d < s - kSpacingTolerance). (0, 0) is always included: a cell takes one pinhole.
+struct ExclusionRow {
     int dr = 0;
-    int dc = 0;
+    int half_width = 0;
 };
 
-// Offsets whose length is below the rule (d < s - kSpacingTolerance), (0, 0) included, in
-// (dr, dc) order: placing a pinhole at c blocks c + each offset (mod n). |dr|, |dc| <= ceil(s).
-std::vector<Offset> exclusion_offsets(double min_spacing_cells);
+// The rows of the disc, dr ascending; |dr|, half_width <= ceil(s). O(s) memory.
+std::vector<ExclusionRow> exclusion_rows(double min_spacing_cells);
 
 // Number of pinhole pairs closer than the rule, equal to spacing_violations(p).size() but
 // without listing them (a MURA of order 4093 has 1.7e7 such pairs): O(K s^2) time, n^2 bytes.
@@ -56,7 +56,7 @@ class ExclusionGrid {
     void fenwick_add(std::size_t word, std::uint32_t minus);
 
     int n_;
-    std::vector<Offset> offsets_;
+    std::vector<ExclusionRow> rows_;
     std::vector<std::uint64_t> words_;    // bit set = cell free
     std::vector<std::uint32_t> fenwick_;  // 1-based Fenwick tree of free cells per word
     std::size_t free_count_;

@@ -179,3 +179,32 @@ TEST_CASE("exclusion grid: rank index finds the r-th free cell, blocks wrap the 
         }
     }
 }
+
+TEST_CASE("exclusion grid: a pinhole blocks exactly the cells closer than the rule, seams too") {
+    for (const int n : {1, 2, 3, 5, 8, 13}) {
+        for (const double s : {0.0, 0.5, 1.0, 1.5, 2.0, 2.5, std::sqrt(8.0), 3.2, 5.0, 13.0}) {
+            if (n < s - kRuleTolerance) continue;  // refused before a grid is built
+            for (const Cell c : {Cell{0, 0}, Cell{n - 1, n / 2}}) {
+                ExclusionGrid g(n, s);
+                g.place(c);
+                CAPTURE(n);
+                CAPTURE(s);
+                std::size_t blocked = 0;
+                for (int r = 0; r < n; ++r) {
+                    for (int k = 0; k < n; ++k) {
+                        int dr = std::abs(r - c.row);
+                        int dc = std::abs(k - c.col);
+                        dr = std::min(dr, n - dr);
+                        dc = std::min(dc, n - dc);
+                        const bool close =
+                            std::sqrt(double(dr * dr + dc * dc)) < s - kRuleTolerance ||
+                            (dr == 0 && dc == 0);
+                        CHECK(g.is_free(Cell{r, k}) == !close);
+                        blocked += close;
+                    }
+                }
+                CHECK(g.free_count() == static_cast<std::size_t>(n) * n - blocked);
+            }
+        }
+    }
+}
