@@ -5,6 +5,8 @@
 #include <numbers>
 
 #include "core/fft.hpp"
+#include "design/psf.hpp"
+#include "optimize/autocorrelation.hpp"
 
 namespace pinmask {
 namespace {
@@ -12,25 +14,6 @@ namespace {
 int wrap(int v, int n) { return ((v % n) + n) % n; }
 
 }  // namespace
-
-ComplexPlane pattern_spectrum(const Pattern& p) {
-    Plane occ = Plane::Zero(p.n, p.n);
-    for (const Cell& c : p.pinholes) occ(c.row, c.col) = 1.0;
-    return expand_half_spectrum(Fft2(p.n, p.n).forward(occ), p.n);
-}
-
-std::vector<int> pattern_autocorrelation(const Pattern& p) {
-    const Fft2 fft(p.n, p.n);
-    Plane occ = Plane::Zero(p.n, p.n);
-    for (const Cell& c : p.pinholes) occ(c.row, c.col) = 1.0;
-    const ComplexPlane half = fft.forward(occ);
-    // R(d) = sum_x o(x) o(x + d): inverse DFT of |P^|^2 (conj(P^) P^ in this sign convention).
-    const ComplexPlane power = half.abs2().cast<std::complex<double>>();
-    const Plane r = fft.inverse(power);
-    std::vector<int> out(static_cast<std::size_t>(p.n) * p.n);
-    for (int i = 0; i < p.n * p.n; ++i) out[i] = static_cast<int>(std::lround(r.data()[i]));
-    return out;
-}
 
 PatternState::PatternState(const Pattern& p) : pattern_(p) {
     validate(p);
@@ -66,7 +49,7 @@ PatternState::PatternState(const Pattern& p) : pattern_(p) {
 
 void PatternState::recompute() {
     spectrum_ = pattern_spectrum(pattern_);
-    autocorr_ = pattern_autocorrelation(pattern_);
+    autocorr_ = autocorrelation_from_spectrum(spectrum_);
 }
 
 int PatternState::autocorrelation_at(int dr, int dc) const {

@@ -38,8 +38,8 @@ class PatternState {
     // Staying put (to == current cell) is not a legal move.
     void move(int j, Cell to);
 
-    // Recomputes spectrum and autocorrelation from scratch (FFT and direct count), for tests
-    // and for periodic resynchronisation of accumulated round-off.
+    // Recomputes spectrum and autocorrelation from scratch (design/psf pattern_spectrum and
+    // optimize/autocorrelation), for tests and to resynchronise accumulated round-off.
     void recompute();
 
   private:
@@ -59,11 +59,5 @@ class PatternState {
     std::vector<int> autocorr_;
     std::vector<std::complex<double>> row_wave_, col_wave_, row_old_, col_old_;  // scratch
 };
-
-// The full n x n spectrum and autocorrelation of a pattern computed from scratch (FFT of the
-// occupancy; R = inverse FFT of |P^|^2 rounded, which is exact for 0/1 patterns with n^2 K^2 <<
-// 2^52). The reference the incremental updates are tested against.
-ComplexPlane pattern_spectrum(const Pattern& p);
-std::vector<int> pattern_autocorrelation(const Pattern& p);
 
 }  // namespace pinmask

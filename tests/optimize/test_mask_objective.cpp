@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "core/fft.hpp"
+#include "design/psf.hpp"
 #include "optimize/autocorrelation.hpp"
 #include "optimize/mask_objective.hpp"
 #include "optimize/scene_prior.hpp"
