@@ -120,6 +120,9 @@ Layout make_layout(const Mask& mask, const LayoutOptions& o) {
     const std::int64_t grid = std::llround(grid_exact);
     if (!std::isfinite(grid_exact) || grid < 1 || std::fabs(grid_exact - double(grid)) > 1e-6)
         throw invalid_field("grid", nm_text(grid_exact), "must be a whole number of nm >= 1");
+    if (!(o.chord_tolerance_m > 0) || !std::isfinite(o.chord_tolerance_m))
+        throw invalid_field("chord_tolerance", nm_text(o.chord_tolerance_m * 1e9),
+                            "must be positive and finite");
     if (o.max_vertices < 8)
         throw invalid_field("max_vertices", std::to_string(o.max_vertices), "must be >= 8");
 

@@ -1,0 +1,131 @@
+#include "bench/export_bench.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <functional>
+#include <random>
+
+#include "core/error.hpp"
+#include "design/mask.hpp"
+#include "export/dxf_writer.hpp"
+#include "export/gds_writer.hpp"
+#include "export/geometry.hpp"
+#include "export/gerber_writer.hpp"
+#include "export/pdf_writer.hpp"
+#include "export/png_preview.hpp"
+#include "export/read_any.hpp"
+#include "export/svg_writer.hpp"
+
+namespace pinmask {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double time_min(int repeat, const std::function<void()>& f) {
+    double best = 1e300;
+    for (int i = 0; i < repeat; ++i) {
+        const auto t0 = Clock::now();
+        f();
+        best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
+    }
+    return best;
+}
+
+void fwrite_file(const fs::path& p, const std::string& bytes) {
+    std::FILE* f = std::fopen(p.c_str(), "wb");
+    if (!f) throw RuntimeFailure("cannot write " + p.string());
+    const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
+    if (std::fclose(f) != 0 || !ok) throw RuntimeFailure("failed writing " + p.string());
+}
+
+Mask bench_mask(const ExportBenchOptions& o) {
+    Mask m;
+    m.camera.pinhole_m = o.pinhole_m;
+    m.pattern.n = o.n;
+    m.pattern.tiles_rows = m.pattern.tiles_cols = 1;
+    m.pattern.min_spacing_cells = 2.0;
+    std::mt19937_64 rng(o.seed);
+    std::bernoulli_distribution keep(0.86), half(0.5);
+    for (int r = 0; r + 2 < o.n; r += 3)
+        for (int c = 0; c + 2 < o.n; c += 3)
+            if (keep(rng)) m.pattern.pinholes.push_back({r + half(rng), c + half(rng)});
+    return m;
+}
+
+std::string write_format(FabFormat f, const Layout& l, double dpi) {
+    switch (f) {
+        case FabFormat::kSvg:
+            return svg_document(l);
+        case FabFormat::kGds:
+            return gds_stream(l);
+        case FabFormat::kDxf:
+            return dxf_document(l);
+        case FabFormat::kGerber:
+            return gerber_document(l);
+        case FabFormat::kPdf:
+            return pdf_document(l);
+        case FabFormat::kPng:
+            return png_preview(l, dpi);
+    }
+    return {};
+}
+
+}  // namespace
+
+ExportBenchResult bench_export(const ExportBenchOptions& o) {
+    if (o.n < 16 || o.n > kMaxGrid)
+        throw invalid_field("n", std::to_string(o.n), "must be in 16.." + std::to_string(kMaxGrid));
+    if (o.repeat < 1) throw invalid_field("repeat", std::to_string(o.repeat), "must be >= 1");
+    if (o.scratch_dir.empty()) throw invalid_field("scratch_dir", "''", "must be given");
+    fs::create_directories(o.scratch_dir);
+    struct Cleanup {
+        fs::path dir;
+        ~Cleanup() {
+            std::error_code ec;
+            fs::remove_all(dir, ec);
+        }
+    } cleanup{o.scratch_dir};
+
+    ExportBenchResult res;
+    const Mask mask = bench_mask(o);
+    res.pinholes = mask.pattern.pinholes.size();
+    Layout layout;
+    const double t_layout = time_min(o.repeat, [&] { layout = make_layout(mask, {}); });
+    res.polygons = layout.polygons.size();
+    std::vector<Ring> copy;
+    const double t_copy = time_min(o.repeat, [&] { copy = layout.polygons; });
+    res.records.push_back({"layout", t_layout, 0, "copy the polygon list", t_copy, 0});
+    res.total_seconds = t_layout;
+
+    for (FabFormat f : {FabFormat::kSvg, FabFormat::kPdf, FabFormat::kGds, FabFormat::kDxf,
+                        FabFormat::kGerber, FabFormat::kPng}) {
+        const fs::path path = o.scratch_dir / ("bench" + fab_extension(f));
+        const fs::path ref = o.scratch_dir / ("reference" + fab_extension(f));
+        std::string bytes;
+        const double t = time_min(o.repeat, [&] {
+            bytes = write_format(f, layout, o.dpi);
+            fwrite_file(path, bytes);
+        });
+        const double t_ref = time_min(o.repeat, [&] { fwrite_file(ref, bytes); });
+        const std::string name = fab_format_name(f);
+        res.records.push_back(
+            {name + " write", t, bytes.size(), "fwrite of the same bytes", t_ref, 0});
+        res.total_seconds += t;
+        if (!is_readable(f)) continue;
+        std::size_t rings = 0;
+        const double t_read =
+            time_min(o.repeat, [&] { rings = read_fabrication_bytes(bytes, f).rings.size(); });
+        if (rings != layout.polygons.size())
+            throw RuntimeFailure("bench: " + name + " read back " + std::to_string(rings) +
+                                 " rings, wrote " + std::to_string(layout.polygons.size()));
+        std::string dup;
+        const double t_dup = time_min(o.repeat, [&] { dup = bytes; });
+        res.records.push_back({name + " read", t_read, bytes.size(), "copy the bytes", t_dup, 0});
+    }
+    for (ExportBenchRecord& r : res.records)
+        r.ratio = r.reference_seconds > 0 ? r.seconds / r.reference_seconds : 0.0;
+    return res;
+}
+
+}  // namespace pinmask
