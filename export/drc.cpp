@@ -235,7 +235,8 @@ void Checker::check_ring(std::size_t i) {
         info.x0 = std::min(info.x0, p.x), info.x1 = std::max(info.x1, p.x);
         info.y0 = std::min(info.y0, p.y), info.y1 = std::max(info.y1, p.y);
     }
-    if (n > rules_.max_vertices) {
+    // Clear regions are derived, not drawn: no file carries them, so no vertex limit applies.
+    if (n > rules_.max_vertices && in_[i].group != Group::kClearRegion) {
         add("vertices",
             name(i) + ": " + std::to_string(n) + " vertices, limit " +
                 std::to_string(rules_.max_vertices),

@@ -86,8 +86,12 @@ DrcReport run_drc(const std::vector<Ring>& polygons, const DrcRules& rules);
 
 // Checks a layout: polygons and annotations together for the geometric rules, indices in
 // violations counting polygons first, then annotations (index - polygons.size()). The spacing
-// rule applies to clear-tone polygons only (dark-tone pieces are not pinholes). Without an
-// allowed_area, polygons must lie in active_area and annotations in extent.
+// rule applies to clear-tone polygons only. Dark tone: the polygons are opaque pieces that may
+// share edges (pairs of pieces are not checked, nor their widths); the clear regions they
+// leave (the holes of their union, export/xor_area union_holes) are checked as pinholes
+// (spacing, width, gaps between them; no vertex limit: they are not drawn) and reported after
+// the annotations. Without an allowed_area, clear-tone polygons and the clear regions must lie
+// in active_area, dark-tone pieces (which include the frame) and annotations in extent.
 DrcReport run_drc(const Layout& layout, const DrcRules& rules);
 
 // Rules for a mask made at a vendor: centre spacing = min_spacing_cells * pinhole side (the

@@ -317,4 +317,8 @@ TEST_CASE("dark tone: touching pieces are fine, the clear regions between them a
     CHECK(count(r, "feature") == 4);  // each region: width and height
     CHECK(r.violations.back().message.find("clear region 0 and clear region 1") !=
           std::string::npos);
+    // The vertex limit applies to the drawn pieces only, not to the derived regions.
+    rules = DrcRules{};
+    rules.max_vertices = 3;
+    CHECK(count(run_drc(l, rules), "vertices") == 5);
 }

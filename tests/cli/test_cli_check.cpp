@@ -1,0 +1,161 @@
+// `pinmask check` end to end on masks built here with known answers: clean masks, spacing
+// violations inside a tile and across a seam, gap limits at and beyond the rule, bad input, and
+// fabrication files written by the export writers and read back.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cli/mask_json.hpp"
+#include "export/gds_writer.hpp"
+#include "export/geometry.hpp"
+#include "tests/support/cli_run.hpp"
+
+using namespace pinmask;
+using pinmask::test::run_cli;
+using pinmask::test::TempDir;
+
+namespace {
+
+// JSON lengths are nm values times 1e-3 (one rounding) and areas nm^2 times 1e-6.
+constexpr double kUnitConversion = 1e-12;
+
+doctest::Approx um(double v) { return doctest::Approx(v).epsilon(kUnitConversion); }
+
+// The paper camera (d = 440 um), an n x n pattern with the given pinholes and tiles.
+Mask make_mask(int n, std::vector<Cell> holes, int tiles, bool violations_allowed = false) {
+    Mask m;
+    m.pattern.n = n;
+    m.pattern.pinholes = std::move(holes);
+    m.pattern.tiles_rows = m.pattern.tiles_cols = tiles;
+    m.provenance.spacing_violations_allowed = violations_allowed;
+    m.provenance.generator = "test_cli_check";
+    return m;
+}
+
+std::string write_mask(const TempDir& dir, const std::string& name, const Mask& m) {
+    const std::string path = dir / name;
+    cli::write_mask_file(path, m);
+    return path;
+}
+
+nlohmann::json json_of(const test::CliResult& r) {
+    INFO(r.err);
+    return nlohmann::json::parse(r.out);
+}
+
+std::size_t count(const nlohmann::json& j, const std::string& rule) {
+    return j["counts"].contains(rule) ? j["counts"][rule].get<std::size_t>() : 0;
+}
+
+}  // namespace
+
+TEST_CASE("check: a mask meeting its spacing rule is clean (exit 0), in text and JSON") {
+    TempDir dir("check-clean");
+    const auto mask =
+        write_mask(dir, "m.mask.json", make_mask(16, {{0, 0}, {0, 2}, {3, 5}, {8, 8}}, 2));
+    const auto text = run_cli("check " + mask);
+    INFO(text.err);
+    CHECK(text.exit_code == 0);
+    CHECK(text.out.find("result      clean") != std::string::npos);
+    const auto r = run_cli("check --json " + mask);
+    REQUIRE(r.exit_code == 0);
+    const auto j = json_of(r);
+    CHECK(j["clean"] == true);
+    CHECK(j["kind"] == "mask");
+    CHECK(j["polygons"] == 16);  // 4 pinholes x 2 x 2 tiles
+    CHECK(j["rules"]["min_center_spacing_um"].get<double>() == um(880.0));
+    CHECK(j["rules"]["min_gap_um"].get<double>() == um(16.0));
+    CHECK(j["measured"]["min_center_spacing_um"].get<double>() == um(880.0));  // (0,0)-(0,2)
+    CHECK(j["violations"].empty());
+}
+
+TEST_CASE("check: diagonal neighbours violate spacing and touch, in a tile and across a seam") {
+    TempDir dir("check-viol");
+    // (0,0) and (1,1) in each of the 4 tiles: 4 pairs sqrt(2) d apart, corners touching.
+    const auto inside =
+        write_mask(dir, "a.mask.json", make_mask(16, {{0, 0}, {1, 1}}, 2, /*allowed=*/true));
+    auto r = run_cli("check --json " + inside);
+    CHECK(r.exit_code == 1);
+    auto j = json_of(r);
+    CHECK(j["clean"] == false);
+    CHECK(count(j, "spacing") == 4);
+    CHECK(count(j, "touching") == 4);
+    CHECK(j["measured"]["min_center_spacing_um"].get<double>() == um(440.0 * std::sqrt(2.0)));
+    // (0,0) and (15,15) are torus neighbours: on the 2 x 2 tiled mask they meet once, where
+    // tile (0,0)'s corner cell touches tile (1,1)'s.
+    const auto seam =
+        write_mask(dir, "b.mask.json", make_mask(16, {{0, 0}, {15, 15}}, 2, /*allowed=*/true));
+    j = json_of(r = run_cli("check --json " + seam));
+    CHECK(r.exit_code == 1);
+    CHECK(count(j, "spacing") == 1);
+    CHECK(count(j, "touching") == 1);
+    const auto& v = j["violations"][0];
+    CHECK(v["rule"] == "touching");
+    CHECK(v["x_um"] == 0.0);  // the corner at the mask centre
+    CHECK(v["y_um"] == 0.0);
+    // Text output lists the violation with its location.
+    r = run_cli("check " + seam);
+    CHECK(r.exit_code == 1);
+    CHECK(r.out.find("(0.000, 0.000) um") != std::string::npos);
+}
+
+TEST_CASE("check: --min-gap exactly at the gap passes, a nanometre more fails") {
+    TempDir dir("check-gap");
+    // (0,0) and (0,2), one tile: the squares are 440 um apart edge to edge.
+    const auto mask = write_mask(dir, "m.mask.json", make_mask(16, {{0, 0}, {0, 2}}, 1));
+    CHECK(run_cli("check --min-gap 440um " + mask).exit_code == 0);
+    const auto r = run_cli("check --json --min-gap 440.001um " + mask);
+    CHECK(r.exit_code == 1);
+    const auto j = json_of(r);
+    CHECK(count(j, "gap") == 1);
+    CHECK(j["violations"][0]["value"] == 440'000.0);
+    CHECK(j["violations"][0]["unit"] == "nm");
+    // A feature limit above the pinhole side flags both pinholes (width and height each).
+    CHECK(count(json_of(run_cli("check --json --min-feature 0.5mm " + mask)), "feature") == 4);
+}
+
+TEST_CASE("check: bad input is exit 2 with a message naming the problem") {
+    TempDir dir("check-bad");
+    const auto mask = write_mask(dir, "m.mask.json", make_mask(16, {{0, 0}}, 1));
+    auto r = run_cli("check --vendor glass " + mask);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("film, chrome, none") != std::string::npos);
+    r = run_cli("check " + (dir / "missing.mask.json"));
+    CHECK(r.exit_code == 2);
+    CHECK(run_cli("check --min-gap 0um " + mask).exit_code == 2);
+    CHECK(run_cli("check --mask " + mask + " " + mask).exit_code == 2);
+    CHECK(run_cli("check " + (dir / "x.txt")).exit_code == 2);
+    { std::ofstream(dir / "x.txt") << "not a layout\n"; }
+    CHECK(run_cli("check " + (dir / "x.txt")).exit_code == 2);
+}
+
+TEST_CASE("check: a GDSII file read back matches its mask; another mask does not") {
+    TempDir dir("check-gds");
+    const Mask m = make_mask(16, {{0, 0}, {0, 2}, {3, 5}, {8, 8}}, 2);
+    const auto mask = write_mask(dir, "m.mask.json", m);
+    const std::string gds = dir / "m.gds";
+    {
+        std::ofstream out(gds, std::ios::binary);
+        out << gds_stream(make_layout(m, LayoutOptions{}));
+    }
+    auto r = run_cli("check --json " + gds + " --mask " + mask);
+    auto j = json_of(r);
+    CHECK(r.exit_code == 0);
+    CHECK(j["kind"] == "gds");
+    CHECK(j["polygons"] == 16);
+    CHECK(j["comparison"]["xor_area_um2"] == 0.0);
+    CHECK(j["comparison"]["ok"] == true);
+    // Without the mask the rings are checked on their own (no spacing rule): still clean.
+    CHECK(run_cli("check " + gds).exit_code == 0);
+    // A design with one pinhole moved: XOR = 2 pinholes' area per tile, hash differs.
+    const auto other =
+        write_mask(dir, "o.mask.json", make_mask(16, {{0, 0}, {0, 2}, {3, 5}, {8, 9}}, 2));
+    j = json_of(r = run_cli("check --json " + gds + " --mask " + other));
+    CHECK(r.exit_code == 1);
+    CHECK(j["comparison"]["xor_area_um2"].get<double>() == um(4 * 2 * 440.0 * 440.0));
+    CHECK(j["comparison"]["ok"] == false);
+}
