@@ -58,7 +58,8 @@ const Registration kBenchDecode(
             "the same run, as a ratio. Methods: wiener and tikhonov (precomputed filter applied), "
             "one TV-L2 ADMM iteration, TVQC run to tolerance 1e-4 (iterations reported), one "
             "Richardson-Lucy iteration. Each figure is the minimum over --repeat timed batches.");
-        cmd->add_option("--sizes", opts->bench.sizes, "Channel sizes N (pixels, 16..8192)")
+        cmd->add_option("--sizes", opts->bench.sizes,
+                        "Channel sizes N (pixels, 16..8192); 1024 adds ~20 s, mostly TVQC")
             ->delimiter(',')
             ->capture_default_str();
         cmd->add_option("--repeat", opts->bench.repeat,
@@ -71,7 +72,7 @@ const Registration kBenchDecode(
                       "One JSON record per line: method, size, seconds_per_call, "
                       "fft_pair_seconds, ratio");
         cmd->footer(
-            "Example: pinmask bench decode --sizes 128,512 --repeat 5\n"
+            "Example: pinmask bench decode --sizes 128,512,1024 --repeat 5 --json\n"
             "Timings depend on the machine and its load; the ratio to the FFT pair is the "
             "figure to compare.");
         cmd->callback([opts] { run(*opts); });

@@ -17,14 +17,19 @@ void gradient(const Plane& x, Plane& d_r, Plane& d_c) {
 }
 
 Plane divergence(const Plane& d_r, const Plane& d_c) {
+    Plane out;
+    divergence(d_r, d_c, out);
+    return out;
+}
+
+void divergence(const Plane& d_r, const Plane& d_c, Plane& out) {
     const Eigen::Index R = d_r.rows(), C = d_r.cols();
-    Plane out(R, C);
-    if (R == 0 || C == 0) return out;
+    out.resize(R, C);
+    if (R == 0 || C == 0) return;
     out.bottomRows(R - 1) = d_r.bottomRows(R - 1) - d_r.topRows(R - 1);
     out.row(0) = d_r.row(0) - d_r.row(R - 1);
     out.rightCols(C - 1) += d_c.rightCols(C - 1) - d_c.leftCols(C - 1);
     out.col(0) += d_c.col(0) - d_c.col(C - 1);
-    return out;
 }
 
 double total_variation(const Plane& d_r, const Plane& d_c) {

@@ -17,6 +17,8 @@ void gradient(const Plane& x, Plane& d_r, Plane& d_c);
 
 // div(d_r, d_c) = -grad^T (d_r, d_c); d_r and d_c have the same size.
 Plane divergence(const Plane& d_r, const Plane& d_c);
+// Allocation-free form (out resized when needed; must not alias d_r or d_c).
+void divergence(const Plane& d_r, const Plane& d_c, Plane& out);
 
 // Isotropic TV from the differences, and of a plane.
 double total_variation(const Plane& d_r, const Plane& d_c);

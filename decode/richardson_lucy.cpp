@@ -45,14 +45,39 @@ DecodeResult solve_richardson_lucy(const ConvolutionOperator& op, const Plane& p
     Plane x = warm_start ? Plane(warm_start->max(0.0))
                          : Plane::Constant(g.work_rows, g.work_cols, p.mean() / psf.sum());
     x *= (inv_at1 > 0.0).cast<double>();
-    Plane ax = op.apply(x), x_old;
+
+    // A x and A^T y on reused buffers (no allocation inside the loop).
+    const Fft2& fft = op.fft();
+    const ComplexPlane& H = op.otf();
+    const ComplexPlane Hc = H.conjugate();
+    const int cr = g.crop_row, cc = g.crop_col, pr = g.capture_rows, pc = g.capture_cols;
+    const bool linear = g.model == ConvModel::kLinear;
+    ComplexPlane spec, scratch;
+    Plane work, ratio(pr, pc), pad_buf, back, x_old(x.rows(), x.cols());
+    if (linear) pad_buf = Plane::Zero(g.work_rows, g.work_cols);
+    Plane ax(pr, pc);
+    auto apply_a = [&] {
+        fft.forward(x, spec);
+        spec *= H;
+        fft.inverse(spec, work, scratch);
+        ax = work.block(cr, cc, pr, pc);
+    };
+    apply_a();
     DecodeResult r;
     r.converged = false;
     for (int k = 1; k <= o.max_iterations; ++k) {
-        const Plane ratio = (p > 0.0).select(p / ax.max(ax_floor), 0.0);
-        x_old = x;
-        x = (x * op.adjoint(ratio) * inv_at1).max(0.0);  // FFT rounding can dip below 0
-        ax = op.apply(x);
+        ratio = (p > 0.0).select(p / ax.max(ax_floor), 0.0);
+        if (linear) {
+            pad_buf.block(cr, cc, pr, pc) = ratio;
+            fft.forward(pad_buf, spec);
+        } else {
+            fft.forward(ratio, spec);
+        }
+        spec *= Hc;
+        fft.inverse(spec, back, scratch);
+        x_old.swap(x);
+        x = (x_old * back * inv_at1).max(0.0);  // FFT rounding can dip below 0
+        apply_a();
         r.iterations = k;
         const double change = relative_change(x, x_old);
         if (o.record_history) {

@@ -74,10 +74,9 @@ DecodeResult solve_tv_l2(const ConvolutionOperator& op, const Plane& capture, co
 
     double rho = o.rho > 0.0 ? o.rho : std::max(h2.mean(), 1e-12);
     double rho_s = 1.0;
-    Plane denom;
+    Plane inv_denom;  // 1 / (x-step denominator); > 0 since H(0) = sum(psf) > 0 and rho > 0
     auto update_denominator = [&] {
-        denom = (linear ? rho_s * h2 : h2) + rho * gram;
-        if (nn) denom += rho;
+        inv_denom = 1.0 / ((linear ? rho_s * h2 : h2) + rho * gram + (nn ? rho : 0.0));
     };
     update_denominator();
 
@@ -97,46 +96,44 @@ DecodeResult solve_tv_l2(const ConvolutionOperator& op, const Plane& capture, co
         eta = Plane::Zero(x.rows(), x.cols());
     }
 
+    // Buffers reused by every iteration (no allocation inside the loop).
     ComplexPlane spec, spec2, scratch;
-    Plane x_old, tmp;
+    Plane x_old(x.rows(), x.cols()), tmp(x_old), ar(x_old), ac(x_old), factor(x_old), ax;
     DecodeResult r;
     r.converged = false;
     const int adapt_until = o.max_iterations / 2;
     auto estimate = [&]() -> const Plane& { return nn ? w : x; };
-    auto objective_of_estimate = [&](double& residual) {
-        Plane ax;
-        if (!nn && !linear) {
-            fft.inverse(ComplexPlane(H * spec), ax, scratch);  // spec holds X after the x-step
-        } else if (!nn && linear) {
-            ax = crop_to_capture(g, hx);
-        } else {
-            ax = op.apply(w);
-        }
-        const double res2 = (ax - capture).square().sum();
-        residual = std::sqrt(res2);
-        const double tv = nn ? total_variation(w) : total_variation(gr, gc);
-        return 0.5 * res2 + o.lambda * tv;
-    };
 
     for (int k = 1; k <= o.max_iterations; ++k) {
         // x-step.
-        tmp = -rho * divergence(zr - ur, zc - uc);
-        if (nn) tmp += rho * (w - v);
+        ar = zr - ur;
+        ac = zc - uc;
+        divergence(ar, ac, tmp);
+        if (nn) {
+            tmp = rho * (w - v) - rho * tmp;
+        } else {
+            tmp *= -rho;
+        }
         fft.forward(tmp, spec);
         if (linear) {
-            fft.forward(Plane(s - eta), spec2);
+            tmp = s - eta;
+            fft.forward(tmp, spec2);
             spec += rho_s * Hc * spec2;
         } else {
             spec += htp;
         }
-        spec /= denom.cast<std::complex<double>>();
+        spec *= inv_denom.cast<std::complex<double>>();
         x_old.swap(x);
         fft.inverse(spec, x, scratch);
+        const bool need_hx = linear || (o.record_history && !nn);
+        if (need_hx) {  // H x from the same spectrum
+            spec *= H;
+            fft.inverse(spec, linear ? hx : ax, scratch);
+        }
 
         // s-step (linear model).
         double prim_s = 0.0, dual_s = 0.0;
         if (linear) {
-            fft.inverse(ComplexPlane(H * spec), hx, scratch);
             tmp = s;
             s = (p_pad + rho_s * (hx + eta)) / (window + rho_s);
             eta += hx - s;
@@ -144,12 +141,12 @@ DecodeResult solve_tv_l2(const ConvolutionOperator& op, const Plane& capture, co
             dual_s = rho_s * std::sqrt((s - tmp).square().sum());
         }
 
-        // z-step: isotropic shrinkage.
+        // z-step: isotropic shrinkage of grad x + u by lambda / rho.
         gradient(x, gr, gc);
-        const Plane ar = gr + ur, ac = gc + uc;
-        const Plane mag = (ar.square() + ac.square()).sqrt();
+        ar = gr + ur;
+        ac = gc + uc;
         const double thr = o.lambda / rho;
-        const Plane factor = (1.0 - thr / mag.max(1e-300)).max(0.0);
+        factor = (1.0 - thr / (ar.square() + ac.square()).sqrt().max(1e-300)).max(0.0);
         double dual_z =
             std::sqrt((zr - factor * ar).square().sum() + (zc - factor * ac).square().sum());
         zr = factor * ar;
@@ -172,7 +169,15 @@ DecodeResult solve_tv_l2(const ConvolutionOperator& op, const Plane& capture, co
         if (o.record_history) {
             IterationRecord rec;
             rec.iteration = k;
-            rec.objective = objective_of_estimate(rec.residual);
+            if (nn) ax = op.apply(w);
+            const Plane& a_est = nn ? ax : (linear ? hx : ax);
+            const double res2 =
+                (a_est.block(g.crop_row, g.crop_col, g.capture_rows, g.capture_cols) - capture)
+                    .square()
+                    .sum();
+            rec.residual = std::sqrt(res2);
+            rec.objective =
+                0.5 * res2 + o.lambda * (nn ? total_variation(w) : total_variation(gr, gc));
             rec.seconds = clock.seconds();
             r.history.push_back(rec);
         }

@@ -25,6 +25,15 @@ constexpr double kStepSafety = 0.99;
 
 double norm2(const Plane& a) { return std::sqrt(a.square().sum()); }
 
+// sum_k |S_k|^2 over the full spectrum of a real plane with `cols` columns, from its half
+// spectrum (columns 1 .. ceil(cols / 2) - 1 stand for two columns each).
+double half_spectrum_energy(const ComplexPlane& half, int cols) {
+    const Eigen::Index hc = half.cols();
+    double e = 2.0 * half.abs2().sum() - half.col(0).abs2().sum();
+    if (cols % 2 == 0 && hc > 1) e -= half.col(hc - 1).abs2().sum();
+    return e;
+}
+
 // Smallest t in [0, 1] with ||r + t d|| <= eps, or the t in [0, 1] minimising ||r + t d||.
 double feasibility_step(const Plane& r, const Plane& d, double eps) {
     const double a = d.square().sum(), b = (r * d).sum(), c = r.square().sum() - eps * eps;
@@ -160,14 +169,18 @@ DecodeResult solve_tvqc(const ConvolutionOperator& op, const Plane& capture, con
     double tau = kStepSafety, sigma = kStepSafety, alpha = kAlpha0;
     const Plane center = beta * capture;
     const double radius = beta * eps;
+    const ComplexPlane beta_hc = beta * H.conjugate();
+    const bool linear = g.model == ConvModel::kLinear;
+    const int cr = g.crop_row, cc = g.crop_col, pr = g.capture_rows, pc = g.capture_cols;
 
     ComplexPlane spec, spec2, scratch;
-    Plane work;
+    Plane work, pad_buf;
+    if (linear) pad_buf = Plane::Zero(g.work_rows, g.work_cols);
     auto apply_a = [&](const Plane& x, Plane& out) {  // out = A x
         fft.forward(x, spec);
         spec *= H;
         fft.inverse(spec, work, scratch);
-        out = crop_to_capture(g, work);
+        out = work.block(cr, cc, pr, pc);
     };
 
     const FeasiblePoint start =
@@ -175,76 +188,96 @@ DecodeResult solve_tvqc(const ConvolutionOperator& op, const Plane& capture, con
     Plane x = warm_start  ? *warm_start
               : eps > 0.0 ? start.x
                           : Plane::Zero(g.work_rows, g.work_cols);
-    // K x = (grad x, beta A x, gamma x); the gamma block is x itself.
+    // K x = (grad x, beta A x, gamma x), cached as grad x and A x (the gamma block is x).
     Plane kx_r, kx_c, ax;
     gradient(x, kx_r, kx_c);
     apply_a(x, ax);
     Plane y_r = Plane::Zero(g.work_rows, g.work_cols), y_c = y_r, y_w;
-    Plane y_q = Plane::Zero(g.capture_rows, g.capture_cols);
+    Plane y_q = Plane::Zero(pr, pc);
     if (nn) y_w = Plane::Zero(g.work_rows, g.work_cols);
 
-    Plane x_new, nr, nc, ax_new, dx, adx;
+    // Buffers reused by every iteration (no allocation inside the loop).
+    Plane x_new(g.work_rows, g.work_cols), dx, nr, nc, yr_new(x_new), yc_new(x_new), yw_new;
+    Plane ax_new(pr, pc), v(pr, pc);
+    if (nn) yw_new.resize(g.work_rows, g.work_cols);
+    double dres_prev = -1.0;  // dual residual of the previous iteration (< 0: none yet)
     r.converged = false;
     for (int k = 1; k <= o.max_iterations; ++k) {
-        // Primal step x_new = x - tau M^-1 K^T y, in Fourier space: K^T y = -div y1 +
-        // beta A^T y_q + gamma y_w.
-        work = -divergence(y_r, y_c);
-        if (nn) work += gamma * y_w;
+        // K^T y in Fourier space: F[-div y1 + gamma y_w] + beta conj(H) F[C^T y_q].
+        divergence(y_r, y_c, work);  // K^T y = -(div y1 - gamma y_w) + ...
+        if (nn) work -= gamma * y_w;
         fft.forward(work, spec2);
-        fft.forward(pad_to_work(g, y_q), spec);
-        spec2 += beta * H.conjugate() * spec;
-        spec2 *= m_inv.cast<std::complex<double>>();
-        fft.inverse(spec2, dx, scratch);
-        spec2 *= H;
-        fft.inverse(spec2, work, scratch);
-        adx = crop_to_capture(g, work);
-        x_new = x - tau * dx;
-        ax_new = ax - tau * adx;
-        gradient(x_new, nr, nc);
-
-        // Dual step at xbar = 2 x_new - x, K xbar from the cached K x.
-        Plane yr_new = y_r + sigma * (2.0 * nr - kx_r);
-        Plane yc_new = y_c + sigma * (2.0 * nc - kx_c);
-        const Plane scale = (yr_new.square() + yc_new.square()).sqrt().max(1.0);
-        yr_new /= scale;
-        yc_new /= scale;
-        Plane v = y_q + sigma * beta * (2.0 * ax_new - ax);
-        {
-            Plane z = v / sigma - center;  // proj_B(v / sigma) = center + z min(1, radius / |z|)
-            const double zn = norm2(z);
-            if (zn > radius) z *= (zn > 0.0 ? radius / zn : 0.0);
-            v -= sigma * (center + z);
+        if (linear) {
+            pad_buf.block(cr, cc, pr, pc) = y_q;
+            fft.forward(pad_buf, spec);
+        } else {
+            fft.forward(y_q, spec);
         }
-        Plane yw_new;
-        if (nn) yw_new = (y_w + sigma * gamma * (2.0 * x_new - x)).min(0.0);
+        spec2 = beta_hc * spec - spec2;
 
-        // Adaptive balance of tau and sigma (product constant): primal residual K^T y_new
-        // (G = 0), dual residual (y - y_new) / sigma - K (x - x_new), both in the l2 norm.
-        if (alpha > kAlphaStop) {
-            work = -divergence(yr_new, yc_new);
-            if (nn) work += gamma * yw_new;
-            Plane atq;
-            fft.forward(pad_to_work(g, v), spec);
-            spec *= H.conjugate();
-            fft.inverse(spec, atq, scratch);
-            const double pres = norm2(work + beta * atq);
-            double d2 = ((y_r - yr_new) / sigma - (kx_r - nr)).square().sum() +
-                        ((y_c - yc_new) / sigma - (kx_c - nc)).square().sum() +
-                        ((y_q - v) / sigma - beta * (ax - ax_new)).square().sum();
-            if (nn) d2 += ((y_w - yw_new) / sigma - gamma * (x - x_new)).square().sum();
-            const double dres = std::sqrt(d2);
-            if (pres > kDelta * dres) {
+        // Adaptive balance of tau and sigma (product constant), Goldstein et al.: the primal
+        // residual is K^T y (G = 0; its norm by Parseval), the dual residual comes from the
+        // previous dual step.
+        if (alpha > kAlphaStop && dres_prev >= 0.0) {
+            const double pres =
+                std::sqrt(half_spectrum_energy(spec2, g.work_cols) / double(x.size()));
+            if (pres > kDelta * dres_prev) {
                 tau /= 1.0 - alpha;
                 sigma *= 1.0 - alpha;
                 alpha *= kEta;
-            } else if (pres < dres / kDelta) {
+            } else if (pres < dres_prev / kDelta) {
                 tau *= 1.0 - alpha;
                 sigma /= 1.0 - alpha;
                 alpha *= kEta;
             }
         }
 
-        const double change = relative_change(x_new, x);
+        // Primal step x_new = x - tau M^-1 K^T y, and A x_new from the same spectrum.
+        spec2 *= m_inv.cast<std::complex<double>>();
+        fft.inverse(spec2, dx, scratch);
+        spec2 *= H;
+        fft.inverse(spec2, work, scratch);
+        double x_new_norm2 = 0.0, step_norm2 = 0.0;
+        for (Eigen::Index i = 0; i < x.size(); ++i) {
+            const double d = tau * dx.data()[i];
+            const double xn = x.data()[i] - d;
+            x_new.data()[i] = xn;
+            x_new_norm2 += xn * xn;
+            step_norm2 += d * d;
+        }
+        ax_new = ax - tau * work.block(cr, cc, pr, pc);
+        const double change = step_norm2 == 0.0 ? 0.0 : std::sqrt(step_norm2 / x_new_norm2);
+        gradient(x_new, nr, nc);
+
+        // Dual step at xbar = 2 x_new - x, K xbar from the cached K x; the gradient block and
+        // its share of the dual residual in one pass.
+        double d2 = 0.0;
+        for (Eigen::Index i = 0; i < x.size(); ++i) {
+            const double kr = kx_r.data()[i], kc = kx_c.data()[i];
+            const double gr = nr.data()[i], gc = nc.data()[i];
+            const double yr = y_r.data()[i], yc = y_c.data()[i];
+            double ar = yr + sigma * (2.0 * gr - kr), ac = yc + sigma * (2.0 * gc - kc);
+            const double scale = std::max(1.0, std::sqrt(ar * ar + ac * ac));
+            ar /= scale;
+            ac /= scale;
+            yr_new.data()[i] = ar;
+            yc_new.data()[i] = ac;
+            const double er = (yr - ar) / sigma - (kr - gr), ec = (yc - ac) / sigma - (kc - gc);
+            d2 += er * er + ec * ec;
+        }
+        // proj_B(v / sigma) = center + z min(1, radius / |z|) with z = v / sigma - center, so
+        // v - sigma proj_B(v / sigma) = (1 - min(1, radius / |z|)) (v - sigma center).
+        v = y_q + (sigma * beta) * (2.0 * ax_new - ax);
+        const double zn = std::sqrt((v / sigma - center).square().sum());
+        const double keep = zn > radius ? 1.0 - radius / zn : 0.0;
+        v = keep * (v - sigma * center);
+        d2 += ((y_q - v) / sigma - beta * (ax - ax_new)).square().sum();
+        if (nn) {
+            yw_new = (y_w + (sigma * gamma) * (2.0 * x_new - x)).min(0.0);
+            d2 += ((y_w - yw_new) / sigma - gamma * (x - x_new)).square().sum();
+        }
+        dres_prev = std::sqrt(d2);
+
         x.swap(x_new);
         ax.swap(ax_new);
         kx_r.swap(nr);
@@ -255,8 +288,7 @@ DecodeResult solve_tvqc(const ConvolutionOperator& op, const Plane& capture, con
         if (nn) y_w.swap(yw_new);
 
         const double res = norm2(ax - capture);
-        const double viol =
-            nn ? std::max(res - eps, 0.0) + norm2(x.min(0.0)) : std::max(res - eps, 0.0);
+        const double viol = std::max(res - eps, 0.0) + (nn ? norm2(x.min(0.0)) : 0.0);
         r.iterations = k;
         if (o.record_history) {
             IterationRecord rec;
