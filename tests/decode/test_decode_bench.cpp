@@ -1,0 +1,49 @@
+// The decode benchmark's library part: one record per method and size, consistent ratios, and
+// option validation. Timings themselves are never asserted.
+#include <doctest/doctest.h>
+
+#include <set>
+#include <string>
+
+#include "bench/decode_bench.hpp"
+#include "core/error.hpp"
+
+using namespace pinmask;
+
+TEST_CASE("bench_decode returns every method per size with ratio = seconds / fft pair") {
+    DecodeBenchOptions o;
+    o.sizes = {16, 24};
+    o.repeat = 1;
+    o.min_batch_seconds = 1e-4;
+    o.tvqc_max_iterations = 20;
+    const auto records = bench_decode(o);
+    REQUIRE(records.size() == 10);
+    std::set<std::string> methods;
+    for (const auto& r : records) {
+        methods.insert(r.method);
+        CHECK((r.size == 16 || r.size == 24));
+        CHECK(r.fft_pair_seconds > 0.0);
+        CHECK(r.seconds_per_call >= 0.0);
+        CHECK(r.ratio == doctest::Approx(r.seconds_per_call / r.fft_pair_seconds));
+        if (r.method == "tvqc_to_tolerance") {
+            CHECK(r.iterations >= 1);
+            CHECK(r.iterations <= 20);
+        }
+    }
+    CHECK(methods == std::set<std::string>{"wiener", "tikhonov", "tv_l2_iteration",
+                                           "tvqc_to_tolerance", "rl_iteration"});
+}
+
+TEST_CASE("bench_decode validates its options, naming the field") {
+    DecodeBenchOptions o;
+    o.sizes = {8};
+    CHECK_THROWS_WITH_AS(bench_decode(o), doctest::Contains("sizes"), InvalidInput);
+    o.sizes = {};
+    CHECK_THROWS_WITH_AS(bench_decode(o), doctest::Contains("sizes"), InvalidInput);
+    o.sizes = {32};
+    o.repeat = 0;
+    CHECK_THROWS_WITH_AS(bench_decode(o), doctest::Contains("repeat"), InvalidInput);
+    o.repeat = 1;
+    o.tvqc_max_iterations = 0;
+    CHECK_THROWS_WITH_AS(bench_decode(o), doctest::Contains("tvqc_max_iterations"), InvalidInput);
+}
