@@ -8,8 +8,8 @@
 
 #include "core/error.hpp"
 #include "core/fft.hpp"
+#include "design/psf.hpp"
 #include "optimize/analytic_error.hpp"
-#include "optimize/pattern_state.hpp"
 #include "optimize/scenes.hpp"
 #include "tests/support/close.hpp"
 

@@ -5,8 +5,8 @@
 #include <random>
 
 #include "core/error.hpp"
+#include "design/psf.hpp"
 #include "optimize/autocorrelation.hpp"
-#include "optimize/pattern_state.hpp"
 #include "tests/support/close.hpp"
 
 using namespace pinmask;

@@ -7,8 +7,8 @@
 
 #include "core/error.hpp"
 #include "core/fft.hpp"
+#include "design/psf.hpp"
 #include "optimize/analytic_error.hpp"
-#include "optimize/pattern_state.hpp"
 #include "optimize/scene_prior.hpp"
 #include "optimize/scenes.hpp"
 #include "optimize/simulated_metrics.hpp"

@@ -10,7 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/fft.hpp"
-#include "optimize/pattern_state.hpp"
+#include "design/psf.hpp"
 #include "optimize/spectrum_metrics.hpp"
 #include "tests/support/close.hpp"
 
