@@ -6,10 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
-// The codec lives in the pinmask executable's sources (cli/ is not a library); it is compiled
-// into this test executable here, once, and the other tests/cli files may use its headers.
-#include "cli/json_strict.cpp"
-#include "cli/mask_json.cpp"
+#include "cli/json_strict.hpp"
+#include "cli/mask_json.hpp"
 #include "core/error.hpp"
 #include "tests/support/cli_run.hpp"
 
