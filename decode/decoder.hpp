@@ -59,6 +59,15 @@ struct DecodeResult {
 
 // Decodes one channel. Throws InvalidInput for non-finite inputs, a PSF with zero or negative
 // sum, a PSF larger than the working size, or options out of range (naming the option).
+// Per method (x on the working grid, see decode/convolution.hpp; residual = ||A x - p||_2):
+//   wiener    decode/wiener.hpp (deconvwnr); objective ||A x - p||^2 + nsr ||x||^2
+//   tikhonov  decode/tikhonov.hpp; objective ||A x - p||^2 + lambda ||L x||^2
+//   tv        decode/tv_l2.hpp (ADMM); objective 1/2 ||A x - p||^2 + lambda TV(x)
+//   tvqc      decode/tvqc.hpp; eps = options.eps, else tvqc_eps_from_sigma(noise_sigma, N);
+//             objective TV(x)
+//   rl        decode/richardson_lucy.hpp; objective the I-divergence
+// Linear model: wiener and tikhonov filter the zero-padded capture on the padded grid (an
+// approximation that ignores the crop); the iterative methods solve the exact linear model.
 DecodeResult decode_plane(const Plane& capture, const Plane& psf, const DecodeOptions& options);
 
 }  // namespace pinmask
