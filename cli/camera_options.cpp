@@ -1,5 +1,8 @@
 #include "cli/camera_options.hpp"
 
+#include <string>
+#include <utility>
+
 #include "core/error.hpp"
 #include "core/units.hpp"
 
@@ -39,7 +42,26 @@ Camera resolve_camera(const CameraOptions& o) {
         c.sensor_cols = s.cols;
         c.sensor_rows = s.rows;
     }
-    validate(c);
+    // design/camera names Camera fields; on the command line the flag is what the user typed.
+    static const std::pair<const char*, const char*> kFlagOf[] = {
+        {"object_distance_m", "--object-distance"},
+        {"lens_focal_m", "--lens-focal"},
+        {"sensor_distance_m", "--sensor-distance"},
+        {"wavelength_m", "--wavelength"},
+        {"pixel_pitch_m", "--pixel-pitch"},
+        {"pinhole_m", "--pinhole"},
+        {"sensor", "--sensor"}};
+    try {
+        validate(c);
+    } catch (const InvalidInput& e) {
+        const std::string what = e.what();
+        for (const auto& [field, flag] : kFlagOf) {
+            if (what.rfind(std::string(field) + " ", 0) == 0) {
+                throw InvalidInput(std::string(flag) + ": " + what);
+            }
+        }
+        throw;
+    }
     return c;
 }
 

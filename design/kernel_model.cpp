@@ -21,7 +21,7 @@ constexpr std::array<std::pair<KernelModel, const char*>, 6> kNames = {{
 
 std::string number(double v) {
     char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3g", v);
+    std::snprintf(buf, sizeof buf, "%.4g", v);
     return buf;
 }
 
