@@ -11,6 +11,8 @@
 
 #include "cli/command.hpp"
 #include "cli/decode_output.hpp"
+#include "cli/mask_json.hpp"
+#include "cli/psf_files.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
@@ -18,6 +20,8 @@
 #include "decode/capture.hpp"
 #include "decode/period.hpp"
 #include "decode/preprocess.hpp"
+#include "design/mask.hpp"
+#include "design/psf.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -30,29 +34,47 @@ double seconds_since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// The PSF channels (one, or one per capture channel) and a description for the stats.
+// The PSF (one channel, shared by every capture channel) and a description for the stats. A PSF
+// file is renormalised to sum 1 by its reader; `counts` keeps the file's own values for
+// --background corner, whose patch mean is in the counts the capture shares.
 struct LoadedPsf {
     Image image;
+    std::optional<Plane> counts;
     json info;
 };
 
-LoadedPsf load_psf(const DecodeRequest& r) {
+LoadedPsf load_psf(const DecodeRequest& r, bool need_counts) {
     if (r.mask.empty() && r.psf.empty()) {
         throw InvalidInput("decode needs the PSF: give --mask FILE.mask.json or --psf FILE");
     }
     LoadedPsf p;
     if (!r.psf.empty()) {
-        p.image = read_image(r.psf).image;
-        p.info = {{"source", "psf-file"}, {"path", r.psf}};
+        PsfFile file = read_psf_file(r.psf);
+        p.info = {{"source", "psf-file"}, {"path", r.psf}, {"sidecar", file.sidecar.has_value()}};
+        if (file.sidecar) {
+            p.info["mask_geometry_hash"] = file.sidecar->mask_geometry_hash;
+            p.info["pixels_per_cell"] = file.sidecar->pixels_per_cell;
+            p.info["kernel_model"] = file.sidecar->kernel_model;
+        }
+        p.image = Image(std::move(file.psf));
+        if (need_counts) p.counts = read_image(r.psf).image.channels.at(0);
     } else {
-        throw InvalidInput("--mask: PSF synthesis from a mask is not available in this build yet");
+        if (need_counts) {
+            throw invalid_field("--background", "corner",
+                                "needs a measured PSF (--psf): a PSF synthesised from a mask "
+                                "has no camera background");
+        }
+        const Mask mask = read_mask_file(r.mask);
+        p.image = Image(mask_psf(mask));
+        p.info = {{"source", "mask"},
+                  {"path", r.mask},
+                  {"mask_geometry_hash", geometry_hash(mask)},
+                  {"pixels_per_cell", mask.psf.pixels_per_cell},
+                  {"kernel_model", mask.psf.kernel.model}};
     }
-    for (int ch = 0; ch < p.image.n_channels(); ++ch)
-        check_psf(p.image.channels[ch],
-                  "PSF " + (r.psf.empty() ? r.mask : r.psf) + " channel " + std::to_string(ch));
+    check_psf(p.image.channels[0], "PSF " + (r.psf.empty() ? r.mask : r.psf));
     p.info["rows"] = p.image.rows();
     p.info["cols"] = p.image.cols();
-    p.info["channels"] = p.image.n_channels();
     return p;
 }
 
@@ -92,12 +114,7 @@ void run_decode(const DecodeRequest& r) {
     LoadedImage loaded = read_image(r.capture);
     Image capture = std::move(loaded.image);
     check_image_finite(capture, "capture " + r.capture);
-    LoadedPsf psf = load_psf(r);
-    if (psf.image.n_channels() != 1 && psf.image.n_channels() != capture.n_channels()) {
-        throw InvalidInput("PSF: " + std::to_string(psf.image.n_channels()) +
-                           " channels for a capture of " + std::to_string(capture.n_channels()) +
-                           ": the PSF needs 1 channel or the capture's count");
-    }
+    LoadedPsf psf = load_psf(r, bg.mode == "corner");
     std::optional<Image> dark;
     if (!r.dark.empty()) {
         dark = read_image(r.dark).image;
@@ -122,23 +139,17 @@ void run_decode(const DecodeRequest& r) {
     t0 = Clock::now();
     json backgrounds = json::array();
     if (bg.mode != "none") {
-        for (int ch = 0; ch < capture.n_channels(); ++ch) {
-            const int pch = psf.image.n_channels() == 1 ? 0 : ch;
-            const double b =
-                bg.mode == "corner" ? corner_background(psf.image.channels[pch]) : bg.value;
-            capture.channels[ch] -= b;
-            backgrounds.push_back(b);
-            explain("background " + std::to_string(b) + " subtracted from capture channel " +
-                    std::to_string(ch) + (bg.mode == "corner" ? " (PSF rows/cols 5..14)" : ""));
-        }
-        if (bg.mode == "corner") {
-            for (Plane& p : psf.image.channels) p -= corner_background(p);
-        }
+        // corner: the tutorial's scalar, from the PSF file's counts, off both PSF and capture.
+        const double b = bg.mode == "corner" ? corner_background(*psf.counts) : bg.value;
+        for (Plane& p : capture.channels) p -= b;
+        if (psf.counts) psf.image.channels[0] = *psf.counts - b;
+        backgrounds.push_back(b);
+        explain("background " + std::to_string(b) + " subtracted from the capture" +
+                (bg.mode == "corner" ? " and the PSF (mean of the PSF's rows/cols 5..14)" : ""));
     }
     for (Plane& p : capture.channels) p = box_downsample(p, r.downsample);
     for (Plane& p : psf.image.channels) p = box_downsample(p, r.downsample);
-    for (int ch = 0; ch < psf.image.n_channels(); ++ch)
-        check_psf(psf.image.channels[ch], "PSF after preprocessing, channel " + std::to_string(ch));
+    check_psf(psf.image.channels[0], "PSF after preprocessing");
     timings["preprocess"] = seconds_since(t0);
     if (r.downsample > 0)
         explain("downsampled " + std::to_string(r.downsample) + " rounds of 2x2: capture " +
