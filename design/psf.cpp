@@ -1,6 +1,7 @@
 #include "design/psf.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -60,10 +61,22 @@ Plane kernel_on_torus(const Kernel& k, int n, int ppc) {
     return torus;
 }
 
-Plane synthesize_psf(const Pattern& p, const Kernel& k, int ppc) {
+Plane synthesize_psf(const Pattern& p, const Kernel& k, int ppc, PsfMethod method) {
     require_holes(p);
     check_psf_memory(p.n, ppc, 1, 0);
     const int side = torus_side(p.n, ppc);
+    if (method == PsfMethod::kAuto) {
+        const double direct = static_cast<double>(p.pinholes.size()) * k.values.size();
+        const double area = static_cast<double>(side) * side;
+        const double fourier = 3.0 * area * std::max(1.0, std::log2(area));  // two FFTs + product
+        method = direct > 4.0 * fourier ? PsfMethod::kFourier : PsfMethod::kDirect;
+    }
+    if (method == PsfMethod::kFourier) {
+        check_psf_memory(p.n, ppc, 2, 2);
+        Plane a = Fft2(side, side).inverse(psf_otf(p, k, ppc));
+        a = a.max(0.0);
+        return a;
+    }
     Plane torus = Plane::Zero(side, side);
     const double weight = 1.0 / static_cast<double>(p.pinholes.size());
     for (const Cell& c : p.pinholes) {

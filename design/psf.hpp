@@ -25,9 +25,15 @@ void check_psf_memory(int n, int pixels_per_cell, int planes_real, int planes_ha
 // The kernel placed at cell (0, 0) of the N x N torus, folded by wrap-around (sum preserved).
 Plane kernel_on_torus(const Kernel& kernel, int n, int pixels_per_cell);
 
+// How synthesize_psf sums: kDirect adds the kernel at every pinhole (K x kernel-size work);
+// kFourier inverts psf_otf (N^2 log N work, values below 0 from rounding, ~1e-17, set to 0);
+// kAuto takes kFourier when the direct sum would cost more than 4 times as much.
+enum class PsfMethod { kAuto, kDirect, kFourier };
+
 // The PSF A (N x N, sum 1). The pattern must be structurally valid (spacing is not checked) and
 // have at least one pinhole (InvalidInput otherwise).
-Plane synthesize_psf(const Pattern& pattern, const Kernel& kernel, int pixels_per_cell);
+Plane synthesize_psf(const Pattern& pattern, const Kernel& kernel, int pixels_per_cell,
+                     PsfMethod method = PsfMethod::kAuto);
 
 // P^: the full n x n DFT of the 0/1 pattern (not divided by K).
 ComplexPlane pattern_spectrum(const Pattern& pattern);
