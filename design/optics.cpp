@@ -109,7 +109,10 @@ OpticsReport compute_optics(const Camera& c, const PatternGeometry& g, KernelMod
         r.kernel_reason = "auto: " + choice.reason;
     } else {
         r.kernel_model = requested;
-        r.kernel_reason = "requested";
+        r.kernel_reason = requested == KernelModel::kPaperFig3b
+                              ? "requested, but not available: the paper's Fig. 3b kernel values "
+                                "could not be obtained (PSF synthesis refuses it)"
+                              : "requested";
     }
     return r;
 }

@@ -135,6 +135,9 @@ TEST_CASE("a requested model is reported as requested") {
         compute_optics(paper_camera(), PatternGeometry{}, KernelModel::kBox, OpticsOptions{});
     CHECK(r.kernel_model == KernelModel::kBox);
     CHECK(r.kernel_reason == "requested");
+    const OpticsReport fig = compute_optics(paper_camera(), PatternGeometry{},
+                                            KernelModel::kPaperFig3b, OpticsOptions{});
+    CHECK(contains(fig.kernel_reason, "not available"));
 }
 
 TEST_CASE("nonsense input is InvalidInput naming the field") {
