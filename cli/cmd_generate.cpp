@@ -15,6 +15,7 @@
 #include "cli/camera_options.hpp"
 #include "cli/command.hpp"
 #include "cli/mask_json.hpp"
+#include "cli/psf_options.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "design/exclusion_grid.hpp"
@@ -37,39 +38,10 @@ struct GenerateOptions {
     int attempts = 20;
     bool allow_violations = false;
     CameraOptions camera;
-    std::string kernel = "auto";
-    std::string kernel_path;
-    std::optional<int> pixels_per_cell;
+    PsfOptions psf;
     std::string output;
     bool json = false;
 };
-
-// Image-plane cell pitch in pixels for a distant object: d |1 - f/f'| / w (f' = inf: d / w).
-double design_pixels_per_cell(const Camera& c) {
-    const double shrink =
-        std::isinf(c.lens_focal_m) ? 1.0 : std::fabs(1.0 - c.sensor_distance_m / c.lens_focal_m);
-    return c.pinhole_m * shrink / c.pixel_pitch_m;
-}
-
-int resolve_pixels_per_cell(const GenerateOptions& o, const Camera& c, double design) {
-    if (o.pixels_per_cell) {
-        if (*o.pixels_per_cell < 1) {
-            throw invalid_field("--pixels-per-cell", std::to_string(*o.pixels_per_cell),
-                                "must be >= 1");
-        }
-        return *o.pixels_per_cell;
-    }
-    const double rounded = std::round(design);
-    if (!(rounded >= 1.0) || rounded > 1e6) {
-        std::ostringstream v;
-        v << design;
-        throw invalid_field(
-            "pixels per cell (design value d |1 - f/f'| / w)", v.str(),
-            "rounds to less than 1 pixel (f = " + format_length(c.sensor_distance_m) +
-                ", f' = " + format_length(c.lens_focal_m) + "): give --pixels-per-cell explicitly");
-    }
-    return static_cast<int>(rounded);
-}
 
 // The paper and mura families fix some of the geometry: a flag given with another value is an
 // error rather than silently ignored.
@@ -133,21 +105,13 @@ void run(const GenerateOptions& o, const CLI::App& cmd) {
     if (!out_dir.empty() && !fs::is_directory(out_dir)) {
         throw invalid_field("-o", o.output, "the output directory does not exist");
     }
-    if (o.kernel == "measured" && o.kernel_path.empty()) {
-        throw invalid_field("--kernel", "measured", "needs --kernel-path FILE");
-    }
-    if (o.kernel != "measured" && !o.kernel_path.empty()) {
-        throw invalid_field("--kernel-path", o.kernel_path, "only used with --kernel measured");
-    }
     if (o.attempts < 1)
         throw invalid_field("--attempts", std::to_string(o.attempts), "must be >= 1");
 
     Mask m;
     m.camera = resolve_camera(o.camera);
     const double design_ppc = design_pixels_per_cell(m.camera);
-    m.psf.pixels_per_cell = resolve_pixels_per_cell(o, m.camera, design_ppc);
-    m.psf.kernel.model = o.kernel;
-    m.psf.kernel.measured_path = o.kernel_path;
+    m.psf = resolve_psf_spec(o.psf, m.camera);
     std::size_t violations = 0;
     m.pattern = make_pattern(o, cmd, family, violations);
     // A MURA does not depend on the seed: recording 0 keeps its file independent of --seed.
@@ -238,17 +202,7 @@ void setup(CLI::App& app) {
                   "Write a pattern that breaks the spacing rule (mura); the file then records "
                   "spacing_violations_allowed = true");
     add_camera_options(*cmd, o->camera);
-    cmd->add_option("--kernel", o->kernel,
-                    "Single-pinhole kernel model recorded for PSF synthesis: auto | box | "
-                    "fraunhofer | fresnel | paper-fig3b | measured")
-        ->check(CLI::IsMember({"auto", "box", "fraunhofer", "fresnel", "paper-fig3b", "measured"}))
-        ->capture_default_str();
-    cmd->add_option("--kernel-path", o->kernel_path,
-                    "Kernel image for --kernel measured (recorded as given)");
-    cmd->add_option("--pixels-per-cell", o->pixels_per_cell,
-                    "Image-plane cell pitch in sensor pixels (integer >= 1). Default: the nearest "
-                    "integer to d |1 - f/f'| / w, the value for a distant object (u = inf), as "
-                    "the paper quotes it (paper: 7.94 -> 8)");
+    add_psf_options(*cmd, o->psf);
     cmd->add_option("-o,--output", o->output, "Output mask file (*.mask.json), written atomically")
         ->required();
     cmd->add_flag("--json", o->json,
