@@ -138,7 +138,8 @@ void run(const Options& o) {
     const std::vector<std::string> scene_names = split(o.scenes, "--scenes");
     std::vector<SceneSpec> specs;
     for (const auto& s : scene_names) specs.push_back(scene_from_name(s));
-    const fs::path out_dir(o.output);
+    fs::path out_dir(o.output);
+    if (!out_dir.has_filename()) out_dir = out_dir.parent_path();  // "out/" names "out"
     if (fs::exists(out_dir) && !fs::is_directory(out_dir)) {
         throw invalid_field("-o", o.output, "exists and is not a directory");
     }
@@ -300,8 +301,11 @@ const Registration kBenchErrorTime(
             "error_time_points.csv (means over scenes: the plotted points), error_time.md (best "
             "point per decoder), error_time_snrS.svg/.png (time on a log axis, PSNR on y, the "
             "paper's Wiener 0.004 s and TVQC 7.2 s marked as times), error_time.config.json.\n"
-            "Timings are wall clock on one thread of this machine under its current load; the "
-            "paper's figures come from its own machine and code.\n"
+            "Time: CPU seconds of one decode on one thread (decoders and FFTW are single-threaded, "
+            "so this is the wall time of an idle machine; wall time is in the CSV), filter or "
+            "operator set-up included, FFTW plans made before timing. TVQC's eps comes from the "
+            "true noise sigma (l1-magic rule); Tikhonov uses the gradient regulariser. The "
+            "paper's timings come from its own machine and code.\n"
             "Example: pinmask bench error-time --preset paper --scenes letter-R,usaf --snr 30 "
             "-o bench-out/");
         cmd->callback([o] { run(*o); });

@@ -57,7 +57,9 @@ TEST_CASE("bench error-time: the paper preset is the generated paper mask of see
         run_cli("generate --family paper --seed 1 --json -o " + (dir / "again.mask.json"));
     REQUIRE(g.exit_code == 0);
     const std::string hash = nlohmann::json::parse(g.out)["geometry_hash"];
-    const auto r = run_cli("bench error-time --preset paper --quick --scenes point -o " + out);
+    // A trailing slash names the directory itself.
+    const auto r =
+        run_cli("bench error-time --preset paper --quick --scenes point -o " + out + "/");
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
     CHECK(r.out.find("| wiener |") != std::string::npos);  // the Markdown table on stdout
