@@ -169,7 +169,7 @@ DecodeResult solve_tv_l2(const ConvolutionOperator& op, const Plane& capture, co
         if (o.record_history) {
             IterationRecord rec;
             rec.iteration = k;
-            if (nn) ax = op.apply(w);
+            if (nn) ax = op.convolve(w);  // H w on the working grid
             const Plane& a_est = nn ? ax : (linear ? hx : ax);
             const double res2 =
                 (a_est.block(g.crop_row, g.crop_col, g.capture_rows, g.capture_cols) - capture)

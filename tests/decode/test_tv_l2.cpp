@@ -135,6 +135,25 @@ TEST_CASE("TV-L2 history, warm start and iteration cap") {
     const DecodeResult warm = solve_tv_l2(op, P.p, o, &cold.image);
     CHECK(warm.iterations < cold.iterations);
 
+    // The records describe the returned estimate in every variant (model, x >= 0).
+    for (ConvModel m : {ConvModel::kCyclic, ConvModel::kLinear}) {
+        for (bool nn : {false, true}) {
+            const Problem Q = make_problem(m, 12, 10, 4, 3, 9);
+            const ConvolutionOperator qop(Q.psf, Q.g);
+            TvL2Options q;
+            q.lambda = 0.02;
+            q.nonnegative = nn;
+            q.max_iterations = 25;
+            q.tolerance = 0.0;
+            const DecodeResult h = solve_tv_l2(qop, Q.p, q);
+            INFO("model " << int(m) << " nonnegative " << nn);
+            REQUIRE(h.history.size() == 25);
+            for (const IterationRecord& rec : h.history) CHECK(std::isfinite(rec.objective));
+            CHECK_CLOSE(h.history.back().objective, h.objective, 1e-12);
+            CHECK_CLOSE(h.history.back().residual, h.residual, 1e-12);
+        }
+    }
+
     o.max_iterations = 5;
     o.record_history = false;
     const DecodeResult capped = solve_tv_l2(op, P.p, o);
