@@ -1,0 +1,242 @@
+#!/usr/bin/python3
+"""Writes the malformed-input corpus of tests/bad-inputs/ (run from anywhere; deterministic).
+
+Each file is a small valid pinmask file (from fuzz/corpus/, written by pinmask itself) broken in
+one way: truncated, wrong magic, huge or negative declared sizes, NaN/Inf values, deep JSON
+nesting, a wrong version, pinholes outside the grid, zero-area polygons, 10^9 declared pixels.
+manifest.txt says which command reads each file and what the error message must name.
+Standard library only (struct, zlib).
+"""
+import json
+import math
+import pathlib
+import struct
+import zlib
+
+HERE = pathlib.Path(__file__).resolve().parent
+SEEDS = HERE.parent.parent / "fuzz" / "corpus"
+GIGA_SIDE = 31623  # 31623^2 = 1.0000e9 declared pixels
+
+
+def write(name, data):
+    if isinstance(data, str):
+        data = data.encode()
+    (HERE / name).write_bytes(data)
+
+
+def seed(path):
+    return (SEEDS / path).read_bytes()
+
+
+# ---------------------------------------------------------------- mask files (*.mask.json)
+MASK_TEXT = seed("mask_json/small.mask.json").decode()
+MASK = json.loads(MASK_TEXT)
+
+
+def mask_variant(name, edit):
+    m = json.loads(MASK_TEXT)
+    edit(m)
+    write(name, json.dumps(m, indent=2) + "\n")
+
+
+def set_path(*keys_and_value):
+    *keys, value = keys_and_value
+
+    def edit(m):
+        node = m
+        for k in keys[:-1]:
+            node = node[k]
+        node[keys[-1]] = value
+
+    return edit
+
+
+def mask_text_replace(name, old, new):
+    assert old in MASK_TEXT, old
+    write(name, MASK_TEXT.replace(old, new, 1))
+
+
+write("mask-truncated.mask.json", MASK_TEXT[: len(MASK_TEXT) // 2])
+write("mask-empty.mask.json", b"")
+write("mask-wrong-magic.mask.json", seed("image/dec8.png"))
+mask_variant("mask-wrong-format.mask.json", set_path("format", "pinmask-psf"))
+mask_variant("mask-wrong-version.mask.json", set_path("version", 2))
+mask_variant("mask-pinhole-outside.mask.json", set_path("pattern", "pinholes", [[1, 0], [3, 7]]))
+mask_variant("mask-pinhole-negative.mask.json", set_path("pattern", "pinholes", [[-1, 0], [3, 3]]))
+mask_variant("mask-negative-grid.mask.json", set_path("pattern", "n", -7))
+mask_variant("mask-giga-grid.mask.json", set_path("pattern", "n", 1000000000))
+mask_variant("mask-zero-tiles.mask.json", set_path("pattern", "tiles", [0, 0]))
+mask_variant("mask-negative-pinhole-size.mask.json", set_path("optics", "pinhole_m", -0.00044))
+mask_variant("mask-zero-pinhole-size.mask.json", set_path("optics", "pinhole_m", 0.0))
+mask_variant("mask-negative-sensor.mask.json", set_path("optics", "sensor_px", [-720, 480]))
+mask_variant("mask-zero-pixels-per-cell.mask.json", set_path("psf", "pixels_per_cell", 0))
+# 65536 pixels per cell (the largest accepted): a 458752^2 PSF, beyond any memory bound.
+mask_variant("mask-huge-pixels-per-cell.mask.json", set_path("psf", "pixels_per_cell", 65536))
+# A valid 4096 x 4096 grid (the largest): its 32768^2 PSF is refused under a small memory bound.
+mask_variant("mask-grid-4096.mask.json", lambda m: (
+    set_path("pattern", "n", 4096)(m),
+    set_path("pattern", "pinholes", [[0, 0], [100, 2000], [3000, 50]])(m),
+    m["provenance"].__setitem__("geometry_hash", "")))
+mask_variant("mask-spacing-violation.mask.json",
+             set_path("pattern", "pinholes", [[1, 0], [1, 1], [5, 4]]))
+mask_variant("mask-duplicate-pinhole.mask.json",
+             set_path("pattern", "pinholes", [[1, 0], [1, 0], [5, 4]]))
+mask_variant("mask-unknown-key.mask.json", set_path("optics", "focal_mm", 120))
+mask_text_replace("mask-nan.mask.json", '"pinhole_m": 0.00044', '"pinhole_m": NaN')
+mask_text_replace("mask-inf.mask.json", '"pinhole_m": 0.00044', '"pinhole_m": 1e999')
+mask_text_replace("mask-int-overflow.mask.json", '"n": 7', '"n": 99999999999999999999')
+mask_text_replace("mask-duplicate-key.mask.json", '"version": 1,', '"version": 1,\n  "version": 1,')
+write("mask-deep-nesting.mask.json", "[" * 20000 + "]" * 20000 + "\n")
+
+# ---------------------------------------------------------------- npy images
+
+
+def npy(shape, descr="<f4", data=b"", fortran=False):
+    header = "{'descr': '%s', 'fortran_order': %s, 'shape': %s, }" % (
+        descr, "True" if fortran else "False", repr(tuple(shape)))
+    pad = (64 - (10 + len(header) + 1) % 64) % 64
+    header += " " * pad + "\n"
+    return b"\x93NUMPY\x01\x00" + struct.pack("<H", len(header)) + header.encode() + data
+
+
+CAP_NPY = seed("image/cap.npy")
+write("capture-truncated.npy", CAP_NPY[: len(CAP_NPY) // 2])
+write("capture-wrong-magic.npy", b"\x93NUMPZ" + CAP_NPY[6:])
+write("capture-giga.npy", npy((GIGA_SIDE, GIGA_SIDE), data=b"\0" * 64))
+write("capture-huge-truncated.npy", npy((16384, 16384), data=b"\0" * 64))
+write("capture-negative-shape.npy", npy((-28, 28), data=b"\0" * 64))
+write("capture-big-endian.npy", npy((28, 28), descr=">f4", data=b"\0" * (28 * 28 * 4)))
+write("capture-fortran.npy", npy((28, 28), fortran=True, data=b"\0" * (28 * 28 * 4)))
+nan_plane = [0.5] * (28 * 28)
+nan_plane[100] = math.nan
+write("capture-nan.npy", npy((28, 28), data=struct.pack("<784f", *nan_plane)))
+write("scene-nan.npy", npy((28, 28), data=struct.pack("<784f", *nan_plane)))
+write("psf-zero.npy", npy((28, 28), data=b"\0" * (28 * 28 * 4)))
+
+# ---------------------------------------------------------------- TIFF images
+
+
+def tiff(width, height, values=None, bits=32, sample_format=3, declared_bytes=None):
+    """A little-endian single-strip TIFF; values (float32) may be absent (declared only)."""
+    data = struct.pack("<%df" % len(values), *values) if values is not None else b""
+    nbytes = declared_bytes if declared_bytes is not None else width * height * bits // 8
+    entries = [(256, 4, 1, width), (257, 4, 1, height), (258, 3, 1, bits), (259, 3, 1, 1),
+               (262, 3, 1, 1), (273, 4, 1, 8), (277, 3, 1, 1), (278, 4, 1, height),
+               (279, 4, 1, nbytes), (284, 3, 1, 1), (339, 3, 1, sample_format)]
+    ifd_offset = 8 + len(data)
+    ifd = struct.pack("<H", len(entries))
+    for tag, typ, count, value in entries:
+        ifd += struct.pack("<HHII", tag, typ, count, value) if typ == 4 else struct.pack(
+            "<HHIHH", tag, typ, count, value, 0)
+    ifd += struct.pack("<I", 0)
+    return b"II*\0" + struct.pack("<I", ifd_offset) + data + ifd
+
+
+DEC_TIFF = seed("image/dec.tiff")
+write("capture-truncated.tiff", DEC_TIFF[: len(DEC_TIFF) // 2])
+write("capture-wrong-magic.tiff", b"MM*\x01" + DEC_TIFF[4:])
+write("capture-giga.tiff", tiff(GIGA_SIDE, GIGA_SIDE))
+write("capture-zero-width.tiff", tiff(0, 28, values=[]))
+inf_plane = [0.5] * (28 * 28)
+inf_plane[5] = math.inf
+write("capture-inf.tiff", tiff(28, 28, values=inf_plane))
+psf_nan = [1.0 / 784] * 784
+psf_nan[0] = math.nan
+write("psf-nan.tiff", tiff(28, 28, values=psf_nan))
+psf_ok = [1.0 / 784] * 784
+# PSF files whose sidecars (same stem, .json) are broken.
+SIDECAR = json.loads(seed("psf_sidecar/psf_box.json"))
+for stem, edit in [
+    ("psf-sidecar-version", lambda s: s.__setitem__("version", 7)),
+    ("psf-sidecar-size", lambda s: s.__setitem__("size_px", [29, 28])),
+    ("psf-sidecar-negative-pitch", lambda s: s.__setitem__("pixel_pitch_m", -3e-05)),
+]:
+    s = json.loads(json.dumps(SIDECAR))
+    edit(s)
+    s["files"] = {"tiff": stem + ".tiff"}
+    write(stem + ".tiff", tiff(28, 28, values=psf_ok))
+    write(stem + ".json", json.dumps(s, indent=2) + "\n")
+write("psf-sidecar-deep.tiff", tiff(28, 28, values=psf_ok))
+write("psf-sidecar-deep.json", "{\"a\": " * 10000 + "1" + "}" * 10000 + "\n")
+
+# ---------------------------------------------------------------- PNG images
+
+
+def png_chunk(kind, data):
+    return struct.pack(">I", len(data)) + kind + data + struct.pack(
+        ">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+
+def png(width, height, idat=b"", bit_depth=8, colour=0):
+    ihdr = struct.pack(">IIBBBBB", width, height, bit_depth, colour, 0, 0, 0)
+    return (b"\x89PNG\r\n\x1a\n" + png_chunk(b"IHDR", ihdr) + png_chunk(b"IDAT", idat) +
+            png_chunk(b"IEND", b""))
+
+
+CAP_PNG = seed("image/cap16.png")
+write("capture-truncated.png", CAP_PNG[: len(CAP_PNG) // 2])
+write("capture-giga.png", png(GIGA_SIDE, GIGA_SIDE, zlib.compress(b"\0" * 64)))
+write("scene-giga.png", png(GIGA_SIDE, GIGA_SIDE, zlib.compress(b"\0" * 64)))
+bad_crc = bytearray(CAP_PNG)
+bad_crc[29] ^= 0xFF  # inside IHDR's CRC (8 signature + 8 chunk header + 13 data = byte 29)
+write("capture-bad-crc.png", bytes(bad_crc))
+write("capture-zero-width.png", png(0, 28, zlib.compress(b"\0" * 64)))
+
+# ---------------------------------------------------------------- GDSII
+
+
+def gds_records(data):
+    i, out = 0, []
+    while i < len(data):
+        n, kind, dtype = struct.unpack(">HBB", data[i:i + 4])
+        if n == 0:
+            break
+        out.append((kind, dtype, data[i + 4:i + n]))
+        i += n
+    return out
+
+
+def gds_bytes(records):
+    return b"".join(struct.pack(">HBB", 4 + len(d), k, t) + d for k, t, d in records)
+
+
+GDS = seed("gds/clear.gds")
+write("layout-truncated.gds", GDS[: len(GDS) // 2])
+write("layout-wrong-magic.gds", b"\x00\x06\x7f\x02\x02\x58" + GDS[6:])
+recs = gds_records(GDS)
+first_xy = next(i for i, r in enumerate(recs) if r[0] == 0x10)
+zero_area = list(recs)
+zero_area[first_xy] = (0x10, 3, struct.pack(">10i", 0, 0, 1000, 0, 2000, 0, 3000, 0, 0, 0))
+write("layout-zero-area.gds", gds_bytes(zero_area))
+huge_record = bytearray(GDS)
+struct.pack_into(">H", huge_record, 138, 0xFFF0)  # the first XY record claims 65520 bytes
+write("layout-huge-record.gds", bytes(huge_record))
+
+# ---------------------------------------------------------------- DXF / Gerber / SVG (text)
+DXF = seed("dxf/clear.dxf").decode()
+write("layout-truncated.dxf", DXF[: len(DXF) // 2])
+dxf_vertex = " 10\n-1540\n 20\n660\n"
+assert dxf_vertex in DXF
+write("layout-nan.dxf", DXF.replace(dxf_vertex, " 10\nnan\n 20\n660\n", 1))
+write("layout-huge-coordinate.dxf", DXF.replace(dxf_vertex, " 10\n1e300\n 20\n660\n", 1))
+# The first polyline's four vertices all on y = 660: a zero-area ring.
+zero = DXF.replace(" 20\n1100\n", " 20\n660\n", 2)
+write("layout-zero-area.dxf", zero)
+
+GBR = seed("gerber/clear.gbr").decode()
+write("layout-truncated.gbr", GBR[: len(GBR) // 2])
+write("layout-huge-coordinate.gbr",
+      GBR.replace("X-1540000Y660000D02*", "X-154000000000000000000000Y660000D02*", 1))
+write("layout-zero-area.gbr",
+      GBR.replace("X-1100000Y1100000D01*\nX-1540000Y1100000D01*",
+                  "X-1100000Y660000D01*\nX-1540000Y660000D01*", 1))
+
+SVG = seed("svg/clear.svg").decode()
+write("layout-truncated.svg", SVG[: len(SVG) // 2])
+first_path = 'd="M-1540,-660L-1100,-660L-1100,-1100L-1540,-1100Z"'
+assert first_path in SVG
+write("layout-nan.svg", SVG.replace(first_path, 'd="M-1540,-660LNaN,-660L-1100,-1100L-1540,-1100Z"'))
+write("layout-zero-area.svg",
+      SVG.replace(first_path, 'd="M-1540,-660L-1100,-660L-1320,-660L-1540,-660Z"'))
+write("layout-huge-coordinate.svg",
+      SVG.replace(first_path, 'd="M-1540,-660L1e300,-660L-1100,-1100L-1540,-1100Z"'))
