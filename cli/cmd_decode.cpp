@@ -297,8 +297,9 @@ mismatch is reported on stderr and in the stats (skipped, with the reason, when 
 holds fewer than two periods along an axis).
 Output: PNG clips negatives to 0 and multiplies by 1/max over all channels (or by --scale),
 then writes 8- or 16-bit; .tif/.tiff (float32) and .npy (float32) hold the raw estimate.
-Orientation: the output is in the capture's pixel grid, not flipped or mirrored: row 0 is the
-capture's top row, column 0 its left column; a point at the PSF's centre pixel maps to itself.
+Orientation: the output is in the decoded window's pixel grid, never flipped or mirrored: row 0
+is the window's top row, column 0 its left column; a capture identical to the PSF decodes to a
+point at (row floor(H/2), column floor(W/2)), the PSF's centre (deconvwnr convention).
 Units: with --normalize none the PSF is scaled to unit sum and the estimate is in capture
 counts; with --normalize l2 both are divided by their L2 norms (the DiffuserCam tutorial).
 Also written: OUT.config.json (the resolved configuration) next to the output.
@@ -330,7 +331,9 @@ void setup(CLI::App& app) {
                     "Window decoded: center (the period centred in the frame), none (whole frame, "
                     "PSF zero-padded), or X,Y (top-left column,row of one period)")
         ->capture_default_str();
-    cmd->add_option("--method", o->method, "wiener | tikhonov | tv | tvqc | rl")
+    cmd->add_option("--method", o->method,
+                    "wiener (closed form, deconvwnr) | tikhonov (closed form) | tv (TV-L2, "
+                    "ADMM) | tvqc (min TV s.t. ||Ax - p||_2 <= eps) | rl (Richardson-Lucy)")
         ->check(CLI::IsMember({"wiener", "tikhonov", "tv", "tvqc", "rl"}))
         ->capture_default_str();
     cmd->add_option(
@@ -339,9 +342,13 @@ void setup(CLI::App& app) {
            "convolution then crop: lensless captures, non-cyclic masks)")
         ->check(CLI::IsMember({"cyclic", "linear"}))
         ->capture_default_str();
-    cmd->add_option("--nsr", o->nsr, "Wiener noise-to-signal power ratio (>= 0)")
+    cmd->add_option(
+           "--nsr", o->nsr,
+           "Wiener noise-to-signal power ratio, dimensionless (>= 0); relative to |H|^2 of "
+           "the PSF as normalised (sum 1: |H(0)| = 1)")
         ->capture_default_str();
-    cmd->add_option("--lambda", o->lambda, "Tikhonov / TV regularisation weight (>= 0)")
+    cmd->add_option("--lambda", o->lambda,
+                    "Tikhonov / TV regularisation weight, dimensionless (>= 0)")
         ->capture_default_str();
     cmd->add_option("--regulariser", o->regulariser, "Tikhonov: identity | gradient")
         ->check(CLI::IsMember({"identity", "gradient"}))

@@ -127,6 +127,13 @@ TEST_CASE("decode of one period returns the scene (Wiener, float TIFF out, stats
     CHECK(s["period_check"]["checked"] == false);
     CHECK(s["period_check"]["rows"]["skip_reason"].get<std::string>().find("needs at least 2") !=
           std::string::npos);
+    // --json prints the same stats on stdout.
+    const auto j = run_cli("decode " + dir / "cap.tiff" + " --psf " + dir / "psf.tiff" +
+                           " --nsr 1e-9 -o " + dir / "x2.tiff --json");
+    REQUIRE(j.exit_code == 0);
+    const auto js = nlohmann::json::parse(j.out);
+    CHECK(js["format"] == "pinmask-decode-stats");
+    CHECK(js["channels"][0]["residual"] == s["channels"][0]["residual"]);
     // The resolved configuration sits next to the output.
     const auto cfg = read_json(dir / "x.tiff.config.json");
     CHECK(cfg["method"] == "wiener");
