@@ -1,5 +1,7 @@
 #include "bench/export_bench.hpp"
 
+#include <time.h>
+
 #include <chrono>
 #include <cstdio>
 #include <functional>
@@ -22,14 +24,33 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-double time_min(int repeat, const std::function<void()>& f) {
-    double best = 1e300;
+struct Timing {
+    double wall = 1e300;
+    double cpu = 1e300;
+};
+
+double thread_cpu_seconds() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+Timing time_min(int repeat, const std::function<void()>& f) {
+    Timing best;
     for (int i = 0; i < repeat; ++i) {
         const auto t0 = Clock::now();
+        const double c0 = thread_cpu_seconds();
         f();
-        best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
+        best.cpu = std::min(best.cpu, thread_cpu_seconds() - c0);
+        best.wall = std::min(best.wall, std::chrono::duration<double>(Clock::now() - t0).count());
     }
     return best;
+}
+
+ExportBenchRecord record(std::string stage, Timing t, std::size_t bytes, std::string reference,
+                         Timing ref) {
+    return {std::move(stage),     t.wall,   t.cpu,   bytes,
+            std::move(reference), ref.wall, ref.cpu, ref.cpu > 0 ? t.cpu / ref.cpu : 0.0};
 }
 
 void fwrite_file(const fs::path& p, const std::string& bytes) {
@@ -91,40 +112,41 @@ ExportBenchResult bench_export(const ExportBenchOptions& o) {
     const Mask mask = bench_mask(o);
     res.pinholes = mask.pattern.pinholes.size();
     Layout layout;
-    const double t_layout = time_min(o.repeat, [&] { layout = make_layout(mask, {}); });
+    const Timing t_layout = time_min(o.repeat, [&] { layout = make_layout(mask, {}); });
     res.polygons = layout.polygons.size();
     std::vector<Ring> copy;
-    const double t_copy = time_min(o.repeat, [&] { copy = layout.polygons; });
-    res.records.push_back({"layout", t_layout, 0, "copy the polygon list", t_copy, 0});
-    res.total_seconds = t_layout;
+    const Timing t_copy = time_min(o.repeat, [&] { copy = layout.polygons; });
+    res.records.push_back(record("layout", t_layout, 0, "copy the polygon list", t_copy));
+    res.total_seconds = t_layout.wall;
+    res.total_cpu_seconds = t_layout.cpu;
 
     for (FabFormat f : {FabFormat::kSvg, FabFormat::kPdf, FabFormat::kGds, FabFormat::kDxf,
                         FabFormat::kGerber, FabFormat::kPng}) {
         const fs::path path = o.scratch_dir / ("bench" + fab_extension(f));
         const fs::path ref = o.scratch_dir / ("reference" + fab_extension(f));
         std::string bytes;
-        const double t = time_min(o.repeat, [&] {
+        const Timing t = time_min(o.repeat, [&] {
             bytes = write_format(f, layout, o.dpi);
             fwrite_file(path, bytes);
         });
-        const double t_ref = time_min(o.repeat, [&] { fwrite_file(ref, bytes); });
+        const Timing t_ref = time_min(o.repeat, [&] { fwrite_file(ref, bytes); });
         const std::string name = fab_format_name(f);
         res.records.push_back(
-            {name + " write", t, bytes.size(), "fwrite of the same bytes", t_ref, 0});
-        res.total_seconds += t;
+            record(name + " write", t, bytes.size(), "fwrite of the same bytes", t_ref));
+        res.total_seconds += t.wall;
+        res.total_cpu_seconds += t.cpu;
         if (!is_readable(f)) continue;
         std::size_t rings = 0;
-        const double t_read =
+        const Timing t_read =
             time_min(o.repeat, [&] { rings = read_fabrication_bytes(bytes, f).rings.size(); });
         if (rings != layout.polygons.size())
             throw RuntimeFailure("bench: " + name + " read back " + std::to_string(rings) +
                                  " rings, wrote " + std::to_string(layout.polygons.size()));
         std::string dup;
-        const double t_dup = time_min(o.repeat, [&] { dup = bytes; });
-        res.records.push_back({name + " read", t_read, bytes.size(), "copy the bytes", t_dup, 0});
+        const Timing t_dup = time_min(o.repeat, [&] { dup = bytes; });
+        res.records.push_back(
+            record(name + " read", t_read, bytes.size(), "copy the bytes", t_dup));
     }
-    for (ExportBenchRecord& r : res.records)
-        r.ratio = r.reference_seconds > 0 ? r.seconds / r.reference_seconds : 0.0;
     return res;
 }
 

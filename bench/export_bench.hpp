@@ -6,7 +6,9 @@
 //   layout            make_layout             vs copying the resulting polygon list
 //   <format> write    writer + fwrite to disk vs fwrite of the same number of bytes
 //   <format> read     reader on the bytes     vs copying the bytes
-// Each figure is the minimum over `repeat` runs (the run least disturbed by other load).
+// Each stage is timed as wall-clock seconds and as CPU seconds of the calling thread (what "on
+// one core" costs, undisturbed by other processes on a shared machine); each figure is the
+// minimum over `repeat` runs. Ratios use the CPU times.
 #pragma once
 
 #include <cstddef>
@@ -27,18 +29,21 @@ struct ExportBenchOptions {
 };
 
 struct ExportBenchRecord {
-    std::string stage;  // "layout", "svg write", "gds read", ...
-    double seconds = 0.0;
+    std::string stage;         // "layout", "svg write", "gds read", ...
+    double seconds = 0.0;      // wall clock
+    double cpu_seconds = 0.0;  // this thread's CPU time
     std::size_t bytes = 0;
     std::string reference;  // what the reference did
     double reference_seconds = 0.0;
-    double ratio = 0.0;  // seconds / reference_seconds
+    double reference_cpu_seconds = 0.0;
+    double ratio = 0.0;  // cpu_seconds / reference_cpu_seconds
 };
 
 struct ExportBenchResult {
     std::size_t pinholes = 0;
     std::size_t polygons = 0;
-    double total_seconds = 0.0;  // layout + every write (what `pinmask export` spends writing)
+    double total_seconds = 0.0;      // layout + every write, wall clock
+    double total_cpu_seconds = 0.0;  // layout + every write, CPU time of the thread
     std::vector<ExportBenchRecord> records;
 };
 

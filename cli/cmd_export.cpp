@@ -1,22 +1,28 @@
-// `pinmask export`: mask file -> fabrication files (SVG, PDF, GDSII, DXF, Gerber, PNG preview)
-// and a sidecar JSON tying every file to the mask's geometry hash, units, tone and mirroring.
-// Every GDS/DXF/Gerber/SVG file is read back from disk and compared with the design polygons
-// (exact equality of the canonical ring sets); any difference makes the export fail with no
-// files. The design-rule check (export/drc) runs on the layout and is reported (and enforced
-// with --require-drc-clean). All files appear together or not at all (StagedFiles).
+// `pinmask export`: mask file -> fabrication files (SVG, PDF, GDSII, DXF, Gerber, PNG preview),
+// the PSF files (cli/psf_files, as `pinmask psf` writes them) and a sidecar JSON tying every
+// file to the mask's geometry hash, units, tone and mirroring. Every GDS/DXF/Gerber/SVG file is
+// read back from disk and compared with the design polygons (equal canonical ring sets, or zero
+// XOR area between the rings that differ); any difference makes the export fail with no files.
+// The design-rule check (export/drc) runs on the layout and is reported (and enforced with
+// --require-drc-clean). The fabrication files and the sidecar are staged together; the PSF
+// files commit as their own group just before them and are removed if the commit fails.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "cli/command.hpp"
 #include "cli/mask_json.hpp"
+#include "cli/psf_files.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
+#include "design/psf.hpp"
 #include "export/drc.hpp"
 #include "export/dxf_writer.hpp"
 #include "export/gds_writer.hpp"
@@ -51,6 +57,7 @@ struct ExportOptions {
     double dpi = 2400;
     std::string vendor = "none";
     bool require_drc_clean = false, allow_spacing_violations = false, json = false;
+    bool no_psf = false, psf_npy = false;
 };
 
 std::string default_stem(const fs::path& input) {
@@ -147,27 +154,59 @@ std::string units_of(FabFormat f) {
     return "";
 }
 
-// Reads a staged file back from disk and compares it with the design; throws RuntimeFailure
-// (the export is refused) on any difference.
+bool ring_less(const Ring& a, const Ring& b) {
+    return std::lexicographical_compare(
+        a.begin(), a.end(), b.begin(), b.end(),
+        [](const PointNm& p, const PointNm& q) { return p.x != q.x ? p.x < q.x : p.y < q.y; });
+}
+
+// Reads a staged file back from disk and compares it with the design: equal canonical ring
+// sets, or else zero XOR area (export/xor_area, exact) between the rings that differ (the
+// common rings cancel: rings of one set never overlap). Throws RuntimeFailure (the export is
+// refused) otherwise, or when the file lacks the mask hash.
 std::string verify(const fs::path& tmp, FabFormat f, const std::vector<Ring>& design,
                    const Layout& l) {
     const FileGeometry g = read_fabrication_bytes(file_bytes(tmp), f);
     const std::vector<Ring> got = canonical_rings(g.rings);
-    if (got != design) {
-        std::string detail;
-        try {
-            detail = ", XOR area " + std::to_string(xor_area_nm2(got, design) * 1e-6) + " um^2";
-        } catch (const Error& e) {
-            detail = " (" + std::string(e.what()) + ")";
-        }
-        throw RuntimeFailure(fab_format_name(f) + " file read back differs from the design: " +
-                             std::to_string(got.size()) + " rings against " +
-                             std::to_string(design.size()) + detail);
-    }
     const auto hash = g.info.find("hash");
     if (hash == g.info.end() || hash->second != l.mask_hash)
         throw RuntimeFailure(fab_format_name(f) + " file read back lacks the mask hash");
-    return "read back: " + std::to_string(got.size()) + " polygons identical to the design";
+    if (got == design)
+        return "read back: " + std::to_string(got.size()) + " polygons identical to the design";
+    std::vector<Ring> only_file, only_design;
+    std::set_difference(got.begin(), got.end(), design.begin(), design.end(),
+                        std::back_inserter(only_file), ring_less);
+    std::set_difference(design.begin(), design.end(), got.begin(), got.end(),
+                        std::back_inserter(only_design), ring_less);
+    const double xor_nm2 = xor_area_nm2(only_file, only_design);
+    if (xor_nm2 != 0)
+        throw RuntimeFailure(fab_format_name(f) + " file read back differs from the design: " +
+                             std::to_string(only_file.size()) + " rings only in the file, " +
+                             std::to_string(only_design.size()) + " only in the design, XOR area " +
+                             std::to_string(xor_nm2 * 1e-6) + " um^2");
+    return "read back: same area as the design (XOR 0), " + std::to_string(got.size()) +
+           " polygons";
+}
+
+// The PSF of one period (design/psf) and its sidecar fields, as `pinmask psf` writes them.
+std::pair<Plane, PsfSidecar> mask_psf(const Mask& mask, const std::string& mask_path) {
+    const int ppc = mask.psf.pixels_per_cell;
+    check_psf_memory(mask.pattern.n, ppc, 2, 0);
+    const Kernel kernel = mask_kernel(mask);
+    PsfSidecar s;
+    s.mask_geometry_hash = geometry_hash(mask);
+    s.mask_file = mask_path;
+    s.grid_n = mask.pattern.n;
+    s.pixels_per_cell = ppc;
+    s.pixel_pitch_m = mask.camera.pixel_pitch_m;
+    s.kernel_model = kernel_model_name(kernel.model);
+    s.kernel_reason = kernel.model_reason;
+    s.wavelengths = kernel.wavelengths;
+    s.kernel_enclosed_energy = kernel.enclosed_energy;
+    s.kernel_support_capped = kernel.support_capped;
+    s.kernel_rows = static_cast<int>(kernel.values.rows());
+    s.kernel_cols = static_cast<int>(kernel.values.cols());
+    return {synthesize_psf(mask.pattern, kernel, ppc), s};
 }
 
 json box_json(const BoxNm& b) { return json::array({b.x0, b.y0, b.x1, b.y1}); }
@@ -193,6 +232,9 @@ void run_export(const ExportOptions& o) {
         throw RuntimeFailure("design-rule check (" + o.vendor + ") found violations:" + what +
                              "; run `pinmask check` for details");
     }
+
+    std::optional<std::pair<Plane, PsfSidecar>> psf;
+    if (!o.no_psf) psf = mask_psf(mask, o.input);
 
     std::vector<std::pair<FabFormat, std::string>> contents;
     for (FabFormat f : formats) contents.push_back({f, bytes_for(f, layout, o)});
@@ -251,9 +293,30 @@ void run_export(const ExportOptions& o) {
                    {"annotations", layout.annotations.size()}}},
                  {"drc", drc_json},
                  {"files", files},
-                 {"psf", "not written: PSF export is not available in this build"}};
-    staged.stage_bytes(out_dir / (stem + ".export.json"), side.dump(2) + "\n");
-    staged.commit();
+                 {"psf", "not written (--no-psf)"}};
+    // The PSF files commit as their own group (cli/psf_files); they are removed again if the
+    // fabrication files cannot be committed after them.
+    std::vector<fs::path> psf_written;
+    if (psf) {
+        psf_written =
+            write_psf_files(out_dir / (stem + ".psf.tiff"), psf->first, psf->second, o.psf_npy);
+        json names = json::array();
+        for (const fs::path& p : psf_written) names.push_back(p.filename().string());
+        side["psf"] = {{"files", names},
+                       {"kernel", psf->second.kernel_model},
+                       {"pixels_per_cell", psf->second.pixels_per_cell},
+                       {"size_px", {psf->first.rows(), psf->first.cols()}}};
+    }
+    try {
+        staged.stage_bytes(out_dir / (stem + ".export.json"), side.dump(2) + "\n");
+        staged.commit();
+    } catch (...) {
+        for (const fs::path& p : psf_written) {
+            std::error_code ec;
+            fs::remove(p, ec);
+        }
+        throw;
+    }
 
     if (o.json) {
         std::cout << side.dump(2) << "\n";
@@ -266,11 +329,11 @@ void run_export(const ExportOptions& o) {
     for (const json& f : files)
         std::cout << "  " << f["name"].get<std::string>() << "  " << f["bytes"].get<std::size_t>()
                   << " bytes  " << f["verification"].get<std::string>() << "\n";
+    for (const fs::path& p : psf_written) std::cout << "  " << p.filename().string() << "  PSF\n";
     std::cout << "  " << stem << ".export.json  sidecar\n";
     std::cout << "design-rule check (" << o.vendor
               << "): " << (drc.clean() ? "clean" : "violations") << "\n";
     for (const auto& [rule, n] : drc.counts) std::cout << "  " << rule << ": " << n << "\n";
-    std::cerr << "note: PSF files are not written by this build\n";
 }
 
 void setup(CLI::App& app) {
@@ -278,8 +341,9 @@ void setup(CLI::App& app) {
     auto* cmd = app.add_subcommand(
         "export",
         "Mask file -> fabrication files: SVG (um, 1:1), PDF (1:1 with scale bar), GDSII (1 nm "
-        "database unit), DXF R12 (um), Gerber X2 (mm), PNG preview, and <stem>.export.json tying "
-        "them to the mask hash. Geometry in integer nm, origin at the mask centre, mask row 0 at "
+        "database unit), DXF R12 (um), Gerber X2 (mm), PNG preview, the PSF (<stem>.psf.tiff + "
+        ".json) and <stem>.export.json tying them to the mask hash. Geometry in integer nm, origin "
+        "at the mask centre, mask row 0 at "
         "the top. GDS/DXF/Gerber/SVG files are read back and must match the design exactly, "
         "else nothing is written (exit 1).");
     cmd->add_option("input", o->input, "The mask file (*.mask.json)")->required();
@@ -316,11 +380,14 @@ void setup(CLI::App& app) {
                   "Fail (exit 1, no files) when the design-rule check finds violations");
     cmd->add_flag("--allow-spacing-violations", o->allow_spacing_violations,
                   "Read masks that break their spacing rule (touching pinholes are merged)");
+    cmd->add_flag("--no-psf", o->no_psf,
+                  "Do not write the PSF files (<stem>.psf.tiff and its .json, as `pinmask psf`)");
+    cmd->add_flag("--npy", o->psf_npy, "Also write the PSF as <stem>.psf.npy");
     cmd->add_flag("--json", o->json, "Print the sidecar JSON on stdout instead of a table");
     cmd->footer(
         "Example:\n  pinmask export paper.mask.json --format svg,gds,pdf --tone clear --marks "
         "--label --frame 1mm -o out/\n  writes out/paper.svg, out/paper.gds, out/paper.pdf and "
-        "out/paper.export.json");
+        "out/paper.psf.tiff, out/paper.psf.json and out/paper.export.json");
     cmd->callback([o] { run_export(*o); });
 }
 

@@ -63,7 +63,7 @@ TEST_CASE("export writes every format plus a sidecar, and the SVG matches the go
     CHECK(names_in(dir.path / "out") ==
           std::vector<std::string>{"golden4x4.dxf", "golden4x4.export.json", "golden4x4.gbr",
                                    "golden4x4.gds", "golden4x4.pdf", "golden4x4.png",
-                                   "golden4x4.svg"});
+                                   "golden4x4.psf.json", "golden4x4.psf.tiff", "golden4x4.svg"});
     const std::string golden = std::string(PINMASK_SOURCE_DIR) + "/tests/export/golden/";
     CHECK(slurp(dir / "out/golden4x4.svg") == slurp(golden + "golden4x4.svg"));
     CHECK(slurp(dir / "out/golden4x4.dxf") == slurp(golden + "golden4x4.dxf"));
@@ -73,6 +73,9 @@ TEST_CASE("export writes every format plus a sidecar, and the SVG matches the go
     CHECK(side["mask"]["geometry_hash"] == "8929e0407826140f");
     CHECK(side["geometry"]["tone"] == "clear");
     CHECK(side["geometry"]["mirrored"] == false);
+    CHECK(side["psf"]["files"].size() == 2);
+    const auto psf = nlohmann::json::parse(slurp(dir / "out/golden4x4.psf.json"));
+    CHECK(psf["mask_geometry_hash"] == "8929e0407826140f");
     REQUIRE(side["files"].size() == 6);
     for (const auto& f : side["files"]) {
         const std::string name = f["name"];
@@ -111,11 +114,13 @@ TEST_CASE("touching pinholes (spacing rule off) are merged; --require-drc-clean 
     const std::string mask = dir / "dense.mask.json";
     std::ofstream(mask) << mask_json(5, {{0, 0}, {0, 1}, {1, 1}, {3, 3}, {4, 4}}, 2, 0.0, true);
     const auto r =
-        run_cli("export '" + mask + "' --format gds,svg --json -o '" + (dir / "o") + "'");
+        run_cli("export '" + mask + "' --format gds,svg --no-psf --json -o '" + (dir / "o") + "'");
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
     const auto side = nlohmann::json::parse(r.out);
     CHECK(side["geometry"]["polygons"].get<int>() < 5 * 4);
+    CHECK(names_in(dir.path / "o") ==
+          std::vector<std::string>{"dense.export.json", "dense.gds", "dense.svg"});
     const auto strict =
         run_cli("export '" + mask + "' --require-drc-clean -o '" + (dir / "strict") + "'");
     CHECK(strict.exit_code == 1);
