@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "cli/analytic_setup.hpp"
 #include "cli/camera_options.hpp"
 #include "cli/command.hpp"
 #include "cli/interrupt.hpp"
@@ -40,7 +41,7 @@ struct Options {
     double snr_db = 30.0;
     std::string filter = "optimal";
     double w_analytic = 1.0, w_max_sidelobe = 0.0, w_sidelobe_energy = 0.0, w_min_spectrum = 0.0;
-    int prior_scenes = 16;
+    int prior_scenes = kDefaultPriorScenes;
     std::string keep_out = "none";
     std::vector<std::string> rerank_scenes{"letter-R", "usaf", "siemens-star"};
     bool rerank_tv = true;
@@ -48,16 +49,6 @@ struct Options {
     std::string output;
     bool json = false;
 };
-
-WienerFilterSpec parse_filter(const std::string& text) {
-    if (text == "optimal") return {WienerFilterKind::kOptimal, 0.0};
-    if (text.rfind("nsr:", 0) == 0) {
-        const double nsr = parse_number(text.substr(4), "--filter nsr");
-        if (!(nsr > 0.0)) throw invalid_field("--filter", text, "NSR must be > 0");
-        return {WienerFilterKind::kFixedNsr, nsr};
-    }
-    throw invalid_field("--filter", text, "expected 'optimal' or 'nsr:VALUE' (e.g. nsr:0.01)");
-}
 
 std::vector<Cell> keep_out_cells(const std::string& spec, int n) {
     std::vector<Cell> cells;
@@ -172,7 +163,7 @@ void run(const Options& o) {
     so.top = o.top;
     so.keep_out = keep_out_cells(o.keep_out, tmpl.pattern.n);
     so.validate();
-    const WienerFilterSpec filter = parse_filter(o.filter);
+    const WienerFilterSpec filter = parse_wiener_filter(o.filter);
     ObjectiveWeights weights{o.w_analytic, o.w_max_sidelobe, o.w_sidelobe_energy, o.w_min_spectrum};
     weights.validate();
     if (o.output.empty()) throw InvalidInput("-o/--output: an output folder is required");
@@ -182,12 +173,8 @@ void run(const Options& o) {
     const Kernel kernel = mask_kernel(tmpl);
     std::shared_ptr<const AnalyticWienerModel> model;
     if (weights.analytic_wiener > 0.0) {
-        NoiseModel noise;
-        noise.kind = NoiseKind::kGaussianSnr;
-        noise.snr_db = o.snr_db;
         model = std::make_shared<AnalyticWienerModel>(
-            expand_half_spectrum(kernel_spectrum(kernel, n, ppc), m),
-            natural_scene_prior(m, m, o.prior_scenes), noise);
+            analytic_wiener_model(kernel, n, ppc, o.snr_db, o.prior_scenes));
     }
     const MaskObjective objective(weights, model, filter);
     RandomSparseOptions ro;

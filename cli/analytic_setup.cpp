@@ -1,0 +1,31 @@
+#include "cli/analytic_setup.hpp"
+
+#include "core/error.hpp"
+#include "core/fft.hpp"
+#include "core/units.hpp"
+#include "design/psf.hpp"
+#include "optimize/scene_prior.hpp"
+
+namespace pinmask::cli {
+
+AnalyticWienerModel analytic_wiener_model(const Kernel& kernel, int n, int pixels_per_cell,
+                                          double snr_db, int prior_scenes) {
+    const int m = n * pixels_per_cell;
+    NoiseModel noise;
+    noise.kind = NoiseKind::kGaussianSnr;
+    noise.snr_db = snr_db;
+    return AnalyticWienerModel(expand_half_spectrum(kernel_spectrum(kernel, n, pixels_per_cell), m),
+                               natural_scene_prior(m, m, prior_scenes), noise);
+}
+
+WienerFilterSpec parse_wiener_filter(const std::string& text) {
+    if (text == "optimal") return {WienerFilterKind::kOptimal, 0.0};
+    if (text.rfind("nsr:", 0) == 0) {
+        const double nsr = parse_number(text.substr(4), "--filter nsr");
+        if (!(nsr > 0.0)) throw invalid_field("--filter", text, "NSR must be > 0");
+        return {WienerFilterKind::kFixedNsr, nsr};
+    }
+    throw invalid_field("--filter", text, "expected 'optimal' or 'nsr:VALUE' (e.g. nsr:0.01)");
+}
+
+}  // namespace pinmask::cli
