@@ -122,9 +122,31 @@ Kernel::FT area(const PolygonSet& set) {
 
 enum class Op { kXor, kIntersection, kUnion };
 
+// The two index lists name the same multiset of canonical rings (so their unions are equal).
+bool same_rings(const std::vector<Ring>& rings, const std::vector<std::size_t>& a,
+                const std::vector<std::size_t>& b) {
+    if (a.size() != b.size()) return false;
+    const auto sorted = [&](const std::vector<std::size_t>& idx) {
+        std::vector<const Ring*> out;
+        for (std::size_t i : idx) out.push_back(&rings[i]);
+        std::sort(out.begin(), out.end(), [](const Ring* p, const Ring* q) {
+            return std::lexicographical_compare(p->begin(), p->end(), q->begin(), q->end(),
+                                                [](const PointNm& u, const PointNm& v) {
+                                                    return u.x != v.x ? u.x < v.x : u.y < v.y;
+                                                });
+        });
+        return out;
+    };
+    const auto sa = sorted(a), sb = sorted(b);
+    for (std::size_t k = 0; k < sa.size(); ++k) {
+        if (*sa[k] != *sb[k]) return false;
+    }
+    return true;
+}
+
 // Area of `op` over a and b. Rings whose (closed) bounding boxes are connected form a group;
 // regions of different groups are disjoint, so the area is a sum over groups. Groups of one
-// ring, of two equal rings or of two rectangles are done in integers; the rest in CGAL.
+// ring, of equal ring sets (xor) or of two rectangles are done in integers; the rest in CGAL.
 double area_of(const std::vector<Ring>& a, const std::vector<Ring>& b, Op op) {
     std::vector<Ring> rings;
     rings.reserve(a.size() + b.size());

@@ -1,6 +1,7 @@
 // XOR area of polygon sets against hand-computed areas and an independent raster count.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -26,6 +27,15 @@ TEST_CASE("identical sets have zero XOR area") {
     const std::vector<Ring> a = {rect(0, 0, 1000, 1000), rect(3000, -500, 3700, 2100)};
     CHECK(xor_area_nm2(a, a) == kExactArea);
     CHECK(xor_area_nm2({}, {}) == kExactArea);
+    // Touching pieces (one group) in another order, starting at other vertices: still equal.
+    const std::vector<Ring> pieces = {rect(0, 0, 1000, 1000), rect(1000, 0, 2000, 500),
+                                      rect(1000, 500, 2000, 1000)};
+    std::vector<Ring> shuffled = {pieces[2], pieces[0], pieces[1]};
+    std::rotate(shuffled[1].begin(), shuffled[1].begin() + 2, shuffled[1].end());
+    CHECK(xor_area_nm2(pieces, shuffled) == kExactArea);
+    // The same group with one piece changed goes through the exact Boolean operation.
+    shuffled[0] = rect(1000, 500, 2000, 1200);
+    CHECK(xor_area_nm2(pieces, shuffled) == 200'000.0);
 }
 
 TEST_CASE("XOR of a square and its shifted copy is the hand-computed value") {
