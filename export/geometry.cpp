@@ -229,7 +229,7 @@ Layout make_layout(const Mask& mask, const LayoutOptions& o) {
     if (!o.label_lines.empty()) {
         const std::int64_t px = length_nm(o.label_pixel_m, grid, "label_pixel", false);
         const std::int64_t gap = length_nm(o.mark_gap_m, grid, "mark_gap", false);
-        const std::int64_t bar_gap = std::max(grid, snap_nm(double(px) / 5, grid));
+        const std::int64_t bar_gap = std::max(grid, snap_nm(double(px) / 2, grid));
         if (px <= bar_gap || gap <= 0)
             throw invalid_field("label_pixel", nm_text(double(px)), "must be >= 2 grid steps");
         std::int64_t top = outline.y0 - gap;

@@ -48,7 +48,9 @@ struct LayoutOptions {
     double mark_width_m = 50e-6;           // width of each cross bar
     double mark_gap_m = 250e-6;            // clearance between the outline and marks / label
     std::vector<std::string> label_lines;  // empty: no label (see default_label_lines)
-    double label_pixel_m = 20e-6;          // font pixel; a character is 6 x 9 pixels
+    // Font pixel; a character is 6 x 9 pixels and bars are half a pixel apart (40 um: bars and
+    // gaps of 20 um, above the 16 um a film plotter needs).
+    double label_pixel_m = 40e-6;
     // Largest vertex count of a piece this code splits (cell unions, dark-tone pieces). Single
     // pinhole polygons are not split: a circle has the vertices its tolerance needs.
     std::size_t max_vertices = kGdsFriendlyMaxVertices;
