@@ -2,6 +2,7 @@
 
 #include <fftw3.h>
 
+#include <algorithm>
 #include <map>
 #include <mutex>
 #include <string>
@@ -20,8 +21,10 @@ std::mutex& planner_mutex() {
 }
 
 // Returns the cached plan for (kind, rows, cols), creating it on first use. Planning happens on
-// scratch buffers; execution uses the new-array interface, which FFTW_UNALIGNED makes valid for
-// any buffer.
+// fftw_malloc'd scratch buffers; execution uses the new-array interface, valid for buffers with
+// the same SIMD alignment (fftw_alignment_of == 0). Eigen allocates 64-byte aligned buffers
+// (EIGEN_MAX_ALIGN_BYTES in CMakeLists.txt); anything else goes through aligned copies, so one
+// plan per size always runs and results do not depend on where a buffer happens to lie.
 fftw_plan cached_plan(Kind kind, int rows, int cols) {
     static std::map<std::tuple<Kind, int, int>, fftw_plan> cache;
     std::lock_guard<std::mutex> lock(planner_mutex());
@@ -30,7 +33,7 @@ fftw_plan cached_plan(Kind kind, int rows, int cols) {
 
     const std::size_t n_real = static_cast<std::size_t>(rows) * cols;
     const std::size_t n_half = static_cast<std::size_t>(rows) * (cols / 2 + 1);
-    const unsigned flags = FFTW_ESTIMATE | FFTW_UNALIGNED;
+    const unsigned flags = FFTW_ESTIMATE;
     fftw_plan plan = nullptr;
     switch (kind) {
         case Kind::kR2C: {
@@ -78,6 +81,27 @@ void check_size(int rows, int cols) {
 
 fftw_complex* as_fftw(std::complex<double>* p) { return reinterpret_cast<fftw_complex*>(p); }
 
+bool aligned(const void* p) {
+    return fftw_alignment_of(reinterpret_cast<double*>(const_cast<void*>(p))) == 0;
+}
+
+// Runs `execute(in, out)` on FFTW-aligned buffers, copying through aligned temporaries when the
+// caller's buffers are not (never the case for Eigen arrays built by this project).
+template <class In, class Out, class F>
+void with_aligned(In* in, std::size_t n_in, Out* out, std::size_t n_out, F&& execute) {
+    if (aligned(in) && aligned(out)) {
+        execute(in, out);
+        return;
+    }
+    In* a = static_cast<In*>(fftw_malloc(sizeof(In) * n_in));
+    Out* b = static_cast<Out*>(fftw_malloc(sizeof(Out) * n_out));
+    std::copy(in, in + n_in, a);
+    execute(a, b);
+    std::copy(b, b + n_out, out);
+    fftw_free(a);
+    fftw_free(b);
+}
+
 }  // namespace
 
 Fft2::Fft2(int rows, int cols) : rows_(rows), cols_(cols) {
@@ -100,8 +124,10 @@ void Fft2::forward(const Plane& x, ComplexPlane& out) const {
     }
     out.resize(rows_, half_cols());
     // r2c with the default FFTW_PRESERVE_INPUT leaves the input untouched.
-    fftw_execute_dft_r2c(static_cast<fftw_plan>(r2c_), const_cast<double*>(x.data()),
-                         as_fftw(out.data()));
+    with_aligned(const_cast<double*>(x.data()), static_cast<std::size_t>(x.size()), out.data(),
+                 static_cast<std::size_t>(out.size()), [&](double* in, std::complex<double>* o) {
+                     fftw_execute_dft_r2c(static_cast<fftw_plan>(r2c_), in, as_fftw(o));
+                 });
 }
 
 Plane Fft2::inverse(const ComplexPlane& spectrum) const {
@@ -119,7 +145,10 @@ void Fft2::inverse(const ComplexPlane& spectrum, Plane& out, ComplexPlane& scrat
     }
     scratch = spectrum;  // multi-dimensional c2r destroys its input
     out.resize(rows_, cols_);
-    fftw_execute_dft_c2r(static_cast<fftw_plan>(c2r_), as_fftw(scratch.data()), out.data());
+    with_aligned(scratch.data(), static_cast<std::size_t>(scratch.size()), out.data(),
+                 static_cast<std::size_t>(out.size()), [&](std::complex<double>* in, double* o) {
+                     fftw_execute_dft_c2r(static_cast<fftw_plan>(c2r_), as_fftw(in), o);
+                 });
     out *= 1.0 / (static_cast<double>(rows_) * cols_);  // the one place 1/N is applied
 }
 
@@ -129,15 +158,31 @@ FftC2::FftC2(int rows, int cols) : rows_(rows), cols_(cols) {
     bwd_ = cached_plan(Kind::kC2CBackward, rows, cols);
 }
 
-ComplexPlane FftC2::forward(const ComplexPlane& x) const {
-    ComplexPlane in = x, out(rows_, cols_);
-    fftw_execute_dft(static_cast<fftw_plan>(fwd_), as_fftw(in.data()), as_fftw(out.data()));
+namespace {
+
+ComplexPlane execute_c2c(void* plan, const ComplexPlane& x, int rows, int cols) {
+    if (x.rows() != rows || x.cols() != cols) {
+        throw InvalidInput("complex FFT input is " + std::to_string(x.rows()) + " x " +
+                           std::to_string(x.cols()) + ", plan is " + std::to_string(rows) + " x " +
+                           std::to_string(cols));
+    }
+    ComplexPlane in = x, out(rows, cols);
+    const auto n = static_cast<std::size_t>(in.size());
+    with_aligned(in.data(), n, out.data(), n,
+                 [&](std::complex<double>* a, std::complex<double>* b) {
+                     fftw_execute_dft(static_cast<fftw_plan>(plan), as_fftw(a), as_fftw(b));
+                 });
     return out;
 }
 
+}  // namespace
+
+ComplexPlane FftC2::forward(const ComplexPlane& x) const {
+    return execute_c2c(fwd_, x, rows_, cols_);
+}
+
 ComplexPlane FftC2::inverse(const ComplexPlane& x) const {
-    ComplexPlane in = x, out(rows_, cols_);
-    fftw_execute_dft(static_cast<fftw_plan>(bwd_), as_fftw(in.data()), as_fftw(out.data()));
+    ComplexPlane out = execute_c2c(bwd_, x, rows_, cols_);
     out *= 1.0 / (static_cast<double>(rows_) * cols_);
     return out;
 }

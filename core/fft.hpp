@@ -8,9 +8,11 @@
 // half spectrum: an R x C real plane maps to R x (C/2 + 1) complex coefficients, the columns
 // l = 0 .. C/2; the rest follow from Hermitian symmetry X[k, l] = conj(X[-k, -l]).
 //
-// Plans are made once per (kind, size) with FFTW_ESTIMATE | FFTW_UNALIGNED (deterministic, any
-// buffer alignment), cached for the life of the process, and created under one mutex, so Fft2
-// objects may be constructed and used from any thread. Executing a plan is thread-safe.
+// Plans are made once per (kind, size) with FFTW_ESTIMATE (deterministic: no timing-dependent
+// choices), cached for the life of the process, and created under one mutex, so Fft2 objects may
+// be constructed and used from any thread. Executing a plan is thread-safe. Plans are SIMD-
+// aligned; Eigen buffers are 64-byte aligned project-wide (CMakeLists.txt), and other buffers
+// are copied through aligned temporaries, so results never depend on buffer addresses.
 #pragma once
 
 #include "core/image.hpp"
