@@ -26,15 +26,17 @@ inline std::string slurp(const std::filesystem::path& p) {
     return s.str();
 }
 
-// args is appended verbatim to the executable path (the caller quotes where needed).
-inline CliResult run_cli(const std::string& args) {
+// args is appended verbatim to the executable path (the caller quotes where needed); with a
+// working directory the command runs there.
+inline CliResult run_cli(const std::string& args, const std::filesystem::path& cwd = {}) {
     static int counter = 0;
     const auto dir = std::filesystem::temp_directory_path();
     const auto tag = std::to_string(::getpid()) + "-" + std::to_string(counter++);
     const auto out = dir / ("pinmask-cli-" + tag + ".out");
     const auto err = dir / ("pinmask-cli-" + tag + ".err");
-    const std::string cmd = std::string(PINMASK_EXE) + " " + args + " >" + out.string() + " 2>" +
-                            err.string() + " </dev/null";
+    const std::string cd = cwd.empty() ? "" : "cd '" + cwd.string() + "' && ";
+    const std::string cmd = cd + std::string(PINMASK_EXE) + " " + args + " >" + out.string() +
+                            " 2>" + err.string() + " </dev/null";
     const int status = std::system(cmd.c_str());
     CliResult r;
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
