@@ -1,0 +1,32 @@
+// `pinmask compare` results as the plain data of the report library (export/report.hpp) and as
+// a text table: the metrics table shared by stdout and page 1, and one page of captioned
+// panels per mask.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cli/compare_data.hpp"
+#include "design/camera.hpp"
+#include "export/report.hpp"
+
+namespace pinmask::cli {
+
+// What page 1 says besides the table: the camera and the settings, in words.
+struct CompareSummary {
+    Camera camera;
+    std::vector<std::string> settings_lines;
+    std::vector<std::string> baseline_lines;  // what each baseline is, or why it is missing
+};
+
+// The metrics table, one row per result (text cells, units in the second header line).
+ReportTable compare_table(const std::vector<CompareResult>& results);
+
+// The table as aligned text for stdout, with a legend line.
+std::string compare_table_text(const ReportTable& table);
+
+// The whole report document.
+ReportDocument compare_document(const std::vector<CompareResult>& results,
+                                const CompareSettings& settings, const CompareSummary& summary);
+
+}  // namespace pinmask::cli

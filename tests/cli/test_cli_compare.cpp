@@ -1,0 +1,214 @@
+// `pinmask compare` end to end on masks written with cli/mask_json (a small geometry so the
+// simulated figures stay fast: 8 x 8 cells of 4 pixels, a 32 x 32 period, one scene, short TV).
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <string>
+
+#include "cli/mask_json.hpp"
+#include "design/camera.hpp"
+#include "design/random_sparse.hpp"
+#include "tests/support/cli_run.hpp"
+
+using pinmask::test::run_cli;
+using pinmask::test::slurp;
+using pinmask::test::TempDir;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kFast = " --scenes letter-R --tv-iters 30 ";
+
+pinmask::Mask small_mask(std::uint64_t seed, int n = 8, int holes = 5) {
+    pinmask::RandomSparseOptions ro;
+    ro.n = n;
+    ro.holes = holes;
+    std::mt19937_64 rng(seed);
+    pinmask::Mask m;
+    m.camera = pinmask::paper_camera();
+    m.pattern = pinmask::random_sparse_pattern(ro, rng);
+    m.psf.pixels_per_cell = 4;
+    m.provenance.seed = seed;
+    m.provenance.generator = "test";
+    m.provenance.family = "random";
+    return m;
+}
+
+struct Masks {
+    TempDir dir{"compare"};
+    std::string a, b;
+    Masks() {
+        a = dir / "a.mask.json";
+        b = dir / "b.mask.json";
+        pinmask::cli::write_mask_file(a, small_mask(1));
+        pinmask::cli::write_mask_file(b, small_mask(2));
+    }
+    // Files in the folder besides the two masks.
+    std::size_t others() const {
+        std::size_t k = 0;
+        for (const auto& e : fs::directory_iterator(dir.path)) {
+            const std::string f = e.path().filename().string();
+            k += (f == "a.mask.json" || f == "b.mask.json") ? 0 : 1;
+        }
+        return k;
+    }
+};
+
+std::size_t count(const std::string& hay, const std::string& needle) {
+    std::size_t n = 0;
+    for (auto i = hay.find(needle); i != std::string::npos; i = hay.find(needle, i + 1)) ++n;
+    return n;
+}
+
+}  // namespace
+
+TEST_CASE("compare: two masks -> JSON table with unit-suffixed keys and a PDF report") {
+    Masks m;
+    const std::string report = m.dir / "r.pdf";
+    const auto r =
+        run_cli("compare " + m.a + " " + m.b + kFast + "--snr 25 --report " + report + " --json");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    REQUIRE(j["masks"].size() == 2);
+    for (const auto& row : j["masks"]) {
+        for (const char* key :
+             {"name", "kind", "geometry_hash", "n", "holes", "period_px", "spacing_ok",
+              "max_sidelobe", "peak_to_sidelobe_ratio", "min_abs_pattern_spectrum",
+              "spectral_flatness", "otf_condition_number", "analytic_wiener_psnr_db",
+              "wiener_psnr_db", "wiener_ssim", "wiener_nsr", "tv_psnr_db", "tv_ssim",
+              "tv_lambda"}) {
+            INFO(key);
+            CHECK(row.contains(key));
+        }
+        CHECK(row["kind"] == "input");
+        CHECK(row["holes"] == 5);
+        CHECK(row["period_px"] == 32);
+        CHECK(row["spacing_ok"] == true);
+        CHECK(row["wiener_ssim"].get<double>() <= 1.0);
+    }
+    CHECK(j["settings"]["snr_db"] == 25.0);
+    CHECK(!j.contains("baselines"));
+    // Title page + one page per mask, in one PDF; the configuration beside it.
+    const std::string pdf = slurp(report);
+    CHECK(pdf.rfind("%PDF-", 0) == 0);
+    CHECK(count(pdf, "/Type /Page") - count(pdf, "/Type /Pages") == 3);
+    const auto config = nlohmann::json::parse(slurp(m.dir / "r.config.json"));
+    CHECK(config["masks"] == j["masks"]);
+    CHECK(m.others() == 2);
+
+    // Same inputs, same bytes.
+    const std::string again = m.dir / "again.pdf";
+    REQUIRE(
+        run_cli("compare " + m.a + " " + m.b + kFast + "--snr 25 --report " + again).exit_code ==
+        0);
+    CHECK(slurp(again) == pdf);
+}
+
+TEST_CASE("compare --baselines: random median, paper-like and MURA rows; SVG pages") {
+    Masks m;
+    const std::string report = m.dir / "r.svg";
+    const auto r =
+        run_cli("compare " + m.a + " " + m.b + kFast +
+                "--baselines --baseline-count 5 --seed 3 --report " + report + " --json");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    REQUIRE(j["masks"].size() == 5);
+    const auto& median = j["masks"][2];
+    const auto& paper = j["masks"][3];
+    const auto& mura = j["masks"][4];
+    CHECK(median["kind"] == "random-median");
+    CHECK(median["n"] == 8);  // the first mask's geometry
+    CHECK(median["holes"] == 5);
+    CHECK(paper["kind"] == "paper-like");
+    CHECK(paper["n"] == 16);
+    CHECK(paper["holes"] == 20);
+    CHECK(mura["kind"] == "mura");
+    CHECK(mura["n"] == 5);       // largest prime 4m + 1 <= 8
+    CHECK(mura["holes"] == 12);  // (p^2 - 1) / 2
+    CHECK(mura["spacing_ok"] == false);
+    const auto& rnd = j["baselines"]["random"];
+    CHECK(rnd["count"] == 5);
+    const double lo = rnd["min_wiener_psnr_db"], mid = rnd["median_wiener_psnr_db"],
+                 hi = rnd["max_wiener_psnr_db"];
+    CHECK(lo <= mid);
+    CHECK(mid <= hi);
+    // The median row is recomputed from the same PSF, scenes and seeds: the same figure.
+    constexpr double kSameComputation = 1e-12;  // identical arithmetic, only printing differs
+    CHECK(std::fabs(median["wiener_psnr_db"].get<double>() - mid) <= kSameComputation * mid);
+    // The median draw is reproducible with generate, as its source line says.
+    const std::uint64_t seed = rnd["median_seed"];
+    CHECK(seed >= 3);
+    CHECK(seed < 8);
+    const std::string regen = m.dir / "median.mask.json";
+    REQUIRE(run_cli("generate --family random --grid 8 --holes 5 --pixels-per-cell 4 --seed " +
+                    std::to_string(seed) + " -o " + regen)
+                .exit_code == 0);
+    const auto g = run_cli("compare " + regen + kFast + "--json");
+    REQUIRE(g.exit_code == 0);
+    CHECK(nlohmann::json::parse(g.out)["masks"][0]["geometry_hash"] == median["geometry_hash"]);
+
+    // One SVG per page: title page + 5 mask pages.
+    for (int p = 1; p <= 6; ++p) {
+        const std::string svg = slurp(m.dir / ("r-" + std::to_string(p) + ".svg"));
+        CHECK(svg.rfind("<?xml", 0) == 0);
+        CHECK(svg.find("</svg>") != std::string::npos);
+    }
+    CHECK(!fs::exists(m.dir / "r-7.svg"));
+    CHECK(j["report"].size() == 6);
+}
+
+TEST_CASE("compare prints a table; grid sizes may differ, each mask on its own period") {
+    Masks m;
+    const std::string c = m.dir / "c.mask.json";
+    pinmask::cli::write_mask_file(c, small_mask(4, 11, 6));  // n = 11 (prime), same camera
+    const auto r = run_cli("compare " + m.a + " " + c + kFast);
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.out.find("a.mask.json") != std::string::npos);
+    CHECK(r.out.find("c.mask.json") != std::string::npos);
+    CHECK(r.out.find("PSNR dB") != std::string::npos);
+    const auto j = run_cli("compare " + m.a + " " + c + kFast + "--json");
+    REQUIRE(j.exit_code == 0);
+    CHECK(nlohmann::json::parse(j.out)["masks"][1]["period_px"] == 44);
+}
+
+TEST_CASE("compare: bad input is exit 2 with a message, and no report files") {
+    Masks m;
+    const std::string report = " --report " + (m.dir / "r.pdf");
+    // A missing mask file.
+    auto r = run_cli("compare " + m.a + " " + (m.dir / "missing.mask.json") + kFast + report);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("missing.mask.json") != std::string::npos);
+    CHECK(m.others() == 0);
+    // Rule: one camera per report. A mask for another pinhole size is refused, naming the field.
+    pinmask::Mask other = small_mask(5);
+    other.camera.pinhole_m = 500e-6;
+    const std::string o = m.dir / "other.mask.json";
+    pinmask::cli::write_mask_file(o, other);
+    r = run_cli("compare " + m.a + " " + o + kFast + report);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("pinhole_m") != std::string::npos);
+    fs::remove(o);
+    CHECK(m.others() == 0);
+    // Report formats and folders.
+    r = run_cli("compare " + m.a + kFast + "--report " + (m.dir / "r.jpg"));
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("--report") != std::string::npos);
+    r = run_cli("compare " + m.a + kFast + "--report " + (m.dir / "no/such/dir/r.pdf"));
+    CHECK(r.exit_code == 2);
+    // Flags out of range name themselves.
+    for (const std::string bad : {"--baseline-count 0", "--nsr 0", "--tv-lambda -1",
+                                  "--filter bogus", "--prior-scenes 0", "--tv-iters 0"}) {
+        r = run_cli("compare " + m.a + kFast + bad + report);
+        INFO(bad);
+        CHECK(r.exit_code == 2);
+        CHECK(r.err.find(bad.substr(0, bad.find(' '))) != std::string::npos);
+    }
+    CHECK(m.others() == 0);
+}
