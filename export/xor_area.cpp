@@ -201,7 +201,7 @@ double area_of(const std::vector<Ring>& a, const std::vector<Ring>& b, Op op) {
             exact += area(set);
             continue;
         }
-        if (same) continue;                  // xor of equal rings
+        if (same || (op == Op::kXor && same_rings(rings, in_a, in_b))) continue;  // equal sets
         if (in_a.empty() || in_b.empty()) {  // xor with nothing, or a union: the union's area
             const auto& only = in_a.empty() ? in_b : in_a;
             if (only.size() == 1) {
