@@ -193,19 +193,7 @@ std::pair<Plane, PsfSidecar> mask_psf(const Mask& mask, const std::string& mask_
     const int ppc = mask.psf.pixels_per_cell;
     check_psf_memory(mask.pattern.n, ppc, 2, 0);
     const Kernel kernel = mask_kernel(mask);
-    PsfSidecar s;
-    s.mask_geometry_hash = geometry_hash(mask);
-    s.mask_file = mask_path;
-    s.grid_n = mask.pattern.n;
-    s.pixels_per_cell = ppc;
-    s.pixel_pitch_m = mask.camera.pixel_pitch_m;
-    s.kernel_model = kernel_model_name(kernel.model);
-    s.kernel_reason = kernel.model_reason;
-    s.wavelengths = kernel.wavelengths;
-    s.kernel_enclosed_energy = kernel.enclosed_energy;
-    s.kernel_support_capped = kernel.support_capped;
-    s.kernel_rows = static_cast<int>(kernel.values.rows());
-    s.kernel_cols = static_cast<int>(kernel.values.cols());
+    const PsfSidecar s = psf_sidecar_for(mask, kernel, mask_path);
     return {synthesize_psf(mask.pattern, kernel, ppc), s};
 }
 

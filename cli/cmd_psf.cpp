@@ -53,19 +53,7 @@ void run(const PsfCommandOptions& o) {
     const Kernel kernel = mask_kernel(mask, ko);
     const Plane psf = synthesize_psf(mask.pattern, kernel, ppc);
 
-    PsfSidecar s;
-    s.mask_geometry_hash = geometry_hash(mask);
-    s.mask_file = o.mask;
-    s.grid_n = mask.pattern.n;
-    s.pixels_per_cell = ppc;
-    s.pixel_pitch_m = mask.camera.pixel_pitch_m;
-    s.kernel_model = kernel_model_name(kernel.model);
-    s.kernel_reason = kernel.model_reason;
-    s.wavelengths = kernel.wavelengths;
-    s.kernel_enclosed_energy = kernel.enclosed_energy;
-    s.kernel_support_capped = kernel.support_capped;
-    s.kernel_rows = static_cast<int>(kernel.values.rows());
-    s.kernel_cols = static_cast<int>(kernel.values.cols());
+    PsfSidecar s = psf_sidecar_for(mask, kernel, o.mask);
     const auto written = write_psf_files(o.output, psf, s, o.npy);
 
     s.rows = static_cast<int>(psf.rows());

@@ -10,6 +10,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
+#include "design/kernel_model.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -23,6 +24,23 @@ using json_strict::read_number;
 using json_strict::read_string;
 
 }  // namespace
+
+PsfSidecar psf_sidecar_for(const Mask& mask, const Kernel& kernel, const std::string& mask_file) {
+    PsfSidecar s;
+    s.mask_geometry_hash = geometry_hash(mask);
+    s.mask_file = mask_file;
+    s.grid_n = mask.pattern.n;
+    s.pixels_per_cell = mask.psf.pixels_per_cell;
+    s.pixel_pitch_m = mask.camera.pixel_pitch_m;
+    s.kernel_model = kernel_model_name(kernel.model);
+    s.kernel_reason = kernel.model_reason;
+    s.wavelengths = kernel.wavelengths;
+    s.kernel_enclosed_energy = kernel.enclosed_energy;
+    s.kernel_support_capped = kernel.support_capped;
+    s.kernel_rows = static_cast<int>(kernel.values.rows());
+    s.kernel_cols = static_cast<int>(kernel.values.cols());
+    return s;
+}
 
 fs::path psf_sidecar_path(const fs::path& image_path) {
     fs::path p = image_path;

@@ -18,6 +18,8 @@
 #include <vector>
 
 #include "core/image.hpp"
+#include "design/kernel.hpp"
+#include "design/mask.hpp"
 
 namespace pinmask::cli {
 
@@ -40,6 +42,10 @@ struct PsfSidecar {
     int rows = 0, cols = 0;
     std::string tiff_file, npy_file;  // names of the image files ("" when absent)
 };
+
+// The sidecar fields describing a mask's PSF made with `kernel` (rows, cols and file names are
+// filled in by write_psf_files).
+PsfSidecar psf_sidecar_for(const Mask& mask, const Kernel& kernel, const std::string& mask_file);
 
 // image.tiff -> image.json (the sidecar of any PSF image path).
 std::filesystem::path psf_sidecar_path(const std::filesystem::path& image_path);
