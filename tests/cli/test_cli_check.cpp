@@ -159,3 +159,31 @@ TEST_CASE("check: a GDSII file read back matches its mask; another mask does not
     CHECK(j["comparison"]["xor_area_um2"].get<double>() == um(4 * 2 * 440.0 * 440.0));
     CHECK(j["comparison"]["ok"] == false);
 }
+
+TEST_CASE("check: a dark-tone GDSII with frame and marks; the frame must be given to compare") {
+    TempDir dir("check-dark");
+    const Mask m = make_mask(16, {{0, 0}, {0, 2}, {3, 5}, {8, 8}}, 2);
+    const auto mask = write_mask(dir, "m.mask.json", m);
+    LayoutOptions o;
+    o.tone = Tone::kDark;
+    o.frame_m = 1e-3;
+    o.marks = true;
+    const std::string gds = dir / "d.gds";
+    {
+        std::ofstream out(gds, std::ios::binary);
+        out << gds_stream(make_layout(m, o));
+    }
+    auto r = run_cli("check --json " + gds + " --mask " + mask + " --frame 1mm");
+    auto j = json_of(r);
+    CHECK(r.exit_code == 0);
+    CHECK(j["tone"] == "dark");
+    CHECK(j["annotations"] == 4);  // the crosses, outside the outline
+    CHECK(j["comparison"]["xor_area_um2"] == 0.0);
+    // The 16 pinholes are recovered as clear regions and meet the spacing rule exactly.
+    CHECK(j["measured"]["min_center_spacing_um"].get<double>() == um(880.0));
+    // Against a frameless design (the flag forgotten) the files differ: exit 1.
+    j = json_of(r = run_cli("check --json " + gds + " --mask " + mask));
+    CHECK(r.exit_code == 1);
+    CHECK(j["comparison"]["ok"] == false);
+    CHECK(j["comparison"]["xor_area_um2"].get<double>() > 0.0);
+}
