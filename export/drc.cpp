@@ -221,11 +221,9 @@ void Checker::check_ring(std::size_t i) {
     const Ring& r = ring(i);
     RingInfo& info = info_[i];
     const std::size_t n = r.size();
-    if (n < 3 || r.front() == r.back()) {
-        const std::string why = n < 3 ? std::to_string(n) + " vertices; a polygon needs >= 3"
-                                      : "the last vertex repeats the first (rings close "
-                                        "implicitly)";
-        add("ring", name(i) + ": " + why, n ? r.front() : PointNm{}, i, kNoPolygon, double(n), 3);
+    if (n < 3) {
+        add("ring", name(i) + ": " + std::to_string(n) + " vertices; a polygon needs >= 3",
+            n ? r.front() : PointNm{}, i, kNoPolygon, double(n), 3);
         return;
     }
     info.usable = true;
@@ -275,9 +273,13 @@ void Checker::check_ring(std::size_t i) {
                 located = true;
             }
         }
+        const std::string why = r.front() == r.back()
+                                    ? " (the last vertex repeats the first; rings close implicitly)"
+                                : area2 == 0 ? " (zero area)"
+                                             : "";
         add("self_intersection",
             name(i) + ": not a simple polygon (edges cross or touch) near " +
-                at_um(double(where.x), double(where.y)),
+                at_um(double(where.x), double(where.y)) + why,
             where, i, kNoPolygon, 0, 0);
     } else {
         info.orientation = area2 > 0 ? 1 : -1;

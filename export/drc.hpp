@@ -2,9 +2,10 @@
 // Every verdict is exact: vertices are integers, and distances are compared squared in 128-bit
 // integer arithmetic (coordinates within +-kMaxCoordNm, export/xor_area.hpp); only the reported
 // measurements are rounded to double. Rules (DrcViolation::rule):
-//   ring              fewer than 3 vertices, or the last vertex repeats the first
+//   ring              fewer than 3 vertices
 //   vertices          more than max_vertices vertices (GDSII record limits, export/vendor_rules)
-//   self_intersection not a simple polygon (CGAL::is_simple_2; repeated vertices count)
+//   self_intersection not a simple polygon (CGAL::is_simple_2): crossing or touching edges,
+//                     repeated vertices (e.g. the closing vertex repeated), zero area
 //   orientation       clockwise ring (every ring must be counter-clockwise)
 //   area              a vertex outside the allowed area
 //   feature           width below min_feature_nm: the distance between two non-adjacent edges

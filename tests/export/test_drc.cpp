@@ -84,7 +84,7 @@ TEST_CASE("a bow-tie is not simple and is located at its crossing") {
     CHECK(count(run_drc({spur}, DrcRules{}), "self_intersection") == 1);
 }
 
-TEST_CASE("clockwise rings, open rings and degenerate rings are reported") {
+TEST_CASE("clockwise rings, explicitly closed rings and degenerate rings are reported") {
     const Ring ccw = square(0, 0, 1000);
     const Ring cw(ccw.rbegin(), ccw.rend());
     const auto r = run_drc({cw}, DrcRules{});
@@ -92,7 +92,12 @@ TEST_CASE("clockwise rings, open rings and degenerate rings are reported") {
     CHECK(r.violations[0].rule == "orientation");
     Ring closed = ccw;
     closed.push_back(ccw.front());
-    CHECK(count(run_drc({closed}, DrcRules{}), "ring") == 1);
+    const auto c = run_drc({closed}, DrcRules{});
+    REQUIRE(count(c, "self_intersection") == 1);  // a repeated vertex
+    CHECK(c.violations[0].message.find("repeats the first") != std::string::npos);
+    // A zero-area ring (there and back along one line) is not simple either.
+    CHECK(count(run_drc({Ring{{0, 0}, {1000, 0}, {2000, 0}, {1000, 0}}}, DrcRules{}),
+                "self_intersection") == 1);
     CHECK(count(run_drc({Ring{{0, 0}, {5, 5}}}, DrcRules{}), "ring") == 1);
 }
 
