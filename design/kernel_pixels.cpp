@@ -2,8 +2,8 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <vector>
 #include <string>
+#include <vector>
 
 #include "core/error.hpp"
 #include "design/kernel.hpp"
