@@ -1,0 +1,39 @@
+// Fuzzes the PSF sidecar reader (cli/psf_files: parse_strict then psf_sidecar_from_json), the
+// only configuration-like file pinmask reads back besides the mask file. Syntax errors are
+// nlohmann exceptions from parse_strict (read_psf_file maps them to InvalidInput); the sidecar
+// reader itself may throw only InvalidInput. An accepted sidecar round-trips through
+// psf_sidecar_to_json unchanged.
+#include <cstddef>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli/json_strict.hpp"
+#include "cli/psf_files.hpp"
+#include "core/error.hpp"
+#include "fuzz/fuzz_support.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    using namespace pinmask;
+    const std::string text(fuzz::as_text(data, size));
+    nlohmann::json j;
+    try {
+        j = cli::json_strict::parse_strict(text);
+    } catch (const InvalidInput&) {
+        return 0;
+    } catch (const nlohmann::json::exception&) {
+        return 0;
+    }
+    cli::PsfSidecar s;
+    try {
+        s = cli::psf_sidecar_from_json(j, "fuzz.json");
+    } catch (const InvalidInput&) {
+        return 0;
+    }
+    const nlohmann::json back = nlohmann::json::parse(cli::psf_sidecar_to_json(s).dump());
+    const cli::PsfSidecar again = cli::psf_sidecar_from_json(back, "round trip");
+    if (cli::psf_sidecar_to_json(again) != cli::psf_sidecar_to_json(s)) {
+        fuzz::invariant_failed("sidecar round trip");
+    }
+    return 0;
+}
