@@ -35,6 +35,10 @@ std::size_t parse_limit(const char* text) {
         }
     }
     if (!(v > 0.0)) throw invalid_field("PINMASK_MEMORY_LIMIT", text, "must be > 0");
+    // Converting an infinite or too large double to size_t is undefined behaviour.
+    if (!(v * scale < 0x1p64)) {
+        throw invalid_field("PINMASK_MEMORY_LIMIT", text, "must be below 2^64 bytes");
+    }
     return static_cast<std::size_t>(v * scale);
 }
 
