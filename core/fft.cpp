@@ -25,8 +25,20 @@ std::mutex& planner_mutex() {
 // the same SIMD alignment (fftw_alignment_of == 0). Eigen allocates 64-byte aligned buffers
 // (EIGEN_MAX_ALIGN_BYTES in CMakeLists.txt); anything else goes through aligned copies, so one
 // plan per size always runs and results do not depend on where a buffer happens to lie.
+// The process-wide plan cache. Plans live until exit, when they are destroyed (and FFTW's own
+// planner memory released) so leak checkers see a clean process.
+struct PlanCache {
+    std::map<std::tuple<Kind, int, int>, fftw_plan> plans;
+    ~PlanCache() {  // at exit, one thread left: no lock (the mutex may already be gone)
+        for (auto& [key, plan] : plans) fftw_destroy_plan(plan);
+        plans.clear();
+        fftw_cleanup();
+    }
+};
+
 fftw_plan cached_plan(Kind kind, int rows, int cols) {
-    static std::map<std::tuple<Kind, int, int>, fftw_plan> cache;
+    static PlanCache plan_cache;
+    auto& cache = plan_cache.plans;
     std::lock_guard<std::mutex> lock(planner_mutex());
     const auto key = std::make_tuple(kind, rows, cols);
     if (auto it = cache.find(key); it != cache.end()) return it->second;
