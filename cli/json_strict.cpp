@@ -106,6 +106,10 @@ std::pair<int, int> read_int_pair(const Json& j, const std::string& path, const 
     return {read_int(j[0], indexed(path, 0)), read_int(j[1], indexed(path, 1))};
 }
 
+// pinmask's formats nest at most 4 levels. Each open level keeps its key path (O(depth) bytes),
+// so unbounded nesting costs O(depth^2): 50k '[' took 4.5 GB and 40 s. Deeper input is refused.
+constexpr std::size_t kMaxNestingDepth = 64;
+
 Json parse_strict(const std::string& text, const std::string& streamed_path,
                   const std::function<void(const Json&, std::size_t)>& on_element) {
     struct Frame {
@@ -135,6 +139,10 @@ Json parse_strict(const std::string& text, const std::string& streamed_path,
         switch (event) {
             case Json::parse_event_t::object_start:
             case Json::parse_event_t::array_start: {
+                if (stack.size() >= kMaxNestingDepth) {
+                    fail(stack.empty() ? "(root)" : path_of(stack.back()),
+                         "nesting deeper than " + std::to_string(kMaxNestingDepth) + " levels");
+                }
                 Frame f;
                 f.object = event == Json::parse_event_t::object_start;
                 if (!stack.empty()) {
