@@ -40,7 +40,12 @@ double scaled(std::string_view token, std::string_view field,
               const std::string& expected) {
     const auto [value, suffix] = split_number(token, field, expected);
     for (const auto& [name, factor] : suffixes) {
-        if (suffix == name) return value * factor;
+        if (suffix != name) continue;
+        // A finite number times its unit can still overflow ("11e307h"): refuse it here rather
+        // than hand an infinity to a caller that asked for a finite value.
+        const double result = value * factor;
+        if (!std::isfinite(result)) throw bad_token(field, token, "out of range");
+        return result;
     }
     throw bad_token(field, token, "unknown unit '" + std::string(suffix) + "'" + expected);
 }

@@ -103,6 +103,13 @@ FileGeometry read_gds(std::string_view bytes) {
     RecordReader rd(bytes);
     Record r = rd.next();
     if (r.type != HEADER) throw bad(0, "not a GDSII stream (no HEADER record)");
+    // Stream versions in use: 0 and 3..7 (Calma releases) and 600..799 (6.0, 7.0 as written by
+    // KLayout, Virtuoso and pinmask). Anything else is a damaged or foreign file.
+    expect(r, 2, 2, "HEADER");
+    if (const std::int64_t v = be(r.data, 0, 2);
+        !(v == 0 || (v >= 3 && v <= 7) || (v >= 600 && v < 800)))
+        throw bad(r.offset, "unknown GDSII stream version " + std::to_string(v) +
+                                " in HEADER (expected 0, 3..7 or 600..799)");
     std::int64_t scale_nm = 0;  // nanometres per database unit
     int structures = 0;
     bool in_structure = false, ended = false;

@@ -133,6 +133,12 @@ Layout make_layout(const Mask& mask, const LayoutOptions& o) {
     if (!std::isfinite(hole) || o.hole_side_m < 0 || hole > pitch * (1 + 1e-12))
         throw invalid_field("hole_side", nm_text(hole),
                             "must be > 0 and <= the cell pitch " + nm_text(pitch));
+    // Snapping both edges to the grid can move each by up to one step: below two steps a square
+    // pinhole could collapse to zero area (and the files would carry empty rings).
+    if (hole < 2.0 * double(grid))
+        throw invalid_field("hole_side", nm_text(hole),
+                            "must be at least 2 grid steps (" + nm_text(2.0 * double(grid)) +
+                                ") so that no pinhole vanishes on the grid");
     const bool full_cell = hole >= pitch * (1 - 1e-12);
     if (!full_cell && pitch - hole < 2.0 * double(grid))
         throw invalid_field("hole_side", nm_text(hole),

@@ -203,6 +203,7 @@ def gds_bytes(records):
 GDS = seed("gds/clear.gds")
 write("layout-truncated.gds", GDS[: len(GDS) // 2])
 write("layout-wrong-magic.gds", b"\x00\x06\x7f\x02\x02\x58" + GDS[6:])
+write("layout-wrong-version.gds", b"\x00\x06\x00\x02\x7f\xff" + GDS[6:])  # HEADER 32767
 recs = gds_records(GDS)
 first_xy = next(i for i, r in enumerate(recs) if r[0] == 0x10)
 zero_area = list(recs)

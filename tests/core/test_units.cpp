@@ -44,6 +44,11 @@ TEST_CASE("durations, numbers and sizes") {
     CHECK(parse_duration_s("2min", "time") == 120.0);
     CHECK(parse_duration_s("3", "time") == 3.0);
     CHECK_THROWS_AS(parse_duration_s("3 fortnights", "time"), InvalidInput);
+    // Regression (fuzz_units): a finite number times its unit overflowed to +inf.
+    CHECK_THROWS_WITH_AS(parse_duration_s("11e307h", "time"), doctest::Contains("out of range"),
+                         InvalidInput);
+    CHECK_THROWS_AS(parse_duration_s("1e307min", "time"), InvalidInput);
+    CHECK(parse_length_m("1e308mm", "size") == doctest::Approx(1e305));
     CHECK(parse_number("2.5", "spacing") == 2.5);
     CHECK_THROWS_AS(parse_number("2.5mm", "spacing"), InvalidInput);
     const Size2 s = parse_size("720x480", "sensor");

@@ -218,6 +218,12 @@ TEST_CASE("invalid options and empty masks are refused with InvalidInput") {
     CHECK_THROWS_AS(make_layout(golden_mask(), LayoutOptions{.grid_m = 0}), InvalidInput);
     CHECK_THROWS_AS(make_layout(golden_mask(), LayoutOptions{.hole_side_m = 500e-6}), InvalidInput);
     CHECK_THROWS_AS(make_layout(golden_mask(), LayoutOptions{.frame_m = -1e-3}), InvalidInput);
+    // Regression (bad-input corpus): a 1 nm hole on a 1000 nm grid snapped to zero-area squares
+    // that were written with exit 0.
+    CHECK_THROWS_WITH_AS(
+        make_layout(golden_mask(), LayoutOptions{.hole_side_m = 1e-9, .grid_m = 1e-6}),
+        doctest::Contains("2 grid steps"), InvalidInput);
+    CHECK_NOTHROW(make_layout(golden_mask(), LayoutOptions{.hole_side_m = 2e-6, .grid_m = 1e-6}));
     LayoutOptions fine;
     fine.shape = HoleShape::kCircle;
     fine.chord_tolerance_m = 1e-15;
