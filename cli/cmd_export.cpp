@@ -229,7 +229,10 @@ void run_export(const ExportOptions& o) {
     fs::create_directories(out_dir);
     StagedFiles staged;
     json files = json::array();
-    for (const auto& [f, bytes] : contents) {
+    for (const auto& entry : contents) {
+        // Not a structured binding: clang 14 (the fuzz/sanitizer build) cannot capture those.
+        const FabFormat f = entry.first;
+        const std::string& bytes = entry.second;
         const fs::path path = out_dir / (stem + fab_extension(f));
         std::string check = "not readable (written only)";
         staged.stage(path, [&](const fs::path& tmp) {

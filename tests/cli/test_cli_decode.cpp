@@ -248,7 +248,9 @@ TEST_CASE("bad input exits 2 naming the problem and leaves no output") {
         {dir / "cap.tiff" + psf_arg + " --scale -1", "--scale"},
         {dir / "cap.tiff", "PSF"},
     };
-    for (const auto& [args, needle] : cases) {
+    for (const auto& c : cases) {
+        const std::string& args = c.first;
+        const std::string& needle = c.second;
         const auto r =
             run_cli("decode " + args + " -o " + dir / "out.png" + " --stats " + dir / "s.json");
         INFO(args);

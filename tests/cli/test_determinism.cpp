@@ -75,7 +75,9 @@ void check_identical(
     const auto fa = files_under(a.path), fb = files_under(b.path);
     REQUIRE(fa.size() == fb.size());
     CHECK(fa.size() > 0);
-    for (const auto& [name, bytes] : fa) {
+    for (const auto& entry : fa) {
+        const std::string& name = entry.first;
+        const std::string& bytes = entry.second;
         INFO(name);
         REQUIRE(fb.count(name) == 1);
         const std::string base = fs::path(name).filename().string();

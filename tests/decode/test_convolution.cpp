@@ -108,8 +108,9 @@ TEST_CASE("linear operator equals the direct zero-padded convolution of the wind
     const std::pair<int, int> sizes[] = {{8, 8}, {9, 7}, {13, 13}, {16, 12}};
     const std::pair<int, int> psfs[] = {{3, 3}, {4, 4}, {5, 2}, {8, 7}};
     unsigned seed = 60;
-    for (auto [R, C] : sizes)
-        for (auto [pr, pc] : psfs) {
+    for (const auto& size : sizes)
+        for (const auto& psf_size : psfs) {
+            const int R = size.first, C = size.second, pr = psf_size.first, pc = psf_size.second;
             const ConvGeometry g = make_conv_geometry(ConvModel::kLinear, R, C, pr, pc);
             const Plane psf = random_plane(pr, pc, seed++);
             const Plane x = random_plane(g.work_rows, g.work_cols, seed++);

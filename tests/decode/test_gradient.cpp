@@ -21,7 +21,8 @@ constexpr double kSymbolTol = 1e-12;
 }  // namespace
 
 TEST_CASE("gradient equals the dense periodic difference matrices; div = -grad^T") {
-    for (auto [R, C] : {std::pair{1, 5}, {4, 4}, {7, 5}, {8, 13}}) {
+    for (const auto& size : {std::pair{1, 5}, {4, 4}, {7, 5}, {8, 13}}) {
+        const int R = size.first, C = size.second;
         const Plane x = random_plane(R, C, 100 + R);
         Plane d_r, d_c;
         gradient(x, d_r, d_c);
@@ -53,7 +54,8 @@ TEST_CASE("total variation: isotropic sum, known values") {
 }
 
 TEST_CASE("gradient_gram_symbol is the spectrum of grad^T grad") {
-    for (auto [R, C] : {std::pair{4, 4}, {7, 5}, {8, 13}}) {
+    for (const auto& size : {std::pair{4, 4}, {7, 5}, {8, 13}}) {
+        const int R = size.first, C = size.second;
         const Eigen::MatrixXd Dr = dense_difference(R, C, true);
         const Eigen::MatrixXd Dc = dense_difference(R, C, false);
         const Eigen::MatrixXd L = Dr.transpose() * Dr + Dc.transpose() * Dc;

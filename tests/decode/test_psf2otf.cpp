@@ -44,7 +44,8 @@ ComplexPlane direct_half_dft(const Plane& x) {
 }  // namespace
 
 TEST_CASE("psf_to_origin puts the central element (floor(size/2)) at the origin") {
-    for (auto [pr, pc] : {std::pair{1, 1}, {2, 2}, {3, 3}, {4, 5}, {5, 4}, {7, 2}}) {
+    for (const auto& psf_size : {std::pair{1, 1}, {2, 2}, {3, 3}, {4, 5}, {5, 4}, {7, 2}}) {
+        const int pr = psf_size.first, pc = psf_size.second;
         Plane psf = Plane::Zero(pr, pc);
         psf(pr / 2, pc / 2) = 7.0;
         const Plane out = psf_to_origin(psf, 9, 8);
@@ -62,8 +63,9 @@ TEST_CASE("psf2otf equals the direct DFT of the explicitly shifted PSF, odd and 
     const std::pair<int, int> grids[] = {{8, 8}, {9, 7}, {13, 13}, {16, 12}, {1, 5}};
     const std::pair<int, int> psfs[] = {{1, 1}, {3, 3}, {4, 4}, {5, 2}, {2, 3}, {8, 7}};
     unsigned seed = 1;
-    for (auto [R, C] : grids)
-        for (auto [pr, pc] : psfs) {
+    for (const auto& grid : grids)
+        for (const auto& psf_size : psfs) {
+            const int R = grid.first, C = grid.second, pr = psf_size.first, pc = psf_size.second;
             if (pr > R || pc > C) continue;
             const Plane psf = random_plane(pr, pc, seed++);
             const ComplexPlane otf = psf2otf(psf, R, C);

@@ -48,7 +48,9 @@ TvL2Options tight(double lambda) {
 }  // namespace
 
 TEST_CASE("TV-L2 reaches the smoothed-TV Newton reference objective (cyclic 16 x 16, 13 x 11)") {
-    for (auto [R, C, seed] : {std::tuple{16, 16, 1u}, {13, 11, 2u}}) {
+    for (const auto& t : {std::tuple{16, 16, 1u}, {13, 11, 2u}}) {
+        const int R = std::get<0>(t), C = std::get<1>(t);
+        const unsigned seed = std::get<2>(t);
         const Problem P = make_problem(ConvModel::kCyclic, R, C, 5, 4, seed);
         const double lambda = 0.02;
         const Eigen::MatrixXd A = dense_model(P.psf, P.g);

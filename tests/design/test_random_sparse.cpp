@@ -110,7 +110,9 @@ TEST_CASE("each pinhole is uniform among the free cells") {
     CHECK(count.size() == 25);
     const double expected = kDraws / 25.0;
     const double sigma = std::sqrt(expected * (1.0 - 1.0 / 25.0));
-    for (const auto& [cell, k] : count) {
+    for (const auto& entry : count) {
+        const auto& cell = entry.first;
+        const auto k = entry.second;
         CAPTURE(cell.first);
         CAPTURE(cell.second);
         CHECK(std::abs(k - expected) <= kSigmas * sigma);

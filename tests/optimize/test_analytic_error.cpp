@@ -102,7 +102,8 @@ double monte_carlo_mse(const Setup& s, const ScenePrior& prior, double sigma2,
 }  // namespace
 
 TEST_CASE("mask OTF power: the factorised form equals |FFT of the full PSF|^2") {
-    for (auto [n, ppc, k] : {std::tuple{4, 4, 3}, std::tuple{5, 3, 4}, std::tuple{7, 2, 9}}) {
+    for (const auto& t : {std::tuple{4, 4, 3}, std::tuple{5, 3, 4}, std::tuple{7, 2, 9}}) {
+        const int n = std::get<0>(t), ppc = std::get<1>(t), k = std::get<2>(t);
         const Setup s = make_setup(n, ppc, k, 11u * n);
         const Plane h = mask_otf_power(pattern_spectrum(s.pattern), s.kernel_otf);
         INFO("n " << n << " ppc " << ppc);

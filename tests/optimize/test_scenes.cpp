@@ -89,7 +89,8 @@ TEST_CASE("checker: exact parity at integer square sizes, exact area averages ot
 }
 
 TEST_CASE("USAF target: exact coverage, so rendering twice as fine and averaging agrees") {
-    for (auto [r, c] : {std::pair{64, 64}, std::pair{45, 77}}) {
+    for (const auto& size : {std::pair{64, 64}, std::pair{45, 77}}) {
+        const int r = size.first, c = size.second;
         const Plane coarse = usaf_scene(r, c);
         const Plane fine = usaf_scene(2 * r, 2 * c);
         INFO(r << " x " << c);
@@ -191,8 +192,9 @@ TEST_CASE("natural scene: seeded, spans [0, 1], radial power falls like 1/f^(2 a
 
 TEST_CASE("area resampling matches the common-fine-grid reference, any sizes") {
     const Plane in = random_plane(7, 11, 5);
-    for (auto [r, c] : {std::pair{3, 4}, std::pair{7, 11}, std::pair{13, 5}, std::pair{1, 1},
-                        std::pair{14, 22}}) {
+    for (const auto& size : {std::pair{3, 4}, std::pair{7, 11}, std::pair{13, 5}, std::pair{1, 1},
+                             std::pair{14, 22}}) {
+        const int r = size.first, c = size.second;
         INFO(r << " x " << c);
         const Plane out = resample_area(in, r, c);
         CHECK((out - resample_reference(in, r, c)).abs().maxCoeff() <= kRoundoffTol);

@@ -97,7 +97,8 @@ NoiseModel photon_model(double ppp) {
 }  // namespace
 
 TEST_CASE("cyclic capture equals the direct circular sum with the decoder's centring") {
-    for (const auto& [rows, cols] : {std::pair{7, 7}, {13, 11}, {16, 16}, {5, 8}}) {
+    for (const auto& size : {std::pair{7, 7}, {13, 11}, {16, 16}, {5, 8}}) {
+        const int rows = size.first, cols = size.second;
         CAPTURE(rows);
         CAPTURE(cols);
         const Plane x = random_plane(rows, cols, 3);
@@ -116,8 +117,9 @@ TEST_CASE("a point scene at the centre reproduces the PSF (no shift)") {
 }
 
 TEST_CASE("tiling: periodic extension whose centred crop is the period") {
-    for (const auto& [pr, pc, R, C] :
+    for (const auto& sizes :
          {std::array{7, 5, 30, 17}, {16, 16, 48, 40}, {13, 11, 13, 11}, {8, 8, 5, 20}}) {
+        const int pr = sizes[0], pc = sizes[1], R = sizes[2], C = sizes[3];
         CAPTURE(pr);
         CAPTURE(R);
         const Plane period = random_plane(pr, pc, 9);
@@ -142,7 +144,8 @@ TEST_CASE("noiseless capture + Wiener with a tiny NSR recovers the scene (PSNR >
     // kernel, not the forward model. With min |A^|^2 far above deconvwnr's floor (1.5e-8) and
     // NSR 1e-12 the filter is the exact inverse up to NSR / |A^|^2 and rounding. Sizes: even
     // (n 16, ppc 8: the paper's 128) and odd/prime (n 11, ppc 7: 77).
-    for (const auto& [n, ppc, holes] : {std::array{16, 8, 20}, {11, 7, 9}}) {
+    for (const auto& setup : {std::array{16, 8, 20}, {11, 7, 9}}) {
+        const int n = setup[0], ppc = setup[1], holes = setup[2];
         CAPTURE(n);
         std::mt19937_64 rng(1);
         RandomSparseOptions r;

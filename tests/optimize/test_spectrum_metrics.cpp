@@ -99,7 +99,8 @@ TEST_CASE("a spectral zero gives flatness 0 and min |P^| 0") {
 }
 
 TEST_CASE("OTF condition number: factorised form equals the FFT of the full PSF") {
-    for (auto [n, ppc] : {std::pair{4, 4}, std::pair{5, 3}, std::pair{7, 2}}) {
+    for (const auto& size : {std::pair{4, 4}, std::pair{5, 3}, std::pair{7, 2}}) {
+        const int n = size.first, ppc = size.second;
         const int m = n * ppc;
         const Pattern p = random_pattern(n, n, 31u * n);
         const Plane kernel = test_kernel(m, ppc);
