@@ -1,0 +1,26 @@
+# Sourced by scripts/test --sanitize and scripts/fuzz: the one sanitized build tree they share,
+# and the sanitizer settings both run under. Not executable on its own.
+#
+# The tree ($PINMASK_SAN_BUILD_DIR, default build-san/) is clang, RelWithDebInfo, AddressSanitizer
+# + UndefinedBehaviorSanitizer (PINMASK_SANITIZE=ON: -fno-sanitize-recover=all) and the libFuzzer
+# targets (PINMASK_FUZZ=ON: the libraries carry coverage instrumentation, which the tests do not
+# notice). One tree for both saves CI a full build on its 2 cores.
+
+san_build_dir=${PINMASK_SAN_BUILD_DIR:-build-san}
+
+# sanitized_build [target...]: configures the tree and builds the targets (default: all).
+sanitized_build() {
+    local launcher=()
+    command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+    CC=clang CXX=clang++ cmake -S . -B "$san_build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+        -DPINMASK_SANITIZE=ON -DPINMASK_FUZZ=ON "${launcher[@]}" >/dev/null
+    local targets=()
+    (($#)) && targets=(--target "$@")
+    cmake --build "$san_build_dir" -j "$(nproc)" "${targets[@]}"
+}
+
+# The first report of any sanitizer ends the process with a non-zero code; leak checking is on,
+# with scripts/lsan.supp for fontconfig's process-lifetime caches.
+export ASAN_OPTIONS=${ASAN_OPTIONS:-halt_on_error=1:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan.supp:print_suppressions=0}
