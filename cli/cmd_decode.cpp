@@ -2,6 +2,9 @@
 // Pipeline: load -> dark frame -> preprocessing (background, 2^K box downsampling) -> period
 // check -> crop -> normalisation -> decode each channel (threads) -> write, all files staged and
 // committed together so a failure leaves no output.
+#include <unistd.h>
+
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -11,6 +14,7 @@
 
 #include "cli/command.hpp"
 #include "cli/decode_output.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/mask_json.hpp"
 #include "cli/psf_files.hpp"
 #include "core/atomic_file.hpp"
@@ -100,7 +104,7 @@ void run_decode(const DecodeRequest& r) {
     const CropSpec crop_spec = parse_crop(r.crop);
     const Background bg = parse_background(r.background);
     const std::optional<double> scale = parse_scale(r.scale);
-    const DecodeOptions dopt = decode_options(r);
+    DecodeOptions dopt = decode_options(r);
     auto explain = [&](const std::string& text) {  // one "decode: " line per line of text
         if (!r.explain) return;
         std::istringstream lines(text);
@@ -209,7 +213,16 @@ void run_decode(const DecodeRequest& r) {
                            {"decoded_rows", capture.rows()},
                            {"decoded_cols", capture.cols()}};
 
-    // Decode.
+    // Decode. Iterative methods stop on SIGINT/SIGTERM after their current iteration; the
+    // estimate so far is then written like a finished one and marked interrupted.
+    const bool iterative = dopt.method == DecodeMethod::kTv || dopt.method == DecodeMethod::kTvqc ||
+                           dopt.method == DecodeMethod::kRichardsonLucy;
+    if (iterative) {
+        dopt.stop = &install_interrupt_flag();
+        if (::isatty(2))
+            std::cerr << "decode: " << r.method << ", up to " << dopt.max_iterations
+                      << " iterations; Ctrl-C stops and writes the estimate so far\n";
+    }
     t0 = Clock::now();
     const std::vector<DecodeResult> results = decode_channels(capture, psf.image.channels, dopt);
     timings["decode"] = seconds_since(t0);
@@ -230,10 +243,18 @@ void run_decode(const DecodeRequest& r) {
                             {"objective", d.objective},
                             {"residual", d.residual},
                             {"converged", d.converged},
+                            {"interrupted", d.interrupted},
                             {"history", history}});
         per_channel.push_back(d.seconds);
     }
     timings["decode_channels"] = per_channel;
+    const bool interrupted =
+        std::any_of(results.begin(), results.end(), [](const auto& d) { return d.interrupted; });
+    if (interrupted) {
+        stats["interrupted"] = true;
+        std::cerr << "pinmask: interrupted: writing the estimate after "
+                  << results.front().iterations << " iterations (not converged)\n";
+    }
     stats["channels"] = channels;
     check_image_finite(estimate, "decoded estimate");
 
@@ -279,7 +300,8 @@ void run_decode(const DecodeRequest& r) {
     for (std::size_t ch = 0; ch < results.size(); ++ch)
         std::cout << "  channel " << ch << "  iterations " << results[ch].iterations
                   << "  residual " << results[ch].residual << "  objective "
-                  << results[ch].objective << "  " << results[ch].seconds << " s\n";
+                  << results[ch].objective << "  " << results[ch].seconds << " s"
+                  << (results[ch].interrupted ? "  (interrupted)" : "") << "\n";
     std::cout << "  period   "
               << (period.checked()
                       ? (period.matches() ? "matches the PSF" : "MISMATCH (see warning)")
@@ -303,6 +325,8 @@ point at (row floor(H/2), column floor(W/2)), the PSF's centre (deconvwnr conven
 Units: with --normalize none the PSF is scaled to unit sum and the estimate is in capture
 counts; with --normalize l2 both are divided by their L2 norms (the DiffuserCam tutorial).
 Also written: OUT.config.json (the resolved configuration) next to the output.
+Ctrl-C (or SIGTERM) during tv, tvqc or rl ends the iteration early: the estimate so far is
+written as usual and marked "interrupted" in the stats; a second Ctrl-C kills at once.
 
 Examples:
   pinmask decode capture.tiff --mask paper.mask.json --dark dark.tiff -o scene.png --stats s.json

@@ -100,6 +100,7 @@ void copy_iterative(const DecodeOptions& o, IterativeOptions& it) {
     it.max_iterations = o.max_iterations;
     it.tolerance = o.tolerance;
     it.record_history = o.record_history;
+    it.stop = o.stop;
 }
 
 // Iterative methods on the working grid; the result's image is cropped to the capture.

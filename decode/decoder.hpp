@@ -7,6 +7,7 @@
 // shifted so its central element (0-based index floor(size/2) per axis) lands at the origin.
 #pragma once
 
+#include <atomic>
 #include <optional>
 #include <vector>
 
@@ -45,6 +46,7 @@ struct DecodeOptions {
     double tolerance = 1e-4;          // relative change of x between iterations
     std::optional<Plane> warm_start;  // initial x (working size)
     bool record_history = true;
+    const std::atomic<bool>* stop = nullptr;  // iterative methods: see IterativeOptions::stop
 };
 
 struct DecodeResult {
@@ -54,6 +56,7 @@ struct DecodeResult {
     double objective = 0.0;
     double residual = 0.0;
     bool converged = true;
+    bool interrupted = false;  // ended early by IterativeOptions::stop (DecodeOptions::stop)
     double seconds = 0.0;
 };
 

@@ -92,6 +92,10 @@ DecodeResult solve_richardson_lucy(const ConvolutionOperator& op, const Plane& p
             r.converged = true;
             break;
         }
+        if (stop_requested(o)) {
+            r.interrupted = true;
+            break;
+        }
     }
     if (o.max_iterations == 0) r.converged = true;
     r.objective = i_divergence(p, ax);

@@ -5,6 +5,7 @@
 // ||x_k||_2 (relative change of x; 0 / 0 counts as 0) or when k = max_iterations.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 
 #include "core/image.hpp"
@@ -17,7 +18,16 @@ struct IterativeOptions {
     int max_iterations = 200;    // >= 0; 0 returns the starting point
     double tolerance = 1e-4;     // >= 0; relative change of x that ends the iteration
     bool record_history = true;  // fill DecodeResult::history (costs an objective per iteration)
+    // When set, polled once per iteration: once true, the solver ends after the iteration it is
+    // in, as if it had reached max_iterations, and sets DecodeResult::interrupted (Ctrl-C in
+    // `pinmask decode`: the estimate so far is written).
+    const std::atomic<bool>* stop = nullptr;
 };
+
+// True when options.stop is set and raised.
+inline bool stop_requested(const IterativeOptions& options) {
+    return options.stop != nullptr && options.stop->load(std::memory_order_relaxed);
+}
 
 // Throws InvalidInput naming max_iterations or tolerance when out of range.
 void validate_iterative_options(const IterativeOptions& options);

@@ -185,6 +185,10 @@ DecodeResult solve_tv_l2(const ConvolutionOperator& op, const Plane& capture, co
             r.converged = true;
             break;
         }
+        if (stop_requested(o)) {
+            r.interrupted = true;
+            break;
+        }
 
         // Residual balancing of the penalties (rescaling the scaled duals).
         if (k % kAdaptEvery == 0 && k <= adapt_until) {

@@ -303,6 +303,10 @@ DecodeResult solve_tvqc(const ConvolutionOperator& op, const Plane& capture, con
             r.converged = true;
             break;
         }
+        if (stop_requested(o)) {
+            r.interrupted = true;
+            break;
+        }
     }
     if (o.max_iterations == 0) r.converged = true;
 

@@ -2,6 +2,7 @@
 // crop, warm start, per-frequency NSR) against the algorithm objects it wraps.
 #include <doctest/doctest.h>
 
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -125,6 +126,39 @@ TEST_CASE("iterative methods through the facade: history, warm start of the work
             const DecodeResult w = decode_plane(p, psf, o);
             CHECK(w.history.empty());
             CHECK(is_all_finite(w.image));
+        }
+    }
+}
+
+TEST_CASE("a raised stop flag ends every iterative method after the iteration it is in") {
+    const Plane p = random_plane(16, 16, 89, 0.0, 1.0);
+    const Plane psf = random_psf(5, 5, 90);
+    for (DecodeMethod m : {DecodeMethod::kTv, DecodeMethod::kTvqc, DecodeMethod::kRichardsonLucy}) {
+        for (ConvModel model : {ConvModel::kCyclic, ConvModel::kLinear}) {
+            INFO("method " << int(m) << " model " << int(model));
+            DecodeOptions o;
+            o.method = m;
+            o.model = model;
+            o.eps = 0.05;
+            o.max_iterations = 1000;
+            o.tolerance = 0.0;  // never converges on its own
+            std::atomic<bool> stop{false};
+            o.stop = &stop;
+            const DecodeResult full = decode_plane(p, psf, o);
+            CHECK_FALSE(full.interrupted);
+            CHECK(full.iterations == 1000);
+            stop.store(true);
+            const DecodeResult cut = decode_plane(p, psf, o);
+            CHECK(cut.interrupted);
+            CHECK_FALSE(cut.converged);
+            CHECK(cut.iterations == 1);
+            CHECK(cut.history.size() == 1);
+            CHECK(is_all_finite(cut.image));
+            // The same first iterate as an uninterrupted one-iteration run.
+            o.stop = nullptr;
+            o.max_iterations = 1;
+            const DecodeResult one = decode_plane(p, psf, o);
+            CHECK((cut.image - one.image).abs().maxCoeff() == 0.0);
         }
     }
 }

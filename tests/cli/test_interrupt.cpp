@@ -1,8 +1,11 @@
-// `pinmask search --time 60s` stopped by SIGINT or SIGTERM once it has made progress: it exits 0
-// (documented: "Ctrl-C stops and writes the best so far"), says it was interrupted, and leaves a
-// complete, valid output folder (rank-1.mask.json readable, run-log.csv and search.config.json
-// present, no *.tmp-* file). The search runs on a pseudo-terminal so its progress line (drawn
-// only on a terminal) tells the test that evaluations have happened before the signal is sent.
+// Long runs stopped by SIGINT or SIGTERM once they have made progress exit 0, say they were
+// interrupted, and leave complete, valid outputs with no *.tmp-* file:
+//  - `pinmask search --time 60s`: rank-1.mask.json readable, run-log.csv, search.config.json
+//    (documented: "Ctrl-C stops and writes the best so far");
+//  - `pinmask decode --method tv|tvqc|rl` with an iteration budget it cannot finish: the estimate
+//    after the iterations done, its config, and stats marked "interrupted".
+// The commands run on a pseudo-terminal so their progress output (drawn only on a terminal)
+// tells the test that work has started before the signal is sent.
 #include <doctest/doctest.h>
 #include <fcntl.h>
 #include <poll.h>
@@ -14,6 +17,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "cli/mask_json.hpp"
@@ -139,6 +143,50 @@ TEST_CASE("search stops cleanly on SIGINT and SIGTERM with the best so far writt
         for (const auto& e : fs::recursive_directory_iterator(dir.path)) {
             INFO(e.path().string());
             CHECK(e.path().filename().string().find(".tmp-") == std::string::npos);
+        }
+    }
+}
+
+TEST_CASE("decode stops iterating on SIGINT and SIGTERM and writes the estimate so far") {
+    const std::string src = PINMASK_SOURCE_DIR;
+    const std::string mask = src + "/fuzz/corpus/mask_json/small.mask.json";
+    const std::string capture = src + "/fuzz/corpus/image/cap.npy";
+    for (const int sig : {SIGINT, SIGTERM}) {
+        for (const char* method : {"tv", "tvqc", "rl"}) {
+            INFO("signal " << sig << ", method " << method);
+            TempDir dir("decode-interrupt");
+            const fs::path out = dir.path / "scene.png", stats = dir.path / "stats.json";
+            // 10^9 iterations at tolerance 0: only the signal can end it.
+            const Child c = start("decode '" + capture + "' --mask '" + mask + "' --method " +
+                                      method + " --eps 0.01 --iters 1000000000 --tol 0 -o '" +
+                                      out.string() + "' --stats '" + stats.string() + "'",
+                                  dir.path / "stdout.txt");
+            std::string seen;
+            const bool started = wait_for_progress(c, seen, [](const std::string& s) {
+                return s.find("Ctrl-C stops") != std::string::npos;
+            });
+            INFO("terminal: " << seen);
+            CHECK(started);
+            ::kill(c.pid, sig);
+            const int code = wait_exit(c, seen);
+            ::close(c.pty);
+            CHECK(code == 0);
+            CHECK(seen.find("interrupted") != std::string::npos);
+            REQUIRE(fs::exists(out));
+            CHECK(fs::exists(out.string() + ".config.json"));
+            REQUIRE(fs::exists(stats));
+            const auto j = nlohmann::json::parse(slurp(stats));
+            CHECK(j.at("interrupted") == true);
+            for (const auto& ch : j.at("channels")) {
+                CHECK(ch.at("interrupted") == true);
+                CHECK(ch.at("converged") == false);
+                CHECK(ch.at("iterations").get<long long>() >= 1);
+                CHECK(ch.at("iterations").get<long long>() < 1000000000LL);
+            }
+            for (const auto& e : fs::recursive_directory_iterator(dir.path)) {
+                INFO(e.path().string());
+                CHECK(e.path().filename().string().find(".tmp-") == std::string::npos);
+            }
         }
     }
 }
