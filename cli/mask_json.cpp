@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "cli/json_strict.hpp"
+#include "cli/optics_json.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/resource_limits.hpp"
@@ -73,31 +74,6 @@ Pattern read_pattern(const Json& j, const std::vector<Cell>* streamed) {
     p.tiles_cols = tc;
     p.min_spacing_cells = read_number(r.required("min_spacing_cells"), r.path("min_spacing_cells"));
     return p;
-}
-
-Camera read_optics(const Json& j) {
-    ObjectReader r(j, "optics",
-                   {"object_distance_m", "lens_focal_m", "sensor_distance_m", "wavelength_m",
-                    "pixel_pitch_m", "pinhole_m", "sensor_px"});
-    r.reject_unknown();
-    Camera c;
-    c.object_distance_m =
-        read_length_or_inf(r.required("object_distance_m"), r.path("object_distance_m"));
-    c.lens_focal_m = read_length_or_inf(r.required("lens_focal_m"), r.path("lens_focal_m"));
-    c.sensor_distance_m = read_number(r.required("sensor_distance_m"), r.path("sensor_distance_m"));
-    c.wavelength_m = read_number(r.required("wavelength_m"), r.path("wavelength_m"));
-    c.pixel_pitch_m = read_number(r.required("pixel_pitch_m"), r.path("pixel_pitch_m"));
-    c.pinhole_m = read_number(r.required("pinhole_m"), r.path("pinhole_m"));
-    const auto [cols, rows] =
-        read_int_pair(r.required("sensor_px"), r.path("sensor_px"), "[cols, rows]");
-    c.sensor_cols = cols;
-    c.sensor_rows = rows;
-    try {
-        validate(c);
-    } catch (const InvalidInput& e) {
-        throw InvalidInput(std::string("optics.") + e.what());
-    }
-    return c;
 }
 
 KernelSpec read_kernel(const Json& j) {
@@ -184,11 +160,6 @@ Provenance read_provenance(const Json& j, std::string& hash) {
     return p;
 }
 
-template <class J>
-J length_or_inf(double v) {
-    return std::isinf(v) ? J("inf") : J(v);
-}
-
 // The file's JSON. Without pinholes (the array left empty), for the writer, which prints them
 // directly: a million pinholes as JSON nodes would cost seconds and hundreds of MB.
 template <class J>
@@ -207,16 +178,7 @@ J build_json(const Mask& m, bool with_pinholes = true) {
     pattern["min_spacing_cells"] = m.pattern.min_spacing_cells;
     j["pattern"] = std::move(pattern);
 
-    const Camera& c = m.camera;
-    J optics;
-    optics["object_distance_m"] = length_or_inf<J>(c.object_distance_m);
-    optics["lens_focal_m"] = length_or_inf<J>(c.lens_focal_m);
-    optics["sensor_distance_m"] = c.sensor_distance_m;
-    optics["wavelength_m"] = c.wavelength_m;
-    optics["pixel_pitch_m"] = c.pixel_pitch_m;
-    optics["pinhole_m"] = c.pinhole_m;
-    optics["sensor_px"] = J::array({c.sensor_cols, c.sensor_rows});
-    j["optics"] = std::move(optics);
+    j["optics"] = optics_to_json<J>(m.camera);
 
     J kernel;
     kernel["model"] = m.psf.kernel.model;
@@ -263,7 +225,7 @@ Mask from_json(const Json& j, const MaskReadOptions& options, const std::vector<
     top.reject_unknown();
     Mask m;
     m.pattern = read_pattern(top.required("pattern"), streamed);
-    m.camera = read_optics(top.required("optics"));
+    m.camera = optics_from_json(top.required("optics"));
     m.psf = read_psf(top.required("psf"));
     std::string recorded_hash;
     m.provenance = read_provenance(top.required("provenance"), recorded_hash);
