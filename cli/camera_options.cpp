@@ -25,7 +25,7 @@ void add_camera_options(CLI::App& cmd, CameraOptions& o) {
 }
 
 Camera resolve_camera(const CameraOptions& o) {
-    Camera c = paper_camera();  // the only preset so far
+    Camera c = o.base ? *o.base : paper_camera();  // paper: the only preset so far
     if (o.lens_focal)
         c.lens_focal_m = parse_length_m(*o.lens_focal, "--lens-focal", AllowInfinity::kYes);
     if (o.sensor_distance)

@@ -12,6 +12,7 @@ namespace pinmask::cli {
 
 struct CameraOptions {
     std::string preset = "paper";
+    std::optional<Camera> base;  // used instead of the preset (search --config's "optics")
     std::optional<std::string> lens_focal, sensor_distance, object_distance, wavelength,
         pixel_pitch, pinhole, sensor;
 };

@@ -10,8 +10,10 @@
 #include "cli/camera_options.hpp"
 #include "cli/command.hpp"
 #include "cli/interrupt.hpp"
+#include "cli/optics_json.hpp"
 #include "cli/progress.hpp"
 #include "cli/psf_options.hpp"
+#include "cli/search_config.hpp"
 #include "cli/search_outputs.hpp"
 #include "core/error.hpp"
 #include "core/fft.hpp"
@@ -48,7 +50,48 @@ struct Options {
     bool no_rerank = false;
     std::string output;
     bool json = false;
+    std::string config;  // --config FILE
 };
+
+// The settings of --config FILE, for every option the command line did not give.
+void apply_config(const SearchConfig& c, const CLI::App& cmd, Options& o) {
+    auto given = [&](const char* flag) { return cmd.get_option(flag)->count() > 0; };
+    auto set = [&](const char* flag, auto& field, const auto& value) {
+        if (value && !given(flag)) field = *value;
+    };
+    set("--strategy", o.strategy, c.strategy);
+    set("--time", o.time, c.time);
+    // A --time on the command line replaces the file's evaluation budget (and --evals its time).
+    if (!given("--time")) set("--evals", o.evals, c.evaluations_per_chain);
+    set("--threads", o.threads, c.threads);
+    set("--seed", o.seed, c.seed);
+    set("--top", o.top, c.top);
+    set("--grid", o.geometry.grid, c.grid);
+    set("--holes", o.geometry.holes, c.holes);
+    set("--tiles", o.geometry.tiles, c.tiles);
+    set("--spacing", o.geometry.spacing, c.min_spacing_cells);
+    set("--keep-out", o.keep_out, c.keep_out);
+    set("--pixels-per-cell", o.psf.pixels_per_cell, c.pixels_per_cell);
+    set("--kernel", o.psf.kernel, c.kernel);
+    set("--kernel-path", o.psf.kernel_path, c.kernel_path);
+    set("--snr", o.snr_db, c.snr_db);
+    set("--filter", o.filter, c.filter);
+    set("--prior-scenes", o.prior_scenes, c.prior_scenes);
+    set("--w-analytic", o.w_analytic, c.w_analytic);
+    set("--w-max-sidelobe", o.w_max_sidelobe, c.w_max_sidelobe);
+    set("--w-sidelobe-energy", o.w_sidelobe_energy, c.w_sidelobe_energy);
+    set("--w-min-spectrum", o.w_min_spectrum, c.w_min_spectrum);
+    if (c.rerank_scenes && !given("--rerank-scenes") && !given("--no-rerank")) {
+        if (c.rerank_scenes->empty())
+            o.no_rerank = true;  // written for a run with --no-rerank
+        else
+            o.rerank_scenes = *c.rerank_scenes;
+    }
+    set("--no-rerank-tv", o.rerank_tv, c.rerank_tv);
+    // The file's camera replaces the preset unless --preset is given; single camera flags still
+    // override its fields.
+    if (c.optics && !given("--preset")) o.camera.base = c.optics;
+}
 
 std::vector<Cell> keep_out_cells(const std::string& spec, int n) {
     std::vector<Cell> cells;
@@ -112,8 +155,8 @@ std::vector<NamedScene> held_out_scenes(const std::vector<std::string>& names, i
 
 nlohmann::ordered_json resolved_config(const Options& o, const Mask& tmpl, const Kernel& kernel,
                                        int threads) {
-    return {{"format", "pinmask-search-config"},
-            {"version", 1},
+    return {{"format", kSearchConfigFormat},
+            {"version", kSearchConfigVersion},
             {"generator", kGenerator},
             {"strategy", o.strategy},
             {"time", o.time},
@@ -129,6 +172,7 @@ nlohmann::ordered_json resolved_config(const Options& o, const Mask& tmpl, const
             {"pixels_per_cell", tmpl.psf.pixels_per_cell},
             {"kernel_requested", tmpl.psf.kernel.model},
             {"kernel_resolved", kernel_model_name(kernel.model)},
+            {"kernel_path", tmpl.psf.kernel.measured_path},
             {"noise", {{"model", "gaussian"}, {"snr_db", o.snr_db}}},
             {"filter", o.filter},
             {"prior", {{"family", "natural"}, {"scenes", o.prior_scenes}}},
@@ -138,7 +182,8 @@ nlohmann::ordered_json resolved_config(const Options& o, const Mask& tmpl, const
               {"sidelobe_energy", o.w_sidelobe_energy},
               {"min_spectrum", o.w_min_spectrum}}},
             {"rerank_scenes", o.no_rerank ? std::vector<std::string>{} : o.rerank_scenes},
-            {"rerank_tv", !o.no_rerank && o.rerank_tv}};
+            {"rerank_tv", !o.no_rerank && o.rerank_tv},
+            {"optics", optics_to_json<nlohmann::ordered_json>(tmpl.camera)}};
 }
 
 void run(const Options& o) {
@@ -320,12 +365,21 @@ const Registration kSearch(50, "search", [](CLI::App& app) {
     cmd->add_flag("--no-rerank", o->no_rerank, "Skip the simulated re-ranking stage");
     cmd->add_option("-o,--output", o->output, "Output folder (created)")->required();
     cmd->add_flag("--json", o->json, "Print the ranking as JSON on stdout");
+    cmd->add_option("--config", o->config,
+                    "Settings of an earlier run (its search.config.json, or a hand-written "
+                    "subset of its keys); options given here override them")
+        ->check(CLI::ExistingFile);
     cmd->footer(
         "Writes rank-1.mask.json ... (provenance: seed, strategy, scores), run-log.csv, summary.md "
         "and search.config.json, all or nothing. Ctrl-C stops and writes the best so far.\n"
         "Example: pinmask search --preset paper --grid 16 --holes 20 --time 20s --seed 1 --top 5 "
-        "-o runs/a/");
-    cmd->callback([o] { run(*o); });
+        "-o runs/a/\n"
+        "Repeat a run (byte-identical masks with --evals) or vary it: pinmask search --config "
+        "runs/a/search.config.json --seed 2 -o runs/b/");
+    cmd->callback([o, cmd] {
+        if (!o->config.empty()) apply_config(read_search_config(o->config), *cmd, *o);
+        run(*o);
+    });
 });
 
 }  // namespace

@@ -1,5 +1,5 @@
 // Fuzzes the PSF sidecar reader (cli/psf_files: parse_strict then psf_sidecar_from_json), the
-// only configuration-like file pinmask reads back besides the mask file. Syntax errors are
+// JSON that comes with a PSF file (decode --psf). Syntax errors are
 // nlohmann exceptions from parse_strict (read_psf_file maps them to InvalidInput); the sidecar
 // reader itself may throw only InvalidInput. An accepted sidecar round-trips through
 // psf_sidecar_to_json unchanged.

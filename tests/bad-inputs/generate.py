@@ -88,6 +88,27 @@ mask_text_replace("mask-int-overflow.mask.json", '"n": 7', '"n": 999999999999999
 mask_text_replace("mask-duplicate-key.mask.json", '"version": 1,', '"version": 1,\n  "version": 1,')
 write("mask-deep-nesting.mask.json", "[" * 20000 + "]" * 20000 + "\n")
 
+# ---------------------------------------------------------------- search configurations
+CONFIG_TEXT = seed("search_config/written.json").decode()
+
+
+def config_variant(name, edit):
+    c = json.loads(CONFIG_TEXT)
+    edit(c)
+    write(name, json.dumps(c, indent=2) + "\n")
+
+
+write("config-truncated.json", CONFIG_TEXT[: len(CONFIG_TEXT) // 2])
+write("config-is-a-mask.json", MASK_TEXT)
+config_variant("config-wrong-version.json", set_path("version", 7))
+config_variant("config-unknown-key.json", set_path("gird", 16))
+config_variant("config-negative-seed.json", set_path("seed", -1))
+config_variant("config-giga-grid.json", set_path("grid", 1000000000))
+config_variant("config-nan-pinhole.json", set_path("optics", "pinhole_m", "NaN"))
+config_variant("config-zero-time.json", lambda c: (set_path("time", "0s")(c),
+                                                  set_path("evaluations_per_chain", 0)(c)))
+write("config-deep-nesting.json", "{\"format\": " + "[" * 20000 + "]" * 20000 + "}\n")
+
 # ---------------------------------------------------------------- npy images
 
 

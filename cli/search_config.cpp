@@ -1,0 +1,182 @@
+#include "cli/search_config.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include "cli/json_strict.hpp"
+#include "cli/optics_json.hpp"
+#include "core/error.hpp"
+#include "core/units.hpp"
+
+namespace pinmask::cli {
+namespace {
+
+using namespace json_strict;
+
+// A configuration file is a few hundred bytes; anything this large is not one.
+constexpr std::uintmax_t kMaxConfigBytes = 1 << 20;
+
+std::string one_of(const Json& j, const std::string& path, std::initializer_list<const char*> ok) {
+    const std::string s = read_string(j, path);
+    std::string list;
+    for (const char* o : ok) {
+        if (s == o) return s;
+        list += list.empty() ? o : std::string(" | ") + o;
+    }
+    fail(path, "'" + s + "' is not one of " + list);
+}
+
+int int_at_least(const Json& j, const std::string& path, int lo) {
+    const int v = read_int(j, path);
+    if (v < lo) fail(path, std::to_string(v) + " must be >= " + std::to_string(lo));
+    return v;
+}
+
+template <class T, class Read>
+void read_into(const ObjectReader& r, const char* key, std::optional<T>& out, Read read) {
+    if (const Json* v = r.optional(key)) out = read(*v, r.path(key));
+}
+
+}  // namespace
+
+SearchConfig parse_search_config(const std::string& text) {
+    Json j;
+    try {
+        j = parse_strict(text);
+    } catch (const nlohmann::json::exception& e) {
+        throw InvalidInput(std::string("invalid JSON: ") + e.what());
+    }
+    ObjectReader r(j, "",
+                   {"format",
+                    "version",
+                    "generator",
+                    "strategy",
+                    "time",
+                    "evaluations_per_chain",
+                    "threads",
+                    "seed",
+                    "top",
+                    "grid",
+                    "holes",
+                    "tiles",
+                    "min_spacing_cells",
+                    "keep_out",
+                    "pixels_per_cell",
+                    "kernel_requested",
+                    "kernel_resolved",
+                    "kernel_path",
+                    "noise",
+                    "filter",
+                    "prior",
+                    "weights",
+                    "rerank_scenes",
+                    "rerank_tv",
+                    "optics"});
+    if (read_string(r.required("format"), "format") != kSearchConfigFormat)
+        fail("format",
+             "must be \"" + std::string(kSearchConfigFormat) + "\" (not a search config)");
+    if (const int v = read_int(r.required("version"), "version"); v != kSearchConfigVersion)
+        fail("version", std::to_string(v) + " is not supported (this pinmask reads version " +
+                            std::to_string(kSearchConfigVersion) + ")");
+    r.reject_unknown();
+    if (const Json* g = r.optional("generator")) read_string(*g, "generator");
+    if (const Json* k = r.optional("kernel_resolved")) read_string(*k, "kernel_resolved");
+
+    SearchConfig c;
+    read_into(r, "strategy", c.strategy, [](const Json& v, const std::string& p) {
+        return one_of(v, p, {"random", "anneal"});
+    });
+    read_into(r, "time", c.time, [](const Json& v, const std::string& p) {
+        const std::string s = read_string(v, p);
+        const double seconds = parse_duration_s(s, p);
+        if (!(seconds > 0)) fail(p, "'" + s + "' must be a positive duration");
+        return s;
+    });
+    read_into(r, "evaluations_per_chain", c.evaluations_per_chain,
+              [](const Json& v, const std::string& p) -> std::int64_t {
+                  if (!v.is_number_integer() ||
+                      (v.is_number_unsigned() && v.get<std::uint64_t>() > std::uint64_t(INT64_MAX)))
+                      fail(p, "must be an integer >= 0, got " + v.dump());
+                  const auto e = v.get<std::int64_t>();
+                  if (e < 0) fail(p, "must be an integer >= 0, got " + v.dump());
+                  return e;
+              });
+    read_into(r, "threads", c.threads,
+              [](const Json& v, const std::string& p) { return int_at_least(v, p, 0); });
+    read_into(r, "seed", c.seed, [](const Json& v, const std::string& p) {
+        if (!v.is_number_unsigned()) fail(p, "must be an integer >= 0, got " + v.dump());
+        return v.get<std::uint64_t>();
+    });
+    for (auto [key, field] :
+         {std::pair{"top", &c.top}, std::pair{"grid", &c.grid}, std::pair{"holes", &c.holes},
+          std::pair{"tiles", &c.tiles}, std::pair{"pixels_per_cell", &c.pixels_per_cell}}) {
+        read_into(r, key, *field,
+                  [](const Json& v, const std::string& p) { return int_at_least(v, p, 1); });
+    }
+    read_into(r, "min_spacing_cells", c.min_spacing_cells, [](const Json& v, const std::string& p) {
+        const double s = read_number(v, p);
+        if (!(s > 0)) fail(p, "must be > 0");
+        return s;
+    });
+    read_into(r, "keep_out", c.keep_out, [](const Json& v, const std::string& p) {
+        return one_of(v, p, {"none", "border"});
+    });
+    read_into(r, "kernel_requested", c.kernel, [](const Json& v, const std::string& p) {
+        return one_of(v, p, {"auto", "box", "fraunhofer", "fresnel", "paper-fig3b", "measured"});
+    });
+    read_into(r, "kernel_path", c.kernel_path, read_string);
+    read_into(r, "filter", c.filter, read_string);
+    if (const Json* noise = r.optional("noise")) {
+        ObjectReader n(*noise, "noise", {"model", "snr_db"});
+        n.reject_unknown();
+        if (const Json* m = n.optional("model")) one_of(*m, n.path("model"), {"gaussian"});
+        read_into(n, "snr_db", c.snr_db, read_number);
+    }
+    if (const Json* prior = r.optional("prior")) {
+        ObjectReader n(*prior, "prior", {"family", "scenes"});
+        n.reject_unknown();
+        if (const Json* f = n.optional("family")) one_of(*f, n.path("family"), {"natural"});
+        read_into(n, "scenes", c.prior_scenes,
+                  [](const Json& v, const std::string& p) { return int_at_least(v, p, 1); });
+    }
+    if (const Json* weights = r.optional("weights")) {
+        ObjectReader w(*weights, "weights",
+                       {"analytic_wiener", "max_sidelobe", "sidelobe_energy", "min_spectrum"});
+        w.reject_unknown();
+        read_into(w, "analytic_wiener", c.w_analytic, read_number);
+        read_into(w, "max_sidelobe", c.w_max_sidelobe, read_number);
+        read_into(w, "sidelobe_energy", c.w_sidelobe_energy, read_number);
+        read_into(w, "min_spectrum", c.w_min_spectrum, read_number);
+    }
+    read_into(r, "rerank_scenes", c.rerank_scenes, [](const Json& v, const std::string& p) {
+        if (!v.is_array())
+            fail(p, std::string("must be an array of scene names, got ") + v.type_name());
+        std::vector<std::string> names;
+        for (std::size_t i = 0; i < v.size(); ++i)
+            names.push_back(read_string(v[i], indexed(p, i)));
+        return names;
+    });
+    read_into(r, "rerank_tv", c.rerank_tv, read_bool);
+    if (const Json* optics = r.optional("optics")) c.optics = optics_from_json(*optics);
+    return c;
+}
+
+SearchConfig read_search_config(const std::filesystem::path& path) {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec) throw InvalidInput("--config " + path.string() + ": cannot read: " + ec.message());
+    if (size > kMaxConfigBytes)
+        throw InvalidInput("--config " + path.string() + ": " + std::to_string(size) +
+                           " bytes is not a search configuration (at most 1 MiB)");
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    if (!in) throw InvalidInput("--config " + path.string() + ": cannot read");
+    try {
+        return parse_search_config(ss.str());
+    } catch (const InvalidInput& e) {
+        throw InvalidInput("--config " + path.string() + ": " + e.what());
+    }
+}
+
+}  // namespace pinmask::cli

@@ -1,0 +1,54 @@
+// The search configuration file, `search.config.json`: `pinmask search` writes the resolved
+// settings of every run there, and `pinmask search --config FILE` reads one back to repeat or
+// vary the run (options given on the command line win). A hand-written file may hold any subset
+// of the keys; "format" and "version" are required. Layout (all optional but the first two):
+//   {"format": "pinmask-search-config", "version": 1, "generator" (informational),
+//    "strategy": "random" | "anneal", "time": "20s", "evaluations_per_chain": >= 0 (0: --time),
+//    "threads": >= 0, "seed": >= 0, "top": >= 1, "grid", "holes", "tiles" (integers >= 1),
+//    "min_spacing_cells": > 0, "keep_out": "none" | "border", "pixels_per_cell": >= 1,
+//    "kernel_requested": auto | box | fraunhofer | fresnel | paper-fig3b | measured,
+//    "kernel_resolved" (informational), "kernel_path": file of --kernel measured,
+//    "noise": {"model": "gaussian", "snr_db"}, "filter": "optimal" | "nsr:VALUE",
+//    "prior": {"family": "natural", "scenes": >= 1},
+//    "weights": {"analytic_wiener", "max_sidelobe", "sidelobe_energy", "min_spectrum"},
+//    "rerank_scenes": [names] ([]: no re-ranking), "rerank_tv": bool,
+//    "optics": the camera (cli/optics_json.hpp)}
+// Unknown keys, repeated keys, wrong types and out-of-range values are InvalidInput naming the
+// key path; so is nesting deeper than json_strict allows.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "design/camera.hpp"
+
+namespace pinmask::cli {
+
+inline constexpr const char* kSearchConfigFormat = "pinmask-search-config";
+inline constexpr int kSearchConfigVersion = 1;
+
+// What a configuration file sets; an empty optional leaves the option to its default (or to the
+// command line).
+struct SearchConfig {
+    std::optional<std::string> strategy, time, keep_out, kernel, kernel_path, filter;
+    std::optional<std::int64_t> evaluations_per_chain;
+    std::optional<int> threads, top, grid, holes, tiles, pixels_per_cell, prior_scenes;
+    std::optional<std::uint64_t> seed;
+    std::optional<double> min_spacing_cells, snr_db;
+    std::optional<double> w_analytic, w_max_sidelobe, w_sidelobe_energy, w_min_spectrum;
+    std::optional<std::vector<std::string>> rerank_scenes;
+    std::optional<bool> rerank_tv;
+    std::optional<Camera> optics;
+};
+
+// Parses the text of a configuration file: InvalidInput on any problem (see above), JSON syntax
+// and number overflow included.
+SearchConfig parse_search_config(const std::string& text);
+
+// Reads `path` (InvalidInput naming the file when it cannot be read or parsed).
+SearchConfig read_search_config(const std::filesystem::path& path);
+
+}  // namespace pinmask::cli
