@@ -115,6 +115,21 @@ int wait_exit(const Child& c, std::string& seen) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+// Waits until `ready(terminal text)`, sends `sig`, then checks that the run ends by itself with
+// exit code 0 and says it was interrupted.
+template <typename Ready>
+void interrupt_when(const Child& c, int sig, Ready ready) {
+    std::string seen;
+    const bool progressed = wait_for_progress(c, seen, ready);
+    INFO("terminal: " << seen);
+    CHECK(progressed);
+    ::kill(c.pid, sig);
+    const int code = wait_exit(c, seen);
+    ::close(c.pty);
+    CHECK(code == 0);
+    CHECK(seen.find("interrupted") != std::string::npos);
+}
+
 }  // namespace
 
 TEST_CASE("search stops cleanly on SIGINT and SIGTERM with the best so far written") {
@@ -127,15 +142,7 @@ TEST_CASE("search stops cleanly on SIGINT and SIGTERM with the best so far writt
             "--threads 1 --prior-scenes 2 --top 3 --seed 2 -o '" +
                 out.string() + "'",
             dir.path / "stdout.txt");
-        std::string seen;
-        const bool progressed = wait_for_progress(c, seen, searched_long_enough);
-        INFO("terminal: " << seen);
-        CHECK(progressed);
-        ::kill(c.pid, sig);
-        const int code = wait_exit(c, seen);
-        ::close(c.pty);
-        CHECK(code == 0);
-        CHECK(seen.find("interrupted") != std::string::npos);
+        interrupt_when(c, sig, searched_long_enough);
         REQUIRE(fs::exists(out / "rank-1.mask.json"));
         CHECK_NOTHROW(pinmask::cli::read_mask_file(out / "rank-1.mask.json"));
         CHECK(fs::exists(out / "run-log.csv"));
@@ -161,17 +168,9 @@ TEST_CASE("decode stops iterating on SIGINT and SIGTERM and writes the estimate 
                                       method + " --eps 0.01 --iters 1000000000 --tol 0 -o '" +
                                       out.string() + "' --stats '" + stats.string() + "'",
                                   dir.path / "stdout.txt");
-            std::string seen;
-            const bool started = wait_for_progress(c, seen, [](const std::string& s) {
-                return s.find("Ctrl-C stops") != std::string::npos;
+            interrupt_when(c, sig, [](const std::string& seen) {
+                return seen.find("Ctrl-C stops") != std::string::npos;
             });
-            INFO("terminal: " << seen);
-            CHECK(started);
-            ::kill(c.pid, sig);
-            const int code = wait_exit(c, seen);
-            ::close(c.pty);
-            CHECK(code == 0);
-            CHECK(seen.find("interrupted") != std::string::npos);
             REQUIRE(fs::exists(out));
             CHECK(fs::exists(out.string() + ".config.json"));
             REQUIRE(fs::exists(stats));
