@@ -49,7 +49,7 @@ struct ExportOptions {
     int sides = 8;
     bool mirror = false, marks = false, label = false;
     std::string label_id;
-    std::string frame = "0", chord_tol = "10nm", grid = "1nm", margin = "10mm";
+    std::string frame = "0", chord_tol = "auto", grid = "1nm", margin = "10mm";
     std::optional<std::string> hole_side;
     std::size_t max_vertices = kGdsFriendlyMaxVertices;
     int layer = 1, datatype = 0;
@@ -107,7 +107,11 @@ LayoutOptions layout_options(const ExportOptions& o, const Mask& mask, const std
     lo.mirror = o.mirror;
     lo.marks = o.marks;
     lo.frame_m = parse_length_m(o.frame, "--frame");
-    lo.chord_tolerance_m = parse_length_m(o.chord_tol, "--chord-tol");
+    if (o.chord_tol != "auto") {
+        lo.chord_tolerance_m = parse_length_m(o.chord_tol, "--chord-tol");
+        if (!(lo.chord_tolerance_m > 0))
+            throw invalid_field("--chord-tol", o.chord_tol, "must be > 0 (or auto)");
+    }
     lo.grid_m = parse_length_m(o.grid, "--grid");
     if (o.hole_side) lo.hole_side_m = parse_length_m(*o.hole_side, "--hole-side");
     lo.max_vertices = o.max_vertices;
@@ -271,9 +275,10 @@ void run_export(const ExportOptions& o) {
                    {"drawn", layout.tone == Tone::kClear ? "clear areas" : "opaque areas"},
                    {"mirrored", layout.mirrored},
                    {"shape", o.shape},
-                   {"sides", o.sides},
+                   {"sides", layout.hole_sides},
                    {"hole_side_m", lo.hole_side_m > 0 ? lo.hole_side_m : mask.camera.pinhole_m},
-                   {"chord_tolerance_m", lo.chord_tolerance_m},
+                   {"chord_tolerance_m",
+                    lo.chord_tolerance_m > 0 ? json(lo.chord_tolerance_m) : json("auto")},
                    {"frame_m", lo.frame_m},
                    {"marks", o.marks},
                    {"label", lo.label_lines},
@@ -356,10 +361,12 @@ void setup(CLI::App& app) {
     cmd->add_option("--hole-side", o->hole_side,
                     "Square side or circle diameter (length; default the cell pitch)");
     cmd->add_option("--chord-tol", o->chord_tol,
-                    "Circles: largest sagitta of the inscribed polygon (length; 10nm)");
+                    "Circles: largest sagitta of the inscribed polygon (length), or auto: the "
+                    "finest polygon within --max-vertices, no finer than the grid (default auto)");
     cmd->add_option("--grid", o->grid, "Manufacturing grid, whole nm (length; 1nm)");
     cmd->add_option("--max-vertices", o->max_vertices,
-                    "Largest vertex count of merged or dark-tone pieces (default 199)");
+                    "Largest vertex count of any polygon: merged and dark-tone pieces are split "
+                    "to it, circles drawn within it (default 199)");
     cmd->add_option("--layer", o->layer, "GDSII layer (default 1)");
     cmd->add_option("--datatype", o->datatype, "GDSII datatype (default 0)");
     cmd->add_option("--dxf-layer", o->dxf_layer, "DXF layer name (default PINMASK)");

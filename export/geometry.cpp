@@ -18,12 +18,6 @@
 namespace pinmask {
 namespace {
 
-std::string nm_text(double nm) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.6g nm", nm);
-    return buf;
-}
-
 std::int64_t length_nm(double metres, std::int64_t grid, const char* field, bool allow_zero) {
     const double nm = metres * 1e9;
     if (!std::isfinite(nm) || nm < 0 || (!allow_zero && nm == 0))
@@ -120,9 +114,9 @@ Layout make_layout(const Mask& mask, const LayoutOptions& o) {
     const std::int64_t grid = std::llround(grid_exact);
     if (!std::isfinite(grid_exact) || grid < 1 || std::fabs(grid_exact - double(grid)) > 1e-6)
         throw invalid_field("grid", nm_text(grid_exact), "must be a whole number of nm >= 1");
-    if (!(o.chord_tolerance_m > 0) || !std::isfinite(o.chord_tolerance_m))
+    if (!(o.chord_tolerance_m >= 0) || !std::isfinite(o.chord_tolerance_m))
         throw invalid_field("chord_tolerance", nm_text(o.chord_tolerance_m * 1e9),
-                            "must be positive and finite");
+                            "must be finite and >= 0 (0: auto)");
     if (o.max_vertices < 8)
         throw invalid_field("max_vertices", std::to_string(o.max_vertices), "must be >= 8");
 
@@ -155,8 +149,14 @@ Layout make_layout(const Mask& mask, const LayoutOptions& o) {
     int sides = 4;
     std::vector<std::pair<double, double>> offsets;
     if (o.shape != HoleShape::kSquare) {
+        // Clear tone: each circle is one polygon, so it must fit max_vertices. Dark tone: the
+        // circles are holes in pieces that are split to max_vertices anyway, so an explicit
+        // tolerance may need more sides (auto stays within max_vertices in both tones).
+        const bool one_polygon = o.tone == Tone::kClear || o.chord_tolerance_m == 0.0;
+        const std::size_t limit =
+            one_polygon ? o.max_vertices : static_cast<std::size_t>(kMaxPolygonSides);
         sides = o.shape == HoleShape::kCircle
-                    ? sides_for_chord_tolerance(hole / 2, o.chord_tolerance_m * 1e9)
+                    ? circle_sides(hole / 2, o.chord_tolerance_m * 1e9, limit, grid)
                     : o.polygon_sides;
         if (sides < 3 || sides > kMaxPolygonSides)
             throw invalid_field("sides", std::to_string(sides),
@@ -174,6 +174,7 @@ Layout make_layout(const Mask& mask, const LayoutOptions& o) {
     layout.tone = o.tone;
     layout.mirrored = o.mirror;
     layout.mask_hash = geometry_hash(mask);
+    layout.hole_sides = sides;
     layout.active_area = {xe.front(), ye.back(), xe.back(), ye.front()};
     const BoxNm& a = layout.active_area;
     const BoxNm outline{a.x0 - frame, a.y0 - frame, a.x1 + frame, a.y1 + frame};

@@ -36,10 +36,13 @@ enum class HoleShape { kSquare, kCircle, kPolygon };
 
 struct LayoutOptions {
     HoleShape shape = HoleShape::kSquare;
-    int polygon_sides = 8;             // kPolygon only, >= 3
-    double hole_side_m = 0.0;          // square side or circle diameter; 0: the cell pitch
-    double chord_tolerance_m = 10e-9;  // kCircle: greatest sagitta of the inscribed polygon
-    double grid_m = 1e-9;              // manufacturing grid, a whole number of nanometres
+    int polygon_sides = 8;     // kPolygon only, >= 3
+    double hole_side_m = 0.0;  // square side or circle diameter; 0: the cell pitch
+    // kCircle: greatest sagitta of the inscribed polygon (clear tone: refused when that needs
+    // more than max_vertices); 0 (auto): the finest polygon within max_vertices (export/shapes
+    // circle_sides).
+    double chord_tolerance_m = 0.0;
+    double grid_m = 1e-9;  // manufacturing grid, a whole number of nanometres
     Tone tone = Tone::kClear;
     bool mirror = false;
     double frame_m = 0.0;  // opaque border added around the active area (the outline)
@@ -51,8 +54,9 @@ struct LayoutOptions {
     // Font pixel; a character is 6 x 9 pixels and bars are half a pixel apart (40 um: bars and
     // gaps of 20 um, above the 16 um a film plotter needs).
     double label_pixel_m = 40e-6;
-    // Largest vertex count of a piece this code splits (cell unions, dark-tone pieces). Single
-    // pinhole polygons are not split: a circle has the vertices its tolerance needs.
+    // Largest vertex count of any polygon: pieces this code splits (cell unions, dark-tone
+    // pieces) are split to it, and circles are drawn within it (a tolerance that needs more is
+    // refused).
     std::size_t max_vertices = kGdsFriendlyMaxVertices;
 };
 

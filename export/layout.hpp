@@ -35,6 +35,7 @@ struct Layout {
     bool mirrored = false;     // right-reading with chrome/emulsion down
     std::int64_t grid_nm = 1;  // manufacturing grid the coordinates are snapped to
     std::string mask_hash;     // geometry_hash of the source mask
+    int hole_sides = 4;        // sides of each pinhole's polygon before snapping (4: squares)
 };
 
 }  // namespace pinmask

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 
@@ -22,29 +23,58 @@ std::int64_t ceil_to_grid(double v_nm, std::int64_t grid_nm) {
     return static_cast<std::int64_t>(std::ceil(v_nm / static_cast<double>(grid_nm))) * grid_nm;
 }
 
+std::string nm_text(double nm) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.6g nm", nm);
+    return buf;
+}
+
 double sagitta_nm(double radius_nm, int sides) {
     return radius_nm * (1.0 - std::cos(std::numbers::pi / sides));
 }
 
 int sides_for_chord_tolerance(double radius_nm, double tolerance_nm) {
     if (!(radius_nm > 0) || !std::isfinite(radius_nm))
-        throw invalid_field("hole radius", std::to_string(radius_nm) + " nm",
-                            "must be positive and finite");
+        throw invalid_field("hole radius", nm_text(radius_nm), "must be positive and finite");
     if (!(tolerance_nm > 0) || !std::isfinite(tolerance_nm))
-        throw invalid_field("chord_tolerance", std::to_string(tolerance_nm) + " nm",
+        throw invalid_field("chord_tolerance", nm_text(tolerance_nm),
                             "must be positive and finite");
     // 1 - cos(pi/N) = 2 sin^2(pi/(2N)) <= t/r  <=>  N >= pi / (2 asin(sqrt(t / (2r)))).
     const double ratio = tolerance_nm / (2.0 * radius_nm);
     double n_min = 8.0;
     if (ratio < 1.0) n_min = std::max(8.0, std::numbers::pi / (2.0 * std::asin(std::sqrt(ratio))));
     if (n_min > kMaxPolygonSides)
-        throw invalid_field("chord_tolerance", std::to_string(tolerance_nm) + " nm",
+        throw invalid_field("chord_tolerance", nm_text(tolerance_nm),
                             "needs more than " + std::to_string(kMaxPolygonSides) +
                                 " sides for a hole of radius " + std::to_string(radius_nm) +
                                 " nm; use a larger tolerance");
     int n = 4 * static_cast<int>(std::ceil(n_min / 4.0 - 1e-12));
     while (sagitta_nm(radius_nm, n) > tolerance_nm) n += 4;  // guards the rounding of asin
     while (n > 8 && sagitta_nm(radius_nm, n - 4) <= tolerance_nm) n -= 4;
+    return n;
+}
+
+int circle_sides(double radius_nm, double tolerance_nm, std::size_t max_vertices,
+                 std::int64_t grid_nm) {
+    const int cap = 4 * static_cast<int>(
+                            std::min<std::size_t>(max_vertices, std::size_t(kMaxPolygonSides)) / 4);
+    if (cap < 8)
+        throw invalid_field("max_vertices", std::to_string(max_vertices),
+                            "must be >= 8 for circles");
+    if (tolerance_nm == 0.0) {
+        int n = cap;
+        while (n > 8 && sagitta_nm(radius_nm, n - 4) <= double(grid_nm)) n -= 4;
+        return n;
+    }
+    const int n = sides_for_chord_tolerance(radius_nm, tolerance_nm);
+    if (n > cap) {
+        throw invalid_field("chord_tolerance", nm_text(tolerance_nm),
+                            "needs " + std::to_string(n) + " vertices per circle, more than the " +
+                                std::to_string(max_vertices) +
+                                " allowed (max_vertices); the "
+                                "finest tolerance within them is " +
+                                nm_text(std::ceil(sagitta_nm(radius_nm, cap))));
+    }
     return n;
 }
 

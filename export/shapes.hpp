@@ -23,6 +23,9 @@ std::int64_t snap_nm(double v_nm, std::int64_t grid_nm);
 std::int64_t floor_to_grid(double v_nm, std::int64_t grid_nm);
 std::int64_t ceil_to_grid(double v_nm, std::int64_t grid_nm);
 
+// "12.5 nm": a length for messages (6 significant digits).
+std::string nm_text(double nm);
+
 // Sagitta (greatest distance between a chord and its arc) of a regular N-gon inscribed in a
 // circle of radius r: r (1 - cos(pi / N)), in nm.
 double sagitta_nm(double radius_nm, int sides);
@@ -31,6 +34,15 @@ double sagitta_nm(double radius_nm, int sides);
 // naming `chord_tolerance` when that needs more than kMaxPolygonSides sides or the inputs are
 // not positive and finite.
 int sides_for_chord_tolerance(double radius_nm, double tolerance_nm);
+
+// Sides of the polygon that stands for a circle of radius r, at most max_vertices (the vertex
+// limit the design-rule check applies to every polygon). tolerance_nm > 0: the fewest sides
+// within it (sides_for_chord_tolerance); InvalidInput naming `chord_tolerance` when that exceeds
+// max_vertices, with the finest tolerance that fits. tolerance_nm == 0 (auto): the most sides, a
+// multiple of 4, within max_vertices, but none beyond a sagitta of one grid step (finer would be
+// undone by snapping to the grid). Always >= 8.
+int circle_sides(double radius_nm, double tolerance_nm, std::size_t max_vertices,
+                 std::int64_t grid_nm);
 
 // The regular N-gon inscribed in the circle (centre cx, cy; radius r; all nm) with vertices at
 // angles (2k + 1) pi / N, each coordinate snapped to the grid towards the centre and clamped to

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "core/error.hpp"
+#include "export/drc.hpp"
 #include "export/geometry.hpp"
 #include "export/marks.hpp"
 #include "export/rings.hpp"
@@ -107,12 +108,45 @@ TEST_CASE("chord tolerance: the fewest sides (multiple of 4) whose sagitta is wi
     CHECK_THROWS_AS(sides_for_chord_tolerance(220000.0, 0.0), InvalidInput);
 }
 
+TEST_CASE("circle sides: within max_vertices, auto the finest that fits, too fine refused") {
+    // auto: the largest multiple of 4 within the limit, but no finer than one grid step.
+    CHECK(circle_sides(220000.0, 0.0, 199, 1) == 196);
+    CHECK(circle_sides(220000.0, 0.0, 8, 1) == 8);
+    CHECK(circle_sides(1000.0, 0.0, 199, 1) == sides_for_chord_tolerance(1000.0, 1.0));
+    CHECK(sagitta_nm(1000.0, circle_sides(1000.0, 0.0, 199, 1)) <= 1.0);
+    // An explicit tolerance: the fewest sides within it, when they fit.
+    CHECK(circle_sides(220000.0, 200.0, 199, 1) == sides_for_chord_tolerance(220000.0, 200.0));
+    CHECK_THROWS_WITH_AS(circle_sides(220000.0, 10.0, 199, 1),
+                         doctest::Contains("needs 332 vertices"), InvalidInput);
+    CHECK_THROWS_WITH_AS(circle_sides(220000.0, 10.0, 199, 1),
+                         doctest::Contains("finest tolerance within them is 29 nm"), InvalidInput);
+    CHECK(sagitta_nm(220000.0, 196) <= 29.0);
+    CHECK_THROWS_AS(circle_sides(220000.0, 0.0, 7, 1), InvalidInput);
+
+    // Regression: the default circle export (then a 10 nm tolerance, 332 vertices) failed its
+    // own design-rule check (vertex limit 199). Now every circle fits and the DRC is clean.
+    const Mask m = mask_with(6, {{0, 0}, {2, 3}, {5, 5}}, 1, 1, 440e-6);
+    LayoutOptions o;
+    o.shape = HoleShape::kCircle;
+    const Layout l = make_layout(m, o);
+    CHECK(l.hole_sides == 196);
+    for (const Ring& p : l.polygons) CHECK(p.size() <= o.max_vertices);
+    DrcRules rules;
+    rules.max_vertices = o.max_vertices;  // as pinmask export checks its own output
+    CHECK(run_drc(l, rules).clean());
+    o.chord_tolerance_m = 10e-9;
+    CHECK_THROWS_AS(make_layout(m, o), InvalidInput);
+    o.tone = Tone::kDark;  // holes in pieces split to max_vertices: a finer circle is allowed
+    CHECK_NOTHROW(make_layout(m, o));
+}
+
 TEST_CASE("circles: inscribed, convex, strictly inside their cell, area of the N-gon") {
     const Mask m = mask_with(6, {{0, 0}, {0, 1}, {2, 3}, {5, 5}}, 1, 1, 440e-6);
     for (double tol_nm : {10.0, 200.0}) {
         LayoutOptions o;
         o.shape = HoleShape::kCircle;
         o.chord_tolerance_m = tol_nm * 1e-9;
+        o.max_vertices = 1000;  // 10 nm on a 220 um radius needs 332 sides
         const Layout l = make_layout(m, o);
         const double r = 220000.0;
         const int n = sides_for_chord_tolerance(r, tol_nm);
