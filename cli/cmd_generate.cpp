@@ -22,6 +22,7 @@
 #include "design/families.hpp"
 #include "design/mask.hpp"
 #include "design/mura.hpp"
+#include "design/optics.hpp"
 #include "design/random_sparse.hpp"
 
 namespace pinmask::cli {

@@ -7,6 +7,7 @@
 
 #include "cli/psf_options.hpp"
 #include "core/units.hpp"
+#include "design/optics.hpp"
 
 namespace pinmask::cli {
 namespace {

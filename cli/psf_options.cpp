@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "core/units.hpp"
+#include "design/optics.hpp"
 
 namespace pinmask::cli {
 
@@ -19,12 +20,6 @@ void add_psf_options(CLI::App& cmd, PsfOptions& o) {
                    "Image-plane cell pitch in sensor pixels (integer >= 1). Default: the nearest "
                    "integer to d |1 - f/f'| / w, the value for a distant object (u = inf), as "
                    "the paper quotes it (paper: 7.94 -> 8)");
-}
-
-double design_pixels_per_cell(const Camera& c) {
-    const double shrink =
-        std::isinf(c.lens_focal_m) ? 1.0 : std::fabs(1.0 - c.sensor_distance_m / c.lens_focal_m);
-    return c.pinhole_m * shrink / c.pixel_pitch_m;
 }
 
 PsfSpec resolve_psf_spec(const PsfOptions& o, const Camera& c) {

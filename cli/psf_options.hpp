@@ -20,9 +20,6 @@ struct PsfOptions {
 // --kernel, --kernel-path, --pixels-per-cell.
 void add_psf_options(CLI::App& cmd, PsfOptions& o);
 
-// Image-plane cell pitch in pixels for a distant object: d |1 - f/f'| / w (f' = inf: d / w),
-// the design value the paper quotes (7.94 for its camera).
-double design_pixels_per_cell(const Camera& c);
 
 // The PsfSpec for these flags: pixels per cell as given, else the nearest integer to the design
 // value (InvalidInput when that is below 1, naming the flag to set); kernel flags checked for

@@ -51,6 +51,12 @@ double magnification_at_u(const Camera& c) {
     return c.sensor_distance_m * inverse_effective_distance_at_u(c);
 }
 
+double design_pixels_per_cell(const Camera& c) {
+    const double magnification =
+        c.sensor_distance_m * (1.0 / c.sensor_distance_m - inverse(c.lens_focal_m));
+    return std::fabs(magnification) * c.pinhole_m / c.pixel_pitch_m;
+}
+
 double fresnel_number_at_u(const Camera& c) {
     return c.pinhole_m * c.pinhole_m * std::fabs(inverse_effective_distance_at_u(c)) /
            (4.0 * c.wavelength_m);
@@ -77,7 +83,7 @@ OpticsReport compute_optics(const Camera& c, const PatternGeometry& g, KernelMod
     r.magnification_at_u = f * inv_z_u;
     r.geometric_spot_m = std::fabs(r.magnification) * d;
     r.geometric_spot_at_u_m = std::fabs(r.magnification_at_u) * d;
-    r.pixels_per_cell = r.geometric_spot_m / w;
+    r.pixels_per_cell = design_pixels_per_cell(c);
     r.pixels_per_cell_at_u = r.geometric_spot_at_u_m / w;
     const double rounded = std::max(1.0, std::round(r.pixels_per_cell));
     r.integer_pixels_per_cell = static_cast<long long>(std::min(rounded, kMaxPixelsPerCell));

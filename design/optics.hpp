@@ -85,5 +85,8 @@ double inverse_effective_distance_at_u(const Camera& camera);
 double magnification_at_u(const Camera& camera);
 // N(u) = d^2 |1/z_eff(u)| / (4 lambda): the Fresnel number the kernel models use.
 double fresnel_number_at_u(const Camera& camera);
+// Image-plane cell pitch in sensor pixels for a distant object, |M| d / w with M = 1 - f/f'
+// (f' = inf: d / w): OpticsReport::pixels_per_cell, the design value the paper quotes (7.94).
+double design_pixels_per_cell(const Camera& camera);
 
 }  // namespace pinmask
