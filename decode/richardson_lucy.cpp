@@ -88,14 +88,7 @@ DecodeResult solve_richardson_lucy(const ConvolutionOperator& op, const Plane& p
             rec.seconds = clock.seconds();
             r.history.push_back(rec);
         }
-        if (change <= o.tolerance) {
-            r.converged = true;
-            break;
-        }
-        if (stop_requested(o)) {
-            r.interrupted = true;
-            break;
-        }
+        if (iteration_ends(change <= o.tolerance, o, r)) break;
     }
     if (o.max_iterations == 0) r.converged = true;
     r.objective = i_divergence(p, ax);

@@ -10,6 +10,7 @@
 
 #include "core/image.hpp"
 #include "decode/convolution.hpp"
+#include "decode/decoder.hpp"
 
 namespace pinmask {
 
@@ -27,6 +28,20 @@ struct IterativeOptions {
 // True when options.stop is set and raised.
 inline bool stop_requested(const IterativeOptions& options) {
     return options.stop != nullptr && options.stop->load(std::memory_order_relaxed);
+}
+
+// At the end of an iteration: true when the solver must stop, because its stopping rule holds
+// (`converged`: sets result.converged) or options.stop is raised (sets result.interrupted).
+inline bool iteration_ends(bool converged, const IterativeOptions& options, DecodeResult& result) {
+    if (converged) {
+        result.converged = true;
+        return true;
+    }
+    if (stop_requested(options)) {
+        result.interrupted = true;
+        return true;
+    }
+    return false;
 }
 
 // Throws InvalidInput naming max_iterations or tolerance when out of range.

@@ -181,14 +181,7 @@ DecodeResult solve_tv_l2(const ConvolutionOperator& op, const Plane& capture, co
             rec.seconds = clock.seconds();
             r.history.push_back(rec);
         }
-        if (change <= o.tolerance) {
-            r.converged = true;
-            break;
-        }
-        if (stop_requested(o)) {
-            r.interrupted = true;
-            break;
-        }
+        if (iteration_ends(change <= o.tolerance, o, r)) break;
 
         // Residual balancing of the penalties (rescaling the scaled duals).
         if (k % kAdaptEvery == 0 && k <= adapt_until) {
