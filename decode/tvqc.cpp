@@ -299,10 +299,9 @@ DecodeResult solve_tvqc(const ConvolutionOperator& op, const Plane& capture, con
             r.history.push_back(rec);
         }
         // k >= 2: the first primal step starts from y = 0 and does not move x.
-        if (iteration_ends(
-                k >= 2 && change <= o.tolerance && viol <= o.tolerance * std::max(eps, p_norm), o,
-                r))
-            break;
+        const bool converged =
+            k >= 2 && change <= o.tolerance && viol <= o.tolerance * std::max(eps, p_norm);
+        if (iteration_ends(converged, o, r)) break;
     }
     if (o.max_iterations == 0) r.converged = true;
 
