@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/fft.hpp"
 #include "tests/support/close.hpp"
+#include "tests/support/uniform_plane.hpp"
 
 using namespace pinmask;
 
@@ -18,11 +19,7 @@ namespace {
 constexpr double kFftVsDirectTol = 1e-11;
 
 Plane random_plane(int rows, int cols, unsigned seed) {
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
-    Plane p(rows, cols);
-    for (Eigen::Index i = 0; i < p.size(); ++i) p.data()[i] = u(rng);
-    return p;
+    return test::uniform_plane(rows, cols, seed, -1.0, 1.0);
 }
 
 // Direct separable DFT (rows then columns), O(R C (R + C)), sign -1, unnormalised.

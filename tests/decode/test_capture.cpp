@@ -7,17 +7,14 @@
 
 #include "core/error.hpp"
 #include "decode/capture.hpp"
+#include "tests/support/uniform_plane.hpp"
 
 using namespace pinmask;
 
 namespace {
 
 Plane random_plane(int rows, int cols, unsigned seed) {
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    Plane p(rows, cols);
-    for (Eigen::Index i = 0; i < p.size(); ++i) p.data()[i] = u(rng);
-    return p;
+    return test::uniform_plane(rows, cols, seed, 0.0, 1.0);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "decode/preprocess.hpp"
 #include "tests/support/close.hpp"
+#include "tests/support/uniform_plane.hpp"
 
 using namespace pinmask;
 
@@ -16,11 +17,7 @@ namespace {
 constexpr double kSumRoundoffTol = 1e-13;
 
 Plane random_plane(int rows, int cols, unsigned seed) {
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(-1.0, 2.0);
-    Plane p(rows, cols);
-    for (Eigen::Index i = 0; i < p.size(); ++i) p.data()[i] = u(rng);
-    return p;
+    return test::uniform_plane(rows, cols, seed, -1.0, 2.0);
 }
 
 }  // namespace

@@ -9,15 +9,12 @@
 
 #include "core/image.hpp"
 #include "decode/convolution.hpp"
+#include "tests/support/uniform_plane.hpp"
 
 namespace pinmask::test {
 
 inline Plane random_plane(int rows, int cols, unsigned seed, double lo = -1.0, double hi = 1.0) {
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(lo, hi);
-    Plane p(rows, cols);
-    for (Eigen::Index i = 0; i < p.size(); ++i) p.data()[i] = u(rng);
-    return p;
+    return uniform_plane(rows, cols, seed, lo, hi);
 }
 
 // A positive PSF normalised to sum 1, with a dominant centre so its OTF stays away from zero.

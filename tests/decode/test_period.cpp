@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "decode/period.hpp"
 #include "tests/support/close.hpp"
+#include "tests/support/uniform_plane.hpp"
 
 using namespace pinmask;
 
@@ -21,11 +22,7 @@ constexpr double kProfileVsDirectTol = 1e-10;
 constexpr double kSubPixelTol = 0.25;
 
 Plane random_plane(int rows, int cols, unsigned seed, double lo = 0.0, double hi = 1.0) {
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(lo, hi);
-    Plane p(rows, cols);
-    for (Eigen::Index i = 0; i < p.size(); ++i) p.data()[i] = u(rng);
-    return p;
+    return test::uniform_plane(rows, cols, seed, lo, hi);
 }
 
 // rho(d) by the definition in period.hpp: direct sums over the overlapping pairs.

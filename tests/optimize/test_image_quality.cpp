@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "optimize/image_quality.hpp"
 #include "tests/support/close.hpp"
+#include "tests/support/uniform_plane.hpp"
 
 using namespace pinmask;
 
@@ -15,11 +16,7 @@ namespace {
 constexpr double kSsimVsDirectTol = 1e-12;
 
 Plane random_plane(int rows, int cols, unsigned seed) {
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    Plane p(rows, cols);
-    for (Eigen::Index i = 0; i < p.size(); ++i) p.data()[i] = u(rng);
-    return p;
+    return test::uniform_plane(rows, cols, seed, 0.0, 1.0);
 }
 
 // SSIM of the 11 x 11 window whose top-left pixel is (r0, c0), straight from the paper's

@@ -11,6 +11,7 @@
 #include "optimize/scenes.hpp"
 #include "tests/support/cli_run.hpp"
 #include "tests/support/close.hpp"
+#include "tests/support/uniform_plane.hpp"
 
 using namespace pinmask;
 
@@ -35,11 +36,7 @@ Plane resample_reference(const Plane& in, int rows, int cols) {
 }
 
 Plane random_plane(int rows, int cols, unsigned seed) {
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    Plane p(rows, cols);
-    for (Eigen::Index i = 0; i < p.size(); ++i) p.data()[i] = u(rng);
-    return p;
+    return test::uniform_plane(rows, cols, seed, 0.0, 1.0);
 }
 
 }  // namespace

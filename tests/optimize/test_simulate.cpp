@@ -16,6 +16,7 @@
 #include "optimize/scenes.hpp"
 #include "optimize/simulate.hpp"
 #include "tests/support/close.hpp"
+#include "tests/support/uniform_plane.hpp"
 
 using namespace pinmask;
 
@@ -44,11 +45,7 @@ Plane direct_cyclic(const Plane& x, const Plane& a) {
 }
 
 Plane random_plane(int rows, int cols, std::uint64_t seed) {
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    Plane p(rows, cols);
-    for (Eigen::Index i = 0; i < p.size(); ++i) p.data()[i] = u(rng);
-    return p;
+    return test::uniform_plane(rows, cols, seed, 0.0, 1.0);
 }
 
 // Connected components (4-neighbourhood, not wrapping) of the pixels above `threshold`.
