@@ -17,6 +17,7 @@
 #include "export/png_preview.hpp"
 #include "export/read_any.hpp"
 #include "export/svg_writer.hpp"
+#include "export/write_any.hpp"
 
 namespace pinmask {
 namespace {
@@ -74,24 +75,6 @@ Mask bench_mask(const ExportBenchOptions& o) {
     return m;
 }
 
-std::string write_format(FabFormat f, const Layout& l, double dpi) {
-    switch (f) {
-        case FabFormat::kSvg:
-            return svg_document(l);
-        case FabFormat::kGds:
-            return gds_stream(l);
-        case FabFormat::kDxf:
-            return dxf_document(l);
-        case FabFormat::kGerber:
-            return gerber_document(l);
-        case FabFormat::kPdf:
-            return pdf_document(l);
-        case FabFormat::kPng:
-            return png_preview(l, dpi);
-    }
-    return {};
-}
-
 }  // namespace
 
 ExportBenchResult bench_export(const ExportBenchOptions& o) {
@@ -126,7 +109,7 @@ ExportBenchResult bench_export(const ExportBenchOptions& o) {
         const fs::path ref = o.scratch_dir / ("reference" + fab_extension(f));
         std::string bytes;
         const Timing t = time_min(o.repeat, [&] {
-            bytes = write_format(f, layout, o.dpi);
+            bytes = write_fabrication_bytes(layout, f, {.png_dpi = o.dpi});
             fwrite_file(path, bytes);
         });
         const Timing t_ref = time_min(o.repeat, [&] { fwrite_file(ref, bytes); });

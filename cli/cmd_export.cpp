@@ -34,6 +34,7 @@
 #include "export/rings.hpp"
 #include "export/svg_writer.hpp"
 #include "export/vendor_rules.hpp"
+#include "export/write_any.hpp"
 #include "export/xor_area.hpp"
 
 namespace pinmask::cli {
@@ -119,25 +120,13 @@ LayoutOptions layout_options(const ExportOptions& o, const Mask& mask, const std
     return lo;
 }
 
-std::string bytes_for(FabFormat f, const Layout& l, const ExportOptions& o) {
-    switch (f) {
-        case FabFormat::kSvg:
-            return svg_document(l);
-        case FabFormat::kGds:
-            return gds_stream(l, {.layer = o.layer, .datatype = o.datatype});
-        case FabFormat::kDxf:
-            return dxf_document(l, {.layer = o.dxf_layer});
-        case FabFormat::kGerber:
-            return gerber_document(l);
-        case FabFormat::kPdf: {
-            PdfOptions po;
-            po.margin_m = parse_length_m(o.margin, "--margin");
-            return pdf_document(l, po);
-        }
-        case FabFormat::kPng:
-            return png_preview(l, o.dpi);
-    }
-    return {};
+WriteOptions write_options(const ExportOptions& o) {
+    WriteOptions w;
+    w.gds = {.layer = o.layer, .datatype = o.datatype};
+    w.dxf = {.layer = o.dxf_layer};
+    w.pdf.margin_m = parse_length_m(o.margin, "--margin");
+    w.png_dpi = o.dpi;
+    return w;
 }
 
 std::string units_of(FabFormat f) {
@@ -229,7 +218,8 @@ void run_export(const ExportOptions& o) {
     if (!o.no_psf) psf = mask_psf(mask, o.input);
 
     std::vector<std::pair<FabFormat, std::string>> contents;
-    for (FabFormat f : formats) contents.push_back({f, bytes_for(f, layout, o)});
+    const WriteOptions wo = write_options(o);
+    for (FabFormat f : formats) contents.push_back({f, write_fabrication_bytes(layout, f, wo)});
     fs::create_directories(out_dir);
     StagedFiles staged;
     json files = json::array();

@@ -11,26 +11,12 @@
 #include "export/read_any.hpp"
 #include "export/rings.hpp"
 #include "export/svg_writer.hpp"
+#include "export/write_any.hpp"
 #include "tests/export/export_fixtures.hpp"
 
 using namespace pinmask;
 
 namespace {
-
-std::string write(const Layout& l, FabFormat f) {
-    switch (f) {
-        case FabFormat::kSvg:
-            return svg_document(l);
-        case FabFormat::kGds:
-            return gds_stream(l);
-        case FabFormat::kDxf:
-            return dxf_document(l);
-        case FabFormat::kGerber:
-            return gerber_document(l);
-        default:
-            return {};
-    }
-}
 
 constexpr FabFormat kReadable[] = {FabFormat::kSvg, FabFormat::kGds, FabFormat::kDxf,
                                    FabFormat::kGerber};
@@ -61,7 +47,7 @@ TEST_CASE("every readable format reads back exactly the polygons written, and th
     for (const Layout& l : sample_layouts())
         for (FabFormat f : kReadable) {
             INFO("format " << fab_format_name(f) << ", tone " << tone_name(l.tone));
-            const FileGeometry g = read_fabrication_bytes(write(l, f), f);
+            const FileGeometry g = read_fabrication_bytes(write_fabrication_bytes(l, f), f);
             CHECK(canonical_rings(g.rings) == canonical_rings(all_rings(l)));
             CHECK(g.rings.size() == l.polygons.size() + l.annotations.size());
             CHECK(g.info.at("hash") == l.mask_hash);
@@ -73,7 +59,7 @@ TEST_CASE("every readable format reads back exactly the polygons written, and th
 TEST_CASE("truncated files are rejected with InvalidInput at every length") {
     const Layout l = sample_layouts()[1];
     for (FabFormat f : kReadable) {
-        const std::string full = write(l, f);
+        const std::string full = write_fabrication_bytes(l, f);
         // Text files may lose trailing whitespace and stay complete.
         const std::size_t complete =
             f == FabFormat::kGds ? full.size() : full.find_last_not_of(" \r\n") + 1;
@@ -90,7 +76,7 @@ TEST_CASE("garbage and mutated files give InvalidInput or a result, never anothe
     std::mt19937_64 rng(11);
     const Layout l = sample_layouts()[0];
     for (FabFormat f : kReadable) {
-        const std::string good = write(l, f);
+        const std::string good = write_fabrication_bytes(l, f);
         for (int trial = 0; trial < 400; ++trial) {
             std::string bytes;
             if (trial % 2 == 0) {  // random bytes, sometimes with a valid start
