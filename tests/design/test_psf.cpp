@@ -10,8 +10,10 @@
 #include "core/fft.hpp"
 #include "design/psf.hpp"
 #include "tests/support/close.hpp"
+#include "tests/support/random_pattern.hpp"
 
 using namespace pinmask;
+using pinmask::test::random_pattern;
 
 namespace {
 
@@ -20,18 +22,6 @@ constexpr double kSumTol = 1e-13;
 // FFT round-off against the factorised product, relative to the largest coefficient (the DC
 // term, 1): a few ulps times log N.
 constexpr double kOtfTol = 1e-12;
-
-Pattern random_pattern(int n, int holes, unsigned seed) {
-    std::mt19937_64 rng(seed);
-    Pattern p;
-    p.n = n;
-    p.min_spacing_cells = 0.0;
-    std::vector<int> cells(static_cast<std::size_t>(n) * n);
-    for (std::size_t i = 0; i < cells.size(); ++i) cells[i] = static_cast<int>(i);
-    std::shuffle(cells.begin(), cells.end(), rng);
-    for (int i = 0; i < holes; ++i) p.pinholes.push_back({cells[i] / n, cells[i] % n});
-    return p;
-}
 
 Kernel fresnel_kernel(int ppc, int max_width) {
     KernelSpec s;

@@ -12,8 +12,10 @@
 #include "optimize/analytic_error.hpp"
 #include "optimize/scenes.hpp"
 #include "tests/support/close.hpp"
+#include "tests/support/random_pattern.hpp"
 
 using namespace pinmask;
+using pinmask::test::random_pattern;
 
 namespace {
 
@@ -25,17 +27,6 @@ constexpr double kMonteCarloTol = 0.05;
 constexpr int kMonteCarloScenes = 300;
 constexpr int kPriorScenes = 400;
 constexpr std::uint64_t kPriorFirstSeed = 100000;  // disjoint from the Monte Carlo seeds 0..299
-
-Pattern random_pattern(int n, int k, unsigned seed) {
-    std::vector<int> cells(static_cast<std::size_t>(n) * n);
-    std::iota(cells.begin(), cells.end(), 0);
-    std::mt19937_64 rng(seed);
-    std::shuffle(cells.begin(), cells.end(), rng);
-    Pattern p;
-    p.n = n;
-    for (int i = 0; i < k; ++i) p.pinholes.push_back({cells[i] / n, cells[i] % n});
-    return p;
-}
 
 Plane test_kernel(int m, int ppc) {
     Plane k = Plane::Zero(m, m);

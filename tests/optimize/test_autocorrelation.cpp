@@ -8,22 +8,12 @@
 #include "design/psf.hpp"
 #include "optimize/autocorrelation.hpp"
 #include "tests/support/close.hpp"
+#include "tests/support/random_pattern.hpp"
 
 using namespace pinmask;
+using pinmask::test::random_pattern;
 
 namespace {
-
-// K distinct random cells on the n x n torus (no spacing rule: metrics do not need one).
-Pattern random_pattern(int n, int k, unsigned seed) {
-    std::vector<int> cells(static_cast<std::size_t>(n) * n);
-    std::iota(cells.begin(), cells.end(), 0);
-    std::mt19937_64 rng(seed);
-    std::shuffle(cells.begin(), cells.end(), rng);
-    Pattern p;
-    p.n = n;
-    for (int i = 0; i < k; ++i) p.pinholes.push_back({cells[i] / n, cells[i] % n});
-    return p;
-}
 
 // O(n^4) reference: R(d) = sum_x o(x) o(x + d) over the torus.
 std::vector<int> direct_autocorrelation(const Pattern& p) {

@@ -13,24 +13,15 @@
 #include "design/psf.hpp"
 #include "optimize/spectrum_metrics.hpp"
 #include "tests/support/close.hpp"
+#include "tests/support/random_pattern.hpp"
 
 using namespace pinmask;
+using pinmask::test::random_pattern;
 
 namespace {
 
 // FFT against a direct O(n^4) DFT, and products/sums of O(n^2) such terms: round-off.
 constexpr double kDirectTol = 1e-10;
-
-Pattern random_pattern(int n, int k, unsigned seed) {
-    std::vector<int> cells(static_cast<std::size_t>(n) * n);
-    std::iota(cells.begin(), cells.end(), 0);
-    std::mt19937_64 rng(seed);
-    std::shuffle(cells.begin(), cells.end(), rng);
-    Pattern p;
-    p.n = n;
-    for (int i = 0; i < k; ++i) p.pinholes.push_back({cells[i] / n, cells[i] % n});
-    return p;
-}
 
 // Direct DFT of the pattern at frequency (k, l): sum_j exp(-2 pi i (k r_j + l c_j) / n).
 std::complex<double> direct_dft(const Pattern& p, int k, int l) {
