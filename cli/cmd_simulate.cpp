@@ -15,6 +15,7 @@
 
 #include "cli/command.hpp"
 #include "cli/mask_json.hpp"
+#include "cli/noise_options.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
@@ -34,8 +35,8 @@ struct SimulateOptions {
     std::string mask;
     std::string scene = "letter-R";
     std::string snr = "30";
-    std::optional<double> photons, read_noise, dark_current, full_well, optical_density;
-    std::optional<int> bits;
+    std::optional<double> photons;
+    SensorFlags sensor_flags;
     bool full_sensor = false;
     std::optional<std::string> sensor;
     std::uint64_t seed = 1;
@@ -45,11 +46,6 @@ struct SimulateOptions {
     bool json = false;
     bool explain = false;
 };
-
-ordered_json num(double v) {
-    if (!std::isfinite(v)) return nullptr;
-    return v;
-}
 
 std::string fmt(double v) {
     std::ostringstream s;
@@ -90,43 +86,14 @@ void write_image_as(const fs::path& tmp, const fs::path& final_path, const Image
 // The noise model from the flags; `explain` gets a line per noise stage that is not applied.
 NoiseModel noise_from_flags(const SimulateOptions& o, const CLI::App& cmd,
                             std::vector<std::string>& explain) {
-    NoiseModel m;
     if (o.photons) {
         if (cmd.count("--snr") > 0) {
             throw invalid_field("--snr", o.snr, "cannot be combined with --photons");
         }
-        m.kind = NoiseKind::kPhoton;
-        m.photons_per_pinhole = *o.photons;
-        m.read_noise_e = o.read_noise.value_or(0.0);
-        m.dark_current_e = o.dark_current.value_or(0.0);
-        m.adc_bits = o.bits.value_or(0);
-        m.full_well_e = o.full_well.value_or(std::numeric_limits<double>::infinity());
-        m.film_optical_density =
-            o.optical_density.value_or(std::numeric_limits<double>::infinity());
-        if (o.bits && !o.full_well) {
-            throw invalid_field("--bits", std::to_string(*o.bits),
-                                "needs --full-well E (the ADC full scale in electrons)");
-        }
-        validate(m);
-        auto skipped = [&](bool given, const std::string& line) {
-            if (!given) explain.push_back(line);
-        };
-        skipped(o.read_noise.has_value(), "read noise skipped: --read-noise not given");
-        skipped(o.dark_current.has_value(), "dark current skipped: --dark-current not given");
-        skipped(o.full_well.has_value(), "saturation skipped: --full-well not given");
-        skipped(o.bits.has_value(), "quantisation skipped: --bits not given");
-        skipped(o.optical_density.has_value(),
-                "film leakage skipped: --optical-density not given (perfectly opaque film)");
-        return m;
+        return photon_model(*o.photons, o.sensor_flags, &explain);
     }
-    for (const char* flag :
-         {"--read-noise", "--dark-current", "--bits", "--full-well", "--optical-density"}) {
-        if (cmd.count(flag) > 0) {
-            throw InvalidInput(std::string(flag) +
-                               ": a sensor parameter of the photon model; give --photons N too "
-                               "(the --snr model is Gaussian noise at a fixed SNR)");
-        }
-    }
+    refuse_sensor_flags_without_photons(cmd);
+    NoiseModel m;
     if (o.snr == "inf" || o.snr == "+inf") {
         m.kind = NoiseKind::kNone;
         explain.push_back("noise skipped: --snr inf (noiseless capture)");
@@ -135,27 +102,6 @@ NoiseModel noise_from_flags(const SimulateOptions& o, const CLI::App& cmd,
     m.kind = NoiseKind::kGaussianSnr;
     m.snr_db = parse_number(o.snr, "--snr");
     return m;
-}
-
-ordered_json noise_json(const NoiseModel& m) {
-    switch (m.kind) {
-        case NoiseKind::kNone:
-            return {{"kind", "none"}};
-        case NoiseKind::kGaussianSnr:
-            return {{"kind", "gaussian-snr"},
-                    {"snr_db", m.snr_db},
-                    {"definition", "10 log10(mean(c^2) / sigma^2) over the noiseless capture"}};
-        case NoiseKind::kPhoton:
-            break;
-    }
-    return {{"kind", "photon"},
-            {"photons_per_pinhole", m.photons_per_pinhole},
-            {"read_noise_e", m.read_noise_e},
-            {"dark_current_e", m.dark_current_e},
-            {"full_well_e", num(m.full_well_e)},
-            {"adc_bits", m.adc_bits},
-            {"film_optical_density", num(m.film_optical_density)},
-            {"film_transmission", film_transmission(m)}};
 }
 
 void run(const SimulateOptions& o, const CLI::App& cmd) {
@@ -236,12 +182,12 @@ void run(const SimulateOptions& o, const CLI::App& cmd) {
         case NoiseKind::kPhoton: {
             const NoiseModel& nm = sim.noise;
             std::string stages = "Poisson signal";
-            if (o.optical_density)
+            if (o.sensor_flags.optical_density)
                 stages += " + film leak (OD " + fmt(nm.film_optical_density) + ")";
-            if (o.dark_current) stages += " + dark current";
-            if (o.read_noise) stages += ", read noise";
-            if (o.full_well) stages += ", saturation";
-            if (o.bits) stages += ", " + std::to_string(nm.adc_bits) + "-bit ADC";
+            if (o.sensor_flags.dark_current) stages += " + dark current";
+            if (o.sensor_flags.read_noise) stages += ", read noise";
+            if (o.sensor_flags.full_well) stages += ", saturation";
+            if (o.sensor_flags.bits) stages += ", " + std::to_string(nm.adc_bits) + "-bit ADC";
             explain.push_back("noise: photon model, " + fmt(nm.photons_per_pinhole) +
                               " e per pinhole, " + stages + " (seed " + std::to_string(o.seed) +
                               ")");
@@ -393,20 +339,7 @@ void setup(CLI::App& app) {
         "Photon model: mean photo-electrons per pixel through ONE pinhole for a uniform scene "
         "of value 1 (K pinholes give K times that); Poisson shot noise");
     photons->excludes(snr);
-    cmd->add_option("--read-noise", o->read_noise,
-                    "Photon model: rms read noise, electrons (default 0)");
-    cmd->add_option("--dark-current", o->dark_current,
-                    "Photon model: mean dark-current electrons per pixel over the exposure, "
-                    "Poisson (default 0)");
-    cmd->add_option("--full-well", o->full_well,
-                    "Photon model: saturation, electrons (default: none)");
-    cmd->add_option("--bits", o->bits,
-                    "Photon model: ADC bit depth 1..24, steps of full-well / (2^bits - 1) "
-                    "electrons; needs --full-well (default: no quantisation)");
-    cmd->add_option("--optical-density", o->optical_density,
-                    "Photon model: optical density OD of the opaque film (transmission 10^-OD); "
-                    "its leak over the closed cells adds a uniform background (default: "
-                    "perfectly opaque)");
+    add_sensor_flags(*cmd, o->sensor_flags);
     cmd->add_flag("--full-sensor", o->full_sensor,
                   "Tile the period over the whole sensor (the mask's camera sensor size, or "
                   "--sensor)");

@@ -1,0 +1,98 @@
+#include "cli/noise_options.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "core/error.hpp"
+
+namespace pinmask::cli {
+namespace {
+
+nlohmann::ordered_json num(double v) {
+    if (!std::isfinite(v)) return nullptr;
+    return v;
+}
+
+constexpr const char* kSensorFlags[] = {"--read-noise", "--dark-current", "--bits", "--full-well",
+                                        "--optical-density"};
+
+}  // namespace
+
+void add_sensor_flags(CLI::App& cmd, SensorFlags& f) {
+    cmd.add_option("--read-noise", f.read_noise,
+                   "Photon model: rms read noise, electrons (default 0)");
+    cmd.add_option("--dark-current", f.dark_current,
+                   "Photon model: mean dark-current electrons per pixel over the exposure, "
+                   "Poisson (default 0)");
+    cmd.add_option("--full-well", f.full_well,
+                   "Photon model: saturation, electrons (default: none)");
+    cmd.add_option("--bits", f.bits,
+                   "Photon model: ADC bit depth 1..24, steps of full-well / (2^bits - 1) "
+                   "electrons; needs --full-well (default: no quantisation)");
+    cmd.add_option("--optical-density", f.optical_density,
+                   "Photon model: optical density OD of the opaque film (transmission 10^-OD); "
+                   "its leak over the closed cells adds a uniform background (default: "
+                   "perfectly opaque)");
+}
+
+NoiseModel photon_model(double photons_per_pinhole, const SensorFlags& f,
+                        std::vector<std::string>* skipped) {
+    NoiseModel m;
+    m.kind = NoiseKind::kPhoton;
+    m.photons_per_pinhole = photons_per_pinhole;
+    m.read_noise_e = f.read_noise.value_or(0.0);
+    m.dark_current_e = f.dark_current.value_or(0.0);
+    m.adc_bits = f.bits.value_or(0);
+    m.full_well_e = f.full_well.value_or(std::numeric_limits<double>::infinity());
+    m.film_optical_density = f.optical_density.value_or(std::numeric_limits<double>::infinity());
+    if (f.bits && !f.full_well) {
+        throw invalid_field("--bits", std::to_string(*f.bits),
+                            "needs --full-well E (the ADC full scale in electrons)");
+    }
+    validate(m);
+    if (skipped) {
+        auto note = [&](bool given, const std::string& line) {
+            if (!given) skipped->push_back(line);
+        };
+        note(f.read_noise.has_value(), "read noise skipped: --read-noise not given");
+        note(f.dark_current.has_value(), "dark current skipped: --dark-current not given");
+        note(f.full_well.has_value(), "saturation skipped: --full-well not given");
+        note(f.bits.has_value(), "quantisation skipped: --bits not given");
+        note(f.optical_density.has_value(),
+             "film leakage skipped: --optical-density not given (perfectly opaque film)");
+    }
+    return m;
+}
+
+void refuse_sensor_flags_without_photons(const CLI::App& cmd) {
+    for (const char* flag : kSensorFlags) {
+        if (cmd.count(flag) > 0) {
+            throw InvalidInput(std::string(flag) +
+                               ": a sensor parameter of the photon model; give --photons too "
+                               "(the --snr model is Gaussian noise at a fixed SNR)");
+        }
+    }
+}
+
+nlohmann::ordered_json noise_json(const NoiseModel& m) {
+    switch (m.kind) {
+        case NoiseKind::kNone:
+            return {{"kind", "none"}};
+        case NoiseKind::kGaussianSnr:
+            return {{"kind", "gaussian-snr"},
+                    {"snr_db", m.snr_db},
+                    {"definition", "10 log10(mean(c^2) / sigma^2) over the noiseless capture"}};
+        case NoiseKind::kPhoton:
+            break;
+    }
+    return {{"kind", "photon"},
+            {"photons_per_pinhole", m.photons_per_pinhole},
+            {"read_noise_e", m.read_noise_e},
+            {"dark_current_e", m.dark_current_e},
+            {"full_well_e", num(m.full_well_e)},
+            {"adc_bits", m.adc_bits},
+            {"film_optical_density", num(m.film_optical_density)},
+            {"film_transmission", film_transmission(m)}};
+}
+
+}  // namespace pinmask::cli
