@@ -53,6 +53,16 @@ void SimulatedMetricsOptions::validate() const {
 SimulatedQuality simulated_quality(const Plane& psf, const std::vector<NamedScene>& scenes,
                                    double snr_db, SimulatedDecoder decoder,
                                    const SimulatedMetricsOptions& options) {
+    NoiseModel noise;
+    noise.kind = NoiseKind::kGaussianSnr;
+    noise.snr_db = snr_db;
+    return simulated_quality(psf, scenes, noise, 1, 1, decoder, options);
+}
+
+SimulatedQuality simulated_quality(const Plane& psf, const std::vector<NamedScene>& scenes,
+                                   const NoiseModel& noise, int open_cells, int total_cells,
+                                   SimulatedDecoder decoder,
+                                   const SimulatedMetricsOptions& options) {
     options.validate();
     if (scenes.empty()) throw InvalidInput("simulated metrics: no scenes");
     if (psf.size() == 0 || !psf.isFinite().all() || !(psf.sum() > 0.0)) {
@@ -61,10 +71,11 @@ SimulatedQuality simulated_quality(const Plane& psf, const std::vector<NamedScen
     const int rows = static_cast<int>(psf.rows()), cols = static_cast<int>(psf.cols());
     const Fft2 fft(rows, cols);
     const ComplexPlane otf = psf2otf(psf, rows, cols);
-    NoiseModel noise;
-    noise.kind = NoiseKind::kGaussianSnr;
-    noise.snr_db = snr_db;
     validate(noise);
+    if (noise.kind == NoiseKind::kPhoton && !(open_cells >= 1 && total_cells >= open_cells))
+        throw InvalidInput("simulated metrics: the photon model needs 1 <= open cells (" +
+                           std::to_string(open_cells) + ") <= total cells (" +
+                           std::to_string(total_cells) + ")");
 
     std::vector<Trial> trials;
     std::vector<int> per_scene(scenes.size(), 0);
@@ -83,8 +94,8 @@ SimulatedQuality simulated_quality(const Plane& psf, const std::vector<NamedScen
                                   static_cast<std::uint32_t>(s), static_cast<std::uint32_t>(ch),
                                   static_cast<std::uint32_t>(k)};
                 std::mt19937_64 rng(seq);
-                trials.push_back(
-                    {static_cast<int>(s), &img.channels[ch], add_noise(clean, noise, 1, 1, rng)});
+                trials.push_back({static_cast<int>(s), &img.channels[ch],
+                                  add_noise(clean, noise, open_cells, total_cells, rng)});
                 ++per_scene[s];
             }
         }

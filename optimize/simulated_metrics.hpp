@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/image.hpp"
+#include "optimize/noise_model.hpp"
 
 namespace pinmask {
 
@@ -64,6 +65,13 @@ struct SimulatedQuality {
 // m x m (InvalidInput otherwise). Deterministic for the same inputs.
 SimulatedQuality simulated_quality(const Plane& psf, const std::vector<NamedScene>& scenes,
                                    double snr_db, SimulatedDecoder decoder,
+                                   const SimulatedMetricsOptions& options);
+
+// The same under any noise model (optimize/noise_model): open_cells (K) and total_cells (n^2)
+// set the photon model's signal and film leak (unused by the Gaussian model).
+SimulatedQuality simulated_quality(const Plane& psf, const std::vector<NamedScene>& scenes,
+                                   const NoiseModel& noise, int open_cells, int total_cells,
+                                   SimulatedDecoder decoder,
                                    const SimulatedMetricsOptions& options);
 
 }  // namespace pinmask

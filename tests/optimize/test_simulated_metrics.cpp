@@ -108,6 +108,59 @@ TEST_CASE("simulated Wiener MSE agrees with the analytic MSE for the same scenes
     CHECK(tuned_mse <= best_fixed * (1.0 + kTunedSlack));
 }
 
+TEST_CASE("photon model: simulated Wiener MSE agrees with the analytic MSE") {
+    // As above, under the photon model (shot noise of K = 5 open cells of 36, read noise, dark
+    // current): the simulation draws Poisson electrons per pixel, the closed form uses their
+    // variance at the prior's mean.
+    const int n = 6, ppc = 4, m = n * ppc;
+    Pattern p;
+    p.n = n;
+    p.pinholes = {{0, 0}, {1, 3}, {3, 1}, {4, 4}, {2, 5}};
+    Plane kernel = Plane::Zero(m, m);
+    for (int r = 0; r < ppc; ++r)
+        for (int c = 0; c < ppc; ++c) kernel(r, c) = 1.0 + 0.2 * r + 0.1 * c;
+    kernel /= kernel.sum();
+    Plane psf = Plane::Zero(m, m);
+    for (const Cell& c : p.pinholes) psf += circshift(kernel, c.row * ppc, c.col * ppc);
+    psf /= psf.sum();
+    const ComplexPlane kernel_otf = expand_half_spectrum(Fft2(m, m).forward(kernel), m);
+    const std::vector<NamedScene> scenes = natural_scenes(m, 40);
+    std::vector<Plane> planes;
+    for (const auto& s : scenes) planes.push_back(s.image.channels[0]);
+
+    NoiseModel noise;
+    noise.kind = NoiseKind::kPhoton;
+    noise.photons_per_pinhole = 40.0;
+    noise.read_noise_e = 3.0;
+    noise.dark_current_e = 5.0;
+    const AnalyticWienerModel model(kernel_otf, scene_prior_from_images(planes, "test"), noise);
+    const AnalyticError e =
+        model.evaluate(pattern_spectrum(p), {WienerFilterKind::kFixedNsr, 0.02});
+    SimulatedMetricsOptions o;
+    o.noise_seeds = 2;
+    o.wiener_nsr = {false, 0.02};
+    const SimulatedQuality q =
+        simulated_quality(psf, scenes, noise, 5, n * n, SimulatedDecoder::kWiener, o);
+    double mse_mean = 0.0;
+    for (const auto& s : q.scenes) mse_mean += std::pow(10.0, -s.psnr_db / 10.0) / scenes.size();
+    CHECK_CLOSE(mse_mean, e.mse, kSimVsAnalyticTol);
+
+    // More light, better pictures; the Gaussian overload is the Gaussian model.
+    noise.photons_per_pinhole = 4000.0;
+    CHECK(
+        simulated_quality(psf, scenes, noise, 5, n * n, SimulatedDecoder::kWiener, o).mean_psnr_db >
+        q.mean_psnr_db + 3.0);
+    NoiseModel gaussian;
+    gaussian.snr_db = 25.0;
+    CHECK(simulated_quality(psf, scenes, gaussian, 5, n * n, SimulatedDecoder::kWiener, o)
+              .mean_psnr_db ==
+          simulated_quality(psf, scenes, 25.0, SimulatedDecoder::kWiener, o).mean_psnr_db);
+    CHECK_THROWS_AS(simulated_quality(psf, scenes, noise, 0, n * n, SimulatedDecoder::kWiener, o),
+                    InvalidInput);
+    CHECK_THROWS_AS(simulated_quality(psf, scenes, noise, 40, n * n, SimulatedDecoder::kWiener, o),
+                    InvalidInput);
+}
+
 TEST_CASE("TV-L2 with a tuned lambda beats the raw noisy capture on a checkerboard") {
     const int m = 24;
     Plane psf = Plane::Zero(m, m);
