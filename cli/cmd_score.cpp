@@ -17,6 +17,7 @@
 
 #include "cli/command.hpp"
 #include "cli/mask_json.hpp"
+#include "cli/noise_options.hpp"
 #include "core/error.hpp"
 #include "core/fft.hpp"
 #include "core/resource_limits.hpp"
@@ -65,6 +66,8 @@ struct ScoreOptions {
     std::vector<std::string> masks;
     std::string scenes = "letter-R,usaf,natural";
     std::string snr = "20,30,40";
+    std::string photons;  // --photons LIST: the photon model instead of --snr
+    SensorFlags sensor;
     std::string metrics = "sidelobes,spectrum,analytic,wiener";
     std::string nsr = "0.01";
     std::string tv_lambda = "1e-3";
@@ -98,10 +101,16 @@ WeightChoice parse_weight(const std::string& text, const std::string& flag) {
     return {false, v};
 }
 
-// "30" -> "snr30", "27.5" -> "snr27.5": the suffix of per-SNR keys.
-std::string snr_key(double snr) {
+// One noise level of the table: a Gaussian SNR or a photon level, with the suffix of its keys
+// ("30" -> "snr30", "27.5" -> "snr27.5"; 1000 photons per pinhole -> "ph1000").
+struct NoiseLevel {
+    NoiseModel model;
+    std::string key;
+};
+
+std::string number_text(double v) {
     std::ostringstream s;
-    s << "snr" << snr;
+    s << v;
     return s.str();
 }
 
@@ -113,7 +122,8 @@ nlohmann::ordered_json num(double v) {
 
 struct Plan {
     std::set<std::string> metrics;
-    std::vector<double> snrs;
+    std::vector<NoiseLevel> noise;
+    std::string noise_text;  // for --explain: "SNR 20,30 dB" or "the photon model at ..."
     std::vector<SceneSpec> scenes;
     WeightChoice nsr, tv_lambda;
     bool has(const std::string& m) const { return metrics.count(m) > 0; }
@@ -121,7 +131,7 @@ struct Plan {
     bool needs_optics() const { return has("analytic") || simulated() || has("spectrum"); }
 };
 
-Plan make_plan(const ScoreOptions& o) {
+Plan make_plan(const ScoreOptions& o, const CLI::App& cmd) {
     Plan p;
     for (const std::string& m : split_list(o.metrics, "--metrics")) {
         bool known = false;
@@ -132,8 +142,34 @@ Plan make_plan(const ScoreOptions& o) {
         }
         p.metrics.insert(m);
     }
-    for (const std::string& s : split_list(o.snr, "--snr"))
-        p.snrs.push_back(parse_number(s, "--snr"));
+    if (!o.photons.empty()) {
+        if (cmd.count("--snr") > 0)
+            throw invalid_field("--snr", o.snr, "cannot be combined with --photons");
+        std::string levels;
+        for (const std::string& s : split_list(o.photons, "--photons")) {
+            const double ppp = parse_number(s, "--photons");
+            p.noise.push_back({photon_model(ppp, o.sensor), "ph" + number_text(ppp)});
+            levels += (levels.empty() ? "" : ",") + number_text(ppp);
+        }
+        const NoiseModel& m = p.noise.front().model;
+        p.noise_text =
+            "the photon model at " + levels + " electrons per pixel per pinhole (read noise " +
+            number_text(m.read_noise_e) + " e, dark current " + number_text(m.dark_current_e) +
+            " e, film OD " + number_text(m.film_optical_density) + ")";
+    } else {
+        refuse_sensor_flags_without_photons(cmd);
+        std::string levels;
+        for (const std::string& s : split_list(o.snr, "--snr")) {
+            NoiseLevel level;
+            level.model.kind = NoiseKind::kGaussianSnr;
+            level.model.snr_db = parse_number(s, "--snr");
+            validate(level.model);
+            level.key = "snr" + number_text(level.model.snr_db);
+            p.noise.push_back(level);
+            levels += (levels.empty() ? "" : ",") + number_text(level.model.snr_db);
+        }
+        p.noise_text = "Gaussian noise at SNR " + levels + " dB";
+    }
     for (const std::string& s : split_list(o.scenes, "--scenes")) {
         SceneSpec spec = scene_from_name(s);
         if (spec.kind == SceneKind::kNatural) spec.seed = kNaturalSceneSeed;
@@ -248,16 +284,14 @@ nlohmann::ordered_json score_mask(const std::string& path, const ScoreOptions& o
     const bool need_period = plan.has("analytic") || plan.simulated();
     PeriodData* data = need_period ? &period_data(cache, m, plan, explain) : nullptr;
     if (plan.has("analytic")) {
-        for (double snr : plan.snrs) {
-            NoiseModel noise;
-            noise.snr_db = snr;
-            const AnalyticWienerModel model(optics.kernel_otf, *data->prior, noise);
+        for (const NoiseLevel& level : plan.noise) {
+            const AnalyticWienerModel model(optics.kernel_otf, *data->prior, level.model);
             const AnalyticError e =
                 plan.nsr.tuned
                     ? model.evaluate_tuned_nsr(spectrum)
                     : model.evaluate(spectrum, {WienerFilterKind::kFixedNsr, plan.nsr.value});
             const AnalyticError best = model.evaluate(spectrum, {WienerFilterKind::kOptimal, 0.0});
-            const std::string k = snr_key(snr);
+            const std::string& k = level.key;
             row["analytic_wiener_psnr_db_" + k] = num(e.psnr_db);
             row["analytic_wiener_nsr_" + k] = e.nsr;
             row["analytic_optimal_wiener_psnr_db_" + k] = num(best.psnr_db);
@@ -275,10 +309,12 @@ nlohmann::ordered_json score_mask(const std::string& path, const ScoreOptions& o
           std::pair{std::string("tv"), SimulatedDecoder::kTv}}) {
         if (!plan.has(metric)) continue;
         const std::string weight = metric == "wiener" ? "nsr" : "lambda";
-        for (double snr : plan.snrs) {
+        for (const NoiseLevel& level : plan.noise) {
             const SimulatedQuality q =
-                simulated_quality(optics.psf, data->scenes, snr, decoder, so);
-            const std::string k = snr_key(snr);
+                simulated_quality(optics.psf, data->scenes, level.model,
+                                  static_cast<int>(mask.pattern.pinholes.size()),
+                                  mask.pattern.n * mask.pattern.n, decoder, so);
+            const std::string& k = level.key;
             row[metric + "_psnr_db_" + k] = num(q.mean_psnr_db);
             row[metric + "_ssim_" + k] = num(q.mean_ssim);
             row[metric + "_" + weight + "_" + k] = q.weight;
@@ -309,8 +345,8 @@ void explain_plan(const ScoreOptions& o, const Plan& plan, Explain& e) {
         skipped("spectrum", "not in --metrics");
     }
     if (plan.has("analytic")) {
-        e.add("analytic: closed-form expected Wiener MSE over one period at SNR " +
-              join(plan.snrs) + " dB, NSR " +
+        e.add("analytic: closed-form expected Wiener MSE over one period, " + plan.noise_text +
+              ", NSR " +
               (plan.nsr.tuned ? std::string("tuned (golden section on log10 NSR)")
                               : join({plan.nsr.value})) +
               ", plus the per-frequency optimal Wiener bound; no simulation");
@@ -319,10 +355,8 @@ void explain_plan(const ScoreOptions& o, const Plan& plan, Explain& e) {
     }
     for (const std::string m : {"wiener", "tv"}) {
         if (plan.has(m)) {
-            e.add(m +
-                  ": simulated one period (cyclic model: capture = scene (*) PSF + Gaussian "
-                  "noise at SNR " +
-                  join(plan.snrs) + " dB), " + std::to_string(plan.scenes.size()) + " scene(s) x " +
+            e.add(m + ": simulated one period (cyclic model: capture = scene (*) PSF, " +
+                  plan.noise_text + "), " + std::to_string(plan.scenes.size()) + " scene(s) x " +
                   std::to_string(o.seeds) + " noise seed(s), decoded with " +
                   (m == "wiener"
                        ? "the Wiener filter"
@@ -348,8 +382,8 @@ void print_table(const std::vector<nlohmann::ordered_json>& rows, const Plan& pl
         cols.push_back({"spectral_flatness", "flat"});
         cols.push_back({"otf_condition_number", "cond"});
     }
-    for (double snr : plan.snrs) {
-        const std::string k = snr_key(snr), t = std::to_string(static_cast<long long>(snr));
+    for (const NoiseLevel& level : plan.noise) {
+        const std::string& k = level.key;
         if (plan.has("analytic")) cols.push_back({"analytic_wiener_psnr_db_" + k, "A" + k});
         if (plan.has("wiener")) cols.push_back({"wiener_psnr_db_" + k, "W" + k});
         if (plan.has("tv")) cols.push_back({"tv_psnr_db_" + k, "TV" + k});
@@ -377,12 +411,24 @@ void print_table(const std::vector<nlohmann::ordered_json>& rows, const Plan& pl
         s << "\n";
     }
     s << "PSNR columns in dB over one period: A = analytic Wiener, W = simulated Wiener, TV = "
-         "simulated TV-L2, suffix = SNR in dB. --json for every key.\n";
+         "simulated TV-L2; suffix snrS = Gaussian noise at S dB, phP = the photon model at P "
+         "electrons "
+         "per pinhole. --json for every key.\n";
     std::cout << s.str();
 }
 
-void run(const ScoreOptions& o) {
-    const Plan plan = make_plan(o);
+nlohmann::ordered_json noise_settings(const Plan& plan) {
+    nlohmann::ordered_json levels = nlohmann::ordered_json::array();
+    for (const NoiseLevel& level : plan.noise) {
+        nlohmann::ordered_json j = noise_json(level.model);
+        j["key"] = level.key;
+        levels.push_back(j);
+    }
+    return levels;
+}
+
+void run(const ScoreOptions& o, const CLI::App& cmd) {
+    const Plan plan = make_plan(o, cmd);
     Explain explain;
     explain_plan(o, plan, explain);
     std::map<int, PeriodData> cache;
@@ -395,10 +441,19 @@ void run(const ScoreOptions& o) {
     if (o.json) {
         nlohmann::ordered_json j;
         j["masks"] = rows;
-        j["settings"] = {{"metrics", o.metrics},     {"scenes", o.scenes},
-                         {"snr_db", plan.snrs},      {"nsr", o.nsr},
-                         {"tv_lambda", o.tv_lambda}, {"seeds", o.seeds},
-                         {"seed", o.seed},           {"tv_iterations", o.tv_iterations}};
+        j["settings"] = {{"metrics", o.metrics},
+                         {"scenes", o.scenes},
+                         {"noise", noise_settings(plan)},
+                         {"nsr", o.nsr},
+                         {"tv_lambda", o.tv_lambda},
+                         {"seeds", o.seeds},
+                         {"seed", o.seed},
+                         {"tv_iterations", o.tv_iterations}};
+        if (o.photons.empty()) {  // the Gaussian levels as a plain list, as before --photons
+            std::vector<double> snrs;
+            for (const NoiseLevel& level : plan.noise) snrs.push_back(level.model.snr_db);
+            j["settings"]["snr_db"] = snrs;
+        }
         if (o.explain) j["explain"] = explain.lines();
         std::cout << j.dump(2) << "\n";
         return;
@@ -415,22 +470,26 @@ constexpr const char* kFooter =
     "             arithmetic mean of |P^|^2 over k != 0; 1 = flat), open_fraction, light_gain "
     "(K),\n"
     "             otf_condition_number (max/min |A^| where |K^| >= 0.1 max |K^|)\n"
-    "  analytic   expected Wiener PSNR in closed form over one period, per SNR:\n"
+    "  analytic   expected Wiener PSNR in closed form over one period, per noise level:\n"
     "             analytic_wiener_psnr_db_snrS (the --nsr filter), analytic_wiener_nsr_snrS,\n"
     "             analytic_optimal_wiener_psnr_db_snrS (per-frequency optimal filter bound).\n"
     "             Prior: the scene files given in --scenes, else 64 natural 1/f textures\n"
     "  wiener     simulated: wiener_psnr_db_snrS, wiener_ssim_snrS, wiener_nsr_snrS (mean over\n"
     "             scenes; per_scene in --json)\n"
     "  tv         simulated TV-L2: tv_psnr_db_snrS, tv_ssim_snrS, tv_lambda_snrS (slow; opt-in)\n"
-    "Analytic noise: Gaussian, sigma^2 = expected mean(capture^2) under the prior / 10^(SNR/10).\n"
-    "Simulation: one period, cyclic model, capture = scene (*) PSF + Gaussian noise with SNR dB =\n"
-    "10 log10(mean(noiseless capture^2) / sigma^2); PSNR = 10 log10(1 / MSE) for scenes in [0, "
-    "1];\n"
+    "Noise levels: --snr S (keys ...snrS): Gaussian, sigma^2 = mean(capture^2) / 10^(S/10) (the\n"
+    "analytic error takes the prior's expected mean(capture^2)); or --photons P (keys ...phP):\n"
+    "Poisson shot noise of P K electrons per pixel for a uniform scene of value 1 (K pinholes),\n"
+    "plus read noise, dark current, saturation, ADC and film leak from the sensor flags, the\n"
+    "expected dark offset removed (see pinmask simulate --help).\n"
+    "Simulation: one period, cyclic model, capture = scene (*) PSF + noise; PSNR = 10 log10(1 /\n"
+    "MSE) for scenes in [0, 1];\n"
     "SSIM: 11 x 11 Gaussian window (sigma 1.5), valid region. 'tuned' weights minimise the mean\n"
     "MSE over scenes and seeds by golden section on log10 (1e-7..10). Infinite values (a PSR with\n"
     "no sidelobes, a condition number with a spectral zero) are null in --json, inf in the table.\n"
-    "Example: pinmask score a.mask.json b.mask.json --scenes letter-R,usaf,natural --snr 20,30 "
-    "--metrics sidelobes,spectrum,analytic,wiener --nsr tuned --json";
+    "Examples: pinmask score a.mask.json b.mask.json --scenes letter-R,usaf,natural --snr 20,30 "
+    "--metrics sidelobes,spectrum,analytic,wiener --nsr tuned --json\n"
+    "  pinmask score a.mask.json --photons 100,1000 --read-noise 3 --metrics analytic,wiener";
 
 void setup(CLI::App& app) {
     auto o = std::make_shared<ScoreOptions>();
@@ -444,7 +503,16 @@ void setup(CLI::App& app) {
                     "siemens-star, checker, point, natural, or image files (PNG/TIFF/npy; their "
                     "power spectrum also becomes the analytic prior)")
         ->capture_default_str();
-    cmd->add_option("--snr", o->snr, "Capture SNRs in dB, comma-separated")->capture_default_str();
+    auto* snr =
+        cmd->add_option("--snr", o->snr, "Capture SNRs in dB, comma-separated (Gaussian noise)")
+            ->capture_default_str();
+    cmd->add_option("--photons", o->photons,
+                    "The photon model instead of --snr: mean electrons per pixel through ONE "
+                    "pinhole for a uniform scene of value 1, comma-separated levels (K pinholes "
+                    "collect K times that: the multiplexing trade-off), with the sensor flags "
+                    "below")
+        ->excludes(snr);
+    add_sensor_flags(*cmd, o->sensor);
     cmd->add_option("--metrics", o->metrics,
                     "Metrics to compute: sidelobes, spectrum, analytic, wiener, tv (see below)")
         ->capture_default_str();
@@ -467,7 +535,7 @@ void setup(CLI::App& app) {
     cmd->add_flag("--explain", o->explain,
                   "List on stderr (and under \"explain\" in --json) what was run, what was "
                   "skipped and why");
-    cmd->callback([o] { run(*o); });
+    cmd->callback([o, cmd] { run(*o, *cmd); });
 }
 
 const Registration kScore(60, "score", setup);

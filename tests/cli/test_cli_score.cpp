@@ -98,3 +98,47 @@ TEST_CASE("score: bad input is exit 2 with a message naming the flag") {
     CHECK(r.exit_code == 2);
     CHECK(r.out.empty());
 }
+
+TEST_CASE("score --photons: the photon model's levels as columns, sensor flags applied") {
+    Masks m;
+    const std::string base = "score " + m.a + " --metrics analytic,wiener --nsr tuned --json ";
+    const auto r = run_cli(base + "--photons 10,1000");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    const auto& row = j["masks"][0];
+    for (const char* key : {"analytic_wiener_psnr_db_ph10", "analytic_wiener_psnr_db_ph1000",
+                            "wiener_psnr_db_ph10", "wiener_psnr_db_ph1000"})
+        CHECK_MESSAGE(row.contains(key), key);
+    CHECK(!row.contains("analytic_wiener_psnr_db_snr30"));
+    // More light, less shot noise: higher PSNR, analytic and simulated.
+    CHECK(row["analytic_wiener_psnr_db_ph1000"].get<double>() >
+          row["analytic_wiener_psnr_db_ph10"].get<double>());
+    CHECK(row["wiener_psnr_db_ph1000"].get<double>() > row["wiener_psnr_db_ph10"].get<double>());
+    const auto& noise = j["settings"]["noise"];
+    REQUIRE(noise.size() == 2);
+    CHECK(noise[0]["kind"] == "photon");
+    CHECK(noise[0]["photons_per_pinhole"] == 10.0);
+    CHECK(noise[0]["key"] == "ph10");
+
+    // Read noise costs PSNR at a low light level.
+    const auto noisy = run_cli(base + "--photons 10 --read-noise 5");
+    REQUIRE(noisy.exit_code == 0);
+    const auto jn = nlohmann::json::parse(noisy.out);
+    CHECK(jn["masks"][0]["analytic_wiener_psnr_db_ph10"].get<double>() <
+          row["analytic_wiener_psnr_db_ph10"].get<double>());
+    CHECK(jn["settings"]["noise"][0]["read_noise_e"] == 5.0);
+
+    // Sensor flags need the photon model; the two noise models exclude each other.
+    auto bad = run_cli("score " + m.a + " --read-noise 5");
+    CHECK(bad.exit_code == 2);
+    CHECK(bad.err.find("--read-noise") != std::string::npos);
+    bad = run_cli("score " + m.a + " --photons 10 --snr 30");
+    CHECK(bad.exit_code == 2);
+    bad = run_cli("score " + m.a + " --photons -5");
+    CHECK(bad.exit_code == 2);
+    CHECK(bad.err.find("photons") != std::string::npos);
+    bad = run_cli("score " + m.a + " --photons 10 --bits 8");
+    CHECK(bad.exit_code == 2);
+    CHECK(bad.err.find("--full-well") != std::string::npos);
+}
