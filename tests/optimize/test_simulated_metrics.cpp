@@ -31,6 +31,27 @@ std::vector<NamedScene> natural_scenes(int m, int count) {
     return out;
 }
 
+// 6 x 6 cells of 4 x 4 pixels, K = 5, an asymmetric box-like kernel: the period PSF and the
+// kernel's full spectrum, for comparing simulation with the closed form.
+struct SmallCamera {
+    static constexpr int kN = 6, kPpc = 4, kM = kN * kPpc;
+    Pattern pattern;
+    Plane psf;
+    ComplexPlane kernel_otf;
+    SmallCamera() {
+        pattern.n = kN;
+        pattern.pinholes = {{0, 0}, {1, 3}, {3, 1}, {4, 4}, {2, 5}};
+        Plane kernel = Plane::Zero(kM, kM);
+        for (int r = 0; r < kPpc; ++r)
+            for (int c = 0; c < kPpc; ++c) kernel(r, c) = 1.0 + 0.2 * r + 0.1 * c;
+        kernel /= kernel.sum();
+        psf = Plane::Zero(kM, kM);
+        for (const Cell& c : pattern.pinholes) psf += circshift(kernel, c.row * kPpc, c.col * kPpc);
+        psf /= psf.sum();
+        kernel_otf = expand_half_spectrum(Fft2(kM, kM).forward(kernel), kM);
+    }
+};
+
 }  // namespace
 
 TEST_CASE("noise-free limit: an asymmetric PSF without spectral zeros decodes exactly") {
@@ -49,20 +70,13 @@ TEST_CASE("noise-free limit: an asymmetric PSF without spectral zeros decodes ex
 }
 
 TEST_CASE("simulated Wiener MSE agrees with the analytic MSE for the same scenes") {
-    const int n = 6, ppc = 4, m = n * ppc;
-    Pattern p;
-    p.n = n;
-    p.pinholes = {{0, 0}, {1, 3}, {3, 1}, {4, 4}, {2, 5}};
-    Plane kernel = Plane::Zero(m, m);
-    for (int r = 0; r < ppc; ++r)
-        for (int c = 0; c < ppc; ++c) kernel(r, c) = 1.0 + 0.2 * r + 0.1 * c;
-    kernel /= kernel.sum();
-    Plane psf = Plane::Zero(m, m);
-    for (const Cell& c : p.pinholes) psf += circshift(kernel, c.row * ppc, c.col * ppc);
-    psf /= psf.sum();
-    const ComplexPlane kernel_otf = expand_half_spectrum(Fft2(m, m).forward(kernel), m);
+    const SmallCamera cam;
+    const int n = SmallCamera::kN;
+    const Pattern& p = cam.pattern;
+    const Plane& psf = cam.psf;
+    const ComplexPlane& kernel_otf = cam.kernel_otf;
 
-    const std::vector<NamedScene> scenes = natural_scenes(m, 40);
+    const std::vector<NamedScene> scenes = natural_scenes(SmallCamera::kM, 40);
     std::vector<Plane> planes;
     for (const auto& s : scenes) planes.push_back(s.image.channels[0]);
     NoiseModel noise;
@@ -112,19 +126,12 @@ TEST_CASE("photon model: simulated Wiener MSE agrees with the analytic MSE") {
     // As above, under the photon model (shot noise of K = 5 open cells of 36, read noise, dark
     // current): the simulation draws Poisson electrons per pixel, the closed form uses their
     // variance at the prior's mean.
-    const int n = 6, ppc = 4, m = n * ppc;
-    Pattern p;
-    p.n = n;
-    p.pinholes = {{0, 0}, {1, 3}, {3, 1}, {4, 4}, {2, 5}};
-    Plane kernel = Plane::Zero(m, m);
-    for (int r = 0; r < ppc; ++r)
-        for (int c = 0; c < ppc; ++c) kernel(r, c) = 1.0 + 0.2 * r + 0.1 * c;
-    kernel /= kernel.sum();
-    Plane psf = Plane::Zero(m, m);
-    for (const Cell& c : p.pinholes) psf += circshift(kernel, c.row * ppc, c.col * ppc);
-    psf /= psf.sum();
-    const ComplexPlane kernel_otf = expand_half_spectrum(Fft2(m, m).forward(kernel), m);
-    const std::vector<NamedScene> scenes = natural_scenes(m, 40);
+    const SmallCamera cam;
+    const int n = SmallCamera::kN;
+    const Pattern& p = cam.pattern;
+    const Plane& psf = cam.psf;
+    const ComplexPlane& kernel_otf = cam.kernel_otf;
+    const std::vector<NamedScene> scenes = natural_scenes(SmallCamera::kM, 40);
     std::vector<Plane> planes;
     for (const auto& s : scenes) planes.push_back(s.image.channels[0]);
 
