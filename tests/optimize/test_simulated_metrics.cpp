@@ -69,41 +69,69 @@ TEST_CASE("noise-free limit: an asymmetric PSF without spectral zeros decodes ex
     CHECK(q.mean_ssim == doctest::Approx(1.0));
 }
 
-TEST_CASE("simulated Wiener MSE agrees with the analytic MSE for the same scenes") {
+TEST_CASE("simulated Wiener MSE agrees with the analytic MSE, Gaussian and photon noise") {
     const SmallCamera cam;
-    const int n = SmallCamera::kN;
-    const Pattern& p = cam.pattern;
+    const int cells = SmallCamera::kN * SmallCamera::kN,
+              open = static_cast<int>(cam.pattern.pinholes.size());
     const Plane& psf = cam.psf;
-    const ComplexPlane& kernel_otf = cam.kernel_otf;
-
     const std::vector<NamedScene> scenes = natural_scenes(SmallCamera::kM, 40);
     std::vector<Plane> planes;
     for (const auto& s : scenes) planes.push_back(s.image.channels[0]);
-    NoiseModel noise;
-    noise.snr_db = 25.0;
-    const AnalyticWienerModel model(kernel_otf, scene_prior_from_images(planes, "test"), noise);
-    const AnalyticError e =
-        model.evaluate(pattern_spectrum(p), {WienerFilterKind::kFixedNsr, 0.02});
+    const ScenePrior prior = scene_prior_from_images(planes, "test");
 
+    NoiseModel gaussian;
+    gaussian.snr_db = 25.0;
+    // The photon model: shot noise of K = 5 open cells of 36, read noise, dark current; the
+    // simulation draws Poisson electrons per pixel, the closed form uses their variance at the
+    // prior's mean.
+    NoiseModel photon;
+    photon.kind = NoiseKind::kPhoton;
+    photon.photons_per_pinhole = 40.0;
+    photon.read_noise_e = 3.0;
+    photon.dark_current_e = 5.0;
     SimulatedMetricsOptions o;
     o.noise_seeds = 2;
     o.wiener_nsr = {false, 0.02};
-    const SimulatedQuality q = simulated_quality(psf, scenes, 25.0, SimulatedDecoder::kWiener, o);
-    double mse_mean = 0.0;
-    for (const auto& s : q.scenes) mse_mean += std::pow(10.0, -s.psnr_db / 10.0) / scenes.size();
-    CHECK_CLOSE(mse_mean, e.mse, kSimVsAnalyticTol);
-    CHECK(q.decodes == 80);
+    for (const NoiseModel& noise : {gaussian, photon}) {
+        INFO("noise kind " << int(noise.kind));
+        const AnalyticError e =
+            AnalyticWienerModel(cam.kernel_otf, prior, noise)
+                .evaluate(pattern_spectrum(cam.pattern), {WienerFilterKind::kFixedNsr, 0.02});
+        const SimulatedQuality q =
+            simulated_quality(psf, scenes, noise, open, cells, SimulatedDecoder::kWiener, o);
+        double mse_mean = 0.0;
+        for (const auto& s : q.scenes)
+            mse_mean += std::pow(10.0, -s.psnr_db / 10.0) / scenes.size();
+        CHECK_CLOSE(mse_mean, e.mse, kSimVsAnalyticTol);
+        CHECK(q.decodes == 80);
+    }
 
-    // Deterministic; another base seed draws other noise.
-    const SimulatedQuality again =
-        simulated_quality(psf, scenes, 25.0, SimulatedDecoder::kWiener, o);
-    CHECK(again.mean_psnr_db == q.mean_psnr_db);
+    // The SNR overload is the Gaussian model; deterministic; another base seed draws other noise.
+    const SimulatedQuality q = simulated_quality(psf, scenes, 25.0, SimulatedDecoder::kWiener, o);
+    CHECK(simulated_quality(psf, scenes, gaussian, open, cells, SimulatedDecoder::kWiener, o)
+              .mean_psnr_db == q.mean_psnr_db);
+    CHECK(simulated_quality(psf, scenes, 25.0, SimulatedDecoder::kWiener, o).mean_psnr_db ==
+          q.mean_psnr_db);
     o.seed = 9;
     CHECK(simulated_quality(psf, scenes, 25.0, SimulatedDecoder::kWiener, o).mean_psnr_db !=
           q.mean_psnr_db);
+    o.seed = 0;
+
+    // More light, better pictures (+2.5 dB from 40 to 4000 electrons here: the fixed NSR's bias
+    // bounds the gain); the photon model needs 1 <= K <= n^2.
+    const double dim =
+        simulated_quality(psf, scenes, photon, open, cells, SimulatedDecoder::kWiener, o)
+            .mean_psnr_db;
+    photon.photons_per_pinhole = 4000.0;
+    CHECK(simulated_quality(psf, scenes, photon, open, cells, SimulatedDecoder::kWiener, o)
+              .mean_psnr_db > dim + 1.0);
+    CHECK_THROWS_AS(simulated_quality(psf, scenes, photon, 0, cells, SimulatedDecoder::kWiener, o),
+                    InvalidInput);
+    CHECK_THROWS_AS(
+        simulated_quality(psf, scenes, photon, cells + 1, cells, SimulatedDecoder::kWiener, o),
+        InvalidInput);
 
     // A tuned NSR is at least as good as any fixed one on the same draws.
-    o.seed = 0;
     o.wiener_nsr = {true, 0.0};
     const SimulatedQuality tuned =
         simulated_quality(psf, scenes, 25.0, SimulatedDecoder::kWiener, o);
@@ -120,53 +148,6 @@ TEST_CASE("simulated Wiener MSE agrees with the analytic MSE for the same scenes
     // Tuning minimises the mean over trials, the same quantity up to the per-scene weighting.
     constexpr double kTunedSlack = 1e-3;
     CHECK(tuned_mse <= best_fixed * (1.0 + kTunedSlack));
-}
-
-TEST_CASE("photon model: simulated Wiener MSE agrees with the analytic MSE") {
-    // As above, under the photon model (shot noise of K = 5 open cells of 36, read noise, dark
-    // current): the simulation draws Poisson electrons per pixel, the closed form uses their
-    // variance at the prior's mean.
-    const SmallCamera cam;
-    const int n = SmallCamera::kN;
-    const Pattern& p = cam.pattern;
-    const Plane& psf = cam.psf;
-    const ComplexPlane& kernel_otf = cam.kernel_otf;
-    const std::vector<NamedScene> scenes = natural_scenes(SmallCamera::kM, 40);
-    std::vector<Plane> planes;
-    for (const auto& s : scenes) planes.push_back(s.image.channels[0]);
-
-    NoiseModel noise;
-    noise.kind = NoiseKind::kPhoton;
-    noise.photons_per_pinhole = 40.0;
-    noise.read_noise_e = 3.0;
-    noise.dark_current_e = 5.0;
-    const AnalyticWienerModel model(kernel_otf, scene_prior_from_images(planes, "test"), noise);
-    const AnalyticError e =
-        model.evaluate(pattern_spectrum(p), {WienerFilterKind::kFixedNsr, 0.02});
-    SimulatedMetricsOptions o;
-    o.noise_seeds = 2;
-    o.wiener_nsr = {false, 0.02};
-    const SimulatedQuality q =
-        simulated_quality(psf, scenes, noise, 5, n * n, SimulatedDecoder::kWiener, o);
-    double mse_mean = 0.0;
-    for (const auto& s : q.scenes) mse_mean += std::pow(10.0, -s.psnr_db / 10.0) / scenes.size();
-    CHECK_CLOSE(mse_mean, e.mse, kSimVsAnalyticTol);
-
-    // More light, better pictures (+2.5 dB here: the fixed NSR's bias bounds the gain); the
-    // Gaussian overload is the Gaussian model.
-    noise.photons_per_pinhole = 4000.0;
-    CHECK(
-        simulated_quality(psf, scenes, noise, 5, n * n, SimulatedDecoder::kWiener, o).mean_psnr_db >
-        q.mean_psnr_db + 1.0);
-    NoiseModel gaussian;
-    gaussian.snr_db = 25.0;
-    CHECK(simulated_quality(psf, scenes, gaussian, 5, n * n, SimulatedDecoder::kWiener, o)
-              .mean_psnr_db ==
-          simulated_quality(psf, scenes, 25.0, SimulatedDecoder::kWiener, o).mean_psnr_db);
-    CHECK_THROWS_AS(simulated_quality(psf, scenes, noise, 0, n * n, SimulatedDecoder::kWiener, o),
-                    InvalidInput);
-    CHECK_THROWS_AS(simulated_quality(psf, scenes, noise, 40, n * n, SimulatedDecoder::kWiener, o),
-                    InvalidInput);
 }
 
 TEST_CASE("TV-L2 with a tuned lambda beats the raw noisy capture on a checkerboard") {
