@@ -158,7 +158,8 @@ CompareResult compare_mask(const CompareEntry& e, const CompareSettings& s, Scen
 
     const Kernel kernel = mask_kernel(mask);
     r.pictures.kernel = kernel_text(kernel);
-    const ComplexPlane kernel_otf = expand_half_spectrum(kernel_spectrum(kernel, n, ppc), m);
+    const ComplexPlane kernel_half = kernel_spectrum(kernel, n, ppc);
+    const ComplexPlane kernel_otf = expand_half_spectrum(kernel_half, m);
     row.otf_condition_number = otf_condition(spectrum, kernel_otf).condition_number;
     const AnalyticWienerModel model =
         analytic_wiener_model(kernel, n, ppc, s.snr_db, s.prior_scenes);
@@ -177,7 +178,9 @@ CompareResult compare_mask(const CompareEntry& e, const CompareSettings& s, Scen
     row.tv_ssim = t.mean_ssim;
     row.tv_lambda = t.weight;
 
-    const ComplexPlane otf = expand_half_spectrum(psf_otf(mask.pattern, kernel, ppc), m);
+    // The OTF from the spectra above (psf_otf would recompute both).
+    const ComplexPlane otf =
+        expand_half_spectrum(combine_spectra(spectrum, kernel_half, row.holes), m);
     fill_pictures(r, mask, psf, otf, ac, scenes.front(), s);
     return r;
 }
