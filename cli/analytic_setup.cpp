@@ -28,4 +28,11 @@ WienerFilterSpec parse_wiener_filter(const std::string& text) {
     throw invalid_field("--filter", text, "expected 'optimal' or 'nsr:VALUE' (e.g. nsr:0.01)");
 }
 
+WeightChoice parse_weight_choice(const std::string& text, const std::string& flag) {
+    if (text == "tuned") return {true, 0.0};
+    const double v = parse_number(text, flag);
+    if (!(v > 0.0)) throw invalid_field(flag, text, "must be > 0 or 'tuned'");
+    return {false, v};
+}
+
 }  // namespace pinmask::cli

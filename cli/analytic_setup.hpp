@@ -9,6 +9,7 @@
 
 #include "design/kernel.hpp"
 #include "optimize/analytic_error.hpp"
+#include "optimize/simulated_metrics.hpp"
 
 namespace pinmask::cli {
 
@@ -22,5 +23,9 @@ AnalyticWienerModel analytic_wiener_model(const Kernel& kernel, int n, int pixel
 // "optimal" (per-frequency Wiener filter) or "nsr:VALUE" (deconvwnr's fixed NSR, > 0);
 // InvalidInput naming --filter otherwise.
 WienerFilterSpec parse_wiener_filter(const std::string& text);
+
+// A simulated decoder's weight (Wiener NSR, TV lambda): "tuned" or a number > 0; InvalidInput
+// naming `flag` otherwise.
+WeightChoice parse_weight_choice(const std::string& text, const std::string& flag);
 
 }  // namespace pinmask::cli

@@ -17,6 +17,7 @@
 #include "cli/command.hpp"
 #include "cli/compare_data.hpp"
 #include "cli/compare_report.hpp"
+#include "cli/json_strict.hpp"
 #include "cli/mask_json.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -25,6 +26,8 @@
 
 namespace pinmask::cli {
 namespace {
+
+using json_strict::finite_or_null;
 
 namespace fs = std::filesystem;
 
@@ -45,13 +48,6 @@ struct Options {
     bool json = false;
 };
 
-WeightChoice parse_weight(const std::string& text, const std::string& flag) {
-    if (text == "tuned") return {true, 0.0};
-    const double v = parse_number(text, flag);
-    if (!(v > 0.0)) throw invalid_field(flag, text, "must be > 0 or 'tuned'");
-    return {false, v};
-}
-
 CompareSettings make_settings(const Options& o) {
     CompareSettings s;
     s.snr_db = o.snr_db;
@@ -66,8 +62,8 @@ CompareSettings make_settings(const Options& o) {
     }
     s.analytic_filter = parse_wiener_filter(o.filter);
     s.prior_scenes = o.prior_scenes;
-    s.wiener_nsr = parse_weight(o.nsr, "--nsr");
-    s.tv_lambda = parse_weight(o.tv_lambda, "--tv-lambda");
+    s.wiener_nsr = parse_weight_choice(o.nsr, "--nsr");
+    s.tv_lambda = parse_weight_choice(o.tv_lambda, "--tv-lambda");
     s.tv_iterations = o.tv_iterations;
     s.seed = o.seed;
     validate(s);
@@ -101,11 +97,6 @@ void require_same_camera(const Mask& first, const Mask& m, const std::string& pa
     }
 }
 
-nlohmann::ordered_json num(double v) {
-    if (!std::isfinite(v)) return nullptr;
-    return v;
-}
-
 nlohmann::ordered_json row_json(const CompareRow& r) {
     return {{"name", r.name},
             {"kind", r.kind},
@@ -119,16 +110,16 @@ nlohmann::ordered_json row_json(const CompareRow& r) {
             {"spacing_ok", r.spacing_ok},
             {"spacing_violations", r.spacing_violations},
             {"max_sidelobe", r.max_sidelobe},
-            {"peak_to_sidelobe_ratio", num(r.peak_to_sidelobe_ratio)},
+            {"peak_to_sidelobe_ratio", finite_or_null(r.peak_to_sidelobe_ratio)},
             {"min_abs_pattern_spectrum", r.min_abs_pattern_spectrum},
             {"spectral_flatness", r.spectral_flatness},
-            {"otf_condition_number", num(r.otf_condition_number)},
-            {"analytic_wiener_psnr_db", num(r.analytic_wiener_psnr_db)},
-            {"wiener_psnr_db", num(r.wiener_psnr_db)},
-            {"wiener_ssim", num(r.wiener_ssim)},
+            {"otf_condition_number", finite_or_null(r.otf_condition_number)},
+            {"analytic_wiener_psnr_db", finite_or_null(r.analytic_wiener_psnr_db)},
+            {"wiener_psnr_db", finite_or_null(r.wiener_psnr_db)},
+            {"wiener_ssim", finite_or_null(r.wiener_ssim)},
             {"wiener_nsr", r.wiener_nsr},
-            {"tv_psnr_db", num(r.tv_psnr_db)},
-            {"tv_ssim", num(r.tv_ssim)},
+            {"tv_psnr_db", finite_or_null(r.tv_psnr_db)},
+            {"tv_ssim", finite_or_null(r.tv_ssim)},
             {"tv_lambda", r.tv_lambda}};
 }
 

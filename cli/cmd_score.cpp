@@ -15,7 +15,9 @@
 #include <string>
 #include <vector>
 
+#include "cli/analytic_setup.hpp"
 #include "cli/command.hpp"
+#include "cli/json_strict.hpp"
 #include "cli/mask_json.hpp"
 #include "cli/noise_options.hpp"
 #include "core/error.hpp"
@@ -34,6 +36,8 @@
 
 namespace pinmask::cli {
 namespace {
+
+using json_strict::finite_or_null;
 
 constexpr int kPriorScenes = 64;                 // natural scenes averaged for the default prior
 constexpr std::uint64_t kPriorFirstSeed = 1000;  // prior seeds 1000..1063, apart from the scored
@@ -93,14 +97,6 @@ std::vector<std::string> split_list(const std::string& text, const std::string& 
     return out;
 }
 
-// "tuned" or a number > 0.
-WeightChoice parse_weight(const std::string& text, const std::string& flag) {
-    if (text == "tuned") return {true, 0.0};
-    const double v = parse_number(text, flag);
-    if (!(v > 0.0)) throw invalid_field(flag, text, "must be > 0 or 'tuned'");
-    return {false, v};
-}
-
 // One noise level of the table: a Gaussian SNR or a photon level, with the suffix of its keys
 // ("30" -> "snr30", "27.5" -> "snr27.5"; 1000 photons per pinhole -> "ph1000").
 struct NoiseLevel {
@@ -112,12 +108,6 @@ std::string number_text(double v) {
     std::ostringstream s;
     s << v;
     return s.str();
-}
-
-// JSON numbers: +-inf and NaN have no JSON form; they are written as null (see --help).
-nlohmann::ordered_json num(double v) {
-    if (!std::isfinite(v)) return nullptr;
-    return v;
 }
 
 struct Plan {
@@ -175,8 +165,8 @@ Plan make_plan(const ScoreOptions& o, const CLI::App& cmd) {
         if (spec.kind == SceneKind::kNatural) spec.seed = kNaturalSceneSeed;
         p.scenes.push_back(spec);
     }
-    p.nsr = parse_weight(o.nsr, "--nsr");
-    p.tv_lambda = parse_weight(o.tv_lambda, "--tv-lambda");
+    p.nsr = parse_weight_choice(o.nsr, "--nsr");
+    p.tv_lambda = parse_weight_choice(o.tv_lambda, "--tv-lambda");
     if (o.seeds < 1) throw invalid_field("--seeds", std::to_string(o.seeds), "must be >= 1");
     if (o.tv_iterations < 1) {
         throw invalid_field("--tv-iters", std::to_string(o.tv_iterations), "must be >= 1");
@@ -264,7 +254,7 @@ nlohmann::ordered_json score_mask(const std::string& path, const ScoreOptions& o
         row["max_sidelobe"] = s.max_sidelobe;
         row["mean_sidelobe"] = s.mean_sidelobe;
         row["integrated_sidelobe_level"] = s.integrated_sidelobe_level;
-        row["peak_to_sidelobe_ratio"] = num(s.peak_to_sidelobe_ratio);
+        row["peak_to_sidelobe_ratio"] = finite_or_null(s.peak_to_sidelobe_ratio);
     }
     PeriodOptics optics;
     if (plan.needs_optics()) {
@@ -278,7 +268,7 @@ nlohmann::ordered_json score_mask(const std::string& path, const ScoreOptions& o
         row["open_fraction"] = s.open_fraction;
         row["light_gain"] = s.light_gain;
         const OtfCondition c = otf_condition(spectrum, optics.kernel_otf);
-        row["otf_condition_number"] = num(c.condition_number);
+        row["otf_condition_number"] = finite_or_null(c.condition_number);
         row["otf_passband_frequencies"] = c.passband_frequencies;
     }
     const bool need_period = plan.has("analytic") || plan.simulated();
@@ -292,9 +282,9 @@ nlohmann::ordered_json score_mask(const std::string& path, const ScoreOptions& o
                     : model.evaluate(spectrum, {WienerFilterKind::kFixedNsr, plan.nsr.value});
             const AnalyticError best = model.evaluate(spectrum, {WienerFilterKind::kOptimal, 0.0});
             const std::string& k = level.key;
-            row["analytic_wiener_psnr_db_" + k] = num(e.psnr_db);
+            row["analytic_wiener_psnr_db_" + k] = finite_or_null(e.psnr_db);
             row["analytic_wiener_nsr_" + k] = e.nsr;
-            row["analytic_optimal_wiener_psnr_db_" + k] = num(best.psnr_db);
+            row["analytic_optimal_wiener_psnr_db_" + k] = finite_or_null(best.psnr_db);
         }
     }
     SimulatedMetricsOptions so;
@@ -315,12 +305,12 @@ nlohmann::ordered_json score_mask(const std::string& path, const ScoreOptions& o
                                   static_cast<int>(mask.pattern.pinholes.size()),
                                   mask.pattern.n * mask.pattern.n, decoder, so);
             const std::string& k = level.key;
-            row[metric + "_psnr_db_" + k] = num(q.mean_psnr_db);
-            row[metric + "_ssim_" + k] = num(q.mean_ssim);
+            row[metric + "_psnr_db_" + k] = finite_or_null(q.mean_psnr_db);
+            row[metric + "_ssim_" + k] = finite_or_null(q.mean_ssim);
             row[metric + "_" + weight + "_" + k] = q.weight;
             for (const SceneQuality& s : q.scenes) {
-                per_scene[s.scene][metric + "_psnr_db_" + k] = num(s.psnr_db);
-                per_scene[s.scene][metric + "_ssim_" + k] = num(s.ssim);
+                per_scene[s.scene][metric + "_psnr_db_" + k] = finite_or_null(s.psnr_db);
+                per_scene[s.scene][metric + "_ssim_" + k] = finite_or_null(s.ssim);
             }
         }
     }

@@ -14,6 +14,11 @@ void fail(const std::string& key_path, const std::string& rule) {
     throw InvalidInput((key_path.empty() ? std::string("(root)") : key_path) + ": " + rule);
 }
 
+OrderedJson finite_or_null(double v) {
+    if (!std::isfinite(v)) return nullptr;
+    return v;
+}
+
 std::string join_path(const std::string& parent, const std::string& key) {
     return parent.empty() ? key : parent + "." + key;
 }

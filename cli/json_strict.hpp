@@ -65,6 +65,9 @@ Json parse_strict(const std::string& text, const std::string& streamed_path = ""
 // the indent (spaces) of the line where the value starts.
 using RawWriter = std::function<void(std::string& out, int indent)>;
 
+// v as a JSON number, or null when it is not finite (JSON has no inf or NaN).
+OrderedJson finite_or_null(double v);
+
 // Pretty-prints j (see the file comment); the value at raw_path, if any, comes from raw.
 // No trailing newline.
 std::string pretty(const OrderedJson& j, const std::string& raw_path = "",

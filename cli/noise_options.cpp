@@ -3,15 +3,13 @@
 #include <cmath>
 #include <limits>
 
+#include "cli/json_strict.hpp"
 #include "core/error.hpp"
 
 namespace pinmask::cli {
 namespace {
 
-nlohmann::ordered_json num(double v) {
-    if (!std::isfinite(v)) return nullptr;
-    return v;
-}
+using json_strict::finite_or_null;
 
 constexpr const char* kSensorFlags[] = {"--read-noise", "--dark-current", "--bits", "--full-well",
                                         "--optical-density"};
@@ -89,9 +87,9 @@ nlohmann::ordered_json noise_json(const NoiseModel& m) {
             {"photons_per_pinhole", m.photons_per_pinhole},
             {"read_noise_e", m.read_noise_e},
             {"dark_current_e", m.dark_current_e},
-            {"full_well_e", num(m.full_well_e)},
+            {"full_well_e", finite_or_null(m.full_well_e)},
             {"adc_bits", m.adc_bits},
-            {"film_optical_density", num(m.film_optical_density)},
+            {"film_optical_density", finite_or_null(m.film_optical_density)},
             {"film_transmission", film_transmission(m)}};
 }
 
