@@ -7,6 +7,7 @@
 #include "cli/optics_json.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
+#include "design/kernel_model.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -122,7 +123,9 @@ SearchConfig parse_search_config(const std::string& text) {
         return one_of(v, p, {"none", "border"});
     });
     read_into(r, "kernel_requested", c.kernel, [](const Json& v, const std::string& p) {
-        return one_of(v, p, {"auto", "box", "fraunhofer", "fresnel", "paper-fig3b", "measured"});
+        const std::string name = read_string(v, p);
+        parse_kernel_model(name, p);  // design/kernel_model names the models
+        return name;
     });
     read_into(r, "kernel_path", c.kernel_path, read_string);
     read_into(r, "filter", c.filter, read_string);
