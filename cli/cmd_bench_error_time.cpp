@@ -18,7 +18,7 @@
 #include "bench/error_time_plot.hpp"
 #include "bench/error_time_report.hpp"
 #include "cli/command.hpp"
-#include "cli/mask_json.hpp"
+#include "io/mask_json.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
@@ -91,7 +91,7 @@ Mask load_mask(const Options& o, std::string& source) {
     }
     if (o.mask) {
         source = *o.mask;
-        return read_mask_file(*o.mask);
+        return io::read_mask_file(*o.mask);
     }
     Mask m;
     m.camera = paper_camera();

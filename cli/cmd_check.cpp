@@ -14,7 +14,7 @@
 #include <string>
 
 #include "cli/command.hpp"
-#include "cli/mask_json.hpp"
+#include "io/mask_json.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "export/drc.hpp"
@@ -135,7 +135,7 @@ Checked check_file(const CheckOptions& o, const VendorRules& vendor) {
             "--min-spacing";
         return c;
     }
-    const Mask mask = read_mask_file(o.mask, {.allow_spacing_violations = true});
+    const Mask mask = io::read_mask_file(o.mask, {.allow_spacing_violations = true});
     const Layout design = make_layout(mask, design_options(o, &file));
     const BoxNm outline = bounding_box(design.polygons);
     for (const Ring& r : file.rings) {
@@ -157,7 +157,7 @@ Checked check_mask(const CheckOptions& o, const VendorRules& vendor) {
     if (!o.mask.empty()) throw invalid_field("--mask", o.mask, "only used with a fabrication file");
     Checked c;
     c.kind = "mask";
-    const Mask mask = read_mask_file(o.input, {.allow_spacing_violations = true});
+    const Mask mask = io::read_mask_file(o.input, {.allow_spacing_violations = true});
     c.layout = make_layout(mask, design_options(o, nullptr));
     c.rules = resolve_rules(o, rules_for_mask(mask, vendor));
     return c;

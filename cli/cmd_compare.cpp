@@ -17,8 +17,8 @@
 #include "cli/command.hpp"
 #include "cli/compare_data.hpp"
 #include "cli/compare_report.hpp"
-#include "cli/json_strict.hpp"
-#include "cli/mask_json.hpp"
+#include "io/json_strict.hpp"
+#include "io/mask_json.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
@@ -27,7 +27,7 @@
 namespace pinmask::cli {
 namespace {
 
-using json_strict::finite_or_null;
+using io::json_strict::finite_or_null;
 
 namespace fs = std::filesystem;
 
@@ -145,11 +145,11 @@ void run(const Options& o) {
             throw invalid_field("--report", o.report, "the output directory does not exist");
         }
     }
-    MaskReadOptions ro;
+    io::MaskReadOptions ro;
     ro.allow_spacing_violations = o.allow_violations;
     std::vector<CompareEntry> entries;
     for (const std::string& path : o.masks) {
-        CompareEntry e{fs::path(path).filename().string(), "input", path, read_mask_file(path, ro)};
+        CompareEntry e{fs::path(path).filename().string(), "input", path, io::read_mask_file(path, ro)};
         if (!entries.empty()) require_same_camera(entries.front().mask, e.mask, path);
         entries.push_back(std::move(e));
     }

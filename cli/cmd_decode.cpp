@@ -15,8 +15,8 @@
 #include "cli/command.hpp"
 #include "cli/decode_output.hpp"
 #include "cli/interrupt.hpp"
-#include "cli/mask_json.hpp"
-#include "cli/psf_files.hpp"
+#include "io/mask_json.hpp"
+#include "io/psf_files.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
@@ -53,7 +53,7 @@ LoadedPsf load_psf(const DecodeRequest& r, bool need_counts) {
     }
     LoadedPsf p;
     if (!r.psf.empty()) {
-        PsfFile file = read_psf_file(r.psf);
+        io::PsfFile file = io::read_psf_file(r.psf);
         p.info = {{"source", "psf-file"}, {"path", r.psf}, {"sidecar", file.sidecar.has_value()}};
         if (file.sidecar) {
             p.info["mask_geometry_hash"] = file.sidecar->mask_geometry_hash;
@@ -68,7 +68,7 @@ LoadedPsf load_psf(const DecodeRequest& r, bool need_counts) {
                                 "needs a measured PSF (--psf): a PSF synthesised from a mask "
                                 "has no camera background");
         }
-        const Mask mask = read_mask_file(r.mask);
+        const Mask mask = io::read_mask_file(r.mask);
         p.image = Image(mask_psf(mask));
         p.info = {{"source", "mask"},
                   {"path", r.mask},

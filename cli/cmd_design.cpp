@@ -13,7 +13,7 @@
 
 #include "cli/camera_options.hpp"
 #include "cli/command.hpp"
-#include "cli/json_strict.hpp"
+#include "io/json_strict.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "design/optics.hpp"
@@ -181,7 +181,7 @@ void run(const DesignOptions& o) {
     }
     const OpticsReport r = compute_optics(camera, geometry, kernel, {o.lsi_tolerance_px});
     if (o.json) {
-        std::cout << json_strict::pretty(to_json(r)) << "\n";
+        std::cout << io::json_strict::pretty(to_json(r)) << "\n";
     } else {
         std::cout << table(r);
     }

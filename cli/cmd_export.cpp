@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "cli/command.hpp"
-#include "cli/mask_json.hpp"
-#include "cli/psf_files.hpp"
+#include "io/mask_json.hpp"
+#include "io/psf_files.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
@@ -182,11 +182,11 @@ std::string verify(const fs::path& tmp, FabFormat f, const std::vector<Ring>& de
 }
 
 // The PSF of one period (design/psf) and its sidecar fields, as `pinmask psf` writes them.
-std::pair<Plane, PsfSidecar> mask_psf(const Mask& mask, const std::string& mask_path) {
+std::pair<Plane, io::PsfSidecar> mask_psf(const Mask& mask, const std::string& mask_path) {
     const int ppc = mask.psf.pixels_per_cell;
     check_psf_memory(mask.pattern.n, ppc, 2, 0);
     const Kernel kernel = mask_kernel(mask);
-    const PsfSidecar s = psf_sidecar_for(mask, kernel, mask_path);
+    const io::PsfSidecar s = io::psf_sidecar_for(mask, kernel, mask_path);
     return {synthesize_psf(mask.pattern, kernel, ppc), s};
 }
 
@@ -199,7 +199,7 @@ void run_export(const ExportOptions& o) {
     if (fs::exists(out_dir) && !fs::is_directory(out_dir))
         throw invalid_field("-o", o.output, "exists and is not a directory");
     const Mask mask =
-        read_mask_file(o.input, {.allow_spacing_violations = o.allow_spacing_violations});
+        io::read_mask_file(o.input, {.allow_spacing_violations = o.allow_spacing_violations});
     const std::string stem = o.stem.empty() ? default_stem(o.input) : o.stem;
     if (stem.empty() || stem.find('/') != std::string::npos)
         throw invalid_field("--stem", stem, "must be a plain file name");
@@ -214,7 +214,7 @@ void run_export(const ExportOptions& o) {
                              "; run `pinmask check` for details");
     }
 
-    std::optional<std::pair<Plane, PsfSidecar>> psf;
+    std::optional<std::pair<Plane, io::PsfSidecar>> psf;
     if (!o.no_psf) psf = mask_psf(mask, o.input);
 
     std::vector<std::pair<FabFormat, std::string>> contents;
@@ -285,7 +285,7 @@ void run_export(const ExportOptions& o) {
     std::vector<fs::path> psf_written;
     if (psf) {
         psf_written =
-            write_psf_files(out_dir / (stem + ".psf.tiff"), psf->first, psf->second, o.psf_npy);
+            io::write_psf_files(out_dir / (stem + ".psf.tiff"), psf->first, psf->second, o.psf_npy);
         json names = json::array();
         for (const fs::path& p : psf_written) names.push_back(p.filename().string());
         side["psf"] = {{"files", names},

@@ -14,7 +14,7 @@
 
 #include "cli/camera_options.hpp"
 #include "cli/command.hpp"
-#include "cli/mask_json.hpp"
+#include "io/mask_json.hpp"
 #include "cli/psf_options.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
@@ -120,7 +120,7 @@ void run(const GenerateOptions& o, const CLI::App& cmd) {
     m.provenance.generator = kGenerator;
     m.provenance.family = family_name(family);
     m.provenance.spacing_violations_allowed = violations > 0;  // only reached when allowed
-    write_mask_file(o.output, m);
+    io::write_mask_file(o.output, m);
 
     const std::string hash = geometry_hash(m);
     const std::size_t k = m.pattern.pinholes.size();

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "cli/command.hpp"
-#include "cli/mask_json.hpp"
-#include "cli/psf_files.hpp"
+#include "io/mask_json.hpp"
+#include "io/psf_files.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "design/psf.hpp"
@@ -41,7 +41,7 @@ void run(const PsfCommandOptions& o) {
             throw invalid_field("-o", o.output, "must end in .tif or .tiff");
         }
     }
-    Mask mask = read_mask_file(o.mask);
+    Mask mask = io::read_mask_file(o.mask);
     if (!o.kernel.empty()) {
         mask.psf.kernel.model = o.kernel;
         mask.psf.kernel.measured_path = o.kernel_path;
@@ -53,13 +53,13 @@ void run(const PsfCommandOptions& o) {
     const Kernel kernel = mask_kernel(mask, ko);
     const Plane psf = synthesize_psf(mask.pattern, kernel, ppc);
 
-    PsfSidecar s = psf_sidecar_for(mask, kernel, o.mask);
-    const auto written = write_psf_files(o.output, psf, s, o.npy);
+    io::PsfSidecar s = io::psf_sidecar_for(mask, kernel, o.mask);
+    const auto written = io::write_psf_files(o.output, psf, s, o.npy);
 
     s.rows = static_cast<int>(psf.rows());
     s.cols = static_cast<int>(psf.cols());
     if (o.json) {
-        nlohmann::ordered_json j = psf_sidecar_to_json(s);
+        nlohmann::ordered_json j = io::psf_sidecar_to_json(s);
         nlohmann::ordered_json paths = nlohmann::ordered_json::array();
         for (const auto& p : written) paths.push_back(p.string());
         j["written"] = paths;

@@ -17,8 +17,8 @@
 
 #include "cli/analytic_setup.hpp"
 #include "cli/command.hpp"
-#include "cli/json_strict.hpp"
-#include "cli/mask_json.hpp"
+#include "io/json_strict.hpp"
+#include "io/mask_json.hpp"
 #include "cli/noise_options.hpp"
 #include "core/error.hpp"
 #include "core/fft.hpp"
@@ -37,7 +37,7 @@
 namespace pinmask::cli {
 namespace {
 
-using json_strict::finite_or_null;
+using io::json_strict::finite_or_null;
 
 constexpr int kPriorScenes = 64;                 // natural scenes averaged for the default prior
 constexpr std::uint64_t kPriorFirstSeed = 1000;  // prior seeds 1000..1063, apart from the scored
@@ -235,9 +235,9 @@ PeriodData& period_data(std::map<int, PeriodData>& cache, int m, const Plan& pla
 
 nlohmann::ordered_json score_mask(const std::string& path, const ScoreOptions& o, const Plan& plan,
                                   std::map<int, PeriodData>& cache, Explain& explain) {
-    MaskReadOptions ro;
+    io::MaskReadOptions ro;
     ro.allow_spacing_violations = o.allow_violations;
-    const Mask mask = read_mask_file(path, ro);
+    const Mask mask = io::read_mask_file(path, ro);
     const int n = mask.pattern.n, m = n * mask.psf.pixels_per_cell;
     nlohmann::ordered_json row;
     row["mask"] = path;

@@ -10,10 +10,10 @@
 #include "cli/camera_options.hpp"
 #include "cli/command.hpp"
 #include "cli/interrupt.hpp"
-#include "cli/optics_json.hpp"
+#include "io/optics_json.hpp"
 #include "cli/progress.hpp"
 #include "cli/psf_options.hpp"
-#include "cli/search_config.hpp"
+#include "io/search_config.hpp"
 #include "cli/search_outputs.hpp"
 #include "core/error.hpp"
 #include "core/fft.hpp"
@@ -54,7 +54,7 @@ struct Options {
 };
 
 // The settings of --config FILE, for every option the command line did not give.
-void apply_config(const SearchConfig& c, const CLI::App& cmd, Options& o) {
+void apply_config(const io::SearchConfig& c, const CLI::App& cmd, Options& o) {
     auto given = [&](const char* flag) { return cmd.get_option(flag)->count() > 0; };
     auto set = [&](const char* flag, auto& field, const auto& value) {
         if (value && !given(flag)) field = *value;
@@ -155,8 +155,8 @@ std::vector<NamedScene> held_out_scenes(const std::vector<std::string>& names, i
 
 nlohmann::ordered_json resolved_config(const Options& o, const Mask& tmpl, const Kernel& kernel,
                                        int threads) {
-    return {{"format", kSearchConfigFormat},
-            {"version", kSearchConfigVersion},
+    return {{"format", io::kSearchConfigFormat},
+            {"version", io::kSearchConfigVersion},
             {"generator", kGenerator},
             {"strategy", o.strategy},
             {"time", o.time},
@@ -183,7 +183,7 @@ nlohmann::ordered_json resolved_config(const Options& o, const Mask& tmpl, const
               {"min_spectrum", o.w_min_spectrum}}},
             {"rerank_scenes", o.no_rerank ? std::vector<std::string>{} : o.rerank_scenes},
             {"rerank_tv", !o.no_rerank && o.rerank_tv},
-            {"optics", optics_to_json<nlohmann::ordered_json>(tmpl.camera)}};
+            {"optics", io::optics_to_json<nlohmann::ordered_json>(tmpl.camera)}};
 }
 
 void run(const Options& o) {
@@ -377,7 +377,7 @@ const Registration kSearch(50, "search", [](CLI::App& app) {
         "Repeat a run (byte-identical masks with --evals) or vary it: pinmask search --config "
         "runs/a/search.config.json --seed 2 -o runs/b/");
     cmd->callback([o, cmd] {
-        if (!o->config.empty()) apply_config(read_search_config(o->config), *cmd, *o);
+        if (!o->config.empty()) apply_config(io::read_search_config(o->config), *cmd, *o);
         run(*o);
     });
 });

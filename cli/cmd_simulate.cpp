@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "cli/command.hpp"
-#include "cli/mask_json.hpp"
+#include "io/mask_json.hpp"
 #include "cli/noise_options.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -126,9 +126,9 @@ void run(const SimulateOptions& o, const CLI::App& cmd) {
     }
     SceneSpec scene_spec = scene_from_name(o.scene);
 
-    MaskReadOptions ro;
+    io::MaskReadOptions ro;
     ro.allow_spacing_violations = o.allow_violations;
-    const Mask mask = read_mask_file(o.mask, ro);
+    const Mask mask = io::read_mask_file(o.mask, ro);
     const Kernel kernel = mask_kernel(mask);
     const int ppc = mask.psf.pixels_per_cell;
     const Plane psf = synthesize_psf(mask.pattern, kernel, ppc);

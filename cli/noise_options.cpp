@@ -3,13 +3,13 @@
 #include <cmath>
 #include <limits>
 
-#include "cli/json_strict.hpp"
+#include "io/json_strict.hpp"
 #include "core/error.hpp"
 
 namespace pinmask::cli {
 namespace {
 
-using json_strict::finite_or_null;
+using io::json_strict::finite_or_null;
 
 constexpr const char* kSensorFlags[] = {"--read-noise", "--dark-current", "--bits", "--full-well",
                                         "--optical-density"};

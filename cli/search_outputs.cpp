@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <sstream>
 
-#include "cli/json_strict.hpp"
-#include "cli/mask_json.hpp"
+#include "io/json_strict.hpp"
+#include "io/mask_json.hpp"
 #include "core/atomic_file.hpp"
 
 namespace pinmask::cli {
@@ -58,7 +58,7 @@ std::vector<fs::path> write_search_outputs(const fs::path& dir,
     std::vector<fs::path> paths;
     for (std::size_t i = 0; i < ranked.size(); ++i) {
         const fs::path p = dir / ("rank-" + std::to_string(i + 1) + ".mask.json");
-        files.stage(p, [&](const fs::path& tmp) { write_mask_file(tmp, ranked[i].mask); });
+        files.stage(p, [&](const fs::path& tmp) { io::write_mask_file(tmp, ranked[i].mask); });
         paths.push_back(p);
     }
     std::ostringstream log;
@@ -71,7 +71,7 @@ std::vector<fs::path> write_search_outputs(const fs::path& dir,
     files.stage_bytes(dir / "run-log.csv", log.str());
     files.stage_bytes(dir / "summary.md",
                       "# Search summary\n\n" + search_summary_markdown(ranked, summary));
-    files.stage_bytes(dir / "search.config.json", json_strict::pretty(config) + "\n");
+    files.stage_bytes(dir / "search.config.json", io::json_strict::pretty(config) + "\n");
     files.commit();
     return paths;
 }

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "cli/mask_json.hpp"
+#include "io/mask_json.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "fuzz/fuzz_support.hpp"
@@ -20,15 +20,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto& path = fuzz::write_scratch(data, size, ".mask.json");
     Mask mask;
     try {
-        mask = cli::read_mask_file(path);
+        mask = io::read_mask_file(path);
     } catch (const InvalidInput&) {
         return 0;
     }
-    const std::string text = cli::mask_file_text(mask);
+    const std::string text = io::mask_file_text(mask);
     const auto& again_path = fuzz::scratch_path(".again.mask.json");
     write_bytes_atomic(again_path, text);
-    const Mask again = cli::read_mask_file(again_path);
+    const Mask again = io::read_mask_file(again_path);
     if (geometry_hash(again) != geometry_hash(mask)) fuzz::invariant_failed("geometry hash");
-    if (cli::mask_file_text(again) != text) fuzz::invariant_failed("mask file text round trip");
+    if (io::mask_file_text(again) != text) fuzz::invariant_failed("mask file text round trip");
     return 0;
 }

@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "cli/json_strict.hpp"
-#include "cli/psf_files.hpp"
+#include "io/json_strict.hpp"
+#include "io/psf_files.hpp"
 #include "core/error.hpp"
 #include "fuzz/fuzz_support.hpp"
 
@@ -18,21 +18,21 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::string text(fuzz::as_text(data, size));
     nlohmann::json j;
     try {
-        j = cli::json_strict::parse_strict(text);
+        j = io::json_strict::parse_strict(text);
     } catch (const InvalidInput&) {
         return 0;
     } catch (const nlohmann::json::exception&) {
         return 0;
     }
-    cli::PsfSidecar s;
+    io::PsfSidecar s;
     try {
-        s = cli::psf_sidecar_from_json(j, "fuzz.json");
+        s = io::psf_sidecar_from_json(j, "fuzz.json");
     } catch (const InvalidInput&) {
         return 0;
     }
-    const nlohmann::json back = nlohmann::json::parse(cli::psf_sidecar_to_json(s).dump());
-    const cli::PsfSidecar again = cli::psf_sidecar_from_json(back, "round trip");
-    if (cli::psf_sidecar_to_json(again) != cli::psf_sidecar_to_json(s)) {
+    const nlohmann::json back = nlohmann::json::parse(io::psf_sidecar_to_json(s).dump());
+    const io::PsfSidecar again = io::psf_sidecar_from_json(back, "round trip");
+    if (io::psf_sidecar_to_json(again) != io::psf_sidecar_to_json(s)) {
         fuzz::invariant_failed("sidecar round trip");
     }
     return 0;

@@ -6,15 +6,15 @@
 #include <cstdint>
 #include <string>
 
-#include "cli/search_config.hpp"
+#include "io/search_config.hpp"
 #include "core/error.hpp"
 #include "fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace pinmask;
-    cli::SearchConfig c;
+    io::SearchConfig c;
     try {
-        c = cli::parse_search_config(std::string(fuzz::as_text(data, size)));
+        c = io::parse_search_config(std::string(fuzz::as_text(data, size)));
     } catch (const InvalidInput&) {
         return 0;
     }

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/json_strict.hpp"
+#include "io/json_strict.hpp"
 #include "core/error.hpp"
 #include "tests/support/cli_run.hpp"
 
@@ -157,7 +157,7 @@ TEST_CASE("the manifest covers every file of the corpus") {
 // Regression (found by the bad-input corpus): parse_strict kept the key path of every open
 // level, so nesting cost O(depth^2) bytes: 50k '[' took 4.5 GB and 40 s. Now refused at depth 64.
 TEST_CASE("parse_strict refuses deep nesting at once") {
-    using pinmask::cli::json_strict::parse_strict;
+    using pinmask::io::json_strict::parse_strict;
     const std::size_t depth = 200000;
     const std::string arrays = std::string(depth, '[') + std::string(depth, ']');
     std::string objects;  // {"a": {"a": ... 1 ... }}

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/mask_json.hpp"
+#include "io/mask_json.hpp"
 #include "export/gds_writer.hpp"
 #include "export/geometry.hpp"
 #include "tests/support/cli_run.hpp"
@@ -38,7 +38,7 @@ Mask make_mask(int n, std::vector<Cell> holes, int tiles, bool violations_allowe
 
 std::string write_mask(const TempDir& dir, const std::string& name, const Mask& m) {
     const std::string path = dir / name;
-    cli::write_mask_file(path, m);
+    io::write_mask_file(path, m);
     return path;
 }
 

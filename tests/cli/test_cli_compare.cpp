@@ -8,7 +8,7 @@
 #include <random>
 #include <string>
 
-#include "cli/mask_json.hpp"
+#include "io/mask_json.hpp"
 #include "design/camera.hpp"
 #include "design/random_sparse.hpp"
 #include "tests/support/cli_run.hpp"
@@ -44,8 +44,8 @@ struct Masks {
     Masks() {
         a = dir / "a.mask.json";
         b = dir / "b.mask.json";
-        pinmask::cli::write_mask_file(a, small_mask(1));
-        pinmask::cli::write_mask_file(b, small_mask(2));
+        pinmask::io::write_mask_file(a, small_mask(1));
+        pinmask::io::write_mask_file(b, small_mask(2));
     }
     // Files in the folder besides the two masks.
     std::size_t others() const {
@@ -166,7 +166,7 @@ TEST_CASE("compare --baselines: random median, paper-like and MURA rows; SVG pag
 TEST_CASE("compare prints a table; grid sizes may differ, each mask on its own period") {
     Masks m;
     const std::string c = m.dir / "c.mask.json";
-    pinmask::cli::write_mask_file(c, small_mask(4, 11, 6));  // n = 11 (prime), same camera
+    pinmask::io::write_mask_file(c, small_mask(4, 11, 6));  // n = 11 (prime), same camera
     const auto r = run_cli("compare " + m.a + " " + c + kFast);
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
@@ -190,7 +190,7 @@ TEST_CASE("compare: bad input is exit 2 with a message, and no report files") {
     pinmask::Mask other = small_mask(5);
     other.camera.pinhole_m = 500e-6;
     const std::string o = m.dir / "other.mask.json";
-    pinmask::cli::write_mask_file(o, other);
+    pinmask::io::write_mask_file(o, other);
     r = run_cli("compare " + m.a + " " + o + kFast + report);
     CHECK(r.exit_code == 2);
     CHECK(r.err.find("pinhole_m") != std::string::npos);

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "cli/mask_json.hpp"
+#include "io/mask_json.hpp"
 #include "design/mask.hpp"
 #include "tests/support/cli_run.hpp"
 
@@ -31,7 +31,7 @@ TEST_CASE("generate: the issue's command writes a mask that reads back") {
         "generate --family random --grid 16 --holes 20 --spacing 2 --tiles 2 --seed 7 -o " + out);
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
-    const Mask m = cli::read_mask_file(out);
+    const Mask m = io::read_mask_file(out);
     CHECK(m.pattern.n == 16);
     CHECK(m.pattern.pinholes.size() == 20);
     CHECK(m.pattern.tiles_rows == 2);
@@ -46,7 +46,7 @@ TEST_CASE("generate: the issue's command writes a mask that reads back") {
     CHECK(m.camera.pinhole_m == 440e-6);
     CHECK(has(r.out, geometry_hash(m)));
     // Rewriting what was read reproduces the file byte for byte.
-    cli::write_mask_file(dir / "again.mask.json", m);
+    io::write_mask_file(dir / "again.mask.json", m);
     CHECK(slurp(out) == slurp(dir / "again.mask.json"));
 }
 
@@ -59,8 +59,8 @@ TEST_CASE("generate: same seed, byte-identical file; another seed, another patte
     REQUIRE(
         run_cli("generate --grid 31 --holes 40 --spacing 2.5 --seed 12 -o " + (dir / "c.mask.json"))
             .exit_code == 0);
-    CHECK(cli::read_mask_file(dir / "a.mask.json").pattern.pinholes !=
-          cli::read_mask_file(dir / "c.mask.json").pattern.pinholes);
+    CHECK(io::read_mask_file(dir / "a.mask.json").pattern.pinholes !=
+          io::read_mask_file(dir / "c.mask.json").pattern.pinholes);
 }
 
 TEST_CASE("generate --json: machine-readable summary only") {
@@ -73,7 +73,7 @@ TEST_CASE("generate --json: machine-readable summary only") {
     CHECK(j.at("holes") == 20);
     CHECK(j.at("family") == "paper");
     CHECK(j.at("spacing_violations") == 0);
-    CHECK(j.at("geometry_hash") == geometry_hash(cli::read_mask_file(dir / "p.mask.json")));
+    CHECK(j.at("geometry_hash") == geometry_hash(io::read_mask_file(dir / "p.mask.json")));
 }
 
 TEST_CASE("generate: infeasible and invalid requests exit 2, name the rule, write nothing") {
@@ -111,7 +111,7 @@ TEST_CASE("generate: mura with permission, and the camera flags are recorded") {
     const auto r = run_cli("generate --family mura --grid 13 --allow-violations -o " +
                            (dir / "mura.mask.json"));
     REQUIRE(r.exit_code == 0);
-    const Mask m = cli::read_mask_file(dir / "mura.mask.json");
+    const Mask m = io::read_mask_file(dir / "mura.mask.json");
     CHECK(m.pattern.n == 13);
     CHECK(m.pattern.pinholes.size() == 84);  // (13^2 - 1) / 2
     CHECK(m.provenance.spacing_violations_allowed);
@@ -124,13 +124,13 @@ TEST_CASE("generate: mura with permission, and the camera flags are recorded") {
     // At spacing 1 a MURA meets the rule and needs no permission.
     REQUIRE(run_cli("generate --family mura --grid 5 --spacing 1 -o " + (dir / "m1.mask.json"))
                 .exit_code == 0);
-    CHECK_FALSE(cli::read_mask_file(dir / "m1.mask.json").provenance.spacing_violations_allowed);
+    CHECK_FALSE(io::read_mask_file(dir / "m1.mask.json").provenance.spacing_violations_allowed);
 
     REQUIRE(run_cli("generate --lens-focal inf --object-distance inf --pinhole 443um "
                     "--kernel fresnel --seed 5 -o " +
                     (dir / "c.mask.json"))
                 .exit_code == 0);
-    const Mask c = cli::read_mask_file(dir / "c.mask.json");
+    const Mask c = io::read_mask_file(dir / "c.mask.json");
     CHECK(std::isinf(c.camera.lens_focal_m));
     CHECK(std::isinf(c.camera.object_distance_m));
     CHECK(c.camera.pinhole_m == doctest::Approx(443e-6).epsilon(1e-12));

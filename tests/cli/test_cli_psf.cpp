@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "cli/mask_json.hpp"
-#include "cli/psf_files.hpp"
+#include "io/mask_json.hpp"
+#include "io/psf_files.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
 #include "design/psf.hpp"
@@ -43,7 +43,7 @@ Mask sample_mask() {
 
 std::string write_mask(const TempDir& dir, const Mask& m, const std::string& name = "m.mask.json") {
     const std::string path = dir / name;
-    cli::write_mask_file(path, m);
+    io::write_mask_file(path, m);
     return path;
 }
 
@@ -63,12 +63,12 @@ TEST_CASE("psf writes TIFF, npy and sidecar; sizes right, sum 1, same as the lib
     INFO(ok.err);
     REQUIRE(ok.exit_code == 0);
     CHECK(contains(ok.out, "psf.json"));
-    const cli::PsfFile f = cli::read_psf_file(dir / "psf.tiff");
+    const io::PsfFile f = io::read_psf_file(dir / "psf.tiff");
     CHECK(f.psf.rows() == 128);
     CHECK(f.psf.cols() == 128);
     CHECK(std::fabs(f.psf.sum() - 1) <= 1e-12);
     REQUIRE(f.sidecar.has_value());
-    const cli::PsfSidecar& s = *f.sidecar;
+    const io::PsfSidecar& s = *f.sidecar;
     CHECK(s.mask_geometry_hash == geometry_hash(m));
     CHECK(s.pixels_per_cell == 8);
     CHECK(s.grid_n == 16);
@@ -80,7 +80,7 @@ TEST_CASE("psf writes TIFF, npy and sidecar; sizes right, sum 1, same as the lib
     CHECK(s.npy_file == "psf.npy");
     const Plane lib = mask_psf(m);
     CHECK((f.psf - lib).abs().maxCoeff() <= kFloatTol * lib.maxCoeff());
-    const cli::PsfFile npy = cli::read_psf_file(dir / "psf.npy");
+    const io::PsfFile npy = io::read_psf_file(dir / "psf.npy");
     CHECK((npy.psf - f.psf).abs().maxCoeff() == 0.0);
     // The raw file values are the float32 PSF: their sum is 1 up to float rounding.
     const LoadedImage raw = read_image(dir / "psf.tiff");
@@ -109,7 +109,7 @@ TEST_CASE("psf --kernel overrides the mask's model; f = f' and u = inf work") {
     const auto r = run_cli("psf " + lim_path + " -o " + (dir / "lim.tiff"));
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
-    const cli::PsfFile f = cli::read_psf_file(dir / "lim.tiff");
+    const io::PsfFile f = io::read_psf_file(dir / "lim.tiff");
     CHECK(f.sidecar->kernel_model == "fraunhofer");
     CHECK(is_all_finite(f.psf));
 }
@@ -152,23 +152,23 @@ TEST_CASE("read_psf_file validates the image and the sidecar") {
         return s.replace(at, from.size(), to);
     };
     with_sidecar(replace(good, "\"pinmask-psf\"", "\"pinmask-mask\""));
-    CHECK_THROWS_AS(cli::read_psf_file(dir / "p.tiff"), InvalidInput);
+    CHECK_THROWS_AS(io::read_psf_file(dir / "p.tiff"), InvalidInput);
     with_sidecar(replace(good, "\"version\": 1", "\"version\": 2"));
-    CHECK_THROWS_AS(cli::read_psf_file(dir / "p.tiff"), InvalidInput);
+    CHECK_THROWS_AS(io::read_psf_file(dir / "p.tiff"), InvalidInput);
     with_sidecar(replace(good, "\"version\": 1", "\"version\": 1, \"colour\": \"red\""));
-    CHECK_THROWS_AS(cli::read_psf_file(dir / "p.tiff"), InvalidInput);
+    CHECK_THROWS_AS(io::read_psf_file(dir / "p.tiff"), InvalidInput);
     with_sidecar(replace(good, "\"size_px\": [128, 128]", "\"size_px\": [128, 64]"));
-    CHECK_THROWS_AS(cli::read_psf_file(dir / "p.tiff"), InvalidInput);
+    CHECK_THROWS_AS(io::read_psf_file(dir / "p.tiff"), InvalidInput);
     with_sidecar("{ not json");
-    CHECK_THROWS_AS(cli::read_psf_file(dir / "p.tiff"), InvalidInput);
+    CHECK_THROWS_AS(io::read_psf_file(dir / "p.tiff"), InvalidInput);
     fs::remove(dir / "p.json");
-    CHECK_FALSE(cli::read_psf_file(dir / "p.tiff").sidecar.has_value());
+    CHECK_FALSE(io::read_psf_file(dir / "p.tiff").sidecar.has_value());
     // Bad image data.
     Plane bad = Plane::Ones(4, 4);
     bad(1, 1) = NAN;
     write_npy(dir / "nan.npy", Image(bad), SampleFormat::kFloat64);
-    CHECK_THROWS_AS(cli::read_psf_file(dir / "nan.npy"), InvalidInput);
+    CHECK_THROWS_AS(io::read_psf_file(dir / "nan.npy"), InvalidInput);
     write_npy(dir / "zero.npy", Image(Plane::Zero(4, 4)), SampleFormat::kFloat64);
-    CHECK_THROWS_AS(cli::read_psf_file(dir / "zero.npy"), InvalidInput);
-    CHECK_THROWS_AS(cli::read_psf_file(dir / "none.tiff"), InvalidInput);
+    CHECK_THROWS_AS(io::read_psf_file(dir / "zero.npy"), InvalidInput);
+    CHECK_THROWS_AS(io::read_psf_file(dir / "none.tiff"), InvalidInput);
 }

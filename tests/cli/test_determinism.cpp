@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/mask_json.hpp"
+#include "io/mask_json.hpp"
 #include "tests/support/cli_run.hpp"
 
 using pinmask::test::slurp;
@@ -164,6 +164,6 @@ TEST_CASE("search --evals twice with the same --threads: identical masks, config
     CHECK(log1.find(",300,") == std::string::npos);
     // Every written candidate is a valid mask file.
     for (const char* run : {"run1", "run2"}) {
-        CHECK_NOTHROW(pinmask::cli::read_mask_file(t.a.path / run / "rank-1.mask.json"));
+        CHECK_NOTHROW(pinmask::io::read_mask_file(t.a.path / run / "rank-1.mask.json"));
     }
 }

@@ -20,7 +20,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "cli/mask_json.hpp"
+#include "io/mask_json.hpp"
 #include "tests/support/cli_run.hpp"
 
 using pinmask::test::slurp;
@@ -144,7 +144,7 @@ TEST_CASE("search stops cleanly on SIGINT and SIGTERM with the best so far writt
             dir.path / "stdout.txt");
         interrupt_when(c, sig, searched_long_enough);
         REQUIRE(fs::exists(out / "rank-1.mask.json"));
-        CHECK_NOTHROW(pinmask::cli::read_mask_file(out / "rank-1.mask.json"));
+        CHECK_NOTHROW(pinmask::io::read_mask_file(out / "rank-1.mask.json"));
         CHECK(fs::exists(out / "run-log.csv"));
         CHECK(fs::exists(out / "search.config.json"));
         for (const auto& e : fs::recursive_directory_iterator(dir.path)) {

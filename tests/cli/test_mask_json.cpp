@@ -6,19 +6,19 @@
 #include <filesystem>
 #include <fstream>
 
-#include "cli/json_strict.hpp"
-#include "cli/mask_json.hpp"
+#include "io/json_strict.hpp"
+#include "io/mask_json.hpp"
 #include "core/error.hpp"
 #include "tests/support/cli_run.hpp"
 
 using namespace pinmask;
 using doctest::Contains;
-using pinmask::cli::mask_file_text;
-using pinmask::cli::mask_from_json;
-using pinmask::cli::mask_to_json;
-using pinmask::cli::MaskReadOptions;
-using pinmask::cli::read_mask_file;
-using pinmask::cli::write_mask_file;
+using pinmask::io::mask_file_text;
+using pinmask::io::mask_from_json;
+using pinmask::io::mask_to_json;
+using pinmask::io::MaskReadOptions;
+using pinmask::io::read_mask_file;
+using pinmask::io::write_mask_file;
 
 namespace {
 

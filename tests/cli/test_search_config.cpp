@@ -6,12 +6,12 @@
 #include <cmath>
 #include <string>
 
-#include "cli/search_config.hpp"
+#include "io/search_config.hpp"
 #include "core/error.hpp"
 #include "tests/support/cli_run.hpp"
 
 using namespace pinmask;
-using namespace pinmask::cli;
+using namespace pinmask::io;
 using pinmask::test::run_cli;
 using pinmask::test::slurp;
 using pinmask::test::TempDir;

@@ -11,7 +11,7 @@
 
 #include "design/mask.hpp"
 
-namespace pinmask::cli {
+namespace pinmask::io {
 
 struct MaskReadOptions {
     // Accept spacing violations even when the file does not record that they were allowed.
@@ -29,4 +29,4 @@ Mask read_mask_file(const std::filesystem::path& path, const MaskReadOptions& op
 // identical masks.
 void write_mask_file(const std::filesystem::path& path, const Mask& mask);
 
-}  // namespace pinmask::cli
+}  // namespace pinmask::io

@@ -25,7 +25,7 @@
 
 #include "design/camera.hpp"
 
-namespace pinmask::cli {
+namespace pinmask::io {
 
 inline constexpr const char* kSearchConfigFormat = "pinmask-search-config";
 inline constexpr int kSearchConfigVersion = 1;
@@ -51,4 +51,4 @@ SearchConfig parse_search_config(const std::string& text);
 // Reads `path` (InvalidInput naming the file when it cannot be read or parsed).
 SearchConfig read_search_config(const std::filesystem::path& path);
 
-}  // namespace pinmask::cli
+}  // namespace pinmask::io

@@ -1,4 +1,4 @@
-#include "cli/psf_files.hpp"
+#include "io/psf_files.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,13 +6,13 @@
 #include <sstream>
 #include <tuple>
 
-#include "cli/json_strict.hpp"
+#include "io/json_strict.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
 #include "design/kernel_model.hpp"
 
-namespace pinmask::cli {
+namespace pinmask::io {
 namespace {
 
 namespace fs = std::filesystem;
@@ -206,4 +206,4 @@ PsfFile read_psf_file(const fs::path& image_path) {
     return out;
 }
 
-}  // namespace pinmask::cli
+}  // namespace pinmask::io

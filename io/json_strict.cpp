@@ -1,4 +1,4 @@
-#include "cli/json_strict.hpp"
+#include "io/json_strict.hpp"
 
 #include <algorithm>
 #include <climits>
@@ -8,7 +8,7 @@
 
 #include "core/error.hpp"
 
-namespace pinmask::cli::json_strict {
+namespace pinmask::io::json_strict {
 
 void fail(const std::string& key_path, const std::string& rule) {
     throw InvalidInput((key_path.empty() ? std::string("(root)") : key_path) + ": " + rule);
@@ -239,4 +239,4 @@ std::string pretty(const OrderedJson& j, const std::string& raw_path, const RawW
     return out;
 }
 
-}  // namespace pinmask::cli::json_strict
+}  // namespace pinmask::io::json_strict

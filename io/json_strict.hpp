@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-namespace pinmask::cli::json_strict {
+namespace pinmask::io::json_strict {
 
 using Json = nlohmann::json;
 using OrderedJson = nlohmann::ordered_json;
@@ -73,4 +73,4 @@ OrderedJson finite_or_null(double v);
 std::string pretty(const OrderedJson& j, const std::string& raw_path = "",
                    const RawWriter& raw = {});
 
-}  // namespace pinmask::cli::json_strict
+}  // namespace pinmask::io::json_strict

@@ -1,15 +1,15 @@
-#include "cli/search_config.hpp"
+#include "io/search_config.hpp"
 
 #include <fstream>
 #include <sstream>
 
-#include "cli/json_strict.hpp"
-#include "cli/optics_json.hpp"
+#include "io/json_strict.hpp"
+#include "io/optics_json.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "design/kernel_model.hpp"
 
-namespace pinmask::cli {
+namespace pinmask::io {
 namespace {
 
 using namespace json_strict;
@@ -182,4 +182,4 @@ SearchConfig read_search_config(const std::filesystem::path& path) {
     }
 }
 
-}  // namespace pinmask::cli
+}  // namespace pinmask::io

@@ -12,7 +12,7 @@
 //                   "geometry_hash" (optional; checked against the geometry when present)}}
 // Output format: 2-space indent, keys in the order above, arrays of scalars on one line (one
 // pinhole per line), numbers in nlohmann's shortest round-trip form, pinholes sorted.
-#include "cli/mask_json.hpp"
+#include "io/mask_json.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -22,13 +22,13 @@
 #include <string>
 #include <vector>
 
-#include "cli/json_strict.hpp"
-#include "cli/optics_json.hpp"
+#include "io/json_strict.hpp"
+#include "io/optics_json.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/resource_limits.hpp"
 
-namespace pinmask::cli {
+namespace pinmask::io {
 namespace {
 
 using namespace json_strict;
@@ -332,4 +332,4 @@ void write_mask_file(const std::filesystem::path& path, const Mask& mask) {
     write_bytes_atomic(path, text);
 }
 
-}  // namespace pinmask::cli
+}  // namespace pinmask::io

@@ -21,7 +21,7 @@
 #include "design/kernel.hpp"
 #include "design/mask.hpp"
 
-namespace pinmask::cli {
+namespace pinmask::io {
 
 inline constexpr const char* kPsfFormat = "pinmask-psf";
 inline constexpr int kPsfVersion = 1;
@@ -72,4 +72,4 @@ struct PsfFile {
 // sum <= 0, or when the sidecar is malformed or its size differs from the image.
 PsfFile read_psf_file(const std::filesystem::path& image_path);
 
-}  // namespace pinmask::cli
+}  // namespace pinmask::io

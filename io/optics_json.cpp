@@ -1,11 +1,11 @@
-#include "cli/optics_json.hpp"
+#include "io/optics_json.hpp"
 
 #include <string>
 
-#include "cli/json_strict.hpp"
+#include "io/json_strict.hpp"
 #include "core/error.hpp"
 
-namespace pinmask::cli {
+namespace pinmask::io {
 
 using namespace json_strict;
 
@@ -34,4 +34,4 @@ Camera optics_from_json(const nlohmann::json& j) {
     return c;
 }
 
-}  // namespace pinmask::cli
+}  // namespace pinmask::io

@@ -9,7 +9,7 @@
 
 #include "design/camera.hpp"
 
-namespace pinmask::cli {
+namespace pinmask::io {
 
 // Reads and validates (design/camera) the object; InvalidInput names "optics.<key>" and the rule.
 Camera optics_from_json(const nlohmann::json& j);
@@ -29,4 +29,4 @@ J optics_to_json(const Camera& c) {
     return optics;
 }
 
-}  // namespace pinmask::cli
+}  // namespace pinmask::io
