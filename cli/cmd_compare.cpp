@@ -19,6 +19,7 @@
 #include "cli/compare_report.hpp"
 #include "io/json_strict.hpp"
 #include "io/mask_json.hpp"
+#include "core/output_set.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
@@ -144,6 +145,13 @@ void run(const Options& o) {
         if (!dir.empty() && !fs::is_directory(dir)) {
             throw invalid_field("--report", o.report, "the output directory does not exist");
         }
+    }
+    {
+        std::vector<NamedPath> inputs;
+        for (const std::string& m : o.masks) inputs.push_back({"masks", m});
+        fs::path config = o.report;  // the report's pages are checked again as they are staged
+        if (!o.report.empty()) config.replace_filename(config.stem().string() + ".config.json");
+        plan_outputs(inputs, {{"--report", o.report}, {"--report (config)", config}});
     }
     io::MaskReadOptions ro;
     ro.allow_spacing_violations = o.allow_violations;

@@ -16,6 +16,7 @@
 #include "io/json_strict.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
+#include "design/kernel_validity.hpp"
 #include "design/optics.hpp"
 
 namespace pinmask::cli {
@@ -179,9 +180,14 @@ void run(const DesignOptions& o) {
     if (!(o.lsi_tolerance_px > 0) || !std::isfinite(o.lsi_tolerance_px)) {
         throw invalid_field("--lsi-tolerance", num(o.lsi_tolerance_px), "must be finite and > 0");
     }
-    const OpticsReport r = compute_optics(camera, geometry, kernel, {o.lsi_tolerance_px});
+    OpticsReport r = compute_optics(camera, geometry, kernel, {o.lsi_tolerance_px});
+    const KernelValidity validity = kernel_validity(camera, r.kernel_model);  // never "accurate"
+    if (!validity.model_accurate) r.kernel_reason = "NOT accurate: " + validity.warnings.front();
+    for (const auto& w : validity.warnings) std::cerr << "pinmask: warning: " << w << "\n";
     if (o.json) {
-        std::cout << io::json_strict::pretty(to_json(r)) << "\n";
+        auto j = to_json(r);
+        j["kernel_warnings"] = validity.warnings;
+        std::cout << io::json_strict::pretty(j) << "\n";
     } else {
         std::cout << table(r);
     }

@@ -19,6 +19,7 @@
 #include "cli/command.hpp"
 #include "io/mask_json.hpp"
 #include "io/psf_files.hpp"
+#include "core/output_set.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
@@ -203,6 +204,17 @@ void run_export(const ExportOptions& o) {
     const std::string stem = o.stem.empty() ? default_stem(o.input) : o.stem;
     if (stem.empty() || stem.find('/') != std::string::npos)
         throw invalid_field("--stem", stem, "must be a plain file name");
+    {
+        std::vector<NamedPath> outs{{"-o (export.json)", out_dir / (stem + ".export.json")}};
+        for (FabFormat f : formats) outs.push_back({"-o", out_dir / (stem + fab_extension(f))});
+        if (!o.no_psf) {
+            const fs::path psf_tiff = out_dir / (stem + ".psf.tiff");
+            outs.push_back({"-o (PSF)", psf_tiff});
+            outs.push_back({"-o (PSF sidecar)", io::psf_sidecar_path(psf_tiff)});
+            if (o.psf_npy) outs.push_back({"-o (PSF npy)", out_dir / (stem + ".psf.npy")});
+        }
+        plan_outputs({{"input", o.input}}, outs);
+    }
     const LayoutOptions lo = layout_options(o, mask, stem);
     const Layout layout = make_layout(mask, lo);
     const std::vector<Ring> design = canonical_rings(all_rings(layout));

@@ -14,16 +14,19 @@
 
 #include "cli/camera_options.hpp"
 #include "cli/command.hpp"
-#include "io/mask_json.hpp"
 #include "cli/psf_options.hpp"
 #include "core/error.hpp"
+#include "core/image_io.hpp"
+#include "core/output_set.hpp"
 #include "core/units.hpp"
 #include "design/exclusion_grid.hpp"
 #include "design/families.hpp"
 #include "design/mask.hpp"
 #include "design/mura.hpp"
 #include "design/optics.hpp"
+#include "design/pattern.hpp"
 #include "design/random_sparse.hpp"
+#include "io/mask_json.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -100,6 +103,37 @@ Pattern make_pattern(const GenerateOptions& o, const CLI::App& cmd, Family famil
     return p;
 }
 
+// Bounds that later commands enforce, checked here so generate never writes a mask they refuse.
+void check_generate_bounds(const GenerateOptions& o) {
+    const GeometryOptions& g = o.geometry;
+    if (g.tiles < 1 || g.tiles > kMaxTiles) {
+        throw invalid_field("--tiles", std::to_string(g.tiles),
+                            "must be between 1 and " + std::to_string(kMaxTiles) +
+                                " (the largest tiling the mask reader and export accept)");
+    }
+    if (g.grid < 1 || g.grid > kMaxGrid) {
+        throw invalid_field("--grid", std::to_string(g.grid),
+                            "must be between 1 and " + std::to_string(kMaxGrid));
+    }
+}
+
+// The PSF of one period is (grid x pixels per cell)^2 samples: it must be an image that psf,
+// simulate and decode can hold (kMaxImageSamples), else generate would write a mask they refuse.
+void check_psf_side(int ppc, int grid, bool given) {
+    const double side = double(ppc) * grid;
+    if (side * side <= double(kMaxImageSamples)) return;
+    const auto max_side = static_cast<long long>(std::sqrt(double(kMaxImageSamples)));
+    throw invalid_field(
+        given ? "--pixels-per-cell" : "pixels per cell (design value from the camera)",
+        std::to_string(ppc),
+        "the PSF of one period would be " + std::to_string(static_cast<long long>(side)) +
+            " px wide (grid " + std::to_string(grid) +
+            " x pixels per cell); psf, simulate and decode hold at most " +
+            std::to_string(kMaxImageSamples) + " samples (kMaxImageSamples), " +
+            std::to_string(max_side) + " px per side: at most " + std::to_string(max_side / grid) +
+            " pixels per cell at grid " + std::to_string(grid));
+}
+
 void run(const GenerateOptions& o, const CLI::App& cmd) {
     const Family family = parse_family(o.family);
     const fs::path out_dir = fs::path(o.output).parent_path();
@@ -108,11 +142,14 @@ void run(const GenerateOptions& o, const CLI::App& cmd) {
     }
     if (o.attempts < 1)
         throw invalid_field("--attempts", std::to_string(o.attempts), "must be >= 1");
+    plan_outputs({}, {{"-o", o.output}});
+    check_generate_bounds(o);
 
     Mask m;
     m.camera = resolve_camera(o.camera);
     const double design_ppc = design_pixels_per_cell(m.camera);
     m.psf = resolve_psf_spec(o.psf, m.camera);
+    check_psf_side(m.psf.pixels_per_cell, o.geometry.grid, o.psf.pixels_per_cell.has_value());
     std::size_t violations = 0;
     m.pattern = make_pattern(o, cmd, family, violations);
     // A MURA does not depend on the seed: recording 0 keeps its file independent of --seed.

@@ -10,8 +10,10 @@
 #include "cli/command.hpp"
 #include "io/mask_json.hpp"
 #include "io/psf_files.hpp"
+#include "core/output_set.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
+#include "design/kernel_validity.hpp"
 #include "design/psf.hpp"
 
 namespace pinmask::cli {
@@ -41,6 +43,13 @@ void run(const PsfCommandOptions& o) {
             throw invalid_field("-o", o.output, "must end in .tif or .tiff");
         }
     }
+    {
+        std::filesystem::path npy = o.output;
+        plan_outputs({{"mask", o.mask}, {"--kernel-path", o.kernel_path}},
+                     {{"-o", o.output},
+                      {"-o (npy)", o.npy ? npy.replace_extension(".npy") : ""},
+                      {"-o (sidecar)", io::psf_sidecar_path(o.output)}});
+    }
     Mask mask = io::read_mask_file(o.mask);
     if (!o.kernel.empty()) {
         mask.psf.kernel.model = o.kernel;
@@ -52,6 +61,8 @@ void run(const PsfCommandOptions& o) {
     check_psf_memory(mask.pattern.n, ppc, 2, 0);  // the PSF and its float copy for the files
     const Kernel kernel = mask_kernel(mask, ko);
     const Plane psf = synthesize_psf(mask.pattern, kernel, ppc);
+    const KernelValidity validity = kernel_validity(mask.camera, kernel.model, kernel.enclosed_energy);
+    for (const auto& w : validity.warnings) std::cerr << "pinmask: warning: " << w << "\n";
 
     io::PsfSidecar s = io::psf_sidecar_for(mask, kernel, o.mask);
     const auto written = io::write_psf_files(o.output, psf, s, o.npy);
@@ -63,6 +74,7 @@ void run(const PsfCommandOptions& o) {
         nlohmann::ordered_json paths = nlohmann::ordered_json::array();
         for (const auto& p : written) paths.push_back(p.string());
         j["written"] = paths;
+        j["warnings"] = validity.warnings;
         std::cout << j.dump(2) << "\n";
         return;
     }
@@ -70,7 +82,9 @@ void run(const PsfCommandOptions& o) {
     for (const auto& p : written) out << "wrote " << p.string() << "\n";
     out << "  PSF            " << psf.rows() << " x " << psf.cols() << " px (grid " << s.grid_n
         << " x " << ppc << " px per cell), sum 1\n";
-    out << "  kernel         " << s.kernel_model << " (" << kernel.model_reason << "), support "
+    out << "  kernel         " << s.kernel_model << " ("
+        << (validity.model_accurate ? kernel.model_reason : "NOT accurate: see the warning")
+        << "), support "
         << s.kernel_rows << " x " << s.kernel_cols << " px, "
         << "enclosed energy " << kernel.enclosed_energy
         << (kernel.support_capped ? " (support capped at the period)" : "") << "\n";

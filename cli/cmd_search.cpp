@@ -15,6 +15,7 @@
 #include "cli/psf_options.hpp"
 #include "io/search_config.hpp"
 #include "cli/search_outputs.hpp"
+#include "core/output_set.hpp"
 #include "core/error.hpp"
 #include "core/fft.hpp"
 #include "core/units.hpp"
@@ -212,6 +213,12 @@ void run(const Options& o) {
     ObjectiveWeights weights{o.w_analytic, o.w_max_sidelobe, o.w_sidelobe_energy, o.w_min_spectrum};
     weights.validate();
     if (o.output.empty()) throw InvalidInput("-o/--output: an output folder is required");
+    {
+        const std::filesystem::path dir = o.output;  // rank-N.mask.json are checked when staged
+        plan_outputs({{"--config", o.config}}, {{"-o (run log)", dir / "run-log.csv"},
+                                                {"-o (summary)", dir / "summary.md"},
+                                                {"-o (config)", dir / "search.config.json"}});
+    }
 
     const int n = tmpl.pattern.n, ppc = tmpl.psf.pixels_per_cell, m = n * ppc;
     check_psf_memory(n, ppc, 4, 2);

@@ -16,6 +16,7 @@
 #include "cli/command.hpp"
 #include "io/mask_json.hpp"
 #include "cli/noise_options.hpp"
+#include "core/output_set.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
@@ -112,6 +113,9 @@ void run(const SimulateOptions& o, const CLI::App& cmd) {
     if (!o.dark_frame.empty() && fs::path(o.dark_frame) == fs::path(o.output)) {
         throw invalid_field("--dark-frame", o.dark_frame, "must differ from -o");
     }
+    plan_outputs({{"mask", o.mask}, {"--scene", fs::exists(o.scene) ? o.scene : ""}},
+                 {{"-o", o.output}, {"--dark-frame", o.dark_frame},
+                  {"-o (config)", o.output + ".config.json"}});
     if (o.sensor && !o.full_sensor) {
         throw invalid_field("--sensor", *o.sensor, "only applies with --full-sensor");
     }

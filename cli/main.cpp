@@ -4,7 +4,9 @@
 #include <vector>
 
 #include "cli/command.hpp"
+#include "cli/option_checks.hpp"
 #include "core/error.hpp"
+#include "core/output_set.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -53,6 +55,8 @@ int main(int argc, char** argv) {
     for (auto& e : entries) {
         if (!e.parent.empty()) e.setup(*app.get_subcommand(e.parent));
     }
+    cli::refuse_negative_unsigned(app);  // --seed -1 must not wrap to 2^64 - 1
+    enable_input_protection();           // no output may replace a file this run read
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/output_set.hpp"
 
 namespace pinmask {
 namespace fs = std::filesystem;
@@ -30,6 +31,7 @@ void write_bytes(const fs::path& p, std::string_view bytes) {
 }  // namespace
 
 void write_file_atomic(const fs::path& path, const std::function<void(const fs::path&)>& write) {
+    check_output_path(path, "output");
     const fs::path tmp = temp_sibling(path);
     try {
         write(tmp);
@@ -45,6 +47,18 @@ void write_bytes_atomic(const fs::path& path, std::string_view bytes) {
     write_file_atomic(path, [&](const fs::path& tmp) { write_bytes(tmp, bytes); });
 }
 
+namespace {
+std::atomic<int> g_fail_rename_index{-1};
+
+std::string list_paths(const std::vector<fs::path>& paths) {
+    std::string s;
+    for (const auto& p : paths) s += (s.empty() ? "" : ", ") + p.string();
+    return s;
+}
+}  // namespace
+
+void StagedFiles::fail_rename_for_test(int index) { g_fail_rename_index = index; }
+
 StagedFiles::~StagedFiles() {
     if (committed_) return;
     for (const auto& t : temps_) {
@@ -54,6 +68,14 @@ StagedFiles::~StagedFiles() {
 }
 
 void StagedFiles::stage(const fs::path& path, const std::function<void(const fs::path&)>& write) {
+    check_output_path(path, "output");
+    for (const fs::path& f : finals_) {
+        if (same_file(f, path)) {
+            throw invalid_field("output", "'" + path.string() + "'",
+                                "is written twice by this run: two outputs must have different "
+                                "names");
+        }
+    }
     const fs::path tmp = temp_sibling(path);
     temps_.push_back(tmp);
     finals_.push_back(path);
@@ -65,8 +87,53 @@ void StagedFiles::stage_bytes(const fs::path& path, std::string_view bytes) {
 }
 
 void StagedFiles::commit() {
-    for (std::size_t i = 0; i < temps_.size(); ++i) fs::rename(temps_[i], finals_[i]);
-    committed_ = true;
+    const int fail_at = g_fail_rename_index.exchange(-1);
+    // Existing files under the final names are moved aside first, so a failure can restore them.
+    std::vector<fs::path> backups(finals_.size());
+    std::vector<fs::path> renamed;
+    std::size_t i = 0;
+    std::string failure;
+    try {
+        for (; i < temps_.size(); ++i) {
+            std::error_code ec;
+            if (fs::exists(finals_[i], ec) && !fs::is_directory(finals_[i], ec)) {
+                backups[i] = temp_sibling(finals_[i]);
+                fs::rename(finals_[i], backups[i]);
+            }
+            if (static_cast<int>(i) == fail_at) {
+                throw fs::filesystem_error("injected failure (test)", temps_[i], finals_[i],
+                                           std::make_error_code(std::errc::io_error));
+            }
+            fs::rename(temps_[i], finals_[i]);
+            renamed.push_back(finals_[i]);
+        }
+    } catch (const fs::filesystem_error& e) {
+        failure = e.code().message();
+    }
+    if (failure.empty()) {
+        for (const auto& b : backups) {
+            std::error_code ec;
+            if (!b.empty()) fs::remove(b, ec);
+        }
+        committed_ = true;
+        return;
+    }
+    // Roll back: remove what was renamed, restore the old files, drop the temporaries.
+    for (const auto& r : renamed) {
+        std::error_code ec;
+        fs::remove(r, ec);
+    }
+    for (std::size_t k = 0; k < backups.size(); ++k) {
+        std::error_code ec;
+        if (!backups[k].empty()) fs::rename(backups[k], finals_[k], ec);
+    }
+    const std::string what = "could not write '" + finals_[i].string() + "' (" + failure + ")";
+    throw RuntimeFailure(
+        what + "; " +
+        (renamed.empty() ? std::string("no other output had been written")
+                         : "removed the " + std::to_string(renamed.size()) +
+                               " output(s) already written (" + list_paths(renamed) + ")") +
+        ", earlier files under these names are restored: nothing of this run was kept");
 }
 
 }  // namespace pinmask

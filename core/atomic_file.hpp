@@ -17,8 +17,13 @@ void write_file_atomic(const std::filesystem::path& path,
 // Writes bytes (text or binary) atomically.
 void write_bytes_atomic(const std::filesystem::path& path, std::string_view bytes);
 
-// A group of files that appear together or not at all: stage() writes each to a temporary name,
-// commit() renames them all; destroying an uncommitted group removes every temporary file.
+// A group of files that appear together or not at all: stage() writes each to a temporary name
+// in the target directory, commit() renames them all; destroying an uncommitted group removes
+// every temporary file. stage() refuses (InvalidInput, before writing) a final name that is an
+// existing directory, an input this process read (core/output_set protect_input) or a name
+// already staged in the group. commit() first moves any existing file under a final name aside;
+// if a rename fails it removes the files already renamed, puts the old ones back and throws
+// RuntimeFailure saying so: the folder is as it was before the run.
 class StagedFiles {
   public:
     StagedFiles() = default;
@@ -30,6 +35,9 @@ class StagedFiles {
                const std::function<void(const std::filesystem::path& tmp)>& write);
     void stage_bytes(const std::filesystem::path& path, std::string_view bytes);
     void commit();
+    // Test hook: make the rename of the i-th staged file (0-based) fail in the next commit of
+    // any group (-1: none).
+    static void fail_rename_for_test(int index);
     const std::vector<std::filesystem::path>& final_paths() const { return finals_; }
 
   private:

@@ -2,6 +2,11 @@
 
 namespace pinmask {
 
+std::shared_ptr<const MemoryReservation> charge_image_memory(double bytes, const char* what) {
+    if (bytes < kChargeThresholdBytes) return nullptr;
+    return std::make_shared<const MemoryReservation>(bytes, what);
+}
+
 bool is_all_finite(const Plane& p) { return p.isFinite().all(); }
 
 Plane circshift(const Plane& in, int dr, int dc) {

@@ -5,7 +5,10 @@
 #include <Eigen/Core>
 #include <complex>
 #include <cstddef>
+#include <memory>
 #include <vector>
+
+#include "core/resource_limits.hpp"
 
 namespace pinmask {
 
@@ -14,14 +17,22 @@ using PlaneF = Eigen::Array<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMaj
 using ComplexPlane =
     Eigen::Array<std::complex<double>, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
+// Charge for `bytes` of image data against the process-wide budget (core/resource_limits), or
+// none below kChargeThresholdBytes. Throws ResourceLimit naming `what`.
+std::shared_ptr<const MemoryReservation> charge_image_memory(double bytes, const char* what);
+
 // A multi-channel image: every channel has the same size. Grey = 1 channel, RGB = 3.
+// `charge` holds the memory budget of large images (made by the sized constructor or by the
+// image readers) for as long as any copy of the image lives.
 struct Image {
+    std::shared_ptr<const MemoryReservation> charge;
     std::vector<Plane> channels;
 
     Image() = default;
     explicit Image(Plane grey) { channels.push_back(std::move(grey)); }
     Image(int rows, int cols, int n_channels)
-        : channels(static_cast<std::size_t>(n_channels), Plane::Zero(rows, cols)) {}
+        : charge(charge_image_memory(8.0 * rows * cols * n_channels, "an image")),
+          channels(static_cast<std::size_t>(n_channels), Plane::Zero(rows, cols)) {}
 
     int rows() const { return channels.empty() ? 0 : static_cast<int>(channels[0].rows()); }
     int cols() const { return channels.empty() ? 0 : static_cast<int>(channels[0].cols()); }

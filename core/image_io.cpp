@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/image_io_detail.hpp"
+#include "core/output_set.hpp"
 #include "core/resource_limits.hpp"
 
 namespace pinmask {
@@ -21,20 +22,22 @@ InvalidInput bad_image_file(const fs::path& path, const std::string& problem) {
     return InvalidInput("image file '" + path.string() + "': " + problem);
 }
 
-void check_image_size(const fs::path& path, long long rows, long long cols, long long channels,
-                      double extra_bytes) {
+MemoryReservation check_image_size(const fs::path& path, long long rows, long long cols,
+                                   long long channels, double extra_bytes) {
     if (rows <= 0 || cols <= 0) {
         throw bad_image_file(path, "declared size " + std::to_string(rows) + " x " +
                                        std::to_string(cols) + " is empty");
     }
     const double samples = double(rows) * double(cols) * double(channels);
+    const std::string what = "reading image '" + path.string() + "'";
+    check_memory(samples * sizeof(double) + extra_bytes, what);
     if (samples > double(kMaxImageSamples)) {
         throw bad_image_file(path, "declared size " + std::to_string(rows) + " x " +
                                        std::to_string(cols) + " x " + std::to_string(channels) +
                                        " exceeds the limit of " + std::to_string(kMaxImageSamples) +
                                        " samples (kMaxImageSamples)");
     }
-    check_memory(samples * sizeof(double) + extra_bytes, "reading image '" + path.string() + "'");
+    return MemoryReservation(extra_bytes >= kChargeThresholdBytes ? extra_bytes : 0.0, what);
 }
 
 void check_writable(const fs::path& path, const Image& image, SampleFormat format) {
@@ -176,6 +179,7 @@ LoadedImage read_image(const fs::path& path) {
     const auto status = fs::status(path, ec);
     if (!fs::exists(status)) throw detail::bad_image_file(path, "file does not exist");
     if (fs::is_directory(status)) throw detail::bad_image_file(path, "is a directory");
+    protect_input(path);  // no output of this run may replace it (core/output_set)
     std::ifstream in(path, std::ios::binary);
     if (!in) throw detail::bad_image_file(path, "cannot be opened for reading");
     std::array<unsigned char, 8> head{};

@@ -35,9 +35,11 @@ struct LoadedImage {
 // float data is *not* an error here (callers decide).
 LoadedImage read_image(const std::filesystem::path& path);
 
-// Largest image (rows * cols * channels) the readers accept before allocating: 2^28 samples
-// (2 GiB as double).
-inline constexpr long long kMaxImageSamples = 1LL << 28;
+// Largest image (rows * cols * channels) the readers accept before allocating: 2^27 samples
+// (1 GiB as double; 11585 px square grey, a 6000 x 4000 RGB camera frame fits). Decoding keeps
+// about six double or complex planes of the capture's size, so a larger image would need more
+// than 6 GiB in the decoder: a 249 KB all-zero 16000 x 16000 PNG is refused from its header.
+inline constexpr long long kMaxImageSamples = 1LL << 27;
 
 void write_tiff(const std::filesystem::path& path, const Image& image, SampleFormat format);
 void write_png(const std::filesystem::path& path, const Image& image, int bits);  // 8 or 16

@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/image.hpp"
 #include "core/image_io.hpp"
+#include "core/resource_limits.hpp"
 
 namespace pinmask::detail {
 
@@ -16,9 +17,11 @@ namespace pinmask::detail {
 InvalidInput bad_image_file(const std::filesystem::path& path, const std::string& problem);
 
 // Refuses, before allocating, an image of rows x cols x channels samples beyond kMaxImageSamples
-// or whose doubles plus `extra_bytes` of decode buffers exceed the memory bound (check_memory).
-void check_image_size(const std::filesystem::path& path, long long rows, long long cols,
-                      long long channels, double extra_bytes);
+// or whose doubles plus `extra_bytes` of decode buffers exceed the memory bound (check_memory,
+// which counts what the process already holds). Returns the reservation of the decode buffers,
+// to hold while decoding; the Image's sized constructor charges the doubles themselves.
+MemoryReservation check_image_size(const std::filesystem::path& path, long long rows,
+                                   long long cols, long long channels, double extra_bytes);
 
 // Validates an image before writing: non-empty, 1 or 3 channels of equal size; for integer
 // formats also every value finite (NaN cannot be quantised). Throws InvalidInput naming `path`.

@@ -284,7 +284,8 @@ LoadedImage read_npy(const fs::path& path) {
     const long long rows = h.shape[0], cols = h.shape[1];
     const int n_ch = h.shape.size() == 3 ? int(h.shape[2]) : 1;
     const int bytes = bytes_of(format);
-    check_image_size(path, rows, cols, n_ch, double(rows) * cols * n_ch * bytes);
+    const MemoryReservation decode_buffers =
+        check_image_size(path, rows, cols, n_ch, double(rows) * cols * n_ch * bytes);
     const std::uintmax_t data_bytes = std::uintmax_t(rows) * cols * n_ch * bytes;
     if (file_size - data_offset != data_bytes) {
         throw bad_image_file(

@@ -122,8 +122,9 @@ LoadedImage read_png(const fs::path& path) {
                                        " channels of " + std::to_string(st.bit_depth) +
                                        " bits: expected grey or RGB, 8 or 16 bits");
     }
-    check_image_size(path, st.height, st.width, st.channels,
-                     double(st.height) * double(st.rowbytes) + double(st.height) * sizeof(void*));
+    const MemoryReservation decode_buffers = check_image_size(
+        path, st.height, st.width, st.channels,
+        double(st.height) * double(st.rowbytes) + double(st.height) * sizeof(void*));
     std::vector<unsigned char> data(std::size_t(st.height) * st.rowbytes);
     std::vector<png_bytep> rows(st.height);
     for (png_uint_32 r = 0; r < st.height; ++r)

@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -42,6 +44,8 @@ std::size_t parse_limit(const char* text) {
     return static_cast<std::size_t>(v * scale);
 }
 
+std::atomic<std::size_t> g_reserved{0};
+
 std::string gib(double bytes) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.3g GiB", bytes / (1024.0 * 1024.0 * 1024.0));
@@ -58,12 +62,57 @@ std::size_t memory_limit_bytes() {
     return static_cast<std::size_t>(pages) * static_cast<std::size_t>(page) / 2;
 }
 
+std::size_t memory_reserved_bytes() { return g_reserved.load(); }
+
 void check_memory(double bytes, const std::string& what) {
     const double limit = static_cast<double>(memory_limit_bytes());
-    if (bytes > limit) {
-        throw ResourceLimit(what + " needs " + gib(bytes) + ", more than the memory bound " +
-                            gib(limit) + " (set PINMASK_MEMORY_LIMIT to change it)");
+    const double reserved = static_cast<double>(memory_reserved_bytes());
+    if (!(bytes >= 0.0) || bytes + reserved > limit) {
+        std::string msg = what + " needs " + gib(bytes);
+        if (reserved > 0.0) msg += " beside the " + gib(reserved) + " this run already holds";
+        throw ResourceLimit(msg + ", more than the memory bound " + gib(limit) +
+                            " (set PINMASK_MEMORY_LIMIT to change it)");
     }
+}
+
+MemoryReservation::MemoryReservation(double bytes, const std::string& what) {
+    const double limit = static_cast<double>(memory_limit_bytes());
+    if (!(bytes >= 0.0) || !(bytes < limit + 1.0)) check_memory(bytes, what);  // throws
+    const auto want = static_cast<std::size_t>(bytes);
+    std::size_t now = g_reserved.load();
+    do {
+        if (static_cast<double>(now) + static_cast<double>(want) > limit) {
+            check_memory(bytes, what);  // throws with the figures
+        }
+    } while (!g_reserved.compare_exchange_weak(now, now + want));
+    bytes_ = want;
+}
+
+MemoryReservation::MemoryReservation(MemoryReservation&& other) noexcept : bytes_(other.bytes_) {
+    other.bytes_ = 0;
+}
+
+MemoryReservation& MemoryReservation::operator=(MemoryReservation&& other) noexcept {
+    if (this != &other) {
+        release();
+        bytes_ = other.bytes_;
+        other.bytes_ = 0;
+    }
+    return *this;
+}
+
+MemoryReservation::~MemoryReservation() { release(); }
+
+void MemoryReservation::shrink_to(double bytes) {
+    if (!(bytes >= 0.0)) bytes = 0.0;
+    const auto keep = static_cast<std::size_t>(std::min(bytes, static_cast<double>(bytes_)));
+    g_reserved -= bytes_ - keep;
+    bytes_ = keep;
+}
+
+void MemoryReservation::release() {
+    g_reserved -= bytes_;
+    bytes_ = 0;
 }
 
 }  // namespace pinmask

@@ -251,7 +251,8 @@ LoadedImage read_tiff(const fs::path& path) {
     l.planes = contiguous ? 1 : l.channels;
     const bool tiled = TIFFIsTiled(t);
     const double buffer = tiled ? double(TIFFTileSize64(t)) : double(TIFFScanlineSize64(t));
-    check_image_size(path, height, width, l.channels, buffer);
+    const MemoryReservation decode_buffers =
+        check_image_size(path, height, width, l.channels, buffer);
 
     LoadedImage out;
     out.image = Image(l.rows, l.cols, l.channels);

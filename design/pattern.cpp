@@ -70,10 +70,12 @@ void validate(const Pattern& p, bool allow_spacing_violations) {
         throw invalid_field("pattern.n", std::to_string(p.n),
                             "must be between 1 and " + std::to_string(kMaxGrid));
     }
-    if (p.tiles_rows < 1 || p.tiles_cols < 1) {
+    if (p.tiles_rows < 1 || p.tiles_cols < 1 || p.tiles_rows > kMaxTiles ||
+        p.tiles_cols > kMaxTiles) {
         throw invalid_field("pattern.tiles",
                             std::to_string(p.tiles_rows) + "x" + std::to_string(p.tiles_cols),
-                            "both must be >= 1");
+                            "both must be between 1 and " + std::to_string(kMaxTiles) +
+                                " (kMaxTiles: export cannot lay out more periods)");
     }
     if (!std::isfinite(p.min_spacing_cells) || p.min_spacing_cells < 0.0) {
         throw invalid_field("pattern.min_spacing_cells", std::to_string(p.min_spacing_cells),

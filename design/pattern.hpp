@@ -11,6 +11,10 @@
 namespace pinmask {
 
 inline constexpr int kMaxGrid = 4096;
+// Largest tile count per axis: a mask of more periods is beyond what export lays out (its
+// polygons are refused by the memory bound long before) and than any sensor sees (a period is
+// at least one pixel per cell).
+inline constexpr int kMaxTiles = 1024;
 
 // One cell of the torus, 0 <= row, col < n.
 struct Cell {

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "core/error.hpp"
+#include "core/output_set.hpp"
 #include "core/resource_limits.hpp"
 #include "export/dxf_reader.hpp"
 #include "export/gds_reader.hpp"
@@ -65,6 +66,7 @@ FileGeometry read_fabrication_bytes(std::string_view bytes, FabFormat format) {
 }
 
 FileGeometry read_fabrication_file(const std::filesystem::path& path) {
+    protect_input(path);  // no output of this run may replace it (core/output_set)
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });

@@ -26,6 +26,7 @@
 #include "io/optics_json.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/output_set.hpp"
 #include "core/resource_limits.hpp"
 
 namespace pinmask::io {
@@ -291,6 +292,7 @@ Mask read_mask_file(const std::filesystem::path& path, const MaskReadOptions& op
     std::error_code ec;
     const auto size = std::filesystem::file_size(path, ec);
     if (ec) throw InvalidInput(name + ": cannot read mask file (" + ec.message() + ")");
+    protect_input(path);  // no output of this run may replace it (core/output_set)
     check_memory(static_cast<double>(size) * kParsedBytesPerTextByte, "parsing mask file " + name);
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InvalidInput(name + ": cannot open mask file for reading");

@@ -10,6 +10,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
+#include "core/output_set.hpp"
 #include "design/kernel_model.hpp"
 
 namespace pinmask::io {
@@ -184,6 +185,7 @@ PsfFile read_psf_file(const fs::path& image_path) {
     out.psf /= sum;
     const fs::path side = psf_sidecar_path(image_path);
     if (side != image_path && fs::exists(side)) {
+        protect_input(side);
         std::ifstream in(side, std::ios::binary);
         std::stringstream buf;
         buf << in.rdbuf();

@@ -1,0 +1,52 @@
+// Output-set planning: a command names its inputs and every file it will write BEFORE any
+// work, and each output name is checked against the rules of an all-or-nothing run:
+//   - not empty, not an existing directory;
+//   - its nearest existing parent is a directory we may write into;
+//   - not one of the run's inputs (same file: std::filesystem::equivalent for existing files,
+//     weakly_canonical paths otherwise, so "./a.json", "dir/../a.json" and hard links count);
+//   - not another output of the same run.
+// Failures are InvalidInput (exit 2) naming the flag, the value and the rule.
+//
+// The inputs become "protected" for the rest of the process: StagedFiles and write_file_atomic
+// (core/atomic_file) refuse to replace a protected input, an existing directory or a name staged
+// twice, so a command that forgot to plan still cannot overwrite what it read. Readers of
+// outside files (core/image_io, io/mask_json, io/psf_files) protect what they read too.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace pinmask {
+
+// One file of a command and the flag or argument that named it ("-o", "--stats", "mask").
+struct NamedPath {
+    std::string flag;
+    std::filesystem::path path;
+};
+
+// Checks every output against the rules above (and against each other), then protects the
+// inputs. Empty paths in either list are skipped (optional flags not given). Throws
+// InvalidInput naming the first offending flag.
+void plan_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs);
+
+// Turns the process-wide protection of inputs on (the pinmask executable does, in cli/main.cpp:
+// one process = one run). Off by default, so a library user (a test, a Python session) may
+// read a file and later rewrite it. plan_outputs() also turns it on.
+void enable_input_protection();
+// Turns it off and forgets the protected inputs (tests).
+void reset_input_protection();
+
+// Marks a file read by this process as an input no output may replace. Idempotent; a path that
+// does not exist is ignored.
+void protect_input(const std::filesystem::path& path);
+
+// The one-output check StagedFiles and write_file_atomic run on every final name: throws
+// InvalidInput("<flag>: '<path>': <rule>") for an existing directory or a protected input.
+void check_output_path(const std::filesystem::path& path, const std::string& flag);
+
+// True when a and b name the same file (or would: compared by weakly_canonical path when one
+// does not exist yet).
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
+
+}  // namespace pinmask
