@@ -57,7 +57,8 @@ bool is_mask_file(const fs::path& path) {
 std::int64_t length_nm(const std::string& text, const char* flag, std::int64_t min_nm) {
     const double nm = std::round(parse_length_m(text, flag) * 1e9);
     if (!(nm >= double(min_nm)) || nm > 1e12) {
-        throw invalid_field(flag, text, "must be at least " + std::to_string(min_nm) + " nm");
+        throw invalid_field(flag, text,
+                            "must be between " + std::to_string(min_nm) + " nm and 1e12 nm (1 km)");
     }
     return static_cast<std::int64_t>(nm);
 }

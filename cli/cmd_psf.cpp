@@ -8,13 +8,13 @@
 #include <string>
 
 #include "cli/command.hpp"
-#include "io/mask_json.hpp"
-#include "io/psf_files.hpp"
-#include "core/output_set.hpp"
 #include "core/error.hpp"
+#include "core/output_set.hpp"
 #include "core/units.hpp"
 #include "design/kernel_validity.hpp"
 #include "design/psf.hpp"
+#include "io/mask_json.hpp"
+#include "io/psf_files.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -30,6 +30,11 @@ struct PsfCommandOptions {
 };
 
 void run(const PsfCommandOptions& o) {
+    if (!(o.energy_fraction > 0.0 && o.energy_fraction <= 1.0)) {
+        throw invalid_field(
+            "--energy", std::to_string(o.energy_fraction),
+            "must be in (0, 1]: the fraction of the kernel's energy its support keeps");
+    }
     if (!o.kernel.empty()) parse_kernel_model(o.kernel, "--kernel");
     if (o.kernel == "measured" && o.kernel_path.empty()) {
         throw invalid_field("--kernel", "measured", "needs --kernel-path FILE");
@@ -61,7 +66,8 @@ void run(const PsfCommandOptions& o) {
     check_psf_memory(mask.pattern.n, ppc, 2, 0);  // the PSF and its float copy for the files
     const Kernel kernel = mask_kernel(mask, ko);
     const Plane psf = synthesize_psf(mask.pattern, kernel, ppc);
-    const KernelValidity validity = kernel_validity(mask.camera, kernel.model, kernel.enclosed_energy);
+    const KernelValidity validity =
+        kernel_validity(mask.camera, kernel.model, kernel.enclosed_energy);
     for (const auto& w : validity.warnings) std::cerr << "pinmask: warning: " << w << "\n";
 
     io::PsfSidecar s = io::psf_sidecar_for(mask, kernel, o.mask);
@@ -84,8 +90,7 @@ void run(const PsfCommandOptions& o) {
         << " x " << ppc << " px per cell), sum 1\n";
     out << "  kernel         " << s.kernel_model << " ("
         << (validity.model_accurate ? kernel.model_reason : "NOT accurate: see the warning")
-        << "), support "
-        << s.kernel_rows << " x " << s.kernel_cols << " px, "
+        << "), support " << s.kernel_rows << " x " << s.kernel_cols << " px, "
         << "enclosed energy " << kernel.enclosed_energy
         << (kernel.support_capped ? " (support capped at the period)" : "") << "\n";
     out << "  wavelengths   ";

@@ -7,6 +7,8 @@
 #include "cli/option_checks.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
+#include "core/resource_limits.hpp"
+#include "core/units.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -58,15 +60,16 @@ int main(int argc, char** argv) {
     cli::refuse_negative_unsigned(app);  // --seed -1 must not wrap to 2^64 - 1
     enable_input_protection();           // no output may replace a file this run read
     try {
+        memory_limit_bytes();  // a bad PINMASK_MEMORY_LIMIT is refused by every command
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         const int rc = app.exit(e);
         return rc == 0 ? 0 : 2;
     } catch (const InvalidInput& e) {
-        std::cerr << "pinmask: error: " << e.what() << "\n";
+        std::cerr << "pinmask: error: " << readable_numbers(e.what()) << "\n";
         return 2;
     } catch (const std::exception& e) {
-        std::cerr << "pinmask: failed: " << e.what() << "\n";
+        std::cerr << "pinmask: failed: " << readable_numbers(e.what()) << "\n";
         return 1;
     }
     return cli::exit_code();

@@ -29,14 +29,14 @@ MemoryReservation check_image_size(const fs::path& path, long long rows, long lo
                                        std::to_string(cols) + " is empty");
     }
     const double samples = double(rows) * double(cols) * double(channels);
-    const std::string what = "reading image '" + path.string() + "'";
-    check_memory(samples * sizeof(double) + extra_bytes, what);
     if (samples > double(kMaxImageSamples)) {
         throw bad_image_file(path, "declared size " + std::to_string(rows) + " x " +
                                        std::to_string(cols) + " x " + std::to_string(channels) +
                                        " exceeds the limit of " + std::to_string(kMaxImageSamples) +
                                        " samples (kMaxImageSamples)");
     }
+    const std::string what = "reading image '" + path.string() + "'";
+    check_memory(samples * sizeof(double) + extra_bytes, what);
     return MemoryReservation(extra_bytes >= kChargeThresholdBytes ? extra_bytes : 0.0, what);
 }
 

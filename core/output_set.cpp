@@ -96,7 +96,12 @@ void check_output_path(const fs::path& path, const std::string& flag) {
 void plan_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs) {
     std::vector<const NamedPath*> seen;
     for (const NamedPath& out : outputs) {
-        if (out.path.empty()) continue;
+        if (out.path.empty()) {
+            // "-o" is every command's required output; other empty names are optional outputs
+            // that were not asked for.
+            if (out.flag == "-o") throw invalid_field("-o", "''", "an output name is required");
+            continue;
+        }
         check_output_path(out.path, out.flag);
         if (out.path.filename().empty() || out.path.filename() == "." ||
             out.path.filename() == "..") {

@@ -26,7 +26,8 @@ struct NamedPath {
 };
 
 // Checks every output against the rules above (and against each other), then protects the
-// inputs. Empty paths in either list are skipped (optional flags not given). Throws
+// inputs. Empty paths in either list are skipped (optional flags not given), except an output
+// named by "-o", which every command requires. Throws
 // InvalidInput naming the first offending flag.
 void plan_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs);
 

@@ -1,9 +1,12 @@
 #include "core/units.hpp"
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -105,6 +108,43 @@ std::string format_length(double metres) {
         std::snprintf(buf, sizeof buf, "%.4g nm", metres * 1e9);
     }
     return buf;
+}
+
+std::string readable_numbers(const std::string& m) {
+    std::string out;
+    out.reserve(m.size());
+    const auto digit = [&](std::size_t i) { return i < m.size() && m[i] >= '0' && m[i] <= '9'; };
+    const auto word = [&](std::size_t i) {
+        return i < m.size() && (std::isalnum(static_cast<unsigned char>(m[i])) || m[i] == '_');
+    };
+    std::size_t i = 0;
+    while (i < m.size()) {
+        if (!digit(i) || (i > 0 && (word(i - 1) || m[i - 1] == '.'))) {
+            out += m[i++];
+            continue;
+        }
+        std::size_t j = i;
+        while (digit(j)) ++j;
+        const std::size_t int_digits = j - i;
+        std::size_t end = j;
+        bool fixed6 = false;
+        if (j < m.size() && m[j] == '.') {
+            std::size_t k = j + 1;
+            while (digit(k)) ++k;
+            fixed6 = k - j - 1 == 6;
+            if (k > j + 1) end = k;
+        }
+        if (!word(end) && ((int_digits >= 16 && fixed6) || int_digits >= 20)) {
+            char buf[32];
+            std::snprintf(buf, sizeof buf, "%.6g",
+                          std::strtod(m.substr(i, end - i).c_str(), nullptr));
+            out += buf;
+        } else {
+            out.append(m, i, end - i);
+        }
+        i = end;
+    }
+    return out;
 }
 
 }  // namespace pinmask

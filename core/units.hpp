@@ -28,6 +28,12 @@ struct Size2 {
 };
 Size2 parse_size(std::string_view token, std::string_view field);
 
+// Rewrites, in a message, every number std::to_string(double) spelled out in full (16 or more
+// integer digits followed by ".dddddd", e.g. 1e300 as 301 digits) or any run of 20+ digits as
+// %.6g ("1e+300"). Everything else is left as it is (hashes, small numbers). Applied by
+// invalid_field and by the CLI to every error it prints.
+std::string readable_numbers(const std::string& message);
+
 // Formats a length for people: 4.4e-4 -> "440 um", 0.055 -> "55 mm".
 std::string format_length(double metres);
 

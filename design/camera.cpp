@@ -9,10 +9,22 @@
 namespace pinmask {
 namespace {
 
+// Finite lengths outside [1 fm, 1000 km] describe no camera, and their products in the optics
+// (d^2 / (4 lambda f), f s / u) overflow or underflow a double: refused, with the reason.
+constexpr double kMinLength_m = 1e-15;
+constexpr double kMaxLength_m = 1e6;
+
 void require_positive(const char* field, double v, bool allow_inf) {
     if (std::isnan(v) || v <= 0.0 || (!allow_inf && std::isinf(v))) {
         throw invalid_field(field, std::isnan(v) ? "nan" : format_length(v),
                             allow_inf ? "must be > 0 (inf allowed)" : "must be finite and > 0");
+    }
+    if (std::isfinite(v) && (v < kMinLength_m || v > kMaxLength_m)) {
+        throw invalid_field(field, format_length(v),
+                            "must be between 1e-15 m and 1e6 m (1000 km)" +
+                                std::string(allow_inf ? " or inf" : "") +
+                                ": no camera has such a length, and the optics' products of "
+                                "lengths would overflow or underflow");
     }
 }
 

@@ -2,16 +2,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <tuple>
 
-#include "io/json_strict.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
 #include "core/output_set.hpp"
+#include "design/kernel.hpp"
 #include "design/kernel_model.hpp"
+#include "design/pattern.hpp"
+#include "io/json_strict.hpp"
 
 namespace pinmask::io {
 namespace {
@@ -23,6 +26,56 @@ using json_strict::read_int;
 using json_strict::read_int_pair;
 using json_strict::read_number;
 using json_strict::read_string;
+
+std::string num(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return buf;
+}
+
+// A sidecar must describe one PSF the way pinmask writes it; each rule names the field.
+void check_consistent(const PsfSidecar& s) {
+    using json_strict::fail;
+    if (s.grid_n > kMaxGrid)
+        fail("grid_n", std::to_string(s.grid_n) + " exceeds " + std::to_string(kMaxGrid));
+    if (s.pixels_per_cell > kMaxPixelsPerCell) {
+        fail("pixels_per_cell",
+             std::to_string(s.pixels_per_cell) + " exceeds " + std::to_string(kMaxPixelsPerCell));
+    }
+    if (!std::isfinite(s.pixel_pitch_m)) fail("pixel_pitch_m", "must be finite");
+    const long long side = static_cast<long long>(s.grid_n) * s.pixels_per_cell;
+    if (s.rows != side || s.cols != side) {
+        fail("size_px", "[" + std::to_string(s.rows) + ", " + std::to_string(s.cols) +
+                            "] must be grid_n x pixels_per_cell = " + std::to_string(side) +
+                            " per side: the PSF of one period");
+    }
+    const KernelModel model = parse_kernel_model(s.kernel_model, "kernel.model");
+    if (model == KernelModel::kAuto) fail("kernel.model", "must be the resolved model, not auto");
+    if (s.wavelengths.empty()) fail("kernel.wavelengths", "must name at least one wavelength");
+    double weights = 0.0;
+    for (const auto& [lambda, w] : s.wavelengths) {
+        if (!(lambda > 0.0) || !std::isfinite(lambda)) {
+            fail("kernel.wavelengths", num(lambda) + " m: a wavelength must be finite and > 0");
+        }
+        if (!(w >= 0.0) || !std::isfinite(w)) {
+            fail("kernel.wavelengths", "weight " + num(w) + " must be finite and >= 0");
+        }
+        weights += w;
+    }
+    // Weights are written normalised; 1e-6 allows the decimal round trip of a few of them.
+    if (std::fabs(weights - 1.0) > 1e-6) {
+        fail("kernel.wavelengths", "weights sum to " + num(weights) + ", must sum to 1");
+    }
+    if (!(s.kernel_enclosed_energy >= 0.0 && s.kernel_enclosed_energy <= 1.0)) {
+        fail("kernel.enclosed_energy", num(s.kernel_enclosed_energy) + " must be in [0, 1]");
+    }
+    if (s.kernel_rows < 1 || s.kernel_cols < 1 || s.kernel_rows > s.rows ||
+        s.kernel_cols > s.cols) {
+        fail("kernel.support_px", "[" + std::to_string(s.kernel_rows) + ", " +
+                                      std::to_string(s.kernel_cols) +
+                                      "] must be >= 1 and at most size_px (the period)");
+    }
+}
 
 }  // namespace
 
@@ -127,6 +180,7 @@ PsfSidecar psf_sidecar_from_json(const nlohmann::json& j, const std::string& whe
         s.tiff_file = read_string(files.required("tiff"), files.path("tiff"));
         if (const auto* npy = files.optional("npy"))
             s.npy_file = read_string(*npy, files.path("npy"));
+        check_consistent(s);
         return s;
     } catch (const InvalidInput& e) {
         throw InvalidInput(where + ": " + e.what());

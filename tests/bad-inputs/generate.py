@@ -262,3 +262,53 @@ write("layout-zero-area.svg",
       SVG.replace(first_path, 'd="M-1540,-660L-1100,-660L-1320,-660L-1540,-660Z"'))
 write("layout-huge-coordinate.svg",
       SVG.replace(first_path, 'd="M-1540,-660L1e300,-660L-1100,-1100L-1540,-1100Z"'))
+
+# ---------------------------------------------------------------- issue 18 (reliability, round two)
+# Class 2, memory: valid all-zero PNGs whose pixels decompress to far more than their bytes.
+
+
+def zero_png(side):
+    comp = zlib.compressobj(9)
+    row = b"\0" * (side + 1)  # filter byte 0 + side grey samples
+    idat = b"".join(comp.compress(row) for _ in range(side)) + comp.flush()
+    return png(side, side, idat)
+
+
+write("capture-zeros-16000.png", zero_png(16000))  # 249 KB -> 256 M samples (2 GB as double)
+write("capture-zeros-4000.png", zero_png(4000))  # 16 KB -> 16 M samples (128 MB as double)
+
+# Class 7: PSF sidecars that parse but contradict their image or themselves.
+
+
+def kernel_edit(key, value):
+    return lambda s: s["kernel"].__setitem__(key, value)
+
+
+for stem, edit in [
+    ("psf-sidecar-period", lambda s: s.__setitem__("pixels_per_cell", 5)),  # 7 x 5 != 28
+    ("psf-sidecar-grid", lambda s: s.__setitem__("grid_n", 14)),  # 14 x 4 != 28
+    ("psf-sidecar-model", kernel_edit("model", "banana")),
+    ("psf-sidecar-auto", kernel_edit("model", "auto")),
+    ("psf-sidecar-weights", kernel_edit("wavelengths", [[5.5e-07, 1.0], [6.5e-07, 1.0]])),
+    ("psf-sidecar-no-wavelength", kernel_edit("wavelengths", [])),
+    ("psf-sidecar-zero-wavelength", kernel_edit("wavelengths", [[0.0, 1.0]])),
+    ("psf-sidecar-energy", kernel_edit("enclosed_energy", 1.5)),
+    ("psf-sidecar-support", kernel_edit("support_px", [40, 10])),
+    ("psf-sidecar-zero-support", kernel_edit("support_px", [0, 10])),
+    ("psf-sidecar-huge-pitch", lambda s: s.__setitem__("pixel_pitch_m", 1e309)),
+    ("psf-sidecar-normalisation", lambda s: s.__setitem__("normalisation", "max=1")),
+]:
+    s = json.loads(json.dumps(SIDECAR))
+    edit(s)
+    s["files"] = {"tiff": stem + ".tiff"}
+    write(stem + ".tiff", tiff(28, 28, values=psf_ok))
+    text = json.dumps(s, indent=2) + "\n"
+    write(stem + ".json", text.replace("Infinity", "1e309"))
+
+# Class 7 and 10: masks with values beyond what later commands accept.
+mask_variant("mask-giga-tiles.mask.json", set_path("pattern", "tiles", [1000000000, 1000000000]))
+mask_variant("mask-tiles-1025.mask.json", set_path("pattern", "tiles", [1025, 1]))
+mask_variant("mask-huge-wavelength.mask.json", set_path("optics", "wavelength_m", 1e300))
+mask_variant("mask-tiny-pitch.mask.json", set_path("optics", "pixel_pitch_m", 1e-300))
+mask_variant("mask-huge-pinhole.mask.json", set_path("optics", "pinhole_m", 1e300))
+mask_variant("mask-huge-sensor-distance.mask.json", set_path("optics", "sensor_distance_m", 1e10))

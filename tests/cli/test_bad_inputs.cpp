@@ -1,7 +1,8 @@
 // The malformed-input corpus (tests/bad-inputs/, manifest.txt) end to end: every line runs its
 // pinmask command on its file and must exit with the expected code (2 unless the manifest says
 // otherwise), print a message naming the problem, and leave nothing behind: the output folder
-// stays empty (no file, no *.tmp-* leftover) and the corpus folder gains nothing. Plus the
+// stays empty (no file, no *.tmp-* leftover), the corpus folder gains and changes nothing, and
+// inputs in {work} that the line aims outputs at are left byte for byte. Plus the
 // regression tests of the bugs the corpus and the fuzzers found.
 #include <doctest/doctest.h>
 
@@ -9,12 +10,14 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "io/json_strict.hpp"
 #include "core/error.hpp"
+#include "io/json_strict.hpp"
 #include "tests/support/cli_run.hpp"
 
 using pinmask::test::TempDir;
@@ -78,8 +81,37 @@ void replace_all(std::string& s, const std::string& from, const std::string& to)
 
 // The shell command of a manifest line: placeholders filled, "pinmask" replaced by the
 // executable (environment assignments before it stay in front).
-std::string shell_command(const ManifestLine& m, const TempDir& out) {
+// {work}: a folder of valid inputs, made fresh for each line: cam.json, m.mask.json and
+// e.export.json (a mask),
+// c.npy (a capture), p.tiff with its sidecar p.json (a PSF). Lines aim outputs at these inputs;
+// afterwards the folder must hold exactly these files, byte for byte.
+// {taken}: a folder where the names taken.tiff, taken.npy, taken.png, taken.json, taken.pdf,
+// taken.svg, taken.mask.json, o.png.config.json and o.tiff.config.json are directories.
+const std::vector<std::pair<std::string, fs::path>> kWorkFiles = {
+    {"cam.json", kValidMask},
+    {"m.mask.json", kValidMask},
+    {"c.npy", kValidCapture},
+    {"p.tiff", fs::path(PINMASK_SOURCE_DIR) / "fuzz/corpus/image/psf_box.tiff"},
+    {"p.json", fs::path(PINMASK_SOURCE_DIR) / "fuzz/corpus/psf_sidecar/psf_box.json"},
+    {"e.export.json", kValidMask}};
+const std::vector<std::string> kTakenNames = {
+    "taken.tiff", "taken.npy",       "taken.png",         "taken.json",        "taken.pdf",
+    "taken.svg",  "taken.mask.json", "o.png.config.json", "o.tiff.config.json"};
+
+std::map<std::string, std::string> contents_of(const fs::path& dir) {
+    std::map<std::string, std::string> files;
+    for (const auto& e : fs::directory_iterator(dir)) {
+        files[e.path().filename().string()] =
+            e.is_directory() ? "<dir>" : pinmask::test::slurp(e.path());
+    }
+    return files;
+}
+
+std::string shell_command(const ManifestLine& m, const TempDir& out, const TempDir& work,
+                          const TempDir& taken) {
     std::string cmd = m.command;
+    replace_all(cmd, "{work}", quoted(work.path));
+    replace_all(cmd, "{taken}", quoted(taken.path));
     if (m.file != "-") replace_all(cmd, "{in}", quoted(kCorpus / m.file));
     replace_all(cmd, "{out}", quoted(out.path / "out"));
     replace_all(cmd, "{dir}", quoted(out.path));
@@ -116,11 +148,17 @@ std::set<std::string> names_in(const fs::path& dir) {
 
 TEST_CASE("every malformed input is refused: expected exit code, a message, no output left") {
     const auto lines = read_manifest();
-    const std::set<std::string> corpus_before = names_in(kCorpus);
+    const auto corpus_before = contents_of(kCorpus);
     TempDir scratch("bad-inputs-log");
+    TempDir taken("bad-inputs-taken");
+    for (const auto& name : kTakenNames) fs::create_directories(taken.path / name);
+    const auto taken_before = contents_of(taken.path);
     for (const ManifestLine& m : lines) {
         TempDir out("bad-inputs");
-        const std::string cmd = shell_command(m, out);
+        TempDir work("bad-inputs-work");
+        for (const auto& [name, from] : kWorkFiles) fs::copy_file(from, work.path / name);
+        const auto work_before = contents_of(work.path);
+        const std::string cmd = shell_command(m, out, work, taken);
         INFO("manifest.txt line " << m.line_number << ": " << m.file << " | " << m.command);
         const Run r = run_shell(cmd, scratch);
         INFO("output: " << r.output);
@@ -129,8 +167,10 @@ TEST_CASE("every malformed input is refused: expected exit code, a message, no o
         std::string left;
         for (const auto& name : names_in(out.path)) left += name + " ";
         CHECK_MESSAGE(left.empty(), "left in the output folder: " << left);
+        CHECK_MESSAGE(contents_of(work.path) == work_before, "an input in {work} was changed");
+        CHECK_MESSAGE(contents_of(taken.path) == taken_before, "{taken} was changed");
     }
-    CHECK(names_in(kCorpus) == corpus_before);
+    CHECK(contents_of(kCorpus) == corpus_before);  // no file added, none changed
 }
 
 TEST_CASE("the manifest covers every file of the corpus") {

@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <optional>
@@ -167,11 +168,46 @@ TEST_CASE("decode: a capture whose working set exceeds the bound is refused") {
 
 TEST_CASE("read_image: declared sizes are checked against the bound before reading the data") {
     MemoryLimit limit("64M");
-    // A 16384^2 float32 npy header followed by 64 bytes: would be 2 GiB as doubles.
+    // A valid 16 KB all-zero 4000^2 PNG: 128 MB as doubles, refused from its header.
     const auto path = std::filesystem::path(PINMASK_SOURCE_DIR) / "tests" / "bad-inputs" /
-                      "capture-huge-truncated.npy";
+                      "capture-zeros-4000.png";
     CHECK_THROWS_WITH_AS(read_image(path), doctest::Contains("memory bound 0.0625 GiB"),
                          ResourceLimit);
+    // The 249 KB all-zero 16000^2 PNG is refused from its header under any bound: beyond
+    // kMaxImageSamples.
+    MemoryLimit big("100G");
+    CHECK_THROWS_WITH_AS(read_image(path.parent_path() / "capture-zeros-16000.png"),
+                         doctest::Contains("kMaxImageSamples"), InvalidInput);
+}
+
+TEST_CASE("the budget is per process: reservations add up, and are given back") {
+    MemoryLimit limit("100M");
+    const double mib = 1024.0 * 1024.0;
+    CHECK(memory_reserved_bytes() == 0);
+    {
+        MemoryReservation a(60 * mib, "first");
+        CHECK_NOTHROW(check_memory(30 * mib, "fits beside"));
+        // Each fits alone; together they exceed the bound: the second is refused, naming what
+        // the run already holds.
+        CHECK_THROWS_WITH_AS(MemoryReservation(60 * mib, "second"),
+                             doctest::Contains("beside the 0.0586 GiB this run already holds"),
+                             ResourceLimit);
+        CHECK_THROWS_AS(check_memory(60 * mib, "third"), ResourceLimit);
+        MemoryReservation moved = std::move(a);
+        CHECK(memory_reserved_bytes() == std::size_t(60 * mib));
+        moved.shrink_to(10 * mib);
+        CHECK(memory_reserved_bytes() == std::size_t(10 * mib));
+        // A large Image charges itself for as long as any copy lives.
+        Image img(2000, 2000, 1);  // 30.5 MiB
+        CHECK(memory_reserved_bytes() == std::size_t(10 * mib) + 8u * 2000 * 2000);
+        Image copy = img;
+        CHECK_THROWS_AS(Image(3000, 3000, 1), ResourceLimit);  // 68.7 MiB more: over
+        img = Image();
+        CHECK(memory_reserved_bytes() == std::size_t(10 * mib) + 8u * 2000 * 2000);
+    }
+    CHECK(memory_reserved_bytes() == 0);
+    CHECK_THROWS_AS(check_memory(std::nan(""), "NaN bytes"), ResourceLimit);
+    CHECK_THROWS_AS(MemoryReservation(-1.0, "negative"), ResourceLimit);
 }
 
 TEST_CASE("export: the layout of a huge pattern is refused under the bound") {

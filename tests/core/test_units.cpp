@@ -64,3 +64,22 @@ TEST_CASE("format_length") {
     CHECK(format_length(0.055) == "55 mm");
     CHECK(format_length(6.0) == "6 m");
 }
+
+TEST_CASE("readable_numbers shows std::to_string's spelled-out doubles as %g, nothing else") {
+    using pinmask::readable_numbers;
+    CHECK(readable_numbers("spacing = " + std::to_string(1e300) + ": bad") ==
+          "spacing = 1e+300: bad");
+    CHECK(readable_numbers("v = " + std::to_string(-1e300)) == "v = -1e+300");
+    CHECK(readable_numbers("preview of 123456789012345678901 x 3 px") ==
+          "preview of 1.23457e+20 x 3 px");
+    // Left alone: short numbers, to_string of ordinary values, hashes, digits inside words.
+    for (const std::string same :
+         {std::string("n = 1000000000: 12.500000"), std::string("hash 3940021234567890"),
+          std::string("x1234567890123456789012y"), std::string("a.12345678901234567890"),
+          std::string("")}) {
+        CHECK(readable_numbers(same) == same);
+    }
+    // invalid_field applies it.
+    const std::string msg = pinmask::invalid_field("--x", std::to_string(1e300), "r").what();
+    CHECK(msg == "--x = 1e+300: r");
+}
