@@ -17,11 +17,9 @@
 #include <vector>
 
 #include "cli/command.hpp"
-#include "io/mask_json.hpp"
-#include "io/psf_files.hpp"
-#include "core/output_set.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/output_set.hpp"
 #include "core/units.hpp"
 #include "design/psf.hpp"
 #include "export/drc.hpp"
@@ -37,6 +35,8 @@
 #include "export/vendor_rules.hpp"
 #include "export/write_any.hpp"
 #include "export/xor_area.hpp"
+#include "io/mask_json.hpp"
+#include "io/psf_files.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -205,13 +205,14 @@ void run_export(const ExportOptions& o) {
     if (stem.empty() || stem.find('/') != std::string::npos)
         throw invalid_field("--stem", stem, "must be a plain file name");
     {
-        std::vector<NamedPath> outs{{"-o (export.json)", out_dir / (stem + ".export.json")}};
-        for (FabFormat f : formats) outs.push_back({"-o", out_dir / (stem + fab_extension(f))});
+        std::vector<NamedPath> outs{{"-o (export.json)", out_dir / (stem + ".export.json"), true}};
+        for (FabFormat f : formats)
+            outs.push_back({"-o", out_dir / (stem + fab_extension(f)), true});
         if (!o.no_psf) {
             const fs::path psf_tiff = out_dir / (stem + ".psf.tiff");
-            outs.push_back({"-o (PSF)", psf_tiff});
-            outs.push_back({"-o (PSF sidecar)", io::psf_sidecar_path(psf_tiff)});
-            if (o.psf_npy) outs.push_back({"-o (PSF npy)", out_dir / (stem + ".psf.npy")});
+            outs.push_back({"-o (PSF)", psf_tiff, true});
+            outs.push_back({"-o (PSF sidecar)", io::psf_sidecar_path(psf_tiff), true});
+            if (o.psf_npy) outs.push_back({"-o (PSF npy)", out_dir / (stem + ".psf.npy"), true});
         }
         plan_outputs({{"input", o.input}}, outs);
     }

@@ -10,17 +10,17 @@
 #include "cli/camera_options.hpp"
 #include "cli/command.hpp"
 #include "cli/interrupt.hpp"
-#include "io/optics_json.hpp"
 #include "cli/progress.hpp"
 #include "cli/psf_options.hpp"
-#include "io/search_config.hpp"
 #include "cli/search_outputs.hpp"
-#include "core/output_set.hpp"
 #include "core/error.hpp"
 #include "core/fft.hpp"
+#include "core/output_set.hpp"
 #include "core/units.hpp"
 #include "design/psf.hpp"
 #include "design/random_sparse.hpp"
+#include "io/optics_json.hpp"
+#include "io/search_config.hpp"
 #include "optimize/mask_objective.hpp"
 #include "optimize/scene_prior.hpp"
 #include "optimize/scenes.hpp"
@@ -215,9 +215,9 @@ void run(const Options& o) {
     if (o.output.empty()) throw InvalidInput("-o/--output: an output folder is required");
     {
         const std::filesystem::path dir = o.output;  // rank-N.mask.json are checked when staged
-        plan_outputs({{"--config", o.config}}, {{"-o (run log)", dir / "run-log.csv"},
-                                                {"-o (summary)", dir / "summary.md"},
-                                                {"-o (config)", dir / "search.config.json"}});
+        plan_outputs({{"--config", o.config}}, {{"-o (run log)", dir / "run-log.csv", true},
+                                                {"-o (summary)", dir / "summary.md", true},
+                                                {"-o (config)", dir / "search.config.json", true}});
     }
 
     const int n = tmpl.pattern.n, ppc = tmpl.psf.pixels_per_cell, m = n * ppc;

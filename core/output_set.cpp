@@ -128,6 +128,11 @@ void plan_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedP
             throw bad_output(out.flag, out.path,
                              "its folder '" + parent.string() + "' is a file, not a directory");
         }
+        if (!out.folder_created && parent != canonical_or_absolute(out.path).parent_path()) {
+            throw bad_output(out.flag, out.path,
+                             "its folder '" + out.path.parent_path().string() +
+                                 "' does not exist (create it first)");
+        }
         if (!parent.empty() && ::access(parent.c_str(), W_OK | X_OK) != 0) {
             throw bad_output(out.flag, out.path,
                              "its folder '" + parent.string() + "' is not writable");

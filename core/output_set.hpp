@@ -1,7 +1,8 @@
 // Output-set planning: a command names its inputs and every file it will write BEFORE any
 // work, and each output name is checked against the rules of an all-or-nothing run:
 //   - not empty, not an existing directory;
-//   - its nearest existing parent is a directory we may write into;
+//   - its folder exists (or, for commands that create it, its nearest existing ancestor does)
+//     and is a directory we may write into;
 //   - not one of the run's inputs (same file: std::filesystem::equivalent for existing files,
 //     weakly_canonical paths otherwise, so "./a.json", "dir/../a.json" and hard links count);
 //   - not another output of the same run.
@@ -23,6 +24,9 @@ namespace pinmask {
 struct NamedPath {
     std::string flag;
     std::filesystem::path path;
+    // The command creates the output's folder (export's and search's -o): a missing folder is
+    // fine when its nearest existing ancestor is writable. Otherwise the folder must exist.
+    bool folder_created = false;
 };
 
 // Checks every output against the rules above (and against each other), then protects the

@@ -78,10 +78,15 @@ TEST_CASE("plan_outputs refuses two outputs with one name, a directory and an un
         CHECK_THROWS_AS(plan_outputs({}, {{"-o", t.path / "ro" / "o.tiff"}}), InvalidInput);
         fs::permissions(t.path / "ro", fs::perms::owner_all);
     }
-    // A missing folder below a writable one is fine (commands create it); empty names are
-    // skipped (optional outputs not asked for).
+    // A missing folder is refused, unless the command creates it (export's and search's -o)
+    // below a writable one; empty names are skipped (optional outputs not asked for), except -o.
+    const std::string missing = message_of([&] {
+        plan_outputs({}, {{"--stats", t.path / "new" / "o.json"}});
+    });
+    CHECK(missing.find("does not exist") != std::string::npos);
     CHECK_NOTHROW(
-        plan_outputs({{"mask", ""}}, {{"-o", t.path / "new" / "o.tiff"}, {"--stats", ""}}));
+        plan_outputs({{"mask", ""}}, {{"-o", t.path / "new" / "o.tiff", true}, {"--stats", ""}}));
+    CHECK_THROWS_AS(plan_outputs({}, {{"-o", ""}}), InvalidInput);
     reset_input_protection();
 }
 
