@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.hpp"
@@ -191,6 +192,24 @@ TEST_CASE("tiny and huge pixel pitches: finite report and kernels, or refused na
             CAPTURE(model);
             double energy = 1.0;
             check_kernel(c, model, 8, energy);
+        }
+    }
+}
+
+TEST_CASE("a support that keeps 29 % of the kernel's energy is said, one keeping 99.5 % is not") {
+    const Camera c = paper_camera();
+    for (const auto& [per_axis, warned] : {std::pair{0.54, true}, std::pair{0.9975, false}}) {
+        CAPTURE(per_axis);
+        KernelOptions ko;
+        ko.energy_fraction = per_axis;  // the 2-D energy is about the square of it
+        const Kernel k = make_kernel(c, KernelSpec{"fresnel", "", {}}, 8, ko);
+        const KernelValidity v = kernel_validity(c, k.model, k.enclosed_energy);
+        CHECK(v.energy_ok == !warned);
+        CHECK(v.model_accurate);  // fresnel at the paper's N = 0.88
+        if (warned) {
+            CHECK(k.enclosed_energy < 0.35);
+            REQUIRE_FALSE(v.warnings.empty());
+            CHECK(v.warnings.back().find("% of its energy") != std::string::npos);
         }
     }
 }
