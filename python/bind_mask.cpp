@@ -203,8 +203,11 @@ void bind_mask(py::module_& m) {
              "spacing: identical geometry, identical hash.")
         .def("to_json", &io::mask_file_text,
              "The exact text `save_mask` writes (and `pinmask generate` writes for this mask).")
-        .def("save", &io::write_mask_file, py::arg("path"),
-             "Writes the mask file atomically (same bytes as the CLI for the same mask).")
+        .def(
+            "save",
+            [](const Mask& k, const std::filesystem::path& path) { io::write_mask_file(path, k); },
+            py::arg("path"),
+            "Writes the mask file atomically (same bytes as the CLI for the same mask).")
         .def("__repr__", [](const Mask& k) {
             return "<pinmask.Mask n=" + std::to_string(k.pattern.n) +
                    " holes=" + std::to_string(k.pattern.pinholes.size()) +
@@ -213,7 +216,7 @@ void bind_mask(py::module_& m) {
 
     m.def(
         "load_mask",
-        [](const std::string& path, bool allow_spacing_violations) {
+        [](const std::filesystem::path& path, bool allow_spacing_violations) {
             io::MaskReadOptions o;
             o.allow_spacing_violations = allow_spacing_violations;
             return io::read_mask_file(path, o);
@@ -222,7 +225,9 @@ void bind_mask(py::module_& m) {
         "Reads and validates a *.mask.json (ValueError naming the file, key and rule).");
     m.def(
         "save_mask",
-        [](const Mask& mask, const std::string& path) { io::write_mask_file(path, mask); },
+        [](const Mask& mask, const std::filesystem::path& path) {
+            io::write_mask_file(path, mask);
+        },
         py::arg("mask"), py::arg("path"), "Writes a *.mask.json atomically.");
     m.def(
         "mask_from_json",

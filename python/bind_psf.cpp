@@ -121,12 +121,12 @@ void bind_psf(py::module_& m) {
 
     m.def(
         "write_psf",
-        [](const Mask& mask, const std::string& path, bool npy, const std::string& mask_file,
-           std::optional<std::string> kernel, const std::string& kernel_path,
-           double energy_fraction) {
-            const std::string ext = std::filesystem::path(path).extension().string();
+        [](const Mask& mask, const std::filesystem::path& path, bool npy,
+           const std::string& mask_file, std::optional<std::string> kernel,
+           const std::string& kernel_path, double energy_fraction) {
+            const std::string ext = path.extension().string();
             if (ext != ".tif" && ext != ".tiff")
-                throw invalid_field("-o", path, "must end in .tif or .tiff");
+                throw invalid_field("-o", path.string(), "must end in .tif or .tiff");
             const Mask mk = with_kernel(mask, kernel, kernel_path);
             std::vector<std::filesystem::path> written;
             {
@@ -148,7 +148,7 @@ void bind_psf(py::module_& m) {
 
     m.def(
         "read_psf",
-        [](const std::string& path) {
+        [](const std::filesystem::path& path) {
             io::PsfFile f = io::read_psf_file(path);
             py::object side = f.sidecar ? py::object(sidecar_dict(*f.sidecar)) : py::none();
             return py::make_tuple(to_array(std::move(f.psf)), side);
@@ -159,7 +159,7 @@ void bind_psf(py::module_& m) {
 
     m.def(
         "read_image",
-        [](const std::string& path) {
+        [](const std::filesystem::path& path) {
             LoadedImage li = read_image(path);
             return py::make_tuple(image_to_array(std::move(li.image)), li.full_scale);
         },
@@ -169,7 +169,7 @@ void bind_psf(py::module_& m) {
         "copy; colour: (rows, cols, 3).");
     m.def(
         "write_image",
-        [](const std::string& path, const py::handle& image) {
+        [](const std::filesystem::path& path, const py::handle& image) {
             write_image(path, image_arg(image, "image"));
         },
         py::arg("path"), py::arg("image"),
