@@ -14,6 +14,7 @@
 #include "design/optics.hpp"
 #include "design/pattern.hpp"
 #include "design/random_sparse.hpp"
+#include "io/json_strict.hpp"
 #include "io/mask_json.hpp"
 #include "python/common.hpp"
 
@@ -234,7 +235,13 @@ void bind_mask(py::module_& m) {
         [](const std::string& text, bool allow_spacing_violations) {
             io::MaskReadOptions o;
             o.allow_spacing_violations = allow_spacing_violations;
-            return io::mask_from_json(nlohmann::json::parse(text), o);
+            nlohmann::json j;
+            try {  // the file reader's parser: repeated keys refused, syntax errors named
+                j = io::json_strict::parse_strict(text);
+            } catch (const nlohmann::json::exception& e) {
+                throw InvalidInput(std::string("mask JSON: ") + e.what());
+            }
+            return io::mask_from_json(j, o);
         },
         py::arg("text"), py::arg("allow_spacing_violations") = false,
         "A mask from the text of a *.mask.json.");

@@ -5,6 +5,7 @@
 
 #include "cli/noise_options.hpp"
 #include "core/error.hpp"
+#include "core/resource_limits.hpp"
 #include "core/units.hpp"
 #include "design/psf.hpp"
 #include "io/mask_json.hpp"
@@ -72,6 +73,11 @@ void bind_simulate(py::module_& m) {
         "scene",
         [](const std::string& name, int rows, int cols, std::uint64_t seed, double alpha) {
             SceneSpec spec = scene_from_name(name);
+            if (rows >= 1 && cols >= 1) {  // make_scene names bad sizes; refuse huge ones first
+                // The scene plus its complex spectrum (natural scenes) as the working set.
+                check_memory(double(rows) * double(cols) * 3.0 * sizeof(double),
+                             "scene " + std::to_string(rows) + " x " + std::to_string(cols));
+            }
             spec.seed = seed;
             spec.alpha = alpha;
             Image img;
