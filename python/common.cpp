@@ -13,6 +13,8 @@ namespace pinmask::python {
 
 namespace {
 
+std::atomic<long long> g_input_copies{0};  // input arrays copied into library planes
+
 void delete_plane(PyObject* capsule) {
     delete static_cast<Plane*>(PyCapsule_GetPointer(capsule, kPlaneCapsule));
 }
@@ -70,6 +72,7 @@ py::array as_float_array(const py::handle& obj, const std::string& what) {
 }
 
 void copy_plane(const py::array& arr, Plane& out) {
+    ++g_input_copies;
     if (arr.dtype().is(py::dtype::of<float>())) {
         copy_2d(py::array_t<float>(py::reinterpret_borrow<py::array_t<float>>(arr)), out);
         return;
@@ -129,7 +132,10 @@ PlaneArg plane_arg(const py::handle& obj, const std::string& what) {
 }
 
 Image image_arg(const py::handle& obj, const std::string& what) {
-    if (library_plane(obj) != nullptr) return Image(plane_arg(obj, what).get());
+    if (library_plane(obj) != nullptr) {  // an Image owns its planes: one copy
+        ++g_input_copies;
+        return Image(plane_arg(obj, what).get());
+    }
     const py::array arr = as_float_array(obj, what);
     if (arr.ndim() == 2) {
         Image img;
@@ -141,6 +147,7 @@ Image image_arg(const py::handle& obj, const std::string& what) {
         throw invalid_field(what, "an array of " + std::to_string(arr.ndim()) + " dimension(s)",
                             "must be 2-D (rows, cols) or 3-D (rows, cols, channels)");
     }
+    ++g_input_copies;
     const auto d = py::array_t<double, py::array::forcecast>::ensure(arr);
     const auto v = d.unchecked<3>();
     Image img(static_cast<int>(v.shape(0)), static_cast<int>(v.shape(1)),
@@ -245,8 +252,12 @@ void bind_arrays(py::module_& m) {
         "is_library_buffer", [](const py::handle& a) { return is_library_buffer(a); },
         py::arg("array"),
         "True when `array` is one the module returned (float64, C order, its whole buffer): "
-        "passing it back to the module uses that buffer without a copy. Any other float32 or "
-        "float64 array is copied once; other dtypes are converted first.");
+        "decode() uses such a capture or PSF in place. Any other float32 or float64 input is "
+        "copied once; other dtypes are converted first.");
+    m.def(
+        "input_copies", [] { return g_input_copies.load(); },
+        "How many input arrays the module has copied into library planes since it was loaded "
+        "(a diagnostic of the zero-copy contract).");
 }
 
 }  // namespace pinmask::python

@@ -6,10 +6,11 @@
 //   - out: every array the module returns wraps the library's own buffer (a Plane moved into a
 //     capsule that owns it): no copy. Grey images are 2-D (rows, cols); a colour image is
 //     (rows, cols, channels) and is interleaved once (the library keeps one plane per channel).
-//   - in: an array the module returned (base = its "pinmask.Plane" capsule, the whole buffer,
-//     float64, C order) is handed to the library as is: no copy. Any other float32/float64
-//     array, in any order, is copied once into a row-major double plane (the library's
-//     functions take owning planes); other dtypes are converted by numpy first (two copies).
+//   - in: where a library function takes a plane (decode's mono capture and PSF), an array the
+//     module returned (base = its "pinmask.Plane" capsule, the whole buffer, float64, C order)
+//     is handed to it as is: no copy. Any other float32/float64 array, in any order, is copied
+//     once into a row-major double plane (the library's functions take owning planes and
+//     images); other dtypes are converted by numpy first. input_copies() counts the copies.
 #pragma once
 
 #include <pybind11/functional.h>

@@ -10,9 +10,11 @@ save), PSFs, simulation, decoding, metrics, search, comparison reports, fabricat
 the design-rule check. Units are SI (metres, seconds) unless a name says otherwise.
 
 Arrays: numpy in and out. Returned arrays wrap the library's own buffers (no copy); grey images
-are (rows, cols) float64, colour images (rows, cols, channels) (interleaved once). Inputs: an
-array the module returned is used as is; other float32/float64 arrays (any order) are copied
-once into the library's row-major double planes; other dtypes are converted first.
+are (rows, cols) float64, colour images (rows, cols, channels) (interleaved once). Inputs:
+decode() uses a module-made mono capture and PSF as they are (is_library_buffer() says which
+arrays qualify); every other float32/float64 array (any order) is copied once into the
+library's row-major double planes; other dtypes are converted first. input_copies() counts
+the input copies made.
 
 Errors: ValueError for invalid input (the message is the command line's: it names the flag or
 field, the value and the rule), RuntimeError for failures while doing valid work.)";

@@ -124,8 +124,11 @@ def test_rgb_and_float32_and_library_inputs(mask7):
     psf = pinmask.psf(mask7)
     cap = pinmask.simulate(mask7, "letter-R", snr_db=40)["capture"]
     assert pinmask.is_library_buffer(cap) and pinmask.is_library_buffer(psf)
+    before = pinmask.input_copies()
     a = pinmask.decode(cap, psf=psf)["image"]  # both used without copies
-    b = pinmask.decode(np.array(cap), psf=np.array(psf))["image"]  # copied once
+    assert pinmask.input_copies() == before
+    b = pinmask.decode(np.array(cap), psf=np.array(psf))["image"]  # copied once each
+    assert pinmask.input_copies() == before + 2
     assert np.array_equal(a, b)
     c = pinmask.decode(cap.astype(np.float32), psf=psf)["image"]
     d = pinmask.decode(cap.astype(np.float32).astype(np.float64), psf=psf)["image"]
