@@ -75,3 +75,25 @@ def test_simulated_quality(mask7):
     assert psnr == q["mean_psnr_db"] and 5 < psnr < 60 and -1 <= ssim <= 1
     with pytest.raises(ValueError, match="decoder"):
         pinmask.simulated_quality(mask7, decoder="rl")
+
+
+@pytest.mark.parametrize("cli_noise,noise,key", [
+    (["--snr", "30"], dict(snr_db=30), "snr30"),
+    (["--photons", "1000", "--read-noise", "5"], dict(photons=1000, read_noise=5), "ph1000"),
+])
+def test_score_numbers_from_library_metrics(cli, tmp_path, mask7, cli_noise, noise, key):
+    """`pinmask score` (its prior: 64 natural textures from seed 1000; scenes letter-R, usaf,
+    natural; NSR 0.01; noise seed 0) from analytic_error and simulated_quality."""
+    mask7.save(str(tmp_path / "m.mask.json"))
+    j = json.loads(cli.run("score", "m.mask.json", *cli_noise, "--json").stdout)["masks"][0]
+    prior = dict(prior_scenes=64, prior_first_seed=1000)
+    fixed = pinmask.analytic_error(mask7, filter="nsr:0.01", **prior, **noise)
+    optimal = pinmask.analytic_error(mask7, filter="optimal", **prior, **noise)
+    assert fixed["psnr_db"] == j[f"analytic_wiener_psnr_db_{key}"]
+    assert optimal["psnr_db"] == j[f"analytic_optimal_wiener_psnr_db_{key}"]
+    q = pinmask.simulated_quality(mask7, scenes=["letter-R", "usaf", "natural"], weight="0.01",
+                                  seed=0, **noise)
+    assert q["mean_psnr_db"] == j[f"wiener_psnr_db_{key}"]
+    assert q["mean_ssim"] == j[f"wiener_ssim_{key}"]
+    for name, (psnr, ssim) in q["scenes"].items():
+        assert psnr == j["per_scene"][name][f"wiener_psnr_db_{key}"]
