@@ -136,6 +136,8 @@ void bind_decode(py::module_& m) {
             if (regulariser != "identity" && regulariser != "gradient")
                 throw invalid_field("--regulariser", regulariser, "must be identity or gradient");
             if (iters < 0) throw invalid_field("--iters", std::to_string(iters), "must be >= 0");
+            if (eps && noise_sigma)
+                throw InvalidInput("--eps excludes --noise-sigma (eps= or noise_sigma=, not both)");
             if (py::isinstance<py::str>(crop)) {
                 r.crop = crop.cast<std::string>();
             } else {  // (row, col) of the top-left pixel: the CLI's X,Y is col,row
@@ -170,10 +172,10 @@ void bind_decode(py::module_& m) {
             if (!dark.is_none()) dark_img = image_arg(dark, "dark");
 
             std::atomic<bool> stop{false};
-            bool interrupted = false;
             DecodeOutput out;
-            run_with_interrupt([&] { out = decode_pipeline(cap, *psf_arg, dark_img, r, &stop); },
-                               stop, progress, poll_s, interrupted);
+            const Poll poll = run_with_interrupt(
+                [&] { out = decode_pipeline(cap, *psf_arg, dark_img, r, &stop); }, stop, progress,
+                poll_s);
 
             py::dict d;
             Image estimate;
@@ -202,10 +204,12 @@ void bind_decode(py::module_& m) {
                 any_interrupted = any_interrupted || res.interrupted;
                 estimate.channels.push_back(std::move(res.image));
             }
+            // Ctrl-C that cut nothing short (closed form, or already finished) is not swallowed.
+            if (poll == Poll::kKeyboardInterrupt && !any_interrupted) raise_keyboard_interrupt();
             check_image_finite(estimate, "decoded estimate");
             d["image"] = image_to_array(std::move(estimate));
             d["channels"] = channels;
-            d["interrupted"] = any_interrupted || interrupted;
+            d["interrupted"] = any_interrupted;
             d["window"] =
                 py::make_tuple(out.window.row, out.window.col, out.window.rows, out.window.cols);
             d["period_check"] = period_dict(out.period);
@@ -232,7 +236,8 @@ tv/tvqc. iters, tol: iterative methods (relative change of x). crop: 'center' | 
 channels).
 progress: called every poll_s seconds with the elapsed seconds while the decode runs; return
 False to stop. Ctrl-C (KeyboardInterrupt) or False ends an iterative method after its current
-iteration and returns the estimate so far with interrupted = True (as the CLI writes it).
+iteration and returns the estimate so far with interrupted = True (as the CLI writes it); a
+Ctrl-C that cut nothing short (a closed-form method, or one that had finished) is raised.
 Returns {image, channels: [{iterations, objective, residual, converged, interrupted, seconds,
 history: (n, 4) array of iteration, seconds, objective, residual}], interrupted,
 window: (row, col, rows, cols), period_check}. A mono `image` owns the library's buffer; a

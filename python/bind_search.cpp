@@ -81,6 +81,7 @@ void bind_search(py::module_& m) {
             ro.tiles_rows = ro.tiles_cols = tiles;
             std::atomic<bool> cancel{false};
             std::exception_ptr py_error;
+            Poll poll = Poll::kContinue;
             SearchSummary summary;
             {
                 py::gil_scoped_release release;
@@ -102,13 +103,16 @@ void bind_search(py::module_& m) {
                     [&](std::mt19937_64& rng) { return random_sparse_pattern(ro, rng); }, &cancel,
                     [&](const SearchLogRow& row, double fraction) {
                         if (cancel.load()) return;
-                        if (!poll_python(
-                                progress, [&] { return py::object(log_row(row, fraction)); },
-                                &py_error))
-                            cancel.store(true);
+                        poll = poll_python(
+                            progress, [&] { return py::object(log_row(row, fraction)); },
+                            &py_error);
+                        if (poll != Poll::kContinue) cancel.store(true);
                     });
             }
             if (py_error) std::rethrow_exception(py_error);
+            // Ctrl-C that cut nothing short (the search had finished) is not swallowed.
+            if (poll == Poll::kKeyboardInterrupt && summary.stop_reason != "interrupted")
+                raise_keyboard_interrupt();
             if (summary.ranked.empty())
                 throw RuntimeFailure("search stopped before any evaluation");
             py::list candidates;

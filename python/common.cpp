@@ -160,14 +160,14 @@ Image image_arg(const py::handle& obj, const std::string& what) {
     return img;
 }
 
-void run_with_interrupt(const std::function<void()>& work, std::atomic<bool>& stop,
-                        const py::object& progress, double poll_s, bool& interrupted) {
-    interrupted = false;
+Poll run_with_interrupt(const std::function<void()>& work, std::atomic<bool>& stop,
+                        const py::object& progress, double poll_s) {
     std::mutex mu;
     std::condition_variable cv;
     bool done = false;
     std::exception_ptr work_error;
     std::exception_ptr py_error;
+    Poll decision = Poll::kContinue;
     const auto t0 = std::chrono::steady_clock::now();
     std::thread worker;
     {
@@ -191,14 +191,12 @@ void run_with_interrupt(const std::function<void()>& work, std::atomic<bool>& st
             cv.wait_for(lock, wait, [&] { return done; });
             if (done) break;
         }
-        if (stop.load()) continue;  // already stopping: just wait for the work to end
+        if (decision != Poll::kContinue) continue;  // stopping: wait for the work to end
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        if (!poll_python(
-                progress, [&] { return py::float_(seconds); }, &py_error)) {
-            stop.store(true);
-            if (!py_error) interrupted = true;
-        }
+        decision = poll_python(
+            progress, [&] { return py::float_(seconds); }, &py_error);
+        if (decision != Poll::kContinue) stop.store(true);
     }
     {
         py::gil_scoped_release release;
@@ -206,26 +204,32 @@ void run_with_interrupt(const std::function<void()>& work, std::atomic<bool>& st
     }
     if (work_error) std::rethrow_exception(work_error);
     if (py_error) std::rethrow_exception(py_error);
+    return decision;
 }
 
-bool poll_python(const py::object& progress, const std::function<py::object()>& info,
+Poll poll_python(const py::object& progress, const std::function<py::object()>& info,
                  std::exception_ptr* error) {
     py::gil_scoped_acquire gil;
     try {
         if (PyErr_CheckSignals() != 0) throw py::error_already_set();
         if (!progress.is_none()) {
             const py::object r = progress(info());
-            if (!r.is_none() && !r.cast<bool>()) return false;
+            if (!r.is_none() && !r.cast<bool>()) return Poll::kStopRequested;
         }
-        return true;
+        return Poll::kContinue;
     } catch (py::error_already_set& e) {
-        if (e.matches(PyExc_KeyboardInterrupt)) return false;
+        if (e.matches(PyExc_KeyboardInterrupt)) return Poll::kKeyboardInterrupt;
         *error = std::current_exception();
-        return false;
+        return Poll::kError;
     } catch (...) {
         *error = std::current_exception();
-        return false;
+        return Poll::kError;
     }
+}
+
+void raise_keyboard_interrupt() {
+    PyErr_SetNone(PyExc_KeyboardInterrupt);
+    throw py::error_already_set();
 }
 
 void bind_errors(py::module_& m) {

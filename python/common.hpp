@@ -58,21 +58,28 @@ Image image_arg(const py::handle& obj, const std::string& what);
 // True when obj is an array the library can use without a copy (see above).
 bool is_library_buffer(const py::handle& obj);
 
+// What a poll of Python decided: go on, stop because the progress callback returned False,
+// stop because of Ctrl-C (KeyboardInterrupt), or stop because of another Python exception.
+enum class Poll { kContinue, kStopRequested, kKeyboardInterrupt, kError };
+
 // Runs work() on a worker thread with the GIL released. The calling thread wakes every poll_s
 // seconds: it runs the signal handlers (PyErr_CheckSignals, so Ctrl-C raises KeyboardInterrupt
-// in Python code) and calls progress(seconds) when given. A KeyboardInterrupt or a progress
-// callback returning False raises `stop` (the library ends cleanly and keeps what it has);
-// `interrupted` is then true. Any other Python exception also raises `stop` and is re-raised
-// once the work has ended. Exceptions of work() are re-thrown on the calling thread.
-void run_with_interrupt(const std::function<void()>& work, std::atomic<bool>& stop,
-                        const py::object& progress, double poll_s, bool& interrupted);
+// in Python code) and calls progress(seconds) when given. Anything but kContinue raises `stop`
+// (the library ends cleanly and keeps what it has); the first such decision is returned. A
+// Python exception other than KeyboardInterrupt is re-raised once the work has ended.
+// Exceptions of work() are re-thrown on the calling thread.
+Poll run_with_interrupt(const std::function<void()>& work, std::atomic<bool>& stop,
+                        const py::object& progress, double poll_s);
 
 // Called from a library progress hook on the calling thread (GIL not held): acquires the GIL,
-// checks signals and calls progress(info) when given; returns false when the run must stop
-// (KeyboardInterrupt or progress returned False). Other exceptions are stored in *error.
-// `info` builds the callback's argument (called with the GIL held).
-bool poll_python(const py::object& progress, const std::function<py::object()>& info,
+// checks signals and calls progress(info()) when given (info is built with the GIL held).
+// Other exceptions are stored in *error (kError).
+Poll poll_python(const py::object& progress, const std::function<py::object()>& info,
                  std::exception_ptr* error);
+
+// Raises KeyboardInterrupt in Python: for a Ctrl-C that stopped nothing the library could keep
+// (a closed-form decode, a run that had already finished).
+[[noreturn]] void raise_keyboard_interrupt();
 
 void bind_errors(py::module_& m);
 void bind_arrays(py::module_& m);

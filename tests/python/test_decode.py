@@ -171,3 +171,22 @@ def test_decode_errors(mask7):
         pinmask.decode(cap, psf=psf, crop="middle")
     with pytest.raises(ValueError, match="PSF.*positive sum"):
         pinmask.decode(cap, psf=np.zeros((8, 8)))
+
+
+def test_ctrl_c_during_closed_form_is_raised(mask7):
+    """Nothing to keep: a Ctrl-C during a Wiener decode is a KeyboardInterrupt, as in the CLI."""
+    rng = np.random.default_rng(1)
+    cap = rng.random((2048, 2048))  # a decode of ~0.5 s: the poll comes first
+
+    def progress(seconds):
+        os.kill(os.getpid(), signal.SIGINT)
+
+    with pytest.raises(KeyboardInterrupt):
+        pinmask.decode(cap, psf=rng.random((256, 256)), crop="none", method="tikhonov",
+                       progress=progress, poll_s=0.0005)
+
+
+def test_eps_and_noise_sigma_exclude_each_other(mask7):
+    cap = pinmask.simulate(mask7, "letter-R", snr_db=30)["capture"]
+    with pytest.raises(ValueError, match="--eps excludes --noise-sigma"):
+        pinmask.decode(cap, mask=mask7, method="tvqc", eps=1.0, noise_sigma=0.01)
