@@ -41,13 +41,13 @@ DecodeOutput decode_pipeline(CaptureArg& cap, const PlaneArg& psf_in,
     const CropSpec crop_spec = cli::parse_crop(r.crop);
     DecodeOptions dopt = cli::decode_options(r);
     dopt.stop = stop;
-    check_psf(psf_in.get(), "PSF");
-    if (cap.plane) {
+    if (cap.plane) {  // capture first, then the PSF, as the CLI checks them
         // The message names the first bad pixel; the copy is made only to report it.
         if (!is_all_finite(*cap.plane)) check_image_finite(Image(*cap.plane), "capture");
     } else {
         check_image_finite(cap.image, "capture");
     }
+    check_psf(psf_in.get(), "PSF");
     if (dark) {
         check_image_finite(*dark, "dark frame");
         if (cap.plane) {

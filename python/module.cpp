@@ -30,4 +30,5 @@ field, the value and the rule), RuntimeError for failures while doing valid work
     bind_search(m);
     bind_compare(m);
     bind_export(m);
+    bind_check(m);
 }
