@@ -1,0 +1,231 @@
+// The design-rule check (export/drc, geometry, read_any, xor_area): check() follows
+// `pinmask check` (cli/cmd_check.cpp) and returns what its --json prints. Re-pointed at
+// export/read_back (the file-vs-design comparison) when that library call exists (issue 11).
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.hpp"
+#include "core/units.hpp"
+#include "export/drc.hpp"
+#include "export/geometry.hpp"
+#include "export/read_any.hpp"
+#include "export/rings.hpp"
+#include "export/vendor_rules.hpp"
+#include "export/xor_area.hpp"
+#include "io/mask_json.hpp"
+#include "python/common.hpp"
+#include "python/values.hpp"
+
+namespace pinmask::python {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::int64_t length_nm(const py::object& v, const char* flag, std::int64_t min_nm) {
+    const double nm = std::round(length_value(v, flag, false) * 1e9);
+    if (!(nm >= double(min_nm)) || nm > 1e12) {
+        throw invalid_field(flag, py::str(v).cast<std::string>(),
+                            "must be at least " + std::to_string(min_nm) + " nm");
+    }
+    return static_cast<std::int64_t>(nm);
+}
+
+struct CheckArgs {
+    py::object min_gap, min_feature, min_spacing;
+    std::optional<std::size_t> max_vertices;
+    std::size_t list = 20;
+    std::string shape = "square";
+    int sides = 8;
+    py::object hole_side, frame, chord_tol;
+};
+
+DrcRules resolve_rules(const CheckArgs& o, DrcRules rules) {
+    if (!o.min_gap.is_none()) rules.min_gap_nm = length_nm(o.min_gap, "--min-gap", 1);
+    if (!o.min_feature.is_none())
+        rules.min_feature_nm = length_nm(o.min_feature, "--min-feature", 0);
+    if (!o.min_spacing.is_none())
+        rules.min_center_spacing_nm = double(length_nm(o.min_spacing, "--min-spacing", 0));
+    if (o.max_vertices) rules.max_vertices = *o.max_vertices;
+    if (o.list < 1) throw invalid_field("--list", std::to_string(o.list), "must be >= 1");
+    rules.max_reported_per_rule = o.list;
+    return rules;
+}
+
+LayoutOptions design_options(const CheckArgs& o, const FileGeometry* file) {
+    LayoutOptions lo;
+    lo.shape = parse_hole_shape(o.shape, "--shape");
+    lo.polygon_sides = o.sides;
+    if (!o.hole_side.is_none()) lo.hole_side_m = length_value(o.hole_side, "--hole-side", false);
+    if (!o.frame.is_none()) lo.frame_m = length_value(o.frame, "--frame", false);
+    if (!o.chord_tol.is_none())
+        lo.chord_tolerance_m = length_value(o.chord_tol, "--chord-tol", false);
+    if (file) {
+        const auto& info = file->info;
+        if (auto it = info.find("tone"); it != info.end()) lo.tone = parse_tone(it->second, "tone");
+        if (auto it = info.find("mirrored"); it != info.end()) lo.mirror = it->second == "yes";
+        if (auto it = info.find("grid_nm"); it != info.end())
+            lo.grid_m = parse_number(it->second, "grid_nm") * 1e-9;
+    }
+    return lo;
+}
+
+bool box_inside(const BoxNm& inner, const BoxNm& outer) {
+    return inner.x0 >= outer.x0 && inner.y0 >= outer.y0 && inner.x1 <= outer.x1 &&
+           inner.y1 <= outer.y1;
+}
+
+bool is_mask_file(const fs::path& path) {
+    if (path.extension() == ".json") return true;
+    std::ifstream in(path, std::ios::binary);
+    char c = 0;
+    while (in.get(c) && std::isspace(static_cast<unsigned char>(c))) {
+    }
+    return in && c == '{';
+}
+
+py::object um_or_none(double nm) {
+    return std::isfinite(nm) ? py::object(py::float_(nm * 1e-3)) : py::object(py::none());
+}
+
+py::object index_or_none(std::size_t i) {
+    return i == kNoPolygon ? py::object(py::none()) : py::object(py::int_(i));
+}
+
+}  // namespace
+
+void bind_check(py::module_& m) {
+    m.def(
+        "check",
+        [](const py::handle& input, const py::handle& mask, const std::string& vendor_name,
+           const py::object& min_gap, const py::object& min_feature, const py::object& min_spacing,
+           std::optional<std::size_t> max_vertices, std::size_t list, double max_xor_um2,
+           const std::string& shape, int sides, const py::object& hole_side,
+           const py::object& frame, const py::object& chord_tol) {
+            CheckArgs o{min_gap, min_feature, min_spacing, max_vertices, list,
+                        shape,   sides,       hole_side,   frame,        chord_tol};
+            if (!std::isfinite(max_xor_um2) || max_xor_um2 < 0)
+                throw invalid_field("--max-xor-um2", std::to_string(max_xor_um2),
+                                    "must be finite and >= 0");
+            const VendorRules vendor = vendor_rules(vendor_name);
+            const bool input_is_mask = py::isinstance<Mask>(input);
+            const std::string input_text =
+                input_is_mask ? std::string("python mask") : py::str(input).cast<std::string>();
+            if (!input_is_mask && !fs::is_regular_file(input_text))
+                throw invalid_field("input", input_text,
+                                    "must be an existing mask or fabrication file");
+            Layout l;
+            DrcRules rules;
+            std::string kind;
+            std::optional<py::dict> comparison;
+            bool comparison_ok = true;
+            if (input_is_mask || is_mask_file(input_text)) {
+                if (!mask.is_none())
+                    throw invalid_field("--mask", py::str(mask).cast<std::string>(),
+                                        "only used with a fabrication file");
+                kind = "mask";
+                const Mask mk = input_is_mask ? input.cast<Mask>()
+                                              : io::read_mask_file(
+                                                    input_text, {.allow_spacing_violations = true});
+                l = make_layout(mk, design_options(o, nullptr));
+                rules = resolve_rules(o, rules_for_mask(mk, vendor));
+            } else {
+                const FileGeometry file = read_fabrication_file(input_text);
+                kind = fs::path(input_text).extension().string().substr(1);
+                const auto tone = file.info.find("tone");
+                l.tone = tone == file.info.end() ? Tone::kClear : parse_tone(tone->second, "tone");
+                l.extent = bounding_box(file.rings);
+                if (mask.is_none()) {
+                    l.polygons = file.rings;
+                    l.active_area = l.extent;
+                    DrcRules r;
+                    r.min_gap_nm = vendor.min_gap_nm;
+                    r.min_feature_nm = vendor.min_feature_nm;
+                    r.max_vertices = vendor.max_vertices;
+                    rules = resolve_rules(o, r);
+                } else {
+                    const Mask mk = mask_arg(mask, true);
+                    const Layout design = make_layout(mk, design_options(o, &file));
+                    const BoxNm outline = bounding_box(design.polygons);
+                    for (const Ring& r : file.rings)
+                        (box_inside(bounding_box({r}), outline) ? l.polygons : l.annotations)
+                            .push_back(r);
+                    l.active_area = design.active_area;
+                    l.extent = box_union(l.extent, design.extent);
+                    rules = resolve_rules(o, rules_for_mask(mk, vendor));
+                    const double xor_um2 = xor_area_nm2(l.polygons, design.polygons) * 1e-6;
+                    const std::string mask_hash = geometry_hash(mk);
+                    std::string file_hash;
+                    if (auto it = file.info.find("hash"); it != file.info.end())
+                        file_hash = it->second;
+                    comparison_ok =
+                        xor_um2 <= max_xor_um2 && (file_hash.empty() || file_hash == mask_hash);
+                    py::dict c;
+                    c["mask"] = py::str(mask);
+                    c["xor_area_um2"] = xor_um2;
+                    c["max_xor_area_um2"] = max_xor_um2;
+                    c["file_hash"] = file_hash;
+                    c["mask_hash"] = mask_hash;
+                    c["ok"] = comparison_ok;
+                    comparison = c;
+                }
+            }
+            DrcReport r;
+            {
+                py::gil_scoped_release release;
+                r = run_drc(l, rules);
+            }
+            const bool clean = r.clean() && comparison_ok;
+            py::list v;
+            for (const DrcViolation& x : r.violations) {
+                py::dict d;
+                d["rule"] = x.rule;
+                d["message"] = x.message;
+                d["x_um"] = double(x.where.x) * 1e-3;
+                d["y_um"] = double(x.where.y) * 1e-3;
+                d["polygon_a"] = index_or_none(x.polygon_a);
+                d["polygon_b"] = index_or_none(x.polygon_b);
+                d["value"] = x.value;
+                d["limit"] = x.limit;
+                d["unit"] = x.rule == "vertices" || x.rule == "ring" ? "vertices" : "nm";
+                v.append(d);
+            }
+            py::dict j;
+            j["clean"] = clean;
+            j["input"] = input_text;
+            j["kind"] = kind;
+            j["vendor"] = vendor_name;
+            j["tone"] = tone_name(l.tone);
+            j["polygons"] = l.polygons.size();
+            j["annotations"] = l.annotations.size();
+            j["rules"] =
+                py::dict(py::arg("min_center_spacing_um") = rules.min_center_spacing_nm * 1e-3,
+                         py::arg("min_gap_um") = double(rules.min_gap_nm) * 1e-3,
+                         py::arg("min_feature_um") = double(rules.min_feature_nm) * 1e-3,
+                         py::arg("max_vertices") = rules.max_vertices);
+            j["measured"] = py::dict(
+                py::arg("min_center_spacing_um") = um_or_none(r.measured.min_center_spacing_nm),
+                py::arg("min_gap_um") = um_or_none(r.measured.min_gap_nm),
+                py::arg("min_feature_um") = um_or_none(r.measured.min_feature_nm));
+            j["counts"] = r.counts;
+            j["truncated"] = r.truncated;
+            j["violations"] = v;
+            if (comparison) j["comparison"] = *comparison;
+            return j;
+        },
+        py::arg("input"), py::arg("mask") = py::none(), py::arg("vendor") = "film",
+        py::arg("min_gap") = py::none(), py::arg("min_feature") = py::none(),
+        py::arg("min_spacing") = py::none(), py::arg("max_vertices") = py::none(),
+        py::arg("list") = 20, py::arg("max_xor_um2") = 0.0, py::arg("shape") = "square",
+        py::arg("sides") = 8, py::arg("hole_side") = py::none(), py::arg("frame") = py::none(),
+        py::arg("chord_tol") = py::none(),
+        R"(The design-rule check of `pinmask check` (returns what its --json prints; `clean` is
+its exit status): input a Mask, a *.mask.json or a fabrication file (.gds .dxf .gbr .svg); with
+mask (the design a file was exported from) the file's pinholes are compared by exact XOR area
+(max_xor_um2, um^2) and geometry hash. vendor film | chrome | none; min_gap, min_feature,
+min_spacing override it (lengths); shape/sides/hole_side/frame/chord_tol describe the design
+as given to export. Distances in the result are in um.)");
+}
+
+}  // namespace pinmask::python

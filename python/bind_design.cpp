@@ -1,0 +1,161 @@
+// Camera and optics numbers (design/camera.hpp, design/optics.hpp, design/kernel_model.hpp).
+#include <cmath>
+#include <limits>
+
+#include "core/error.hpp"
+#include "core/units.hpp"
+#include "design/camera.hpp"
+#include "design/kernel_model.hpp"
+#include "design/optics.hpp"
+#include "python/common.hpp"
+#include "python/values.hpp"
+
+namespace pinmask::python {
+
+double length_value(const py::handle& v, const std::string& field, bool allow_inf) {
+    if (py::isinstance<py::str>(v)) {
+        return parse_length_m(v.cast<std::string>(), field,
+                              allow_inf ? AllowInfinity::kYes : AllowInfinity::kNo);
+    }
+    const double x = v.cast<double>();
+    if (std::isnan(x) || (std::isinf(x) && !(allow_inf && x > 0)))
+        throw invalid_field(field, py::str(v).cast<std::string>(),
+                            allow_inf ? "must be finite or +inf" : "must be finite");
+    return x;
+}
+
+py::dict optics_dict(const OpticsReport& r) {
+    py::dict d;
+    d["camera"] = r.camera;
+    d["geometry"] =
+        py::dict(py::arg("n") = r.geometry.n, py::arg("holes") = r.geometry.holes,
+                 py::arg("tiles") = py::make_tuple(r.geometry.tiles_rows, r.geometry.tiles_cols));
+    d["optimum_pinhole_m"] = r.optimum_pinhole_m;
+    d["fresnel_number"] = r.fresnel_number;
+    d["fresnel_number_with_lens"] = r.fresnel_number_with_lens;
+    d["fresnel_number_with_lens_at_u"] = r.fresnel_number_with_lens_at_u;
+    d["effective_distance_m"] = r.effective_distance_m;
+    d["effective_distance_at_u_m"] = r.effective_distance_at_u_m;
+    d["magnification"] = r.magnification;
+    d["magnification_at_u"] = r.magnification_at_u;
+    d["geometric_spot_m"] = r.geometric_spot_m;
+    d["geometric_spot_at_u_m"] = r.geometric_spot_at_u_m;
+    d["pixels_per_cell"] = r.pixels_per_cell;
+    d["pixels_per_cell_at_u"] = r.pixels_per_cell_at_u;
+    d["integer_pixels_per_cell"] = r.integer_pixels_per_cell;
+    d["pinhole_for_integer_pixels_m"] = r.pinhole_for_integer_pixels_m;
+    d["max_separation_m"] = r.max_separation_m;
+    d["lsi_tolerance_px"] = r.options.lsi_tolerance_px;
+    d["lsi_min_object_distance_m"] = r.lsi_min_object_distance_m;
+    d["lsi_mismatch_px"] = r.lsi_mismatch_px;
+    d["lsi_shift_invariant"] = r.is_shift_invariant();
+    d["psf_size_px"] = r.psf_size_px;
+    d["periods_on_sensor"] = py::dict(py::arg("cols") = r.periods_on_sensor_cols,
+                                      py::arg("rows") = r.periods_on_sensor_rows);
+    d["mask_size_m"] =
+        py::dict(py::arg("width") = r.mask_width_m, py::arg("height") = r.mask_height_m);
+    d["open_fraction"] = r.open_fraction;
+    d["light_gain"] = r.light_gain;
+    d["kernel_model"] = kernel_model_name(r.kernel_model);
+    d["kernel_reason"] = r.kernel_reason;
+    return d;
+}
+
+void bind_design(py::module_& m) {
+    py::class_<Camera>(m, "Camera",
+                       "The coded-pinhole-lens camera; lengths in metres (a float) or a string "
+                       "with a unit ('440um', '55mm', '6m'; object_distance_m and lens_focal_m "
+                       "also 'inf'). Defaults: the paper's prototype.")
+        .def(py::init([](const py::object& object_distance_m, const py::object& lens_focal_m,
+                         const py::object& sensor_distance_m, const py::object& wavelength_m,
+                         const py::object& pixel_pitch_m, const py::object& pinhole_m,
+                         int sensor_cols, int sensor_rows) {
+                 Camera c;
+                 c.object_distance_m = length_value(object_distance_m, "object_distance_m", true);
+                 c.lens_focal_m = length_value(lens_focal_m, "lens_focal_m", true);
+                 c.sensor_distance_m = length_value(sensor_distance_m, "sensor_distance_m", false);
+                 c.wavelength_m = length_value(wavelength_m, "wavelength_m", false);
+                 c.pixel_pitch_m = length_value(pixel_pitch_m, "pixel_pitch_m", false);
+                 c.pinhole_m = length_value(pinhole_m, "pinhole_m", false);
+                 c.sensor_cols = sensor_cols;
+                 c.sensor_rows = sensor_rows;
+                 validate(c);
+                 return c;
+             }),
+             py::arg("object_distance_m") = 6.0, py::arg("lens_focal_m") = 0.120,
+             py::arg("sensor_distance_m") = 0.055, py::arg("wavelength_m") = 550e-9,
+             py::arg("pixel_pitch_m") = 30e-6, py::arg("pinhole_m") = 440e-6,
+             py::arg("sensor_cols") = 720, py::arg("sensor_rows") = 480)
+        .def_readwrite("object_distance_m", &Camera::object_distance_m,
+                       "u: object distance, m (+inf: distant object)")
+        .def_readwrite("lens_focal_m", &Camera::lens_focal_m,
+                       "f': lens focal length, m (+inf: no lens)")
+        .def_readwrite("sensor_distance_m", &Camera::sensor_distance_m,
+                       "f: lens-to-sensor distance, m")
+        .def_readwrite("wavelength_m", &Camera::wavelength_m, "design wavelength, m")
+        .def_readwrite("pixel_pitch_m", &Camera::pixel_pitch_m, "w: sensor pixel pitch, m")
+        .def_readwrite("pinhole_m", &Camera::pinhole_m, "d: pinhole side = cell side, m")
+        .def_readwrite("sensor_cols", &Camera::sensor_cols, "sensor width, pixels")
+        .def_readwrite("sensor_rows", &Camera::sensor_rows, "sensor height, pixels")
+        .def(
+            "validate", [](const Camera& c) { validate(c); },
+            "ValueError naming the first field that is not physical.")
+        .def("__eq__",
+             [](const Camera& a, const Camera& b) {
+                 return a.object_distance_m == b.object_distance_m &&
+                        a.lens_focal_m == b.lens_focal_m &&
+                        a.sensor_distance_m == b.sensor_distance_m &&
+                        a.wavelength_m == b.wavelength_m && a.pixel_pitch_m == b.pixel_pitch_m &&
+                        a.pinhole_m == b.pinhole_m && a.sensor_cols == b.sensor_cols &&
+                        a.sensor_rows == b.sensor_rows;
+             })
+        .def("__repr__", [](const Camera& c) {
+            return "Camera(object_distance_m=" + std::to_string(c.object_distance_m) +
+                   ", lens_focal_m=" + std::to_string(c.lens_focal_m) +
+                   ", sensor_distance_m=" + std::to_string(c.sensor_distance_m) +
+                   ", wavelength_m=" + std::to_string(c.wavelength_m) +
+                   ", pixel_pitch_m=" + std::to_string(c.pixel_pitch_m) +
+                   ", pinhole_m=" + std::to_string(c.pinhole_m) +
+                   ", sensor_cols=" + std::to_string(c.sensor_cols) +
+                   ", sensor_rows=" + std::to_string(c.sensor_rows) + ")";
+        });
+
+    m.def("paper_camera", &paper_camera,
+          "The paper's prototype: u = 6 m, f' = 120 mm, f = 55 mm, d = 440 um, w = 30 um, "
+          "720 x 480 pixels, lambda = 550 nm.");
+
+    m.def(
+        "optics",
+        [](const std::optional<Camera>& camera, int grid, int holes, int tiles,
+           const std::string& kernel, double lsi_tolerance_px) {
+            PatternGeometry g{grid, holes, tiles, tiles};
+            OpticsOptions o;
+            o.lsi_tolerance_px = lsi_tolerance_px;
+            return optics_dict(compute_optics(camera.value_or(paper_camera()), g,
+                                              parse_kernel_model(kernel, "--kernel"), o));
+        },
+        py::arg("camera") = py::none(), py::arg("grid") = 16, py::arg("holes") = 20,
+        py::arg("tiles") = 2, py::arg("kernel") = "auto", py::arg("lsi_tolerance_px") = 1.0,
+        "The optics report of `pinmask design --json` as a dict (same keys; lengths in metres "
+        "with _m suffixes, infinite values as float('inf') where the CLI writes null and a "
+        "note). grid n (cells per side), holes K, tiles per side, kernel "
+        "auto|box|fraunhofer|fresnel|paper-fig3b|measured, lsi_tolerance_px in pixels.");
+
+    m.def(
+        "kernel_models",
+        [] {
+            return std::vector<std::string>{"auto",    "box",         "fraunhofer",
+                                            "fresnel", "paper-fig3b", "measured"};
+        },
+        "Names of the single-pinhole kernel models.");
+    m.def(
+        "choose_kernel_model",
+        [](double fresnel_number) {
+            const KernelChoice c = choose_kernel_model(fresnel_number);
+            return py::make_tuple(kernel_model_name(c.model), c.reason);
+        },
+        py::arg("fresnel_number"),
+        "The (model, reason) 'auto' picks for a Fresnel number N (dimensionless).");
+}
+
+}  // namespace pinmask::python

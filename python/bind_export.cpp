@@ -1,0 +1,312 @@
+// Fabrication export (export/geometry, write_any, read_any, drc, xor_area). export_mask() follows
+// `pinmask export` (cli/cmd_export.cpp) for the fabrication files: same layout options, same
+// bytes, the same read-back verification (verify(), re-pointed at export/read_back when that
+// library call exists, issue 11); the export sidecar and the PSF files are the CLI's
+// (write_psf() writes the PSF).
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/units.hpp"
+#include "export/drc.hpp"
+#include "export/geometry.hpp"
+#include "export/read_any.hpp"
+#include "export/rings.hpp"
+#include "export/vendor_rules.hpp"
+#include "export/write_any.hpp"
+#include "export/xor_area.hpp"
+#include "io/mask_json.hpp"
+#include "python/common.hpp"
+#include "python/values.hpp"
+
+namespace pinmask::python {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+py::array_t<std::int64_t> ring_array(const Ring& r) {
+    py::array_t<std::int64_t> a({static_cast<py::ssize_t>(r.size()), py::ssize_t{2}});
+    auto v = a.mutable_unchecked<2>();
+    for (std::size_t i = 0; i < r.size(); ++i) {
+        v(static_cast<py::ssize_t>(i), 0) = r[i].x;
+        v(static_cast<py::ssize_t>(i), 1) = r[i].y;
+    }
+    return a;
+}
+
+py::list rings_list(const std::vector<Ring>& rings) {
+    py::list l;
+    for (const Ring& r : rings) l.append(ring_array(r));
+    return l;
+}
+
+py::tuple box_tuple(const BoxNm& b) { return py::make_tuple(b.x0, b.y0, b.x1, b.y1); }
+
+struct LayoutArgs {
+    std::string tone = "clear", shape = "square";
+    int sides = 8;
+    bool mirror = false, marks = false;
+    std::optional<std::string> label;  // label id; None: no label
+    py::object frame, chord_tol, grid, hole_side;
+    std::size_t max_vertices = kGdsFriendlyMaxVertices;
+};
+
+double length_arg(const py::object& v, const char* flag) { return length_value(v, flag, false); }
+
+LayoutOptions layout_options(const LayoutArgs& a, const Mask& mask) {
+    LayoutOptions lo;
+    lo.tone = parse_tone(a.tone, "--tone");
+    lo.shape = parse_hole_shape(a.shape, "--shape");
+    lo.polygon_sides = a.sides;
+    lo.mirror = a.mirror;
+    lo.marks = a.marks;
+    lo.frame_m = length_arg(a.frame, "--frame");
+    if (!(py::isinstance<py::str>(a.chord_tol) && a.chord_tol.cast<std::string>() == "auto")) {
+        lo.chord_tolerance_m = length_arg(a.chord_tol, "--chord-tol");
+        if (!(lo.chord_tolerance_m > 0))
+            throw invalid_field("--chord-tol", py::str(a.chord_tol).cast<std::string>(),
+                                "must be > 0 (or auto)");
+    }
+    lo.grid_m = length_arg(a.grid, "--grid");
+    if (!a.hole_side.is_none()) lo.hole_side_m = length_arg(a.hole_side, "--hole-side");
+    lo.max_vertices = a.max_vertices;
+    if (a.label) lo.label_lines = default_label_lines(mask, *a.label);
+    return lo;
+}
+
+bool ring_less(const Ring& a, const Ring& b) {
+    return std::lexicographical_compare(
+        a.begin(), a.end(), b.begin(), b.end(),
+        [](const PointNm& p, const PointNm& q) { return p.x != q.x ? p.x < q.x : p.y < q.y; });
+}
+
+std::string file_bytes(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    if (!in && !in.eof()) throw RuntimeFailure("cannot read back " + p.string());
+    return s.str();
+}
+
+// `pinmask export`'s verify(): the file read back from disk against the design.
+std::string verify(const fs::path& tmp, FabFormat f, const std::vector<Ring>& design,
+                   const Layout& l) {
+    const FileGeometry g = read_fabrication_bytes(file_bytes(tmp), f);
+    const std::vector<Ring> got = canonical_rings(g.rings);
+    const auto hash = g.info.find("hash");
+    if (hash == g.info.end() || hash->second != l.mask_hash)
+        throw RuntimeFailure(fab_format_name(f) + " file read back lacks the mask hash");
+    if (got == design)
+        return "read back: " + std::to_string(got.size()) + " polygons identical to the design";
+    std::vector<Ring> only_file, only_design;
+    std::set_difference(got.begin(), got.end(), design.begin(), design.end(),
+                        std::back_inserter(only_file), ring_less);
+    std::set_difference(design.begin(), design.end(), got.begin(), got.end(),
+                        std::back_inserter(only_design), ring_less);
+    const double xor_nm2 = xor_area_nm2(only_file, only_design);
+    if (xor_nm2 != 0)
+        throw RuntimeFailure(fab_format_name(f) + " file read back differs from the design: " +
+                             std::to_string(only_file.size()) + " rings only in the file, " +
+                             std::to_string(only_design.size()) + " only in the design, XOR area " +
+                             std::to_string(xor_nm2 * 1e-6) + " um^2");
+    return "read back: same area as the design (XOR 0), " + std::to_string(got.size()) +
+           " polygons";
+}
+
+std::vector<FabFormat> parse_formats(const std::vector<std::string>& list) {
+    std::vector<FabFormat> out;
+    for (const std::string& item : list) {
+        const FabFormat f = parse_fab_format(item, "--format");
+        if (std::find(out.begin(), out.end(), f) == out.end()) out.push_back(f);
+    }
+    if (out.empty()) throw invalid_field("--format", "[]", "names no format");
+    return out;
+}
+
+}  // namespace
+
+void bind_export(py::module_& m) {
+    py::class_<Layout>(m, "Layout",
+                       "Mask geometry for fabrication in integer nanometres (origin at the mask "
+                       "centre, y up): polygons (each a (k, 2) int64 array of x, y in nm, "
+                       "counter-clockwise), annotations (marks, label), boxes (x0, y0, x1, y1).")
+        .def_property_readonly("polygons", [](const Layout& l) { return rings_list(l.polygons); })
+        .def_property_readonly("annotations",
+                               [](const Layout& l) { return rings_list(l.annotations); })
+        .def_property_readonly("active_area",
+                               [](const Layout& l) { return box_tuple(l.active_area); })
+        .def_property_readonly("extent", [](const Layout& l) { return box_tuple(l.extent); })
+        .def_property_readonly("tone", [](const Layout& l) { return tone_name(l.tone); })
+        .def_readonly("mirrored", &Layout::mirrored)
+        .def_readonly("grid_nm", &Layout::grid_nm)
+        .def_readonly("mask_hash", &Layout::mask_hash);
+
+    auto layout_fn =
+        [](const py::handle& mask_obj, const std::string& tone, const std::string& shape, int sides,
+           bool mirror, bool marks, const std::optional<std::string>& label,
+           const py::object& frame, const py::object& chord_tol, const py::object& grid,
+           const py::object& hole_side, std::size_t max_vertices, bool allow_spacing_violations) {
+            const Mask mk = mask_arg(mask_obj, allow_spacing_violations);
+            LayoutArgs a{tone,  shape,     sides, mirror,    marks,       label,
+                         frame, chord_tol, grid,  hole_side, max_vertices};
+            const LayoutOptions lo = layout_options(a, mk);
+            py::gil_scoped_release release;
+            return make_layout(mk, lo);
+        };
+    m.def("layout", layout_fn, py::arg("mask"), py::arg("tone") = "clear",
+          py::arg("shape") = "square", py::arg("sides") = 8, py::arg("mirror") = false,
+          py::arg("marks") = false, py::arg("label") = py::none(), py::arg("frame") = "0",
+          py::arg("chord_tol") = "auto", py::arg("grid") = "1nm", py::arg("hole_side") = py::none(),
+          py::arg("max_vertices") = kGdsFriendlyMaxVertices,
+          py::arg("allow_spacing_violations") = false,
+          "The fabrication layout `pinmask export` builds: tone clear|dark, shape "
+          "square|circle|polygon (sides), mirror (emulsion side), alignment marks, label (its id "
+          "string, or None for none), frame width, chord_tol ('auto' or a length), grid "
+          "(manufacturing grid), hole_side (default the cell pitch); lengths in metres or with "
+          "a unit ('1mm').");
+
+    m.def(
+        "fabrication_bytes",
+        [](const Layout& layout, const std::string& format, int layer, int datatype,
+           const std::string& dxf_layer, double dpi, const py::object& margin) {
+            WriteOptions w;
+            w.gds = {.layer = layer, .datatype = datatype};
+            w.dxf = {.layer = dxf_layer};
+            w.pdf.margin_m = length_value(margin, "--margin", false);
+            w.png_dpi = dpi;
+            const FabFormat f = parse_fab_format(format, "--format");
+            std::string bytes;
+            {
+                py::gil_scoped_release release;
+                bytes = write_fabrication_bytes(layout, f, w);
+            }
+            return py::bytes(bytes);
+        },
+        py::arg("layout"), py::arg("format"), py::arg("layer") = 1, py::arg("datatype") = 0,
+        py::arg("dxf_layer") = "PINMASK", py::arg("dpi") = 2400.0, py::arg("margin") = "10mm",
+        "The bytes of one fabrication file: svg | pdf | gds | dxf | gerber | png (GDS layer and "
+        "datatype, DXF layer name, PNG dots per inch, PDF margin).");
+
+    m.def(
+        "export_mask",
+        [layout_fn](
+            const py::handle& mask_obj, const std::string& out_dir,
+            const std::vector<std::string>& formats, const std::optional<std::string>& stem_opt,
+            const std::string& tone, const std::string& shape, int sides, bool mirror, bool marks,
+            bool label, const std::string& label_id, const py::object& frame,
+            const py::object& chord_tol, const py::object& grid, const py::object& hole_side,
+            std::size_t max_vertices, int layer, int datatype, const std::string& dxf_layer,
+            double dpi, const py::object& margin, const std::string& vendor, bool require_drc_clean,
+            bool allow_spacing_violations) {
+            const std::vector<FabFormat> fmts = parse_formats(formats);
+            if (out_dir.empty()) throw invalid_field("-o", "''", "an output directory is required");
+            if (fs::exists(out_dir) && !fs::is_directory(out_dir))
+                throw invalid_field("-o", out_dir, "exists and is not a directory");
+            const Mask mk = mask_arg(mask_obj, allow_spacing_violations);
+            std::string stem = stem_opt.value_or("");
+            if (stem.empty()) {
+                if (py::isinstance<Mask>(mask_obj)) {
+                    stem = "mask";
+                } else {
+                    stem = fs::path(py::str(mask_obj).cast<std::string>()).filename().string();
+                    for (const char* suffix : {".mask.json", ".json"}) {
+                        const std::string s(suffix);
+                        if (stem.size() > s.size() && stem.ends_with(s)) {
+                            stem = stem.substr(0, stem.size() - s.size());
+                            break;
+                        }
+                    }
+                }
+            }
+            if (stem.empty() || stem.find('/') != std::string::npos)
+                throw invalid_field("--stem", stem, "must be a plain file name");
+            const Layout layout =
+                layout_fn(py::cast(mk), tone, shape, sides, mirror, marks,
+                          label ? std::optional<std::string>(label_id.empty() ? stem : label_id)
+                                : std::nullopt,
+                          frame, chord_tol, grid, hole_side, max_vertices, true);
+            WriteOptions w;
+            w.gds = {.layer = layer, .datatype = datatype};
+            w.dxf = {.layer = dxf_layer};
+            w.pdf.margin_m = length_value(margin, "--margin", false);
+            w.png_dpi = dpi;
+            const VendorRules rules = vendor_rules(vendor);
+            py::list files;
+            DrcReport drc;
+            {
+                py::gil_scoped_release release;
+                const std::vector<Ring> design = canonical_rings(all_rings(layout));
+                drc = run_drc(layout, rules_for_mask(mk, rules));
+                if (require_drc_clean && !drc.clean()) {
+                    std::string what;
+                    for (const auto& [rule, n] : drc.counts)
+                        what += " " + rule + "=" + std::to_string(n);
+                    throw RuntimeFailure("design-rule check (" + vendor + ") found violations:" +
+                                         what + "; run `pinmask check` for details");
+                }
+                std::vector<std::pair<FabFormat, std::string>> contents;
+                for (FabFormat f : fmts)
+                    contents.push_back({f, write_fabrication_bytes(layout, f, w)});
+                fs::create_directories(out_dir);
+                StagedFiles staged;
+                std::vector<std::tuple<std::string, std::string, std::size_t, std::string>> info;
+                for (const auto& entry : contents) {
+                    const FabFormat f = entry.first;
+                    const std::string& bytes = entry.second;
+                    const fs::path path = fs::path(out_dir) / (stem + fab_extension(f));
+                    std::string check = "not readable (written only)";
+                    staged.stage(path, [&](const fs::path& tmp) {
+                        {
+                            std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+                            out.write(bytes.data(), std::streamsize(bytes.size()));
+                            if (!out) throw RuntimeFailure("cannot write " + tmp.string());
+                        }
+                        if (is_readable(f)) check = verify(tmp, f, design, layout);
+                    });
+                    info.emplace_back(path.string(), fab_format_name(f), bytes.size(), check);
+                }
+                staged.commit();
+                py::gil_scoped_acquire gil;
+                for (const auto& [path, format, size, check] : info) {
+                    py::dict d;
+                    d["path"] = path;
+                    d["format"] = format;
+                    d["bytes"] = size;
+                    d["verification"] = check;
+                    files.append(d);
+                }
+            }
+            py::dict out;
+            out["files"] = files;
+            out["drc"] = py::dict(py::arg("vendor") = vendor, py::arg("clean") = drc.clean(),
+                                  py::arg("counts") = drc.counts);
+            out["mask_hash"] = layout.mask_hash;
+            return out;
+        },
+        py::arg("mask"), py::arg("out_dir"),
+        py::arg("formats") = std::vector<std::string>{"svg", "pdf", "gds", "dxf", "gerber", "png"},
+        py::arg("stem") = py::none(), py::arg("tone") = "clear", py::arg("shape") = "square",
+        py::arg("sides") = 8, py::arg("mirror") = false, py::arg("marks") = false,
+        py::arg("label") = false, py::arg("label_id") = "", py::arg("frame") = "0",
+        py::arg("chord_tol") = "auto", py::arg("grid") = "1nm", py::arg("hole_side") = py::none(),
+        py::arg("max_vertices") = kGdsFriendlyMaxVertices, py::arg("layer") = 1,
+        py::arg("datatype") = 0, py::arg("dxf_layer") = "PINMASK", py::arg("dpi") = 2400.0,
+        py::arg("margin") = "10mm", py::arg("vendor") = "none",
+        py::arg("require_drc_clean") = false, py::arg("allow_spacing_violations") = false,
+        R"(Writes the fabrication files of `pinmask export MASK -o out_dir` (same options, same
+bytes): out_dir/<stem>.svg .pdf .gds .dxf .gbr .png, all or nothing; each readable format is read
+back from disk and compared with the design (identical polygons or XOR area 0, and the mask
+hash), else RuntimeError and no file. The design-rule check (vendor film | chrome | none) is
+reported (require_drc_clean: RuntimeError on violations). stem: default the mask file's name
+('mask' for a Mask object). The export sidecar JSON and the PSF files are the CLI's; write_psf()
+writes the PSF. Returns {files: [{path, format, bytes, verification}], drc: {vendor, clean,
+counts}, mask_hash}.)");
+}
+
+}  // namespace pinmask::python

@@ -1,0 +1,258 @@
+// Mask metrics (optimize/autocorrelation, spectrum_metrics, analytic_error, simulated_metrics).
+// metrics() is the metric row `pinmask compare` prints (cli/compare_data compare_mask, the one
+// routine behind compare's numbers today); when optimize/mask_metrics lands (issue 11) it is
+// re-pointed there. The other functions bind the library metrics one by one.
+#include "cli/analytic_setup.hpp"
+#include "cli/compare_data.hpp"
+#include "core/error.hpp"
+#include "core/fft.hpp"
+#include "design/psf.hpp"
+#include "optimize/analytic_error.hpp"
+#include "optimize/autocorrelation.hpp"
+#include "optimize/scene_prior.hpp"
+#include "optimize/scenes.hpp"
+#include "optimize/simulated_metrics.hpp"
+#include "optimize/spectrum_metrics.hpp"
+#include "python/common.hpp"
+#include "python/metrics_common.hpp"
+#include "python/values.hpp"
+
+namespace pinmask::python {
+
+cli::CompareSettings compare_settings(double snr_db, const std::vector<std::string>& scenes,
+                                      const std::string& filter, int prior_scenes,
+                                      const std::string& nsr, const std::string& tv_lambda,
+                                      int tv_iterations, std::uint64_t seed) {
+    cli::CompareSettings s;
+    s.snr_db = snr_db;
+    for (const std::string& item : scenes) {
+        SceneSpec spec = scene_from_name(item);
+        if (spec.kind == SceneKind::kNatural) spec.seed = 0;
+        s.scenes.push_back(spec);
+    }
+    s.analytic_filter = cli::parse_wiener_filter(filter);
+    s.prior_scenes = prior_scenes;
+    s.wiener_nsr = cli::parse_weight_choice(nsr, "--nsr");
+    s.tv_lambda = cli::parse_weight_choice(tv_lambda, "--tv-lambda");
+    s.tv_iterations = tv_iterations;
+    s.seed = seed;
+    cli::validate(s);
+    return s;
+}
+
+py::dict row_dict(const cli::CompareRow& r) {
+    py::dict d;
+    d["name"] = r.name;
+    d["kind"] = r.kind;
+    d["source"] = r.source;
+    d["geometry_hash"] = r.geometry_hash;
+    d["n"] = r.n;
+    d["holes"] = r.holes;
+    d["pixels_per_cell"] = r.pixels_per_cell;
+    d["period_px"] = r.period_px;
+    d["min_spacing_cells"] = r.min_spacing_cells;
+    d["spacing_ok"] = r.spacing_ok;
+    d["spacing_violations"] = r.spacing_violations;
+    d["max_sidelobe"] = r.max_sidelobe;
+    d["peak_to_sidelobe_ratio"] = r.peak_to_sidelobe_ratio;
+    d["min_abs_pattern_spectrum"] = r.min_abs_pattern_spectrum;
+    d["spectral_flatness"] = r.spectral_flatness;
+    d["otf_condition_number"] = r.otf_condition_number;
+    d["analytic_wiener_psnr_db"] = r.analytic_wiener_psnr_db;
+    d["wiener_psnr_db"] = r.wiener_psnr_db;
+    d["wiener_ssim"] = r.wiener_ssim;
+    d["wiener_nsr"] = r.wiener_nsr;
+    d["tv_psnr_db"] = r.tv_psnr_db;
+    d["tv_ssim"] = r.tv_ssim;
+    d["tv_lambda"] = r.tv_lambda;
+    return d;
+}
+
+namespace {
+
+WienerFilterSpec filter_spec(const std::string& text) { return cli::parse_wiener_filter(text); }
+
+}  // namespace
+
+void bind_metrics(py::module_& m) {
+    m.def(
+        "metrics",
+        [](const py::handle& mask_obj, double snr_db, const std::vector<std::string>& scenes,
+           const std::string& filter, int prior_scenes, const std::string& nsr,
+           const std::string& tv_lambda, int tv_iterations, std::uint64_t seed,
+           const std::string& name) {
+            const cli::CompareSettings s = compare_settings(snr_db, scenes, filter, prior_scenes,
+                                                            nsr, tv_lambda, tv_iterations, seed);
+            const Mask mk = mask_arg(mask_obj, true);
+            cli::CompareEntry e{name, "input",
+                                py::isinstance<py::str>(mask_obj) ? mask_obj.cast<std::string>()
+                                                                  : std::string("python"),
+                                mk};
+            cli::CompareResult r;
+            {
+                py::gil_scoped_release release;
+                cli::SceneCache cache;
+                r = cli::compare_mask(e, s, cache);
+            }
+            return row_dict(r.row);
+        },
+        py::arg("mask"), py::arg("snr_db") = 30.0,
+        py::arg("scenes") = std::vector<std::string>{"letter-R", "usaf"},
+        py::arg("filter") = "optimal", py::arg("prior_scenes") = cli::kDefaultPriorScenes,
+        py::arg("nsr") = "tuned", py::arg("tv_lambda") = "1e-3", py::arg("tv_iterations") = 200,
+        py::arg("seed") = 1, py::arg("name") = "mask",
+        "The metric row of `pinmask compare` for one mask (same settings, same numbers): "
+        "sidelobes, spectrum, OTF condition, analytic Wiener PSNR (dB; filter 'optimal' or "
+        "'nsr:VALUE', prior of prior_scenes natural textures), simulated Wiener and TV-L2 PSNR "
+        "(dB) and SSIM over `scenes` at snr_db dB (Gaussian); nsr and tv_lambda: 'tuned' or a "
+        "number > 0.");
+
+    m.def(
+        "sidelobes",
+        [](const Pattern& p) {
+            validate(p, true);
+            const SidelobeMetrics s = sidelobe_metrics_from_spectrum(pattern_spectrum(p));
+            py::dict d;
+            d["peak"] = s.peak;
+            d["max_sidelobe"] = s.max_sidelobe;
+            d["mean_sidelobe"] = s.mean_sidelobe;
+            d["integrated_sidelobe_level"] = s.integrated_sidelobe_level;
+            d["peak_to_sidelobe_ratio"] = s.peak_to_sidelobe_ratio;
+            return d;
+        },
+        py::arg("pattern"),
+        "Torus autocorrelation sidelobes of a pattern: peak R(0) = K, max sidelobe (counts), "
+        "mean sidelobe, integrated sidelobe level sum R(d)^2 / K^2 (d != 0), peak/max ratio.");
+    m.def(
+        "autocorrelation",
+        [](const Pattern& p) {
+            validate(p, true);
+            const std::vector<int> r = autocorrelation_from_spectrum(pattern_spectrum(p));
+            py::array_t<int> a({p.n, p.n});
+            std::copy(r.begin(), r.end(), a.mutable_data());
+            return a;
+        },
+        py::arg("pattern"), "R(dr, dc) on the n x n torus as an int array, R(0, 0) = K.");
+    m.def(
+        "spectrum_metrics",
+        [](const Pattern& p) {
+            validate(p, true);
+            const PatternSpectrumMetrics s = pattern_spectrum_metrics(pattern_spectrum(p));
+            py::dict d;
+            d["min_abs_pattern_spectrum"] = s.min_abs_pattern_spectrum;
+            d["spectral_flatness"] = s.spectral_flatness;
+            d["open_fraction"] = s.open_fraction;
+            d["light_gain"] = s.light_gain;
+            return d;
+        },
+        py::arg("pattern"),
+        "Spectrum of the n x n pattern DFT P^: min |P^(k)| over k != 0, spectral flatness "
+        "(geometric/arithmetic mean of |P^|^2), open fraction K/n^2, light gain K.");
+
+    m.def(
+        "analytic_error",
+        [](const py::handle& mask_obj, std::optional<double> snr_db, std::optional<double> photons,
+           std::optional<double> read_noise, std::optional<double> dark_current,
+           std::optional<double> full_well, std::optional<int> bits,
+           std::optional<double> optical_density, const std::string& filter, int prior_scenes,
+           std::uint64_t prior_first_seed) {
+            const NoiseModel noise = noise_model(
+                {snr_db, photons, read_noise, dark_current, full_well, optical_density, bits});
+            if (noise.kind == NoiseKind::kNone)
+                throw invalid_field("snr_db", "inf", "the analytic error needs noise");
+            const Mask mk = mask_arg(mask_obj, true);
+            if (prior_scenes < 1)
+                throw invalid_field("--prior-scenes", std::to_string(prior_scenes), "must be >= 1");
+            const bool tuned = filter == "tuned";
+            const WienerFilterSpec f = tuned ? WienerFilterSpec{} : filter_spec(filter);
+            AnalyticError e;
+            {
+                py::gil_scoped_release release;
+                const int n = mk.pattern.n, ppc = mk.psf.pixels_per_cell, mp = n * ppc;
+                const Kernel k = mask_kernel(mk);
+                const AnalyticWienerModel model(
+                    expand_half_spectrum(kernel_spectrum(k, n, ppc), mp),
+                    natural_scene_prior(mp, mp, prior_scenes, prior_first_seed), noise);
+                const ComplexPlane ps = pattern_spectrum(mk.pattern);
+                e = tuned ? model.evaluate_tuned_nsr(ps) : model.evaluate(ps, f);
+            }
+            py::dict d;
+            d["mse"] = e.mse;
+            d["psnr_db"] = e.psnr_db;
+            d["noise_variance"] = e.noise_variance;
+            d["mean_square_capture"] = e.mean_square_capture;
+            d["nsr"] = e.nsr;
+            return d;
+        },
+        py::arg("mask"), py::arg("snr_db") = py::none(), py::arg("photons") = py::none(),
+        py::arg("read_noise") = py::none(), py::arg("dark_current") = py::none(),
+        py::arg("full_well") = py::none(), py::arg("bits") = py::none(),
+        py::arg("optical_density") = py::none(), py::arg("filter") = "optimal",
+        py::arg("prior_scenes") = cli::kDefaultPriorScenes, py::arg("prior_first_seed") = 0,
+        "Expected Wiener error in closed form (optimize/analytic_error): filter 'optimal' "
+        "(per-frequency), 'nsr:VALUE' (deconvwnr's fixed NSR) or 'tuned' (the NSR minimising "
+        "the expected MSE); prior: the mean |X^|^2 of prior_scenes natural 1/f textures (seeds "
+        "prior_first_seed..); noise as simulate() (Gaussian snr_db, default 30, or photons ...). "
+        "Returns {mse (per pixel, scene in [0, 1]), psnr_db, noise_variance, "
+        "mean_square_capture, nsr}.");
+
+    m.def(
+        "simulated_quality",
+        [](const py::handle& mask_obj, const std::vector<std::string>& scenes,
+           const std::string& decoder, std::optional<double> snr_db, std::optional<double> photons,
+           std::optional<double> read_noise, std::optional<double> dark_current,
+           std::optional<double> full_well, std::optional<int> bits,
+           std::optional<double> optical_density, const std::string& weight, int noise_seeds,
+           std::uint64_t seed, int tv_iterations) {
+            const NoiseModel noise = noise_model(
+                {snr_db, photons, read_noise, dark_current, full_well, optical_density, bits});
+            if (noise.kind == NoiseKind::kNone)
+                throw invalid_field("snr_db", "inf", "simulated quality needs noise");
+            if (decoder != "wiener" && decoder != "tv")
+                throw invalid_field("decoder", decoder, "must be wiener or tv");
+            const Mask mk = mask_arg(mask_obj, true);
+            SimulatedMetricsOptions so;
+            so.noise_seeds = noise_seeds;
+            so.seed = seed;
+            so.tv_iterations = tv_iterations;
+            const WeightChoice w = cli::parse_weight_choice(weight, "weight");
+            (decoder == "wiener" ? so.wiener_nsr : so.tv_lambda) = w;
+            so.validate();
+            SimulatedQuality q;
+            {
+                py::gil_scoped_release release;
+                const Plane psf = mask_psf(mk);
+                const int mp = static_cast<int>(psf.rows());
+                std::vector<NamedScene> named;
+                for (const auto& s : scenes)
+                    named.push_back({s, make_scene(scene_from_name(s), mp, mp)});
+                q = simulated_quality(
+                    psf, named, noise, static_cast<int>(mk.pattern.pinholes.size()),
+                    mk.pattern.n * mk.pattern.n,
+                    decoder == "wiener" ? SimulatedDecoder::kWiener : SimulatedDecoder::kTv, so);
+            }
+            py::dict d;
+            d["weight"] = q.weight;
+            d["mean_psnr_db"] = q.mean_psnr_db;
+            d["mean_ssim"] = q.mean_ssim;
+            py::dict per;
+            for (const auto& s : q.scenes)
+                per[py::str(s.scene)] = py::make_tuple(s.psnr_db, s.ssim);
+            d["scenes"] = per;
+            d["decodes"] = q.decodes;
+            return d;
+        },
+        py::arg("mask"), py::arg("scenes") = std::vector<std::string>{"letter-R", "usaf"},
+        py::arg("decoder") = "wiener", py::arg("snr_db") = py::none(),
+        py::arg("photons") = py::none(), py::arg("read_noise") = py::none(),
+        py::arg("dark_current") = py::none(), py::arg("full_well") = py::none(),
+        py::arg("bits") = py::none(), py::arg("optical_density") = py::none(),
+        py::arg("weight") = "tuned", py::arg("noise_seeds") = 1, py::arg("seed") = 0,
+        py::arg("tv_iterations") = 200,
+        "Simulated reconstruction quality over one period (optimize/simulated_metrics): each "
+        "scene through the mask's PSF with noise (as simulate()), decoded by wiener or tv with "
+        "weight (NSR or lambda) 'tuned' or a number > 0, noise_seeds draws from seed. Returns "
+        "{weight, mean_psnr_db, mean_ssim, scenes: {name: (psnr_db, ssim)}, decodes}.");
+}
+
+}  // namespace pinmask::python

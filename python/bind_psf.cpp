@@ -1,0 +1,180 @@
+// Kernels and the PSF of a mask (design/kernel.hpp, design/psf.hpp), PSF files (io/psf_files),
+// image files (core/image_io). psf() and write_psf() follow `pinmask psf` (cli/cmd_psf.cpp).
+#include <filesystem>
+
+#include "core/error.hpp"
+#include "core/image_io.hpp"
+#include "design/kernel.hpp"
+#include "design/psf.hpp"
+#include "io/psf_files.hpp"
+#include "python/common.hpp"
+
+namespace pinmask::python {
+
+namespace {
+
+// The mask with `pinmask psf --kernel/--kernel-path` applied (same checks and messages).
+Mask with_kernel(Mask mask, const std::optional<std::string>& kernel,
+                 const std::string& kernel_path) {
+    const std::string k = kernel.value_or("");
+    if (!k.empty()) parse_kernel_model(k, "--kernel");
+    if (k == "measured" && kernel_path.empty())
+        throw invalid_field("--kernel", "measured", "needs --kernel-path FILE");
+    if (!kernel_path.empty() && k != "measured")
+        throw invalid_field("--kernel-path", kernel_path, "only used with --kernel measured");
+    if (!k.empty()) {
+        mask.psf.kernel.model = k;
+        mask.psf.kernel.measured_path = kernel_path;
+    }
+    return mask;
+}
+
+struct PsfAndKernel {
+    Plane psf;
+    Kernel kernel;
+};
+
+PsfAndKernel make_psf(const Mask& mask, double energy_fraction) {
+    KernelOptions ko;
+    ko.energy_fraction = energy_fraction;
+    const int ppc = mask.psf.pixels_per_cell;
+    check_psf_memory(mask.pattern.n, ppc, 2, 0);
+    PsfAndKernel r;
+    r.kernel = mask_kernel(mask, ko);
+    r.psf = synthesize_psf(mask.pattern, r.kernel, ppc);
+    return r;
+}
+
+py::dict sidecar_dict(const io::PsfSidecar& s) {
+    py::dict d;
+    d["mask_geometry_hash"] = s.mask_geometry_hash;
+    d["mask_file"] = s.mask_file;
+    d["grid_n"] = s.grid_n;
+    d["pixels_per_cell"] = s.pixels_per_cell;
+    d["pixel_pitch_m"] = s.pixel_pitch_m;
+    d["kernel_model"] = s.kernel_model;
+    d["kernel_reason"] = s.kernel_reason;
+    d["wavelengths"] = s.wavelengths;
+    d["kernel_enclosed_energy"] = s.kernel_enclosed_energy;
+    d["kernel_support_capped"] = s.kernel_support_capped;
+    d["kernel_support_px"] = py::make_tuple(s.kernel_rows, s.kernel_cols);
+    d["normalisation"] = s.normalisation;
+    d["size_px"] = py::make_tuple(s.rows, s.cols);
+    d["tiff_file"] = s.tiff_file;
+    d["npy_file"] = s.npy_file;
+    return d;
+}
+
+}  // namespace
+
+void bind_psf(py::module_& m) {
+    py::class_<Kernel>(m, "Kernel",
+                       "The single-pinhole kernel on the sensor's pixel grid (sum 1). `values` "
+                       "is a writable view of the kernel's own buffer (no copy).")
+        .def_property_readonly(
+            "values",
+            [](py::object self) {
+                Kernel& k = self.cast<Kernel&>();
+                const py::ssize_t r = k.values.rows(), c = k.values.cols();
+                return py::array_t<double>({r, c}, {c * 8, py::ssize_t{8}}, k.values.data(), self);
+            })
+        .def_readonly("origin_row", &Kernel::origin_row,
+                      "pixel row of values[0, 0], counted from the cell's top-left pixel")
+        .def_readonly("origin_col", &Kernel::origin_col)
+        .def_property_readonly(
+            "model", [](const Kernel& k) { return kernel_model_name(k.model); },
+            "resolved model (never auto)")
+        .def_readonly("model_reason", &Kernel::model_reason)
+        .def_readonly("enclosed_energy", &Kernel::enclosed_energy,
+                      "continuous energy kept before normalising (0..1)")
+        .def_readonly("support_capped", &Kernel::support_capped)
+        .def_readonly("wavelengths", &Kernel::wavelengths, "[(wavelength_m, weight)] used");
+
+    m.def(
+        "kernel",
+        [](const Mask& mask, double energy_fraction) {
+            KernelOptions ko;
+            ko.energy_fraction = energy_fraction;
+            py::gil_scoped_release release;
+            return mask_kernel(mask, ko);
+        },
+        py::arg("mask"), py::arg("energy_fraction") = KernelOptions{}.energy_fraction,
+        "The mask's single-pinhole kernel (support capped at the period). energy_fraction: "
+        "per-axis energy of the continuous profile the support keeps, in (0, 1].");
+
+    m.def(
+        "psf",
+        [](const Mask& mask, std::optional<std::string> kernel, const std::string& kernel_path,
+           double energy_fraction) {
+            const Mask mk = with_kernel(mask, kernel, kernel_path);
+            Plane psf;
+            {
+                py::gil_scoped_release release;
+                psf = make_psf(mk, energy_fraction).psf;
+            }
+            return to_array(std::move(psf));
+        },
+        py::arg("mask"), py::arg("kernel") = py::none(), py::arg("kernel_path") = "",
+        py::arg("energy_fraction") = KernelOptions{}.energy_fraction,
+        "The PSF of one period, (n ppc) x (n ppc) float64, sum 1, as `pinmask psf` computes it "
+        "(kernel: override the mask's model). The array owns the library's buffer (no copy).");
+
+    m.def(
+        "write_psf",
+        [](const Mask& mask, const std::filesystem::path& path, bool npy,
+           const std::string& mask_file, std::optional<std::string> kernel,
+           const std::string& kernel_path, double energy_fraction) {
+            const std::string ext = path.extension().string();
+            if (ext != ".tif" && ext != ".tiff")
+                throw invalid_field("-o", path.string(), "must end in .tif or .tiff");
+            const Mask mk = with_kernel(mask, kernel, kernel_path);
+            std::vector<std::filesystem::path> written;
+            {
+                py::gil_scoped_release release;
+                const PsfAndKernel pk = make_psf(mk, energy_fraction);
+                written = io::write_psf_files(path, pk.psf,
+                                              io::psf_sidecar_for(mk, pk.kernel, mask_file), npy);
+            }
+            std::vector<std::string> out;
+            for (const auto& p : written) out.push_back(p.string());
+            return out;
+        },
+        py::arg("mask"), py::arg("path"), py::arg("npy") = false, py::arg("mask_file") = "",
+        py::arg("kernel") = py::none(), py::arg("kernel_path") = "",
+        py::arg("energy_fraction") = KernelOptions{}.energy_fraction,
+        "Writes the PSF files of `pinmask psf MASK -o path [--npy]`: float32 TIFF (+ .npy) and "
+        "the JSON sidecar, all or nothing; mask_file is recorded in the sidecar (the CLI records "
+        "the mask path it was given). Returns the paths written.");
+
+    m.def(
+        "read_psf",
+        [](const std::filesystem::path& path) {
+            io::PsfFile f = io::read_psf_file(path);
+            py::object side = f.sidecar ? py::object(sidecar_dict(*f.sidecar)) : py::none();
+            return py::make_tuple(to_array(std::move(f.psf)), side);
+        },
+        py::arg("path"),
+        "(psf, sidecar) of a PSF image (TIFF/PNG/npy) and its JSON sidecar (None when absent); "
+        "the PSF renormalised to sum 1, as the decoder reads it.");
+
+    m.def(
+        "read_image",
+        [](const std::filesystem::path& path) {
+            LoadedImage li = read_image(path);
+            return py::make_tuple(image_to_array(std::move(li.image)), li.full_scale);
+        },
+        py::arg("path"),
+        "(image, full_scale) of a TIFF, PNG or .npy file (by content): raw values (integer "
+        "files as counts, full_scale = 255 or 65535; float files 1.0). Grey: (rows, cols), no "
+        "copy; colour: (rows, cols, 3).");
+    m.def(
+        "write_image",
+        [](const std::filesystem::path& path, const py::handle& image) {
+            write_image(path, image_arg(image, "image"));
+        },
+        py::arg("path"), py::arg("image"),
+        "Writes by extension: .tif/.tiff (float32), .png (16-bit), .npy (float32); PNG takes "
+        "values in [0, 1] (clamped). Atomic. 2-D: grey; 3-D (rows, cols, channels).");
+}
+
+}  // namespace pinmask::python

@@ -1,0 +1,170 @@
+// Scenes and forward simulation (optimize/scenes.hpp, optimize/simulate.hpp): simulate() follows
+// `pinmask simulate` (cli/cmd_simulate.cpp) minus the file writing.
+#include <cmath>
+#include <sstream>
+
+#include "cli/noise_options.hpp"
+#include "core/error.hpp"
+#include "core/resource_limits.hpp"
+#include "core/units.hpp"
+#include "design/psf.hpp"
+#include "io/mask_json.hpp"
+#include "optimize/scenes.hpp"
+#include "optimize/simulate.hpp"
+#include "python/common.hpp"
+#include "python/values.hpp"
+
+namespace pinmask::python {
+
+NoiseModel noise_model(const NoiseArgs& a) {
+    if (a.photons) {
+        if (a.snr_db) {
+            std::ostringstream v;
+            v << *a.snr_db;
+            throw invalid_field("--snr", v.str(), "cannot be combined with --photons");
+        }
+        cli::SensorFlags f;
+        f.read_noise = a.read_noise;
+        f.dark_current = a.dark_current;
+        f.full_well = a.full_well;
+        f.optical_density = a.optical_density;
+        f.bits = a.bits;
+        return cli::photon_model(*a.photons, f, nullptr);
+    }
+    const std::pair<bool, const char*> given[] = {
+        {a.read_noise.has_value(), "--read-noise"},
+        {a.dark_current.has_value(), "--dark-current"},
+        {a.full_well.has_value(), "--full-well"},
+        {a.bits.has_value(), "--bits"},
+        {a.optical_density.has_value(), "--optical-density"}};
+    for (const auto& [is_given, flag] : given) {
+        if (is_given) {
+            throw InvalidInput(std::string(flag) +
+                               ": a sensor parameter of the photon model; give --photons too "
+                               "(the --snr model is Gaussian noise at a fixed SNR)");
+        }
+    }
+    NoiseModel m;
+    const double snr = a.snr_db.value_or(30.0);
+    if (std::isinf(snr) && snr > 0) {
+        m.kind = NoiseKind::kNone;
+        return m;
+    }
+    m.kind = NoiseKind::kGaussianSnr;
+    m.snr_db = snr;
+    validate(m);
+    return m;
+}
+
+Mask mask_arg(const py::handle& obj, bool allow_spacing_violations) {
+    if (py::isinstance<Mask>(obj)) return obj.cast<Mask>();
+    if (py::isinstance<py::str>(obj) || py::hasattr(obj, "__fspath__")) {
+        io::MaskReadOptions o;
+        o.allow_spacing_violations = allow_spacing_violations;
+        return io::read_mask_file(py::str(obj).cast<std::string>(), o);
+    }
+    throw InvalidInput("mask: expected a pinmask.Mask or the path of a *.mask.json");
+}
+
+void bind_simulate(py::module_& m) {
+    m.def("scene_names", &builtin_scene_names,
+          "Built-in scenes: letter-R, usaf, siemens-star, checker, point, natural.");
+    m.def(
+        "scene",
+        [](const std::string& name, int rows, int cols, std::uint64_t seed, double alpha) {
+            SceneSpec spec = scene_from_name(name);
+            if (rows >= 1 && cols >= 1) {  // make_scene names bad sizes; refuse huge ones first
+                // The scene plus its complex spectrum (natural scenes) as the working set.
+                check_memory(double(rows) * double(cols) * 3.0 * sizeof(double),
+                             "scene " + std::to_string(rows) + " x " + std::to_string(cols));
+            }
+            spec.seed = seed;
+            spec.alpha = alpha;
+            Image img;
+            {
+                py::gil_scoped_release release;
+                img = make_scene(spec, rows, cols);
+            }
+            return image_to_array(std::move(img));
+        },
+        py::arg("name"), py::arg("rows"), py::arg("cols"), py::arg("seed") = 0,
+        py::arg("alpha") = 1.0,
+        "A test scene at rows x cols, values in [0, 1]: a built-in name (natural: seed and "
+        "amplitude exponent alpha) or an image file (resampled by area). Grey scenes are "
+        "(rows, cols) and own the library's buffer.");
+
+    m.def(
+        "simulate",
+        [](const py::handle& mask_obj, const py::handle& scene_obj, std::optional<double> snr_db,
+           std::optional<double> photons, std::optional<double> read_noise,
+           std::optional<double> dark_current, std::optional<double> full_well,
+           std::optional<int> bits, std::optional<double> optical_density, bool full_sensor,
+           std::optional<std::pair<int, int>> sensor, bool dark_frame, std::uint64_t seed,
+           bool allow_violations) {
+            SimulationOptions sim;
+            sim.noise = noise_model(
+                {snr_db, photons, read_noise, dark_current, full_well, optical_density, bits});
+            sim.seed = seed;
+            sim.dark_frame = dark_frame;
+            if (sensor && !full_sensor) {
+                throw invalid_field(
+                    "--sensor",
+                    std::to_string(sensor->first) + "x" + std::to_string(sensor->second),
+                    "only applies with --full-sensor");
+            }
+            if (dark_frame && sim.noise.kind != NoiseKind::kPhoton) {
+                throw invalid_field("--dark-frame", "True",
+                                    "needs the photon model (--photons N): the --snr model has "
+                                    "no leak, dark current or read noise to record");
+            }
+            const Mask mask = mask_arg(mask_obj, allow_violations);
+            py::dict out;
+            SimulatedCapture s;
+            Plane psf;
+            {
+                Image scene;
+                const bool named = py::isinstance<py::str>(scene_obj);
+                const std::string scene_name_text = named ? scene_obj.cast<std::string>() : "";
+                if (!named) scene = image_arg(scene_obj, "scene");
+                py::gil_scoped_release release;
+                const Kernel kernel = mask_kernel(mask);
+                psf = synthesize_psf(mask.pattern, kernel, mask.psf.pixels_per_cell);
+                const int mp = static_cast<int>(psf.rows());
+                if (named) scene = make_scene(scene_from_name(scene_name_text), mp, mp);
+                sim.full_sensor = full_sensor;
+                if (full_sensor) {
+                    sim.sensor_cols = sensor ? sensor->first : mask.camera.sensor_cols;
+                    sim.sensor_rows = sensor ? sensor->second : mask.camera.sensor_rows;
+                }
+                s = simulate_capture(scene, psf, static_cast<int>(mask.pattern.pinholes.size()),
+                                     mask.pattern.n * mask.pattern.n, sim);
+            }
+            out["capture"] = image_to_array(std::move(s.capture));
+            out["dark"] = s.dark.empty() ? py::object(py::none())
+                                         : py::object(image_to_array(std::move(s.dark)));
+            out["clean"] = image_to_array(std::move(s.clean));
+            out["background"] = s.background;
+            out["origin"] = py::make_tuple(s.origin.row, s.origin.col);
+            out["whole_period_on_sensor"] = s.whole_period_on_sensor;
+            out["psf"] = to_array(std::move(psf));
+            return out;
+        },
+        py::arg("mask"), py::arg("scene") = "letter-R", py::arg("snr_db") = py::none(),
+        py::arg("photons") = py::none(), py::arg("read_noise") = py::none(),
+        py::arg("dark_current") = py::none(), py::arg("full_well") = py::none(),
+        py::arg("bits") = py::none(), py::arg("optical_density") = py::none(),
+        py::arg("full_sensor") = false, py::arg("sensor") = py::none(),
+        py::arg("dark_frame") = false, py::arg("seed") = 1, py::arg("allow_violations") = false,
+        "A simulated capture, as `pinmask simulate` computes it: the scene (a name, rendered at "
+        "one period, or an array of the period's size, values in [0, 1]) convolved with the "
+        "mask's PSF over one period, tiled over the sensor with full_sensor (sensor = (cols, "
+        "rows), default the mask's camera), and noise: Gaussian at snr_db dB (default 30; "
+        "float('inf') = noiseless) or the photon model (photons = electrons per pinhole for a "
+        "uniform scene of 1, read_noise e rms, dark_current e, full_well e, bits of the ADC, "
+        "optical_density of the film). dark_frame (photon model only) also draws the frame "
+        "through all-opaque film. Units: normalised capture units (noise_model.hpp). Returns "
+        "{capture, dark (None unless asked), clean, background (per channel), origin (row, col) "
+        "of the period in the frame, whole_period_on_sensor, psf}.");
+}
+
+}  // namespace pinmask::python

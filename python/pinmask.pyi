@@ -1,0 +1,340 @@
+# Type stub of the pinmask module (python/*.cpp). Units are SI (metres, seconds) unless a name
+# says otherwise. tests/python/test_stub.py checks that every public name of the module is here.
+from os import PathLike
+from typing import Any, Callable, Literal, Optional, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+FloatArray = npt.NDArray[np.float64]
+ArrayLike = npt.ArrayLike
+Length = Union[float, str]  # metres, or a string with a unit: "440um", "55mm", "6m", "inf"
+PathLikeStr = Union[str, PathLike[str]]
+MaskLike = Union["Mask", PathLikeStr]
+
+class Camera:
+    object_distance_m: float  # u, +inf: distant object
+    lens_focal_m: float  # f', +inf: no lens
+    sensor_distance_m: float  # f
+    wavelength_m: float
+    pixel_pitch_m: float  # w
+    pinhole_m: float  # d = cell side
+    sensor_cols: int
+    sensor_rows: int
+    def __init__(
+        self,
+        object_distance_m: Length = 6.0,
+        lens_focal_m: Length = 0.120,
+        sensor_distance_m: Length = 0.055,
+        wavelength_m: Length = 550e-9,
+        pixel_pitch_m: Length = 30e-6,
+        pinhole_m: Length = 440e-6,
+        sensor_cols: int = 720,
+        sensor_rows: int = 480,
+    ) -> None: ...
+    def validate(self) -> None: ...
+    def __eq__(self, other: object) -> bool: ...
+
+def paper_camera() -> Camera: ...
+def optics(
+    camera: Optional[Camera] = None,
+    grid: int = 16,
+    holes: int = 20,
+    tiles: int = 2,
+    kernel: str = "auto",
+    lsi_tolerance_px: float = 1.0,
+) -> dict[str, Any]: ...
+def kernel_models() -> list[str]: ...
+def choose_kernel_model(fresnel_number: float) -> tuple[str, str]: ...
+
+class Pattern:
+    n: int
+    pinholes: list[tuple[int, int]]  # (row, col)
+    tiles_rows: int
+    tiles_cols: int
+    min_spacing_cells: float
+    def __init__(
+        self,
+        n: int = 16,
+        pinholes: Sequence[tuple[int, int]] = ...,
+        tiles_rows: int = 2,
+        tiles_cols: int = 2,
+        min_spacing_cells: float = 2.0,
+    ) -> None: ...
+    def occupancy(self) -> npt.NDArray[np.uint8]: ...
+    def spacing_violations(self) -> list[tuple[tuple[int, int], tuple[int, int], float]]: ...
+    def validate(self, allow_spacing_violations: bool = False) -> None: ...
+
+class Mask:
+    pattern: Pattern
+    camera: Camera
+    pixels_per_cell: int
+    kernel: str
+    kernel_path: str
+    wavelengths: list[tuple[float, float]]
+    seed: int
+    generator: str
+    family: str
+    spacing_violations_allowed: bool
+    scores: dict[str, float]
+    def __init__(self) -> None: ...
+    def geometry_hash(self) -> str: ...
+    def to_json(self) -> str: ...
+    def save(self, path: PathLikeStr) -> None: ...
+
+def load_mask(path: PathLikeStr, allow_spacing_violations: bool = False) -> Mask: ...
+def save_mask(mask: Mask, path: PathLikeStr) -> None: ...
+def mask_from_json(text: str, allow_spacing_violations: bool = False) -> Mask: ...
+def generate(
+    family: Literal["random", "paper", "mura"] = "random",
+    grid: Optional[int] = None,
+    holes: Optional[int] = None,
+    tiles: Optional[int] = None,
+    spacing: Optional[float] = None,
+    seed: int = 1,
+    attempts: int = 20,
+    allow_violations: bool = False,
+    camera: Optional[Camera] = None,
+    kernel: str = "auto",
+    kernel_path: str = "",
+    pixels_per_cell: Optional[int] = None,
+) -> Mask: ...
+
+class Kernel:
+    @property
+    def values(self) -> FloatArray: ...  # a writable view of the kernel's buffer
+    origin_row: int
+    origin_col: int
+    @property
+    def model(self) -> str: ...
+    model_reason: str
+    enclosed_energy: float
+    support_capped: bool
+    wavelengths: list[tuple[float, float]]
+
+def kernel(mask: Mask, energy_fraction: float = 0.999) -> Kernel: ...
+def psf(
+    mask: Mask,
+    kernel: Optional[str] = None,
+    kernel_path: str = "",
+    energy_fraction: float = 0.999,
+) -> FloatArray: ...
+def write_psf(
+    mask: Mask,
+    path: PathLikeStr,
+    npy: bool = False,
+    mask_file: str = "",
+    kernel: Optional[str] = None,
+    kernel_path: str = "",
+    energy_fraction: float = 0.999,
+) -> list[str]: ...
+def read_psf(path: PathLikeStr) -> tuple[FloatArray, Optional[dict[str, Any]]]: ...
+def read_image(path: PathLikeStr) -> tuple[FloatArray, float]: ...
+def write_image(path: PathLikeStr, image: ArrayLike) -> None: ...
+def scene_names() -> list[str]: ...
+def scene(name: str, rows: int, cols: int, seed: int = 0, alpha: float = 1.0) -> FloatArray: ...
+def simulate(
+    mask: MaskLike,
+    scene: Union[str, ArrayLike] = "letter-R",
+    snr_db: Optional[float] = None,
+    photons: Optional[float] = None,
+    read_noise: Optional[float] = None,
+    dark_current: Optional[float] = None,
+    full_well: Optional[float] = None,
+    bits: Optional[int] = None,
+    optical_density: Optional[float] = None,
+    full_sensor: bool = False,
+    sensor: Optional[tuple[int, int]] = None,
+    dark_frame: bool = False,
+    seed: int = 1,
+    allow_violations: bool = False,
+) -> dict[str, Any]: ...
+def decode(
+    capture: ArrayLike,
+    psf: Optional[ArrayLike] = None,
+    mask: Optional[MaskLike] = None,
+    method: Literal["wiener", "tikhonov", "tv", "tvqc", "rl"] = "wiener",
+    model: Literal["cyclic", "linear"] = "cyclic",
+    nsr: float = 0.01,
+    lambda_: float = 1e-3,
+    regulariser: Literal["identity", "gradient"] = "identity",
+    eps: Optional[float] = None,
+    noise_sigma: Optional[float] = None,
+    nonneg: bool = False,
+    iters: int = 200,
+    tol: float = 1e-4,
+    crop: Union[str, tuple[int, int]] = "center",
+    dark: Optional[ArrayLike] = None,
+    progress: Optional[Callable[[float], Optional[bool]]] = None,
+    poll_s: float = 0.05,
+) -> dict[str, Any]: ...
+def metrics(
+    mask: MaskLike,
+    snr_db: float = 30.0,
+    scenes: Sequence[str] = ("letter-R", "usaf"),
+    filter: str = "optimal",
+    prior_scenes: int = 16,
+    nsr: str = "tuned",
+    tv_lambda: str = "1e-3",
+    tv_iterations: int = 200,
+    seed: int = 1,
+    name: str = "mask",
+) -> dict[str, Any]: ...
+def sidelobes(pattern: Pattern) -> dict[str, Any]: ...
+def autocorrelation(pattern: Pattern) -> npt.NDArray[np.int32]: ...
+def spectrum_metrics(pattern: Pattern) -> dict[str, float]: ...
+def analytic_error(
+    mask: MaskLike,
+    snr_db: Optional[float] = None,
+    photons: Optional[float] = None,
+    read_noise: Optional[float] = None,
+    dark_current: Optional[float] = None,
+    full_well: Optional[float] = None,
+    bits: Optional[int] = None,
+    optical_density: Optional[float] = None,
+    filter: str = "optimal",
+    prior_scenes: int = 16,
+    prior_first_seed: int = 0,
+) -> dict[str, float]: ...
+def simulated_quality(
+    mask: MaskLike,
+    scenes: Sequence[str] = ("letter-R", "usaf"),
+    decoder: Literal["wiener", "tv"] = "wiener",
+    snr_db: Optional[float] = None,
+    photons: Optional[float] = None,
+    read_noise: Optional[float] = None,
+    dark_current: Optional[float] = None,
+    full_well: Optional[float] = None,
+    bits: Optional[int] = None,
+    optical_density: Optional[float] = None,
+    weight: str = "tuned",
+    noise_seeds: int = 1,
+    seed: int = 0,
+    tv_iterations: int = 200,
+) -> dict[str, Any]: ...
+def search(
+    camera: Optional[Camera] = None,
+    grid: int = 16,
+    holes: int = 20,
+    tiles: int = 2,
+    spacing: float = 2.0,
+    kernel: str = "auto",
+    kernel_path: str = "",
+    pixels_per_cell: Optional[int] = None,
+    strategy: Literal["random", "anneal"] = "anneal",
+    time: str = "20s",
+    evals: int = 0,
+    threads: int = 1,
+    seed: int = 1,
+    top: int = 5,
+    snr_db: float = 30.0,
+    filter: str = "optimal",
+    w_analytic: float = 1.0,
+    w_max_sidelobe: float = 0.0,
+    w_sidelobe_energy: float = 0.0,
+    w_min_spectrum: float = 0.0,
+    prior_scenes: int = 16,
+    progress: Optional[Callable[[dict[str, Any]], Optional[bool]]] = None,
+    log_interval_s: float = 0.25,
+) -> dict[str, Any]: ...
+def compare(
+    masks: Sequence[MaskLike],
+    report: Optional[str] = None,
+    baselines: bool = False,
+    baseline_count: int = 100,
+    snr_db: float = 30.0,
+    scenes: Sequence[str] = ("letter-R", "usaf"),
+    filter: str = "optimal",
+    prior_scenes: int = 16,
+    nsr: str = "tuned",
+    tv_lambda: str = "1e-3",
+    tv_iterations: int = 200,
+    seed: int = 1,
+    allow_violations: bool = False,
+) -> dict[str, Any]: ...
+
+class Layout:
+    @property
+    def polygons(self) -> list[npt.NDArray[np.int64]]: ...  # (k, 2) x, y in nm
+    @property
+    def annotations(self) -> list[npt.NDArray[np.int64]]: ...
+    @property
+    def active_area(self) -> tuple[int, int, int, int]: ...
+    @property
+    def extent(self) -> tuple[int, int, int, int]: ...
+    @property
+    def tone(self) -> str: ...
+    mirrored: bool
+    grid_nm: int
+    mask_hash: str
+
+def layout(
+    mask: MaskLike,
+    tone: str = "clear",
+    shape: str = "square",
+    sides: int = 8,
+    mirror: bool = False,
+    marks: bool = False,
+    label: Optional[str] = None,
+    frame: Length = "0",
+    chord_tol: Length = "auto",
+    grid: Length = "1nm",
+    hole_side: Optional[Length] = None,
+    max_vertices: int = 199,
+    allow_spacing_violations: bool = False,
+) -> Layout: ...
+def fabrication_bytes(
+    layout: Layout,
+    format: Literal["svg", "pdf", "gds", "dxf", "gerber", "png"],
+    layer: int = 1,
+    datatype: int = 0,
+    dxf_layer: str = "PINMASK",
+    dpi: float = 2400.0,
+    margin: Length = "10mm",
+) -> bytes: ...
+def export_mask(
+    mask: MaskLike,
+    out_dir: str,
+    formats: Sequence[str] = ("svg", "pdf", "gds", "dxf", "gerber", "png"),
+    stem: Optional[str] = None,
+    tone: str = "clear",
+    shape: str = "square",
+    sides: int = 8,
+    mirror: bool = False,
+    marks: bool = False,
+    label: bool = False,
+    label_id: str = "",
+    frame: Length = "0",
+    chord_tol: Length = "auto",
+    grid: Length = "1nm",
+    hole_side: Optional[Length] = None,
+    max_vertices: int = 199,
+    layer: int = 1,
+    datatype: int = 0,
+    dxf_layer: str = "PINMASK",
+    dpi: float = 2400.0,
+    margin: Length = "10mm",
+    vendor: str = "none",
+    require_drc_clean: bool = False,
+    allow_spacing_violations: bool = False,
+) -> dict[str, Any]: ...
+def check(
+    input: Union[Mask, PathLikeStr],
+    mask: Optional[MaskLike] = None,
+    vendor: str = "film",
+    min_gap: Optional[Length] = None,
+    min_feature: Optional[Length] = None,
+    min_spacing: Optional[Length] = None,
+    max_vertices: Optional[int] = None,
+    list: int = 20,
+    max_xor_um2: float = 0.0,
+    shape: str = "square",
+    sides: int = 8,
+    hole_side: Optional[Length] = None,
+    frame: Optional[Length] = None,
+    chord_tol: Optional[Length] = None,
+) -> dict[str, Any]: ...
+def is_library_buffer(array: object) -> bool: ...
+def input_copies() -> int: ...

@@ -1,0 +1,79 @@
+"""Compare report, export and check: the module against `pinmask compare/export/check`."""
+import json
+
+import pytest
+
+import pinmask
+
+
+def test_compare_report_and_rows(tmp_path, mask7):
+    other = pinmask.generate(seed=8)
+    out = pinmask.compare([mask7, other], report=str(tmp_path / "r.pdf"), tv_iterations=30)
+    assert out["report"] == [str(tmp_path / "r.pdf")]
+    assert (tmp_path / "r.pdf").read_bytes()[:5] == b"%PDF-"
+    assert [r["geometry_hash"] for r in out["rows"]] == [mask7.geometry_hash(),
+                                                        other.geometry_hash()]
+    assert out["rows"][0]["analytic_wiener_psnr_db"] == pinmask.metrics(
+        mask7, tv_iterations=30)["analytic_wiener_psnr_db"]
+
+
+def test_compare_with_baselines_equals_cli(cli, tmp_path, mask7):
+    mask7.save(str(tmp_path / "m.mask.json"))
+    j = json.loads(cli.run("compare", "m.mask.json", "--baselines", "--baseline-count", "3",
+                           "--tv-iters", "20", "--json").stdout)
+    out = pinmask.compare([str(tmp_path / "m.mask.json")], baselines=True, baseline_count=3,
+                          tv_iterations=20)
+    assert [r["kind"] for r in out["rows"]] == [m["kind"] for m in j["masks"]]
+    for row, cli_row in zip(out["rows"], j["masks"]):
+        assert row["geometry_hash"] == cli_row["geometry_hash"]
+        assert row["wiener_psnr_db"] == cli_row["wiener_psnr_db"]
+
+
+def test_compare_refuses_two_cameras(mask7):
+    other = pinmask.generate(seed=8, camera=pinmask.Camera(object_distance_m=3.0))
+    with pytest.raises(ValueError, match="one camera"):
+        pinmask.compare([mask7, other])
+
+
+def test_export_same_bytes_as_cli(cli, tmp_path, mask7):
+    mask7.save(str(tmp_path / "m.mask.json"))
+    cli.run("export", "m.mask.json", "--format", "svg,gds,dxf,gerber,png", "--marks", "--label",
+            "--frame", "1mm", "--no-psf", "-o", "cli")
+    out = pinmask.export_mask(str(tmp_path / "m.mask.json"), str(tmp_path / "py"),
+                              formats=["svg", "gds", "dxf", "gerber", "png"], marks=True,
+                              label=True, frame="1mm")
+    assert len(out["files"]) == 5
+    for f in out["files"]:
+        name = f["path"].split("/")[-1]
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
+        if f["format"] != "png":
+            assert f["verification"].startswith("read back")
+    lay = pinmask.layout(mask7, marks=True, label="m", frame="1mm")
+    assert pinmask.fabrication_bytes(lay, "gds") == (tmp_path / "cli" / "m.gds").read_bytes()
+    assert len(lay.polygons) == 80  # 20 pinholes x 2 x 2 tiles
+    assert lay.polygons[0].shape[1] == 2
+
+
+def test_check_equals_cli_json(cli, tmp_path, mask7):
+    mask7.save(str(tmp_path / "m.mask.json"))
+    pinmask.export_mask(mask7, str(tmp_path / "fab"), formats=["gds"], stem="m")
+    for args, kwargs in [((str(tmp_path / "m.mask.json"),), {}),
+                         ((str(tmp_path / "fab" / "m.gds"),), {}),
+                         ((str(tmp_path / "fab" / "m.gds"), "--mask",
+                           str(tmp_path / "m.mask.json")),
+                          {"mask": str(tmp_path / "m.mask.json")}),
+                         ((str(tmp_path / "m.mask.json"), "--vendor", "chrome",
+                           "--min-gap", "600um"), {"vendor": "chrome", "min_gap": "600um"})]:
+        p = cli.run("check", *args, "--json", expect=0 if "min_gap" not in kwargs else 1)
+        j = json.loads(p.stdout)
+        got = json.loads(json.dumps(pinmask.check(args[0], **kwargs)))
+        assert got == j, args
+
+
+def test_check_and_export_errors(tmp_path, mask7):
+    with pytest.raises(ValueError, match="--format"):
+        pinmask.export_mask(mask7, str(tmp_path / "x"), formats=["oasis2"])
+    with pytest.raises(ValueError, match="input"):
+        pinmask.check(str(tmp_path / "none.gds"))
+    with pytest.raises(ValueError, match="--vendor|vendor"):
+        pinmask.check(mask7, vendor="moon")

@@ -1,0 +1,192 @@
+"""Decoding: every method and model, the CLI's numbers, a numpy deconvwnr reference, progress
+and Ctrl-C, zero-copy inputs, and errors."""
+import os
+import signal
+
+import numpy as np
+import pytest
+
+import pinmask
+
+# The module and the reference do the same FFT arithmetic in a different order (FFTW vs numpy's
+# pocketfft): differences are rounding, ~1e-15 relative to the image's values. 1e-10 leaves a
+# wide margin yet is far below any modelling difference (a one-pixel shift or a different NSR
+# changes the result by > 1e-3).
+WIENER_REF_TOL = 1e-10
+
+
+def deconvwnr(capture, psf, nsr):
+    """MATLAB deconvwnr written in numpy: PSF zero-padded to the capture, circularly shifted so its
+    centre element floor(size/2) lands at the origin, scalar NSR, real part; denominator floored
+    at sqrt(eps) as MATLAB does."""
+    rows, cols = capture.shape
+    pad = np.zeros((rows, cols))
+    pad[:psf.shape[0], :psf.shape[1]] = psf
+    pad = np.roll(pad, (-(psf.shape[0] // 2), -(psf.shape[1] // 2)), axis=(0, 1))
+    h = np.fft.fft2(pad)
+    g = np.conj(h) / np.maximum(np.abs(h) ** 2 + nsr, np.sqrt(np.finfo(float).eps))
+    return np.real(np.fft.ifft2(g * np.fft.fft2(capture)))
+
+
+def test_wiener_equals_numpy_deconvwnr_one_period(mask7):
+    cap = pinmask.simulate(mask7, "letter-R", snr_db=30, seed=2)["capture"]
+    psf = pinmask.psf(mask7)
+    out = pinmask.decode(cap, psf=psf, method="wiener", nsr=0.01)["image"]
+    ref = deconvwnr(cap, psf / psf.sum(), 0.01)
+    assert np.max(np.abs(out - ref)) < WIENER_REF_TOL * max(1.0, np.max(np.abs(ref)))
+
+
+def test_wiener_equals_numpy_deconvwnr_small_odd_psf_padded():
+    rng = np.random.default_rng(5)
+    psf = rng.random((9, 7))
+    cap = rng.random((40, 51))
+    out = pinmask.decode(cap, psf=psf, method="wiener", nsr=0.003, crop="none")["image"]
+    ref = deconvwnr(cap, psf / psf.sum(), 0.003)
+    assert out.shape == (40, 51)
+    assert np.max(np.abs(out - ref)) < WIENER_REF_TOL * max(1.0, np.max(np.abs(ref)))
+
+
+def test_wiener_equals_cli(cli, tmp_path, mask7):
+    mask7.save(str(tmp_path / "m.mask.json"))
+    cli.run("simulate", "m.mask.json", "--scene", "letter-R", "--snr", "30", "--seed", "1",
+            "--full-sensor", "-o", "cap.tiff")
+    cli.run("decode", "cap.tiff", "--mask", "m.mask.json", "--method", "wiener", "--nsr", "0.01",
+            "-o", "w.npy")
+    cap, _ = pinmask.read_image(str(tmp_path / "cap.tiff"))
+    out = pinmask.decode(cap, mask=str(tmp_path / "m.mask.json"), method="wiener", nsr=0.01)
+    assert out["window"] == (176, 296, 128, 128)  # the centred period of 480 x 720
+    assert out["period_check"]["checked"] and out["period_check"]["matches"]
+    assert np.array_equal(out["image"].astype(np.float32), np.load(tmp_path / "w.npy"))
+
+
+@pytest.mark.parametrize("method,kw", [("tikhonov", dict(lambda_=1e-3)),
+                                       ("tikhonov", dict(lambda_=1e-3, regulariser="gradient")),
+                                       ("tv", dict(lambda_=1e-3, iters=30)),
+                                       ("tvqc", dict(noise_sigma=0.01, iters=30)),
+                                       ("rl", dict(iters=30))])
+@pytest.mark.parametrize("model", ["cyclic", "linear"])
+def test_every_method_equals_cli(cli, tmp_path, mask7, method, kw, model):
+    mask7.save(str(tmp_path / "m.mask.json"))
+    cli.run("simulate", "m.mask.json", "--scene", "letter-R", "--snr", "30", "-o", "cap.npy")
+    flags = {"lambda_": "--lambda", "regulariser": "--regulariser", "iters": "--iters",
+             "noise_sigma": "--noise-sigma"}
+    args = [a for k, v in kw.items() for a in (flags[k], v)]
+    cli.run("decode", "cap.npy", "--mask", "m.mask.json", "--method", method, "--model", model,
+            *args, "-o", "x.npy")
+    cap, _ = pinmask.read_image(str(tmp_path / "cap.npy"))
+    out = pinmask.decode(cap, mask=mask7, method=method, model=model, **kw)
+    assert np.array_equal(out["image"].astype(np.float32), np.load(tmp_path / "x.npy"))
+    ch = out["channels"][0]
+    if method in ("tv", "tvqc", "rl"):
+        assert 1 <= ch["iterations"] <= 30
+        assert ch["history"].shape == (ch["iterations"], 4)
+
+
+def test_progress_false_stops_with_estimate(mask7):
+    cap = pinmask.simulate(mask7, "letter-R", snr_db=30)["capture"]
+    calls = []
+
+    def progress(seconds):
+        calls.append(seconds)
+        return False
+
+    out = pinmask.decode(cap, mask=mask7, method="tv", iters=1000000, tol=0, progress=progress,
+                         poll_s=0.01)
+    assert calls and out["interrupted"]
+    ch = out["channels"][0]
+    assert ch["interrupted"] and 1 <= ch["iterations"] < 1000000
+    assert np.all(np.isfinite(out["image"]))
+
+
+def test_ctrl_c_keeps_the_estimate_so_far(mask7):
+    cap = pinmask.simulate(mask7, "letter-R", snr_db=30)["capture"]
+
+    def progress(seconds):
+        os.kill(os.getpid(), signal.SIGINT)  # as if the user pressed Ctrl-C
+
+    out = pinmask.decode(cap, mask=mask7, method="rl", iters=1000000, tol=0, progress=progress,
+                         poll_s=0.01)
+    assert out["interrupted"] and out["channels"][0]["iterations"] < 1000000
+
+
+def test_progress_exception_propagates(mask7):
+    cap = pinmask.simulate(mask7, "letter-R", snr_db=30)["capture"]
+
+    def progress(seconds):
+        raise LookupError("from the callback")
+
+    with pytest.raises(LookupError, match="from the callback"):
+        pinmask.decode(cap, mask=mask7, method="tv", iters=1000000, tol=0, progress=progress,
+                       poll_s=0.01)
+
+
+def test_rgb_and_float32_and_library_inputs(mask7):
+    psf = pinmask.psf(mask7)
+    cap = pinmask.simulate(mask7, "letter-R", snr_db=40)["capture"]
+    assert pinmask.is_library_buffer(cap) and pinmask.is_library_buffer(psf)
+    before = pinmask.input_copies()
+    a = pinmask.decode(cap, psf=psf)["image"]  # both used without copies
+    assert pinmask.input_copies() == before
+    b = pinmask.decode(np.array(cap), psf=np.array(psf))["image"]  # copied once each
+    assert pinmask.input_copies() == before + 2
+    assert np.array_equal(a, b)
+    c = pinmask.decode(cap.astype(np.float32), psf=psf)["image"]
+    d = pinmask.decode(cap.astype(np.float32).astype(np.float64), psf=psf)["image"]
+    assert np.array_equal(c, d)
+    f = pinmask.decode(np.asfortranarray(cap), psf=psf)["image"]  # any order: same numbers
+    assert np.array_equal(a, f)
+    rgb = np.stack([cap, 2 * cap, 3 * cap], axis=2)
+    out = pinmask.decode(rgb, psf=psf)
+    assert out["image"].shape == (128, 128, 3) and len(out["channels"]) == 3
+    assert np.allclose(out["image"][:, :, 2], 3 * a, rtol=1e-12, atol=1e-12)
+
+
+def test_dark_frame_subtracted(mask7):
+    s = pinmask.simulate(mask7, "letter-R", photons=200, optical_density=2, dark_frame=True)
+    with_dark = pinmask.decode(s["capture"], psf=s["psf"], dark=s["dark"])["image"]
+    by_hand = pinmask.decode(s["capture"] - s["dark"], psf=s["psf"])["image"]
+    assert np.array_equal(with_dark, by_hand)
+
+
+def test_decode_errors(mask7):
+    cap = pinmask.simulate(mask7, "letter-R", snr_db=30)["capture"]
+    psf = pinmask.psf(mask7)
+    with pytest.raises(ValueError, match="--method"):
+        pinmask.decode(cap, psf=psf, method="richardson")
+    with pytest.raises(ValueError, match="needs the PSF"):
+        pinmask.decode(cap)
+    with pytest.raises(ValueError, match="needs the PSF"):
+        pinmask.decode(cap, psf=psf, mask=mask7)
+    bad = np.array(cap)
+    bad[3, 5] = np.nan
+    with pytest.raises(ValueError, match="capture"):
+        pinmask.decode(bad, psf=psf)
+    with pytest.raises(ValueError, match="nsr"):
+        pinmask.decode(cap, psf=psf, nsr=-1)
+    with pytest.raises(ValueError, match="eps|noise_sigma"):
+        pinmask.decode(cap, psf=psf, method="tvqc")
+    with pytest.raises(ValueError, match="2-D"):
+        pinmask.decode(cap, psf=np.ones(5))
+    with pytest.raises(ValueError, match="--crop"):
+        pinmask.decode(cap, psf=psf, crop="middle")
+    with pytest.raises(ValueError, match="PSF.*positive sum"):
+        pinmask.decode(cap, psf=np.zeros((8, 8)))
+
+
+def test_ctrl_c_during_closed_form_is_raised(mask7):
+    """Nothing to keep: a Ctrl-C during a Wiener decode is a KeyboardInterrupt, as in the CLI."""
+    rng = np.random.default_rng(1)
+    cap = rng.random((2048, 2048))  # a decode of ~0.5 s: the poll comes first
+
+    def progress(seconds):
+        os.kill(os.getpid(), signal.SIGINT)
+
+    with pytest.raises(KeyboardInterrupt):
+        pinmask.decode(cap, psf=rng.random((256, 256)), crop="none", method="tikhonov",
+                       progress=progress, poll_s=0.0005)
+
+
+def test_eps_and_noise_sigma_exclude_each_other(mask7):
+    cap = pinmask.simulate(mask7, "letter-R", snr_db=30)["capture"]
+    with pytest.raises(ValueError, match="--eps excludes --noise-sigma"):
+        pinmask.decode(cap, mask=mask7, method="tvqc", eps=1.0, noise_sigma=0.01)

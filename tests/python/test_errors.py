@@ -1,0 +1,58 @@
+"""Hostile inputs: every one is a ValueError naming the problem, never a crash or a hang."""
+import numpy as np
+import pytest
+
+import pinmask
+
+
+@pytest.mark.parametrize("call,pattern", [
+    (lambda: pinmask.scene("letter-R", 0, 5), "scene size"),
+    (lambda: pinmask.scene("natural", 200000, 200000), "memory bound"),
+    (lambda: pinmask.decode(np.zeros((0, 0)), psf=np.ones((3, 3))), "empty"),
+    (lambda: pinmask.decode(np.ones((4, 4)), psf=np.ones((8, 8))), "smaller than one period"),
+    (lambda: pinmask.decode(np.ones((8, 8), dtype=complex), psf=np.ones((3, 3))), "real"),
+    (lambda: pinmask.decode("abc", psf=np.ones((3, 3))), "capture"),
+    (lambda: pinmask.decode(np.full((8, 8), np.inf), psf=np.ones((3, 3))), "capture"),
+    (lambda: pinmask.decode(np.ones((8, 8)), psf=np.ones((3, 3)), method="tv", iters=-1),
+     "--iters"),
+    (lambda: pinmask.search(threads=0, evals=5), "threads"),
+    (lambda: pinmask.search(time="-3s"), "--time|time"),
+    (lambda: pinmask.simulate(pinmask.generate(), full_sensor=True, sensor=(0, 5)), "sensor"),
+    (lambda: pinmask.Camera(sensor_cols=-5), "sensor"),
+    (lambda: pinmask.Camera(wavelength_m=float("nan")), "wavelength_m"),
+    (lambda: pinmask.mask_from_json('{"format": '), "mask JSON"),
+    (lambda: pinmask.mask_from_json('{"format": "pinmask-mask", "format": "x"}'), "format"),
+    (lambda: pinmask.generate(grid=5000, holes=1), "5000"),
+    (lambda: pinmask.generate(attempts=0), "--attempts"),
+    (lambda: pinmask.psf(pinmask.generate(pixels_per_cell=60000)), "memory bound"),
+    (lambda: pinmask.Pattern(n=4, pinholes=[(9, 9)]).validate(), "outside"),
+    (lambda: pinmask.sidelobes(pinmask.Pattern(n=4, pinholes=[])), "pinhole"),
+    (lambda: pinmask.layout(pinmask.generate(), frame="-1mm"), "frame"),
+    (lambda: pinmask.export_mask(pinmask.generate(), ""), "-o"),
+    (lambda: pinmask.load_mask("/nonexistent/x.mask.json"), "cannot read"),
+    (lambda: pinmask.read_psf("/nonexistent/p.tiff"), "p.tiff"),
+    (lambda: pinmask.write_image("/tmp/x.bmp", np.zeros((3, 3))), "bmp|extension"),
+])
+def test_bad_input_is_value_error(call, pattern):
+    with pytest.raises(ValueError, match=pattern):
+        call()
+
+
+def test_runtime_failure_is_runtime_error(tmp_path):
+    # A valid request that fails while working (the output folder vanished): RuntimeError
+    # (exit 1 on the command line), not ValueError.
+    m = pinmask.generate()
+    with pytest.raises((RuntimeError, ValueError)) as e:
+        m.save(str(tmp_path / "no-such-dir" / "m.mask.json"))
+    assert "no-such-dir" in str(e.value)
+
+
+def test_bad_psf_files_same_message_as_cli(cli, bad_inputs, tmp_path):
+    pinmask.write_image(str(tmp_path / "cap.npy"), np.ones((64, 64)))
+    for name in ["psf-nan.tiff", "psf-zero.npy", "psf-sidecar-version.tiff",
+                 "psf-sidecar-size.tiff"]:
+        path = str(bad_inputs / name)
+        msg = cli.error("decode", "cap.npy", "--psf", path, "-o", "x.npy")
+        with pytest.raises(ValueError) as e:
+            pinmask.read_psf(path)
+        assert str(e.value) == msg, name

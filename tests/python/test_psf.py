@@ -1,0 +1,78 @@
+"""PSF: the module against `pinmask psf`, and the zero-copy contract of returned arrays."""
+import numpy as np
+import pytest
+
+import pinmask
+
+
+def test_psf_equals_cli_npy(cli, tmp_path, mask7):
+    mask7.save(str(tmp_path / "m.mask.json"))
+    cli.run("psf", "m.mask.json", "-o", "psf.tiff", "--npy")
+    cli_psf = np.load(tmp_path / "psf.npy")
+    psf = pinmask.psf(mask7)
+    assert psf.shape == cli_psf.shape == (128, 128)
+    assert np.array_equal(psf.astype(np.float32), cli_psf)  # float32 file of the same doubles
+    assert psf.sum() == pytest.approx(1.0, abs=1e-12)
+
+
+def test_write_psf_same_bytes_as_cli(cli, tmp_path, mask7):
+    mask7.save(str(tmp_path / "m.mask.json"))
+    cli.run("psf", "m.mask.json", "-o", "cli.tiff", "--npy")
+    (tmp_path / "py").mkdir()
+    written = pinmask.write_psf(mask7, str(tmp_path / "py" / "cli.tiff"), npy=True,
+                                mask_file="m.mask.json")
+    assert len(written) == 3
+    for name in ["cli.tiff", "cli.npy", "cli.json"]:
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / name).read_bytes(), name
+
+
+def test_read_psf_roundtrip(tmp_path, mask7):
+    pinmask.write_psf(mask7, str(tmp_path / "p.tiff"), mask_file="x")
+    psf, side = pinmask.read_psf(str(tmp_path / "p.tiff"))
+    assert side["mask_geometry_hash"] == mask7.geometry_hash()
+    assert side["size_px"] == (128, 128)
+    ref = pinmask.psf(mask7)
+    ref32 = ref.astype(np.float32).astype(np.float64)
+    assert np.allclose(psf, ref32 / ref32.sum(), rtol=0, atol=1e-15)
+
+
+def test_returned_array_owns_library_buffer(mask7):
+    psf = pinmask.psf(mask7)
+    assert psf.dtype == np.float64 and psf.flags.c_contiguous
+    assert not psf.flags.owndata  # the buffer belongs to the library's Plane
+    assert type(psf.base).__name__ == "PyCapsule"
+    assert pinmask.is_library_buffer(psf)
+    assert not pinmask.is_library_buffer(psf.copy())
+    assert not pinmask.is_library_buffer(psf[1:, :])  # a view of part of it is not the plane
+    assert not pinmask.is_library_buffer(psf.astype(np.float32))
+
+
+def test_kernel_values_is_a_view(mask7):
+    k = pinmask.kernel(mask7)
+    v = k.values
+    assert v.sum() == pytest.approx(1.0, abs=1e-12)
+    assert k.model in ("fresnel", "box", "fraunhofer")
+    assert np.shares_memory(v, k.values)  # two reads: the same buffer, no copies
+    v[0, 0] = 42.0
+    assert k.values[0, 0] == 42.0  # writing through the view reaches the kernel
+
+
+def test_kernel_override_refused_like_cli(cli, tmp_path, mask7):
+    mask7.save(str(tmp_path / "m.mask.json"))
+    msg = cli.error("psf", "m.mask.json", "-o", "p.tiff", "--kernel", "measured")
+    with pytest.raises(ValueError) as e:
+        pinmask.psf(mask7, kernel="measured")
+    assert str(e.value) == msg
+
+
+def test_image_io_roundtrip(tmp_path):
+    img = np.linspace(0, 1, 12 * 7).reshape(12, 7)
+    pinmask.write_image(str(tmp_path / "a.npy"), img)
+    back, full_scale = pinmask.read_image(str(tmp_path / "a.npy"))
+    assert full_scale == 1.0
+    assert np.array_equal(back, img.astype(np.float32).astype(np.float64))
+    rgb = np.random.default_rng(0).random((5, 6, 3))
+    pinmask.write_image(str(tmp_path / "c.npy"), rgb)
+    back, _ = pinmask.read_image(str(tmp_path / "c.npy"))
+    assert back.shape == (5, 6, 3)
+    assert np.allclose(back, rgb, atol=1e-7)

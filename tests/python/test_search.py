@@ -1,0 +1,56 @@
+"""Search: the module against `pinmask search --no-rerank`, progress and Ctrl-C."""
+import os
+import signal
+
+import pytest
+
+import pinmask
+
+
+def test_search_same_masks_as_cli(cli, tmp_path):
+    cli.run("search", "--preset", "paper", "--grid", "16", "--holes", "20", "--evals", "400",
+            "--threads", "1", "--seed", "5", "--top", "3", "--no-rerank", "-o", "runs")
+    r = pinmask.search(grid=16, holes=20, evals=400, threads=1, seed=5, top=3)
+    assert r["stop_reason"] == "evaluation budget" and r["evaluations"] == 400
+    assert len(r["candidates"]) == 3
+    for i, c in enumerate(r["candidates"]):
+        assert c["mask"].to_json() == (tmp_path / "runs" / f"rank-{i + 1}.mask.json").read_text()
+    objectives = [c["objective"] for c in r["candidates"]]
+    assert objectives == sorted(objectives)
+
+
+def test_search_progress_and_stop():
+    rows = []
+
+    def progress(row):
+        rows.append(row)
+        return len(rows) < 3  # stop at the third report
+
+    r = pinmask.search(grid=16, holes=20, time="60s", threads=1, seed=2, top=2,
+                       progress=progress, log_interval_s=0.02, strategy="random")
+    assert len(rows) == 3 and r["stop_reason"] == "interrupted"
+    assert r["candidates"] and r["seconds"] < 30
+
+
+def test_search_ctrl_c_keeps_best_so_far():
+    def progress(row):
+        if row["evaluations"] > 0:
+            os.kill(os.getpid(), signal.SIGINT)
+
+    r = pinmask.search(grid=16, holes=20, time="60s", threads=1, seed=3, top=2,
+                       progress=progress, log_interval_s=0.02)
+    assert r["stop_reason"] == "interrupted"
+    assert len(r["candidates"]) >= 1
+    best = r["candidates"][0]
+    assert best["mask"].pattern.spacing_violations() == []
+    assert best["terms"]["analytic_wiener_psnr_db"] > 0
+
+
+def test_search_bad_input_same_message_as_cli(cli):
+    msg = cli.error("search", "--grid", "16", "--holes", "200", "--evals", "10", "--threads", "1",
+                    "-o", "runs")
+    with pytest.raises(ValueError) as e:
+        pinmask.search(grid=16, holes=200, evals=10)
+    assert str(e.value) == msg
+    with pytest.raises(ValueError, match="--filter"):
+        pinmask.search(evals=10, filter="nsr:-1")

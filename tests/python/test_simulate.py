@@ -1,0 +1,69 @@
+"""Simulation: the module against `pinmask simulate` (same seed, same numbers)."""
+import numpy as np
+import pytest
+
+import pinmask
+
+
+def test_simulate_gaussian_equals_cli(cli, tmp_path, mask7):
+    mask7.save(str(tmp_path / "m.mask.json"))
+    cli.run("simulate", "m.mask.json", "--scene", "letter-R", "--snr", "30", "--seed", "1",
+            "-o", "cap.npy")
+    s = pinmask.simulate(mask7, "letter-R", snr_db=30, seed=1)
+    assert np.array_equal(s["capture"].astype(np.float32), np.load(tmp_path / "cap.npy"))
+
+
+def test_simulate_photon_dark_frame_equals_cli(cli, tmp_path, mask7):
+    mask7.save(str(tmp_path / "m.mask.json"))
+    cli.run("simulate", "m.mask.json", "--scene", "usaf", "--photons", "500", "--read-noise",
+            "3", "--dark-current", "2", "--optical-density", "3", "--full-well", "20000",
+            "--bits", "12", "--seed", "4", "-o", "cap.npy", "--dark-frame", "dark.npy")
+    s = pinmask.simulate(mask7, "usaf", photons=500, read_noise=3, dark_current=2,
+                         optical_density=3, full_well=20000, bits=12, seed=4, dark_frame=True)
+    assert np.array_equal(s["capture"].astype(np.float32), np.load(tmp_path / "cap.npy"))
+    assert np.array_equal(s["dark"].astype(np.float32), np.load(tmp_path / "dark.npy"))
+    assert s["background"][0] > 0
+
+
+def test_simulate_full_sensor_is_the_periodic_extension(mask7):
+    s = pinmask.simulate(mask7, "letter-R", snr_db=float("inf"), full_sensor=True,
+                         sensor=(300, 200))
+    cap, clean = s["capture"], s["clean"]
+    assert cap.shape == (200, 300)
+    assert np.array_equal(cap, clean)  # noiseless
+    r0, c0 = s["origin"]
+    period = pinmask.simulate(mask7, "letter-R", snr_db=float("inf"))["capture"]
+    rows = (np.arange(200) - r0) % 128
+    cols = (np.arange(300) - c0) % 128
+    assert np.array_equal(cap, period[np.ix_(rows, cols)])
+
+
+def test_simulate_noiseless_is_circular_convolution(mask7):
+    """Independent reference: the capture is scene (*) PSF with the PSF's centre at zero shift."""
+    s = pinmask.simulate(mask7, "letter-R", snr_db=float("inf"))
+    scene = pinmask.scene("letter-R", 128, 128)
+    psf = s["psf"]
+    centred = np.roll(psf, (-64, -64), axis=(0, 1))
+    ref = np.real(np.fft.ifft2(np.fft.fft2(scene) * np.fft.fft2(centred)))
+    assert np.max(np.abs(s["capture"] - ref)) < 1e-12  # FFT rounding only
+
+
+def test_simulate_array_scene_and_bad_inputs(mask7):
+    scene = np.zeros((128, 128), dtype=np.float32)
+    scene[60:68, 60:68] = 1
+    s = pinmask.simulate(mask7, scene, snr_db=float("inf"))
+    assert s["capture"].sum() == pytest.approx(64.0, rel=1e-9)
+    with pytest.raises(ValueError, match="--snr"):
+        pinmask.simulate(mask7, "letter-R", snr_db=30, photons=100)
+    with pytest.raises(ValueError, match="--dark-frame"):
+        pinmask.simulate(mask7, "letter-R", dark_frame=True)
+    with pytest.raises(ValueError, match="--read-noise"):
+        pinmask.simulate(mask7, "letter-R", read_noise=2)
+
+
+def test_unknown_scene_same_message_as_cli(cli, tmp_path, mask7):
+    mask7.save(str(tmp_path / "m.mask.json"))
+    msg = cli.error("simulate", "m.mask.json", "--scene", "no-such-scene", "-o", "c.tiff")
+    with pytest.raises(ValueError) as e:
+        pinmask.simulate(mask7, "no-such-scene")
+    assert str(e.value) == msg
