@@ -124,7 +124,6 @@ TEST_CASE("errors exit 2 and leave no files") {
         CHECK(contains(r.err, says));
         CHECK(file_count(dir) == 1);  // only the mask
     };
-    refused(mask + " -o " + (dir / "p.tiff") + " --kernel paper-fig3b", "not available");
     refused(mask + " -o " + (dir / "p.tiff") + " --kernel measured", "--kernel-path");
     refused(mask + " -o " + (dir / "p.tiff") + " --kernel gauss", "--kernel");
     refused(mask + " -o " + (dir / "p.png"), "-o");
