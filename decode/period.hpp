@@ -50,7 +50,7 @@ inline constexpr double kSubharmonicFraction = 0.7;
 // The capture is averaged across the lag axis down to at most this many samples before the
 // autocorrelation (blocks of whole pixels; the remainder is dropped): averaging keeps a repeat
 // along the lag axis exact and leaves the cost a small fraction of a decode's.
-inline constexpr int kMaxAcrossSamples = 256;
+inline constexpr int kMaxAcrossSamples = 64;
 
 struct PeriodCheckOptions {
     // |measured - expected| allowed is the larger of these: half a pixel (beyond it the period
