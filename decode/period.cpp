@@ -109,7 +109,18 @@ AxisPeriodCheck check_axis(const Plane& capture, Axis axis, int size, int expect
         near.reset();
     }
     const std::optional<ProfilePeak> chosen = near ? near : best;
-    if (chosen) {
+    if (!chosen) {
+        // Nothing repeats measurably (one lit period, as an exact-geometry capture of a 2 x 2
+        // mask gives, or a dark or flat scene): the pitch cannot be checked, which is not a
+        // contradiction of the PSF. Said as a skip, with the reason.
+        a.checked = false;
+        a.skip_reason = std::string("no repeat found along the ") + name + " (expected every " +
+                        std::to_string(expected) +
+                        " px): the capture holds no measurable repeat (a single lit period, a "
+                        "dark or flat scene), so its pitch cannot be checked";
+        return a;
+    }
+    {
         a.found = true;
         a.measured_px = chosen->lag;
         a.peak_value = chosen->value;

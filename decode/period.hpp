@@ -98,8 +98,9 @@ struct PeriodCheck {
 // Measures the capture's period along each axis and compares it with the expected (PSF) size:
 // the profile of the capture averaged across (kMaxAcrossSamples), the repeat near the expected
 // lag when it is as strong as the strongest repeat (kSubharmonicFraction), else the strongest.
-// An axis is skipped (with the reason) when the capture holds fewer than two periods along it:
-// a single period has no repeat to measure. Throws InvalidInput for an empty or non-finite
+// An axis is skipped (with the reason) when the capture holds fewer than two periods along it
+// (a single period has no repeat to measure), or when no repeat rises above min_rise at all
+// (nothing to compare: not a contradiction of the PSF). Throws InvalidInput for an empty or non-finite
 // capture, an expected size < 1 or options out of range.
 PeriodCheck check_period(const Plane& capture, int expected_rows, int expected_cols,
                          const PeriodCheckOptions& options = {});

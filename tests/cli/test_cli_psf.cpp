@@ -218,3 +218,25 @@ TEST_CASE("psf --geometry exact --object-distance 6m: spot centroids within 0.05
     CHECK(contains(inside.err, "focal length"));
     CHECK(!fs::exists(dir / "w.tiff"));
 }
+
+TEST_CASE("simulate --geometry exact: sensor-sized capture, decode gives no false period warning") {
+    TempDir dir("sim-exact");
+    const std::string mask = write_mask(dir, sample_mask());
+    const auto r = run_cli("simulate " + mask + " -o " + (dir / "c.npy") +
+                           " --geometry exact --object-distance 6m --snr 30");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const Plane c = read_image(dir / "c.npy").image.channels[0];
+    CHECK(c.rows() == 480);
+    CHECK(c.cols() == 720);
+    const auto d =
+        run_cli("decode " + (dir / "c.npy") + " --mask " + mask + " -o " + (dir / "d.png"));
+    INFO(d.err);
+    CHECK(d.exit_code == 0);
+    CHECK_FALSE(contains(d.err, "warning"));
+    const auto bad =
+        run_cli("simulate " + mask + " -o " + (dir / "x.npy") + " --geometry exact --full-sensor");
+    CHECK(bad.exit_code == 2);
+    CHECK(contains(bad.err, "--full-sensor"));
+    CHECK(!fs::exists(dir / "x.npy"));
+}
