@@ -1,9 +1,11 @@
 // `pinmask psf`: mask file -> PSF of one period (float32 TIFF, optionally .npy) plus a JSON
 // sidecar, written together (cli/psf_files.hpp). The PSF is design/psf's synthesis: the mask's
 // kernel placed at every pinhole's cell on the (n ppc)^2 torus, sum 1.
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -13,6 +15,8 @@
 #include "core/units.hpp"
 #include "design/kernel_validity.hpp"
 #include "design/psf.hpp"
+#include "design/psf_exact.hpp"
+#include "design/working_distance.hpp"
 #include "io/mask_json.hpp"
 #include "io/psf_files.hpp"
 
@@ -26,8 +30,28 @@ struct PsfCommandOptions {
     std::string kernel;  // empty: the mask's model
     std::string kernel_path;
     double energy_fraction = KernelOptions{}.energy_fraction;
+    std::string geometry = "integer";
+    std::optional<std::string> object_distance;  // exact: default the mask's u
+    std::optional<std::string> size;             // exact: ROWSxCOLS, default the sensor
     bool json = false;
 };
+
+// The exact-geometry PSF for these options (design/psf_exact), with the distance used.
+Plane exact_for(const PsfCommandOptions& o, const Mask& mask, const KernelOptions& ko, double& u) {
+    ExactPsfOptions eo;
+    eo.kernel = ko;
+    u = o.object_distance
+            ? parse_length_m(*o.object_distance, "--object-distance", AllowInfinity::kYes)
+            : mask.camera.object_distance_m;
+    check_object_distance(mask.camera, u, "--object-distance");
+    eo.object_distance_m = u;
+    if (o.size) {
+        const Size2 rc = parse_size(*o.size, "--size");  // typed ROWSxCOLS: first number = rows
+        eo.rows = rc.cols;
+        eo.cols = rc.rows;
+    }
+    return exact_psf(mask, eo);
+}
 
 void run(const PsfCommandOptions& o) {
     if (!(o.energy_fraction > 0.0 && o.energy_fraction <= 1.0)) {
@@ -63,9 +87,17 @@ void run(const PsfCommandOptions& o) {
     KernelOptions ko;
     ko.energy_fraction = o.energy_fraction;
     const int ppc = mask.psf.pixels_per_cell;
-    check_psf_memory(mask.pattern.n, ppc, 2, 0);  // the PSF and its float copy for the files
+    const bool exact = o.geometry == "exact";
+    if (!exact && (o.object_distance || o.size)) {
+        throw invalid_field(o.size ? "--size" : "--object-distance",
+                            o.size ? *o.size : *o.object_distance,
+                            "only used with --geometry exact (the integer model is one period "
+                            "at the mask's pixels per cell)");
+    }
+    double u = mask.camera.object_distance_m;
+    if (!exact) check_psf_memory(mask.pattern.n, ppc, 2, 0);  // the PSF and its float copy
     const Kernel kernel = mask_kernel(mask, ko);
-    const Plane psf = synthesize_psf(mask.pattern, kernel, ppc);
+    const Plane psf = exact ? exact_for(o, mask, ko, u) : synthesize_psf(mask.pattern, kernel, ppc);
     const KernelValidity validity =
         kernel_validity(mask.camera, kernel.model, kernel.enclosed_energy);
     for (const auto& w : validity.warnings) std::cerr << "pinmask: warning: " << w << "\n";
@@ -81,13 +113,23 @@ void run(const PsfCommandOptions& o) {
         for (const auto& p : written) paths.push_back(p.string());
         j["written"] = paths;
         j["warnings"] = validity.warnings;
+        j["geometry"] = o.geometry;
+        if (exact)
+            j["object_distance_m"] =
+                std::isinf(u) ? nlohmann::ordered_json("inf") : nlohmann::ordered_json(u);
         std::cout << j.dump(2) << "\n";
         return;
     }
     std::ostringstream out;
     for (const auto& p : written) out << "wrote " << p.string() << "\n";
-    out << "  PSF            " << psf.rows() << " x " << psf.cols() << " px (grid " << s.grid_n
-        << " x " << ppc << " px per cell), sum 1\n";
+    if (exact) {
+        out << "  PSF            " << psf.rows() << " x " << psf.cols()
+            << " px, exact geometry at u = " << format_length(u) << " (spots at their Eq. (3) "
+            << "positions, the whole tiled mask), sum " << psf.sum() << "\n";
+    } else {
+        out << "  PSF            " << psf.rows() << " x " << psf.cols() << " px (grid " << s.grid_n
+            << " x " << ppc << " px per cell), sum 1\n";
+    }
     out << "  kernel         " << s.kernel_model << " ("
         << (validity.model_accurate ? kernel.model_reason : "NOT accurate: see the warning")
         << "), support " << s.kernel_rows << " x " << s.kernel_cols << " px, "
@@ -108,9 +150,14 @@ constexpr const char* kFooter =
     "appear together or not at all.\n"
     "Kernel support: grown until --energy of the continuous 1-D energy per axis is kept, at most "
     "one period (n x pixels per cell); the cut tail is dropped and the kernel renormalised (the "
-    "sidecar records the kept energy). paper-fig3b is not available (its published values "
-    "could not be obtained).\n"
-    "Example: pinmask psf m.mask.json -o psf.tiff --npy";
+    "sidecar records the kept energy). paper-fig3b is the paper's measured 8 x 8 table (Fig. 3b), "
+    "defined for 8 pixels per cell only.\n"
+    "Geometry: integer (default) is the decoder's model, one period on the (n ppc)^2 torus; exact "
+    "is what the sensor records from a point at --object-distance (default the mask's u): every "
+    "pinhole of the tiled mask at its true sub-pixel position, pitch d (1 - f/f' + f/u) / w, "
+    "kernels moved by area resampling, over the sensor or --size ROWSxCOLS.\n"
+    "Example: pinmask psf m.mask.json -o psf.tiff --npy\n"
+    "         pinmask psf m.mask.json -o exact.tiff --geometry exact --object-distance 2m";
 
 void setup(CLI::App& app) {
     auto o = std::make_shared<PsfCommandOptions>();
@@ -130,6 +177,16 @@ void setup(CLI::App& app) {
                     "Fraction of the continuous 1-D kernel energy the support must keep per "
                     "axis, in (0, 1]")
         ->capture_default_str();
+    cmd->add_option("--geometry", o->geometry,
+                    "integer (the decoder's cyclic model) | exact (spots at their true positions "
+                    "for --object-distance, over the sensor or --size)")
+        ->check(CLI::IsMember({"integer", "exact"}))
+        ->capture_default_str();
+    cmd->add_option("--object-distance", o->object_distance,
+                    "Exact geometry: object distance u (e.g. 6m, inf; default the mask's)");
+    cmd->add_option("--size", o->size,
+                    "Exact geometry: window ROWSxCOLS in pixels, centred on the axis (default the "
+                    "sensor)");
     cmd->add_flag("--json", o->json,
                   "Print the sidecar plus the written paths as JSON on stdout instead of the "
                   "summary");

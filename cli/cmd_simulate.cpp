@@ -14,7 +14,6 @@
 #include <vector>
 
 #include "cli/command.hpp"
-#include "io/mask_json.hpp"
 #include "cli/noise_options.hpp"
 #include "core/output_set.hpp"
 #include "core/atomic_file.hpp"
@@ -23,6 +22,9 @@
 #include "core/units.hpp"
 #include "design/kernel_model.hpp"
 #include "design/psf.hpp"
+#include "design/psf_exact.hpp"
+#include "design/working_distance.hpp"
+#include "io/mask_json.hpp"
 #include "optimize/scenes.hpp"
 #include "optimize/simulate.hpp"
 
@@ -40,6 +42,9 @@ struct SimulateOptions {
     SensorFlags sensor_flags;
     bool full_sensor = false;
     std::optional<std::string> sensor;
+    std::string geometry = "integer";            // exact: design/psf_exact over the sensor
+    std::optional<std::string> object_distance;  // exact: u, default the mask's
+    std::optional<std::string> size;             // exact: ROWSxCOLS window, default the sensor
     std::uint64_t seed = 1;
     std::string dark_frame;
     std::string output;
@@ -162,6 +167,33 @@ void run(const SimulateOptions& o, const CLI::App& cmd) {
             "full-sensor tiling skipped: --full-sensor not given, one period suffices (any one "
             "full period decodes the scene)");
     }
+    Plane exact;  // exact geometry: what the sensor records (design/psf_exact.hpp)
+    if (o.geometry == "exact") {
+        if (o.full_sensor || o.sensor) {
+            throw invalid_field(o.full_sensor ? "--full-sensor" : "--sensor", "given",
+                                "--geometry exact always covers the sensor (or --size ROWSxCOLS)");
+        }
+        ExactPsfOptions eo;
+        eo.object_distance_m =
+            o.object_distance
+                ? parse_length_m(*o.object_distance, "--object-distance", AllowInfinity::kYes)
+                : mask.camera.object_distance_m;
+        check_object_distance(mask.camera, eo.object_distance_m, "--object-distance");
+        if (o.size) {
+            const Size2 rc = parse_size(*o.size, "--size");  // typed ROWSxCOLS
+            eo.rows = rc.cols;
+            eo.cols = rc.rows;
+        }
+        exact = exact_psf(mask, eo);
+        sim.exact_psf = &exact;
+        explain.push_back("geometry: exact at u = " + format_length(eo.object_distance_m) + ", " +
+                          std::to_string(exact.rows()) + " x " + std::to_string(exact.cols()) +
+                          " px, scene (*) exact PSF by linear convolution (the cyclic capture "
+                          "above is replaced)");
+    } else if (o.object_distance || o.size) {
+        throw invalid_field(o.size ? "--size" : "--object-distance",
+                            o.size ? *o.size : *o.object_distance, "only with --geometry exact");
+    }
     const SimulatedCapture s = simulate_capture(scene, psf, holes, cells, sim);
     if (o.full_sensor) {
         explain.push_back("full-sensor tiling: the period repeated over " +
@@ -249,6 +281,7 @@ void run(const SimulateOptions& o, const CLI::App& cmd) {
           {"cols", m},
           {"channels", scene.n_channels()}}},
         {"forward_model", "cyclic: circular convolution over one period"},
+        {"geometry", o.geometry},
         {"full_sensor",
          {{"enabled", o.full_sensor},
           {"rows", s.capture.rows()},
@@ -350,6 +383,16 @@ void setup(CLI::App& app) {
     cmd->add_option("--sensor", o->sensor,
                     "With --full-sensor: sensor size WIDTHxHEIGHT in pixels (default: the "
                     "mask's camera)");
+    cmd->add_option("--geometry", o->geometry,
+                    "integer (the cyclic model, one period or tiled) | exact (every pinhole at "
+                    "its true position for --object-distance, linear convolution over the sensor "
+                    "or --size ROWSxCOLS)")
+        ->check(CLI::IsMember({"integer", "exact"}))
+        ->capture_default_str();
+    cmd->add_option("--object-distance", o->object_distance,
+                    "Exact geometry: object distance u (e.g. 2m, inf; default the mask's)");
+    cmd->add_option("--size", o->size,
+                    "Exact geometry: sensor window ROWSxCOLS (default the sensor)");
     cmd->add_option("--seed", o->seed, "Seed of the noise (the dark frame has its own stream)")
         ->capture_default_str();
     cmd->add_option("--dark-frame", o->dark_frame,

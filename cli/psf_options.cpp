@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "design/optics.hpp"
+#include "design/working_distance.hpp"
 
 namespace pinmask::cli {
 
@@ -18,8 +19,8 @@ void add_psf_options(CLI::App& cmd, PsfOptions& o) {
     cmd.add_option("--kernel-path", o.kernel_path, "Kernel image for --kernel measured");
     cmd.add_option("--pixels-per-cell", o.pixels_per_cell,
                    "Image-plane cell pitch in sensor pixels (integer >= 1). Default: the nearest "
-                   "integer to d |1 - f/f'| / w, the value for a distant object (u = inf), as "
-                   "the paper quotes it (paper: 7.94 -> 8)");
+                   "integer to d |1 - f/f' + f/u| / w, the pitch at the object distance u "
+                   "(paper: 8.08 at 6 m -> 8)");
 }
 
 PsfSpec resolve_psf_spec(const PsfOptions& o, const Camera& c) {
@@ -40,13 +41,13 @@ PsfSpec resolve_psf_spec(const PsfOptions& o, const Camera& c) {
         spec.pixels_per_cell = *o.pixels_per_cell;
         return spec;
     }
-    const double design = design_pixels_per_cell(c);
+    const double design = pixels_per_cell_at(c, c.object_distance_m);
     const double rounded = std::round(design);
     if (!(rounded >= 1.0) || rounded > 1e6) {
         std::ostringstream v;
         v << design;
         throw invalid_field(
-            "pixels per cell (design value d |1 - f/f'| / w)", v.str(),
+            "pixels per cell at u (d |1 - f/f' + f/u| / w)", v.str(),
             "rounds to less than 1 pixel (f = " + format_length(c.sensor_distance_m) +
                 ", f' = " + format_length(c.lens_focal_m) + "): give --pixels-per-cell explicitly");
     }

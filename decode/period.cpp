@@ -17,6 +17,71 @@ std::string fixed(double v, int digits) {
     return buf;
 }
 
+// The smallest 2^a 3^b 5^c >= n: FFT sizes that FFTW transforms fast.
+int good_fft_size(int n) {
+    for (int m = std::max(n, 1);; ++m) {
+        int k = m;
+        for (int f : {2, 3, 5}) {
+            while (k % f == 0) k /= f;
+        }
+        if (k == 1) return m;
+    }
+}
+
+// The capture averaged in blocks of b samples across `axis` (the axis the lag does NOT run
+// along), so that at most kMaxAcrossSamples remain: a plane periodic along `axis` stays exactly
+// periodic with the same period, and the autocorrelation costs a fraction of the full frame's.
+Plane bin_across(const Plane& x, Axis axis) {
+    const Eigen::Index across = axis == Axis::kRows ? x.cols() : x.rows();
+    const Eigen::Index b = (across + kMaxAcrossSamples - 1) / kMaxAcrossSamples;
+    if (b <= 1) return x;
+    const Eigen::Index bins = across / b;
+    if (axis == Axis::kRows) {
+        Plane out(x.rows(), bins);
+        for (Eigen::Index k = 0; k < bins; ++k)
+            out.col(k) = x.middleCols(k * b, b).rowwise().mean();
+        return out;
+    }
+    Plane out(bins, x.cols());
+    for (Eigen::Index k = 0; k < bins; ++k) out.row(k) = x.middleRows(k * b, b).colwise().mean();
+    return out;
+}
+
+// The parabola through the three samples around integer lag d (sub-pixel refinement).
+ProfilePeak refine(const std::vector<double>& p, int d, double rise) {
+    ProfilePeak pk{double(d), p[static_cast<std::size_t>(d)], rise};
+    const double ym = p[static_cast<std::size_t>(d - 1)], y0 = p[static_cast<std::size_t>(d)],
+                 yp = p[static_cast<std::size_t>(d + 1)];
+    const double curvature = ym - 2.0 * y0 + yp;
+    if (curvature < 0.0) {
+        const double delta = std::clamp(0.5 * (ym - yp) / curvature, -0.5, 0.5);
+        pk.lag += delta;
+        pk.value = y0 - 0.25 * (ym - yp) * delta;
+    }
+    return pk;
+}
+
+// The repeat nearest the expected lag: the highest local maximum of the profile within
+// +-window of it (rise measured as in strongest_repeat), if any.
+std::optional<ProfilePeak> repeat_near(const std::vector<double>& p, int expected, int window,
+                                       int max_lag) {
+    const int lo = std::max(2, expected - window), hi = std::min(max_lag, expected + window);
+    if (lo > hi || hi + 1 >= static_cast<int>(p.size())) return std::nullopt;
+    double left_min = p[1];
+    for (int d = 2; d < lo; ++d) left_min = std::min(left_min, p[static_cast<std::size_t>(d)]);
+    std::optional<ProfilePeak> best;
+    for (int d = lo; d <= hi; ++d) {
+        left_min = std::min(left_min, p[static_cast<std::size_t>(d - 1)]);
+        const double here = p[static_cast<std::size_t>(d)];
+        if (here >= p[static_cast<std::size_t>(d - 1)] &&
+            here > p[static_cast<std::size_t>(d + 1)] && (!best || here > best->value)) {
+            best = ProfilePeak{double(d), here, here - left_min};
+        }
+    }
+    if (best) return refine(p, static_cast<int>(best->lag), best->rise);
+    return best;
+}
+
 AxisPeriodCheck check_axis(const Plane& capture, Axis axis, int size, int expected,
                            const PeriodCheckOptions& o) {
     AxisPeriodCheck a;
@@ -30,14 +95,37 @@ AxisPeriodCheck check_axis(const Plane& capture, Axis axis, int size, int expect
         return a;
     }
     a.checked = true;
-    const std::vector<double> profile = autocorrelation_profile(capture, axis);
+    a.tolerance_px = std::max(o.tolerance_px, o.relative_tolerance * expected);
+    const std::vector<double> profile = autocorrelation_profile(bin_across(capture, axis), axis);
     const int max_lag = std::min(size - 2, static_cast<int>(std::floor(size * o.max_lag_fraction)));
-    if (const auto peak = strongest_repeat(profile, max_lag, o.min_rise)) {
+    const auto best = strongest_repeat(profile, max_lag, o.min_rise);
+    // A capture that repeats at P also repeats at every multiple, and a pattern may nearly repeat
+    // at a fraction of P: what the decoder needs is a repeat at P itself, so the peak near the
+    // expected lag is taken when it is as strong as a repeat (same rule as the subharmonics).
+    const int window = std::max(2, static_cast<int>(std::ceil(o.search_fraction * expected)));
+    auto near = repeat_near(profile, expected, window, max_lag);
+    if (near &&
+        (near->rise < o.min_rise || (best && near->rise < kSubharmonicFraction * best->rise))) {
+        near.reset();
+    }
+    const std::optional<ProfilePeak> chosen = near ? near : best;
+    if (!chosen) {
+        // Nothing repeats measurably (one lit period, as an exact-geometry capture of a 2 x 2
+        // mask gives, or a dark or flat scene): the pitch cannot be checked, which is not a
+        // contradiction of the PSF. Said as a skip, with the reason.
+        a.checked = false;
+        a.skip_reason = std::string("no repeat found along the ") + name + " (expected every " +
+                        std::to_string(expected) +
+                        " px): the capture holds no measurable repeat (a single lit period, a "
+                        "dark or flat scene), so its pitch cannot be checked";
+        return a;
+    }
+    {
         a.found = true;
-        a.measured_px = peak->lag;
-        a.peak_value = peak->value;
-        a.peak_rise = peak->rise;
-        a.matches = std::fabs(peak->lag - expected) <= o.tolerance_px;
+        a.measured_px = chosen->lag;
+        a.peak_value = chosen->value;
+        a.peak_rise = chosen->rise;
+        a.matches = std::fabs(chosen->lag - expected) <= a.tolerance_px;
     }
     return a;
 }
@@ -50,7 +138,8 @@ std::vector<double> autocorrelation_profile(const Plane& x, Axis axis) {
     const int rows = static_cast<int>(x.rows()), cols = static_cast<int>(x.cols());
     const bool along_rows = axis == Axis::kRows;
     // Zero-pad along the lag axis only: at zero lag across the other axis no pair wraps around.
-    const int pr = along_rows ? 2 * rows : rows, pc = along_rows ? cols : 2 * cols;
+    const int pr = along_rows ? good_fft_size(2 * rows - 1) : rows;
+    const int pc = along_rows ? cols : good_fft_size(2 * cols - 1);
     check_memory(double(pr) * pc * 8.0 * 3.0, "the autocorrelation of the capture");
     Plane padded = Plane::Zero(pr, pc);
     padded.topLeftCorner(rows, cols) = x - x.mean();
@@ -88,17 +177,9 @@ std::optional<ProfilePeak> strongest_repeat(const std::vector<double>& p, int ma
     double best_rise = 0.0;
     for (const auto& pk : peaks) best_rise = std::max(best_rise, pk.rise);
     if (peaks.empty() || best_rise < min_rise) return std::nullopt;
-    for (auto pk : peaks) {
+    for (const auto& pk : peaks) {
         if (pk.rise < kSubharmonicFraction * best_rise) continue;
-        const auto d = static_cast<std::size_t>(pk.lag);
-        const double ym = p[d - 1], y0 = p[d], yp = p[d + 1];
-        const double curvature = ym - 2.0 * y0 + yp;
-        if (curvature < 0.0) {
-            const double delta = std::clamp(0.5 * (ym - yp) / curvature, -0.5, 0.5);
-            pk.lag += delta;
-            pk.value = y0 - 0.25 * (ym - yp) * delta;
-        }
-        return pk;
+        return refine(p, static_cast<int>(pk.lag), pk.rise);
     }
     return std::nullopt;  // unreachable: the best peak passes its own threshold
 }
@@ -109,11 +190,12 @@ PeriodCheck check_period(const Plane& capture, int expected_rows, int expected_c
         throw InvalidInput("period check: expected period " + std::to_string(expected_cols) +
                            " x " + std::to_string(expected_rows) + ": both sides must be >= 1");
     }
-    if (!(o.tolerance_px >= 0.0) || !(o.min_rise > 0.0) || !(o.max_lag_fraction > 0.0) ||
-        !(o.max_lag_fraction <= 1.0)) {
+    if (!(o.tolerance_px >= 0.0) || !(o.relative_tolerance >= 0.0) || !(o.min_rise > 0.0) ||
+        !(o.max_lag_fraction > 0.0) || !(o.max_lag_fraction <= 1.0) ||
+        !(o.search_fraction >= 0.0) || !(o.search_fraction <= 1.0)) {
         throw InvalidInput(
-            "period check options: need tolerance_px >= 0, min_rise > 0, 0 < max_lag_fraction "
-            "<= 1");
+            "period check options: need tolerance_px >= 0, relative_tolerance >= 0, min_rise > 0, "
+            "0 < max_lag_fraction <= 1, 0 <= search_fraction <= 1");
     }
     if (capture.size() == 0) throw InvalidInput("period check: the capture is empty");
     PeriodCheck check;
@@ -122,6 +204,10 @@ PeriodCheck check_period(const Plane& capture, int expected_rows, int expected_c
         check_axis(capture, Axis::kRows, static_cast<int>(capture.rows()), expected_rows, o);
     check.cols =
         check_axis(capture, Axis::kCols, static_cast<int>(capture.cols()), expected_cols, o);
+    // The tolerance the axes applied (the larger, when they differ): what a report should quote.
+    for (const AxisPeriodCheck* a : {&check.rows, &check.cols}) {
+        if (a->checked) check.tolerance_px = std::max(check.tolerance_px, a->tolerance_px);
+    }
     return check;
 }
 

@@ -47,10 +47,21 @@ std::optional<ProfilePeak> strongest_repeat(const std::vector<double>& profile, 
 // Lags whose rise is at least this fraction of the best are treated as the same repeat.
 inline constexpr double kSubharmonicFraction = 0.7;
 
+// The capture is averaged across the lag axis down to at most this many samples before the
+// autocorrelation (blocks of whole pixels; the remainder is dropped): averaging keeps a repeat
+// along the lag axis exact and leaves the cost a small fraction of a decode's.
+inline constexpr int kMaxAcrossSamples = 64;
+
 struct PeriodCheckOptions {
-    // |measured - expected| allowed, pixels: the estimate is sub-pixel; beyond half a pixel it
-    // rounds to a different integer period, which a decode with this PSF cannot absorb.
+    // |measured - expected| allowed is the larger of these: half a pixel (beyond it the period
+    // rounds to another integer), and 0.5 % of the period: the sub-pixel estimate of a broad
+    // peak on a long period wanders by a few tenths of a pixel, and a pitch off by 1 % or more
+    // (the size worth reporting) must still fail by a clear margin.
     double tolerance_px = 0.5;
+    double relative_tolerance = 0.005;
+    // The repeat is looked for within +-max(2 px, this fraction of the expected period) of it
+    // before the strongest repeat anywhere is taken: 5 % holds every pitch error up to 5 %.
+    double search_fraction = 0.05;
     // Smallest rise of the profile peak over its valley for a repeat to count as found: a
     // capture of an exactly periodic pattern rises by ~1; 0.1 sits well above the fluctuations
     // of rho for a non-repeating capture of a few hundred pixels per side.
@@ -62,15 +73,16 @@ struct PeriodCheckOptions {
 
 // The check along one axis.
 struct AxisPeriodCheck {
-    int size_px = 0;           // capture side along this axis
-    int expected_px = 0;       // PSF side along this axis
-    bool checked = false;      // false: skipped, see skip_reason
-    std::string skip_reason;   // why it was skipped (empty when checked)
-    bool found = false;        // a repeat was found (checked only)
-    double measured_px = 0.0;  // the repeat lag (found only)
-    double peak_value = 0.0;   // rho at the repeat (found only)
-    double peak_rise = 0.0;    // the peak's rise over its valley (found only)
-    bool matches = false;      // found and |measured - expected| <= tolerance
+    int size_px = 0;            // capture side along this axis
+    int expected_px = 0;        // PSF side along this axis
+    bool checked = false;       // false: skipped, see skip_reason
+    std::string skip_reason;    // why it was skipped (empty when checked)
+    bool found = false;         // a repeat was found (checked only)
+    double measured_px = 0.0;   // the repeat lag (found only)
+    double peak_value = 0.0;    // rho at the repeat (found only)
+    double peak_rise = 0.0;     // the peak's rise over its valley (found only)
+    bool matches = false;       // found and |measured - expected| <= tolerance_px
+    double tolerance_px = 0.0;  // max(options.tolerance_px, relative_tolerance * expected)
 };
 
 struct PeriodCheck {
@@ -83,9 +95,12 @@ struct PeriodCheck {
     }
 };
 
-// Measures the capture's period along each axis and compares it with the expected (PSF) size.
-// An axis is skipped (with the reason) when the capture holds fewer than two periods along it:
-// a single period has no repeat to measure. Throws InvalidInput for an empty or non-finite
+// Measures the capture's period along each axis and compares it with the expected (PSF) size:
+// the profile of the capture averaged across (kMaxAcrossSamples), the repeat near the expected
+// lag when it is as strong as the strongest repeat (kSubharmonicFraction), else the strongest.
+// An axis is skipped (with the reason) when the capture holds fewer than two periods along it
+// (a single period has no repeat to measure), or when no repeat rises above min_rise at all
+// (nothing to compare: not a contradiction of the PSF). Throws InvalidInput for an empty or non-finite
 // capture, an expected size < 1 or options out of range.
 PeriodCheck check_period(const Plane& capture, int expected_rows, int expected_cols,
                          const PeriodCheckOptions& options = {});

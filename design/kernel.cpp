@@ -9,6 +9,7 @@
 #include "core/image_io.hpp"
 #include "design/kernel_profile.hpp"
 #include "design/optics.hpp"
+#include "design/paper_kernel.hpp"
 
 namespace pinmask {
 namespace {
@@ -141,11 +142,19 @@ Kernel make_kernel(const Camera& camera, const KernelSpec& spec, int ppc,
     }
     const KernelModel requested = parse_kernel_model(spec.model, "kernel model");
     if (requested == KernelModel::kPaperFig3b) {
-        throw invalid_field(
-            "kernel model", "'paper-fig3b'",
-            "not available: the paper's measured 8 x 8 kernel table (its Fig. 3b) could not be "
-            "obtained and pinmask does not invent it; use 'measured' with a kernel image, or "
-            "'fresnel'");
+        if (ppc != kPaperKernelSide) {
+            throw invalid_field("pixels_per_cell", std::to_string(ppc),
+                                "the paper-fig3b kernel is the paper's 8 x 8 table, defined only "
+                                "for 8 pixels per cell (set pixels per cell to 8)");
+        }
+        Kernel k;
+        k.values = paper_fig3b_kernel();
+        k.origin_row = k.origin_col = 0;  // the table covers the cell; centre at ppc/2 = 4
+        k.model = KernelModel::kPaperFig3b;
+        k.model_reason = "requested: the paper's measured Fig. 3b table";
+        k.wavelengths = {{camera.wavelength_m, 1.0}};
+        k.source = "paper Fig. 3b";
+        return k;
     }
     if (requested == KernelModel::kMeasured) {
         if (spec.measured_path.empty()) {

@@ -23,8 +23,9 @@
 // normalised monochromatic kernels, weights normalised to sum 1; empty means the camera's design
 // wavelength. "auto" resolves per wavelength; when wavelengths disagree, fresnel is used for all.
 //
-// "paper-fig3b" (the paper's measured 8 x 8 kernel, its Fig. 3b) is NOT available: its values
-// could not be obtained, and pinmask does not invent them; requesting it throws InvalidInput.
+// "paper-fig3b" is the paper's measured 8 x 8 kernel (its Fig. 3b, design/paper_kernel.hpp),
+// normalised to sum 1, covering the cell exactly (origin 0, 0); defined only for 8 pixels per
+// cell (InvalidInput naming the 8 otherwise). It does not depend on the camera.
 // "measured" reads KernelSpec::measured_path (core/image_io read_image), one channel, finite,
 // sum > 0, normalised to sum 1; its central element (floor(rows/2), floor(cols/2)) is placed on
 // the cell's pixel (floor(ppc/2), floor(ppc/2)) (exact centring when the sizes' parities match

@@ -12,7 +12,7 @@ enum class KernelModel {
     kBox,         // geometric spot: a square of side |M| d, exact pixel overlaps
     kFraunhofer,  // sinc^2(d x / (lambda f)) per axis (the N = 0 limit)
     kFresnel,     // the full Fresnel pattern with the lens phase (any N)
-    kPaperFig3b,  // the paper's measured 8 x 8 kernel table: not available (see kernel.hpp)
+    kPaperFig3b,  // the paper's measured 8 x 8 kernel table (design/paper_kernel.hpp), 8 px/cell
     kMeasured,    // a kernel image file
 };
 

@@ -62,6 +62,26 @@ Plane cyclic_capture(const Plane& scene, const Plane& psf) {
     return c;
 }
 
+Plane linear_capture(const Plane& scene, const Plane& w) {
+    if (scene.size() == 0 || w.size() == 0) throw InvalidInput("linear_capture: empty input");
+    if (!is_all_finite(scene) || !is_all_finite(w)) {
+        throw InvalidInput("linear_capture: the scene or the PSF holds NaN or Inf");
+    }
+    const int mr = static_cast<int>(scene.rows()), mc = static_cast<int>(scene.cols());
+    const int R = static_cast<int>(w.rows()), C = static_cast<int>(w.cols());
+    const int fr = R + mr - 1, fc = C + mc - 1;  // the full linear convolution, no wrap
+    check_memory(8.0 * fr * fc * 4.0, "the linear convolution of the exact-geometry capture");
+    Plane a = Plane::Zero(fr, fc), b = Plane::Zero(fr, fc);
+    a.topLeftCorner(mr, mc) = scene;
+    b.topLeftCorner(R, C) = w;
+    const Fft2 fft(fr, fc);
+    const Plane full = fft.inverse(fft.forward(a) * fft.forward(b));
+    // full(k) = sum_i x(i) w(k - i); c(r) = full(r + floor(m / 2)).
+    Plane c = full.block(mr / 2, mc / 2, R, C);
+    if (scene.minCoeff() >= 0.0 && w.minCoeff() >= 0.0) c = c.max(0.0);
+    return c;
+}
+
 TileOrigin centred_tile_origin(int frame_rows, int frame_cols, int period_rows, int period_cols) {
     return {floor_div(frame_rows - period_rows, 2), floor_div(frame_cols - period_cols, 2)};
 }
@@ -88,7 +108,12 @@ SimulatedCapture simulate_capture(const Image& scene, const Plane& psf, int open
     const int pr = static_cast<int>(psf.rows()), pc = static_cast<int>(psf.cols());
     SimulatedCapture out;
     int rows = pr, cols = pc;
-    if (options.full_sensor) {
+    if (options.exact_psf) {
+        rows = static_cast<int>(options.exact_psf->rows());
+        cols = static_cast<int>(options.exact_psf->cols());
+        out.origin = centred_tile_origin(rows, cols, pr, pc);
+        out.whole_period_on_sensor = rows >= pr && cols >= pc;
+    } else if (options.full_sensor) {
         rows = options.sensor_rows;
         cols = options.sensor_cols;
         out.origin = centred_tile_origin(rows, cols, pr, pc);
@@ -99,8 +124,11 @@ SimulatedCapture simulate_capture(const Image& scene, const Plane& psf, int open
     const NoiseModel& m = options.noise;
     const double scale = m.photons_per_pinhole * open_cells;  // electrons per normalised unit
     for (int ch = 0; ch < scene.n_channels(); ++ch) {
-        Plane clean = cyclic_capture(scene.channels[ch], psf);
-        if (options.full_sensor) clean = tile_period(clean, rows, cols, out.origin);
+        Plane clean = options.exact_psf ? linear_capture(scene.channels[ch], *options.exact_psf)
+                                        : cyclic_capture(scene.channels[ch], psf);
+        if (options.full_sensor && !options.exact_psf) {
+            clean = tile_period(clean, rows, cols, out.origin);
+        }
         std::mt19937_64 rng = stream_rng(options.seed, kCaptureStream, ch);
         Plane noisy = add_noise(clean, m, open_cells, total_cells, rng);
         double background = 0.0;

@@ -43,6 +43,10 @@ struct SimulationOptions {
     int sensor_cols = 720;
     bool dark_frame = false;  // also draw the dark frame (photon model only)
     std::uint64_t seed = 1;
+    // Exact geometry (design/psf_exact.hpp): when set, the frame is linear_capture(scene, *this)
+    // at this PSF's size (the sensor window) instead of the tiled cyclic capture; full_sensor and
+    // the sensor size are then ignored. Not owned: must outlive the simulate_capture call.
+    const Plane* exact_psf = nullptr;
 
     // Throws InvalidInput naming the field: the noise model (noise_model.hpp validate), sensor
     // size >= 1 when full_sensor, dark_frame only with the photon model (the Gaussian SNR model
@@ -72,6 +76,14 @@ struct SimulatedCapture {
 // are non-negative the exact result is too, and FFT rounding below 0 is clipped to 0 (the photon
 // model needs a non-negative capture).
 Plane cyclic_capture(const Plane& scene, const Plane& psf);
+
+// Exact geometry: the noiseless capture of an m_r x m_c scene through the sensor-window PSF w
+// (R x C, the optical axis at its centre), linear convolution (no wrap-around):
+//     c(r, c) = sum_{i, j} x(i, j) w(r - i + floor(m_r / 2), c - j + floor(m_c / 2)),
+// i.e. scene pixel (i, j) is a point source (i - floor(m_r/2), j - floor(m_c/2)) pixels off the
+// axis and shifts the whole PSF by that much; the result has the window's size. By zero-padded
+// FFT; scene and PSF finite (InvalidInput otherwise), negative rounding clipped as above.
+Plane linear_capture(const Plane& scene, const Plane& window_psf);
 
 // The origin that puts a period at the centred crop of an R x C frame: ((R - m_r) / 2,
 // (C - m_c) / 2), rounded towards minus infinity (negative when the frame is smaller).

@@ -109,3 +109,79 @@ TEST_CASE("more invalid input: units, models, geometry") {
     CHECK(run_cli("design --help").exit_code == 0);
     CHECK(contains(run_cli("design --help").out, "Example"));
 }
+
+namespace {
+
+const std::string kIssueCamera =
+    "--pixel-pitch 3.45um --sensor 2448x2048 --lens-focal 25mm --sensor-distance 20mm "
+    "--object-distance 2m --wavelength 530nm";
+
+// The issue quotes d = 345.0 um: +-0.1 %.
+constexpr double kIssueRel = 1e-3;
+// JSON round trip of doubles (17 significant digits) and two evaluations of one closed form.
+constexpr double kRoundTripRel = 1e-9;
+
+}  // namespace
+
+TEST_CASE("design --pixels-per-cell 21 for the issue's camera: d = 345.0 um, range by the rule") {
+    const auto j = design_json(kIssueCamera + " --pixels-per-cell 21");
+    const double d = j["pinhole_for_pixels_per_cell_m"].get<double>();
+    CHECK(std::fabs(d / 345.0e-6 - 1.0) <= kIssueRel);
+    CHECK(std::fabs(j["camera"]["pinhole_m"].get<double>() - d) <= kRoundTripRel * d);
+    CHECK(j["whole_pixels_per_cell_at_u"] == 21);
+    CHECK(std::fabs(j["pixels_per_cell_at_u"].get<double>() - 21.0) <= 1e-9);
+    CHECK(std::fabs(j["lsi_mismatch_at_u_px"].get<double>()) <= 1e-9);
+    // Direct evaluation of the tolerance: f s_max |1/u' - 1/u| / w = 1 px at both ends.
+    const auto range = j["object_distance_range_m"];
+    REQUIRE(range.size() == 2);
+    REQUIRE(range[1].is_number());
+    const double s_max = 16 * d, f = 0.020, w = 3.45e-6, u = 2.0;
+    for (int end = 0; end < 2; ++end) {
+        const double u_end = range[end].get<double>();
+        CHECK(std::fabs(f * s_max * std::fabs(1.0 / u_end - 1.0 / u) / w - 1.0) <= kRoundTripRel);
+    }
+    CHECK(range[0].get<double>() < u);
+    CHECK(range[1].get<double>() > u);
+    CHECK(std::fabs(j["optimum_pinhole_lensless_m"].get<double>() - 160.6e-6) <= 0.05e-6);
+    CHECK(j["optimum_pinhole_with_lens_m"].get<double>() > 340e-6);
+    CHECK(j.contains("optimum_pinhole_m"));  // the existing key stays
+    // --solve pinhole from a pinhole near 21 px gives the same design.
+    const auto solved = design_json(kIssueCamera + " --pinhole 340um --solve pinhole");
+    CHECK(solved["whole_pixels_per_cell_at_u"] == 21);
+    CHECK(std::fabs(solved["camera"]["pinhole_m"].get<double>() - d) <= kRoundTripRel * d);
+    // A large tolerance reaches infinity: null with a note.
+    const auto loose = design_json(kIssueCamera + " --pixels-per-cell 21 --lsi-tolerance 100");
+    CHECK(loose["object_distance_range_m"][1].is_null());
+    CHECK(loose["notes"].contains("object_distance_range_m"));
+}
+
+TEST_CASE("design table: both optima with formulas, the regime line and the spread warning") {
+    const auto r = run_cli("design " + kIssueCamera + " --pinhole 160.6um");
+    REQUIRE(r.exit_code == 0);
+    CHECK(contains(r.out, "1.56 sqrt(lambda f)"));
+    CHECK(contains(r.out, "1.56 sqrt(lambda |z_eff(u)|)"));
+    CHECK(contains(r.out, "regime"));
+    CHECK(contains(r.out, "WARNING: spots spread over more than one cell"));
+    CHECK(contains(r.out, "usable object distances"));
+    const auto ok = run_cli("design " + kIssueCamera + " --pixels-per-cell 21");
+    CHECK_FALSE(contains(ok.out, "WARNING"));
+}
+
+TEST_CASE("design working-distance edge cases exit 2 with a message") {
+    auto refused = [](const std::string& args, const std::string& says) {
+        const auto r = run_cli("design " + args);
+        INFO(args << " -> " << r.err);
+        CHECK(r.exit_code == 2);
+        CHECK(contains(r.err, says));
+        CHECK(r.out.empty());
+    };
+    refused("--object-distance 100mm", "inside the focal length");
+    refused("--lens-focal 55mm --object-distance inf --pixels-per-cell 8", "z_eff is infinite");
+    refused("--lsi-tolerance 0", "empty object-distance range");
+    refused("--pixels-per-cell 21 --pinhole 300um", "--pixels-per-cell");
+    refused("--pixels-per-cell 0", "--pixels-per-cell");
+    refused("--solve focus", "--solve");
+    // f = f' at a finite u is legal: M = f/u.
+    CHECK(run_cli("design --lens-focal 55mm --object-distance 6m --pixels-per-cell 8").exit_code ==
+          0);
+}

@@ -8,11 +8,11 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "io/mask_json.hpp"
-#include "io/psf_files.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
 #include "design/psf.hpp"
+#include "io/mask_json.hpp"
+#include "io/psf_files.hpp"
 #include "tests/support/cli_run.hpp"
 
 using namespace pinmask;
@@ -124,7 +124,6 @@ TEST_CASE("errors exit 2 and leave no files") {
         CHECK(contains(r.err, says));
         CHECK(file_count(dir) == 1);  // only the mask
     };
-    refused(mask + " -o " + (dir / "p.tiff") + " --kernel paper-fig3b", "not available");
     refused(mask + " -o " + (dir / "p.tiff") + " --kernel measured", "--kernel-path");
     refused(mask + " -o " + (dir / "p.tiff") + " --kernel gauss", "--kernel");
     refused(mask + " -o " + (dir / "p.png"), "-o");
@@ -171,4 +170,73 @@ TEST_CASE("read_psf_file validates the image and the sidecar") {
     write_npy(dir / "zero.npy", Image(Plane::Zero(4, 4)), SampleFormat::kFloat64);
     CHECK_THROWS_AS(io::read_psf_file(dir / "zero.npy"), InvalidInput);
     CHECK_THROWS_AS(io::read_psf_file(dir / "none.tiff"), InvalidInput);
+}
+
+TEST_CASE("psf --geometry exact --object-distance 6m: spot centroids within 0.05 px of Eq. (3)") {
+    // The bound on a spot centroid against its Eq. (3) position.
+    constexpr double kCentroidTolPx = 0.05;
+    TempDir dir("psf-exact");
+    const Mask m = sample_mask();
+    const std::string mask = write_mask(dir, m);
+    const auto r = run_cli("psf " + mask + " -o " + (dir / "e.tiff") +
+                           " --geometry exact --object-distance 6m --kernel box --size 400x500");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const Plane a = read_image(dir / "e.tiff").image.channels[0];
+    REQUIRE(a.rows() == 400);
+    REQUIRE(a.cols() == 500);
+    // Eq. (3) written out: q = (1 - f/f' + f/u) s with s from the centre of the 2 x 2 tiled mask.
+    const Camera& c = m.camera;
+    const double mag = 1.0 - c.sensor_distance_m / c.lens_focal_m + c.sensor_distance_m / 6.0;
+    const double pitch = mag * c.pinhole_m / c.pixel_pitch_m;
+    auto centre = [&](int window, int cell) { return window / 2.0 + (cell + 0.5 - 16) * pitch; };
+    for (int tr = 0; tr < 2; ++tr) {
+        for (int tc = 0; tc < 2; ++tc) {
+            for (const Cell& cell : m.pattern.pinholes) {
+                const double y = centre(400, tr * 16 + cell.row);
+                const double x = centre(500, tc * 16 + cell.col);
+                double s = 0, sy = 0, sx = 0;
+                for (int i = int(y - 1.2 * pitch); i <= int(y + 1.2 * pitch); ++i) {
+                    for (int j = int(x - 1.2 * pitch); j <= int(x + 1.2 * pitch); ++j) {
+                        s += a(i, j);
+                        sy += a(i, j) * (i + 0.5);
+                        sx += a(i, j) * (j + 0.5);
+                    }
+                }
+                CHECK(std::fabs(sy / s - y) <= kCentroidTolPx);
+                CHECK(std::fabs(sx / s - x) <= kCentroidTolPx);
+            }
+        }
+    }
+    // Flags of the exact geometry are refused with the integer one, and u inside f' exits 2.
+    const auto wrong = run_cli("psf " + mask + " -o " + (dir / "w.tiff") + " --size 10x10");
+    CHECK(wrong.exit_code == 2);
+    CHECK(contains(wrong.err, "--geometry exact"));
+    const auto inside = run_cli("psf " + mask + " -o " + (dir / "w.tiff") +
+                                " --geometry exact --object-distance 10cm");
+    CHECK(inside.exit_code == 2);
+    CHECK(contains(inside.err, "focal length"));
+    CHECK(!fs::exists(dir / "w.tiff"));
+}
+
+TEST_CASE("simulate --geometry exact: sensor-sized capture, decode gives no false period warning") {
+    TempDir dir("sim-exact");
+    const std::string mask = write_mask(dir, sample_mask());
+    const auto r = run_cli("simulate " + mask + " -o " + (dir / "c.npy") +
+                           " --geometry exact --object-distance 6m --snr 30");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const Plane c = read_image(dir / "c.npy").image.channels[0];
+    CHECK(c.rows() == 480);
+    CHECK(c.cols() == 720);
+    const auto d =
+        run_cli("decode " + (dir / "c.npy") + " --mask " + mask + " -o " + (dir / "d.png"));
+    INFO(d.err);
+    CHECK(d.exit_code == 0);
+    CHECK_FALSE(contains(d.err, "warning"));
+    const auto bad =
+        run_cli("simulate " + mask + " -o " + (dir / "x.npy") + " --geometry exact --full-sensor");
+    CHECK(bad.exit_code == 2);
+    CHECK(contains(bad.err, "--full-sensor"));
+    CHECK(!fs::exists(dir / "x.npy"));
 }

@@ -180,9 +180,10 @@ TEST_CASE("check_period skips an axis with fewer than two periods, and finds non
     const PeriodCheck one = check_period(x, 31, 40);
     CHECK_FALSE(one.rows.checked);  // 60 < 2 * 31
     CHECK(one.rows.skip_reason.find("1.94 periods") != std::string::npos);
-    CHECK(one.cols.checked);
-    CHECK_FALSE(one.cols.found);  // white noise does not repeat
-    CHECK_FALSE(one.matches());
+    CHECK_FALSE(one.cols.checked);  // white noise does not repeat: nothing to check
+    CHECK_FALSE(one.cols.found);
+    CHECK(one.cols.skip_reason.find("no repeat found") != std::string::npos);
+    CHECK(one.matches());  // no repeat contradicts the PSF either
 
     const PeriodCheck none = check_period(x, 60, 100);
     CHECK_FALSE(none.checked());

@@ -137,7 +137,7 @@ TEST_CASE("a requested model is reported as requested") {
     CHECK(r.kernel_reason == "requested");
     const OpticsReport fig = compute_optics(paper_camera(), PatternGeometry{},
                                             KernelModel::kPaperFig3b, OpticsOptions{});
-    CHECK(contains(fig.kernel_reason, "not available"));
+    CHECK(contains(fig.kernel_reason, "Fig. 3b"));
 }
 
 TEST_CASE("nonsense input is InvalidInput naming the field") {

@@ -1,0 +1,97 @@
+#include "bench/period_bench.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+#include <random>
+#include <string>
+
+#include "core/error.hpp"
+#include "decode/decoder.hpp"
+#include "decode/period.hpp"
+#include "design/psf.hpp"
+#include "optimize/scenes.hpp"
+#include "optimize/simulate.hpp"
+
+namespace pinmask {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+template <class F>
+double best_of(int repeat, F&& fn) {
+    double best = std::numeric_limits<double>::infinity();
+    for (int r = 0; r < repeat; ++r) {
+        const auto t0 = Clock::now();
+        fn();
+        best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
+    }
+    return best;
+}
+
+Mask issue_mask() {
+    Mask m;
+    m.camera.pixel_pitch_m = 3.45e-6;
+    m.camera.sensor_cols = 2448;
+    m.camera.sensor_rows = 2048;
+    m.camera.lens_focal_m = 0.025;
+    m.camera.sensor_distance_m = 0.020;
+    m.camera.object_distance_m = 2.0;
+    m.camera.wavelength_m = 530e-9;
+    m.camera.pinhole_m = 345e-6;
+    m.pattern.n = 16;
+    m.pattern.min_spacing_cells = 0.0;
+    std::mt19937_64 rng(1);
+    std::uniform_int_distribution<int> cell(0, 255);
+    while (m.pattern.pinholes.size() < 20) {
+        const int k = cell(rng);
+        const Cell c{k / 16, k % 16};
+        if (std::find(m.pattern.pinholes.begin(), m.pattern.pinholes.end(), c) ==
+            m.pattern.pinholes.end()) {
+            m.pattern.pinholes.push_back(c);
+        }
+    }
+    m.psf.pixels_per_cell = 21;
+    m.psf.kernel.model = "auto";
+    return m;
+}
+
+}  // namespace
+
+PeriodBenchResult bench_period(const PeriodBenchOptions& o) {
+    for (const auto& [name, v] : {std::pair{"rows", o.rows}, std::pair{"cols", o.cols}}) {
+        if (v < 672 || v > 8192) {
+            throw invalid_field(name, std::to_string(v),
+                                "must be between 672 (two 336 px periods) and 8192");
+        }
+    }
+    if (o.repeat < 1) throw invalid_field("repeat", std::to_string(o.repeat), "must be >= 1");
+    const Mask m = issue_mask();
+    const Plane psf = mask_psf(m);
+    const int p = static_cast<int>(psf.rows());
+    SimulationOptions so;
+    so.noise.kind = NoiseKind::kGaussianSnr;
+    so.noise.snr_db = 30.0;
+    so.full_sensor = true;
+    so.sensor_rows = o.rows;
+    so.sensor_cols = o.cols;
+    const Image scene = make_scene(scene_from_name("letter-R"), p, p);
+    const Plane frame = simulate_capture(scene, psf, 20, 256, so).capture.channels[0];
+    const TileOrigin origin = centred_tile_origin(o.rows, o.cols, p, p);
+    const Plane period = frame.block(origin.row, origin.col, p, p);
+
+    PeriodBenchResult r;
+    r.rows = o.rows;
+    r.cols = o.cols;
+    r.period_px = p;
+    PeriodCheck check;
+    r.check_seconds = best_of(o.repeat, [&] { check = check_period(frame, p, p); });
+    r.check_matches = check.matches();
+    DecodeOptions d;
+    d.nsr = 1e-3;
+    r.wiener_frame_seconds = best_of(o.repeat, [&] { decode_plane(frame, psf, d); });
+    r.wiener_period_seconds = best_of(o.repeat, [&] { decode_plane(period, psf, d); });
+    return r;
+}
+
+}  // namespace pinmask

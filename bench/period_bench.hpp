@@ -1,0 +1,32 @@
+// Cost of the decoder's period check (decode/period.hpp) beside a Wiener decode of the same
+// capture, timed in the same run (issue 12: the check must cost at most 10 % of the decode).
+//
+// The capture: the issue's camera (3.45 um pixels, 25 mm lens, sensor 20 mm behind, u = 2 m,
+// 530 nm, d = 345 um: 21 px per cell, a 336 px period) simulated over a rows x cols sensor
+// (default its 2048 x 2448) from a seeded 16 x 16, K = 20 pattern and the letter-R scene, 30 dB.
+// Figures (each the minimum over `repeat` runs):
+//   check_seconds         check_period on the whole frame against the 336 px PSF
+//   wiener_frame_seconds  decode_plane (Wiener, cyclic) of the whole frame, PSF zero-padded
+//   wiener_period_seconds decode_plane of the centred period only (what decode does by default)
+#pragma once
+
+namespace pinmask {
+
+struct PeriodBenchOptions {
+    int rows = 2048;  // sensor window, each >= 2 periods (672) and <= 8192
+    int cols = 2448;
+    int repeat = 3;  // >= 1
+};
+
+struct PeriodBenchResult {
+    int rows = 0, cols = 0, period_px = 0;
+    double check_seconds = 0;
+    double wiener_frame_seconds = 0;
+    double wiener_period_seconds = 0;
+    bool check_matches = false;  // the check agreed with the PSF (no false warning)
+};
+
+// Throws InvalidInput for options out of range, naming the field.
+PeriodBenchResult bench_period(const PeriodBenchOptions& options);
+
+}  // namespace pinmask

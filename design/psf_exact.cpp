@@ -1,0 +1,100 @@
+#include "design/psf_exact.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/resource_limits.hpp"
+#include "core/units.hpp"
+#include "design/optics.hpp"
+#include "design/psf.hpp"
+#include "design/working_distance.hpp"
+
+namespace pinmask {
+namespace {
+
+// Window sides accepted (a 65536-pixel side is already far beyond any sensor).
+constexpr int kMaxWindowSide = 65536;
+
+Camera at_distance(const Camera& c, double u) {
+    Camera out = c;
+    out.object_distance_m = u;
+    return out;
+}
+
+// Adds weight * kernel with its first pixel's edge at continuous (y0, x0), area-resampled.
+void add_resampled(Plane& out, const Plane& k, double y0, double x0, double weight) {
+    const double fy = std::floor(y0), fx = std::floor(x0);
+    const double ty = y0 - fy, tx = x0 - fx;  // fractional shifts in [0, 1)
+    const long long r0 = static_cast<long long>(fy), c0 = static_cast<long long>(fx);
+    const double wy[2] = {1.0 - ty, ty}, wx[2] = {1.0 - tx, tx};
+    for (Eigen::Index i = 0; i < k.rows(); ++i) {
+        for (int a = 0; a < 2; ++a) {
+            const long long r = r0 + i + a;
+            if (r < 0 || r >= out.rows() || wy[a] == 0.0) continue;
+            for (Eigen::Index j = 0; j < k.cols(); ++j) {
+                const double v = weight * wy[a] * k(i, j);
+                for (int b = 0; b < 2; ++b) {
+                    const long long c = c0 + j + b;
+                    if (c < 0 || c >= out.cols() || wx[b] == 0.0) continue;
+                    out(r, c) += v * wx[b];
+                }
+            }
+        }
+    }
+}
+
+}  // namespace
+
+SpotCentre exact_spot_centre(const Mask& m, double u, int rows, int cols, int cell_row,
+                             int cell_col) {
+    const double pitch_px =
+        magnification_at_u(at_distance(m.camera, u)) * m.camera.pinhole_m / m.camera.pixel_pitch_m;
+    const double nt_r = static_cast<double>(m.pattern.n) * m.pattern.tiles_rows;
+    const double nt_c = static_cast<double>(m.pattern.n) * m.pattern.tiles_cols;
+    return {rows / 2.0 + (cell_row + 0.5 - nt_r / 2.0) * pitch_px,
+            cols / 2.0 + (cell_col + 0.5 - nt_c / 2.0) * pitch_px};
+}
+
+Plane exact_psf(const Mask& m, const ExactPsfOptions& o) {
+    validate(m.camera);
+    validate(m.pattern, /*allow_spacing_violations=*/true);
+    if (m.pattern.pinholes.empty()) {
+        throw invalid_field("pattern pinholes", "0", "the PSF needs at least one pinhole");
+    }
+    check_object_distance(m.camera, o.object_distance_m, "object_distance_m");
+    const int rows = o.rows > 0 ? o.rows : m.camera.sensor_rows;
+    const int cols = o.cols > 0 ? o.cols : m.camera.sensor_cols;
+    if (o.rows < 0 || o.cols < 0 || rows > kMaxWindowSide || cols > kMaxWindowSide) {
+        throw invalid_field("size", std::to_string(o.rows) + "x" + std::to_string(o.cols),
+                            "each side must be between 1 and " + std::to_string(kMaxWindowSide));
+    }
+    const Camera cam = at_distance(m.camera, o.object_distance_m);
+    if (magnification_at_u(cam) == 0.0) {
+        throw invalid_field("object_distance_m", format_length(o.object_distance_m),
+                            "gives 1 - f/f' + f/u = 0: every pinhole images to the same spot");
+    }
+    check_memory(double(rows) * cols * 8.0, "the " + std::to_string(rows) + " x " +
+                                                std::to_string(cols) + " exact-geometry PSF");
+    Mask at_u = m;
+    at_u.camera = cam;
+    const Kernel k = mask_kernel(at_u, o.kernel);
+    const int ppc = m.psf.pixels_per_cell;
+    Plane out = Plane::Zero(rows, cols);
+    const double weight = 1.0 / static_cast<double>(m.pattern.pinholes.size());
+    for (int tr = 0; tr < m.pattern.tiles_rows; ++tr) {
+        for (int tc = 0; tc < m.pattern.tiles_cols; ++tc) {
+            for (const Cell& cell : m.pattern.pinholes) {
+                const SpotCentre s =
+                    exact_spot_centre(m, o.object_distance_m, rows, cols,
+                                      tr * m.pattern.n + cell.row, tc * m.pattern.n + cell.col);
+                // Kernel pixel i covers [y0 + i, y0 + i + 1): its centre ppc/2 - origin from y0.
+                add_resampled(out, k.values, s.row - ppc / 2.0 + k.origin_row,
+                              s.col - ppc / 2.0 + k.origin_col, weight);
+            }
+        }
+    }
+    return out;
+}
+
+}  // namespace pinmask
