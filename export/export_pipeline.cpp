@@ -63,9 +63,9 @@ ExportSummary export_mask(const Mask& mask, const ExportOptions& o) {
                 "the layout extent " + nm_text(w) + " x " + nm_text(h) + " does not fit the plate");
     }
     if (o.write.native_circles && s.layout.circles.empty())
-        s.notes.push_back("--circles native: no round pinholes (shape " +
-                          std::string(lo.shape == HoleShape::kSquare ? "square" : "polygon") +
-                          " or dark tone), polygons written");
+        s.notes.push_back(
+            "--circles native: no round pinholes to draw natively (square or polygon shape, or "
+            "dark tone, where pinholes are holes in opaque pieces): polygons written");
     s.drc = run_drc(s.layout, rules_for_mask(mask, o.drc));
     if (o.require_drc_clean && !s.drc.clean()) {
         std::string what;
