@@ -73,8 +73,13 @@ ExportSummary export_mask(const Mask& mask, const ExportOptions& o) {
         throw RuntimeFailure("design-rule check (" + o.drc.name + ") found violations:" + what +
                              "; run `pinmask check` for details");
     }
+    WriteOptions w = o.write;
+    if (w.max_snap_error_nm == 0) {  // default: 5 % of the drawn pinhole side or diameter
+        const double side = lo.hole_side_m > 0 ? lo.hole_side_m : mask.camera.pinhole_m;
+        w.max_snap_error_nm = kDefaultSnapFraction * side * 1e9;
+    }
     for (FabFormat f : o.formats)
-        s.files.push_back({f, fab_extension(f), write_fabrication_bytes(s.layout, f, o.write),
+        s.files.push_back({f, fab_extension(f), write_fabrication_bytes(s.layout, f, w),
                            units_of(f, o.write.unit)});
     return s;
 }

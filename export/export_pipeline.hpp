@@ -17,6 +17,10 @@
 namespace pinmask {
 
 inline constexpr std::size_t kHierarchyAutoPinholes = 10'000;  // `--hierarchy auto` threshold
+// The 1-bit raster is refused by default when snapping to the plotter grid changes a pinhole's
+// size or centre by more than 5 % of its side: beyond that the film no longer has the designed
+// open area (the PSF's pinhole kernel changes by about twice that in energy).
+inline constexpr double kDefaultSnapFraction = 0.05;
 
 struct ExportOptions {
     std::vector<FabFormat> formats = {FabFormat::kSvg, FabFormat::kPdf,    FabFormat::kGds,
