@@ -19,7 +19,8 @@ int unit_digits(FabUnit unit) {
 // nm -> count of 10^-digits drawing units (inches: rounded to the nearest 1e-9 in).
 std::int64_t to_count(std::int64_t nm, FabUnit unit) {
     if (unit != FabUnit::kInch) return nm;
-    const std::int64_t num = nm * 10;  // nm / 25.4 = nm * 10 / 254, rounded half away from zero
+    // 1e-9 in = 0.0254 nm: count = nm / 0.0254 = nm * 10000 / 254, rounded half away from zero
+    const std::int64_t num = nm * 10000;
     return num >= 0 ? (num + 127) / 254 : -((-num + 127) / 254);
 }
 
