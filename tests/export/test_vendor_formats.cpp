@@ -3,9 +3,14 @@
 // design, the 1-bit plotter raster against a direct pixel count, vendor presets, tone aliases.
 // Answers are known by construction (the layout's own integer rings).
 #include <doctest/doctest.h>
+#include <tiffio.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
 #include <string>
 
 #include "core/error.hpp"
@@ -221,4 +226,58 @@ TEST_CASE("vendor presets, tone aliases and nonsense options") {
     const ExportSummary s = export_mask(golden_mask(), k);
     const BoxNm b = bounding_box({s.layout.polygons[0]});
     CHECK(b.x1 - b.x0 == 400000);
+}
+
+TEST_CASE("1-bit TIFF at 25400 dpi: physical size from its tags and the pinhole count") {
+    const Layout l = tiled_layout();
+    const std::string path = (std::filesystem::temp_directory_path() /
+                              ("pinmask-tiff1-" + std::to_string(::getpid()) + ".tif"))
+                                 .string();
+    std::ofstream(path, std::ios::binary) << plotter_tiff(l, 25400, 0);
+    TIFF* t = TIFFOpen(path.c_str(), "r");
+    REQUIRE(t);
+    std::uint32_t w = 0, h = 0;
+    std::uint16_t bits = 0, unit = 0, photometric = 0;
+    float xres = 0, yres = 0;
+    TIFFGetField(t, TIFFTAG_IMAGEWIDTH, &w);
+    TIFFGetField(t, TIFFTAG_IMAGELENGTH, &h);
+    TIFFGetField(t, TIFFTAG_BITSPERSAMPLE, &bits);
+    TIFFGetField(t, TIFFTAG_PHOTOMETRIC, &photometric);
+    TIFFGetField(t, TIFFTAG_XRESOLUTION, &xres);
+    TIFFGetField(t, TIFFTAG_YRESOLUTION, &yres);
+    TIFFGetField(t, TIFFTAG_RESOLUTIONUNIT, &unit);
+    CHECK(bits == 1);
+    CHECK(photometric == PHOTOMETRIC_MINISWHITE);
+    CHECK(unit == RESUNIT_INCH);
+    CHECK(xres == 25400.0f);
+    CHECK(yres == 25400.0f);
+    // Physical size = pixels / dpi: the extent rounded up to whole 1 um pixels.
+    const double width_m = double(w) / xres * 0.0254, height_m = double(h) / yres * 0.0254;
+    constexpr double kOnePixelM = 1e-6;
+    CHECK(std::fabs(width_m - double(l.extent.x1 - l.extent.x0) * 1e-9) < kOnePixelM);
+    CHECK(std::fabs(height_m - double(l.extent.y1 - l.extent.y0) * 1e-9) < kOnePixelM);
+    // Pinholes: runs of clear pixels on the rows through the pinhole centres of the active
+    // area, counted as clear-run starts per row (every pinhole is a solid clear square).
+    std::vector<std::uint8_t> row(TIFFScanlineSize(t));
+    std::size_t starts = 0;
+    std::set<std::int64_t> centre_rows;
+    for (const Ring& p : l.polygons) {
+        const BoxNm b = bounding_box({p});
+        centre_rows.insert((l.extent.y1 - (b.y0 + b.y1) / 2) / 1000);
+    }
+    for (std::int64_t r = 0; r < std::int64_t(h); ++r) {  // compressed strips: rows in order
+        REQUIRE(TIFFReadScanline(t, row.data(), std::uint32_t(r), 0) == 1);
+        if (!centre_rows.count(r)) continue;
+        bool prev_clear = false;
+        for (std::uint32_t c = 0; c < w; ++c) {
+            const bool clear = !(row[c / 8] & (0x80 >> (c % 8)));
+            const double x = double(l.extent.x0) + (double(c) + 0.5) * 1000;
+            const bool in_active = x > double(l.active_area.x0) && x < double(l.active_area.x1);
+            if (clear && !prev_clear && in_active) ++starts;
+            prev_clear = clear;
+        }
+    }
+    TIFFClose(t);
+    std::filesystem::remove(path);
+    CHECK(starts == l.polygons.size());
 }
