@@ -166,8 +166,14 @@ TEST_CASE("bench export runs and reports ratios (small mask)") {
     REQUIRE(r.exit_code == 0);
     const auto j = nlohmann::json::parse(r.out);
     CHECK(j["pinholes"].get<int>() > 300);
-    CHECK(j["records"].size() == 11);  // layout, 6 writes, 4 reads
+    CHECK(j["records"].size() == 13);  // layout, 7 writes, 5 reads
     for (const auto& rec : j["records"]) CHECK(rec["ratio"].get<double>() > 0);
+    // Data volume: the 16^2 x 4 x 4 tiled mask as hierarchical GDSII and as OASIS is several
+    // times smaller than flat GDSII (the 1024^2-cell figure is in the README).
+    REQUIRE(j["sizes"].size() == 2);
+    const auto& tiled = j["sizes"][1];
+    CHECK(tiled["flat_gds_bytes"].get<double>() > 3 * tiled["cells_gds_bytes"].get<double>());
+    CHECK(tiled["flat_gds_bytes"].get<double>() > 5 * tiled["oasis_bytes"].get<double>());
 }
 
 TEST_CASE("export --vendor: list, the film-plotter preset (DXF mm + 1-bit TIFF), flags win") {
