@@ -35,6 +35,19 @@ void ExportOptions::validate() const {
                             "must be > 0 and at most 1 mm (or auto)");
     if (l.shape == HoleShape::kPolygon && (l.polygon_sides < 3 || l.polygon_sides > 8000))
         throw invalid_field("--sides", std::to_string(l.polygon_sides), "must be in 3..8000");
+    if (l.max_vertices < 8 || l.max_vertices > kGdsHardMaxVertices)
+        throw invalid_field("--max-vertices", std::to_string(l.max_vertices),
+                            "must be in 8..8190 (the GDSII record limit)");
+    if (write.gds.layer < 0 || write.gds.layer > 32767)
+        throw invalid_field("--layer", std::to_string(write.gds.layer), "must be in 0..32767");
+    if (write.gds.datatype < 0 || write.gds.datatype > 32767)
+        throw invalid_field("--datatype", std::to_string(write.gds.datatype),
+                            "must be in 0..32767");
+    if (!std::isfinite(write.max_snap_error_nm) || write.max_snap_error_nm < 0)
+        throw invalid_field("--max-snap-error", nm_text(write.max_snap_error_nm),
+                            "must be finite and > 0");
+    if (!(write.tiff_dpi >= 1 && write.tiff_dpi <= 1e6))
+        throw invalid_field("--dpi", std::to_string(write.tiff_dpi), "must be in 1..1000000");
     if (!(write.png_dpi >= 1 && write.png_dpi <= 1e6))
         throw invalid_field("--dpi", std::to_string(write.png_dpi), "must be in 1..1000000");
 }

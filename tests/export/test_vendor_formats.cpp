@@ -190,6 +190,10 @@ TEST_CASE("1-bit plotter raster: size, pinholes and snapping error against a dir
     CHECK(std::fabs(s.max_position_error_nm - pos_err) <= kArithmeticNm);
     CHECK(size_err > 0);  // 301.3 um is not a whole number of pixels: the test is not vacuous
     CHECK(size_err <= 1000);
+    // Deterministic bytes (OASIS, hierarchical GDSII, TIFF: no dates, no addresses).
+    CHECK(oasis_file(l) == oasis_file(tiled_layout()));
+    CHECK(gds_stream(l, {.hierarchy = true}) == gds_stream(tiled_layout(), {.hierarchy = true}));
+    CHECK(plotter_tiff(l, 2540, 0) == plotter_tiff(tiled_layout(), 2540, 0));
     // The TIFF refuses a coarse plotter.
     CHECK_THROWS_AS(plotter_tiff(l, 300, 5000), InvalidInput);
     CHECK(plotter_tiff(l, 2540, 0).starts_with("II*"));
