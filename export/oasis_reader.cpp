@@ -14,6 +14,9 @@ namespace {
 
 using namespace oasis;
 
+// Positions and repetition extents in database units stay below this (so sums of a position, a
+// repetition offset and a point-list offset cannot overflow).
+constexpr std::int64_t kMaxSpan = std::int64_t{1} << 40;
 // Largest count of one repetition (a dimension of 2^24 already means 2^48 elements in a grid).
 constexpr std::uint64_t kMaxRepetitionDimension = std::uint64_t{1} << 24;
 
@@ -138,6 +141,7 @@ class OasisParser {
     }
 
     std::int64_t coord(std::int64_t v, std::size_t at) const {
+        if (v > kMaxCoordNm || v < -kMaxCoordNm) throw bad(at, "coordinate beyond 2^30 nm");
         const std::int64_t nm = v * scale_nm_;
         if (nm > kMaxCoordNm || nm < -kMaxCoordNm) throw bad(at, "coordinate beyond 2^30 nm");
         return nm;
@@ -149,9 +153,17 @@ class OasisParser {
         if (!layer_ || !datatype_) throw bad(at, "layer or datatype used before it is set");
     }
 
-    void position(std::uint8_t info) {
+    void position(std::uint8_t info, std::size_t at) {
         if (info & kX) x_ = relative_ ? x_ + rd_.sint() : rd_.sint();
         if (info & kY) y_ = relative_ ? y_ + rd_.sint() : rd_.sint();
+        if (std::llabs(x_) > kMaxSpan || std::llabs(y_) > kMaxSpan)
+            throw bad(at, "position beyond 2^40 database units");
+    }
+
+    // A repetition's extent (count - 1 steps of `step`) must stay within 2^40 units.
+    static void check_span(std::uint64_t n, std::int64_t step, std::size_t at) {
+        if (double(n) * double(std::llabs(step)) > double(kMaxSpan))
+            throw bad(at, "repetition extends beyond 2^40 database units");
     }
 
     // Offsets (database units) of a repetition; type 0 reuses the modal one.
@@ -176,6 +188,8 @@ class OasisParser {
                 const std::uint64_t nx = dim(2), ny = dim(2);
                 const std::int64_t sx = std::int64_t(rd_.uint() & ((1ULL << 40) - 1));
                 const std::int64_t sy = std::int64_t(rd_.uint() & ((1ULL << 40) - 1));
+                check_span(nx, sx, at);
+                check_span(ny, sy, at);
                 reserve(double(nx) * double(ny));
                 for (std::uint64_t j = 0; j < ny; ++j)
                     for (std::uint64_t i = 0; i < nx; ++i)
@@ -186,6 +200,7 @@ class OasisParser {
             case 3: {
                 const std::uint64_t n = dim(2);
                 const std::int64_t s = std::int64_t(rd_.uint() & ((1ULL << 40) - 1));
+                check_span(n, s, at);
                 reserve(double(n));
                 for (std::uint64_t i = 0; i < n; ++i)
                     r.push_back(type == 2 ? PointNm{std::int64_t(i) * s, 0}
@@ -203,7 +218,9 @@ class OasisParser {
                 std::int64_t p = 0;
                 r.push_back({0, 0});
                 for (std::uint64_t i = 1; i < n; ++i) {
-                    p += std::int64_t(rd_.uint() & ((1ULL << 40) - 1)) * grid;
+                    const std::int64_t step = std::int64_t(rd_.uint() & ((1ULL << 40) - 1));
+                    check_span(std::uint64_t(step), grid, at);
+                    p += step * grid;
                     if (p > (1LL << 40)) throw bad(at, "repetition beyond 2^40");
                     r.push_back(type <= 5 ? PointNm{p, 0} : PointNm{0, p});
                 }
@@ -214,6 +231,8 @@ class OasisParser {
                 std::int64_t nx, ny, mx, my;
                 rd_.gdelta(nx, ny);
                 rd_.gdelta(mx, my);
+                for (const std::int64_t v : {nx, ny}) check_span(n, v, at);
+                for (const std::int64_t v : {mx, my}) check_span(m, v, at);
                 reserve(double(n) * double(m));
                 for (std::uint64_t j = 0; j < m; ++j)
                     for (std::uint64_t i = 0; i < n; ++i)
@@ -225,6 +244,8 @@ class OasisParser {
                 const std::uint64_t n = dim(2);
                 std::int64_t dx, dy;
                 rd_.gdelta(dx, dy);
+                check_span(n, dx, at);
+                check_span(n, dy, at);
                 reserve(double(n));
                 for (std::uint64_t i = 0; i < n; ++i)
                     r.push_back({std::int64_t(i) * dx, std::int64_t(i) * dy});
@@ -241,6 +262,8 @@ class OasisParser {
                 for (std::uint64_t i = 1; i < n; ++i) {
                     std::int64_t dx, dy;
                     rd_.gdelta(dx, dy);
+                    check_span(std::uint64_t(std::llabs(dx)) + std::uint64_t(std::llabs(dy)), grid,
+                               at);
                     p = {p.x + dx * grid, p.y + dy * grid};
                     if (std::llabs(p.x) > (1LL << 40) || std::llabs(p.y) > (1LL << 40))
                         throw bad(at, "repetition beyond 2^40");
@@ -281,7 +304,7 @@ class OasisParser {
         }
         if (info & kS) h_ = w_;
         if (!w_ || !h_) throw bad(at, "RECTANGLE width or height used before it is set");
-        position(info);
+        position(info, at);
         if (info & kR) repetition(at);
         const auto w = std::int64_t(*w_ & ((1ULL << 40) - 1)),
                    h = std::int64_t(*h_ & ((1ULL << 40) - 1));
@@ -295,7 +318,7 @@ class OasisParser {
         layer_fields(info, at);
         if (info & kP) points_ = point_list(at);
         if (!points_) throw bad(at, "POLYGON point list used before it is set");
-        position(info);
+        position(info, at);
         if (info & kR) repetition(at);
         emit(*points_, info & kR, at);
     }

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -284,4 +285,34 @@ TEST_CASE("1-bit TIFF at 25400 dpi: physical size from its tags and the pinhole 
     TIFFClose(t);
     std::filesystem::remove(path);
     CHECK(starts == l.polygons.size());
+}
+
+TEST_CASE("OASIS and hierarchical GDSII readers: damaged files throw InvalidInput, never crash") {
+    // Seeded byte flips and truncations of valid files; the fuzz target (fuzz/fuzz_oasis.cpp)
+    // explores far more under the sanitizers.
+    const Layout l = tiled_layout();
+    const std::string oas = oasis_file(l), gds = gds_stream(l, {.hierarchy = true});
+    std::uint64_t state = 12345;
+    auto next = [&] {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return state >> 33;
+    };
+    const int trials = std::getenv("PINMASK_SANITIZED") ? 200 : 1000;
+    int refused = 0;
+    for (int t = 0; t < trials; ++t) {
+        for (const std::string* src : {&oas, &gds}) {
+            std::string b = *src;
+            for (int k = 0; k < 1 + int(next() % 4); ++k) b[next() % b.size()] = char(next());
+            if (next() % 4 == 0) b.resize(next() % b.size());
+            try {
+                (void)(src == &oas ? read_oasis(b) : read_gds(b));
+            } catch (const InvalidInput&) {
+                ++refused;
+            } catch (const ResourceLimit&) {
+                ++refused;
+            }
+        }
+    }
+    // Any other exception type or a crash fails the case; most damaged files are refused.
+    CHECK(refused > trials / 2);
 }
