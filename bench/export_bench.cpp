@@ -16,6 +16,7 @@
 #include "export/pdf_writer.hpp"
 #include "export/png_preview.hpp"
 #include "export/read_any.hpp"
+#include "export/read_back.hpp"
 #include "export/svg_writer.hpp"
 #include "export/write_any.hpp"
 
@@ -61,18 +62,42 @@ void fwrite_file(const fs::path& p, const std::string& bytes) {
     if (std::fclose(f) != 0 || !ok) throw RuntimeFailure("failed writing " + p.string());
 }
 
-Mask bench_mask(const ExportBenchOptions& o) {
+// The jittered lattice on an n x n pattern, tiled `tiles` x `tiles`.
+Mask bench_mask(const ExportBenchOptions& o, int n, int tiles) {
     Mask m;
     m.camera.pinhole_m = o.pinhole_m;
-    m.pattern.n = o.n;
-    m.pattern.tiles_rows = m.pattern.tiles_cols = 1;
+    m.pattern.n = n;
+    m.pattern.tiles_rows = m.pattern.tiles_cols = tiles;
     m.pattern.min_spacing_cells = 2.0;
     std::mt19937_64 rng(o.seed);
     std::bernoulli_distribution keep(0.86), half(0.5);
-    for (int r = 0; r + 2 < o.n; r += 3)
-        for (int c = 0; c + 2 < o.n; c += 3)
+    for (int r = 0; r + 2 < n; r += 3)
+        for (int c = 0; c + 2 < n; c += 3)
             if (keep(rng)) m.pattern.pinholes.push_back({r + half(rng), c + half(rng)});
     return m;
+}
+
+Mask bench_mask(const ExportBenchOptions& o) { return bench_mask(o, o.n, 1); }
+
+// File sizes of one mask: flat GDSII, hierarchical GDSII and OASIS, each read back and checked
+// equal to the layout (so a small file is never a wrong one).
+ExportSizeRecord sizes_of(const std::string& name, const Mask& mask) {
+    const Layout l = make_layout(mask, {});
+    ExportSizeRecord r;
+    r.mask = name;
+    r.pinholes = l.polygons.size();
+    const std::string flat = write_fabrication_bytes(l, FabFormat::kGds, {});
+    const std::string cells = write_fabrication_bytes(l, FabFormat::kGds, {.gds_hierarchy = true});
+    const std::string oas = write_fabrication_bytes(l, FabFormat::kOasis, {});
+    for (const auto& [bytes, f] :
+         {std::pair{&flat, FabFormat::kGds}, {&cells, FabFormat::kGds}, {&oas, FabFormat::kOasis}})
+        if (!read_back(*bytes, f, l).identical())
+            throw RuntimeFailure("bench: " + fab_format_name(f) + " file of " + name +
+                                 " does not read back as its layout");
+    r.flat_gds_bytes = flat.size();
+    r.cells_gds_bytes = cells.size();
+    r.oasis_bytes = oas.size();
+    return r;
 }
 
 }  // namespace
@@ -103,8 +128,8 @@ ExportBenchResult bench_export(const ExportBenchOptions& o) {
     res.total_seconds = t_layout.wall;
     res.total_cpu_seconds = t_layout.cpu;
 
-    for (FabFormat f : {FabFormat::kSvg, FabFormat::kPdf, FabFormat::kGds, FabFormat::kDxf,
-                        FabFormat::kGerber, FabFormat::kPng}) {
+    for (FabFormat f : {FabFormat::kSvg, FabFormat::kPdf, FabFormat::kGds, FabFormat::kOasis,
+                        FabFormat::kDxf, FabFormat::kGerber, FabFormat::kPng}) {
         const fs::path path = o.scratch_dir / ("bench" + fab_extension(f));
         const fs::path ref = o.scratch_dir / ("reference" + fab_extension(f));
         std::string bytes;
@@ -130,6 +155,12 @@ ExportBenchResult bench_export(const ExportBenchOptions& o) {
         res.records.push_back(
             record(name + " read", t_read, bytes.size(), "copy the bytes", t_dup));
     }
+    // Data volume: the bench mask as one tile, and the same cell count as a quarter-size
+    // pattern tiled 4 x 4 (the cyclic tiling every coded mask has).
+    res.sizes.push_back(sizes_of(std::to_string(o.n) + "^2 cells, 1 tile", mask));
+    if (o.n % 4 == 0 && o.n >= 64)
+        res.sizes.push_back(sizes_of(std::to_string(o.n / 4) + "^2 cells x 4 x 4 tiles",
+                                     bench_mask(o, o.n / 4, 4)));
     return res;
 }
 

@@ -6,6 +6,8 @@
 //   layout            make_layout             vs copying the resulting polygon list
 //   <format> write    writer + fwrite to disk vs fwrite of the same number of bytes
 //   <format> read     reader on the bytes     vs copying the bytes
+// and the data volume of flat GDSII, hierarchical GDSII (SREF/AREF) and OASIS for the mask as one
+// tile and as an (n/4)^2 pattern tiled 4 x 4 (each file read back equal to its layout).
 // Each stage is timed as wall-clock seconds and as CPU seconds of the calling thread (what "on
 // one core" costs, undisturbed by other processes on a shared machine); each figure is the
 // minimum over `repeat` runs. Ratios use the CPU times.
@@ -39,12 +41,20 @@ struct ExportBenchRecord {
     double ratio = 0.0;  // cpu_seconds / reference_cpu_seconds
 };
 
+// Data volume of one mask in the formats mask shops price by (bytes).
+struct ExportSizeRecord {
+    std::string mask;  // what the mask is
+    std::size_t pinholes = 0;
+    std::size_t flat_gds_bytes = 0, cells_gds_bytes = 0, oasis_bytes = 0;
+};
+
 struct ExportBenchResult {
     std::size_t pinholes = 0;
     std::size_t polygons = 0;
     double total_seconds = 0.0;      // layout + every write, wall clock
     double total_cpu_seconds = 0.0;  // layout + every write, CPU time of the thread
     std::vector<ExportBenchRecord> records;
+    std::vector<ExportSizeRecord> sizes;  // flat GDSII vs hierarchical GDSII vs OASIS
 };
 
 // Runs on the calling thread. Throws InvalidInput for options out of range (naming the field)

@@ -44,6 +44,13 @@ void run(Options o) {
                                     {"reference_seconds", rec.reference_seconds},
                                     {"reference_cpu_seconds", rec.reference_cpu_seconds},
                                     {"ratio", rec.ratio}});
+        j["sizes"] = nlohmann::json::array();
+        for (const auto& z : r.sizes)
+            j["sizes"].push_back({{"mask", z.mask},
+                                  {"pinholes", z.pinholes},
+                                  {"flat_gds_bytes", z.flat_gds_bytes},
+                                  {"cells_gds_bytes", z.cells_gds_bytes},
+                                  {"oasis_bytes", z.oasis_bytes}});
         std::cout << j.dump(2) << "\n";
         return;
     }
@@ -55,6 +62,14 @@ void run(Options o) {
         std::printf("%-13s %9.4f %9.4f %10zu %9.4f %9.4f %8.1f  %s\n", rec.stage.c_str(),
                     rec.cpu_seconds, rec.seconds, rec.bytes, rec.reference_cpu_seconds,
                     rec.reference_seconds, rec.ratio, rec.reference.c_str());
+    std::printf("\ndata volume (bytes; ratio = flat GDSII / this file):\n");
+    for (const auto& z : r.sizes)
+        std::printf(
+            "  %-28s %7zu pinholes  flat GDSII %10zu  GDSII cells %10zu (%.1fx)  "
+            "OASIS %10zu (%.1fx)\n",
+            z.mask.c_str(), z.pinholes, z.flat_gds_bytes, z.cells_gds_bytes,
+            double(z.flat_gds_bytes) / double(z.cells_gds_bytes), z.oasis_bytes,
+            double(z.flat_gds_bytes) / double(z.oasis_bytes));
 }
 
 void setup(CLI::App& bench) {

@@ -7,11 +7,23 @@
 #include "core/error.hpp"
 #include "export/decimal.hpp"
 #include "export/geometry.hpp"
+#include "export/rings.hpp"
+#include "export/xor_area.hpp"
 
 namespace pinmask {
 namespace {
 
-constexpr int kMicrometreDigits = 3;
+constexpr int kCountDigits = 9;  // coordinates parsed as counts of 1e-9 drawing units
+constexpr std::int64_t kCountsPerUnit = 1'000'000'000;
+// A coordinate may be off the whole nanometre by this much (an inch written with 9 decimals is
+// within 0.0127 nm of its nanometre); more is off the 1 nm database grid and refused.
+constexpr double kOffGridToleranceNm = 0.02;
+
+// The drawing unit: nanometres per unit and where it came from.
+struct DrawingUnit {
+    std::int64_t nm = 0;  // 0: not stated (micrometres are assumed at the first coordinate)
+    std::string source;
+};
 
 struct Pair {
     int code = 0;
@@ -77,12 +89,55 @@ class PairReader {
     std::optional<Pair> saved_;
 };
 
-std::int64_t coordinate(const Pair& p) {
+// $INSUNITS codes with an exact nanometre size; the others (feet, miles, light years, ...,
+// and unknown codes) are refused rather than guessed.
+std::int64_t insunits_nm(int code) {
+    switch (code) {
+        case 1:
+            return 25'400'000;  // inches
+        case 4:
+            return 1'000'000;  // millimetres
+        case 5:
+            return 10'000'000;  // centimetres
+        case 6:
+            return 1'000'000'000;  // metres
+        case 9:
+            return 25'400;  // mils
+        case 12:
+            return 1;  // nanometres
+        case 13:
+            return 1000;  // micrometres
+        case 14:
+            return 100'000'000;  // decimetres
+        default:
+            return 0;
+    }
+}
+
+std::int64_t coordinate(const Pair& p, DrawingUnit& u) {
+    std::int64_t count = 0;
     try {
-        return parse_scaled(p.value, kMicrometreDigits, "dxf coordinate");
+        count = parse_scaled(p.value, kCountDigits, "dxf coordinate");
     } catch (const InvalidInput& e) {
         throw bad(p.line, e.what());
     }
+    if (u.nm == 0) u = {1000, "assumed micrometres: the file states no unit"};
+    const WideInt num = WideInt(count) * u.nm;
+    WideInt q = num / kCountsPerUnit, r = num % kCountsPerUnit;
+    if (r < 0) r += kCountsPerUnit, q -= 1;
+    if (2 * r >= kCountsPerUnit) r -= kCountsPerUnit, q += 1;
+    if (double(r < 0 ? -r : r) > kOffGridToleranceNm * double(kCountsPerUnit))
+        throw bad(p.line, "coordinate '" + std::string(p.value.substr(0, 30)) +
+                              "' is not on the 1 nm grid (" + u.source + ")");
+    if (q > kMaxCoordNm || q < -kMaxCoordNm)
+        throw bad(p.line,
+                  "coordinate '" + std::string(p.value.substr(0, 30)) + "' is beyond 2^30 nm");
+    return std::int64_t(q);
+}
+
+void set_unit(DrawingUnit& u, std::int64_t nm, const std::string& source, std::size_t line) {
+    if (u.nm != 0 && u.nm != nm) throw bad(line, source + " contradicts " + u.source);
+    if (u.nm == 0) u = {nm, source};
 }
 
 int integer(const Pair& p) {
@@ -109,7 +164,7 @@ void finish(Ring ring, bool closed, std::size_t line, std::vector<Ring>& out) {
 }
 
 // A POLYLINE entity: its own groups, then VERTEX entities, then SEQEND.
-void read_polyline(PairReader& rd, std::size_t line, std::vector<Ring>& out) {
+void read_polyline(PairReader& rd, std::size_t line, DrawingUnit& u, std::vector<Ring>& out) {
     bool closed = false;
     Pair p;
     while ((p = rd.take()).code != 0) {
@@ -124,8 +179,8 @@ void read_polyline(PairReader& rd, std::size_t line, std::vector<Ring>& out) {
         PointNm v;
         bool has_x = false, has_y = false;
         while ((p = rd.take()).code != 0) {
-            if (p.code == 10) v.x = coordinate(p), has_x = true;
-            if (p.code == 20) v.y = coordinate(p), has_y = true;
+            if (p.code == 10) v.x = coordinate(p, u), has_x = true;
+            if (p.code == 20) v.y = coordinate(p, u), has_y = true;
             if (p.code == 42) check_bulge(p);
         }
         if (!has_x || !has_y) throw bad(line, "VERTEX without 10/20 coordinates");
@@ -138,21 +193,45 @@ void read_polyline(PairReader& rd, std::size_t line, std::vector<Ring>& out) {
     finish(std::move(ring), closed, line, out);
 }
 
-void read_lwpolyline(PairReader& rd, std::size_t line, std::vector<Ring>& out) {
+void read_lwpolyline(PairReader& rd, std::size_t line, DrawingUnit& u, std::vector<Ring>& out) {
     bool closed = false;
     Ring ring;
     Pair p;
     while ((p = rd.take()).code != 0) {
         if (p.code == 70) closed = integer(p) & 1;
-        if (p.code == 10) ring.push_back({coordinate(p), 0});
+        if (p.code == 10) ring.push_back({coordinate(p, u), 0});
         if (p.code == 20) {
             if (ring.empty()) throw bad(p.line, "20 before 10");
-            ring.back().y = coordinate(p);
+            ring.back().y = coordinate(p, u);
         }
         if (p.code == 42) check_bulge(p);
     }
     rd.unread(p);
     finish(std::move(ring), closed, line, out);
+}
+
+// A CIRCLE entity: centre 10/20, radius 40 (a true circle, FileGeometry circles).
+void read_circle(PairReader& rd, std::size_t line, DrawingUnit& u, std::vector<CircleNm>& out) {
+    CircleNm c;
+    bool has_x = false, has_y = false, has_r = false;
+    Pair p;
+    while ((p = rd.take()).code != 0) {
+        if (p.code == 10) c.centre.x = coordinate(p, u), has_x = true;
+        if (p.code == 20) c.centre.y = coordinate(p, u), has_y = true;
+        if (p.code == 40) c.diameter_nm = 2 * coordinate(p, u), has_r = true;
+        if (p.code == 210 || p.code == 220) {  // extrusion direction other than +z mirrors
+            if (p.value != "0" && p.value != "0.0")
+                throw bad(p.line,
+                          "CIRCLE with an extrusion "
+                          "direction is not supported");
+        }
+        if (p.code == 230 && p.value.starts_with('-'))
+            throw bad(p.line, "CIRCLE with a negative extrusion direction is not supported");
+    }
+    rd.unread(p);
+    if (!has_x || !has_y || !has_r) throw bad(line, "CIRCLE without 10/20/40 groups");
+    if (c.diameter_nm <= 0) throw bad(line, "CIRCLE radius must be > 0");
+    out.push_back(c);
 }
 
 }  // namespace
@@ -161,10 +240,41 @@ FileGeometry read_dxf(std::string_view text) {
     FileGeometry g;
     PairReader rd(text);
     std::string section;
+    DrawingUnit unit;
     for (;;) {
         const Pair p = rd.take();
         if (p.code == 999) {
             for (const auto& [k, v] : parse_info(p.value)) g.info[k] = v;
+            if (auto it = g.info.find("units"); it != g.info.end() && unit.nm == 0) {
+                const std::string& name = it->second;
+                const std::int64_t nm = name == "um"   ? 1000
+                                        : name == "mm" ? 1'000'000
+                                        : name == "in" ? 25'400'000
+                                                       : 0;
+                if (nm == 0) throw bad(p.line, "pinmask comment names unknown units=" + name);
+                set_unit(unit, nm, "the pinmask comment's units=" + name, p.line);
+            }
+            continue;
+        }
+        if (p.code == 9 && section == "HEADER" && p.value == "$INSUNITS") {
+            const Pair v = rd.take();
+            if (v.code != 70) throw bad(v.line, "$INSUNITS without a 70 group");
+            const int code = integer(v);
+            const std::int64_t nm = insunits_nm(code);
+            if (code != 0 && nm <= 0)
+                throw bad(v.line, "$INSUNITS " + std::to_string(code) +
+                                      " is not supported (pinmask reads 0 unitless, 1 in, 4 mm, "
+                                      "5 cm, 6 m, 9 mil, 12 nm, 13 um, 14 dm)");
+            // 0 (unitless) states nothing; a pinmask comment or micrometres decide.
+            if (code != 0) {
+                // The writer's own comment precedes the header; a later $INSUNITS wins only if
+                // both agree, else the file contradicts itself.
+                if (unit.nm != 0 && unit.nm != nm)
+                    throw bad(v.line,
+                              "$INSUNITS " + std::to_string(code) + " contradicts " + unit.source);
+                unit = {nm, "$INSUNITS " + std::to_string(code)};
+                g.info["insunits"] = std::to_string(code);
+            }
             continue;
         }
         if (p.code != 0) {
@@ -184,13 +294,16 @@ FileGeometry read_dxf(std::string_view text) {
         }
         if (section != "ENTITIES") continue;
         if (p.value == "POLYLINE")
-            read_polyline(rd, p.line, g.rings);
+            read_polyline(rd, p.line, unit, g.rings);
+        else if (p.value == "CIRCLE")
+            read_circle(rd, p.line, unit, g.circles);
         else if (p.value == "LWPOLYLINE")
-            read_lwpolyline(rd, p.line, g.rings);
+            read_lwpolyline(rd, p.line, unit, g.rings);
         else
             throw bad(p.line, "unsupported entity " + std::string(p.value.substr(0, 20)) +
-                                  " (pinmask reads closed POLYLINE and LWPOLYLINE only)");
+                                  " (pinmask reads closed POLYLINE, LWPOLYLINE and CIRCLE only)");
     }
+    if (unit.nm != 0) g.info["unit_nm"] = std::to_string(unit.nm);
     return g;
 }
 

@@ -23,9 +23,19 @@ void fill_rings(cairo_t* cr, const std::vector<Ring>& rings) {
     cairo_fill(cr);
 }
 
-void paint_film(cairo_t* cr, const Layout& layout) {
+DrawMode parse_draw_mode(std::string_view text, std::string_view field) {
+    if (text == "film") return DrawMode::kFilm;
+    if (text == "polygons") return DrawMode::kPolygons;
+    throw invalid_field(std::string(field), std::string(text),
+                        "must be film (the film as it looks) or polygons (the drawn polygons "
+                        "black on white)");
+}
+
+std::string draw_mode_name(DrawMode mode) { return mode == DrawMode::kFilm ? "film" : "polygons"; }
+
+void paint_film(cairo_t* cr, const Layout& layout, DrawMode mode) {
     cairo_set_fill_rule(cr, CAIRO_FILL_RULE_WINDING);
-    const bool clear = layout.tone == Tone::kClear;
+    const bool clear = layout.tone == Tone::kClear && mode == DrawMode::kFilm;
     if (clear) {
         const BoxNm& e = layout.extent;
         cairo_set_source_rgb(cr, 0, 0, 0);

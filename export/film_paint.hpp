@@ -10,13 +10,22 @@
 #include <cairo.h>
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "export/layout.hpp"
 
 namespace pinmask {
 
-void paint_film(cairo_t* cr, const Layout& layout);
+// What a picture shows: the final film (above) or the drawn polygons black on white, whatever
+// the tone (so a clear-tone layout gives a drawing of opaque pinholes).
+enum class DrawMode { kFilm, kPolygons };
+
+// "film" or "polygons"; anything else throws InvalidInput naming `field`.
+DrawMode parse_draw_mode(std::string_view text, std::string_view field);
+std::string draw_mode_name(DrawMode mode);
+
+void paint_film(cairo_t* cr, const Layout& layout, DrawMode mode = DrawMode::kFilm);
 
 // Fills the rings black (nanometre user space), one path.
 void fill_rings(cairo_t* cr, const std::vector<Ring>& rings);

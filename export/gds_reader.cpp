@@ -2,11 +2,15 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <string>
+#include <vector>
 
 #include "core/error.hpp"
+#include "core/resource_limits.hpp"
 #include "export/gds_writer.hpp"
 #include "export/geometry.hpp"
+#include "export/xor_area.hpp"
 
 namespace pinmask {
 namespace {
@@ -73,6 +77,62 @@ std::string ascii(const Record& r) {
     return s;
 }
 
+constexpr int kMaxStructures = 100000;
+constexpr int kMaxDepth = 16;
+
+struct Reference {
+    std::string name;
+    bool array = false;
+    std::int64_t cols = 1, rows = 1;
+    PointNm xy[3];
+};
+
+struct Structure {
+    std::vector<Ring> rings;
+    std::vector<Reference> refs;
+};
+
+// Appends the rings of `name` translated by `at`, references expanded (translation only).
+// Placements visited at most while flattening (bounds the time of nested arrays of empty cells).
+constexpr std::uint64_t kMaxPlacements = 100'000'000;
+
+void flatten(const std::map<std::string, Structure>& all, const std::string& name, PointNm at,
+             int depth, std::vector<Ring>& out, std::uint64_t& visits) {
+    if (depth > kMaxDepth)
+        throw bad(0, "references nested deeper than " + std::to_string(kMaxDepth));
+    if (++visits > kMaxPlacements) throw bad(0, "references expand to more than 10^8 placements");
+    const Structure& s = all.at(name);
+    check_memory(double(out.size() + s.rings.size()) * 160.0, "GDSII flattening");
+    for (const Ring& r : s.rings) {
+        Ring t = r;
+        for (PointNm& p : t) {
+            p = {p.x + at.x, p.y + at.y};
+            if (std::llabs(p.x) > kMaxCoordNm || std::llabs(p.y) > kMaxCoordNm)
+                throw bad(0, "flattened coordinate beyond 2^30 nm");
+        }
+        out.push_back(std::move(t));
+    }
+    for (const Reference& ref : s.refs) {
+        if (!ref.array) {
+            flatten(all, ref.name, {at.x + ref.xy[0].x, at.y + ref.xy[0].y}, depth + 1, out,
+                    visits);
+            continue;
+        }
+        // AREF: xy[1] = origin + cols * column step, xy[2] = origin + rows * row step.
+        const PointNm o = ref.xy[0];
+        const PointNm c{ref.xy[1].x - o.x, ref.xy[1].y - o.y},
+            r{ref.xy[2].x - o.x, ref.xy[2].y - o.y};
+        if (c.x % ref.cols || c.y % ref.cols || r.x % ref.rows || r.y % ref.rows)
+            throw bad(0, "AREF steps are not whole database units");
+        for (std::int64_t j = 0; j < ref.rows; ++j)
+            for (std::int64_t i = 0; i < ref.cols; ++i)
+                flatten(all, ref.name,
+                        {at.x + o.x + i * (c.x / ref.cols) + j * (r.x / ref.rows),
+                         at.y + o.y + i * (c.y / ref.cols) + j * (r.y / ref.rows)},
+                        depth + 1, out, visits);
+    }
+}
+
 }  // namespace
 
 FileGeometry read_gds(std::string_view bytes) {
@@ -98,8 +158,16 @@ FileGeometry read_gds(std::string_view bytes) {
         TEXTTYPE = 0x16,
         STRING = 0x19,
         BOX = 0x2D,
+        SNAME = 0x12,
+        COLROW = 0x13,
+        STRANS = 0x1A,
+        MAG = 0x1B,
+        ANGLE = 0x1C,
     };
     FileGeometry g;
+    std::map<std::string, Structure> structures_by_name;
+    std::vector<std::string> order;  // structure names in file order
+    Structure* current = nullptr;
     RecordReader rd(bytes);
     Record r = rd.next();
     if (r.type != HEADER) throw bad(0, "not a GDSII stream (no HEADER record)");
@@ -137,13 +205,21 @@ FileGeometry read_gds(std::string_view bytes) {
             }
             case BGNSTR:
                 if (in_structure) throw bad(r.offset, "BGNSTR inside a structure");
-                if (++structures > 1)
-                    throw bad(r.offset, "more than one structure (pinmask files have one)");
+                if (++structures > kMaxStructures)
+                    throw bad(r.offset,
+                              "more than " + std::to_string(kMaxStructures) + " structures");
                 in_structure = true;
+                current = nullptr;
                 break;
-            case STRNAME:
-                g.info["structure"] = ascii(r);
+            case STRNAME: {
+                if (!in_structure || current) throw bad(r.offset, "STRNAME out of place");
+                const std::string name = ascii(r);
+                if (structures_by_name.count(name))
+                    throw bad(r.offset, "structure " + name + " defined twice");
+                current = &structures_by_name[name];
+                order.push_back(name);
                 break;
+            }
             case ENDSTR:
                 if (!in_structure) throw bad(r.offset, "ENDSTR outside a structure");
                 in_structure = false;
@@ -152,9 +228,64 @@ FileGeometry read_gds(std::string_view bytes) {
                 if (in_structure) throw bad(r.offset, "ENDLIB inside a structure");
                 ended = true;
                 break;
+            case SREF:
+            case AREF: {
+                if (!in_structure || !current) throw bad(r.offset, "element outside a structure");
+                if (scale_nm == 0) throw bad(r.offset, "element before the UNITS record");
+                Reference ref;
+                ref.array = r.type == AREF;
+                bool have_xy = false, have_colrow = false;
+                for (;;) {
+                    if (rd.at_end()) throw bad(rd.offset(), "element not ended: truncated");
+                    const Record e = rd.next();
+                    if (e.type == ENDEL) break;
+                    if (e.type == SNAME) {
+                        ref.name = ascii(e);
+                    } else if (e.type == STRANS) {
+                        expect(e, 1, 2, "STRANS");
+                        if (be(e.data, 0, 2) != 0)
+                            throw bad(e.offset,
+                                      "reference with reflection, absolute "
+                                      "magnification or angle (STRANS) is not supported");
+                    } else if (e.type == MAG || e.type == ANGLE) {
+                        expect(e, 5, 8, "MAG/ANGLE");
+                        const double v = gds_real8_value(std::uint64_t(be(e.data, 0, 8)));
+                        if (v != (e.type == MAG ? 1.0 : 0.0))
+                            throw bad(e.offset, std::string("reference with ") +
+                                                    (e.type == MAG ? "magnification" : "rotation") +
+                                                    " is not supported");
+                    } else if (e.type == COLROW) {
+                        expect(e, 2, 4, "COLROW");
+                        ref.cols = be(e.data, 0, 2);
+                        ref.rows = be(e.data, 2, 2);
+                        if (ref.cols < 1 || ref.rows < 1)
+                            throw bad(e.offset, "COLROW must be >= 1 x 1");
+                        have_colrow = true;
+                    } else if (e.type == XY) {
+                        expect(e, 3, 8, "XY");
+                        if (have_xy) throw bad(e.offset, "second XY record in one element");
+                        have_xy = true;
+                        const std::size_t n = e.data.size() / 8;
+                        if (n != (ref.array ? 3u : 1u))
+                            throw bad(e.offset, ref.array ? "AREF needs 3 XY points"
+                                                          : "SREF needs 1 XY point");
+                        for (std::size_t i = 0; i < n; ++i)
+                            ref.xy[i] = {be(e.data, 8 * i, 4) * scale_nm,
+                                         be(e.data, 8 * i + 4, 4) * scale_nm};
+                    } else if (e.type == BGNSTR || e.type == ENDSTR || e.type == ENDLIB ||
+                               e.type == BOUNDARY || e.type == TEXT || e.type == SREF ||
+                               e.type == AREF) {
+                        throw bad(e.offset, "element not ended with ENDEL");
+                    }
+                }
+                if (!have_xy || ref.name.empty()) throw bad(r.offset, "reference without SNAME/XY");
+                if (ref.array && !have_colrow) throw bad(r.offset, "AREF without COLROW");
+                current->refs.push_back(std::move(ref));
+                break;
+            }
             case BOUNDARY:
             case TEXT: {
-                if (!in_structure) throw bad(r.offset, "element outside a structure");
+                if (!in_structure || !current) throw bad(r.offset, "element outside a structure");
                 if (scale_nm == 0) throw bad(r.offset, "element before the UNITS record");
                 const bool boundary = r.type == BOUNDARY;
                 Ring ring;
@@ -194,18 +325,17 @@ FileGeometry read_gds(std::string_view bytes) {
                                   "BOUNDARY must have >= 4 points and end at its "
                                   "first point");
                     ring.pop_back();
-                    g.rings.push_back(std::move(ring));
+                    current->rings.push_back(std::move(ring));
                     if ((" " + layers + " ").find(" " + layer_text + " ") == std::string::npos)
                         layers += (layers.empty() ? "" : " ") + layer_text;
                 }
                 break;
             }
             case PATH:
-            case SREF:
-            case AREF:
             case NODE:
             case BOX:
-                throw bad(r.offset, "unsupported element (pinmask reads BOUNDARY and TEXT only)");
+                throw bad(r.offset,
+                          "unsupported element (pinmask reads BOUNDARY, TEXT, SREF and AREF only)");
             case ENDEL:
             case XY:
                 throw bad(r.offset, "element record outside an element");
@@ -216,6 +346,26 @@ FileGeometry read_gds(std::string_view bytes) {
     rd.expect_padding();
     if (structures == 0) throw bad(0, "no structure");
     g.info["layers"] = layers;
+    // The top structure: the one no other references.
+    std::map<std::string, int> referenced;
+    for (const auto& [name, st] : structures_by_name)
+        for (const Reference& ref : st.refs) {
+            if (!structures_by_name.count(ref.name))
+                throw bad(0, "reference to undefined structure " + ref.name);
+            referenced[ref.name]++;
+        }
+    std::string top;
+    for (const std::string& name : order)
+        if (!referenced.count(name)) {
+            if (!top.empty())
+                throw bad(0, "more than one top structure (" + top + ", " + name + ")");
+            top = name;
+        }
+    if (top.empty()) throw bad(0, "no top structure (references form a cycle)");
+    g.info["structure"] = top;
+    if (order.size() > 1) g.info["hierarchy"] = "yes";
+    std::uint64_t visits = 0;
+    flatten(structures_by_name, top, {0, 0}, 0, g.rings, visits);
     return g;
 }
 

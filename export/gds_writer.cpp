@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "export/geometry.hpp"
+#include "export/repetition.hpp"
 
 namespace pinmask {
 namespace {
@@ -21,6 +22,10 @@ enum : std::uint16_t {
     kStrName = 0x0606,
     kEndStr = 0x0700,
     kBoundary = 0x0800,
+    kSref = 0x0A00,
+    kAref = 0x0B00,
+    kSname = 0x1206,
+    kColRow = 0x1302,
     kText = 0x0C00,
     kLayer = 0x0D02,
     kDataType = 0x0E02,
@@ -144,25 +149,66 @@ std::string gds_stream(const Layout& layout, const GdsOptions& o) {
     s.timestamps(kBgnLib);
     s.string_record(kLibName, "PINMASK");
     s.record(kUnits, 16);
-    s.u64(gds_real8_bits(1e-3));  // user units per database unit (user unit = 1 um)
+    // user units per database unit: 1 nm / (nm per user unit)
+    s.u64(gds_real8_bits(1.0 / double(nm_per_unit(o.unit))));
     s.u64(gds_real8_bits(1e-9));  // metres per database unit (1 nm)
-    s.timestamps(kBgnStr);
-    s.string_record(kStrName, "PINMASK_" + layout.mask_hash);
+    const std::string top = "PINMASK_" + layout.mask_hash;
+    auto boundary = [&](const Ring& r) {
+        s.empty_record(kBoundary);
+        s.i16_record(kLayer, static_cast<std::int16_t>(o.layer));
+        s.i16_record(kDataType, static_cast<std::int16_t>(o.datatype));
+        s.xy(r, true);
+        s.empty_record(kEndEl);
+    };
     std::size_t index = 0;
     for (const auto* set : {&layout.polygons, &layout.annotations})
-        for (const Ring& r : *set) {
-            check_ring(r, index++);
-            s.empty_record(kBoundary);
-            s.i16_record(kLayer, static_cast<std::int16_t>(o.layer));
-            s.i16_record(kDataType, static_cast<std::int16_t>(o.datatype));
-            s.xy(r, true);
+        for (const Ring& r : *set) check_ring(r, index++);
+    Repetition rep;
+    if (o.hierarchy) {
+        rep = find_repetition(layout.polygons, layout.active_area, layout.tiles_rows,
+                              layout.tiles_cols);
+        if (rep.cols > 32767 || rep.rows > 32767) rep = find_repetition(layout.polygons, {}, 1, 1);
+        auto sref = [&](const std::string& name, PointNm at) {
+            s.empty_record(kSref);
+            s.string_record(kSname, name);
+            s.xy({at}, false);
             s.empty_record(kEndEl);
+        };
+        for (std::size_t k = 0; k < rep.shapes.size(); ++k) {
+            s.timestamps(kBgnStr);
+            s.string_record(kStrName, top + "_S" + std::to_string(k));
+            boundary(rep.shapes[k]);
+            s.empty_record(kEndStr);
         }
+        s.timestamps(kBgnStr);
+        s.string_record(kStrName, top + "_TILE");
+        for (const Placement& p : rep.placements) sref(top + "_S" + std::to_string(p.shape), p.at);
+        s.empty_record(kEndStr);
+        s.timestamps(kBgnStr);
+        s.string_record(kStrName, top);
+        if (rep.cols * rep.rows > 1) {
+            s.empty_record(kAref);
+            s.string_record(kSname, top + "_TILE");
+            s.record(kColRow, 4);
+            s.u16(static_cast<std::uint16_t>(rep.cols));
+            s.u16(static_cast<std::uint16_t>(rep.rows));
+            s.xy({{0, 0}, {rep.cols * rep.pitch_x_nm, 0}, {0, rep.rows * rep.pitch_y_nm}}, false);
+            s.empty_record(kEndEl);
+        } else {
+            sref(top + "_TILE", {0, 0});
+        }
+    } else {
+        s.timestamps(kBgnStr);
+        s.string_record(kStrName, top);
+        for (const Ring& r : layout.polygons) boundary(r);
+    }
+    for (const Ring& r : layout.annotations) boundary(r);
     s.empty_record(kText);
     s.i16_record(kLayer, static_cast<std::int16_t>(o.layer));
     s.i16_record(kTextType, 0);
     s.xy({{layout.extent.x0, layout.extent.y0}}, false);
-    s.string_record(kString, "pinmask " + layout_info(layout, "nm"));
+    s.string_record(kString,
+                    "pinmask " + layout_info(layout, "nm") + " user_unit=" + fab_unit_name(o.unit));
     s.empty_record(kEndEl);
     s.empty_record(kEndStr);
     s.empty_record(kEndLib);

@@ -1,6 +1,6 @@
 // GDSII stream (release 6.0.0) of a layout: one library "PINMASK" with one top structure
-// "PINMASK_<hash>", UNITS of 1e-3 user units per database unit and 1e-9 m per database unit
-// (user unit 1 um, database unit 1 nm: coordinates are the layout's integers). Each ring is a
+// "PINMASK_<hash>", UNITS of 1 nm per database unit (coordinates are the layout's integers) and
+// the user unit of GdsOptions (default 1 um: 1e-3 user units per database unit). Each ring is a
 // BOUNDARY on the given layer/datatype with its first point repeated at the end (<= 8191
 // points per XY record). One TEXT element on the same layer and texttype 0 carries the info
 // tokens (export/geometry layout_info). BGNLIB/BGNSTR timestamps are pinned to 2000-01-01
@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <string>
 
+#include "export/fab_units.hpp"
 #include "export/layout.hpp"
 
 namespace pinmask {
@@ -17,6 +18,16 @@ namespace pinmask {
 struct GdsOptions {
     int layer = 1;     // 0..32767
     int datatype = 0;  // 0..32767
+    // The user unit (UNITS' first real: user units per database unit, 1e-3 for um, 1e-6 for mm,
+    // 1e-9 / 0.0254 for inches); the database unit stays 1 nm, so coordinates do not change.
+    FabUnit unit = FabUnit::kMicrometre;
+    // Hierarchy: each distinct pinhole polygon becomes a structure "PINMASK_<hash>_S<k>" holding
+    // it at the origin; a structure "PINMASK_<hash>_TILE" references them (SREF) for one tile,
+    // and the top structure places the tile as an array (AREF, tile columns x rows at the tile
+    // pitch) when the pinholes repeat exactly across tiles (export/repetition), else references
+    // every pinhole itself. Marks, label and text stay in the top structure. Flattened, the same
+    // polygons as the flat stream.
+    bool hierarchy = false;
 };
 
 // The complete stream. Throws InvalidInput for layer/datatype out of range, a ring of more than

@@ -61,9 +61,22 @@ HoleShape parse_hole_shape(std::string_view text, std::string_view field) {
 }
 
 Tone parse_tone(std::string_view text, std::string_view field) {
-    if (text == "clear") return Tone::kClear;
-    if (text == "dark") return Tone::kDark;
-    throw invalid_field(std::string(field), std::string(text), "must be clear or dark");
+    if (text == "clear" || text == "negative") return Tone::kClear;
+    if (text == "dark" || text == "positive") return Tone::kDark;
+    throw invalid_field(std::string(field), std::string(text),
+                        "must be clear (alias negative: the drawn polygons are the clear "
+                        "pinholes) or dark (alias positive: the drawn polygons are the opaque "
+                        "film)");
+}
+
+std::string tone_words(Tone tone) {
+    return tone == Tone::kClear ? "clear (negative): polygons are the clear pinholes"
+                                : "dark (positive): polygons are the opaque film";
+}
+
+std::string tone_label_line(Tone tone, bool mirrored, std::string_view unit) {
+    return label_text(std::string(tone == Tone::kClear ? "CLEAR HOLES NEG" : "DARK FILM POS") +
+                      (mirrored ? " EMUL DOWN" : " EMUL UP") + " UNIT " + std::string(unit));
 }
 
 std::string tone_name(Tone tone) { return tone == Tone::kClear ? "clear" : "dark"; }
@@ -175,6 +188,8 @@ Layout make_layout(const Mask& mask, const LayoutOptions& o) {
     layout.mirrored = o.mirror;
     layout.mask_hash = geometry_hash(mask);
     layout.hole_sides = sides;
+    layout.tiles_rows = p.tiles_rows;
+    layout.tiles_cols = p.tiles_cols;
     layout.active_area = {xe.front(), ye.back(), xe.back(), ye.front()};
     const BoxNm& a = layout.active_area;
     const BoxNm outline{a.x0 - frame, a.y0 - frame, a.x1 + frame, a.y1 + frame};
@@ -202,6 +217,16 @@ Layout make_layout(const Mask& mask, const LayoutOptions& o) {
         if (o.shape != HoleShape::kSquare) {
             layout.polygons.reserve(cells.size());
             for (const Cell& c : cells) layout.polygons.push_back(polygon_in(c));
+            if (o.shape == HoleShape::kCircle) {
+                // The true circles, centre and diameter on the grid (native circle output).
+                // (an even number of grid steps, so the radius is on the grid too)
+                const std::int64_t diameter = 2 * std::max(grid, snap_nm(hole / 2, grid));
+                layout.circles.reserve(cells.size());
+                for (const Cell& c : cells) {
+                    const auto [cx, cy] = centre(c);
+                    layout.circles.push_back({{snap_nm(cx, grid), snap_nm(cy, grid)}, diameter});
+                }
+            }
         } else if (full_cell && edge_neighbours(p)) {
             check_memory(double(rows) * double(cols) * 6.0, "merging touching pinholes");
             std::vector<std::uint8_t> occ(std::size_t(rows) * std::size_t(cols), 0);
@@ -255,6 +280,7 @@ Layout make_layout(const Mask& mask, const LayoutOptions& o) {
     if (o.mirror) {
         for (Ring& r : layout.polygons) r = mirrored_about_y_axis(r);
         for (Ring& r : layout.annotations) r = mirrored_about_y_axis(r);
+        for (CircleNm& c : layout.circles) c.centre.x = -c.centre.x;
         auto flip = [](BoxNm& b) { b = {-b.x1, b.y0, -b.x0, b.y1}; };
         flip(layout.active_area);
         flip(layout.extent);

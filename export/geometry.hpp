@@ -82,8 +82,15 @@ std::map<std::string, std::string> parse_info(std::string_view text);
 
 // Parses "square", "circle" or "polygon"; anything else throws InvalidInput naming `field`.
 HoleShape parse_hole_shape(std::string_view text, std::string_view field);
-// "clear" or "dark".
+// "clear" or "dark", or the film shops' words: "negative" = clear (the drawn polygons are the
+// clear areas, the plotter exposes everything else: a negative of the drawing) and "positive" =
+// dark (the drawn polygons are the opaque film).
 Tone parse_tone(std::string_view text, std::string_view field);
+// The tone in words, e.g. "clear (negative): polygons are the clear pinholes".
+std::string tone_words(Tone tone);
+// The label line stating tone, emulsion side and unit in the label font's characters, e.g.
+// "CLEAR HOLES NEG EMUL UP UNIT MM" (emulsion down = mirrored, right-reading through the base).
+std::string tone_label_line(Tone tone, bool mirrored, std::string_view unit);
 std::string tone_name(Tone tone);
 
 }  // namespace pinmask

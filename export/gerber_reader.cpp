@@ -1,9 +1,11 @@
 #include "export/gerber_reader.hpp"
 
 #include <cctype>
+#include <map>
 #include <string>
 
 #include "core/error.hpp"
+#include "export/decimal.hpp"
 #include "export/geometry.hpp"
 
 namespace pinmask {
@@ -63,6 +65,8 @@ class GerberParser {
                 mm_ = true;
             } else if (c.starts_with("MO")) {
                 throw bad(at, "units must be millimetres (%MOMM*%)");
+            } else if (c.starts_with("AD")) {
+                aperture(c, at);
             } else if (c == "LPD") {
             } else if (c.starts_with("TF")) {
                 const std::string_view a = c.substr(2);
@@ -74,6 +78,34 @@ class GerberParser {
                                   "' (pinmask files use regions only)");
             }
         }
+    }
+
+    // %ADDnnC,<diameter>*%: a circular aperture without a hole (the only kind pinmask reads).
+    void aperture(std::string_view c, std::size_t at) {
+        std::size_t i = 2;
+        if (i >= c.size() || c[i] != 'D') throw bad(at, "malformed aperture definition");
+        ++i;
+        const std::size_t num = i;
+        while (i < c.size() && std::isdigit(static_cast<unsigned char>(c[i]))) ++i;
+        const std::string code(c.substr(num, i - num));
+        if (code.empty() || code.size() > 6 || std::stol(code) < 10)
+            throw bad(at, "aperture number must be 10 or more");
+        if (c.substr(i, 2) != "C,")
+            throw bad(at, "unsupported aperture '" + std::string(c.substr(0, 20)) +
+                              "' (pinmask reads plain circles %ADDnnC,d*% only)");
+        const std::string_view d = c.substr(i + 2);
+        if (d.find('X') != std::string_view::npos)
+            throw bad(at, "circular aperture with a hole is not supported");
+        if (!mm_) throw bad(at, "aperture before %MOMM*%");
+        std::int64_t nm = 0;
+        try {
+            nm = parse_scaled(d, 6, "gerber aperture diameter");
+        } catch (const InvalidInput& e) {
+            throw bad(at, e.what());
+        }
+        if (nm <= 0) throw bad(at, "aperture diameter must be > 0");
+        if (apertures_.count(code)) throw bad(at, "aperture D" + code + " defined twice");
+        apertures_[code] = nm;
     }
 
     void format(std::string_view c, std::size_t at) {
@@ -128,6 +160,14 @@ class GerberParser {
         }
         if (c.starts_with("G01")) c.remove_prefix(3);
         if (c.empty() || c == "G75") return;
+        if (c.front() == 'D' && c.size() >= 3 && !(c == "D01" || c == "D02" || c == "D03")) {
+            if (in_region_) throw bad(at, "aperture selection inside a region");
+            const auto it = apertures_.find(std::string(c.substr(1)));
+            if (it == apertures_.end())
+                throw bad(at, "aperture " + std::string(c.substr(0, 20)) + " is not defined");
+            aperture_nm_ = it->second;
+            return;
+        }
         if (c.front() != 'X' && c.front() != 'Y' && c.front() != 'D')
             throw bad(at, "unsupported command '" + std::string(c.substr(0, 20)) + "'");
         if (scale_ == 0 || !mm_) throw bad(at, "coordinates before %FS...*% and %MOMM*%");
@@ -140,9 +180,15 @@ class GerberParser {
             c.remove_prefix(1);
             p.y = number(c, at);
         }
-        if (c != "D01" && c != "D02")
-            throw bad(at, "operation must be D01 or D02 (no flashes, apertures or arcs)");
+        if (c != "D01" && c != "D02" && c != "D03")
+            throw bad(at, "operation must be D01, D02 or D03 (no arcs)");
         last_ = p;
+        if (c == "D03") {
+            if (in_region_) throw bad(at, "flash inside a region");
+            if (aperture_nm_ <= 0) throw bad(at, "flash without a selected aperture");
+            g_.circles.push_back({p, aperture_nm_});
+            return;
+        }
         if (c == "D02") {
             if (in_region_) finish(at);
             if (in_region_) contour_.push_back(p);
@@ -169,6 +215,8 @@ class GerberParser {
     bool in_region_ = false;
     bool ended_ = false;
     PointNm last_;
+    std::map<std::string, std::int64_t> apertures_;  // D code -> diameter nm
+    std::int64_t aperture_nm_ = 0;                   // the selected aperture
     Ring contour_;
     FileGeometry g_;
 };

@@ -1,6 +1,9 @@
 #include "export/gerber_writer.hpp"
 
+#include <algorithm>
+
 #include "core/error.hpp"
+#include "export/decimal.hpp"
 #include "export/geometry.hpp"
 
 namespace pinmask {
@@ -21,7 +24,7 @@ void append_point(std::string& out, const PointNm& p, const char* op) {
 
 }  // namespace
 
-std::string gerber_document(const Layout& layout) {
+std::string gerber_document(const Layout& layout, bool native_circles) {
     const bool clear = layout.tone == Tone::kClear;
     std::string out;
     std::size_t vertices = 0;
@@ -37,9 +40,32 @@ std::string gerber_document(const Layout& layout) {
     out += "%FSLAX46Y46*%\n";
     out += "%MOMM*%\n";
     out += "%LPD*%\n";
+    const bool circles = native_circles && !layout.circles.empty();
+    if (circles) {
+        // One aperture per diameter (all pinholes share one), then a flash per pinhole.
+        std::vector<std::int64_t> diameters;
+        for (const CircleNm& c : layout.circles)
+            if (std::find(diameters.begin(), diameters.end(), c.diameter_nm) == diameters.end())
+                diameters.push_back(c.diameter_nm);
+        for (std::size_t k = 0; k < diameters.size(); ++k) {
+            out += "%ADD" + std::to_string(10 + k) + "C,";
+            append_scaled(out, diameters[k], 6);
+            out += "*%\n";
+        }
+        std::int64_t current = -1;
+        for (const CircleNm& c : layout.circles) {
+            if (c.diameter_nm != current) {
+                const auto k = std::find(diameters.begin(), diameters.end(), c.diameter_nm) -
+                               diameters.begin();
+                out += "D" + std::to_string(10 + k) + "*\n";
+                current = c.diameter_nm;
+            }
+            append_point(out, c.centre, "D03*\n");
+        }
+    }
     out += "G01*\n";
-    for (const auto* set : {&layout.polygons, &layout.annotations})
-        for (const Ring& r : *set) {
+    for (const auto* set : {circles ? nullptr : &layout.polygons, &layout.annotations})
+        for (const Ring& r : set ? *set : std::vector<Ring>{}) {
             out += "G36*\n";
             append_point(out, r.front(), "D02*\n");
             for (std::size_t i = 1; i < r.size(); ++i) append_point(out, r[i], "D01*\n");

@@ -15,6 +15,8 @@
 namespace pinmask {
 
 // The complete file. Throws InvalidInput for a coordinate beyond the 4.6 format (|x| >= 10 m).
-std::string gerber_document(const Layout& layout);
+// native_circles: round pinholes (layout.circles non-empty) as flashes of one circular aperture
+// (%ADD10C,<diameter mm>*%, D10, X..Y..D03) instead of regions.
+std::string gerber_document(const Layout& layout, bool native_circles = false);
 
 }  // namespace pinmask

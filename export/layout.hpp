@@ -23,6 +23,19 @@ struct BoxNm {
     std::int64_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // x0 <= x1, y0 <= y1
 };
 
+// A true circle (a round pinhole drawn natively: DXF CIRCLE, Gerber circular flash), centre on
+// the grid, diameter in whole nanometres.
+struct CircleNm {
+    PointNm centre;
+    std::int64_t diameter_nm = 0;
+    bool operator==(const CircleNm&) const = default;
+    bool operator<(const CircleNm& o) const {
+        if (centre.x != o.centre.x) return centre.x < o.centre.x;
+        if (centre.y != o.centre.y) return centre.y < o.centre.y;
+        return diameter_nm < o.diameter_nm;
+    }
+};
+
 enum class Tone { kClear, kDark };  // clear: polygons are the transparent pinholes
 
 // The polygons of one exported mask and what they mean.
@@ -36,6 +49,10 @@ struct Layout {
     std::int64_t grid_nm = 1;  // manufacturing grid the coordinates are snapped to
     std::string mask_hash;     // geometry_hash of the source mask
     int hole_sides = 4;        // sides of each pinhole's polygon before snapping (4: squares)
+    // Round pinholes in clear tone: the true circle each polygon stands for, in the same order
+    // as `polygons` (writers with native circles draw these instead); empty otherwise.
+    std::vector<CircleNm> circles;
+    int tiles_rows = 1, tiles_cols = 1;  // the mask's cyclic tiling (export/repetition)
 };
 
 }  // namespace pinmask

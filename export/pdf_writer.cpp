@@ -50,10 +50,12 @@ std::int64_t scale_bar_nm(std::int64_t width_nm) {
     return best;
 }
 
-std::vector<std::string> default_title_lines(const Layout& layout) {
+std::vector<std::string> default_title_lines(const Layout& layout, DrawMode draw) {
     const bool clear = layout.tone == Tone::kClear;
     return {label_text("PINMASK MASK H " + layout.mask_hash),
-            std::string("TONE ") + (clear ? "CLEAR" : "DARK") + ": BLACK = OPAQUE, WHITE = CLEAR",
+            std::string("TONE ") + (clear ? "CLEAR" : "DARK") +
+                (draw == DrawMode::kFilm ? ": BLACK = OPAQUE, WHITE = CLEAR"
+                                         : ": DRAWN POLYGONS IN BLACK, NOT THE FILM"),
             std::string("MIRRORED ") + (layout.mirrored ? "YES - FILM SIDE DOWN" : "NO"),
             "SCALE 1:1 - PRINT AT 100 PERCENT", "GRID " + std::to_string(layout.grid_nm) + " NM"};
 }
@@ -64,7 +66,7 @@ std::string pdf_document(const Layout& layout, const PdfOptions& o) {
     const std::int64_t margin = std::llround(o.margin_m * 1e9);
     const BoxNm& e = layout.extent;
     std::vector<std::string> lines =
-        o.title_lines.empty() ? default_title_lines(layout) : o.title_lines;
+        o.title_lines.empty() ? default_title_lines(layout, o.draw) : o.title_lines;
     for (std::string& l : lines) l = label_text(l);
 
     // Everything below the film, in layout nanometres (y up).
@@ -104,7 +106,7 @@ std::string pdf_document(const Layout& layout, const PdfOptions& o) {
         cairo_translate(cr.get(), double(margin) * kPointsPerNm, double(margin) * kPointsPerNm);
         cairo_scale(cr.get(), kPointsPerNm, -kPointsPerNm);
         cairo_translate(cr.get(), -double(page_nm.x0), -double(page_nm.y1));
-        paint_film(cr.get(), layout);
+        paint_film(cr.get(), layout, o.draw);
         fill_rings(cr.get(), ink);
         check_cairo(cr.get(), "PDF drawing");
         cr.reset();

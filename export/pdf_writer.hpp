@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "export/film_paint.hpp"
 #include "export/layout.hpp"
 
 namespace pinmask {
@@ -16,10 +17,11 @@ namespace pinmask {
 struct PdfOptions {
     double margin_m = 10e-3;               // white border around everything
     std::vector<std::string> title_lines;  // empty: hash, tone, mirroring and scale
+    DrawMode draw = DrawMode::kFilm;       // the film as it looks, or the drawn polygons
 };
 
 // The default title block lines for a layout.
-std::vector<std::string> default_title_lines(const Layout& layout);
+std::vector<std::string> default_title_lines(const Layout& layout, DrawMode draw = DrawMode::kFilm);
 
 // The complete PDF file. Throws InvalidInput for a negative margin.
 std::string pdf_document(const Layout& layout, const PdfOptions& options = {});

@@ -36,7 +36,7 @@ PreviewSize preview_size(const Layout& layout, double dpi) {
     return {std::max(1, int(w)), std::max(1, int(h))};
 }
 
-std::string png_preview(const Layout& layout, double dpi) {
+std::string png_preview(const Layout& layout, double dpi, DrawMode draw) {
     const PreviewSize size = preview_size(layout, dpi);
     std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
         cairo_image_surface_create(CAIRO_FORMAT_RGB24, size.cols, size.rows),
@@ -50,7 +50,7 @@ std::string png_preview(const Layout& layout, double dpi) {
     const double s = dpi / kNmPerInch;
     cairo_scale(cr.get(), s, -s);
     cairo_translate(cr.get(), -double(layout.extent.x0), -double(layout.extent.y1));
-    paint_film(cr.get(), layout);
+    paint_film(cr.get(), layout, draw);
     check_cairo(cr.get(), "PNG preview");
     cr.reset();
     cairo_surface_flush(surface.get());

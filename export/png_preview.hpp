@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "export/film_paint.hpp"
 #include "export/layout.hpp"
 
 namespace pinmask {
@@ -23,6 +24,6 @@ struct PreviewSize {
 PreviewSize preview_size(const Layout& layout, double dpi);
 
 // The PNG file bytes.
-std::string png_preview(const Layout& layout, double dpi);
+std::string png_preview(const Layout& layout, double dpi, DrawMode draw = DrawMode::kFilm);
 
 }  // namespace pinmask

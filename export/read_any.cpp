@@ -10,6 +10,7 @@
 #include "export/dxf_reader.hpp"
 #include "export/gds_reader.hpp"
 #include "export/gerber_reader.hpp"
+#include "export/oasis_reader.hpp"
 #include "export/svg_reader.hpp"
 
 namespace pinmask {
@@ -21,8 +22,10 @@ FabFormat parse_fab_format(std::string_view name, std::string_view field) {
     if (name == "dxf") return FabFormat::kDxf;
     if (name == "gerber") return FabFormat::kGerber;
     if (name == "png") return FabFormat::kPng;
+    if (name == "oasis") return FabFormat::kOasis;
+    if (name == "tiff1") return FabFormat::kTiff1;
     throw invalid_field(std::string(field), std::string(name),
-                        "must be one of svg, pdf, gds, dxf, gerber, png");
+                        "must be one of svg, pdf, gds, oasis, dxf, gerber, png, tiff1");
 }
 
 std::string fab_format_name(FabFormat f) {
@@ -39,15 +42,24 @@ std::string fab_format_name(FabFormat f) {
             return "gerber";
         case FabFormat::kPng:
             return "png";
+        case FabFormat::kOasis:
+            return "oasis";
+        case FabFormat::kTiff1:
+            return "tiff1";
     }
     return "?";
 }
 
 std::string fab_extension(FabFormat f) {
-    return f == FabFormat::kGerber ? ".gbr" : "." + fab_format_name(f);
+    if (f == FabFormat::kGerber) return ".gbr";
+    if (f == FabFormat::kOasis) return ".oas";
+    if (f == FabFormat::kTiff1) return ".tif";
+    return "." + fab_format_name(f);
 }
 
-bool is_readable(FabFormat f) { return f != FabFormat::kPdf && f != FabFormat::kPng; }
+bool is_readable(FabFormat f) {
+    return f != FabFormat::kPdf && f != FabFormat::kPng && f != FabFormat::kTiff1;
+}
 
 FileGeometry read_fabrication_bytes(std::string_view bytes, FabFormat format) {
     switch (format) {
@@ -59,9 +71,11 @@ FileGeometry read_fabrication_bytes(std::string_view bytes, FabFormat format) {
             return read_dxf(bytes);
         case FabFormat::kGerber:
             return read_gerber(bytes);
+        case FabFormat::kOasis:
+            return read_oasis(bytes);
         default:
             throw invalid_field("format", fab_format_name(format),
-                                "has no reader (readable: gds, dxf, gerber, svg)");
+                                "has no reader (readable: gds, oasis, dxf, gerber, svg)");
     }
 }
 
@@ -73,6 +87,8 @@ FileGeometry read_fabrication_file(const std::filesystem::path& path) {
     FabFormat f;
     if (ext == ".gds" || ext == ".gds2" || ext == ".gdsii")
         f = FabFormat::kGds;
+    else if (ext == ".oas" || ext == ".oasis")
+        f = FabFormat::kOasis;
     else if (ext == ".dxf")
         f = FabFormat::kDxf;
     else if (ext == ".gbr" || ext == ".ger" || ext == ".gerber")
@@ -81,7 +97,7 @@ FileGeometry read_fabrication_file(const std::filesystem::path& path) {
         f = FabFormat::kSvg;
     else
         throw invalid_field("file", path.string(),
-                            "extension must be .gds, .dxf, .gbr or .svg to be read back");
+                            "extension must be .gds, .oas, .dxf, .gbr or .svg to be read back");
     std::error_code ec;
     const auto size = std::filesystem::file_size(path, ec);
     if (ec) throw RuntimeFailure("cannot read " + path.string() + ": " + ec.message());

@@ -45,6 +45,7 @@ Ring mirrored_about_y_axis(const Ring& ring);
 // "units"; values as written).
 struct FileGeometry {
     std::vector<Ring> rings;
+    std::vector<CircleNm> circles;  // native circles (DXF CIRCLE, Gerber circular flashes)
     std::map<std::string, std::string> info;
 };
 

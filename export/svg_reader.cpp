@@ -1,6 +1,8 @@
 #include "export/svg_reader.hpp"
 
 #include <cctype>
+#include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "core/error.hpp"
@@ -117,6 +119,91 @@ class PathParser {
     Ring current_;
 };
 
+// Micrometres in one `unit` of an SVG length ("mm", "um", "cm", "in", "pt", "pc", "px"); 0 for
+// an unknown unit.
+double um_per(std::string_view unit) {
+    if (unit == "mm") return 1000.0;
+    if (unit == "um") return 1.0;
+    if (unit == "cm") return 10000.0;
+    if (unit == "in") return 25400.0;
+    if (unit == "pt") return 25400.0 / 72.0;
+    if (unit == "pc") return 25400.0 / 6.0;
+    if (unit == "px" || unit.empty()) return 25400.0 / 96.0;
+    return 0.0;
+}
+
+// A length attribute in micrometres ("14.08mm"); NaN when malformed.
+double length_um(std::string_view v) {
+    std::size_t i = 0;
+    while (i < v.size() && (std::isdigit(static_cast<unsigned char>(v[i])) || v[i] == '.' ||
+                            v[i] == '-' || v[i] == '+' || v[i] == 'e' || v[i] == 'E'))
+        ++i;
+    const double per = um_per(v.substr(i));
+    if (i == 0 || per == 0.0) return std::nan("");
+    try {
+        return std::stod(std::string(v.substr(0, i))) * per;
+    } catch (...) {
+        return std::nan("");
+    }
+}
+
+// 1 user unit must be 1 um: width / viewBox width (and height) = 1 um. Without width and height
+// the user unit is taken as 1 um (pinmask's convention, nothing scales it).
+void check_scale(std::string_view root, std::size_t at) {
+    std::string_view w, h, vb;
+    const bool has_w = attribute(root, "width", w), has_h = attribute(root, "height", h);
+    if (!has_w && !has_h) return;
+    if (!has_w || !has_h || !attribute(root, "viewBox", vb))
+        throw bad(at,
+                  "<svg> with width/height but no viewBox: its user unit is a CSS pixel, "
+                  "not a micrometre (pinmask reads viewBox user units of 1 um)");
+    double box[4];
+    std::string t(vb);
+    for (char& c : t)
+        if (c == ',') c = ' ';
+    if (std::sscanf(t.c_str(), "%lf %lf %lf %lf", &box[0], &box[1], &box[2], &box[3]) != 4 ||
+        !(box[2] > 0) || !(box[3] > 0))
+        throw bad(at, "malformed viewBox '" + std::string(vb.substr(0, 40)) + "'");
+    const double sx = length_um(w) / box[2], sy = length_um(h) / box[3];
+    constexpr double kScaleTolerance = 1e-9;  // decimal rounding of the written sizes
+    if (!(std::fabs(sx - 1) <= kScaleTolerance && std::fabs(sy - 1) <= kScaleTolerance))
+        throw bad(at, "viewBox scaling is not supported: 1 user unit = " + std::to_string(sx) +
+                          " x " + std::to_string(sy) +
+                          " um (pinmask reads files whose user unit is 1 um)");
+}
+
+// Elements that change geometry and are not implemented are refused by name; elements that
+// carry no geometry are allowed.
+void check_element(std::string_view text, std::size_t pos) {
+    std::size_t end = pos + 1;
+    while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) ||
+                                 text[end] == ':' || text[end] == '-' || text[end] == '_'))
+        ++end;
+    const std::string name(text.substr(pos + 1, end - pos - 1));
+    static const char* const kAllowed[] = {"svg",      "g",     "path", "polygon",
+                                           "metadata", "title", "desc", "defs"};
+    bool ok = name.empty();  // "</...", "<!--", "<?xml"
+    for (const char* a : kAllowed) ok = ok || name == a;
+    if (!ok)
+        throw bad(pos, "element <" + name.substr(0, 30) +
+                           "> is not supported (pinmask reads filled <path> and <polygon> "
+                           "elements only)");
+    const std::size_t close = text.find('>', pos);
+    const std::string_view tag =
+        text.substr(pos, (close == std::string_view::npos ? text.size() : close) - pos);
+    std::string_view v;
+    if (attribute(tag, "transform", v))
+        throw bad(pos, "transform attribute on <" + name + "> is not supported");
+    if (attribute(tag, "style", v))
+        throw bad(pos, "style attribute on <" + name +
+                           "> is not supported (use fill=\"#000000\" and no transform)");
+    if (attribute(tag, "fill", v) && v == "none")
+        throw bad(pos, "fill=\"none\" on <" + name +
+                           "> is not supported (an outline, not an area: pinmask reads filled "
+                           "shapes)");
+    if (name == "defs") throw bad(pos, "<defs> (reusable content) is not supported");
+}
+
 }  // namespace
 
 FileGeometry read_svg(std::string_view text) {
@@ -132,7 +219,17 @@ FileGeometry read_svg(std::string_view text) {
         if (stop == std::string_view::npos) throw bad(meta, "<metadata> is not closed");
         g.info = parse_info(text.substr(meta + 10, stop - meta - 10));
     }
+    check_scale(text.substr(root, text.find('>', root) - root), root);
     for (std::size_t pos = root; (pos = text.find('<', pos)) != std::string_view::npos; ++pos) {
+        if (text.substr(pos, 4) == "<!--") {  // comments may contain anything
+            const std::size_t stop = text.find("-->", pos);
+            if (stop == std::string_view::npos) throw bad(pos, "comment is not closed");
+            pos = stop + 2;
+            continue;
+        }
+        if (meta != std::string_view::npos && pos > meta && pos < text.find("</metadata>", meta))
+            continue;
+        check_element(text, pos);
         const bool is_path = text.substr(pos, 6) == "<path " || text.substr(pos, 6) == "<path\n";
         const bool is_polygon = text.substr(pos, 9) == "<polygon ";
         if (!is_path && !is_polygon) continue;

@@ -312,3 +312,39 @@ mask_variant("mask-huge-wavelength.mask.json", set_path("optics", "wavelength_m"
 mask_variant("mask-tiny-pitch.mask.json", set_path("optics", "pixel_pitch_m", 1e-300))
 mask_variant("mask-huge-pinhole.mask.json", set_path("optics", "pinhole_m", 1e300))
 mask_variant("mask-huge-sensor-distance.mask.json", set_path("optics", "sensor_distance_m", 1e10))
+# ---- readers that must implement or refuse (issue 18 class 6): SVG constructs that change
+# geometry, DXF units, OASIS records pinmask does not read.
+SVG_HEAD = ('<svg xmlns="http://www.w3.org/2000/svg" width="1mm" height="1mm" '
+            'viewBox="0 0 1000 1000">\n')
+SVG_PATH = '<path d="M0,0L100,0L100,100Z"/>\n'
+write("layout-svg-transform.svg", SVG_HEAD + '<g transform="scale(2)">' + SVG_PATH + "</g>\n</svg>\n")
+write("layout-svg-viewbox-scale.svg",
+      SVG_HEAD.replace("0 0 1000 1000", "0 0 100 100") + SVG_PATH + "</svg>\n")
+write("layout-svg-use.svg", SVG_HEAD + SVG_PATH + '<use href="#a" x="5"/>\n</svg>\n')
+write("layout-svg-rect.svg", SVG_HEAD + '<rect x="0" y="0" width="10" height="10"/>\n</svg>\n')
+write("layout-svg-circle.svg", SVG_HEAD + '<circle cx="5" cy="5" r="3"/>\n</svg>\n')
+write("layout-svg-fill-none.svg", SVG_HEAD + SVG_PATH.replace("<path ", '<path fill="none" ') + "</svg>\n")
+write("layout-svg-style.svg", SVG_HEAD + SVG_PATH.replace("<path ", '<path style="fill:none" ') + "</svg>\n")
+
+
+def dxf_with_insunits(code):
+    return DXF.replace("$ACADVER", "$INSUNITS\n 70\n%d\n  9\n$ACADVER" % code, 1)
+write("layout-dxf-insunits-feet.dxf", dxf_with_insunits(2))
+write("layout-dxf-insunits-unknown.dxf", dxf_with_insunits(99))
+# $INSUNITS 1 (inches) contradicts the pinmask comment's units=um
+write("layout-dxf-inches-vs-comment.dxf", dxf_with_insunits(1))
+
+OAS = seed("oasis/clear.oas")
+write("layout-truncated.oas", OAS[: len(OAS) // 2])
+write("layout-wrong-magic.oas", b"%SEMI-OASIX\r\n" + OAS[13:])
+# record 17 (PLACEMENT) in place of the first RECTANGLE (id 20) after the CELL/XYRELATIVE records
+first_rect = OAS.index(b"\x10\x14") + 1
+write("layout-placement.oas", OAS[:first_rect] + b"\x11" + OAS[first_rect + 1:])
+write("layout-cblock.oas", OAS[:first_rect] + b"\x22" + OAS[first_rect + 1:])
+write("layout-circle.oas", OAS[:first_rect] + b"\x1b" + OAS[first_rect + 1:])
+# a grid repetition of 2^24 + 1 by 2^24 + 1 elements
+start = b"%SEMI-OASIS\r\n\x01\x031.0\x00\xe8\x07\x00" + bytes(12)
+cell = b"\x0e\x04CELL"
+rect = b"\x14\xdf\x01\x00\x0a\x00\x00\x01\xff\xff\xff\x07\xff\xff\xff\x07\x02\x02"
+end = b"\x02\xfc\x01" + bytes(252) + b"\x00"
+write("layout-giga-repetition.oas", start + cell + rect + end)

@@ -4,19 +4,21 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "io/mask_json.hpp"
 #include "export/gds_writer.hpp"
 #include "export/geometry.hpp"
+#include "io/mask_json.hpp"
 #include "tests/support/cli_run.hpp"
 
 using namespace pinmask;
 using pinmask::test::run_cli;
 using pinmask::test::TempDir;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -186,4 +188,52 @@ TEST_CASE("check: a dark-tone GDSII with frame and marks; the frame must be give
     CHECK(r.exit_code == 1);
     CHECK(j["comparison"]["ok"] == false);
     CHECK(j["comparison"]["xor_area_um2"].get<double>() > 0.0);
+}
+
+TEST_CASE("check FILE takes the export sidecar: clean on every readable format, no flags") {
+    TempDir dir("check-sidecar");
+    // 16 x 16 pattern, 2 x 2 tiles, pinholes 2 cells apart.
+    const std::string mask =
+        write_mask(dir, "m.mask.json", make_mask(16, {{0, 0}, {3, 5}, {8, 2}, {12, 12}}, 2));
+    struct Variant {
+        std::string name, flags;
+    };
+    const std::vector<Variant> variants = {
+        {"clear", "--marks --label --frame 1mm"},
+        {"dark", "--tone positive --emulsion down --marks --label --frame 1mm --units mm"},
+        {"round", "--shape circle --hole-side 300um --circles native --units in --label"},
+        {"cells", "--hierarchy cells --grid 10nm --frame 500um --marks"},
+    };
+    for (const Variant& v : variants) {
+        const std::string out = dir / v.name;
+        const auto e = run_cli("export '" + mask + "' --format svg,gds,oasis,dxf,gerber --no-psf " +
+                               v.flags + " -o '" + out + "'");
+        INFO(v.name << ": " << e.err);
+        REQUIRE(e.exit_code == 0);
+        for (const std::string ext : {"svg", "gds", "oas", "dxf", "gbr"}) {
+            const auto c = run_cli("check '" + out + "/m." + ext + "' --json");
+            INFO(v.name << " " << ext << ": " << c.err << c.out);
+            CHECK(c.exit_code == 0);
+            const auto j = json_of(c);
+            CHECK(j["clean"] == true);
+            CHECK(j["comparison"]["ok"] == true);
+            CHECK(j["comparison"]["rings_only_in_file"] == 0);
+            CHECK(j["settings"].get<std::string>().find("export.json") != std::string::npos);
+        }
+    }
+    // An explicit flag that disagrees with the sidecar stops the check (exit 2, names the flag).
+    const auto bad = run_cli("check '" + (dir / "dark") + "/m.gds' --frame 2mm");
+    CHECK(bad.exit_code == 2);
+    CHECK(bad.err.find("--frame") != std::string::npos);
+    const auto agree = run_cli("check '" + (dir / "dark") + "/m.gds' --frame 1mm --tone dark");
+    CHECK(agree.exit_code == 0);
+    // Without the sidecar and without the frame flag the dark-tone file does not match its
+    // design: the sidecar is what makes the check right.
+    const auto bare =
+        run_cli("check '" + (dir / "dark") + "/m.gds' --no-sidecar --mask '" + mask + "' --json");
+    CHECK(bare.exit_code == 1);
+    // A moved sidecar mask path: found beside the sidecar's folder, or checked without design.
+    fs::remove(dir.path / "clear" / "m.export.json");
+    const auto none = run_cli("check '" + (dir / "clear") + "/m.gds' --json");
+    CHECK(none.exit_code == 0);
 }

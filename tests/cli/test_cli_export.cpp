@@ -166,6 +166,52 @@ TEST_CASE("bench export runs and reports ratios (small mask)") {
     REQUIRE(r.exit_code == 0);
     const auto j = nlohmann::json::parse(r.out);
     CHECK(j["pinholes"].get<int>() > 300);
-    CHECK(j["records"].size() == 11);  // layout, 6 writes, 4 reads
+    CHECK(j["records"].size() == 13);  // layout, 7 writes, 5 reads
     for (const auto& rec : j["records"]) CHECK(rec["ratio"].get<double>() > 0);
+    // Data volume: the 16^2 x 4 x 4 tiled mask as hierarchical GDSII and as OASIS is several
+    // times smaller than flat GDSII (the 1024^2-cell figure is in the README).
+    REQUIRE(j["sizes"].size() == 2);
+    const auto& tiled = j["sizes"][1];
+    CHECK(tiled["flat_gds_bytes"].get<double>() > 3 * tiled["cells_gds_bytes"].get<double>());
+    CHECK(tiled["flat_gds_bytes"].get<double>() > 5 * tiled["oasis_bytes"].get<double>());
+}
+
+TEST_CASE("export --vendor: list, the film-plotter preset (DXF mm + 1-bit TIFF), flags win") {
+    TempDir dir("export-vendor");
+    const std::string mask = golden_mask_file(dir);
+    const auto list = run_cli("export '" + mask + "' --vendor list");
+    CHECK(list.exit_code == 0);
+    for (const char* name : {"chrome-photomask", "film-plotter", "gerber-film", "laser-cutter"})
+        CHECK(list.out.find(name) != std::string::npos);
+    const auto r = run_cli("export '" + mask + "' --vendor film-plotter --no-psf --label -o '" +
+                           (dir / "film") + "'");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(names_in(dir.path / "film") ==
+          std::vector<std::string>{"golden4x4.dxf", "golden4x4.export.json", "golden4x4.tif"});
+    const auto side = nlohmann::json::parse(slurp(dir / "film/golden4x4.export.json"));
+    CHECK(side["geometry"]["unit"] == "mm");
+    CHECK(side["geometry"]["emulsion"] == "down");
+    CHECK(side["geometry"]["frame_m"].get<double>() == 2e-3);
+    CHECK(slurp(dir / "film/golden4x4.dxf").find("$INSUNITS\n 70\n4\n") != std::string::npos);
+    // TIFF: little-endian, 1 bit per sample, 25400 dpi in the resolution tags (RATIONAL
+    // 25400/1 as libtiff writes it) and a width of extent / 1 um.
+    const std::string tif = slurp(dir / "film/golden4x4.tif");
+    CHECK(tif.starts_with("II*"));
+    CHECK(side["files"][1]["detail"] == "25400.000000 dpi");
+    // Flags win over the preset.
+    const auto w = run_cli("export '" + mask + "' --vendor film-plotter --units um --format dxf " +
+                           "--emulsion up --no-psf -o '" + (dir / "um") + "'");
+    INFO(w.err);
+    REQUIRE(w.exit_code == 0);
+    const auto side2 = nlohmann::json::parse(slurp(dir / "um/golden4x4.export.json"));
+    CHECK(side2["geometry"]["unit"] == "um");
+    CHECK(side2["geometry"]["emulsion"] == "up");
+    CHECK(side2["files"].size() == 1);
+    // The positive/negative words and the emulsion side appear on the label and in the output.
+    const auto t = run_cli("export '" + mask + "' --format svg --tone positive --emulsion down " +
+                           "--no-psf -o '" + (dir / "pos") + "'");
+    CHECK(t.exit_code == 0);
+    CHECK(t.out.find("dark (positive)") != std::string::npos);
+    CHECK(t.out.find("emulsion down") != std::string::npos);
 }

@@ -116,8 +116,11 @@ TEST_CASE("specific malformed inputs name the problem") {
     const std::string gbr = "%FSLAX46Y46*%\n%MOMM*%\nG36*\nX0Y0D02*\nX1Y0D01*\nX1Y1D01*\n";
     fails(gbr + "G37*\nM02*\n", FabFormat::kGerber, "not closed");
     fails("%FSLAX46Y46*%\n%MOIN*%\nM02*\n", FabFormat::kGerber, "millimetres");
-    fails("%FSLAX46Y46*%\n%MOMM*%\nX0Y0D03*\nM02*\n", FabFormat::kGerber, "D01 or D02");
-    fails("%FSLAX46Y46*%\n%MOMM*%\n%ADD10C,0.1*%\nM02*\n", FabFormat::kGerber, "unsupported");
+    fails("%FSLAX46Y46*%\n%MOMM*%\nX0Y0D03*\nM02*\n", FabFormat::kGerber,
+          "without a selected aperture");
+    fails("%FSLAX46Y46*%\n%MOMM*%\n%ADD10R,0.1X0.1*%\nM02*\n", FabFormat::kGerber,
+          "unsupported aperture");
+    fails("%FSLAX46Y46*%\n%MOMM*%\n%ADD10C,0.1X0.05*%\nM02*\n", FabFormat::kGerber, "hole");
     fails(gbr + "X0Y0D01*\nG37*\n", FabFormat::kGerber, "M02");
     const std::string dxf = "0\nSECTION\n2\nENTITIES\n0\nPOLYLINE\n8\nL\n66\n1\n70\n";
     const std::string verts =
@@ -126,8 +129,10 @@ TEST_CASE("specific malformed inputs name the problem") {
     fails(dxf + "0\n" + verts + "0\nSEQEND\n0\nENDSEC\n0\nEOF\n", FabFormat::kDxf, "not closed");
     fails(dxf + "1\n" + verts + "42\n0.5\n0\nSEQEND\n0\nENDSEC\n0\nEOF\n", FabFormat::kDxf,
           "bulge");
-    fails("0\nSECTION\n2\nENTITIES\n0\nCIRCLE\n10\n0\n0\nENDSEC\n0\nEOF\n", FabFormat::kDxf,
+    fails("0\nSECTION\n2\nENTITIES\n0\nARC\n10\n0\n0\nENDSEC\n0\nEOF\n", FabFormat::kDxf,
           "unsupported entity");
+    fails("0\nSECTION\n2\nENTITIES\n0\nCIRCLE\n10\n0\n0\nENDSEC\n0\nEOF\n", FabFormat::kDxf,
+          "CIRCLE without 10/20/40");
     fails(dxf + "1\n" + verts + "0\nSEQEND\n0\nENDSEC\n", FabFormat::kDxf, "EOF");
     std::string gds = gds_stream(sample_layouts()[0]);
     fails(std::string("\x00\x02\x00\x02", 4) + gds.substr(4), FabFormat::kGds, "length");

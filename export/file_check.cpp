@@ -1,0 +1,68 @@
+#include "export/file_check.hpp"
+
+#include "export/geometry.hpp"
+#include "export/shapes.hpp"
+
+namespace pinmask {
+namespace {
+
+bool box_inside(const BoxNm& inner, const BoxNm& outer) {
+    return inner.x0 >= outer.x0 && inner.y0 >= outer.y0 && inner.x1 <= outer.x1 &&
+           inner.y1 <= outer.y1;
+}
+
+// Native circles as the polygons the design-rule check needs (auto sides, 199-vertex limit).
+std::vector<Ring> circle_polygons(const std::vector<CircleNm>& circles, std::int64_t grid) {
+    std::vector<Ring> out;
+    for (const CircleNm& c : circles) {
+        const double r = 0.5 * double(c.diameter_nm);
+        const int sides = circle_sides(r, 0.0, kGdsFriendlyMaxVertices, grid);
+        const std::int64_t m = c.diameter_nm + 2 * grid;
+        const BoxNm cell{c.centre.x - m, c.centre.y - m, c.centre.x + m, c.centre.y + m};
+        out.push_back(
+            regular_polygon(double(c.centre.x), double(c.centre.y), r, sides, cell, grid));
+    }
+    return out;
+}
+
+}  // namespace
+
+FileCheck check_file_geometry(const FileGeometry& file, const FileCheckOptions& o) {
+    FileCheck c;
+    c.max_xor_nm2 = o.max_xor_nm2;
+    Layout& l = c.layout;
+    const auto tone = file.info.find("tone");
+    l.tone = tone == file.info.end() ? Tone::kClear : parse_tone(tone->second, "tone");
+    std::int64_t grid = 1;
+    if (auto g = file.info.find("grid_nm"); g != file.info.end())
+        grid = std::max<std::int64_t>(1, std::atoll(g->second.c_str()));
+    std::vector<Ring> rings = file.rings;
+    const std::vector<Ring> from_circles = circle_polygons(file.circles, grid);
+    l.extent = bounding_box(rings);
+    if (!from_circles.empty()) l.extent = box_union(l.extent, bounding_box(from_circles));
+    const auto hash = file.info.find("hash");
+    const std::string file_hash = hash == file.info.end() ? "" : hash->second;
+    if (o.design && o.whole_layout) {
+        c.comparison = compare_with_layout(file, *o.design);
+        if (c.comparison->identical()) {  // the file is the design: check the design itself
+            l = *o.design;
+            c.drc = run_drc(l, o.rules);
+            return c;
+        }
+    }
+    BoxNm outline =
+        o.design ? bounding_box(o.design->polygons) : o.outline.value_or(bounding_box(rings));
+    if (!o.design && !o.outline) outline = box_union(outline, l.extent);
+    for (const Ring& r : rings)
+        (box_inside(bounding_box({r}), outline) ? l.polygons : l.annotations).push_back(r);
+    l.polygons.insert(l.polygons.end(), from_circles.begin(), from_circles.end());
+    l.active_area = o.design ? o.design->active_area : outline;
+    if (o.design) l.extent = box_union(l.extent, o.design->extent);
+    if (o.design && !o.whole_layout)
+        c.comparison =
+            compare_rings(l.polygons, o.design->polygons, file_hash, o.design->mask_hash);
+    c.drc = run_drc(l, o.rules);
+    return c;
+}
+
+}  // namespace pinmask

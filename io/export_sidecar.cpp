@@ -1,0 +1,153 @@
+#include "io/export_sidecar.hpp"
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace pinmask::io {
+namespace {
+
+using nlohmann::json;
+
+json box(const std::array<std::int64_t, 4>& b) { return json::array({b[0], b[1], b[2], b[3]}); }
+
+InvalidInput bad(const std::filesystem::path& p, const std::string& key, const std::string& rule) {
+    return InvalidInput(p.string() + ": " + key + ": " + rule);
+}
+
+template <class T>
+T get(const json& j, const char* key, const std::filesystem::path& p, const std::string& where) {
+    const auto it = j.find(key);
+    if (it == j.end()) throw bad(p, where + "." + key, "is missing");
+    try {
+        return it->get<T>();
+    } catch (const json::exception&) {
+        throw bad(p, where + "." + key, "has the wrong type");
+    }
+}
+
+template <class T>
+T get_or(const json& j, const char* key, T fallback, const std::filesystem::path& p,
+         const std::string& where) {
+    return j.contains(key) ? get<T>(j, key, p, where) : fallback;
+}
+
+}  // namespace
+
+std::string export_sidecar_text(const ExportSidecar& s) {
+    json files = json::array();
+    for (const ExportSidecarFile& f : s.files) {
+        json e = {{"name", f.name},   {"format", f.format},   {"units", f.units},
+                  {"bytes", f.bytes}, {"fnv1a64", f.fnv1a64}, {"verification", f.verification}};
+        if (!f.detail.empty()) e["detail"] = f.detail;
+        files.push_back(e);
+    }
+    json side = {
+        {"format", "pinmask-export"},
+        {"version", 1},
+        {"mask",
+         {{"path", s.mask_path},
+          {"geometry_hash", s.geometry_hash},
+          {"n", s.n},
+          {"tiles", {s.tiles_rows, s.tiles_cols}},
+          {"pinholes", s.pinholes},
+          {"pinhole_m", s.pinhole_m}}},
+        {"geometry",
+         {{"units", "nm (integers), origin at the mask centre, y up"},
+          {"orientation", "mask row 0 at the top (+y), column 0 at the left (-x)"},
+          {"unit", s.unit},
+          {"grid_nm", s.grid_nm},
+          {"tone", s.tone},
+          {"drawn", s.tone == "clear" ? "clear areas" : "opaque areas"},
+          {"mirrored", s.mirrored},
+          {"emulsion", s.mirrored ? "down" : "up"},
+          {"shape", s.shape},
+          {"sides", s.sides},
+          {"drawn_sides", s.drawn_sides},
+          {"hole_side_m", s.hole_side_m},
+          {"chord_tolerance_m", s.chord_tolerance_m > 0 ? json(s.chord_tolerance_m) : "auto"},
+          {"frame_m", s.frame_m},
+          {"marks", s.marks},
+          {"label", s.label},
+          {"max_vertices", s.max_vertices},
+          {"draw", s.draw},
+          {"circles", s.circles},
+          {"hierarchy", s.hierarchy},
+          {"kerf_m", s.kerf_m},
+          {"active_area_nm", box(s.active_area_nm)},
+          {"extent_nm", box(s.extent_nm)},
+          {"polygons", s.polygons},
+          {"annotations", s.annotations}}},
+        {"drc", {{"vendor", s.vendor}, {"clean", s.drc_clean}, {"counts", s.drc_counts}}},
+        {"files", files},
+        {"psf", "not written (--no-psf)"},
+        {"notes", s.notes}};
+    if (!s.psf_files.empty())
+        side["psf"] = {{"files", s.psf_files},
+                       {"kernel", s.psf_kernel},
+                       {"pixels_per_cell", s.psf_pixels_per_cell},
+                       {"size_px", {s.psf_rows, s.psf_cols}}};
+    return side.dump(2) + "\n";
+}
+
+ExportSidecar read_export_sidecar(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    if (!in) throw RuntimeFailure("cannot read " + p.string());
+    std::ostringstream text;
+    text << in.rdbuf();
+    json j;
+    try {
+        j = json::parse(text.str());
+    } catch (const json::exception& e) {
+        throw bad(p, "(root)", std::string("is not JSON: ") + e.what());
+    }
+    if (!j.is_object() || j.value("format", "") != "pinmask-export")
+        throw bad(p, "format", "must be \"pinmask-export\"");
+    if (get<int>(j, "version", p, "(root)") != 1) throw bad(p, "version", "must be 1");
+    ExportSidecar s;
+    if (!j.contains("mask") || !j["mask"].is_object()) throw bad(p, "mask", "is missing");
+    if (!j.contains("geometry") || !j["geometry"].is_object())
+        throw bad(p, "geometry", "is missing");
+    const json& m = j["mask"];
+    s.mask_path = get<std::string>(m, "path", p, "mask");
+    s.geometry_hash = get<std::string>(m, "geometry_hash", p, "mask");
+    const json& g = j["geometry"];
+    const std::string w = "geometry";
+    s.unit = get_or<std::string>(g, "unit", "um", p, w);
+    s.grid_nm = get<std::int64_t>(g, "grid_nm", p, w);
+    s.tone = get<std::string>(g, "tone", p, w);
+    s.mirrored = get<bool>(g, "mirrored", p, w);
+    s.shape = get<std::string>(g, "shape", p, w);
+    s.drawn_sides = get<int>(g, "sides", p, w);
+    s.sides = s.drawn_sides;
+    s.hole_side_m = get<double>(g, "hole_side_m", p, w);
+    if (g.contains("chord_tolerance_m") && g["chord_tolerance_m"].is_number())
+        s.chord_tolerance_m = g["chord_tolerance_m"].get<double>();
+    s.frame_m = get<double>(g, "frame_m", p, w);
+    s.marks = get<bool>(g, "marks", p, w);
+    s.label = get<std::vector<std::string>>(g, "label", p, w);
+    s.max_vertices = get<std::size_t>(g, "max_vertices", p, w);
+    s.draw = get_or<std::string>(g, "draw", "film", p, w);
+    s.circles = get_or<std::string>(g, "circles", "polygon", p, w);
+    s.hierarchy = get_or<std::string>(g, "hierarchy", "flat", p, w);
+    s.kerf_m = get_or<double>(g, "kerf_m", 0.0, p, w);
+    if (j.contains("drc") && j["drc"].is_object())
+        s.vendor = get_or<std::string>(j["drc"], "vendor", "none", p, "drc");
+    if (j.contains("files") && j["files"].is_array())
+        for (const json& f : j["files"]) {
+            ExportSidecarFile e;
+            e.name = get<std::string>(f, "name", p, "files[]");
+            e.format = get<std::string>(f, "format", p, "files[]");
+            e.fnv1a64 = get_or<std::string>(f, "fnv1a64", "", p, "files[]");
+            s.files.push_back(e);
+        }
+    return s;
+}
+
+std::filesystem::path sidecar_path_for(const std::filesystem::path& file) {
+    return file.parent_path() / (file.stem().string() + ".export.json");
+}
+
+}  // namespace pinmask::io
