@@ -31,10 +31,11 @@ struct Pass {
     PinholeMatch match;
 };
 
-Pass register_spots(const Plane& frame, const Background& bg, const Mask& mask,
+Pass register_spots(const Plane& frame, const Plane& raw, const Background& bg, const Mask& mask,
                     const CalibrationOptions& o) {
     Pass p;
     SpotOptions so;
+    so.raw = &raw;
     so.threshold_sigmas = o.threshold_sigmas;
     so.saturation_level = o.saturation_level;
     p.spots = detect_spots(frame, bg, so);
@@ -121,7 +122,7 @@ CalibrationSummary calibrate_point_source(const Plane& capture, const std::optio
         s.dark_source = "dark frame";
     }
     const Background bg0 = estimate_background(frame);
-    Pass pass = register_spots(frame, bg0, mask, o);
+    Pass pass = register_spots(frame, capture, bg0, mask, o);
 
     // Footprint of the mask: pixels whose nearest lattice site is a mask cell; "between spots"
     // excludes cells next to (or on) an open cell.
@@ -167,7 +168,7 @@ CalibrationSummary calibrate_point_source(const Plane& capture, const std::optio
     // Second pass above the local background.
     Background bg1 = bg0;
     bg1.level = inside_level;
-    pass = register_spots(frame, bg1, mask, o);
+    pass = register_spots(frame, capture, bg1, mask, o);
     s.noise_sigma = bg0.sigma;
     s.spots = pass.spots;
     s.fit = pass.fit;

@@ -54,6 +54,7 @@ std::vector<Spot> detect_spots(const Plane& image, const Background& bg,
     std::vector<std::uint8_t> seen(static_cast<std::size_t>(rows) * cols, 0);
     std::vector<Spot> spots;
     std::vector<int> stack;
+    const Plane& raw = options.raw ? *options.raw : image;
     for (int r0 = 0; r0 < rows; ++r0) {
         for (int c0 = 0; c0 < cols; ++c0) {
             const std::size_t i0 = static_cast<std::size_t>(r0) * cols + c0;
@@ -90,7 +91,7 @@ std::vector<Spot> detect_spots(const Plane& image, const Background& bg,
                 for (int c = ca; c <= cb; ++c) {
                     const double v = image(r, c);
                     s.peak = std::max(s.peak, v);
-                    if (v >= options.saturation_level) s.saturated = true;
+                    if (raw(r, c) >= options.saturation_level) s.saturated = true;
                     const double w = v - bg.level;
                     sw += w;
                     sx += w * c;

@@ -29,6 +29,9 @@ struct SpotOptions {
     double threshold_sigmas = 6.0;  // detection threshold on the 3 x 3 mean, in noise sigmas
     int min_area_px = 3;            // smaller components are noise
     double saturation_level = std::numeric_limits<double>::infinity();  // raw counts
+    // The raw capture the saturation level applies to (before a dark frame was subtracted);
+    // null: the image searched.
+    const Plane* raw = nullptr;
 };
 
 struct Spot {
