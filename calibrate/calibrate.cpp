@@ -59,7 +59,7 @@ Pass register_spots(const Plane& frame, const Plane& raw, const Background& bg, 
     std::vector<Eigen::Vector2d> pts;
     for (const Spot& s : p.spots) pts.emplace_back(s.x, s.y);
     RegistrationOptions ro;
-    ro.nominal_pitch_px = mask.psf.pixels_per_cell;
+    ro.nominal_pitch_px = double(mask.psf.pixels_per_cell) / o.pixel_binning;
     ro.pitch_range = o.pitch_range;
     ro.max_rotation_deg = o.max_rotation_deg;
     ro.max_index_offset = o.max_index_offset;
@@ -96,6 +96,7 @@ void validate(const CalibrationOptions& o) {
     check_range("min_spot_fraction", o.min_spot_fraction, 0.0, 1.0, "must be in [0, 1]");
     check_range("period_tolerance_px", o.period_tolerance_px, 0.0, 1e3, "must be in [0, 1000]");
     check_range("max_index_offset", o.max_index_offset, 0.05, 0.45, "must be in [0.05, 0.45]");
+    check_range("pixel_binning", o.pixel_binning, 1, 16, "must be in [1, 16]");
 }
 
 CalibrationSummary calibrate_point_source(const Plane& capture, const std::optional<Plane>& dark,
@@ -104,11 +105,12 @@ CalibrationSummary calibrate_point_source(const Plane& capture, const std::optio
     if (capture.size() == 0 || !is_all_finite(capture))
         throw InvalidInput("calibrate: the capture is empty or holds NaN/Inf");
     const int rows = static_cast<int>(capture.rows()), cols = static_cast<int>(capture.cols());
-    const double period_px = mask.pattern.n * mask.psf.pixels_per_cell * (1.0 - o.pitch_range);
+    const double design_pitch = double(mask.psf.pixels_per_cell) / o.pixel_binning;
+    const double period_px = mask.pattern.n * design_pitch * (1.0 - o.pitch_range);
     if (rows < period_px || cols < period_px)
         throw InvalidInput("calibrate: the capture (" + std::to_string(cols) + " x " +
                            std::to_string(rows) + " px) is smaller than one period (" +
-                           num(mask.pattern.n * mask.psf.pixels_per_cell) + " px)");
+                           num(mask.pattern.n * design_pitch) + " px)");
     // Working copies: frame, smoothing, masks, a few PSF-sized planes.
     check_memory(8.0 * double(rows) * cols * sizeof(double), "calibrating the capture");
     CalibrationSummary s;
@@ -228,7 +230,8 @@ CalibrationSummary calibrate_point_source(const Plane& capture, const std::optio
         }
     const double pitch = 0.5 * (s.pitch_x_px + s.pitch_y_px);
     s.kernel = estimate_kernel(clean, centres, fluxes, static_cast<int>(std::lround(pitch)));
-    s.kernel_fit = compare_kernel_models(s.kernel.values, mask.camera, mask.psf.pixels_per_cell);
+    s.kernel_fit = compare_kernel_models(s.kernel.values, mask.camera,
+                                         std::max(1, static_cast<int>(std::lround(design_pitch))));
     s.best_model = best_model(s.kernel_fit);
     // Optical density: leak per cell area against a pinhole's flux.
     const double open_flux = s.match.median_flux;

@@ -38,6 +38,10 @@ struct CalibrationOptions {
     // period (pixels): beyond, a cyclic PSF on a whole-pixel torus misplaces spots.
     double period_tolerance_px = 0.5;
     double max_index_offset = 0.25;  // a spot sits on a lattice site within this (cells)
+    // Sensor pixels per capture pixel along each axis (2 for a Bayer RAW read as 2 x 2 blocks):
+    // the design's pitch in capture pixels is pixels_per_cell / pixel_binning. The mask's camera
+    // must already carry the capture's pixel pitch (the kernel models use it).
+    int pixel_binning = 1;
 };
 
 // Throws InvalidInput naming the field, the value and the rule.

@@ -14,6 +14,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
+#include "core/raw_io.hpp"
 #include "io/mask_json.hpp"
 #include "io/psf_files.hpp"
 
@@ -28,11 +29,14 @@ struct CalibrateCommandOptions {
     CameraOptions camera;
     calibrate::CalibrationOptions cal;
     std::string saturation = "auto";
+    std::string bayer = "sum2x2";
     bool json = false;
 };
 
-Plane read_grey(const std::string& path, const std::string& what, double* full_scale) {
-    LoadedImage img = read_image(path);
+Plane read_grey(const std::string& path, const std::string& what, BayerMode bayer,
+                double* full_scale, RawInfo& raw) {
+    LoadedImage img = read_capture(path, bayer, &raw);
+    if (!raw.note.empty()) std::cerr << "calibrate: " << path << ": " << raw.note << "\n";
     if (full_scale) *full_scale = img.full_scale;
     Plane p = img.image.channels.at(0);
     for (std::size_t c = 1; c < img.image.channels.size(); ++c) p += img.image.channels[c];
@@ -104,15 +108,20 @@ void run(CalibrateCommandOptions& o) {
         }
     }
     calibrate::validate(o.cal);
+    const BayerMode bayer = parse_bayer_mode(o.bayer);
     Mask mask = io::read_mask_file(o.mask);
     o.camera.base = mask.camera;
     mask.camera = resolve_camera(o.camera);
     double full_scale = 1.0;
-    const Plane capture = read_grey(o.capture, "capture", &full_scale);
+    RawInfo raw, raw_dark;
+    const Plane capture = read_grey(o.capture, "capture", bayer, &full_scale, raw);
+    // A Bayer RAW read as 2 x 2 blocks: capture pixels are binning x binning sensor pixels.
+    o.cal.pixel_binning = raw.binning;
+    mask.camera.pixel_pitch_m *= raw.binning;
     // Integer files saturate at their largest count; float files have no known ceiling.
     if (o.saturation == "auto" && full_scale > 1.0) o.cal.saturation_level = full_scale;
     std::optional<Plane> dark;
-    if (!o.dark.empty()) dark = read_grey(o.dark, "dark frame", nullptr);
+    if (!o.dark.empty()) dark = read_grey(o.dark, "dark frame", bayer, nullptr, raw_dark);
     std::cerr << "calibrate: registering " << capture.cols() << " x " << capture.rows()
               << " px against " << mask.pattern.pinholes.size() << " pinholes x "
               << mask.pattern.tiles_rows * mask.pattern.tiles_cols << " tiles\n";
@@ -232,6 +241,9 @@ void setup(CLI::App& app) {
     cmd->add_option("--saturation", o->saturation,
                     "Saturation level, counts: auto (an integer file's largest count; none for "
                     "float files) | none | VALUE")
+        ->capture_default_str();
+    cmd->add_option("--bayer", o->bayer,
+                    "Camera RAW: sum2x2 (half-resolution grey) | green (alias g) | r | b")
         ->capture_default_str();
     add_camera_options(*cmd, o->camera);
     cmd->add_flag("--json", o->json, "Print the results as JSON on stdout");
