@@ -51,6 +51,13 @@ InvalidInput bad_raw(const fs::path& path, const std::string& problem) {
     return InvalidInput("camera RAW file '" + path.string() + "': " + problem);
 }
 
+// LibRaw reports corrupt data through a callback (its default prints to stderr, which a library
+// must not do): record the first report and refuse the file after unpacking.
+void record_data_error(void* data, const char* /*file*/, const int offset) {
+    auto* first = static_cast<int*>(data);
+    if (*first == -2) *first = offset;
+}
+
 }  // namespace
 
 LoadedImage read_raw(const fs::path& path, BayerMode mode, RawInfo* info_out) {
@@ -58,6 +65,8 @@ LoadedImage read_raw(const fs::path& path, BayerMode mode, RawInfo* info_out) {
     if (!fs::is_regular_file(path, ec)) throw bad_raw(path, "file does not exist");
     if (fs::file_size(path, ec) == 0) throw bad_raw(path, "file is empty");
     auto raw = std::make_unique<LibRaw>();
+    int data_error = -2;  // -2: none; -1: unexpected end of file; else the offset
+    raw->set_dataerror_handler(record_data_error, &data_error);
     int ret = raw->open_file(path.c_str());
     if (ret != LIBRAW_SUCCESS) throw bad_raw(path, std::string("LibRaw: ") + libraw_strerror(ret));
     const auto& S = raw->imgdata.sizes;
@@ -66,6 +75,11 @@ LoadedImage read_raw(const fs::path& path, BayerMode mode, RawInfo* info_out) {
     detail::check_image_size(path, rows, cols, 1, 2.0 * double(S.raw_height) * S.raw_width);
     ret = raw->unpack();
     if (ret != LIBRAW_SUCCESS) throw bad_raw(path, std::string("LibRaw: ") + libraw_strerror(ret));
+    if (data_error != -2)
+        throw bad_raw(path,
+                      "LibRaw: corrupt data: " +
+                          (data_error == -1 ? std::string("unexpected end of file")
+                                            : "bad data at offset " + std::to_string(data_error)));
     const auto& R = raw->imgdata.rawdata;
     const auto& C = raw->imgdata.color;
     const unsigned filters = raw->imgdata.idata.filters;
