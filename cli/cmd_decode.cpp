@@ -21,6 +21,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
+#include "core/raw_io.hpp"
 #include "core/units.hpp"
 #include "decode/capture.hpp"
 #include "decode/period.hpp"
@@ -95,7 +96,7 @@ Plane channel_sum(const Image& img) {
     return s;
 }
 
-void run_decode(const DecodeRequest& r) {
+void run_decode(const DecodeRequest& r, BayerMode bayer) {
     const auto t_start = Clock::now();
     // Everything that can be checked without reading pixels, first.
     const OutputKind kind = output_kind(r.output);
@@ -119,13 +120,15 @@ void run_decode(const DecodeRequest& r) {
 
     // Load.
     auto t0 = Clock::now();
-    LoadedImage loaded = read_image(r.capture);
+    RawInfo raw;
+    LoadedImage loaded = read_capture(r.capture, bayer, &raw);  // RAW: --bayer
+    if (!raw.note.empty()) std::cerr << "decode: " << r.capture << ": " << raw.note << "\n";
     Image capture = std::move(loaded.image);
     check_image_finite(capture, "capture " + r.capture);
     LoadedPsf psf = load_psf(r, bg.mode == "corner");
     std::optional<Image> dark;
     if (!r.dark.empty()) {
-        dark = read_image(r.dark).image;
+        dark = read_capture(r.dark, bayer).image;
         check_image_finite(*dark, "dark frame " + r.dark);
     }
     timings["load"] = seconds_since(t0);
@@ -419,7 +422,12 @@ void setup(CLI::App& app) {
     cmd->add_flag("--json", o->json, "Print the stats JSON on stdout instead of the summary");
     cmd->add_flag("--explain", o->explain,
                   "Say on stderr what each step decided (window, background, period check)");
-    cmd->callback([o] { run_decode(*o); });
+    auto bayer = std::make_shared<std::string>("sum2x2");
+    cmd->add_option("--bayer", *bayer,
+                    "Camera RAW captures and dark frames: sum2x2 (half-resolution grey, the pixel "
+                    "pitch doubles) | green (alias g) | r | b; see core/raw_io.hpp")
+        ->capture_default_str();
+    cmd->callback([o, bayer] { run_decode(*o, parse_bayer_mode(*bayer)); });
 }
 
 const Registration kDecode(50, "decode", setup);

@@ -11,6 +11,7 @@
 
 #include "core/image_io_detail.hpp"
 #include "core/output_set.hpp"
+#include "core/raw_io.hpp"
 #include "core/resource_limits.hpp"
 
 namespace pinmask {
@@ -187,6 +188,8 @@ LoadedImage read_image(const fs::path& path) {
     const auto n = static_cast<std::size_t>(in.gcount());
     in.close();
     if (n == 0) throw detail::bad_image_file(path, "file is empty");
+    // Camera RAW by extension (a DNG is a TIFF by its magic, but holds CFA data): LibRaw.
+    if (is_raw_extension(path)) return read_raw(path);
 
     if (starts_with(head, n, "II*\0", 4) || starts_with(head, n, "MM\0*", 4) ||
         starts_with(head, n, "II+\0", 4) || starts_with(head, n, "MM\0+", 4)) {

@@ -1,0 +1,81 @@
+// The calibration pipeline: a point-source capture through the whole mask (several periods,
+// K x tiles spots) -> measured geometry, per-pinhole record, background, kernel, calibrated PSF.
+// Steps (one concept per file): dark frame -> spots (calibrate/spots) -> lattice registration
+// (calibrate/registration) -> pinhole matching (calibrate/pinholes) -> background inside the
+// mask's footprint (leak, optical density) -> spots again above that background -> registration
+// and matching again -> kernel (calibrate/kernel_estimate) -> model comparison
+// (calibrate/kernel_fit) -> PSFs (calibrate/calibrated_psf).
+// Coordinates: index coordinates (x = column, y = row, pixel centres on integers).
+#pragma once
+
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "calibrate/calibrated_psf.hpp"
+#include "calibrate/kernel_estimate.hpp"
+#include "calibrate/kernel_fit.hpp"
+#include "calibrate/pinholes.hpp"
+#include "calibrate/registration.hpp"
+#include "calibrate/spots.hpp"
+#include "core/image.hpp"
+#include "design/mask.hpp"
+
+namespace pinmask::calibrate {
+
+struct CalibrationOptions {
+    double max_rotation_deg = 5.0;  // rotations searched: +- this (--max-rotation)
+    double pitch_range = 0.05;      // pitches searched: design pixels per cell +- this fraction
+    double threshold_sigmas = 6.0;  // spot detection threshold (calibrate/spots)
+    double saturation_level = std::numeric_limits<double>::infinity();  // raw counts
+    // More than this fraction of spots with a saturated pixel: centroids and gains are unusable.
+    double max_saturated_fraction = 0.5;
+    // Fewer spots than this fraction of the design's in-frame pinholes: the capture is not of
+    // this mask (or is badly out of focus).
+    double min_spot_fraction = 0.5;
+    // The one-period cyclic PSF is made when the lattice drifts by at most this over one
+    // period (pixels): beyond, a cyclic PSF on a whole-pixel torus misplaces spots.
+    double period_tolerance_px = 0.5;
+    double max_index_offset = 0.25;  // a spot sits on a lattice site within this (cells)
+    // Sensor pixels per capture pixel along each axis (2 for a Bayer RAW read as 2 x 2 blocks):
+    // the design's pitch in capture pixels is pixels_per_cell / pixel_binning. The mask's camera
+    // must already carry the capture's pixel pitch (the kernel models use it).
+    int pixel_binning = 1;
+};
+
+// Throws InvalidInput naming the field, the value and the rule.
+void validate(const CalibrationOptions& options);
+
+struct CalibrationSummary {
+    double rotation_deg = 0.0, rotation_sigma_deg = 0.0;
+    double pitch_x_px = 0.0, pitch_y_px = 0.0, pitch_x_sigma_px = 0.0, pitch_y_sigma_px = 0.0;
+    double position_x_px = 0.0, position_y_px = 0.0;  // lattice site of pattern cell (0, 0) in
+    double position_sigma_px = 0.0;                   // the first full tile (row-major order)
+    Cell first_tile;                                  // that tile (row, col)
+    LatticeFit fit;
+    std::vector<Spot> spots;
+    PinholeMatch match;
+    std::vector<Cell> missing;         // mask cells (R, C) over the tiled mask
+    std::vector<Cell> merged;          // mask cells whose spots ran together
+    std::vector<Cell> oversized;       // mask cells with an oversized spot
+    std::vector<int> saturated_spots;  // indices into spots
+    double dark_level = std::numeric_limits<double>::quiet_NaN();  // counts, NaN: not measured
+    std::string dark_source;  // "dark frame", "outside the mask's footprint", "not measured"
+    double background = 0.0;  // leak between the spots inside the footprint, above the dark
+    double optical_density = std::numeric_limits<double>::infinity();  // -log10(leak / open)
+    double noise_sigma = 0.0;
+    KernelEstimate kernel;
+    std::vector<ModelResidual> kernel_fit;
+    std::string best_model;
+    CalibratedPsfs psfs;
+    Plane residual_map;  // capture - background - flux-scaled full-frame PSF
+};
+
+// Throws InvalidInput (exit 2 in the CLI) for: an empty/non-finite capture or dark frame of
+// another size; a capture smaller than one period; no spots; far fewer spots than the design;
+// saturation over most spots; a lattice outside the searched rotation/pitch range.
+CalibrationSummary calibrate_point_source(const Plane& capture, const std::optional<Plane>& dark,
+                                          const Mask& mask, const CalibrationOptions& options = {});
+
+}  // namespace pinmask::calibrate

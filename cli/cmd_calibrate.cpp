@@ -1,0 +1,261 @@
+// `pinmask calibrate`: a point-source capture through the whole mask -> measured geometry,
+// per-pinhole record, kernel and calibrated PSF (calibrate/calibrate.hpp), written to a new
+// folder whose files appear together or not at all (staged in a sibling folder, renamed last).
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "calibrate/calibrate.hpp"
+#include "calibrate/report.hpp"
+#include "cli/camera_options.hpp"
+#include "cli/command.hpp"
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/image_io.hpp"
+#include "core/raw_io.hpp"
+#include "io/mask_json.hpp"
+#include "io/psf_files.hpp"
+
+namespace pinmask::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+struct CalibrateCommandOptions {
+    std::string capture, mask, dark, output;
+    CameraOptions camera;
+    calibrate::CalibrationOptions cal;
+    std::string saturation = "auto";
+    std::string bayer = "sum2x2";
+    bool json = false;
+};
+
+Plane read_grey(const std::string& path, const std::string& what, BayerMode bayer,
+                double* full_scale, RawInfo& raw) {
+    LoadedImage img = read_capture(path, bayer, &raw);
+    if (!raw.note.empty()) std::cerr << "calibrate: " << path << ": " << raw.note << "\n";
+    if (full_scale) *full_scale = img.full_scale;
+    Plane p = img.image.channels.at(0);
+    for (std::size_t c = 1; c < img.image.channels.size(); ++c) p += img.image.channels[c];
+    if (!is_all_finite(p)) throw InvalidInput(what + " '" + path + "' holds NaN or Inf");
+    return p;
+}
+
+Json cells_json(const std::vector<Cell>& cells) {
+    Json a = Json::array();
+    for (const Cell& c : cells) a.push_back({c.row, c.col});
+    return a;
+}
+
+Json result_json(const calibrate::CalibrationSummary& s, const fs::path& dir) {
+    Json j;
+    j["rotation_deg"] = s.rotation_deg;
+    j["rotation_sigma_deg"] = s.rotation_sigma_deg;
+    j["pitch_px"] = {s.pitch_x_px, s.pitch_y_px};
+    j["pitch_sigma_px"] = {s.pitch_x_sigma_px, s.pitch_y_sigma_px};
+    j["position_px"] = {s.position_x_px, s.position_y_px};
+    j["position_sigma_px"] = s.position_sigma_px;
+    j["first_full_tile"] = {s.first_tile.row, s.first_tile.col};
+    j["fit_residual_rms_px"] = s.fit.residual_rms_px;
+    j["pinholes_in_frame"] = s.match.pinholes.size();
+    j["missing_pinholes"] = cells_json(s.missing);
+    j["merged_pinholes"] = cells_json(s.merged);
+    j["oversized_pinholes"] = cells_json(s.oversized);
+    Json extra = Json::array();
+    for (int k : s.match.extra_spots) extra.push_back({s.spots[k].x, s.spots[k].y});
+    j["extra_spots"] = extra;
+    j["saturated_spots"] = s.saturated_spots.size();
+    j["background"] = s.background;
+    j["optical_density"] = std::isfinite(s.optical_density) ? Json(s.optical_density) : Json();
+    j["dark_level"] = std::isfinite(s.dark_level) ? Json(s.dark_level) : Json();
+    j["dark_source"] = s.dark_source;
+    j["noise_sigma"] = s.noise_sigma;
+    Json fit = Json::object(), unavailable = Json::object();
+    for (const auto& f : s.kernel_fit) {
+        if (f.available)
+            fit[f.model] = f.residual;
+        else
+            unavailable[f.model] = f.reason;
+    }
+    j["kernel_fit"] = fit;
+    j["kernel_models_unavailable"] = unavailable;
+    j["kernel_best_model"] = s.best_model;
+    j["kernel_spots_used"] = s.kernel.spots_used;
+    j["psf"] = (dir / "psf.tiff").string();
+    j["psf_period"] = s.psfs.period ? Json((dir / "psf-period.tiff").string()) : Json();
+    j["psf_period_note"] = s.psfs.period_reason;
+    j["kernel"] = (dir / "kernel.tiff").string();
+    j["mask"] = (dir / "calibrated.mask.json").string();
+    j["report"] = (dir / "report.pdf").string();
+    return j;
+}
+
+void run(CalibrateCommandOptions& o) {
+    const fs::path dir = o.output;
+    if (fs::exists(dir) && !(fs::is_directory(dir) && fs::is_empty(dir)))
+        throw invalid_field("-o", o.output,
+                            "must be a new or empty folder (nothing is overwritten)");
+    if (!dir.parent_path().empty() && !fs::is_directory(dir.parent_path()))
+        throw invalid_field("-o", o.output, "its parent folder does not exist");
+    if (o.saturation != "auto" && o.saturation != "none") {
+        try {
+            o.cal.saturation_level = std::stod(o.saturation);
+        } catch (const std::exception&) {
+            throw invalid_field("--saturation", o.saturation, "must be auto, none or a count");
+        }
+    }
+    calibrate::validate(o.cal);
+    const BayerMode bayer = parse_bayer_mode(o.bayer);
+    Mask mask = io::read_mask_file(o.mask);
+    o.camera.base = mask.camera;
+    mask.camera = resolve_camera(o.camera);
+    double full_scale = 1.0;
+    RawInfo raw, raw_dark;
+    const Plane capture = read_grey(o.capture, "capture", bayer, &full_scale, raw);
+    // A Bayer RAW read as 2 x 2 blocks: capture pixels are binning x binning sensor pixels.
+    o.cal.pixel_binning = raw.binning;
+    mask.camera.pixel_pitch_m *= raw.binning;
+    // Integer files saturate at their largest count; float files have no known ceiling.
+    if (o.saturation == "auto" && full_scale > 1.0) o.cal.saturation_level = full_scale;
+    std::optional<Plane> dark;
+    if (!o.dark.empty()) dark = read_grey(o.dark, "dark frame", bayer, nullptr, raw_dark);
+    std::cerr << "calibrate: registering " << capture.cols() << " x " << capture.rows()
+              << " px against " << mask.pattern.pinholes.size() << " pinholes x "
+              << mask.pattern.tiles_rows * mask.pattern.tiles_cols << " tiles\n";
+    const auto s = calibrate::calibrate_point_source(capture, dark, mask, o.cal);
+
+    // The calibrated mask: the measured kernel and the measured geometry in its provenance.
+    Mask cal = mask;
+    cal.psf.kernel = {"measured", (dir / "kernel.tiff").string(), {}};
+    cal.psf.pixels_per_cell = static_cast<int>(std::lround(0.5 * (s.pitch_x_px + s.pitch_y_px)));
+    cal.provenance.generator = "pinmask calibrate 0.1.0";
+    auto& sc = cal.provenance.scores;
+    sc["calibrated_rotation_deg"] = s.rotation_deg;
+    sc["calibrated_pitch_x_px"] = s.pitch_x_px;
+    sc["calibrated_pitch_y_px"] = s.pitch_y_px;
+    sc["calibrated_position_x_px"] = s.position_x_px;
+    sc["calibrated_position_y_px"] = s.position_y_px;
+    sc["calibrated_missing_pinholes"] = static_cast<double>(s.missing.size());
+    sc["calibrated_background"] = s.background;
+    if (std::isfinite(s.optical_density)) sc["calibrated_optical_density"] = s.optical_density;
+    const Kernel kernel = measured_kernel(
+        s.kernel.values, cal.psf.pixels_per_cell,
+        "calibrate: median of " + std::to_string(s.kernel.spots_used) + " spots of " + o.capture);
+    Json j = result_json(s, dir);
+    const Json config = {{"capture", o.capture},
+                         {"mask", o.mask},
+                         {"dark", o.dark},
+                         {"output", o.output},
+                         {"max_rotation_deg", o.cal.max_rotation_deg},
+                         {"pitch_range", o.cal.pitch_range},
+                         {"threshold_sigmas", o.cal.threshold_sigmas},
+                         {"saturation", o.saturation}};
+
+    // Stage everything in a sibling folder, then rename it into place.
+    fs::path stage = dir;
+    stage += ".tmp-calibrate";
+    fs::remove_all(stage);
+    fs::create_directory(stage);
+    try {
+        io::PsfSidecar side = io::psf_sidecar_for(cal, kernel, o.mask);
+        io::write_psf_files(stage / "psf.tiff", s.psfs.full_frame, side, false);
+        if (s.psfs.period)
+            io::write_psf_files(stage / "psf-period.tiff", *s.psfs.period, side, false);
+        write_image(stage / "kernel.tiff", Image(s.kernel.values));
+        io::write_mask_file(stage / "calibrated.mask.json", cal);
+        write_bytes_atomic(stage / "report.pdf",
+                           calibrate::calibration_report_pdf(dark ? capture - *dark : capture, s,
+                                                             "pinmask calibrate " + o.capture));
+        write_bytes_atomic(stage / "calibration.json", Json{{"format", "pinmask-calibration"},
+                                                            {"version", 1},
+                                                            {"config", config},
+                                                            {"result", j}}
+                                                               .dump(2) +
+                                                           "\n");
+        if (fs::exists(dir)) fs::remove(dir);
+        fs::rename(stage, dir);
+    } catch (...) {
+        fs::remove_all(stage);
+        throw;
+    }
+    if (o.json) {
+        std::cout << j.dump(2) << "\n";
+        return;
+    }
+    std::cout << "calibrate " << o.capture << " -> " << o.output << "/\n"
+              << "  rotation   " << s.rotation_deg << " +- " << s.rotation_sigma_deg << " deg\n"
+              << "  pitch      x " << s.pitch_x_px << " +- " << s.pitch_x_sigma_px << ", y "
+              << s.pitch_y_px << " +- " << s.pitch_y_sigma_px << " px\n"
+              << "  position   x " << s.position_x_px << ", y " << s.position_y_px
+              << " px (pattern cell (0, 0) of tile " << s.first_tile.row << "," << s.first_tile.col
+              << ")\n"
+              << "  pinholes   " << s.match.pinholes.size() << " in frame, " << s.missing.size()
+              << " missing, " << s.merged.size() << " merged, " << s.match.extra_spots.size()
+              << " extra spots\n"
+              << "  background " << s.background << " counts (optical density " << s.optical_density
+              << "), dark level " << s.dark_level << " (" << s.dark_source << ")\n"
+              << "  kernel     best model " << (s.best_model.empty() ? "none" : s.best_model)
+              << ", from " << s.kernel.spots_used << " spots\n"
+              << "  period PSF " << s.psfs.period_reason << "\n"
+              << "  wrote      psf.tiff (+ psf.json)" << (s.psfs.period ? ", psf-period.tiff" : "")
+              << ", kernel.tiff, calibrated.mask.json, report.pdf, calibration.json\n";
+}
+
+constexpr const char* kFooter =
+    "Input: a capture of a point source (laser pinhole, distant LED) through the whole mask: "
+    "several periods, every pinhole's spot. RAW files are read as sensor data (see decode). "
+    "Pitch and position are in capture pixels; rotation in degrees, counter-clockwise on screen "
+    "positive when rows run down.\n"
+    "Writes DIR/psf.tiff (+ psf.json sidecar): the full-frame calibrated PSF (the measured "
+    "kernel at every measured spot), which `pinmask decode CAPTURE --psf DIR/psf.tiff` uses "
+    "directly; DIR/psf-period.tiff: the one-period cyclic PSF when the measured lattice fits a "
+    "whole-pixel torus; DIR/kernel.tiff; DIR/calibrated.mask.json (kernel measured, geometry in "
+    "provenance.scores); DIR/report.pdf; DIR/calibration.json (configuration and results).\n"
+    "Example: pinmask calibrate point.tiff --mask m.mask.json --dark dark.tiff -o cal --json";
+
+void setup(CLI::App& app) {
+    auto o = std::make_shared<CalibrateCommandOptions>();
+    auto* cmd = app.add_subcommand(
+        "calibrate",
+        "Register the design against a point-source capture: rotation, pitch, position, missing "
+        "and extra spots, leak, kernel; write the calibrated PSF, mask and a report.");
+    cmd->footer(kFooter);
+    cmd->add_option("point", o->capture, "Point-source capture (TIFF, PNG, npy, camera RAW)")
+        ->required();
+    cmd->add_option("--mask", o->mask, "The mask's design (*.mask.json)")->required();
+    cmd->add_option("--dark", o->dark, "Dark frame (same size), subtracted first");
+    cmd->add_option("-o,--output", o->output, "Output folder (new or empty)")->required();
+    cmd->add_option("--max-rotation", o->cal.max_rotation_deg,
+                    "Rotations searched: +- this many degrees; a capture rotated further is "
+                    "refused")
+        ->capture_default_str();
+    cmd->add_option("--pitch-range", o->cal.pitch_range,
+                    "Spot pitches searched: the design's pixels per cell +- this fraction")
+        ->capture_default_str();
+    cmd->add_option("--threshold", o->cal.threshold_sigmas,
+                    "Spot detection threshold, noise sigmas above the background")
+        ->capture_default_str();
+    cmd->add_option("--saturation", o->saturation,
+                    "Saturation level, counts: auto (an integer file's largest count; none for "
+                    "float files) | none | VALUE")
+        ->capture_default_str();
+    cmd->add_option("--bayer", o->bayer,
+                    "Camera RAW: sum2x2 (half-resolution grey) | green (alias g) | r | b")
+        ->capture_default_str();
+    add_camera_options(*cmd, o->camera);
+    cmd->add_flag("--json", o->json, "Print the results as JSON on stdout");
+    cmd->callback([o, cmd] {
+        if (cmd->count("--preset") > 0)
+            throw invalid_field("--preset", o->camera.preset,
+                                "calibrate uses the mask's camera; override single parameters");
+        run(*o);
+    });
+}
+
+const Registration kCalibrate(62, "calibrate", setup);
+
+}  // namespace
+}  // namespace pinmask::cli
