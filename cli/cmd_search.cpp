@@ -20,6 +20,7 @@
 #include "core/units.hpp"
 #include "design/psf.hpp"
 #include "design/random_sparse.hpp"
+#include "optimize/mask_metrics.hpp"
 #include "optimize/mask_objective.hpp"
 #include "optimize/scene_prior.hpp"
 #include "optimize/scenes.hpp"
@@ -218,8 +219,13 @@ void run(const Options& o) {
     const Kernel kernel = mask_kernel(tmpl);
     std::shared_ptr<const AnalyticWienerModel> model;
     if (weights.analytic_wiener > 0.0) {
+        PriorSpec prior;
+        prior.count = o.prior_scenes;
+        NoiseModel noise;
+        noise.snr_db = o.snr_db;
         model = std::make_shared<AnalyticWienerModel>(
-            analytic_wiener_model(kernel, n, ppc, o.snr_db, o.prior_scenes));
+            expand_half_spectrum(kernel_spectrum(kernel, n, ppc), m), make_scene_prior(prior, m),
+            noise);
     }
     const MaskObjective objective(weights, model, filter);
     RandomSparseOptions ro;

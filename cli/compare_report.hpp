@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "cli/compare_data.hpp"
 #include "design/camera.hpp"
 #include "export/report.hpp"
+#include "optimize/compare.hpp"
 
 namespace pinmask::cli {
 
@@ -17,7 +17,11 @@ struct CompareSummary {
     Camera camera;
     std::vector<std::string> settings_lines;
     std::vector<std::string> baseline_lines;  // what each baseline is, or why it is missing
+    std::string noise_text;  // the noise levels in words ("Gaussian noise at SNR 30 dB")
 };
+
+// "SNR 30 dB" or "photon model, 2 e per pinhole" (the shown capture's caption).
+std::string noise_caption(const NoiseModel& model);
 
 // The metrics table, one row per result (text cells, units in the second header line).
 ReportTable compare_table(const std::vector<CompareResult>& results);
