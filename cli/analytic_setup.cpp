@@ -1,5 +1,8 @@
 #include "cli/analytic_setup.hpp"
 
+#include <iomanip>
+#include <sstream>
+
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "io/json_strict.hpp"
@@ -89,6 +92,58 @@ void metrics_json(const MaskMetrics& m, nlohmann::ordered_json& row,
             }
         }
     }
+}
+
+std::string metrics_table_text(const std::vector<nlohmann::ordered_json>& rows,
+                               const MaskMetricsOptions& m) {
+    std::vector<std::pair<std::string, std::string>> cols{{"holes", "K"}};
+    if (m.sidelobes) {
+        cols.push_back({"max_sidelobe", "max_sl"});
+        cols.push_back({"peak_to_sidelobe_ratio", "PSR"});
+    }
+    if (m.spectrum) {
+        cols.push_back({"min_abs_pattern_spectrum", "min|P|"});
+        cols.push_back({"spectral_flatness", "flat"});
+        cols.push_back({"otf_condition_number", "cond"});
+    }
+    for (const NoiseLevel& level : m.noise) {
+        const std::string& k = level.key;
+        if (m.analytic) cols.push_back({"analytic_wiener_psnr_db_" + k, "A" + k});
+        if (m.wiener) cols.push_back({"wiener_psnr_db_" + k, "W" + k});
+        if (m.tv) cols.push_back({"tv_psnr_db_" + k, "TV" + k});
+    }
+    std::ostringstream s;
+    s << std::left << std::setw(28) << "mask";
+    for (const auto& c : cols) s << std::right << std::setw(11) << c.second;
+    s << "\n";
+    for (const auto& r : rows) {
+        std::string name = r["mask"].get<std::string>();
+        if (name.size() > 27) name = "..." + name.substr(name.size() - 24);
+        s << std::left << std::setw(28) << name;
+        for (const auto& c : cols) {
+            const auto& v = r[c.first];
+            std::ostringstream cell;
+            if (v.is_null()) {
+                cell << "inf";
+            } else if (v.is_number_integer() || v.is_number_unsigned()) {
+                cell << v.get<long long>();
+            } else {
+                cell << std::setprecision(4) << v.get<double>();
+            }
+            s << std::right << std::setw(11) << cell.str();
+        }
+        s << "\n";
+    }
+    for (const auto& r : rows) {
+        if (r.contains("spectral_zero") && !r["spectral_zero"].is_null()) {
+            s << "warning: " << r["mask"].get<std::string>() << ": "
+              << r["spectral_zero"]["message"].get<std::string>() << "\n";
+        }
+    }
+    s << "PSNR columns in dB over one period: A = analytic Wiener, W = simulated Wiener, TV = "
+         "simulated TV-L2; suffix snrS = Gaussian noise at S dB, phP = the photon model at P "
+         "electrons per pinhole. --json for every key.\n";
+    return s.str();
 }
 
 }  // namespace pinmask::cli

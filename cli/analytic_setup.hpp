@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "optimize/analytic_error.hpp"
 #include "optimize/mask_metrics.hpp"
@@ -32,5 +33,9 @@ PriorSpec prior_spec(const PriorFlags& flags);
 // per-scene figures go to `per_scene` when given.
 void metrics_json(const MaskMetrics& m, nlohmann::ordered_json& row,
                   nlohmann::ordered_json* per_scene = nullptr);
+
+// score's text table of JSON rows (one per mask), with spectral-zero warnings and a legend.
+std::string metrics_table_text(const std::vector<nlohmann::ordered_json>& rows,
+                               const MaskMetricsOptions& m);
 
 }  // namespace pinmask::cli

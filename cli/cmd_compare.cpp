@@ -13,6 +13,7 @@
 
 #include "cli/analytic_setup.hpp"
 #include "cli/command.hpp"
+#include "cli/command_footers.hpp"
 #include "cli/compare_report.hpp"
 #include "cli/noise_options.hpp"
 #include "core/atomic_file.hpp"
@@ -93,29 +94,6 @@ void require_same_camera(const Mask& first, const Mask& m, const std::string& pa
     }
 }
 
-nlohmann::ordered_json row_json(const CompareRow& r) {
-    nlohmann::ordered_json j{{"name", r.name},
-                             {"kind", r.kind},
-                             {"source", r.source},
-                             {"geometry_hash", r.geometry_hash},
-                             {"n", r.n},
-                             {"holes", r.holes},
-                             {"pixels_per_cell", r.pixels_per_cell},
-                             {"period_px", r.period_px},
-                             {"min_spacing_cells", r.min_spacing_cells},
-                             {"spacing_ok", r.spacing_ok},
-                             {"spacing_violations", r.spacing_violations},
-                             {"analytic_wiener_psnr_db", finite_or_null(r.analytic_wiener_psnr_db)},
-                             {"wiener_psnr_db", finite_or_null(r.wiener_psnr_db)},
-                             {"wiener_ssim", finite_or_null(r.wiener_ssim)},
-                             {"wiener_nsr", r.wiener_nsr},
-                             {"tv_psnr_db", finite_or_null(r.tv_psnr_db)},
-                             {"tv_ssim", finite_or_null(r.tv_ssim)},
-                             {"tv_lambda", r.tv_lambda}};
-    metrics_json(r.metrics, j);  // every level with score's keys
-    return j;
-}
-
 void run(const Options& o, const CLI::App& cmd) {
     std::string noise;
     const CompareRunOptions options = make_options(o, cmd, noise);
@@ -160,7 +138,7 @@ void run(const Options& o, const CLI::App& cmd) {
         std::to_string(o.seed) + ". Analytic prior: " + mo.prior.description() + "."};
 
     nlohmann::ordered_json j;
-    for (const auto& r : out.results) j["masks"].push_back(row_json(r.row));
+    for (const auto& r : out.results) j["masks"].push_back(compare_row_json(r.row));
     nlohmann::ordered_json levels = nlohmann::ordered_json::array();
     for (const NoiseLevel& l : mo.noise) levels.push_back(noise_json(l.model));
     j["settings"] = {
@@ -216,26 +194,6 @@ void run(const Options& o, const CLI::App& cmd) {
     }
 }
 
-constexpr const char* kFooter =
-    "Table columns (also --json keys): K holes; n grid; spacing ok (spacing_ok); max SL "
-    "(max_sidelobe) and PSR (peak_to_sidelobe_ratio) of the torus autocorrelation; min|P^| and "
-    "flatness of the pattern DFT; zero (spectral_zero: a pattern frequency with |P^| < 1e-3 "
-    "sqrt(K) where the kernel passes light); OTF cond over the kernel passband; analytic W "
-    "(analytic_wiener_psnr_db): closed-form expected Wiener PSNR; sim W / sim TV: simulated "
-    "one-period captures of --scenes decoded by Wiener and TV-L2, means over scenes. The table "
-    "shows the first noise level; --json has every level under score's keys "
-    "(analytic_wiener_psnr_db_snr30, wiener_psnr_db_ph2, ...): the numbers pinmask score prints "
-    "for the same settings. Infinite values are null in --json.\n"
-    "--baselines adds: the median of --baseline-count random valid masks with the first mask's "
-    "n, K, spacing, tiles, camera and PSF settings (draw i seeded with --seed + i, ranked by "
-    "simulated Wiener PSNR at the first level); the paper-like geometry (16 x 16, K 20); a MURA "
-    "of the largest prime p = 4m + 1 <= n (breaks the spacing rule).\n"
-    "Rules: every mask must be for the first mask's camera (exit 2 otherwise). --report r.pdf "
-    "writes one PDF; r.svg or r.png write r-1.svg ... (one per page); r.config.json beside them, "
-    "all or nothing.\n"
-    "Example: pinmask compare a.mask.json b.mask.json --baselines --photons 2 --read-noise 3 "
-    "--report report.pdf";
-
 void setup(CLI::App& app) {
     auto o = std::make_shared<Options>();
     auto* cmd = app.add_subcommand(
@@ -243,7 +201,7 @@ void setup(CLI::App& app) {
         "Compare masks side by side: metrics table, optional baselines, and a multi-page report "
         "with each mask's pattern, PSF, log |OTF|, autocorrelation, a simulated capture and its "
         "Wiener and TV reconstructions.");
-    cmd->footer(kFooter);
+    cmd->footer(kCompareFooter);
     cmd->add_option("masks", o->masks, "Mask files (*.mask.json); the first sets the camera")
         ->required();
     cmd->add_flag("--baselines", o->baselines,

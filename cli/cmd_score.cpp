@@ -10,6 +10,7 @@
 
 #include "cli/analytic_setup.hpp"
 #include "cli/command.hpp"
+#include "cli/command_footers.hpp"
 #include "cli/noise_options.hpp"
 #include "core/error.hpp"
 #include "io/mask_json.hpp"
@@ -97,57 +98,6 @@ std::vector<std::string> explain_lines(const ScoreOptions& o, const MaskMetricsO
     return e;
 }
 
-void print_table(const std::vector<nlohmann::ordered_json>& rows, const MaskMetricsOptions& m) {
-    std::vector<std::pair<std::string, std::string>> cols{{"holes", "K"}};
-    if (m.sidelobes) {
-        cols.push_back({"max_sidelobe", "max_sl"});
-        cols.push_back({"peak_to_sidelobe_ratio", "PSR"});
-    }
-    if (m.spectrum) {
-        cols.push_back({"min_abs_pattern_spectrum", "min|P|"});
-        cols.push_back({"spectral_flatness", "flat"});
-        cols.push_back({"otf_condition_number", "cond"});
-    }
-    for (const NoiseLevel& level : m.noise) {
-        const std::string& k = level.key;
-        if (m.analytic) cols.push_back({"analytic_wiener_psnr_db_" + k, "A" + k});
-        if (m.wiener) cols.push_back({"wiener_psnr_db_" + k, "W" + k});
-        if (m.tv) cols.push_back({"tv_psnr_db_" + k, "TV" + k});
-    }
-    std::ostringstream s;
-    s << std::left << std::setw(28) << "mask";
-    for (const auto& c : cols) s << std::right << std::setw(11) << c.second;
-    s << "\n";
-    for (const auto& r : rows) {
-        std::string name = r["mask"].get<std::string>();
-        if (name.size() > 27) name = "..." + name.substr(name.size() - 24);
-        s << std::left << std::setw(28) << name;
-        for (const auto& c : cols) {
-            const auto& v = r[c.first];
-            std::ostringstream cell;
-            if (v.is_null()) {
-                cell << "inf";
-            } else if (v.is_number_integer() || v.is_number_unsigned()) {
-                cell << v.get<long long>();
-            } else {
-                cell << std::setprecision(4) << v.get<double>();
-            }
-            s << std::right << std::setw(11) << cell.str();
-        }
-        s << "\n";
-    }
-    for (const auto& r : rows) {
-        if (r.contains("spectral_zero") && !r["spectral_zero"].is_null()) {
-            s << "warning: " << r["mask"].get<std::string>() << ": "
-              << r["spectral_zero"]["message"].get<std::string>() << "\n";
-        }
-    }
-    s << "PSNR columns in dB over one period: A = analytic Wiener, W = simulated Wiener, TV = "
-         "simulated TV-L2; suffix snrS = Gaussian noise at S dB, phP = the photon model at P "
-         "electrons per pinhole. --json for every key.\n";
-    std::cout << s.str();
-}
-
 void run(const ScoreOptions& o, const CLI::App& cmd) {
     std::string noise;
     MetricsContext context(make_options(o, cmd, noise));
@@ -181,7 +131,7 @@ void run(const ScoreOptions& o, const CLI::App& cmd) {
     if (o.explain) {
         for (const auto& line : explain) std::cerr << "explain: " << line << "\n";
     }
-    if (!o.json) return print_table(rows, m);
+    if (!o.json) return void(std::cout << metrics_table_text(rows, m));
     nlohmann::ordered_json j;
     j["masks"] = rows;
     nlohmann::ordered_json levels = nlohmann::ordered_json::array();
@@ -208,44 +158,12 @@ void run(const ScoreOptions& o, const CLI::App& cmd) {
     std::cout << j.dump(2) << "\n";
 }
 
-constexpr const char* kFooter =
-    "Metrics (--metrics, comma-separated):\n"
-    "  sidelobes  torus autocorrelation of the pattern: peak_autocorrelation (= K), max_sidelobe,\n"
-    "             mean_sidelobe, integrated_sidelobe_level (sum of squared sidelobes / peak^2),\n"
-    "             peak_to_sidelobe_ratio\n"
-    "  spectrum   min_abs_pattern_spectrum (min |P^| over k != 0), spectral_flatness (geometric /\n"
-    "             arithmetic mean of |P^|^2 over k != 0; 1 = flat), open_fraction, light_gain "
-    "(K),\n"
-    "             otf_condition_number (max/min |A^| where |K^| >= 0.1 max |K^|), spectral_zero\n"
-    "             (|P^(k)| < 1e-3 sqrt(K) where the kernel passes light: the frequency, or null)\n"
-    "  analytic   expected Wiener PSNR in closed form over one period, per noise level:\n"
-    "             analytic_wiener_psnr_db_snrS (the --nsr filter), analytic_wiener_nsr_snrS,\n"
-    "             analytic_optimal_wiener_psnr_db_snrS (per-frequency optimal filter bound).\n"
-    "             Prior: --prior (default 16 natural 1/f textures, seeds 1000..1015; the same\n"
-    "             prior in score, compare and search)\n"
-    "  wiener     simulated: wiener_psnr_db_snrS, wiener_ssim_snrS, wiener_nsr_snrS (mean over\n"
-    "             scenes; per_scene in --json)\n"
-    "  tv         simulated TV-L2: tv_psnr_db_snrS, tv_ssim_snrS, tv_lambda_snrS (slow; opt-in)\n"
-    "Noise levels: --snr S (keys ...snrS): Gaussian, sigma^2 = mean(capture^2) / 10^(S/10) (the\n"
-    "analytic error takes the prior's expected mean(capture^2)); or --photons P (keys ...phP):\n"
-    "Poisson shot noise of P K electrons per pixel for a uniform scene of value 1 (K pinholes),\n"
-    "plus read noise, dark current, saturation, ADC and film leak from the sensor flags, the\n"
-    "expected dark offset removed (see pinmask simulate --help).\n"
-    "Simulation: one period, cyclic model, capture = scene (*) PSF + noise; PSNR = 10 log10(1 /\n"
-    "MSE) for scenes in [0, 1];\n"
-    "SSIM: 11 x 11 Gaussian window (sigma 1.5), valid region. 'tuned' weights minimise the mean\n"
-    "MSE over scenes and seeds by golden section on log10 (1e-7..10). Infinite values (a PSR with\n"
-    "no sidelobes, a condition number with a spectral zero) are null in --json, inf in the table.\n"
-    "Examples: pinmask score a.mask.json b.mask.json --scenes letter-R,usaf,natural --snr 20,30 "
-    "--metrics sidelobes,spectrum,analytic,wiener --nsr tuned --json\n"
-    "  pinmask score a.mask.json --photons 100,1000 --read-noise 3 --metrics analytic,wiener";
-
 void setup(CLI::App& app) {
     auto o = std::make_shared<ScoreOptions>();
     auto* cmd = app.add_subcommand(
         "score",
         "Score masks: sidelobes, spectrum, analytic and simulated error; one row per mask.");
-    cmd->footer(kFooter);
+    cmd->footer(kScoreFooter);
     cmd->add_option("masks", o->masks, "Mask files (*.mask.json)")->required();
     cmd->add_option("--scenes", o->scenes,
                     "Scenes for simulated metrics, comma-separated: letter-R, usaf, "

@@ -5,12 +5,16 @@
 #include <cstdio>
 #include <sstream>
 
+#include "cli/analytic_setup.hpp"
 #include "cli/psf_options.hpp"
 #include "core/units.hpp"
 #include "design/optics.hpp"
+#include "io/json_strict.hpp"
 
 namespace pinmask::cli {
 namespace {
+
+using io::json_strict::finite_or_null;
 
 // "inf", "n/a" (NaN) or printf with the given format.
 std::string fmt(double v, const char* format) {
@@ -228,6 +232,29 @@ ReportDocument compare_document(const std::vector<CompareResult>& results, const
     for (std::size_t i = 0; i < results.size(); ++i)
         d.pages.push_back(mask_page(results[i], i, c, s));
     return d;
+}
+
+nlohmann::ordered_json compare_row_json(const CompareRow& r) {
+    nlohmann::ordered_json j{{"name", r.name},
+                             {"kind", r.kind},
+                             {"source", r.source},
+                             {"geometry_hash", r.geometry_hash},
+                             {"n", r.n},
+                             {"holes", r.holes},
+                             {"pixels_per_cell", r.pixels_per_cell},
+                             {"period_px", r.period_px},
+                             {"min_spacing_cells", r.min_spacing_cells},
+                             {"spacing_ok", r.spacing_ok},
+                             {"spacing_violations", r.spacing_violations},
+                             {"analytic_wiener_psnr_db", finite_or_null(r.analytic_wiener_psnr_db)},
+                             {"wiener_psnr_db", finite_or_null(r.wiener_psnr_db)},
+                             {"wiener_ssim", finite_or_null(r.wiener_ssim)},
+                             {"wiener_nsr", r.wiener_nsr},
+                             {"tv_psnr_db", finite_or_null(r.tv_psnr_db)},
+                             {"tv_ssim", finite_or_null(r.tv_ssim)},
+                             {"tv_lambda", r.tv_lambda}};
+    metrics_json(r.metrics, j);  // every level with score's keys
+    return j;
 }
 
 }  // namespace pinmask::cli

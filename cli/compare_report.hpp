@@ -3,6 +3,7 @@
 // panels per mask.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,10 @@ ReportTable compare_table(const std::vector<CompareResult>& results);
 
 // The table as aligned text for stdout, with a legend line.
 std::string compare_table_text(const ReportTable& table);
+
+// One row as JSON (compare --json and the report config): the table figures plus every noise
+// level under score's keys.
+nlohmann::ordered_json compare_row_json(const CompareRow& row);
 
 // The whole report document.
 ReportDocument compare_document(const std::vector<CompareResult>& results,

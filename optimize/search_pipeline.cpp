@@ -298,7 +298,9 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
         for (std::size_t i = 0; i < out.ranked.size(); ++i) {
             if (cancel && cancel->load()) break;
             const double estimate = i == 0 ? one_rerank_s : seconds_since(r0) / i;
-            if (timed && seconds_since(t0) + estimate > o.search.time_budget_s) break;
+            // The first candidate is always re-ranked (its time was reserved); the rest while
+            // the budget lasts.
+            if (timed && i > 0 && seconds_since(t0) + estimate > o.search.time_budget_s) break;
             rr.apply(out.ranked[i]);
             ++out.reranked;
             if (progress) {
