@@ -1,24 +1,17 @@
-// The analytic Wiener model as `pinmask search` builds it, shared with `pinmask compare` so both
-// report the same figure: the single-pinhole kernel's full m x m spectrum (m = n * pixels per
-// cell, design/psf.hpp kernel_spectrum expanded by core/fft.hpp), a natural-scene prior of
-// `prior_scenes` 1/f textures at m x m (optimize/scene_prior.hpp, seeds 0 ..), and Gaussian
-// noise at a capture SNR in dB (optimize/noise_model.hpp).
+// Shared by score, compare and search: the flags of the one metric set (optimize/mask_metrics)
+// and its JSON rendering, so every command names and prints the same numbers the same way.
 #pragma once
 
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
-#include "design/kernel.hpp"
 #include "optimize/analytic_error.hpp"
+#include "optimize/mask_metrics.hpp"
 #include "optimize/simulated_metrics.hpp"
 
 namespace pinmask::cli {
-
-// Natural scenes averaged for the prior unless a command says otherwise (search --prior-scenes).
-inline constexpr int kDefaultPriorScenes = 16;
-
-// The model for a kernel on an n x n grid of pixels_per_cell pixels per cell.
-AnalyticWienerModel analytic_wiener_model(const Kernel& kernel, int n, int pixels_per_cell,
-                                          double snr_db, int prior_scenes = kDefaultPriorScenes);
 
 // "optimal" (per-frequency Wiener filter) or "nsr:VALUE" (deconvwnr's fixed NSR, > 0);
 // InvalidInput naming --filter otherwise.
@@ -27,5 +20,22 @@ WienerFilterSpec parse_wiener_filter(const std::string& text);
 // A simulated decoder's weight (Wiener NSR, TV lambda): "tuned" or a number > 0; InvalidInput
 // naming `flag` otherwise.
 WeightChoice parse_weight_choice(const std::string& text, const std::string& flag);
+
+// --prior and --prior-scenes.
+struct PriorFlags {
+    std::string prior = "natural";
+    int count = kDefaultPriorScenes;
+};
+void add_prior_flags(CLI::App& cmd, PriorFlags& flags);
+PriorSpec prior_spec(const PriorFlags& flags);
+
+// The metrics as JSON keys (score's names: max_sidelobe, analytic_wiener_psnr_db_snr30, ...);
+// per-scene figures go to `per_scene` when given.
+void metrics_json(const MaskMetrics& m, nlohmann::ordered_json& row,
+                  nlohmann::ordered_json* per_scene = nullptr);
+
+// score's text table of JSON rows (one per mask), with spectral-zero warnings and a legend.
+std::string metrics_table_text(const std::vector<nlohmann::ordered_json>& rows,
+                               const MaskMetricsOptions& m);
 
 }  // namespace pinmask::cli

@@ -5,12 +5,16 @@
 #include <cstdio>
 #include <sstream>
 
+#include "cli/analytic_setup.hpp"
 #include "cli/psf_options.hpp"
 #include "core/units.hpp"
 #include "design/optics.hpp"
+#include "io/json_strict.hpp"
 
 namespace pinmask::cli {
 namespace {
+
+using io::json_strict::finite_or_null;
 
 // "inf", "n/a" (NaN) or printf with the given format.
 std::string fmt(double v, const char* format) {
@@ -54,6 +58,12 @@ ReportPanel panel(std::string caption, const Plane& values, double lo, double hi
     return p;
 }
 
+std::string zero_text(const CompareRow& r) {
+    const SpectralZero& z = *r.metrics.spectral_zero;
+    if (!z.found) return "none";
+    return "(" + std::to_string(z.row) + "," + std::to_string(z.col) + ")";
+}
+
 std::string spacing_text(const CompareRow& r) {
     std::ostringstream s;
     s << "spacing >= " << r.min_spacing_cells << " cells on the torus: ";
@@ -87,6 +97,8 @@ ReportMaskPage mask_page(const CompareResult& res, std::size_t index, const Came
             << ssim_text(r.tv_ssim);
     page.lines = {(r.kind == "input" ? "File: " : "Baseline: ") + r.source, geo.str(),
                   metrics.str()};
+    if (r.metrics.spectral_zero->found)
+        page.lines.push_back("WARNING: " + r.metrics.spectral_zero->message());
 
     ReportPanel pattern = panel("Pattern (white = clear)", p.pattern, 0.0, 1.0,
                                 px(n, n) + " cells of " + format_length(camera.pinhole_m));
@@ -113,8 +125,9 @@ ReportMaskPage mask_page(const CompareResult& res, std::size_t index, const Came
               "shift 0 at centre; R(0) = " + std::to_string(r.holes) + " off scale"));
     page.panels.push_back(panel("Scene: " + p.scene_name, p.scene, 0.0, 1.0, px(m, m) + " px"));
     const auto [clo, chi] = finite_range(p.capture);
-    page.panels.push_back(panel("Capture, SNR " + fmt(s.snr_db, "%g") + " dB", p.capture, clo, chi,
-                                "Gaussian noise sigma " + fmt(p.capture_sigma, "%.3g")));
+    page.panels.push_back(panel("Capture, " + noise_caption(s.metrics.noise.front().model),
+                                p.capture, clo, chi,
+                                "mean noise sigma " + fmt(p.capture_sigma, "%.3g")));
     page.panels.push_back(
         panel("Wiener, NSR " + fmt(r.wiener_nsr, "%.3g"), p.wiener, 0.0, 1.0,
               "this capture (grey clipped to 0..1):",
@@ -128,17 +141,27 @@ ReportMaskPage mask_page(const CompareResult& res, std::size_t index, const Came
 
 }  // namespace
 
+std::string noise_caption(const NoiseModel& m) {
+    if (m.kind == NoiseKind::kPhoton) {
+        return "photon model, " + fmt(m.photons_per_pinhole, "%g") + " e per pinhole";
+    }
+    if (m.kind == NoiseKind::kGaussianSnr) return "SNR " + fmt(m.snr_db, "%g") + " dB";
+    return "noiseless";
+}
+
 ReportTable compare_table(const std::vector<CompareResult>& results) {
     ReportTable t;
-    t.headers = {"mask",     "K",        "n",          "spacing", "max SL", "PSR",    "min|P^|",
-                 "flatness", "OTF cond", "analytic W", "sim W",   "W SSIM", "sim TV", "TV SSIM"};
-    t.units = {"", "", "", "ok?", "", "", "", "", "", "PSNR dB", "PSNR dB", "", "PSNR dB", ""};
+    t.headers = {"mask",       "K",       "n",        "spacing", "max SL",
+                 "PSR",        "min|P^|", "flatness", "zero",    "OTF cond",
+                 "analytic W", "sim W",   "W SSIM",   "sim TV",  "TV SSIM"};
+    t.units = {"",     "", "",        "ok?",     "", "",        "", "",
+               "freq", "", "PSNR dB", "PSNR dB", "", "PSNR dB", ""};
     for (const CompareResult& res : results) {
         const CompareRow& r = res.row;
         t.rows.push_back({r.name, std::to_string(r.holes), std::to_string(r.n),
                           r.spacing_ok ? "yes" : "NO", std::to_string(r.max_sidelobe),
                           ratio(r.peak_to_sidelobe_ratio), ratio(r.min_abs_pattern_spectrum),
-                          ratio(r.spectral_flatness), ratio(r.otf_condition_number),
+                          ratio(r.spectral_flatness), zero_text(r), ratio(r.otf_condition_number),
                           db(r.analytic_wiener_psnr_db), db(r.wiener_psnr_db),
                           ssim_text(r.wiener_ssim), db(r.tv_psnr_db), ssim_text(r.tv_ssim)});
     }
@@ -183,33 +206,55 @@ ReportDocument compare_document(const std::vector<CompareResult>& results, const
     for (const auto& l : summary.settings_lines) d.lines.push_back(l);
     for (const auto& l : summary.baseline_lines) d.lines.push_back(l);
     d.table = compare_table(results);
-    const std::string snr = fmt(s.snr_db, "%g");
+    const MaskMetricsOptions& mo = s.metrics;
     d.notes = {
         "Columns. K: pinholes. n: cells per side of the cyclic pattern. spacing ok?: no two "
         "pinhole centres closer than the mask's minimum spacing on the torus (across tile "
         "seams).",
         "max SL: largest torus autocorrelation sidelobe R(d), d != 0. PSR: R(0) / max SL = K / "
         "max SL. min|P^|: smallest magnitude of the pattern's n x n DFT over k != 0. flatness: "
-        "geometric / arithmetic mean of |P^|^2 over k != 0 (1 = flat, 0 = a spectral zero).",
+        "geometric / arithmetic mean of |P^|^2 over k != 0 (1 = flat, 0 = a spectral zero). "
+        "zero: the pattern frequency of a spectral zero (|P^| < 1e-3 sqrt(K) where the kernel "
+        "passes light), none otherwise.",
         "OTF cond: max / min |A^| of the mask OTF over the kernel passband (|K^| >= 0.1 max |K^|); "
         "inf = an exact zero.",
-        "analytic W: expected PSNR of Wiener decoding in closed form over one period at SNR " +
-            snr + " dB (" +
-            (s.analytic_filter.kind == WienerFilterKind::kOptimal
-                 ? std::string("per-frequency optimal filter")
-                 : "fixed NSR " + fmt(s.analytic_filter.nsr, "%g")) +
-            ", prior " + std::to_string(s.prior_scenes) +
-            " natural 1/f textures), the objective of pinmask search.",
-        "sim W / sim TV: one period of each scene through the PSF (cyclic model) with Gaussian "
-        "noise at SNR " +
-            snr +
-            " dB, decoded by Wiener and TV-L2; PSNR = 10 log10(1 / MSE) for scenes in [0, 1], "
-            "SSIM with an 11 x 11 Gaussian window; means over the scenes. Each mask is simulated "
-            "on its own period m = n x pixels per cell.",
+        "analytic W: expected PSNR of Wiener decoding in closed form over one period, " +
+            summary.noise_text + " (the first level), Wiener NSR " +
+            (mo.simulation.wiener_nsr.tuned ? std::string("tuned per mask")
+                                            : fmt(mo.simulation.wiener_nsr.value, "%g")) +
+            ", prior " + mo.prior.description() + ": the figure pinmask score prints.",
+        "sim W / sim TV: one period of each scene through the PSF (cyclic model) with " +
+            summary.noise_text +
+            " (the first level), decoded by Wiener and TV-L2; PSNR = 10 log10(1 / MSE) for scenes "
+            "in [0, 1], SSIM with an 11 x 11 Gaussian window; means over the scenes. Each mask is "
+            "simulated on its own period m = n x pixels per cell.",
     };
     for (std::size_t i = 0; i < results.size(); ++i)
         d.pages.push_back(mask_page(results[i], i, c, s));
     return d;
+}
+
+nlohmann::ordered_json compare_row_json(const CompareRow& r) {
+    nlohmann::ordered_json j{{"name", r.name},
+                             {"kind", r.kind},
+                             {"source", r.source},
+                             {"geometry_hash", r.geometry_hash},
+                             {"n", r.n},
+                             {"holes", r.holes},
+                             {"pixels_per_cell", r.pixels_per_cell},
+                             {"period_px", r.period_px},
+                             {"min_spacing_cells", r.min_spacing_cells},
+                             {"spacing_ok", r.spacing_ok},
+                             {"spacing_violations", r.spacing_violations},
+                             {"analytic_wiener_psnr_db", finite_or_null(r.analytic_wiener_psnr_db)},
+                             {"wiener_psnr_db", finite_or_null(r.wiener_psnr_db)},
+                             {"wiener_ssim", finite_or_null(r.wiener_ssim)},
+                             {"wiener_nsr", r.wiener_nsr},
+                             {"tv_psnr_db", finite_or_null(r.tv_psnr_db)},
+                             {"tv_ssim", finite_or_null(r.tv_ssim)},
+                             {"tv_lambda", r.tv_lambda}};
+    metrics_json(r.metrics, j);  // every level with score's keys
+    return j;
 }
 
 }  // namespace pinmask::cli

@@ -3,12 +3,13 @@
 // panels per mask.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "cli/compare_data.hpp"
 #include "design/camera.hpp"
 #include "export/report.hpp"
+#include "optimize/compare.hpp"
 
 namespace pinmask::cli {
 
@@ -17,13 +18,21 @@ struct CompareSummary {
     Camera camera;
     std::vector<std::string> settings_lines;
     std::vector<std::string> baseline_lines;  // what each baseline is, or why it is missing
+    std::string noise_text;  // the noise levels in words ("Gaussian noise at SNR 30 dB")
 };
+
+// "SNR 30 dB" or "photon model, 2 e per pinhole" (the shown capture's caption).
+std::string noise_caption(const NoiseModel& model);
 
 // The metrics table, one row per result (text cells, units in the second header line).
 ReportTable compare_table(const std::vector<CompareResult>& results);
 
 // The table as aligned text for stdout, with a legend line.
 std::string compare_table_text(const ReportTable& table);
+
+// One row as JSON (compare --json and the report config): the table figures plus every noise
+// level under score's keys.
+nlohmann::ordered_json compare_row_json(const CompareRow& row);
 
 // The whole report document.
 ReportDocument compare_document(const std::vector<CompareResult>& results,

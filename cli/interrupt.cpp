@@ -6,22 +6,29 @@ namespace pinmask::cli {
 namespace {
 
 std::atomic<bool> g_interrupted{false};
+std::atomic<int> g_count{0};
 
-extern "C" void on_signal(int sig) {
+extern "C" void on_signal(int) {
     g_interrupted.store(true);
-    std::signal(sig, SIG_DFL);
+    g_count.fetch_add(1);
 }
 
 }  // namespace
 
 const std::atomic<bool>& install_interrupt_flag() {
     static const bool installed = [] {
-        std::signal(SIGINT, on_signal);
-        std::signal(SIGTERM, on_signal);
+        struct sigaction sa {};
+        sa.sa_handler = on_signal;
+        sigemptyset(&sa.sa_mask);
+        sa.sa_flags = SA_RESTART;  // the handler stays installed for later signals
+        sigaction(SIGINT, &sa, nullptr);
+        sigaction(SIGTERM, &sa, nullptr);
         return true;
     }();
     (void)installed;
     return g_interrupted;
 }
+
+int interrupt_count() { return g_count.load(); }
 
 }  // namespace pinmask::cli

@@ -1,5 +1,8 @@
-// SIGINT/SIGTERM as a flag: long runs (search) poll it, stop cleanly and write the best result so
-// far. A second signal restores the default action (so a second Ctrl-C kills at once).
+// SIGINT/SIGTERM as a flag: long runs (search, decode) poll it, stop cleanly and write the best
+// result so far. Every signal only sets the flag (and counts): the first always ends with the
+// best so far written, later ones cannot lose it (coreutils `timeout` sends SIGTERM to the
+// process and again to its group; a second Ctrl-C used to kill before the write). A run that
+// must die at once can still be killed with SIGKILL.
 #pragma once
 
 #include <atomic>
@@ -8,5 +11,8 @@ namespace pinmask::cli {
 
 // Installs the handlers (idempotent) and returns the flag they set.
 const std::atomic<bool>& install_interrupt_flag();
+
+// Signals received since the handlers were installed.
+int interrupt_count();
 
 }  // namespace pinmask::cli

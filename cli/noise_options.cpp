@@ -2,19 +2,43 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 
-#include "io/json_strict.hpp"
 #include "core/error.hpp"
+#include "core/units.hpp"
+#include "io/json_strict.hpp"
 
 namespace pinmask::cli {
 namespace {
 
 using io::json_strict::finite_or_null;
 
+constexpr std::size_t kMaxNoiseLevels = 64;
+
 constexpr const char* kSensorFlags[] = {"--read-noise", "--dark-current", "--bits", "--full-well",
                                         "--optical-density"};
 
 }  // namespace
+
+void validate_naming_flags(const NoiseModel& m) {
+    try {
+        validate(m);
+    } catch (const InvalidInput& e) {
+        static const std::pair<std::string, std::string> kNames[] = {
+            {"photons_per_pinhole", "--photons"},
+            {"read_noise_e", "--read-noise"},
+            {"dark_current_e", "--dark-current"},
+            {"full_well_e", "--full-well"},
+            {"adc_bits", "--bits"},
+            {"film_optical_density", "--optical-density"},
+            {"snr_db", "--snr"}};
+        const std::string what = e.what();
+        for (const auto& [field, flag] : kNames) {
+            if (what.rfind(field + " = ", 0) == 0) throw InvalidInput(flag + " (" + what + ")");
+        }
+        throw;
+    }
+}
 
 void add_sensor_flags(CLI::App& cmd, SensorFlags& f) {
     cmd.add_option("--read-noise", f.read_noise,
@@ -47,7 +71,7 @@ NoiseModel photon_model(double photons_per_pinhole, const SensorFlags& f,
         throw invalid_field("--bits", std::to_string(*f.bits),
                             "needs --full-well E (the ADC full scale in electrons)");
     }
-    validate(m);
+    validate_naming_flags(m);
     if (skipped) {
         auto note = [&](bool given, const std::string& line) {
             if (!given) skipped->push_back(line);
@@ -60,6 +84,72 @@ NoiseModel photon_model(double photons_per_pinhole, const SensorFlags& f,
              "film leakage skipped: --optical-density not given (perfectly opaque film)");
     }
     return m;
+}
+
+std::vector<std::string> split_list(const std::string& text, const std::string& flag) {
+    std::vector<std::string> out;
+    std::string item;
+    std::istringstream in(text);
+    while (std::getline(in, item, ',')) {
+        if (item.empty()) throw invalid_field(flag, "'" + text + "'", "has an empty list item");
+        out.push_back(item);
+    }
+    if (out.empty()) throw invalid_field(flag, "''", "needs at least one item");
+    if (out.size() > kMaxNoiseLevels) {
+        throw invalid_field(flag, "'" + text + "'", "has more than 64 items");
+    }
+    return out;
+}
+
+void add_noise_flags(CLI::App& cmd, NoiseFlags& f, const std::string& default_snr) {
+    f.snr = default_snr;
+    auto* snr =
+        cmd.add_option("--snr", f.snr, "Capture SNRs in dB, comma-separated (Gaussian noise)")
+            ->capture_default_str();
+    cmd.add_option("--photons", f.photons,
+                   "The photon model instead of --snr: mean electrons per pixel through ONE "
+                   "pinhole for a uniform scene of value 1, comma-separated levels (K pinholes "
+                   "collect K times that: the multiplexing trade-off), with the sensor flags")
+        ->excludes(snr);
+    add_sensor_flags(cmd, f.sensor);
+}
+
+std::vector<NoiseLevel> noise_levels(const NoiseFlags& f, const CLI::App& cmd, std::string* text) {
+    std::vector<NoiseLevel> out;
+    std::string levels;
+    const auto number = [](double v) {
+        std::ostringstream s;
+        s << v;
+        return s.str();
+    };
+    if (!f.photons.empty()) {
+        if (cmd.count("--snr") > 0)
+            throw invalid_field("--snr", f.snr, "cannot be combined with --photons");
+        for (const std::string& s : split_list(f.photons, "--photons")) {
+            const double ppp = parse_number(s, "--photons");
+            out.push_back(noise_level(photon_model(ppp, f.sensor)));
+            levels += (levels.empty() ? "" : ",") + number(ppp);
+        }
+        const NoiseModel& m = out.front().model;
+        if (text) {
+            *text = "the photon model at " + levels +
+                    " electrons per pixel per pinhole (read noise " + number(m.read_noise_e) +
+                    " e, dark current " + number(m.dark_current_e) + " e, film OD " +
+                    number(m.film_optical_density) + ")";
+        }
+        return out;
+    }
+    refuse_sensor_flags_without_photons(cmd);
+    for (const std::string& s : split_list(f.snr, "--snr")) {
+        NoiseModel m;
+        m.kind = NoiseKind::kGaussianSnr;
+        m.snr_db = parse_number(s, "--snr");
+        validate_naming_flags(m);
+        out.push_back(noise_level(m));
+        levels += (levels.empty() ? "" : ",") + number(m.snr_db);
+    }
+    if (text) *text = "Gaussian noise at SNR " + levels + " dB";
+    return out;
 }
 
 void refuse_sensor_flags_without_photons(const CLI::App& cmd) {

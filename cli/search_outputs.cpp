@@ -4,9 +4,9 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/atomic_file.hpp"
 #include "io/json_strict.hpp"
 #include "io/mask_json.hpp"
-#include "core/atomic_file.hpp"
 
 namespace pinmask::cli {
 namespace fs = std::filesystem;
@@ -27,50 +27,72 @@ double score_or_nan(const Mask& m, const char* key) {
 
 }  // namespace
 
-std::string search_summary_markdown(const std::vector<RankedMask>& ranked,
-                                    const SearchSummary& summary) {
+std::string search_summary_markdown(const SearchPipelineSummary& summary) {
     std::ostringstream s;
     s << "| rank | geometry hash | objective | analytic Wiener PSNR (dB) | simulated Wiener PSNR "
          "(dB) | simulated TV PSNR (dB) | max sidelobe / K | min |P^| / sqrt(K) |\n"
       << "|---:|---|---:|---:|---:|---:|---:|---:|\n";
-    for (std::size_t i = 0; i < ranked.size(); ++i) {
-        const Mask& m = ranked[i].mask;
-        s << "| " << i + 1 << " | " << geometry_hash(m) << " | " << fmt(ranked[i].objective, "%.4f")
+    for (std::size_t i = 0; i < summary.ranked.size(); ++i) {
+        const RankedMask& r = summary.ranked[i];
+        const Mask& m = r.mask;
+        s << "| " << i + 1 << " | " << geometry_hash(m) << " | " << fmt(r.objective, "%.4f")
           << " | " << fmt(score_or_nan(m, "analytic_wiener_psnr_db")) << " | "
-          << fmt(ranked[i].sim_wiener_psnr_db) << " | " << fmt(ranked[i].sim_tv_psnr_db) << " | "
+          << fmt(r.sim_wiener_psnr_db) << " | " << fmt(r.sim_tv_psnr_db) << " | "
           << fmt(score_or_nan(m, "max_sidelobe")) << " | " << fmt(-score_or_nan(m, "min_spectrum"))
           << " |\n";
     }
+    const SearchSummary& sr = summary.search;
     s << "\n"
-      << summary.evaluations << " evaluations in " << fmt(summary.seconds, "%.2f") << " s ("
-      << summary.stop_reason << "); per chain:";
-    for (auto e : summary.evaluations_per_chain) s << " " << e;
-    s << "\n";
+      << sr.evaluations << " evaluations; stopped: " << search_termination_name(summary.termination)
+      << " (" << search_termination_message(summary.termination) << "); per chain:";
+    for (auto e : sr.evaluations_per_chain) s << " " << e;
+    s << "\nRe-ranked by simulation: " << summary.reranked << " of " << summary.ranked.size()
+      << " candidates.\n";
+    for (std::size_t i = 0; i < summary.ranked.size(); ++i) {
+        if (summary.ranked[i].spectral_zero) {
+            s << "WARNING: rank " << i + 1 << ": " << summary.ranked[i].spectral_zero_message
+              << " (kept because of --allow-spectral-zeros)\n";
+        }
+    }
+    if (summary.planned_s > 0.0) {  // timings only for time-budget runs (never reproducible)
+        s << "Time: planned " << fmt(summary.planned_s, "%.2f") << " s, used "
+          << fmt(summary.used_s, "%.2f") << " s (search " << fmt(summary.search_s, "%.2f")
+          << " s, re-ranking " << fmt(summary.rerank_s, "%.2f") << " s, "
+          << fmt(summary.rerank_reserved_s, "%.2f") << " s reserved for it).\n";
+    }
     return s.str();
 }
 
 std::vector<fs::path> write_search_outputs(const fs::path& dir,
-                                           const std::vector<RankedMask>& ranked,
-                                           const SearchSummary& summary,
+                                           const SearchPipelineSummary& summary,
                                            const nlohmann::ordered_json& config) {
     fs::create_directories(dir);
     StagedFiles files;
     std::vector<fs::path> paths;
-    for (std::size_t i = 0; i < ranked.size(); ++i) {
+    for (std::size_t i = 0; i < summary.ranked.size(); ++i) {
         const fs::path p = dir / ("rank-" + std::to_string(i + 1) + ".mask.json");
-        files.stage(p, [&](const fs::path& tmp) { io::write_mask_file(tmp, ranked[i].mask); });
+        const Mask& mask = summary.ranked[i].mask;
+        files.stage(p, [&](const fs::path& tmp) { io::write_mask_file(tmp, mask); });
         paths.push_back(p);
     }
     std::ostringstream log;
-    log << "seconds,evaluations,best_objective\n";
-    for (const auto& row : summary.log) {
-        if (!std::isfinite(row.best_objective)) continue;  // before the first evaluation
-        log << fmt(row.seconds, "%.3f") << "," << row.evaluations << ","
+    log << "evaluations_per_chain,evaluations,best_objective\n";
+    for (const auto& row : summary.search.checkpoints) {
+        if (!std::isfinite(row.best_objective)) continue;  // before the first accepted pattern
+        log << row.evaluations_per_chain << "," << row.evaluations << ","
             << fmt(row.best_objective, "%.9g") << "\n";
     }
     files.stage_bytes(dir / "run-log.csv", log.str());
+    std::ostringstream timing;
+    timing << "seconds,evaluations,best_objective\n";
+    for (const auto& row : summary.search.log) {
+        if (!std::isfinite(row.best_objective)) continue;
+        timing << fmt(row.seconds, "%.3f") << "," << row.evaluations << ","
+               << fmt(row.best_objective, "%.9g") << "\n";
+    }
+    files.stage_bytes(dir / "timing.csv", timing.str());
     files.stage_bytes(dir / "summary.md",
-                      "# Search summary\n\n" + search_summary_markdown(ranked, summary));
+                      "# Search summary\n\n" + search_summary_markdown(summary));
     files.stage_bytes(dir / "search.config.json", io::json_strict::pretty(config) + "\n");
     files.commit();
     return paths;

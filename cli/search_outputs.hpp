@@ -1,7 +1,10 @@
 // What `pinmask search` writes into its output folder, all staged together (all or nothing):
 //   rank-1.mask.json ... rank-N.mask.json   candidates, best first, with provenance and scores
-//   run-log.csv                             seconds, evaluations, best_objective
-//   summary.md                              the ranking table
+//   run-log.csv    evaluations_per_chain, evaluations, best_objective at fixed evaluation
+//                  counts: byte-identical for the same --evals run
+//   summary.md     the ranking table, the termination, spectral-zero flags; with a time budget
+//                  also planned vs used time (with --evals no timings: byte-identical)
+//   timing.csv     seconds, evaluations, best_objective sampled by wall clock (never identical)
 //   search.config.json                      the resolved configuration of the run
 #pragma once
 
@@ -10,26 +13,16 @@
 #include <string>
 #include <vector>
 
-#include "design/mask.hpp"
-#include "optimize/search.hpp"
+#include "optimize/search_pipeline.hpp"
 
 namespace pinmask::cli {
 
-struct RankedMask {
-    Mask mask;
-    double objective = 0.0;
-    double sim_wiener_psnr_db = 0.0;  // NaN when re-ranking was skipped
-    double sim_tv_psnr_db = 0.0;      // NaN when TV re-ranking was skipped
-};
-
 // Writes the folder's files; returns the mask paths in rank order.
 std::vector<std::filesystem::path> write_search_outputs(const std::filesystem::path& dir,
-                                                        const std::vector<RankedMask>& ranked,
-                                                        const SearchSummary& summary,
+                                                        const SearchPipelineSummary& summary,
                                                         const nlohmann::ordered_json& config);
 
-// The Markdown ranking table (also printed by the command).
-std::string search_summary_markdown(const std::vector<RankedMask>& ranked,
-                                    const SearchSummary& summary);
+// The Markdown summary (also printed by the command).
+std::string search_summary_markdown(const SearchPipelineSummary& summary);
 
 }  // namespace pinmask::cli

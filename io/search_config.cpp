@@ -1,13 +1,14 @@
 #include "io/search_config.hpp"
 
 #include <fstream>
+#include <limits>
 #include <sstream>
 
-#include "io/json_strict.hpp"
-#include "io/optics_json.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "design/kernel_model.hpp"
+#include "io/json_strict.hpp"
+#include "io/optics_json.hpp"
 
 namespace pinmask::io {
 namespace {
@@ -72,6 +73,8 @@ SearchConfig parse_search_config(const std::string& text) {
                     "weights",
                     "rerank_scenes",
                     "rerank_tv",
+                    "allow_spectral_zeros",
+                    "rank_by",
                     "optics"});
     if (read_string(r.required("format"), "format") != kSearchConfigFormat)
         fail("format",
@@ -130,15 +133,43 @@ SearchConfig parse_search_config(const std::string& text) {
     read_into(r, "kernel_path", c.kernel_path, read_string);
     read_into(r, "filter", c.filter, read_string);
     if (const Json* noise = r.optional("noise")) {
-        ObjectReader n(*noise, "noise", {"model", "snr_db"});
+        ObjectReader n(*noise, "noise",
+                       {"model", "snr_db", "photons_per_pinhole", "read_noise_e", "dark_current_e",
+                        "full_well_e", "adc_bits", "film_optical_density"});
         n.reject_unknown();
-        if (const Json* m = n.optional("model")) one_of(*m, n.path("model"), {"gaussian"});
+        std::string model = "gaussian";
+        if (const Json* m = n.optional("model"))
+            model = one_of(*m, n.path("model"), {"gaussian", "photon"});
         read_into(n, "snr_db", c.snr_db, read_number);
+        const auto number_or_inf = [](const Json& v, const std::string& p) {
+            return v.is_null() ? std::numeric_limits<double>::infinity() : read_number(v, p);
+        };
+        read_into(n, "photons_per_pinhole", c.photons, read_number);
+        read_into(n, "read_noise_e", c.read_noise, read_number);
+        read_into(n, "dark_current_e", c.dark_current, read_number);
+        read_into(n, "full_well_e", c.full_well, number_or_inf);
+        read_into(n, "film_optical_density", c.optical_density, number_or_inf);
+        read_into(n, "adc_bits", c.bits,
+                  [](const Json& v, const std::string& p) { return int_at_least(v, p, 0); });
+        if (model == "photon" && !c.photons)
+            fail(n.path("photons_per_pinhole"), "is required for the photon model");
+        if (model == "gaussian" && c.photons)
+            fail(n.path("photons_per_pinhole"), "belongs to the photon model");
     }
     if (const Json* prior = r.optional("prior")) {
-        ObjectReader n(*prior, "prior", {"family", "scenes"});
+        ObjectReader n(*prior, "prior", {"family", "scenes", "files"});
         n.reject_unknown();
-        if (const Json* f = n.optional("family")) one_of(*f, n.path("family"), {"natural"});
+        read_into(n, "family", c.prior_family, [](const Json& v, const std::string& p) {
+            return one_of(v, p, {"natural", "text", "stars", "files"});
+        });
+        read_into(n, "files", c.prior_files, [](const Json& v, const std::string& p) {
+            if (!v.is_array())
+                fail(p, std::string("must be an array of paths, got ") + v.type_name());
+            std::vector<std::string> files;
+            for (std::size_t i = 0; i < v.size(); ++i)
+                files.push_back(read_string(v[i], indexed(p, i)));
+            return files;
+        });
         read_into(n, "scenes", c.prior_scenes,
                   [](const Json& v, const std::string& p) { return int_at_least(v, p, 1); });
     }
@@ -160,6 +191,10 @@ SearchConfig parse_search_config(const std::string& text) {
         return names;
     });
     read_into(r, "rerank_tv", c.rerank_tv, read_bool);
+    read_into(r, "allow_spectral_zeros", c.allow_spectral_zeros, read_bool);
+    read_into(r, "rank_by", c.rank_by, [](const Json& v, const std::string& p) {
+        return one_of(v, p, {"wiener", "tv"});
+    });
     if (const Json* optics = r.optional("optics")) c.optics = optics_from_json(*optics);
     return c;
 }

@@ -8,8 +8,11 @@
 //    "min_spacing_cells": > 0, "keep_out": "none" | "border", "pixels_per_cell": >= 1,
 //    "kernel_requested": auto | box | fraunhofer | fresnel | paper-fig3b | measured,
 //    "kernel_resolved" (informational), "kernel_path": file of --kernel measured,
-//    "noise": {"model": "gaussian", "snr_db"}, "filter": "optimal" | "nsr:VALUE",
-//    "prior": {"family": "natural", "scenes": >= 1},
+//    "noise": {"model": "gaussian", "snr_db"} or {"model": "photon", "photons_per_pinhole",
+//              "read_noise_e", "dark_current_e", "full_well_e" (null: none), "adc_bits",
+//              "film_optical_density" (null: opaque)}, "filter": "optimal" | "nsr:VALUE",
+//    "prior": {"family": "natural" | "text" | "stars" | "files", "scenes": >= 1,
+//              "files": [paths]}, "allow_spectral_zeros": bool, "rank_by": "wiener" | "tv",
 //    "weights": {"analytic_wiener", "max_sidelobe", "sidelobe_energy", "min_spectrum"},
 //    "rerank_scenes": [names] ([]: no re-ranking), "rerank_tv": bool,
 //    "optics": the camera (cli/optics_json.hpp)}
@@ -42,6 +45,12 @@ struct SearchConfig {
     std::optional<std::vector<std::string>> rerank_scenes;
     std::optional<bool> rerank_tv;
     std::optional<Camera> optics;
+    // The photon model (noise.model "photon"); full_well and optical_density may be +inf.
+    std::optional<double> photons, read_noise, dark_current, full_well, optical_density;
+    std::optional<int> bits;
+    std::optional<std::string> prior_family, rank_by;
+    std::optional<std::vector<std::string>> prior_files;
+    std::optional<bool> allow_spectral_zeros;
 };
 
 // Parses the text of a configuration file: InvalidInput on any problem (see above), JSON syntax

@@ -37,6 +37,14 @@
 
 namespace pinmask {
 
+// Bounds with their reasons (validate): electron counts per pixel (photons per pinhole, dark
+// current, read noise) at most 1e12, a million times any pixel's full well, where counts times K
+// stay exact in double precision; |SNR| at most 300 dB, where 10^(SNR/10) stays finite.
+inline constexpr double kMaxElectrons = 1e12;
+inline constexpr double kMaxAbsSnrDb = 300.0;
+// Above this mean the sampler draws the normal approximation of the Poisson distribution.
+inline constexpr double kPoissonNormalMean = 1e6;
+
 enum class NoiseKind { kNone, kGaussianSnr, kPhoton };
 
 struct NoiseModel {

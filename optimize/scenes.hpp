@@ -67,6 +67,11 @@ Plane point_scene(int rows, int cols);
 // removed, then mapped affinely so its minimum is 0 and maximum 1 (0.5 when constant).
 Plane natural_scene(int rows, int cols, std::uint64_t seed, double alpha);
 
+// A page of random words, dark ink on white (optimize/scene_text.cpp), and a sparse star field
+// on black: the --prior families text and stars.
+Plane text_scene(int rows, int cols, std::uint64_t seed);
+Plane stars_scene(int rows, int cols, std::uint64_t seed);
+
 // An image file, normalised by its full scale (core/image_io), resampled to rows x cols by
 // exact area averaging. InvalidInput for channel counts other than 1 or 3, non-finite values
 // or values outside [0, 1] after normalisation.

@@ -24,6 +24,11 @@ std::uint64_t chain_seed(std::uint64_t seed, int chain) {
     return z ^ (z >> 31);
 }
 
+// The evaluation counts at which chains record their best: 1, 2, .., 16, then ~19 % steps.
+std::int64_t next_checkpoint(std::int64_t e) {
+    return std::max(e + 1, static_cast<std::int64_t>(std::ceil(static_cast<double>(e) * 1.19)));
+}
+
 // The best `capacity` distinct patterns seen by one chain, best first.
 class TopList {
   public:
@@ -87,9 +92,13 @@ class Chain {
         } else {
             while (!should_stop()) anneal_once();
         }
+        if (evaluations_ > 0 && (checkpoints_.empty() || checkpoints_.back().first != evaluations_))
+            checkpoints_.push_back({evaluations_, best_});
     }
     const TopList& top() const { return top_; }
     std::int64_t evaluations() const { return evaluations_; }
+    // (evaluations, best objective so far) at the checkpoint evaluation counts.
+    const std::vector<std::pair<std::int64_t, double>>& checkpoints() const { return checkpoints_; }
 
   private:
     bool should_stop() const {
@@ -100,6 +109,11 @@ class Chain {
 
     void record(const PatternState& s, double value) {
         ++evaluations_;
+        best_ = std::min(best_, value);
+        if (evaluations_ == next_checkpoint_) {
+            checkpoints_.push_back({evaluations_, best_});
+            next_checkpoint_ = next_checkpoint(evaluations_);
+        }
         shared_->evaluations.store(evaluations_, std::memory_order_relaxed);
         if (value < top_.worst()) top_.offer(s.pattern(), value);
         if (value < shared_->best.load(std::memory_order_relaxed)) {
@@ -175,9 +189,38 @@ class Chain {
     TopList top_;
     std::vector<Cell> keep_out_;
     std::int64_t evaluations_ = 0;
+    double best_ = INFINITY;
+    std::int64_t next_checkpoint_ = 1;
+    std::vector<std::pair<std::int64_t, double>> checkpoints_;
 };
 
 }  // namespace
+
+const std::vector<std::pair<SearchTermination, std::string>>& search_termination_names() {
+    static const std::vector<std::pair<SearchTermination, std::string>> kNames{
+        {SearchTermination::kTimeBudget, "time budget"},
+        {SearchTermination::kEvaluationBudget, "evaluation budget"},
+        {SearchTermination::kInterrupted, "interrupted"}};
+    return kNames;
+}
+
+std::string search_termination_name(SearchTermination t) {
+    for (const auto& [k, name] : search_termination_names())
+        if (k == t) return name;
+    return "unknown";
+}
+
+std::string search_termination_message(SearchTermination t) {
+    switch (t) {
+        case SearchTermination::kTimeBudget:
+            return "the time budget ran out";
+        case SearchTermination::kEvaluationBudget:
+            return "every chain made its evaluation budget";
+        case SearchTermination::kInterrupted:
+            return "interrupted (signal or cancel); the best so far is kept";
+    }
+    return "unknown";
+}
 
 void SearchOptions::validate() const {
     if (threads < 1 || threads > 1024) {
@@ -288,15 +331,34 @@ SearchSummary run_search(const SearchObjective& objective, const SearchOptions& 
         c.terms = objective.terms(PatternState(item.pattern));
         summary.ranked.push_back(std::move(c));
     }
+    // Checkpoints merged over chains: every chain records at the same evaluation counts.
+    std::vector<std::int64_t> counts;
+    for (const auto& chain : chains)
+        for (const auto& [e, best] : chain->checkpoints()) counts.push_back(e);
+    std::sort(counts.begin(), counts.end());
+    counts.erase(std::unique(counts.begin(), counts.end()), counts.end());
+    for (const std::int64_t e : counts) {
+        SearchCheckpoint cp;
+        cp.evaluations_per_chain = e;
+        cp.best_objective = INFINITY;
+        for (const auto& chain : chains) {
+            cp.evaluations += std::min(e, chain->evaluations());
+            for (const auto& [ce, best] : chain->checkpoints()) {
+                if (ce > e) break;
+                cp.best_objective = std::min(cp.best_objective, best);
+            }
+        }
+        summary.checkpoints.push_back(cp);
+    }
     if (cancel && cancel->load()) {
-        summary.stop_reason = "interrupted";
+        summary.termination = SearchTermination::kInterrupted;
     } else if (options.max_evaluations > 0 &&
                std::all_of(summary.evaluations_per_chain.begin(),
                            summary.evaluations_per_chain.end(),
                            [&](std::int64_t e) { return e >= options.max_evaluations; })) {
-        summary.stop_reason = "evaluation budget";
+        summary.termination = SearchTermination::kEvaluationBudget;
     } else {
-        summary.stop_reason = "time budget";
+        summary.termination = SearchTermination::kTimeBudget;
     }
     return summary;
 }

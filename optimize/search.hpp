@@ -60,13 +60,29 @@ struct SearchLogRow {
     double best_objective = 0.0;
 };
 
+// Why a search stopped: one name table (search_termination_name) and a sentence each.
+enum class SearchTermination { kTimeBudget, kEvaluationBudget, kInterrupted };
+const std::vector<std::pair<SearchTermination, std::string>>& search_termination_names();
+std::string search_termination_name(SearchTermination t);  // "time budget", ...
+std::string search_termination_message(SearchTermination t);
+
+// The best objective over all chains after every chain made `evaluations_per_chain`
+// evaluations (or all it made, if fewer): sampled at fixed evaluation counts (1, 2, 3, .., then
+// growing by ~19 % a step), so with an evaluation budget it is identical run to run.
+struct SearchCheckpoint {
+    std::int64_t evaluations_per_chain = 0;
+    std::int64_t evaluations = 0;  // all chains
+    double best_objective = 0.0;
+};
+
 struct SearchSummary {
-    std::vector<Candidate> ranked;  // best first, distinct patterns
-    std::vector<SearchLogRow> log;
+    std::vector<Candidate> ranked;              // best first, distinct patterns
+    std::vector<SearchLogRow> log;              // wall-clock samples (timings: not reproducible)
+    std::vector<SearchCheckpoint> checkpoints;  // by evaluation count (reproducible)
     std::vector<std::int64_t> evaluations_per_chain;
     std::int64_t evaluations = 0;
     double seconds = 0.0;
-    std::string stop_reason;  // "time budget", "evaluation budget", "interrupted"
+    SearchTermination termination = SearchTermination::kTimeBudget;
 };
 
 // Progress reported about every log_interval_s from the calling thread.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <string>
 
 #include "core/error.hpp"
@@ -84,6 +85,68 @@ OtfCondition otf_condition(const ComplexPlane& p, const ComplexPlane& kernel,
     c.condition_number = c.min_abs_otf > 0.0 ? c.max_abs_otf / c.min_abs_otf
                                              : std::numeric_limits<double>::infinity();
     return c;
+}
+
+std::vector<std::uint8_t> pattern_frequencies_passed(const ComplexPlane& kernel, int n,
+                                                     double passband_fraction) {
+    const Eigen::Index m = kernel.rows();
+    if (n < 1 || m < 1 || kernel.cols() != m || m % n != 0) {
+        throw InvalidInput("kernel OTF is " + size_text(kernel) +
+                           ": must be square m x m with m a multiple of the pattern size " +
+                           std::to_string(n));
+    }
+    const double threshold = passband_fraction * kernel.abs().maxCoeff();
+    std::vector<std::uint8_t> passed(static_cast<std::size_t>(n) * n, 0);
+    for (Eigen::Index k = 0; k < m; ++k)
+        for (Eigen::Index l = 0; l < m; ++l) {
+            if (std::abs(kernel(k, l)) >= threshold) {
+                passed[static_cast<std::size_t>((k % n) * n + l % n)] = 1;
+            }
+        }
+    return passed;
+}
+
+std::string SpectralZero::message() const {
+    if (!found) return "";
+    std::ostringstream s;
+    s << "spectral zero at pattern frequency (k, l) = (" << row << ", " << col
+      << "): |P^| = " << abs_value << " < " << threshold_abs
+      << " (threshold x sqrt(K)), where the kernel passes light";
+    if (count > 1) s << "; " << count << " such frequencies";
+    return s.str();
+}
+
+SpectralZero find_spectral_zero(const ComplexPlane& p, const std::vector<std::uint8_t>& passed,
+                                double threshold) {
+    check_pattern_spectrum(p);
+    const int n = static_cast<int>(p.rows());
+    if (passed.size() != static_cast<std::size_t>(n) * n) {
+        throw InvalidInput("find_spectral_zero: passband table of " +
+                           std::to_string(passed.size()) + " entries for a " + std::to_string(n) +
+                           " x " + std::to_string(n) + " pattern spectrum");
+    }
+    if (!(threshold > 0.0) || !std::isfinite(threshold)) {
+        throw invalid_field("spectral_zero_threshold", std::to_string(threshold),
+                            "must be finite and > 0");
+    }
+    SpectralZero z;
+    z.threshold_abs = threshold * std::sqrt(std::max(p(0, 0).real(), 0.0));
+    z.abs_value = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < n; ++k)
+        for (int l = 0; l < n; ++l) {
+            if ((k == 0 && l == 0) || !passed[static_cast<std::size_t>(k * n + l)]) continue;
+            const double a = std::abs(p(k, l));
+            if (!(a < z.threshold_abs)) continue;
+            ++z.count;
+            if (a < z.abs_value) {
+                z.abs_value = a;
+                z.row = k;
+                z.col = l;
+            }
+        }
+    z.found = z.count > 0;
+    if (!z.found) z.abs_value = 0.0;
+    return z;
 }
 
 }  // namespace pinmask

@@ -5,6 +5,10 @@
 // Frequencies k != 0 exclude only the DC term (0, 0).
 #pragma once
 
+#include <cstdint>
+#include <string>
+#include <vector>
+
 #include "core/image.hpp"
 
 namespace pinmask {
@@ -43,5 +47,34 @@ struct OtfCondition {
 // m x m with m a multiple of n (InvalidInput otherwise); passband_fraction in (0, 1]. O(m^2).
 OtfCondition otf_condition(const ComplexPlane& pattern_spectrum, const ComplexPlane& kernel_otf,
                            double passband_fraction = kPassbandFraction);
+
+// ---- Spectral zeros (issue 13) ----
+// A pattern frequency k != 0 (n x n) is a spectral zero when |P^(k)| < threshold * sqrt(K)
+// (sqrt(K) is the flat-spectrum level with the pattern's energy) while the kernel still passes
+// light at one of its aliases k + n j on the m x m period (|K^| >= kPassbandFraction max |K^|).
+// There the mask OTF A^ = P^ K^ loses the scene: no decoder brings it back. The default
+// threshold 1e-3 is -60 dB of the flat level, far below any noise floor a capture reaches.
+inline constexpr double kSpectralZeroThreshold = 1e-3;
+
+// Per pattern frequency (n x n, row-major): 1 when some alias k + n j is in the kernel's
+// passband. The kernel OTF is m x m with m a multiple of n (InvalidInput otherwise).
+std::vector<std::uint8_t> pattern_frequencies_passed(const ComplexPlane& kernel_otf, int n,
+                                                     double passband_fraction = kPassbandFraction);
+
+struct SpectralZero {
+    bool found = false;
+    int count = 0;               // spectral zeros among the passed frequencies
+    int row = 0, col = 0;        // the deepest one (frequency indices in 0 .. n-1)
+    double abs_value = 0.0;      // its |P^|
+    double threshold_abs = 0.0;  // threshold * sqrt(K)
+    // "spectral zero at pattern frequency (k, l) = (0, 4): |P^| = 0 < 0.0045 (1e-3 sqrt(K)),
+    // where the kernel passes light; 3 such frequencies", or "" when none.
+    std::string message() const;
+};
+
+// O(n^2). `passed` from pattern_frequencies_passed (size n * n), threshold > 0.
+SpectralZero find_spectral_zero(const ComplexPlane& pattern_spectrum,
+                                const std::vector<std::uint8_t>& passed,
+                                double threshold = kSpectralZeroThreshold);
 
 }  // namespace pinmask

@@ -2,15 +2,17 @@
 // simulated figures stay fast: 8 x 8 cells of 4 pixels, a 32 x 32 period, one scene, short TV).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <string>
+#include <vector>
 
-#include "io/mask_json.hpp"
 #include "design/camera.hpp"
 #include "design/random_sparse.hpp"
+#include "io/mask_json.hpp"
 #include "tests/support/cli_run.hpp"
 
 using pinmask::test::run_cli;
@@ -91,7 +93,7 @@ TEST_CASE("compare: two masks -> JSON table with unit-suffixed keys and a PDF re
         CHECK(row["spacing_ok"] == true);
         CHECK(row["wiener_ssim"].get<double>() <= 1.0);
     }
-    CHECK(j["settings"]["snr_db"] == 25.0);
+    CHECK(j["settings"]["noise"][0]["snr_db"] == 25.0);
     CHECK(!j.contains("baselines"));
     // Title page + one page per mask, in one PDF; the configuration beside it.
     const std::string pdf = slurp(report);
@@ -203,12 +205,55 @@ TEST_CASE("compare: bad input is exit 2 with a message, and no report files") {
     r = run_cli("compare " + m.a + kFast + "--report " + (m.dir / "no/such/dir/r.pdf"));
     CHECK(r.exit_code == 2);
     // Flags out of range name themselves.
-    for (const std::string bad : {"--baseline-count 0", "--nsr 0", "--tv-lambda -1",
-                                  "--filter bogus", "--prior-scenes 0", "--tv-iters 0"}) {
+    for (const std::string bad :
+         {"--baseline-count 0", "--nsr 0", "--tv-lambda -1", "--prior bogus", "--prior-scenes 0",
+          "--tv-iters 0", "--baseline-count 20000", "--photons 1e19", "--read-noise 3"}) {
         r = run_cli("compare " + m.a + kFast + bad + report);
         INFO(bad);
         CHECK(r.exit_code == 2);
         CHECK(r.err.find(bad.substr(0, bad.find(' '))) != std::string::npos);
     }
     CHECK(m.others() == 0);
+}
+
+// Issue 11: one metric set. The same masks and settings give the same analytic and simulated
+// numbers in score and compare (exact equality: both call optimize/mask_metrics), under the
+// Gaussian and the photon model; so compare ranks masks as score does (issue 13).
+TEST_CASE("compare and score print the same analytic and simulated numbers, in the same order") {
+    Masks m;
+    const std::string c = m.dir / "c.mask.json";
+    pinmask::io::write_mask_file(c, small_mask(3, 8, 9));
+    const std::string masks = " " + m.a + " " + m.b + " " + c + " ";
+    const std::string common = " --scenes letter-R --nsr 0.01 --tv-iters 30 --seed 1 ";
+    for (const std::string noise : {"--snr 25", "--photons 2 --read-noise 3"}) {
+        INFO(noise);
+        const auto s = run_cli("score" + masks + common + noise +
+                               " --metrics analytic,wiener,tv --json --quiet");
+        const auto k = run_cli("compare" + masks + common + noise + " --json --quiet");
+        INFO(s.err << k.err);
+        REQUIRE(s.exit_code == 0);
+        REQUIRE(k.exit_code == 0);
+        const auto js = nlohmann::json::parse(s.out), jc = nlohmann::json::parse(k.out);
+        REQUIRE(js["masks"].size() == 3);
+        REQUIRE(jc["masks"].size() == 3);
+        const std::string key = noise[2] == 's' ? "snr25" : "ph2";
+        std::vector<std::pair<double, int>> score_order, compare_order;
+        for (int i = 0; i < 3; ++i) {
+            const auto &a = js["masks"][i], &b = jc["masks"][i];
+            CHECK(a["geometry_hash"] == b["geometry_hash"]);
+            for (const std::string metric :
+                 {"analytic_wiener_psnr_db_", "analytic_optimal_wiener_psnr_db_", "wiener_psnr_db_",
+                  "tv_psnr_db_", "wiener_ssim_"}) {
+                INFO(metric << key);
+                REQUIRE(b.contains(metric + key));
+                CHECK(a[metric + key].get<double>() == b[metric + key].get<double>());
+            }
+            CHECK(b["analytic_wiener_psnr_db"] == b["analytic_wiener_psnr_db_" + key]);
+            score_order.push_back({a["wiener_psnr_db_" + key].get<double>(), i});
+            compare_order.push_back({b["wiener_psnr_db"].get<double>(), i});
+        }
+        std::sort(score_order.begin(), score_order.end());
+        std::sort(compare_order.begin(), compare_order.end());
+        for (int i = 0; i < 3; ++i) CHECK(score_order[i].second == compare_order[i].second);
+    }
 }

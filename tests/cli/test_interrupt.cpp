@@ -154,6 +154,31 @@ TEST_CASE("search stops cleanly on SIGINT and SIGTERM with the best so far writt
     }
 }
 
+// Issue 18: `timeout 3 pinmask search ...` sends SIGTERM to the process and again to its
+// group. Two signals back to back must still end with the best so far written: the second only
+// hurries the run.
+TEST_CASE("search: two SIGTERMs back to back still write the best so far") {
+    TempDir dir("search-interrupt-twice");
+    const fs::path out = dir.path / "run";
+    const Child c = start(
+        "search --grid 16 --holes 12 --pixels-per-cell 4 --time 60s --threads 1 --prior-scenes 2 "
+        "--top 3 --seed 4 -o '" +
+            out.string() + "'",
+        dir.path / "stdout.txt");
+    std::string seen;
+    REQUIRE(wait_for_progress(c, seen, searched_long_enough));
+    ::kill(c.pid, SIGTERM);
+    ::kill(c.pid, SIGTERM);
+    const int code = wait_exit(c, seen);
+    ::close(c.pty);
+    INFO("terminal: " << seen);
+    CHECK(code == 0);
+    CHECK(seen.find("interrupted") != std::string::npos);
+    REQUIRE(fs::exists(out / "rank-1.mask.json"));
+    CHECK_NOTHROW(pinmask::io::read_mask_file(out / "rank-1.mask.json"));
+    CHECK(fs::exists(out / "summary.md"));
+}
+
 TEST_CASE("decode stops iterating on SIGINT and SIGTERM and writes the estimate so far") {
     const std::string src = PINMASK_SOURCE_DIR;
     const std::string mask = src + "/fuzz/corpus/mask_json/small.mask.json";

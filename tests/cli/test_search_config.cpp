@@ -6,8 +6,8 @@
 #include <cmath>
 #include <string>
 
-#include "io/search_config.hpp"
 #include "core/error.hpp"
+#include "io/search_config.hpp"
 #include "tests/support/cli_run.hpp"
 
 using namespace pinmask;
@@ -86,7 +86,12 @@ TEST_CASE("bad configurations are refused naming the key and the rule") {
         {config_with(R"("time": "11e307h")"), "out of range"},
         {config_with(R"("time": "0s")"), "positive duration"},
         {config_with(R"("min_spacing_cells": -2)"), "min_spacing_cells: must be > 0"},
-        {config_with(R"("noise": {"model": "photon"})"), "noise.model"},
+        {config_with(R"("noise": {"model": "photon"})"), "noise.photons_per_pinhole"},
+        {config_with(R"("noise": {"model": "poisson"})"), "noise.model"},
+        {config_with(R"("noise": {"photons_per_pinhole": 3})"), "photon model"},
+        {config_with(R"("prior": {"family": "galaxies"})"), "prior.family"},
+        {config_with(R"("rank_by": "rl")"), "rank_by"},
+        {config_with(R"("allow_spectral_zeros": "yes")"), "allow_spectral_zeros"},
         {config_with(R"("noise": {"snr_db": 1e999})"), "number overflow"},
         {config_with(R"("noise": {"snr_db": "30dB"})"), "noise.snr_db: must be"},
         {config_with(R"("prior": {"scenes": 0})"), "prior.scenes"},
@@ -148,4 +153,27 @@ TEST_CASE("search --config repeats a run byte for byte, and the command line ove
     CHECK(v.optics->pinhole_m == doctest::Approx(400e-6));
     CHECK(v.optics->lens_focal_m == doctest::Approx(0.1));
     CHECK(v.optics->wavelength_m == doctest::Approx(600e-9));
+}
+
+TEST_CASE("search --config repeats a photon-model run with a text prior byte for byte") {
+    TempDir dir("search-config-photon");
+    const std::string a = (dir.path / "a").string(), b = (dir.path / "b").string();
+    const auto first = run_cli(
+        "search --grid 8 --holes 5 --pixels-per-cell 4 --tiles 1 --evals 100 --threads 1 --top 2 "
+        "--prior text --prior-scenes 2 --photons 3 --read-noise 3 --dark-current 1 "
+        "--rerank-scenes usaf --no-rerank-tv --quiet -o '" +
+        a + "'");
+    INFO(first.err);
+    REQUIRE(first.exit_code == 0);
+    const SearchConfig c = read_search_config(a + "/search.config.json");
+    CHECK(*c.photons == 3.0);
+    CHECK(*c.read_noise == 3.0);
+    CHECK(*c.dark_current == 1.0);
+    CHECK(*c.prior_family == "text");
+    const auto again =
+        run_cli("search --config '" + a + "/search.config.json' --quiet -o '" + b + "'");
+    INFO(again.err);
+    REQUIRE(again.exit_code == 0);
+    for (const char* f : {"search.config.json", "rank-1.mask.json", "run-log.csv", "summary.md"})
+        CHECK(slurp(a + "/" + f) == slurp(b + "/" + f));
 }

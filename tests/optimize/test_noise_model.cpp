@@ -109,3 +109,27 @@ TEST_CASE("photon model: more pinholes, less relative shot noise (the multiplexi
     std::mt19937_64 rng(4);
     CHECK_THROWS_AS(add_noise(Plane::Constant(2, 2, -0.1), m, 1, 4, rng), InvalidInput);
 }
+
+TEST_CASE("huge electron counts: bounded with the reason, and no hang in the Poisson draw") {
+    NoiseModel m;
+    m.kind = NoiseKind::kPhoton;
+    m.photons_per_pinhole = 1e18;
+    CHECK_THROWS_WITH_AS(validate(m), doctest::Contains("at most 1e12"), InvalidInput);
+    m.photons_per_pinhole = 10.0;
+    m.dark_current_e = 1e19;
+    CHECK_THROWS_WITH_AS(validate(m), doctest::Contains("dark_current_e"), InvalidInput);
+    NoiseModel g;
+    g.snr_db = 1e300;
+    CHECK_THROWS_WITH_AS(validate(g), doctest::Contains("300"), InvalidInput);
+
+    // At the bound the sampler takes the normal approximation: mean and variance of the
+    // normalised capture as the model says (variance ppp K c / (ppp K)^2 = c / (ppp K)).
+    m.dark_current_e = 0.0;
+    m.photons_per_pinhole = kMaxElectrons;
+    const Plane clean = Plane::Constant(kSide, kSide, 0.5);
+    std::mt19937_64 rng(3);
+    const Plane noisy = add_noise(clean, m, 1, 4, rng);
+    const double expected_var = 0.5 / kMaxElectrons;
+    CHECK(std::abs(noisy.mean() - 0.5) < 5.0 * std::sqrt(expected_var / noisy.size()));
+    CHECK(sample_variance(noisy) == doctest::Approx(expected_var).epsilon(kSampleVarianceTol));
+}

@@ -77,7 +77,16 @@ TEST_CASE("same seed and thread count give identical results with an evaluation 
             CHECK(sorted_pinholes(a.ranked[i].pattern) == sorted_pinholes(b.ranked[i].pattern));
         }
         CHECK(a.evaluations == 6000);
-        CHECK(a.stop_reason == "evaluation budget");
+        CHECK(a.termination == SearchTermination::kEvaluationBudget);
+        // The evaluation-count log is reproducible (the wall-clock log is not).
+        REQUIRE(a.checkpoints.size() == b.checkpoints.size());
+        REQUIRE(!a.checkpoints.empty());
+        for (std::size_t i = 0; i < a.checkpoints.size(); ++i) {
+            CHECK(a.checkpoints[i].evaluations == b.checkpoints[i].evaluations);
+            CHECK(a.checkpoints[i].best_objective == b.checkpoints[i].best_objective);
+        }
+        CHECK(a.checkpoints.front().evaluations_per_chain == 1);
+        CHECK(a.checkpoints.back().best_objective == a.ranked.front().objective);
     }
 }
 
@@ -110,7 +119,7 @@ TEST_CASE("cancellation stops the chains and keeps the best so far") {
     const auto s = run_search(
         objective, o, [](std::mt19937_64& rng) { return sample_pattern(rng, 16, 20, 2.0, {}); },
         &cancel);
-    CHECK(s.stop_reason == "interrupted");
+    CHECK(s.termination == SearchTermination::kInterrupted);
 }
 
 TEST_CASE("options are validated") {

@@ -5,32 +5,34 @@
 //
 // Notation: n grid, K pinholes, ppc pixels per cell, m = n ppc the period in pixels; P^ the
 // n x n pattern DFT, A^ the m x m OTF of the sum-1 PSF (design/psf.hpp). Simulated figures use
-// the cyclic model on one period with Gaussian noise at the SNR (optimize/simulated_metrics).
+// the cyclic model on one period (optimize/simulated_metrics); every metric comes from
+// optimize/mask_metrics, the set score and search use, so the numbers agree across commands.
+// The first noise level is the one shown on the pages and used to rank the random baseline.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "cli/analytic_setup.hpp"
 #include "core/image.hpp"
 #include "design/mask.hpp"
 #include "optimize/analytic_error.hpp"
+#include "optimize/mask_metrics.hpp"
 #include "optimize/scenes.hpp"
 #include "optimize/simulated_metrics.hpp"
 
-namespace pinmask::cli {
+namespace pinmask {
+
+inline constexpr int kMaxBaselineCount = 10000;
 
 struct CompareSettings {
-    double snr_db = 30.0;           // capture SNR, dB (finite)
-    std::vector<SceneSpec> scenes;  // simulated scenes; [0] is shown
-    WienerFilterSpec analytic_filter{WienerFilterKind::kOptimal, 0.0};  // analytic Wiener PSNR
-    int prior_scenes = kDefaultPriorScenes;  // analytic prior textures, >= 1
-    WeightChoice wiener_nsr{true, 0.01};     // simulated Wiener NSR
-    WeightChoice tv_lambda{false, 1e-3};     // simulated TV-L2 lambda
-    int tv_iterations = 200;                 // TV-L2 ADMM iterations, >= 1
-    std::uint64_t seed = 1;                  // noise generators and baseline draws
+    // Noise levels (first: shown and ranks the baseline), prior, scenes ([0] is shown), weights;
+    // sidelobes, spectrum, analytic, wiener and tv are all computed.
+    MaskMetricsOptions metrics;
+    std::uint64_t seed = 1;  // baseline draws (the noise seed is metrics.simulation.seed)
 };
 
 // One mask to compare: a file given on the command line or a baseline.
@@ -52,10 +54,12 @@ struct CompareRow {
     double peak_to_sidelobe_ratio = 0.0;  // +inf without sidelobes
     double min_abs_pattern_spectrum = 0.0;
     double spectral_flatness = 0.0;
-    double otf_condition_number = 0.0;  // +inf with a spectral zero in the passband
-    double analytic_wiener_psnr_db = 0.0;
+    double otf_condition_number = 0.0;             // +inf with a spectral zero in the passband
+    double analytic_wiener_psnr_db = 0.0;          // the Wiener NSR setting, first level
+    double analytic_optimal_wiener_psnr_db = 0.0;  // per-frequency optimal filter, first level
     double wiener_psnr_db = 0.0, wiener_ssim = 0.0, wiener_nsr = 0.0;  // mean over scenes
     double tv_psnr_db = 0.0, tv_ssim = 0.0, tv_lambda = 0.0;
+    MaskMetrics metrics;  // every level's figures, as score computes them
 };
 
 // The pictures of one mask's report page, and the figures of the shown reconstructions.
@@ -66,7 +70,7 @@ struct ComparePictures {
     Plane autocorrelation;  // n x n, R(d), zero shift at (n/2, n/2)
     std::string scene_name;
     Plane scene, capture, wiener, tv;  // m x m (channel mean for colour scenes)
-    double capture_sigma = 0.0;        // noise standard deviation of the shown capture
+    double capture_sigma = 0.0;        // mean noise standard deviation of the shown capture
     double wiener_psnr_db = 0.0, wiener_ssim = 0.0, tv_psnr_db = 0.0, tv_ssim = 0.0;
     int tv_iterations = 0;
     std::string kernel;  // kernel model and why
@@ -80,23 +84,16 @@ struct CompareResult {
 // Throws InvalidInput naming the field when the settings are out of range.
 void validate(const CompareSettings& settings);
 
-// Scenes rendered at each period size, shared by masks of the same period.
-class SceneCache {
-  public:
-    const std::vector<NamedScene>& at(int m, const std::vector<SceneSpec>& specs);
-
-  private:
-    std::map<int, std::vector<NamedScene>> cache_;
-};
-
-// Every metric and picture of one mask.
+// Every metric and picture of one mask. `context` holds settings.metrics (the caller builds it
+// once: scenes and prior are shared by masks of one period).
 CompareResult compare_mask(const CompareEntry& entry, const CompareSettings& settings,
-                           SceneCache& scenes);
+                           MetricsContext& context);
 
 // The random baseline: `count` random valid patterns with the template's n, K, spacing and tiles
 // (draw i from std::mt19937_64(seed + i)), camera and PSF settings of the template, ranked by
 // simulated Wiener PSNR; the entry is the median draw (index (count - 1) / 2 of the ascending
-// ranking). InvalidInput when count < 1 or random placement cannot place K pinholes.
+// ranking). InvalidInput when count is outside 1 .. kMaxBaselineCount or random placement
+// cannot place K pinholes. `progress(done, count)` is called after each draw.
 struct RandomMedian {
     CompareEntry entry;
     std::uint64_t median_seed = 0;
@@ -104,7 +101,8 @@ struct RandomMedian {
     int count = 0;
 };
 RandomMedian random_median_baseline(const Mask& tmpl, int count, const CompareSettings& settings,
-                                    SceneCache& scenes);
+                                    MetricsContext& context,
+                                    const std::function<void(int, int)>& progress = {});
 
 // The paper's geometry (design/families paper_pattern, seeded with settings.seed) with the
 // template's camera and PSF settings.
@@ -117,4 +115,28 @@ int mura_order_at_most(int n);
 // tiles and min spacing, recorded as breaking the spacing rule. Requires p >= 5.
 CompareEntry mura_baseline(const Mask& tmpl, int p);
 
-}  // namespace pinmask::cli
+// ---- The whole comparison ----
+struct CompareRunOptions {
+    CompareSettings settings;
+    bool baselines = false;    // add random-median, paper-like and MURA rows
+    int baseline_count = 100;  // random draws, 1 .. kMaxBaselineCount
+    void validate() const;
+};
+
+struct CompareOutcome {
+    std::vector<CompareResult> results;        // given masks first, then the baselines
+    std::vector<std::string> baseline_lines;   // what each baseline is, or why it is missing
+    std::optional<RandomMedian> random;        // without the entry's mask
+    std::string random_skipped, mura_skipped;  // why a baseline is missing ("" when present)
+    int mura_order = 0;
+};
+
+// Progress: (phase, done, total), phase "random baseline" or "mask".
+using CompareProgress = std::function<void(const std::string&, int, int)>;
+
+// Every mask of `entries` (at least one; the first sets the camera of the baselines) and the
+// baselines, each with every metric and picture.
+CompareOutcome run_compare(std::vector<CompareEntry> entries, const CompareRunOptions& options,
+                           const CompareProgress& progress = {});
+
+}  // namespace pinmask

@@ -1,4 +1,4 @@
-#include "cli/compare_data.hpp"
+#include "optimize/compare.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,6 @@
 #include <random>
 #include <sstream>
 
-#include "cli/analytic_setup.hpp"
 #include "core/error.hpp"
 #include "core/fft.hpp"
 #include "decode/decoder.hpp"
@@ -22,20 +21,10 @@
 #include "optimize/simulate.hpp"
 #include "optimize/spectrum_metrics.hpp"
 
-namespace pinmask::cli {
+namespace pinmask {
 namespace {
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
-
-SimulatedMetricsOptions simulation_options(const CompareSettings& s) {
-    SimulatedMetricsOptions o;
-    o.noise_seeds = 1;
-    o.seed = s.seed;
-    o.wiener_nsr = s.wiener_nsr;
-    o.tv_lambda = s.tv_lambda;
-    o.tv_iterations = s.tv_iterations;
-    return o;
-}
 
 // Zero frequency / zero shift moved from (0, 0) to (rows / 2, cols / 2).
 Plane centred(const Plane& p) {
@@ -71,9 +60,8 @@ void fill_pictures(CompareResult& r, const Mask& mask, const Plane& psf, const C
 
     // One capture of the shown scene, decoded with the weights the table's figures used.
     SimulationOptions so;
-    so.noise.kind = NoiseKind::kGaussianSnr;
-    so.noise.snr_db = s.snr_db;
-    so.seed = s.seed;
+    so.noise = s.metrics.noise.front().model;
+    so.seed = s.metrics.simulation.seed;
     const int holes = static_cast<int>(mask.pattern.pinholes.size());
     const SimulatedCapture cap = simulate_capture(shown.image, psf, holes, n * n, so);
     Image wiener, tv;
@@ -85,8 +73,8 @@ void fill_pictures(CompareResult& r, const Mask& mask, const Plane& psf, const C
         DecodeOptions t;
         t.method = DecodeMethod::kTv;
         t.lambda = r.row.tv_lambda;
-        t.max_iterations = s.tv_iterations;
-        t.tolerance = SimulatedMetricsOptions{}.tv_tolerance;
+        t.max_iterations = s.metrics.simulation.tv_iterations;
+        t.tolerance = s.metrics.simulation.tv_tolerance;
         t.record_history = false;
         const DecodeResult d = decode_plane(ch, psf, t);
         p.tv_iterations = std::max(p.tv_iterations, d.iterations);
@@ -97,8 +85,9 @@ void fill_pictures(CompareResult& r, const Mask& mask, const Plane& psf, const C
     p.capture = channel_mean(cap.capture);
     p.wiener = channel_mean(wiener);
     p.tv = channel_mean(tv);
-    p.capture_sigma =
-        sigma_for_snr(cap.clean.channels[0].square().mean(), s.snr_db);  // as add_noise draws it
+    const Plane& clean = cap.clean.channels[0];
+    p.capture_sigma = std::sqrt(mean_noise_variance(
+        so.noise, {clean.mean(), clean.square().mean(), holes, n * n}));  // as add_noise draws it
     const bool has_ssim = m >= kSsimWindow;
     p.wiener_psnr_db = psnr_db(wiener, shown.image);
     p.tv_psnr_db = psnr_db(tv, shown.image);
@@ -109,27 +98,17 @@ void fill_pictures(CompareResult& r, const Mask& mask, const Plane& psf, const C
 }  // namespace
 
 void validate(const CompareSettings& s) {
-    if (!std::isfinite(s.snr_db))
-        throw invalid_field("--snr", std::to_string(s.snr_db), "must be finite");
-    if (s.scenes.empty()) throw invalid_field("--scenes", "''", "needs at least one scene");
-    if (s.prior_scenes < 1) {
-        throw invalid_field("--prior-scenes", std::to_string(s.prior_scenes), "must be >= 1");
+    s.metrics.validate();
+    if (!(s.metrics.sidelobes && s.metrics.spectrum && s.metrics.analytic && s.metrics.wiener &&
+          s.metrics.tv)) {
+        throw InvalidInput(
+            "compare settings: every metric (sidelobes, spectrum, analytic, "
+            "wiener, tv) must be on");
     }
-    if (s.tv_iterations < 1) {
-        throw invalid_field("--tv-iters", std::to_string(s.tv_iterations), "must be >= 1");
-    }
-    simulation_options(s).validate();
 }
 
-const std::vector<NamedScene>& SceneCache::at(int m, const std::vector<SceneSpec>& specs) {
-    auto it = cache_.find(m);
-    if (it != cache_.end()) return it->second;
-    std::vector<NamedScene> scenes;
-    for (const SceneSpec& s : specs) scenes.push_back({scene_name(s), make_scene(s, m, m)});
-    return cache_.emplace(m, std::move(scenes)).first->second;
-}
-
-CompareResult compare_mask(const CompareEntry& e, const CompareSettings& s, SceneCache& cache) {
+CompareResult compare_mask(const CompareEntry& e, const CompareSettings& s,
+                           MetricsContext& context) {
     const Mask& mask = e.mask;
     const int n = mask.pattern.n, ppc = mask.psf.pixels_per_cell, m = n * ppc;
     check_psf_memory(n, ppc, 12, 4);  // PSF, pictures, scene planes; kernel, OTF, decoder spectra
@@ -147,47 +126,44 @@ CompareResult compare_mask(const CompareEntry& e, const CompareSettings& s, Scen
     row.spacing_violations = static_cast<long long>(spacing_violations(mask.pattern).size());
     row.spacing_ok = row.spacing_violations == 0;
 
-    const ComplexPlane spectrum = pattern_spectrum(mask.pattern);
-    const std::vector<int> ac = autocorrelation_from_spectrum(spectrum);
-    const SidelobeMetrics sl = sidelobe_metrics(ac, n);
-    row.max_sidelobe = sl.max_sidelobe;
-    row.peak_to_sidelobe_ratio = sl.peak_to_sidelobe_ratio;
-    const PatternSpectrumMetrics ps = pattern_spectrum_metrics(spectrum);
-    row.min_abs_pattern_spectrum = ps.min_abs_pattern_spectrum;
-    row.spectral_flatness = ps.spectral_flatness;
+    row.metrics = compute_mask_metrics(mask, context);
+    const MaskMetrics& mm = row.metrics;
+    row.max_sidelobe = mm.sidelobes->max_sidelobe;
+    row.peak_to_sidelobe_ratio = mm.sidelobes->peak_to_sidelobe_ratio;
+    row.min_abs_pattern_spectrum = mm.spectrum->min_abs_pattern_spectrum;
+    row.spectral_flatness = mm.spectrum->spectral_flatness;
+    row.otf_condition_number = mm.otf->condition_number;
+    const LevelMetrics& first = mm.levels.front();
+    row.analytic_wiener_psnr_db = first.analytic->psnr_db;
+    row.analytic_optimal_wiener_psnr_db = first.analytic->optimal_psnr_db;
+    row.wiener_psnr_db = first.wiener->mean_psnr_db;
+    row.wiener_ssim = first.wiener->mean_ssim;
+    row.wiener_nsr = first.wiener->weight;
+    row.tv_psnr_db = first.tv->mean_psnr_db;
+    row.tv_ssim = first.tv->mean_ssim;
+    row.tv_lambda = first.tv->weight;
 
     const Kernel kernel = mask_kernel(mask);
     r.pictures.kernel = kernel_text(kernel);
+    const ComplexPlane spectrum = pattern_spectrum(mask.pattern);
+    const std::vector<int> ac = autocorrelation_from_spectrum(spectrum);
     const ComplexPlane kernel_half = kernel_spectrum(kernel, n, ppc);
-    const ComplexPlane kernel_otf = expand_half_spectrum(kernel_half, m);
-    row.otf_condition_number = otf_condition(spectrum, kernel_otf).condition_number;
-    const AnalyticWienerModel model =
-        analytic_wiener_model(kernel, n, ppc, s.snr_db, s.prior_scenes);
-    row.analytic_wiener_psnr_db = model.evaluate(spectrum, s.analytic_filter).psnr_db;
-
     const Plane psf = synthesize_psf(mask.pattern, kernel, ppc);
-    const std::vector<NamedScene>& scenes = cache.at(m, s.scenes);
-    const SimulatedMetricsOptions so = simulation_options(s);
-    const SimulatedQuality w =
-        simulated_quality(psf, scenes, s.snr_db, SimulatedDecoder::kWiener, so);
-    row.wiener_psnr_db = w.mean_psnr_db;
-    row.wiener_ssim = w.mean_ssim;
-    row.wiener_nsr = w.weight;
-    const SimulatedQuality t = simulated_quality(psf, scenes, s.snr_db, SimulatedDecoder::kTv, so);
-    row.tv_psnr_db = t.mean_psnr_db;
-    row.tv_ssim = t.mean_ssim;
-    row.tv_lambda = t.weight;
-
     // The OTF from the spectra above (psf_otf would recompute both).
     const ComplexPlane otf =
         expand_half_spectrum(combine_spectra(spectrum, kernel_half, row.holes), m);
-    fill_pictures(r, mask, psf, otf, ac, scenes.front(), s);
+    fill_pictures(r, mask, psf, otf, ac, context.scenes(m).front(), s);
     return r;
 }
 
 RandomMedian random_median_baseline(const Mask& tmpl, int count, const CompareSettings& s,
-                                    SceneCache& cache) {
-    if (count < 1) throw invalid_field("--baseline-count", std::to_string(count), "must be >= 1");
+                                    MetricsContext& context,
+                                    const std::function<void(int, int)>& progress) {
+    if (count < 1 || count > kMaxBaselineCount) {
+        throw invalid_field("--baseline-count", std::to_string(count),
+                            "must be between 1 and 10000 (random draws; the median settles long "
+                            "before)");
+    }
     RandomSparseOptions ro;
     ro.n = tmpl.pattern.n;
     ro.holes = static_cast<int>(tmpl.pattern.pinholes.size());
@@ -197,16 +173,19 @@ RandomMedian random_median_baseline(const Mask& tmpl, int count, const CompareSe
     const int ppc = tmpl.psf.pixels_per_cell, m = ro.n * ppc;
     check_psf_memory(ro.n, ppc, 8, 4);
     const Kernel kernel = mask_kernel(tmpl);
-    const std::vector<NamedScene>& scenes = cache.at(m, s.scenes);
-    const SimulatedMetricsOptions so = simulation_options(s);
+    const std::vector<NamedScene>& scenes = context.scenes(m);
+    const SimulatedMetricsOptions& so = s.metrics.simulation;
+    const NoiseModel& noise = s.metrics.noise.front().model;
     std::vector<Pattern> patterns;
     std::vector<double> psnr;
     for (int i = 0; i < count; ++i) {
         std::mt19937_64 rng(s.seed + static_cast<std::uint64_t>(i));
         patterns.push_back(random_sparse_pattern(ro, rng));
         const Plane psf = synthesize_psf(patterns.back(), kernel, ppc);
-        psnr.push_back(
-            simulated_quality(psf, scenes, s.snr_db, SimulatedDecoder::kWiener, so).mean_psnr_db);
+        psnr.push_back(simulated_quality(psf, scenes, noise, ro.holes, ro.n * ro.n,
+                                         SimulatedDecoder::kWiener, so)
+                           .mean_psnr_db);
+        if (progress) progress(i + 1, count);
     }
     std::vector<int> order(static_cast<std::size_t>(count));
     std::iota(order.begin(), order.end(), 0);
@@ -271,4 +250,71 @@ CompareEntry mura_baseline(const Mask& tmpl, int p) {
     return {"MURA p = " + std::to_string(p) + " (breaks spacing)", "mura", src.str(), mask};
 }
 
-}  // namespace pinmask::cli
+void CompareRunOptions::validate() const {
+    pinmask::validate(settings);
+    if (baseline_count < 1 || baseline_count > kMaxBaselineCount) {
+        throw invalid_field("--baseline-count", std::to_string(baseline_count),
+                            "must be between 1 and 10000 (random draws; the median settles long "
+                            "before)");
+    }
+}
+
+CompareOutcome run_compare(std::vector<CompareEntry> entries, const CompareRunOptions& o,
+                           const CompareProgress& progress) {
+    o.validate();
+    if (entries.empty()) throw InvalidInput("compare: no mask given");
+    const CompareSettings& s = o.settings;
+    MetricsContext context(s.metrics);
+    CompareOutcome out;
+    const std::size_t given = entries.size();
+    if (o.baselines) {
+        const Mask tmpl = entries.front().mask;  // a copy: entries grows below
+        try {
+            RandomMedian rm = random_median_baseline(
+                tmpl, o.baseline_count, s, context, [&](int done, int total) {
+                    if (progress) progress("random baseline", done, total);
+                });
+            std::ostringstream l;
+            l.setf(std::ios::fixed);
+            l.precision(2);
+            l << "Baseline 'random median': " << rm.entry.source
+              << ". Simulated Wiener PSNR of the " << rm.count << " draws: min " << rm.min_psnr_db
+              << ", median " << rm.median_psnr_db << ", max " << rm.max_psnr_db << " dB.";
+            out.baseline_lines.push_back(l.str());
+            entries.push_back(rm.entry);
+            rm.entry.mask = {};
+            out.random = rm;
+        } catch (const InvalidInput& e) {
+            out.random_skipped = e.what();
+            out.baseline_lines.push_back(std::string("random baseline left out: ") + e.what());
+        }
+        entries.push_back(paper_like_baseline(tmpl, s.seed));
+        out.baseline_lines.push_back("Baseline 'paper-like': " + entries.back().source + ".");
+        out.mura_order = mura_order_at_most(tmpl.pattern.n);
+        if (out.mura_order > 0) {
+            entries.push_back(mura_baseline(tmpl, out.mura_order));
+            out.baseline_lines.push_back("Baseline 'MURA': " + entries.back().source + ".");
+        } else {
+            out.mura_skipped = "MURA baseline left out: no prime p = 4m + 1 <= n = " +
+                               std::to_string(tmpl.pattern.n);
+            out.baseline_lines.push_back(out.mura_skipped + ".");
+        }
+    }
+    // A baseline can coincide with a given mask (e.g. generate's paper family with the same
+    // seed); say so rather than leave two identical rows unexplained.
+    for (std::size_t i = given; i < entries.size(); ++i) {
+        for (std::size_t k = 0; k < given; ++k) {
+            if (geometry_hash(entries[i].mask) == geometry_hash(entries[k].mask)) {
+                entries[i].source += "; same geometry as " + entries[k].name;
+                break;
+            }
+        }
+    }
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+        if (progress) progress("mask", static_cast<int>(i), static_cast<int>(entries.size()));
+        out.results.push_back(compare_mask(entries[i], s, context));
+    }
+    return out;
+}
+
+}  // namespace pinmask

@@ -1,0 +1,72 @@
+// The --help footers of score, compare and search (long teaching text kept out of the command
+// files so each stays parse -> call -> render).
+#pragma once
+
+namespace pinmask::cli {
+
+inline constexpr const char* kScoreFooter =
+    "Metrics (--metrics, comma-separated):\n"
+    "  sidelobes  torus autocorrelation of the pattern: peak_autocorrelation (= K), max_sidelobe,\n"
+    "             mean_sidelobe, integrated_sidelobe_level (sum of squared sidelobes / peak^2),\n"
+    "             peak_to_sidelobe_ratio\n"
+    "  spectrum   min_abs_pattern_spectrum (min |P^| over k != 0), spectral_flatness (geometric /\n"
+    "             arithmetic mean of |P^|^2 over k != 0; 1 = flat), open_fraction, light_gain "
+    "(K),\n"
+    "             otf_condition_number (max/min |A^| where |K^| >= 0.1 max |K^|), spectral_zero\n"
+    "             (|P^(k)| < 1e-3 sqrt(K) where the kernel passes light: the frequency, or null)\n"
+    "  analytic   expected Wiener PSNR in closed form over one period, per noise level:\n"
+    "             analytic_wiener_psnr_db_snrS (the --nsr filter), analytic_wiener_nsr_snrS,\n"
+    "             analytic_optimal_wiener_psnr_db_snrS (per-frequency optimal filter bound).\n"
+    "             Prior: --prior (default 16 natural 1/f textures, seeds 1000..1015; the same\n"
+    "             prior in score, compare and search)\n"
+    "  wiener     simulated: wiener_psnr_db_snrS, wiener_ssim_snrS, wiener_nsr_snrS (mean over\n"
+    "             scenes; per_scene in --json)\n"
+    "  tv         simulated TV-L2: tv_psnr_db_snrS, tv_ssim_snrS, tv_lambda_snrS (slow; opt-in)\n"
+    "Noise levels: --snr S (keys ...snrS): Gaussian, sigma^2 = mean(capture^2) / 10^(S/10) (the\n"
+    "analytic error takes the prior's expected mean(capture^2)); or --photons P (keys ...phP):\n"
+    "Poisson shot noise of P K electrons per pixel for a uniform scene of value 1 (K pinholes),\n"
+    "plus read noise, dark current, saturation, ADC and film leak from the sensor flags, the\n"
+    "expected dark offset removed (see pinmask simulate --help).\n"
+    "Simulation: one period, cyclic model, capture = scene (*) PSF + noise; PSNR = 10 log10(1 /\n"
+    "MSE) for scenes in [0, 1];\n"
+    "SSIM: 11 x 11 Gaussian window (sigma 1.5), valid region. 'tuned' weights minimise the mean\n"
+    "MSE over scenes and seeds by golden section on log10 (1e-7..10). Infinite values (a PSR with\n"
+    "no sidelobes, a condition number with a spectral zero) are null in --json, inf in the table.\n"
+    "Examples: pinmask score a.mask.json b.mask.json --scenes letter-R,usaf,natural --snr 20,30 "
+    "--metrics sidelobes,spectrum,analytic,wiener --nsr tuned --json\n"
+    "  pinmask score a.mask.json --photons 100,1000 --read-noise 3 --metrics analytic,wiener";
+
+inline constexpr const char* kCompareFooter =
+    "Table columns (also --json keys): K holes; n grid; spacing ok (spacing_ok); max SL "
+    "(max_sidelobe) and PSR (peak_to_sidelobe_ratio) of the torus autocorrelation; min|P^| and "
+    "flatness of the pattern DFT; zero (spectral_zero: a pattern frequency with |P^| < 1e-3 "
+    "sqrt(K) where the kernel passes light); OTF cond over the kernel passband; analytic W "
+    "(analytic_wiener_psnr_db): closed-form expected Wiener PSNR; sim W / sim TV: simulated "
+    "one-period captures of --scenes decoded by Wiener and TV-L2, means over scenes. The table "
+    "shows the first noise level; --json has every level under score's keys "
+    "(analytic_wiener_psnr_db_snr30, wiener_psnr_db_ph2, ...): the numbers pinmask score prints "
+    "for the same settings. Infinite values are null in --json.\n"
+    "--baselines adds: the median of --baseline-count random valid masks with the first mask's "
+    "n, K, spacing, tiles, camera and PSF settings (draw i seeded with --seed + i, ranked by "
+    "simulated Wiener PSNR at the first level); the paper-like geometry (16 x 16, K 20); a MURA "
+    "of the largest prime p = 4m + 1 <= n (breaks the spacing rule).\n"
+    "Rules: every mask must be for the first mask's camera (exit 2 otherwise). --report r.pdf "
+    "writes one PDF; r.svg or r.png write r-1.svg ... (one per page); r.config.json beside them, "
+    "all or nothing.\n"
+    "Example: pinmask compare a.mask.json b.mask.json --baselines --photons 2 --read-noise 3 "
+    "--report report.pdf";
+
+inline constexpr const char* kSearchFooter =
+
+    "Writes rank-1.mask.json ... (provenance: seed, strategy, scores), run-log.csv (best "
+    "objective at fixed evaluation counts), timing.csv (wall clock), summary.md and "
+    "search.config.json, all or nothing. With --evals, masks, run-log.csv, summary.md and "
+    "search.config.json are byte-identical run to run. Ctrl-C (or SIGTERM) stops and writes "
+    "the best so far; a second signal only hurries it.\n"
+    "Example: pinmask search --preset paper --grid 16 --holes 20 --time 20s --seed 1 --top 5 "
+    "-o runs/a/\n"
+    "Dim light: pinmask search --photons 3 --read-noise 3 --holes 30 --time 30s -o runs/dim/\n"
+    "Repeat a run (byte-identical masks with --evals) or vary it: pinmask search --config "
+    "runs/a/search.config.json --seed 2 -o runs/b/";
+
+}  // namespace pinmask::cli

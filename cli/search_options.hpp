@@ -1,0 +1,46 @@
+// The options of `pinmask search` as parsed, how --config FILE fills them, and the resolved
+// configuration the run writes (search.config.json, read back by io/search_config).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli/analytic_setup.hpp"
+#include "cli/camera_options.hpp"
+#include "cli/noise_options.hpp"
+#include "cli/psf_options.hpp"
+#include "io/search_config.hpp"
+#include "optimize/search_pipeline.hpp"
+
+namespace pinmask::cli {
+
+inline constexpr const char* kSearchGenerator = "pinmask search 0.1.0";
+
+struct SearchCliOptions {
+    CameraOptions camera;
+    GeometryOptions geometry;
+    PsfOptions psf;
+    std::string strategy = "anneal", time = "20s", filter = "optimal", keep_out = "none";
+    std::optional<std::int64_t> evals;
+    int threads = 0, top = 5;
+    std::uint64_t seed = 1;
+    NoiseFlags noise;
+    PriorFlags prior;
+    double w_analytic = 1.0, w_max_sidelobe = 0.0, w_sidelobe_energy = 0.0, w_min_spectrum = 0.0;
+    std::vector<std::string> rerank_scenes{"letter-R", "usaf", "siemens-star"};
+    bool rerank_tv = true, no_rerank = false, allow_spectral_zeros = false, json = false,
+         quiet = false;
+    std::string rank_by = "wiener", output, config;
+};
+
+// The settings of --config FILE, for every option the command line did not give.
+void apply_config(const io::SearchConfig& c, const CLI::App& cmd, SearchCliOptions& o);
+
+// The resolved configuration of a run.
+nlohmann::ordered_json resolved_config(const SearchCliOptions& o, const SearchPipelineOptions& p,
+                                       const SearchPipelineSummary& s);
+
+}  // namespace pinmask::cli

@@ -1,0 +1,96 @@
+// Prior scene families besides natural textures (issue 13, --prior): text pages and star fields.
+//   text:  a page of dark glyphs on white paper: lines of random words of random capital and
+//          small letters (std::mt19937_64(seed)), Cairo sans-serif, 8 lines per frame height,
+//          anti-aliased; paper 1, ink 0.
+//   stars: sparse points on a dark sky: about one star per 200 pixels at uniform random
+//          positions, brightness 1 / (1 + 9 u^2) for u uniform (a few bright, many faint).
+#include <cairo.h>
+
+#include <memory>
+#include <random>
+#include <string>
+
+#include "core/error.hpp"
+#include "optimize/scenes.hpp"
+
+namespace pinmask {
+namespace {
+
+struct SurfaceDeleter {
+    void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
+};
+struct ContextDeleter {
+    void operator()(cairo_t* c) const { cairo_destroy(c); }
+};
+
+constexpr int kTextLines = 8;  // lines per frame height
+constexpr double kStarPixelsPerStar = 200.0;
+
+void check_size(int rows, int cols, const char* what) {
+    if (rows < 1 || cols < 1) {
+        throw InvalidInput(std::string(what) + " scene size " + std::to_string(rows) + " x " +
+                           std::to_string(cols) + ": both dimensions must be >= 1");
+    }
+}
+
+}  // namespace
+
+Plane text_scene(int rows, int cols, std::uint64_t seed) {
+    check_size(rows, cols, "text");
+    std::unique_ptr<cairo_surface_t, SurfaceDeleter> surface(
+        cairo_image_surface_create(CAIRO_FORMAT_A8, cols, rows));
+    if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
+        throw RuntimeFailure("text scene: Cairo could not create a " + std::to_string(cols) +
+                             " x " + std::to_string(rows) + " surface");
+    }
+    std::unique_ptr<cairo_t, ContextDeleter> cr(cairo_create(surface.get()));
+    const double line = static_cast<double>(rows) / kTextLines;
+    cairo_select_font_face(cr.get(), "sans-serif", CAIRO_FONT_SLANT_NORMAL,
+                           CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr.get(), 0.8 * line);
+    cairo_set_source_rgba(cr.get(), 0, 0, 0, 1);
+    std::mt19937_64 rng(seed);
+    std::uniform_int_distribution<int> letter(0, 51), word_length(1, 8);
+    for (int l = 0; l < kTextLines; ++l) {
+        std::string text;
+        while (static_cast<int>(text.size()) < cols / 4 + 8) {
+            const int len = word_length(rng);
+            for (int i = 0; i < len; ++i) {
+                const int c = letter(rng);
+                text.push_back(static_cast<char>(c < 26 ? 'A' + c : 'a' + (c - 26)));
+            }
+            text.push_back(' ');
+        }
+        cairo_move_to(cr.get(), 0.02 * cols, (l + 0.8) * line);
+        cairo_show_text(cr.get(), text.c_str());
+    }
+    cairo_surface_flush(surface.get());
+    if (cairo_status(cr.get()) != CAIRO_STATUS_SUCCESS) {
+        throw RuntimeFailure(std::string("text scene: Cairo failed: ") +
+                             cairo_status_to_string(cairo_status(cr.get())));
+    }
+    const unsigned char* data = cairo_image_surface_get_data(surface.get());
+    const int stride = cairo_image_surface_get_stride(surface.get());
+    Plane p(rows, cols);
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c) p(r, c) = 1.0 - data[r * stride + c] / 255.0;
+    return p;
+}
+
+Plane stars_scene(int rows, int cols, std::uint64_t seed) {
+    check_size(rows, cols, "stars");
+    Plane p = Plane::Zero(rows, cols);
+    std::mt19937_64 rng(seed);
+    const double pixels = static_cast<double>(rows) * cols;
+    const long long count = std::max(1LL, static_cast<long long>(pixels / kStarPixelsPerStar));
+    std::uniform_int_distribution<int> r(0, rows - 1), c(0, cols - 1);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (long long i = 0; i < count; ++i) {
+        const int rr = r(rng), cc = c(rng);
+        const double v = u(rng);
+        p(rr, cc) = std::max(p(rr, cc), 1.0 / (1.0 + 9.0 * v * v));
+    }
+    return p;
+}
+
+}  // namespace pinmask

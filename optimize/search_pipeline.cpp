@@ -1,0 +1,325 @@
+#include "optimize/search_pipeline.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "core/fft.hpp"
+#include "design/kernel_model.hpp"
+#include "design/psf.hpp"
+#include "design/random_sparse.hpp"
+#include "optimize/simulated_metrics.hpp"
+#include "optimize/spectrum_metrics.hpp"
+
+namespace pinmask {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// At most this fraction of a time budget is held back for re-ranking.
+constexpr double kMaxRerankShare = 0.5;
+// Margin on the timed re-ranking of one pattern (timings of one decode scatter by ~10-20 %).
+constexpr double kRerankMargin = 1.25;
+// Decoder runs per scene of a tuned weight: golden section over 8 decades to 0.01 decade
+// (optimize/nsr_tuning: ~15 steps) plus the end points and the final decode.
+constexpr double kTunedDecodesPerScene = 18.0;
+
+// The mask objective, with patterns that have a spectral zero in the kernel passband rejected
+// (objective +inf: annealing never accepts them, the top list never keeps them).
+class PipelineObjective : public SearchObjective {
+  public:
+    PipelineObjective(const MaskObjective& inner, std::vector<std::uint8_t> passed, bool reject)
+        : inner_(inner), passed_(std::move(passed)), reject_(reject) {}
+    double evaluate(const PatternState& s) const override {
+        if (reject_ && find_spectral_zero(s.spectrum(), passed_).found) return INFINITY;
+        return inner_.evaluate(s);
+    }
+    std::map<std::string, double> terms(const PatternState& s) const override {
+        return inner_.terms(s);
+    }
+
+  private:
+    const MaskObjective& inner_;
+    std::vector<std::uint8_t> passed_;
+    bool reject_;
+};
+
+// A random valid pattern avoiding keep-out cells: the random family, then each pinhole that sits
+// in a keep-out cell moved to a random legal cell outside it.
+Pattern sample_pattern(const RandomSparseOptions& ro, const std::vector<Cell>& keep_out,
+                       const std::string& keep_out_name, std::mt19937_64& rng) {
+    Pattern p = random_sparse_pattern(ro, rng);
+    if (keep_out.empty()) return p;
+    PatternState s(p);
+    auto blocked = [&](Cell c) {
+        return std::find(keep_out.begin(), keep_out.end(), c) != keep_out.end();
+    };
+    std::uniform_int_distribution<int> cell(0, ro.n - 1);
+    for (int j = 0; j < s.holes(); ++j) {
+        if (!blocked(s.pattern().pinholes[static_cast<std::size_t>(j)])) continue;
+        bool moved = false;
+        for (int attempt = 0; attempt < 100000 && !moved; ++attempt) {
+            const Cell to{cell(rng), cell(rng)};
+            if (!blocked(to) && s.is_legal_move(j, to)) {
+                s.move(j, to);
+                moved = true;
+            }
+        }
+        if (!moved) {
+            throw invalid_field("--keep-out", keep_out_name,
+                                "no legal cell left outside the keep-out area for " +
+                                    std::to_string(ro.holes) + " pinholes");
+        }
+    }
+    return s.pattern();
+}
+
+struct Reranker {
+    std::vector<NamedScene> scenes;
+    NoiseModel noise;
+    SimulatedMetricsOptions sim;
+    bool tv = false;
+    RankBy rank_by = RankBy::kWiener;
+
+    void apply(RankedMask& r) const {
+        const Plane psf = mask_psf(r.mask);
+        const int k = static_cast<int>(r.mask.pattern.pinholes.size());
+        const int cells = r.mask.pattern.n * r.mask.pattern.n;
+        r.sim_wiener_psnr_db =
+            simulated_quality(psf, scenes, noise, k, cells, SimulatedDecoder::kWiener, sim)
+                .mean_psnr_db;
+        r.mask.provenance.scores["sim_wiener_psnr_db"] = r.sim_wiener_psnr_db;
+        if (tv) {
+            const SimulatedQuality q =
+                simulated_quality(psf, scenes, noise, k, cells, SimulatedDecoder::kTv, sim);
+            r.sim_tv_psnr_db = q.mean_psnr_db;
+            r.tv_lambda = q.weight;
+            r.mask.provenance.scores["sim_tv_psnr_db"] = r.sim_tv_psnr_db;
+            r.mask.provenance.scores["sim_tv_lambda"] = r.tv_lambda;
+        }
+        r.reranked = true;
+    }
+    double key(const RankedMask& r) const {
+        return rank_by == RankBy::kTv ? r.sim_tv_psnr_db : r.sim_wiener_psnr_db;
+    }
+};
+
+}  // namespace
+
+const std::vector<std::pair<RankBy, std::string>>& rank_by_names() {
+    static const std::vector<std::pair<RankBy, std::string>> kNames{{RankBy::kWiener, "wiener"},
+                                                                    {RankBy::kTv, "tv"}};
+    return kNames;
+}
+
+std::string rank_by_name(RankBy r) {
+    for (const auto& [k, name] : rank_by_names())
+        if (k == r) return name;
+    return "unknown";
+}
+
+RankBy parse_rank_by(const std::string& text) {
+    for (const auto& [k, name] : rank_by_names())
+        if (name == text) return k;
+    throw invalid_field("--rank-by", text, "must be wiener or tv");
+}
+
+std::vector<Cell> keep_out_cells(const std::string& spec, int n) {
+    std::vector<Cell> cells;
+    if (spec == "none") return cells;
+    if (spec == "border") {
+        for (int i = 0; i < n; ++i) {
+            cells.push_back({0, i});
+            if (n > 1) cells.push_back({n - 1, i});
+            if (i > 0 && i < n - 1) {
+                cells.push_back({i, 0});
+                cells.push_back({i, n - 1});
+            }
+        }
+        return cells;
+    }
+    throw invalid_field("--keep-out", spec, "expected none or border");
+}
+
+void SearchPipelineOptions::validate() const {
+    pinmask::validate(tmpl.pattern);
+    if (holes < 1) throw invalid_field("--holes", std::to_string(holes), "must be >= 1");
+    search.validate();
+    pinmask::validate(noise);
+    prior.validate();
+    weights.validate();
+    keep_out_cells(keep_out, tmpl.pattern.n);
+    for (const SceneSpec& s : rerank_scenes) {
+        if (s.kind == SceneKind::kNatural && prior.kind == PriorKind::kNatural) {
+            throw invalid_field("--rerank-scenes", "natural",
+                                "the search prior is built from natural scenes; re-ranking must "
+                                "use scenes the search did not see");
+        }
+    }
+    if (rank_by == RankBy::kTv && (rerank_scenes.empty() || !rerank_tv)) {
+        throw invalid_field("--rank-by", "tv",
+                            "needs the TV re-ranking (not with --no-rerank or --no-rerank-tv)");
+    }
+}
+
+SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
+                                          const std::atomic<bool>* cancel,
+                                          const PipelineProgress& progress) {
+    o.validate();
+    const auto t0 = Clock::now();
+    const bool timed = o.search.time_budget_s > 0.0 && o.search.max_evaluations == 0;
+    SearchPipelineSummary out;
+    out.planned_s = timed ? o.search.time_budget_s : 0.0;
+
+    const int n = o.tmpl.pattern.n, ppc = o.tmpl.psf.pixels_per_cell, m = n * ppc;
+    check_psf_memory(n, ppc, 4, 2);
+    const Kernel kernel = mask_kernel(o.tmpl);
+    out.kernel_resolved = kernel_model_name(kernel.model);
+    const ComplexPlane kernel_otf = expand_half_spectrum(kernel_spectrum(kernel, n, ppc), m);
+    std::shared_ptr<const AnalyticWienerModel> model;
+    if (o.weights.analytic_wiener > 0.0) {
+        model = std::make_shared<AnalyticWienerModel>(kernel_otf, make_scene_prior(o.prior, m),
+                                                      o.noise);
+    }
+    const MaskObjective inner(o.weights, model, o.filter);
+    const PipelineObjective objective(inner, pattern_frequencies_passed(kernel_otf, n),
+                                      !o.allow_spectral_zeros);
+
+    SearchOptions so = o.search;
+    so.keep_out = keep_out_cells(o.keep_out, n);
+    RandomSparseOptions ro;
+    ro.n = n;
+    ro.holes = o.holes;
+    ro.min_spacing_cells = o.tmpl.pattern.min_spacing_cells;
+    ro.tiles_rows = o.tmpl.pattern.tiles_rows;
+    ro.tiles_cols = o.tmpl.pattern.tiles_cols;
+    const auto sample = [&](std::mt19937_64& rng) {
+        return sample_pattern(ro, so.keep_out, o.keep_out, rng);
+    };
+    std::mt19937_64 probe_rng(o.search.seed);  // fail fast on infeasible requests
+    const Pattern probe = sample(probe_rng);
+
+    Reranker rr;
+    rr.noise = o.noise;
+    rr.tv = o.rerank_tv;
+    rr.rank_by = o.rank_by;
+    rr.sim.seed = o.search.seed;
+    rr.sim.wiener_nsr = {true, 0.01};
+    rr.sim.tv_lambda = {o.rank_by == RankBy::kTv, 1e-3};
+    for (const SceneSpec& s : o.rerank_scenes)
+        rr.scenes.push_back({scene_name(s), make_scene(s, m, m)});
+
+    // Time one re-ranking (on the probe pattern, TV with a fixed weight) to reserve its share
+    // of the budget; a tuned TV weight costs kTunedDecodesPerScene times the fixed one.
+    double one_rerank_s = 0.0;
+    if (timed && !rr.scenes.empty()) {
+        RankedMask trial;
+        trial.mask = o.tmpl;
+        trial.mask.pattern = probe;
+        Reranker fixed = rr;
+        fixed.tv = false;
+        auto r0 = Clock::now();
+        fixed.apply(trial);
+        one_rerank_s = seconds_since(r0);
+        if (rr.tv) {
+            fixed.tv = true;
+            fixed.sim.tv_lambda = {false, 1e-3};
+            r0 = Clock::now();
+            fixed.apply(trial);
+            const double tv_s = std::max(0.0, seconds_since(r0) - one_rerank_s);
+            one_rerank_s += rr.sim.tv_lambda.tuned ? kTunedDecodesPerScene * tv_s : tv_s;
+        }
+        // When not even one re-ranking fits in the largest share, none is reserved (the search
+        // gets the whole budget and the summary says 0 were re-ranked).
+        const double share = kMaxRerankShare * o.search.time_budget_s;
+        out.rerank_reserved_s = kRerankMargin * one_rerank_s > share
+                                    ? 0.0
+                                    : std::min(share, kRerankMargin * one_rerank_s * o.search.top);
+    }
+    if (timed) {
+        so.time_budget_s =
+            std::max(0.01 * o.search.time_budget_s,
+                     o.search.time_budget_s - seconds_since(t0) - out.rerank_reserved_s);
+    }
+    const auto s0 = Clock::now();
+    out.search =
+        run_search(objective, so, sample, cancel, [&](const SearchLogRow& row, double fraction) {
+            if (!progress) return;
+            std::ostringstream t;
+            t.precision(4);
+            t << "best " << row.best_objective << ", "
+              << (row.seconds > 0 ? row.evaluations / row.seconds : 0.0) << " evals/s, "
+              << static_cast<int>(row.seconds) << " s";
+            progress("search", fraction, t.str());
+        });
+    out.search_s = seconds_since(s0);
+    out.termination = out.search.termination;
+    if (out.search.ranked.empty()) {
+        throw RuntimeFailure(
+            out.search.evaluations == 0
+                ? "search stopped before any evaluation"
+                : "search found no candidate: every one of " +
+                      std::to_string(out.search.evaluations) +
+                      " patterns had a spectral zero where the kernel passes light (rejected; "
+                      "--allow-spectral-zeros keeps them, flagged)");
+    }
+
+    const std::vector<std::uint8_t> passed = pattern_frequencies_passed(kernel_otf, n);
+    for (const Candidate& c : out.search.ranked) {
+        RankedMask r;
+        r.mask = o.tmpl;
+        r.mask.pattern = c.pattern;
+        r.mask.pattern.pinholes = sorted_pinholes(c.pattern);
+        r.mask.provenance.seed = o.search.seed;
+        r.mask.provenance.generator = o.generator;
+        r.mask.provenance.family =
+            std::string("search:") +
+            (o.search.strategy == SearchStrategy::kRandom ? "random" : "anneal");
+        r.mask.provenance.scores = c.terms;
+        r.objective = c.objective;
+        r.sim_wiener_psnr_db = r.sim_tv_psnr_db = NAN;
+        const SpectralZero z = find_spectral_zero(pattern_spectrum(c.pattern), passed);
+        r.spectral_zero = z.found;
+        r.spectral_zero_message = z.message();
+        if (z.found) r.mask.provenance.scores["spectral_zero"] = 1.0;
+        out.ranked.push_back(std::move(r));
+    }
+
+    const auto r0 = Clock::now();
+    const bool interrupted = cancel && cancel->load();
+    if (!rr.scenes.empty() && !interrupted) {
+        for (std::size_t i = 0; i < out.ranked.size(); ++i) {
+            if (cancel && cancel->load()) break;
+            const double estimate = i == 0 ? one_rerank_s : seconds_since(r0) / i;
+            // The first candidate is always re-ranked (its time was reserved); the rest while
+            // the budget lasts.
+            if (timed && i > 0 && seconds_since(t0) + estimate > o.search.time_budget_s) break;
+            rr.apply(out.ranked[i]);
+            ++out.reranked;
+            if (progress) {
+                progress(
+                    "rerank", static_cast<double>(i + 1) / out.ranked.size(),
+                    "re-ranked " + std::to_string(i + 1) + "/" + std::to_string(out.ranked.size()));
+            }
+        }
+        // Re-ranked candidates first, by the chosen decoder's simulated PSNR; the rest after,
+        // in search order.
+        std::stable_sort(out.ranked.begin(), out.ranked.end(),
+                         [&](const RankedMask& a, const RankedMask& b) {
+                             if (a.reranked != b.reranked) return a.reranked;
+                             return a.reranked && rr.key(a) > rr.key(b);
+                         });
+    }
+    out.rerank_s = seconds_since(r0);
+    out.used_s = seconds_since(t0);
+    return out;
+}
+
+}  // namespace pinmask

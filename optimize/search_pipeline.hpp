@@ -1,0 +1,86 @@
+// The whole `pinmask search` as one library call (issue 11): sampling with keep-out cells, the
+// search (optimize/search) on the analytic objective (optimize/mask_objective) under any noise
+// model and scene prior (optimize/mask_metrics), the spectral-zero rule, the simulated
+// re-ranking of the top candidates on held-out scenes by the chosen decoder, and the top-k.
+//
+// Time budget (issue 13): with time_budget_s = T everything after validation counts: building
+// the model, the search, and the re-ranking. Before searching, one re-ranking of a random
+// pattern is timed; the search gets T minus the time reserved for re-ranking top candidates
+// (at most half of T), and re-ranking stops early (the rest keep their search order, marked
+// not re-ranked) when the next candidate would pass T. The summary reports planned and used.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "design/mask.hpp"
+#include "optimize/analytic_error.hpp"
+#include "optimize/mask_metrics.hpp"
+#include "optimize/mask_objective.hpp"
+#include "optimize/search.hpp"
+
+namespace pinmask {
+
+enum class RankBy { kWiener, kTv };
+const std::vector<std::pair<RankBy, std::string>>& rank_by_names();  // wiener, tv
+std::string rank_by_name(RankBy r);
+RankBy parse_rank_by(const std::string& text);  // InvalidInput naming --rank-by
+
+struct SearchPipelineOptions {
+    Mask tmpl;                      // camera, PSF settings, pattern n, tiles, spacing (no pinholes)
+    int holes = 20;                 // K, >= 1
+    SearchOptions search;           // strategy, threads, budgets, seed, top (keep_out set below)
+    std::string keep_out = "none";  // none | border
+    NoiseModel noise;               // the objective's noise model (Gaussian SNR or photon)
+    PriorSpec prior;                // the objective's scene prior
+    WienerFilterSpec filter{WienerFilterKind::kOptimal, 0.0};
+    ObjectiveWeights weights;
+    bool allow_spectral_zeros = false;     // else patterns with a spectral zero are rejected
+    std::vector<SceneSpec> rerank_scenes;  // empty: no re-ranking
+    bool rerank_tv = true;                 // also simulate TV when re-ranking
+    RankBy rank_by = RankBy::kWiener;      // kTv: TV with lambda tuned per mask decides
+    std::string generator = "pinmask search";
+
+    // InvalidInput naming the flag, value and rule.
+    void validate() const;
+};
+
+struct RankedMask {
+    Mask mask;  // provenance scores hold the objective terms and the simulated figures
+    double objective = 0.0;
+    double sim_wiener_psnr_db = 0.0;  // NaN when not re-ranked
+    double sim_tv_psnr_db = 0.0;      // NaN when not re-ranked or TV skipped
+    double tv_lambda = 0.0;           // the TV weight used (tuned with rank_by tv)
+    bool reranked = false;
+    bool spectral_zero = false;  // only with allow_spectral_zeros
+    std::string spectral_zero_message;
+};
+
+struct SearchPipelineSummary {
+    std::vector<RankedMask> ranked;  // best first
+    SearchSummary search;
+    SearchTermination termination = SearchTermination::kTimeBudget;
+    std::string kernel_resolved;  // the kernel model used
+    double planned_s = 0.0;       // the time budget (0 with an evaluation budget)
+    double used_s = 0.0;          // everything: setup, search, re-ranking
+    double search_s = 0.0, rerank_s = 0.0;
+    double rerank_reserved_s = 0.0;  // time held back from the search for re-ranking
+    int reranked = 0;                // candidates re-ranked (the rest: budget or interrupt)
+};
+
+// Progress: (phase "search" | "rerank", fraction 0..1, text).
+using PipelineProgress = std::function<void(const std::string&, double, const std::string&)>;
+
+// Runs everything. `cancel` (may be null) stops the search and skips re-ranking; the best so far
+// is returned. RuntimeFailure when no candidate was found (e.g. every pattern had a spectral
+// zero: the message says so and names --allow-spectral-zeros).
+SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& options,
+                                          const std::atomic<bool>* cancel = nullptr,
+                                          const PipelineProgress& progress = {});
+
+// Keep-out cells of a spec (none | border) on an n x n grid; InvalidInput naming --keep-out.
+std::vector<Cell> keep_out_cells(const std::string& spec, int n);
+
+}  // namespace pinmask
