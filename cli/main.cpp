@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "cli/command.hpp"
+#include "cli/fft_setup.hpp"
 #include "core/error.hpp"
 
 namespace pinmask::cli {
@@ -54,7 +55,9 @@ int main(int argc, char** argv) {
         if (!e.parent.empty()) e.setup(*app.get_subcommand(e.parent));
     }
     try {
+        cli::configure_fft_for_process();
         app.parse(argc, argv);
+        cli::print_fft_warnings();
     } catch (const CLI::ParseError& e) {
         const int rc = app.exit(e);
         return rc == 0 ? 0 : 2;
