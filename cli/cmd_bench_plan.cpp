@@ -24,12 +24,6 @@ struct Options {
 };
 
 void run(const Options& o) {
-    const WisdomChoice w = wisdom_choice_from_environment();
-    if (w.path.empty()) {
-        throw invalid_field("PINMASK_WISDOM", "off",
-                            "bench plan fills the wisdom cache; unset PINMASK_WISDOM or give it "
-                            "a path");
-    }
     if (o.threads != 0) set_fft_threads(o.threads);
     std::vector<std::pair<int, int>> shapes;
     for (const std::string& s : o.sizes) {
@@ -43,6 +37,12 @@ void run(const Options& o) {
         // case): next 2^a 3^b 5^c 7^d of 2 n - 1 per axis.
         if (o.linear)
             shapes.emplace_back(next_fft_size(2 * int(r) - 1), next_fft_size(2 * int(c) - 1));
+    }
+    const WisdomChoice w = wisdom_choice_from_environment();
+    if (w.path.empty()) {
+        throw invalid_field("PINMASK_WISDOM", "off",
+                            "bench plan fills the wisdom cache; unset PINMASK_WISDOM or give it "
+                            "a path");
     }
     std::printf("wisdom file %s (%s), threads %d for >= 512 x 512\n", w.path.c_str(),
                 w.source.c_str(), fft_threads());
