@@ -9,6 +9,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "core/error.hpp"
 #include "decode/convolution.hpp"
@@ -66,14 +67,16 @@ Plane make_scene(int n, std::mt19937_64& rng) {
     return x;
 }
 
-// The bare FFTW r2c + c2r pair on FFTW-allocated buffers (same planner flags as core/fft).
-double time_fft_pair(int n, int repeat, double min_batch) {
-    const std::size_t real = static_cast<std::size_t>(n) * n;
-    const std::size_t half = static_cast<std::size_t>(n) * (n / 2 + 1);
+// The bare FFTW r2c + c2r pair on FFTW-allocated buffers, planned with FFTW_MEASURE (the
+// planner times candidates: the fastest pair FFTW offers on this machine, single-threaded).
+double time_fft_pair(int rows, int cols, int repeat, double min_batch) {
+    const std::size_t real = static_cast<std::size_t>(rows) * cols;
+    const std::size_t half = static_cast<std::size_t>(rows) * (cols / 2 + 1);
     double* x = fftw_alloc_real(real);
     fftw_complex* spec = fftw_alloc_complex(half);
-    fftw_plan r2c = fftw_plan_dft_r2c_2d(n, n, x, spec, FFTW_ESTIMATE);
-    fftw_plan c2r = fftw_plan_dft_c2r_2d(n, n, spec, x, FFTW_ESTIMATE);
+    fftw_plan_with_nthreads(1);
+    fftw_plan r2c = fftw_plan_dft_r2c_2d(rows, cols, x, spec, FFTW_MEASURE);
+    fftw_plan c2r = fftw_plan_dft_c2r_2d(rows, cols, spec, x, FFTW_MEASURE);
     for (std::size_t i = 0; i < real; ++i) x[i] = static_cast<double>(i % 97) / 97.0;
     const double t = time_per_call(
         [&] {
@@ -88,10 +91,94 @@ double time_fft_pair(int n, int repeat, double min_batch) {
     return t;
 }
 
+double time_fft_pair_float(int rows, int cols, int repeat, double min_batch) {
+    const std::size_t real = static_cast<std::size_t>(rows) * cols;
+    const std::size_t half = static_cast<std::size_t>(rows) * (cols / 2 + 1);
+    float* x = fftwf_alloc_real(real);
+    fftwf_complex* spec = fftwf_alloc_complex(half);
+    fftwf_plan_with_nthreads(1);
+    fftwf_plan r2c = fftwf_plan_dft_r2c_2d(rows, cols, x, spec, FFTW_MEASURE);
+    fftwf_plan c2r = fftwf_plan_dft_c2r_2d(rows, cols, spec, x, FFTW_MEASURE);
+    for (std::size_t i = 0; i < real; ++i) x[i] = static_cast<float>(i % 97) / 97.0f;
+    const double t = time_per_call(
+        [&] {
+            fftwf_execute(r2c);
+            fftwf_execute(c2r);
+        },
+        repeat, min_batch);
+    fftwf_destroy_plan(r2c);
+    fftwf_destroy_plan(c2r);
+    fftwf_free(spec);
+    fftwf_free(x);
+    return t;
+}
+
+// The paper's PSF at N = 16 n_px: 20 pinholes on a 16 x 16 cell grid (seeded, no two in one
+// cell), each an n_px x n_px box (the geometric kernel), sum 1.
+Plane make_paper_psf(int n, std::mt19937_64& rng) {
+    const int cell = n / 16;
+    std::vector<int> cells(256);
+    for (int i = 0; i < 256; ++i) cells[i] = i;
+    std::shuffle(cells.begin(), cells.end(), rng);
+    Plane psf = Plane::Zero(n, n);
+    for (int k = 0; k < 20; ++k)
+        psf.block((cells[k] / 16) * cell, (cells[k] % 16) * cell, cell, cell) = 1.0;
+    return psf / psf.sum();
+}
+
+double psnr(const Plane& x, const Plane& ref) {
+    const double mse = (x - ref).square().mean();
+    const double peak = ref.maxCoeff();
+    return 10.0 * std::log10(peak * peak / std::max(mse, 1e-300));
+}
+
+}  // namespace
+
+TvConvergence tv_l2_iterations_to_converged(int n, double lambda, double snr_db, double within_db,
+                                            int max_iterations, std::uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    const Plane psf = make_paper_psf(n, rng);
+    const ConvGeometry g = make_conv_geometry(ConvModel::kCyclic, n, n, n, n);
+    const ConvolutionOperator op(psf, g);
+    const Plane scene = make_scene(n, rng);
+    Plane p = op.apply(scene);
+    const double sigma = std::sqrt(p.square().mean()) * std::pow(10.0, -snr_db / 20.0);
+    std::normal_distribution<double> noise(0.0, sigma);
+    for (Eigen::Index i = 0; i < p.size(); ++i) p.data()[i] += noise(rng);
+    TvL2Options tv;
+    tv.lambda = lambda;
+    tv.record_history = false;
+    tv.tolerance = 1e-9;
+    tv.max_iterations = 5000;
+    TvConvergence out;
+    out.converged_psnr_db = psnr(solve_tv_l2(op, p, tv).image, scene);
+    tv.tolerance = 0.0;
+    // The last iteration count k <= max_iterations whose PSNR is outside the band, plus one.
+    int last_outside = 0;
+    for (int k = 1; k <= max_iterations; ++k) {
+        tv.max_iterations = k;
+        const double q = psnr(solve_tv_l2(op, p, tv).image, scene);
+        if (std::abs(q - out.converged_psnr_db) > within_db) last_outside = k;
+        if (k == 1) out.first_psnr_db = q;
+    }
+    out.iterations = last_outside + 1;
+    out.reached = last_outside < max_iterations;
+    return out;
+}
+
+namespace {
+
 void validate(const DecodeBenchOptions& o) {
-    if (o.sizes.empty()) throw invalid_field("sizes", "empty", "give at least one size");
+    if (o.sizes.empty() && o.shapes.empty())
+        throw invalid_field("sizes", "empty", "give at least one size");
     for (int n : o.sizes) {
         if (n < 16 || n > 8192) throw invalid_field("sizes", std::to_string(n), "must be 16..8192");
+    }
+    for (auto [r, c] : o.shapes) {
+        if (r < 16 || r > 8192 || c < 16 || c > 8192) {
+            throw invalid_field("shapes", std::to_string(r) + "x" + std::to_string(c),
+                                "each side must be 16..8192");
+        }
     }
     if (o.repeat < 1) throw invalid_field("repeat", std::to_string(o.repeat), "must be >= 1");
     if (!(o.min_batch_seconds > 0.0)) {
@@ -110,28 +197,50 @@ std::vector<DecodeBenchRecord> bench_decode(const DecodeBenchOptions& o) {
     validate(o);
     std::vector<DecodeBenchRecord> out;
     std::mt19937_64 rng(o.seed);
-    for (int n : o.sizes) {
-        const Plane psf = make_psf(n, rng);
-        const ConvGeometry g = make_conv_geometry(ConvModel::kCyclic, n, n, n, n);
+    std::vector<std::pair<int, int>> shapes;
+    for (int n : o.sizes) shapes.emplace_back(n, n);
+    shapes.insert(shapes.end(), o.shapes.begin(), o.shapes.end());
+    for (auto [rows, cols] : shapes) {
+        const int n = std::min(rows, cols);
+        Plane psf = Plane::Zero(rows, cols);
+        psf.block((rows - n) / 2, (cols - n) / 2, n, n) = make_psf(n, rng);
+        const ConvGeometry g = make_conv_geometry(ConvModel::kCyclic, rows, cols, rows, cols);
         const ConvolutionOperator op(psf, g);
-        Plane p = op.apply(make_scene(n, rng));
+        Plane scene = Plane::Constant(rows, cols, 0.05);
+        scene.block((rows - n) / 2, (cols - n) / 2, n, n) = make_scene(n, rng);
+        Plane p = op.apply(scene);
         const double sigma = kNoiseRelative * p.mean();
         std::normal_distribution<double> noise(0.0, sigma);
         for (Eigen::Index i = 0; i < p.size(); ++i) p.data()[i] += noise(rng);
 
-        const double pair = time_fft_pair(n, o.repeat, o.min_batch_seconds);
+        const double pair = time_fft_pair(rows, cols, o.repeat, o.min_batch_seconds);
+        const double pair_f = time_fft_pair_float(rows, cols, o.repeat, o.min_batch_seconds);
         auto add = [&](const char* method, double t, int iterations = 1, bool converged = true) {
-            out.push_back({method, n, t, pair, t / pair, iterations, converged});
+            DecodeBenchRecord rec;
+            rec.method = method;
+            rec.size = rows;
+            rec.cols = cols;
+            rec.seconds_per_call = t;
+            rec.fft_pair_seconds = pair;
+            rec.ratio = t / pair;
+            rec.fft_pair_float_seconds = pair_f;
+            rec.ratio_float = t / pair_f;
+            rec.iterations = iterations;
+            rec.converged = converged;
+            out.push_back(rec);
         };
 
-        const WienerFilter wiener(psf, n, n, 0.01);
+        const WienerFilter wiener(psf, rows, cols, 0.01);
         WienerFilter::Workspace ws;
+        WienerFilter::WorkspaceF wsf;
         Plane x;
         add("wiener",
             time_per_call([&] { wiener.apply(p, x, ws); }, o.repeat, o.min_batch_seconds));
+        add("wiener_single",
+            time_per_call([&] { wiener.apply_single(p, x, wsf); }, o.repeat, o.min_batch_seconds));
 
         const WienerFilter tik =
-            make_tikhonov_filter(psf, n, n, 0.01, TikhonovRegulariser::kGradient);
+            make_tikhonov_filter(psf, rows, cols, 0.01, TikhonovRegulariser::kGradient);
         add("tikhonov", time_per_call([&] { tik.apply(p, x, ws); }, o.repeat, o.min_batch_seconds));
 
         // One iteration as the difference of a (1 + m)-iteration and a 1-iteration run.
@@ -151,6 +260,24 @@ std::vector<DecodeBenchRecord> bench_decode(const DecodeBenchOptions& o) {
                 tv.max_iterations = iters;
                 solve_tv_l2(op, p, tv);
             }));
+        tv.single_precision = true;
+        add("tv_l2_iteration_single", per_iteration([&](int iters) {
+                tv.max_iterations = iters;
+                solve_tv_l2(op, p, tv);
+            }));
+        tv.single_precision = false;
+        if (rows == cols && rows % 16 == 0 && rows <= 256) {
+            const TvConvergence c =
+                tv_l2_iterations_to_converged(rows, 1e-3, 30.0, 0.2, 40, o.seed);
+            TvL2Options t2;
+            t2.lambda = 1e-3;
+            t2.tolerance = 0.0;
+            t2.record_history = false;
+            t2.max_iterations = c.iterations;
+            add("tv_l2_to_0.2dB",
+                time_per_call([&] { solve_tv_l2(op, p, t2); }, o.repeat, o.min_batch_seconds),
+                c.iterations, c.reached);
+        }
 
         TvqcOptions qc;
         qc.eps = tvqc_eps_from_sigma(sigma, p.size());
@@ -162,6 +289,12 @@ std::vector<DecodeBenchRecord> bench_decode(const DecodeBenchOptions& o) {
         const DecodeResult last = solve_tvqc(op, p, qc);
         const double t_qc = seconds_since(t0);
         add("tvqc_to_tolerance", t_qc, last.iterations, last.converged);
+        qc.max_iterations = 1 + kExtraIterations;
+        add("tvqc_iteration", per_iteration([&](int iters) {
+                qc.max_iterations = iters;
+                qc.tolerance = 0.0;
+                solve_tvqc(op, p, qc);
+            }));
 
         RichardsonLucyOptions rl;
         rl.tolerance = 0.0;

@@ -1,5 +1,5 @@
-// `pinmask bench decode`: time per call of each decoder beside a bare FFTW r2c + c2r pair of the
-// same size, timed in the same run, as a ratio.
+// `pinmask bench decode`: time per call of each decoder beside bare FFTW r2c + c2r pairs of the
+// same size (FFTW_MEASURE, double and float) timed in the same run, as ratios.
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -7,42 +7,68 @@
 
 #include "bench/decode_bench.hpp"
 #include "cli/command.hpp"
+#include "core/error.hpp"
+#include "core/units.hpp"
 
 namespace pinmask::cli {
 namespace {
 
 struct Options {
     DecodeBenchOptions bench;
+    std::vector<std::string> sizes{"128", "512"};
     bool json = false;
 };
 
-void run(const Options& o) {
+// "N" -> N x N; "RxC" -> an extra shape.
+void parse_sizes(Options& o) {
+    o.bench.sizes.clear();
+    o.bench.shapes.clear();
+    for (const std::string& s : o.sizes) {
+        const auto x = s.find('x');
+        if (x == std::string::npos) {
+            o.bench.sizes.push_back(static_cast<int>(parse_number(s, "--sizes")));
+        } else {
+            o.bench.shapes.emplace_back(static_cast<int>(parse_number(s.substr(0, x), "--sizes")),
+                                        static_cast<int>(parse_number(s.substr(x + 1), "--sizes")));
+        }
+    }
+}
+
+void run(Options& o) {
+    parse_sizes(o);
     if (!o.json) {
         std::fprintf(stderr, "timing %zu size(s), %d batch(es) per figure...\n",
-                     o.bench.sizes.size(), o.bench.repeat);
+                     o.bench.sizes.size() + o.bench.shapes.size(), o.bench.repeat);
     }
     const auto records = bench_decode(o.bench);
     if (!o.json) {
-        std::printf("%6s  %-18s %14s %14s %8s  %s\n", "size", "method", "s/call", "fft pair s",
-                    "ratio", "note");
+        std::printf("%9s  %-22s %11s %11s %7s %11s %7s  %s\n", "size", "method", "s/call", "pair s",
+                    "ratio", "pair f s", "ratio f", "note");
     }
     for (const auto& r : records) {
         if (o.json) {
             std::cout << nlohmann::json{{"method", r.method},
-                                        {"size", r.size},
+                                        {"rows", r.size},
+                                        {"cols", r.cols},
                                         {"seconds_per_call", r.seconds_per_call},
                                         {"fft_pair_seconds", r.fft_pair_seconds},
-                                        {"ratio", r.ratio}}
+                                        {"ratio", r.ratio},
+                                        {"fft_pair_float_seconds", r.fft_pair_float_seconds},
+                                        {"ratio_float", r.ratio_float},
+                                        {"iterations", r.iterations},
+                                        {"converged", r.converged}}
                              .dump()
                       << "\n";
         } else {
             std::string note;
-            if (r.method == "tvqc_to_tolerance") {
+            if (r.method == "tvqc_to_tolerance" || r.method == "tv_l2_to_0.2dB") {
                 note = std::to_string(r.iterations) + " iterations" +
                        (r.converged ? "" : " (cap reached, not converged)");
             }
-            std::printf("%6d  %-18s %14.4g %14.4g %8.2f  %s\n", r.size, r.method.c_str(),
-                        r.seconds_per_call, r.fft_pair_seconds, r.ratio, note.c_str());
+            const std::string size = std::to_string(r.size) + "x" + std::to_string(r.cols);
+            std::printf("%9s  %-22s %11.4g %11.4g %7.2f %11.4g %7.2f  %s\n", size.c_str(),
+                        r.method.c_str(), r.seconds_per_call, r.fft_pair_seconds, r.ratio,
+                        r.fft_pair_float_seconds, r.ratio_float, note.c_str());
         }
     }
 }
@@ -53,13 +79,17 @@ const Registration kBenchDecode(
         auto opts = std::make_shared<Options>();
         auto* cmd = bench.add_subcommand(
             "decode",
-            "Decoder time per call on one N x N channel (cyclic model, a seeded 20-pinhole PSF "
-            "and scene, 1% noise) beside a bare FFTW r2c + c2r pair of the same size timed in "
-            "the same run, as a ratio. Methods: wiener and tikhonov (precomputed filter applied), "
-            "one TV-L2 ADMM iteration, TVQC run to tolerance 1e-4 (iterations reported), one "
-            "Richardson-Lucy iteration. Each figure is the minimum over --repeat timed batches.");
-        cmd->add_option("--sizes", opts->bench.sizes,
-                        "Channel sizes N (pixels, 16..8192); 1024 adds ~20 s, mostly TVQC")
+            "Decoder time per call on one channel (cyclic model, a seeded 20-pinhole PSF and "
+            "scene, 1% noise) beside bare FFTW r2c + c2r pairs of the same size planned with "
+            "FFTW_MEASURE (double and float), timed in the same run, as ratios to each. Methods: "
+            "wiener and tikhonov (precomputed filter applied; wiener also in float32), one TV-L2 "
+            "ADMM iteration (double and float32), TV-L2 iterations to 0.2 dB of converged on the "
+            "paper problem (sizes 16 n_px up to 256), TVQC run to tolerance 1e-4 and one TVQC "
+            "iteration, one Richardson-Lucy iteration. Each figure is the minimum over --repeat "
+            "timed batches.");
+        cmd->add_option("--sizes", opts->sizes,
+                        "Channel sizes: N (N x N pixels) or RxC, each side 16..8192; 1024 adds "
+                        "~20 s, mostly TVQC")
             ->delimiter(',')
             ->capture_default_str();
         cmd->add_option("--repeat", opts->bench.repeat,
@@ -69,12 +99,13 @@ const Registration kBenchDecode(
                         "Iteration cap of the TVQC run (>= 1)")
             ->capture_default_str();
         cmd->add_flag("--json", opts->json,
-                      "One JSON record per line: method, size, seconds_per_call, "
-                      "fft_pair_seconds, ratio");
+                      "One JSON record per line: method, rows, cols, seconds_per_call, "
+                      "fft_pair_seconds, ratio, fft_pair_float_seconds, ratio_float");
         cmd->footer(
-            "Example: pinmask bench decode --sizes 128,512,1024 --repeat 5 --json\n"
-            "Timings depend on the machine and its load; the ratio to the FFT pair is the "
-            "figure to compare.");
+            "Example: pinmask bench decode --sizes 128,480x720 --repeat 5\n"
+            "Timings depend on the machine and its load; the ratios to the FFT pairs are the "
+            "figures to compare. Our transforms use the process's planner (FFTW_MEASURE with "
+            "the wisdom cache unless PINMASK_WISDOM=off).");
         cmd->callback([opts] { run(*opts); });
     },
     "bench");

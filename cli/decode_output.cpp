@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "core/image_io.hpp"
 #include "core/units.hpp"
+#include "decode/decode_method.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -49,18 +50,9 @@ CropSpec parse_crop(const std::string& s) {
     throw invalid_field("--crop", s, "must be center, none or X,Y (integer pixel corner)");
 }
 
-static DecodeMethod parse_method(const std::string& m) {
-    if (m == "wiener") return DecodeMethod::kWiener;
-    if (m == "tikhonov") return DecodeMethod::kTikhonov;
-    if (m == "tv") return DecodeMethod::kTv;
-    if (m == "tvqc") return DecodeMethod::kTvqc;
-    if (m == "rl") return DecodeMethod::kRichardsonLucy;
-    throw invalid_field("--method", m, "must be wiener, tikhonov, tv, tvqc or rl");
-}
-
 DecodeOptions decode_options(const DecodeRequest& r) {
     DecodeOptions d;
-    d.method = parse_method(r.method);
+    d.method = parse_decode_method(r.method, "--method");
     d.model = r.model == "linear" ? ConvModel::kLinear : ConvModel::kCyclic;
     d.nsr = r.nsr;
     d.lambda = r.lambda;
@@ -73,6 +65,96 @@ DecodeOptions decode_options(const DecodeRequest& r) {
     d.tolerance = r.tolerance;
     d.record_history = true;
     return d;
+}
+
+CaptureDecodeOptions capture_decode_options(const DecodeRequest& r) {
+    CaptureDecodeOptions o;
+    o.crop = parse_crop(r.crop);
+    const Background bg = parse_background(r.background);
+    o.background = bg.mode == "none"     ? BackgroundMode::kNone
+                   : bg.mode == "corner" ? BackgroundMode::kCorner
+                                         : BackgroundMode::kValue;
+    o.background_value = bg.value;
+    o.downsample = r.downsample;
+    o.normalize = r.normalize == "l2" ? NormalizeMode::kL2 : NormalizeMode::kNone;
+    o.decode = decode_options(r);
+    o.precision = parse_precision(r.precision, "--precision");
+    o.threads = r.threads;
+    return o;
+}
+
+void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const DecodeRequest& r,
+                      const CaptureDecodeSummary& s) {
+    using nlohmann::json;
+    timings["dark"] = s.seconds.dark;
+    timings["preprocess"] = s.seconds.preprocess;
+    timings["period_check"] = s.seconds.period_check;
+    timings["crop"] = s.seconds.crop;
+    timings["decode"] = s.seconds.decode;
+    timings["fft_planning"] = s.seconds.fft_planning;
+    stats["period_check"] = period_check_json(s.period);
+    stats["window"] = {{"x", s.window.col},
+                       {"y", s.window.row},
+                       {"cols", s.window.cols},
+                       {"rows", s.window.rows},
+                       {"mode", r.crop}};
+    json norm = {{"mode", r.normalize}};
+    if (r.normalize == "l2") {
+        norm["capture_l2_norms"] = s.capture_l2_norms;
+        norm["psf_l2_norms"] = s.psf_l2_norms;
+    } else {
+        norm["psf_sums"] = s.psf_sums;
+    }
+    json backgrounds = json::array();
+    if (s.background) backgrounds.push_back(*s.background);
+    stats["preprocess"] = {
+        {"background",
+         {{"mode", r.background == "none" || r.background == "corner" ? r.background : "value"},
+          {"values", backgrounds}}},
+        {"downsample_rounds", r.downsample},
+        {"normalize", norm},
+        {"decoded_rows", s.decoded_rows},
+        {"decoded_cols", s.decoded_cols}};
+    stats["method"] = r.method;
+    stats["precision"] = s.single_precision ? "single" : "double";
+    stats["fft_threads"] = s.fft_threads;
+    json channels = json::array(), per_channel = json::array(), history_seconds = json::array();
+    for (std::size_t ch = 0; ch < s.channels.size(); ++ch) {
+        const DecodeResult& d = s.channels[ch];
+        json history = json::array(), hs = json::array();
+        for (const auto& h : d.history) {
+            history.push_back(
+                {{"iteration", h.iteration}, {"objective", h.objective}, {"residual", h.residual}});
+            hs.push_back(h.seconds);
+        }
+        channels.push_back({{"channel", ch},
+                            {"iterations", d.iterations},
+                            {"objective", d.objective},
+                            {"residual", d.residual},
+                            {"converged", d.converged},
+                            {"constraint_met", d.constraint_met},
+                            {"interrupted", d.interrupted},
+                            {"history", history}});
+        per_channel.push_back(d.seconds);
+        history_seconds.push_back(hs);
+    }
+    stats["channels"] = channels;
+    if (s.interrupted) stats["interrupted"] = true;
+    timings["decode_channels"] = per_channel;
+    timings["history_seconds"] = history_seconds;
+}
+
+void check_output_range(const Image& estimate, OutputKind kind) {
+    if (kind == OutputKind::kPng) return;
+    double peak = 0.0;
+    for (const Plane& p : estimate.channels) peak = std::max(peak, p.abs().maxCoeff());
+    if (peak > 3.4028234663852886e38) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.3g", peak);
+        throw invalid_field("-o", buf,
+                            "the estimate exceeds the float32 range of .tif/.npy output "
+                            "(|x| <= 3.4e38); scale the capture down or write a .png");
+    }
 }
 
 Background parse_background(const std::string& s) {
@@ -118,6 +200,8 @@ nlohmann::json config_json(const DecodeRequest& r) {
             {"bits", r.bits},
             {"scale", r.scale},
             {"stats", path(r.stats)},
+            {"precision", r.precision},
+            {"threads", r.threads == 0 ? nlohmann::json("all") : nlohmann::json(r.threads)},
             {"orientation", "capture pixel grid, not flipped or mirrored"}};
 }
 

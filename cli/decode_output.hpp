@@ -16,6 +16,7 @@
 
 #include "core/image.hpp"
 #include "decode/capture.hpp"
+#include "decode/capture_pipeline.hpp"
 #include "decode/decoder.hpp"
 #include "decode/period.hpp"
 
@@ -24,8 +25,8 @@ namespace pinmask::cli {
 // Every flag of `pinmask decode`, with its default (see --help for meanings and units).
 struct DecodeRequest {
     std::string capture, mask, psf, dark;
-    std::string crop = "center";  // center | none | X,Y
-    std::string method = "wiener";
+    std::string crop = "center";    // center | none | X,Y
+    std::string method = "wiener";  // decode/decode_method.hpp names
     std::string model = "cyclic";
     double nsr = 0.01;
     double lambda = 1e-3;
@@ -43,6 +44,8 @@ struct DecodeRequest {
     std::string stats;
     bool json = false;
     bool explain = false;
+    int threads = 0;                 // 0: all cores
+    std::string precision = "auto";  // auto | single | double
 };
 
 // --crop: center (or centre) | none | X,Y (integer top-left column, row). InvalidInput otherwise.
@@ -50,6 +53,15 @@ CropSpec parse_crop(const std::string& text);
 
 // The DecodeOptions of a request (method, model, parameters).
 DecodeOptions decode_options(const DecodeRequest& request);
+// The pipeline options of a request (crop, background, downsample, normalize, decode,
+// precision, threads).
+CaptureDecodeOptions capture_decode_options(const DecodeRequest& request);
+
+// Adds the pipeline's results to the stats JSON and its timings to `timings`. Everything
+// outside "timings_s" is deterministic (same inputs and options: the same bytes); all
+// wall-clock figures (per stage, per channel, per iteration) go to `timings`.
+void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const DecodeRequest& request,
+                      const CaptureDecodeSummary& summary);
 
 // --background: none | corner | a number of counts (mode "value").
 struct Background {
@@ -72,6 +84,10 @@ enum class OutputKind { kPng, kTiff, kNpy };
 OutputKind output_kind(const std::filesystem::path& path);
 
 const char* output_kind_name(OutputKind kind);
+
+// .tif/.npy hold float32: an estimate beyond the float32 range (|x| > 3.4e38) would be written
+// as Inf, so it is refused (InvalidInput naming the output) instead.
+void check_output_range(const Image& estimate, OutputKind kind);
 
 // The PNG values in [0, 1] (before write_png's clamp) and the factor used. `scale` empty means
 // 1 / max; a non-positive maximum (an all-dark estimate) gives factor 0, all black.

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "cli/command.hpp"
+#include "cli/fft_setup.hpp"
 #include "cli/option_checks.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
@@ -61,7 +62,9 @@ int main(int argc, char** argv) {
     enable_input_protection();           // no output may replace a file this run read
     try {
         memory_limit_bytes();  // a bad PINMASK_MEMORY_LIMIT is refused by every command
+        cli::configure_fft_for_process();
         app.parse(argc, argv);
+        cli::print_fft_warnings();
     } catch (const CLI::ParseError& e) {
         const int rc = app.exit(e);
         return rc == 0 ? 0 : 2;

@@ -3,65 +3,188 @@
 #include <fftw3.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <mutex>
+#include <sstream>
 #include <string>
+#include <thread>
 #include <tuple>
 
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 
 namespace pinmask {
 namespace {
 
-enum class Kind { kR2C, kC2R, kC2CForward, kC2CBackward };
+enum class Kind { kR2C, kC2R, kC2CForward, kC2CBackward, kR2CF, kC2RF };
 
 std::mutex& planner_mutex() {
     static std::mutex m;
     return m;
 }
 
-// Returns the cached plan for (kind, rows, cols), creating it on first use. Planning happens on
-// fftw_malloc'd scratch buffers; execution uses the new-array interface, valid for buffers with
-// the same SIMD alignment (fftw_alignment_of == 0). Eigen allocates 64-byte aligned buffers
-// (EIGEN_MAX_ALIGN_BYTES in CMakeLists.txt); anything else goes through aligned copies, so one
-// plan per size always runs and results do not depend on where a buffer happens to lie.
-// The process-wide plan cache. Plans live until exit, when they are destroyed (and FFTW's own
-// planner memory released) so leak checkers see a clean process.
+constexpr const char* kWisdomMagic = "pinmask-fftw-wisdom 1";
+constexpr const char* kDoubleMark = "--- double\n";
+constexpr const char* kFloatMark = "--- float\n";
+
+// The process-wide planner state and plan cache. Plans live until exit, when they are destroyed
+// (and FFTW's own planner memory released) so leak checkers see a clean process.
 struct PlanCache {
-    std::map<std::tuple<Kind, int, int>, fftw_plan> plans;
+    std::map<std::tuple<Kind, int, int, int>, void*> plans;
+    FftPlanner planner = FftPlanner::kEstimate;
+    int threads = 1;
+    std::string wisdom_path;
+    std::vector<std::string> warnings;
+    FftPlanStats stats;
+    PlanCache() {
+        fftw_init_threads();
+        fftwf_init_threads();
+        fftw_set_timelimit(kFftPlanTimeLimitSeconds);
+        fftwf_set_timelimit(kFftPlanTimeLimitSeconds);
+    }
     ~PlanCache() {  // at exit, one thread left: no lock (the mutex may already be gone)
-        for (auto& [key, plan] : plans) fftw_destroy_plan(plan);
+        for (auto& [key, plan] : plans) {
+            const Kind k = std::get<0>(key);
+            if (k == Kind::kR2CF || k == Kind::kC2RF) {
+                fftwf_destroy_plan(static_cast<fftwf_plan>(plan));
+            } else {
+                fftw_destroy_plan(static_cast<fftw_plan>(plan));
+            }
+        }
         plans.clear();
-        fftw_cleanup();
+        fftw_cleanup_threads();
+        fftwf_cleanup_threads();
     }
 };
 
-fftw_plan cached_plan(Kind kind, int rows, int cols) {
-    static PlanCache plan_cache;
-    auto& cache = plan_cache.plans;
-    std::lock_guard<std::mutex> lock(planner_mutex());
-    const auto key = std::make_tuple(kind, rows, cols);
-    if (auto it = cache.find(key); it != cache.end()) return it->second;
+PlanCache& cache_state() {
+    static PlanCache cache;
+    return cache;
+}
 
+std::string cpu_model() {
+    std::ifstream in("/proc/cpuinfo");
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("model name", 0) == 0) {
+            const auto colon = line.find(':');
+            if (colon != std::string::npos) {
+                std::string m = line.substr(colon + 1);
+                m.erase(0, m.find_first_not_of(' '));
+                return m;
+            }
+        }
+    }
+    return "unknown";
+}
+
+std::string header_text() {
+    return std::string(kWisdomMagic) + "\nfftw " + fftw_version + "\ncpu " + cpu_model() + "\n";
+}
+
+std::string take_fftw_string(char* s) {
+    std::string out = s ? s : "";
+    free(s);  // NOLINT: FFTW allocates with malloc
+    return out;
+}
+
+// Caller holds the planner mutex.
+std::string wisdom_text_locked() {
+    return header_text() + kDoubleMark + take_fftw_string(fftw_export_wisdom_to_string()) +
+           kFloatMark + take_fftw_string(fftwf_export_wisdom_to_string());
+}
+
+// Splits trusted text into its two wisdom strings; returns the problem, or "" when trusted.
+std::string split_wisdom(const std::string& text, std::string& dbl, std::string& flt) {
+    const std::string header = header_text();
+    if (text.rfind(kWisdomMagic, 0) != 0) return "not a pinmask wisdom file";
+    if (text.rfind(header, 0) != 0) {
+        return "written by another FFTW version or CPU (this process: " +
+               std::string(fftw_version) + ", " + cpu_model() + ")";
+    }
+    const auto d = text.find(kDoubleMark, header.size());
+    const auto f = text.find(kFloatMark, header.size());
+    if (d != header.size() || f == std::string::npos || f < d) return "its sections are damaged";
+    dbl = text.substr(d + std::strlen(kDoubleMark), f - d - std::strlen(kDoubleMark));
+    flt = text.substr(f + std::strlen(kFloatMark));
+    return "";
+}
+
+std::string read_text(const std::string& path, bool& exists) {
+    std::ifstream in(path, std::ios::binary);
+    exists = static_cast<bool>(in);
+    std::ostringstream s;
+    if (in) s << in.rdbuf();
+    return s.str();
+}
+
+// Imports a trusted file into FFTW's wisdom; returns a warning or "". Caller holds the mutex.
+std::string import_locked(const std::string& path) {
+    bool exists = false;
+    const std::string text = read_text(path, exists);
+    if (!exists) return "";
+    std::string dbl, flt;
+    std::string problem = split_wisdom(text, dbl, flt);
+    if (problem.empty()) {
+        const bool ok = fftw_import_wisdom_from_string(dbl.c_str()) != 0 &&
+                        fftwf_import_wisdom_from_string(flt.c_str()) != 0;
+        if (!ok) {
+            fftw_forget_wisdom();
+            fftwf_forget_wisdom();
+            problem = "FFTW could not parse it (corrupt)";
+        }
+    }
+    return problem.empty() ? ""
+                           : "FFT wisdom file " + path + " ignored: " + problem +
+                                 "; it will be replaced by freshly measured plans";
+}
+
+// Merges the file's current wisdom (other processes may have added to it) and writes ours back.
+void export_locked(PlanCache& c) {
+    if (c.wisdom_path.empty()) return;
+    try {
+        (void)import_locked(c.wisdom_path);  // a bad file is simply replaced
+        const std::filesystem::path p(c.wisdom_path);
+        if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+        write_bytes_atomic(p, wisdom_text_locked());
+    } catch (const std::exception& e) {
+        c.warnings.push_back("FFT wisdom not saved to " + c.wisdom_path + ": " + e.what());
+    }
+}
+
+bool threaded_size(int rows, int cols) {
+    return static_cast<long long>(rows) * cols >= kFftThreadMinPixels;
+}
+
+bool is_float(Kind k) { return k == Kind::kR2CF || k == Kind::kC2RF; }
+
+// Makes one plan with `flags` on fftw_malloc'd scratch buffers (never the caller's data).
+void* make_plan(Kind kind, int rows, int cols, unsigned flags) {
     const std::size_t n_real = static_cast<std::size_t>(rows) * cols;
     const std::size_t n_half = static_cast<std::size_t>(rows) * (cols / 2 + 1);
-    const unsigned flags = FFTW_ESTIMATE;
-    fftw_plan plan = nullptr;
+    void* plan = nullptr;
     switch (kind) {
-        case Kind::kR2C: {
-            double* in = fftw_alloc_real(n_real);
-            fftw_complex* out = fftw_alloc_complex(n_half);
-            plan = fftw_plan_dft_r2c_2d(rows, cols, in, out, flags);
-            fftw_free(in);
-            fftw_free(out);
+        case Kind::kR2C:
+        case Kind::kC2R: {
+            double* re = fftw_alloc_real(n_real);
+            fftw_complex* cx = fftw_alloc_complex(n_half);
+            plan = kind == Kind::kR2C ? fftw_plan_dft_r2c_2d(rows, cols, re, cx, flags)
+                                      : fftw_plan_dft_c2r_2d(rows, cols, cx, re, flags);
+            fftw_free(re);
+            fftw_free(cx);
             break;
         }
-        case Kind::kC2R: {
-            fftw_complex* in = fftw_alloc_complex(n_half);
-            double* out = fftw_alloc_real(n_real);
-            plan = fftw_plan_dft_c2r_2d(rows, cols, in, out, flags);
-            fftw_free(in);
-            fftw_free(out);
+        case Kind::kR2CF:
+        case Kind::kC2RF: {
+            float* re = fftwf_alloc_real(n_real);
+            fftwf_complex* cx = fftwf_alloc_complex(n_half);
+            plan = kind == Kind::kR2CF ? fftwf_plan_dft_r2c_2d(rows, cols, re, cx, flags)
+                                       : fftwf_plan_dft_c2r_2d(rows, cols, cx, re, flags);
+            fftwf_free(re);
+            fftwf_free(cx);
             break;
         }
         case Kind::kC2CForward:
@@ -76,11 +199,47 @@ fftw_plan cached_plan(Kind kind, int rows, int cols) {
             break;
         }
     }
+    return plan;
+}
+
+// Returns the cached plan for (kind, rows, cols, threads), creating it on first use. Execution
+// uses the new-array interface, valid for buffers with the same SIMD alignment
+// (fftw_alignment_of == 0). Eigen allocates 64-byte aligned buffers (EIGEN_MAX_ALIGN_BYTES in
+// CMakeLists.txt); anything else goes through aligned copies, so one plan per size always runs
+// and results do not depend on where a buffer happens to lie.
+void* cached_plan(Kind kind, int rows, int cols) {
+    PlanCache& c = cache_state();
+    std::lock_guard<std::mutex> lock(planner_mutex());
+    const int threads = threaded_size(rows, cols) ? c.threads : 1;
+    const auto key = std::make_tuple(kind, rows, cols, threads);
+    if (auto it = c.plans.find(key); it != c.plans.end()) return it->second;
+
+    const auto t0 = std::chrono::steady_clock::now();
+    if (is_float(kind)) {
+        fftwf_plan_with_nthreads(threads);
+    } else {
+        fftw_plan_with_nthreads(threads);
+    }
+    const bool measure = c.planner == FftPlanner::kMeasure;
+    void* plan = nullptr;
+    bool from_wisdom = false;
+    if (measure) {
+        plan = make_plan(kind, rows, cols, FFTW_MEASURE | FFTW_WISDOM_ONLY);
+        from_wisdom = plan != nullptr;
+        if (!plan) plan = make_plan(kind, rows, cols, FFTW_MEASURE);
+    } else {
+        plan = make_plan(kind, rows, cols, FFTW_ESTIMATE);
+    }
     if (plan == nullptr) {
         throw RuntimeFailure("FFTW could not create a plan for " + std::to_string(rows) + " x " +
                              std::to_string(cols));
     }
-    cache.emplace(key, plan);
+    c.plans.emplace(key, plan);
+    ++c.stats.plans;
+    if (from_wisdom) ++c.stats.plans_from_wisdom;
+    if (measure && !from_wisdom) export_locked(c);
+    c.stats.planning_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return plan;
 }
 
@@ -92,6 +251,7 @@ void check_size(int rows, int cols) {
 }
 
 fftw_complex* as_fftw(std::complex<double>* p) { return reinterpret_cast<fftw_complex*>(p); }
+fftwf_complex* as_fftwf(std::complex<float>* p) { return reinterpret_cast<fftwf_complex*>(p); }
 
 bool aligned(const void* p) {
     return fftw_alignment_of(reinterpret_cast<double*>(const_cast<void*>(p))) == 0;
@@ -114,7 +274,81 @@ void with_aligned(In* in, std::size_t n_in, Out* out, std::size_t n_out, F&& exe
     fftw_free(b);
 }
 
+std::string plan_size_text(Eigen::Index r, Eigen::Index c) {
+    return std::to_string(r) + " x " + std::to_string(c);
+}
+
 }  // namespace
+
+void set_fft_planner(FftPlanner planner) {
+    PlanCache& c = cache_state();
+    std::lock_guard<std::mutex> lock(planner_mutex());
+    c.planner = planner;
+}
+
+FftPlanner fft_planner() {
+    PlanCache& c = cache_state();
+    std::lock_guard<std::mutex> lock(planner_mutex());
+    return c.planner;
+}
+
+void set_fft_threads(int threads) {
+    if (threads < 1 || threads > 1024) {
+        throw invalid_field("threads", std::to_string(threads), "must be 1..1024");
+    }
+    PlanCache& c = cache_state();
+    std::lock_guard<std::mutex> lock(planner_mutex());
+    c.threads = threads;
+}
+
+int fft_threads() {
+    PlanCache& c = cache_state();
+    std::lock_guard<std::mutex> lock(planner_mutex());
+    return c.threads;
+}
+
+int fft_threads_for(int rows, int cols) { return threaded_size(rows, cols) ? fft_threads() : 1; }
+
+FftPlanStats fft_plan_stats() {
+    PlanCache& c = cache_state();
+    std::lock_guard<std::mutex> lock(planner_mutex());
+    return c.stats;
+}
+
+std::vector<std::string> set_fft_wisdom_file(const std::string& path) {
+    PlanCache& c = cache_state();
+    std::lock_guard<std::mutex> lock(planner_mutex());
+    c.wisdom_path = path;
+    std::vector<std::string> out;
+    if (path.empty()) return out;
+    if (std::string w = import_locked(path); !w.empty()) out.push_back(w);
+    return out;
+}
+
+std::string fft_wisdom_file() {
+    PlanCache& c = cache_state();
+    std::lock_guard<std::mutex> lock(planner_mutex());
+    return c.wisdom_path;
+}
+
+std::vector<std::string> take_fft_warnings() {
+    PlanCache& c = cache_state();
+    std::lock_guard<std::mutex> lock(planner_mutex());
+    std::vector<std::string> out;
+    out.swap(c.warnings);
+    return out;
+}
+
+std::string fft_wisdom_text() {
+    cache_state();
+    std::lock_guard<std::mutex> lock(planner_mutex());
+    return wisdom_text_locked();
+}
+
+std::string fft_wisdom_problem(const std::string& text) {
+    std::string dbl, flt;
+    return split_wisdom(text, dbl, flt);
+}
 
 Fft2::Fft2(int rows, int cols) : rows_(rows), cols_(cols) {
     check_size(rows, cols);
@@ -130,9 +364,8 @@ ComplexPlane Fft2::forward(const Plane& x) const {
 
 void Fft2::forward(const Plane& x, ComplexPlane& out) const {
     if (x.rows() != rows_ || x.cols() != cols_) {
-        throw InvalidInput("FFT input is " + std::to_string(x.rows()) + " x " +
-                           std::to_string(x.cols()) + ", plan is " + std::to_string(rows_) + " x " +
-                           std::to_string(cols_));
+        throw InvalidInput("FFT input is " + plan_size_text(x.rows(), x.cols()) + ", plan is " +
+                           plan_size_text(rows_, cols_));
     }
     out.resize(rows_, half_cols());
     // r2c with the default FFTW_PRESERVE_INPUT leaves the input untouched.
@@ -151,17 +384,63 @@ Plane Fft2::inverse(const ComplexPlane& spectrum) const {
 
 void Fft2::inverse(const ComplexPlane& spectrum, Plane& out, ComplexPlane& scratch) const {
     if (spectrum.rows() != rows_ || spectrum.cols() != half_cols()) {
-        throw InvalidInput("inverse FFT input is " + std::to_string(spectrum.rows()) + " x " +
-                           std::to_string(spectrum.cols()) + ", expected half spectrum " +
-                           std::to_string(rows_) + " x " + std::to_string(half_cols()));
+        throw InvalidInput("inverse FFT input is " +
+                           plan_size_text(spectrum.rows(), spectrum.cols()) +
+                           ", expected half spectrum " + plan_size_text(rows_, half_cols()));
     }
     scratch = spectrum;  // multi-dimensional c2r destroys its input
+    inverse_unscaled_destroy(scratch, out);
+    out *= 1.0 / (static_cast<double>(rows_) * cols_);  // the one place 1/N is applied
+}
+
+void Fft2::inverse_unscaled_destroy(ComplexPlane& spectrum, Plane& out) const {
+    if (spectrum.rows() != rows_ || spectrum.cols() != half_cols()) {
+        throw InvalidInput("inverse FFT input is " +
+                           plan_size_text(spectrum.rows(), spectrum.cols()) +
+                           ", expected half spectrum " + plan_size_text(rows_, half_cols()));
+    }
     out.resize(rows_, cols_);
-    with_aligned(scratch.data(), static_cast<std::size_t>(scratch.size()), out.data(),
+    with_aligned(spectrum.data(), static_cast<std::size_t>(spectrum.size()), out.data(),
                  static_cast<std::size_t>(out.size()), [&](std::complex<double>* in, double* o) {
                      fftw_execute_dft_c2r(static_cast<fftw_plan>(c2r_), as_fftw(in), o);
                  });
-    out *= 1.0 / (static_cast<double>(rows_) * cols_);  // the one place 1/N is applied
+}
+
+Fft2f::Fft2f(int rows, int cols) : rows_(rows), cols_(cols) {
+    check_size(rows, cols);
+    r2c_ = cached_plan(Kind::kR2CF, rows, cols);
+    c2r_ = cached_plan(Kind::kC2RF, rows, cols);
+}
+
+void Fft2f::forward(const PlaneF& x, ComplexPlaneF& out) const {
+    if (x.rows() != rows_ || x.cols() != cols_) {
+        throw InvalidInput("FFT input is " + plan_size_text(x.rows(), x.cols()) + ", plan is " +
+                           plan_size_text(rows_, cols_));
+    }
+    out.resize(rows_, half_cols());
+    with_aligned(const_cast<float*>(x.data()), static_cast<std::size_t>(x.size()), out.data(),
+                 static_cast<std::size_t>(out.size()), [&](float* in, std::complex<float>* o) {
+                     fftwf_execute_dft_r2c(static_cast<fftwf_plan>(r2c_), in, as_fftwf(o));
+                 });
+}
+
+void Fft2f::inverse(const ComplexPlaneF& spectrum, PlaneF& out, ComplexPlaneF& scratch) const {
+    scratch = spectrum;
+    inverse_unscaled_destroy(scratch, out);
+    out *= static_cast<float>(1.0 / (static_cast<double>(rows_) * cols_));
+}
+
+void Fft2f::inverse_unscaled_destroy(ComplexPlaneF& spectrum, PlaneF& out) const {
+    if (spectrum.rows() != rows_ || spectrum.cols() != half_cols()) {
+        throw InvalidInput("inverse FFT input is " +
+                           plan_size_text(spectrum.rows(), spectrum.cols()) +
+                           ", expected half spectrum " + plan_size_text(rows_, half_cols()));
+    }
+    out.resize(rows_, cols_);
+    with_aligned(spectrum.data(), static_cast<std::size_t>(spectrum.size()), out.data(),
+                 static_cast<std::size_t>(out.size()), [&](std::complex<float>* in, float* o) {
+                     fftwf_execute_dft_c2r(static_cast<fftwf_plan>(c2r_), as_fftwf(in), o);
+                 });
 }
 
 FftC2::FftC2(int rows, int cols) : rows_(rows), cols_(cols) {
@@ -174,9 +453,8 @@ namespace {
 
 ComplexPlane execute_c2c(void* plan, const ComplexPlane& x, int rows, int cols) {
     if (x.rows() != rows || x.cols() != cols) {
-        throw InvalidInput("complex FFT input is " + std::to_string(x.rows()) + " x " +
-                           std::to_string(x.cols()) + ", plan is " + std::to_string(rows) + " x " +
-                           std::to_string(cols));
+        throw InvalidInput("complex FFT input is " + plan_size_text(x.rows(), x.cols()) +
+                           ", plan is " + plan_size_text(rows, cols));
     }
     ComplexPlane in = x, out(rows, cols);
     const auto n = static_cast<std::size_t>(in.size());

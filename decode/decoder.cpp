@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "decode/convolution.hpp"
+#include "decode/decode_method.hpp"
 #include "decode/richardson_lucy.hpp"
 #include "decode/tikhonov.hpp"
 #include "decode/tv_l2.hpp"
@@ -62,6 +63,18 @@ void check_work_plane(const char* field, const Plane& p, const ConvGeometry& g) 
     if (!is_all_finite(p)) throw invalid_field(field, "non-finite values", "must be finite");
 }
 
+Plane apply_filter(const WienerFilter& f, const Plane& p, bool single) {
+    Plane out;
+    if (single) {
+        WienerFilter::WorkspaceF ws;
+        f.apply_single(p, out, ws);
+    } else {
+        WienerFilter::Workspace ws;
+        f.apply(p, out, ws);
+    }
+    return out;
+}
+
 // Closed-form methods: x = G p on the working grid (capture zero-padded for the linear model).
 DecodeResult decode_closed_form(const Plane& capture, const Plane& psf, const DecodeOptions& o,
                                 const ConvGeometry& g) {
@@ -73,7 +86,8 @@ DecodeResult decode_closed_form(const Plane& capture, const Plane& psf, const De
     if (o.method == DecodeMethod::kWiener) {
         if (o.nsr_per_frequency) {
             check_work_plane("nsr_per_frequency", *o.nsr_per_frequency, g);
-            x = WienerFilter(psf, g.work_rows, g.work_cols, *o.nsr_per_frequency).apply(padded);
+            x = apply_filter(WienerFilter(psf, g.work_rows, g.work_cols, *o.nsr_per_frequency),
+                             padded, o.single_precision);
             // (1/N) sum_k NSR(k) |X(k)|^2 over the full spectrum (Parseval form of nsr ||x||^2).
             const ComplexPlane xs = expand_half_spectrum(op.fft().forward(x), g.work_cols);
             penalty = (o.nsr_per_frequency->cast<std::complex<double>>() * xs * xs.conjugate())
@@ -81,12 +95,14 @@ DecodeResult decode_closed_form(const Plane& capture, const Plane& psf, const De
                           .sum() /
                       static_cast<double>(x.size());
         } else {
-            x = WienerFilter(psf, g.work_rows, g.work_cols, o.nsr).apply(padded);
+            x = apply_filter(WienerFilter(psf, g.work_rows, g.work_cols, o.nsr), padded,
+                             o.single_precision);
             penalty = o.nsr * x.square().sum();
         }
     } else {
-        x = make_tikhonov_filter(psf, g.work_rows, g.work_cols, o.lambda, o.regulariser)
-                .apply(padded);
+        x = apply_filter(
+            make_tikhonov_filter(psf, g.work_rows, g.work_cols, o.lambda, o.regulariser), padded,
+            o.single_precision);
         penalty = tikhonov_penalty(x, o.lambda, o.regulariser);
     }
     const double res2 = (op.apply(x) - capture).square().sum();
@@ -115,6 +131,7 @@ DecodeResult decode_iterative(const Plane& capture, const Plane& psf, const Deco
             copy_iterative(o, t);
             t.lambda = o.lambda;
             t.nonnegative = o.nonnegative;
+            t.single_precision = o.single_precision;
             r = solve_tv_l2(op, capture, t, warm);
             break;
         }
@@ -134,12 +151,15 @@ DecodeResult decode_iterative(const Plane& capture, const Plane& psf, const Deco
             r = solve_tvqc(op, capture, t, warm);
             break;
         }
-        default: {
+        case DecodeMethod::kRichardsonLucy: {
             RichardsonLucyOptions t;
             copy_iterative(o, t);
             r = solve_richardson_lucy(op, psf, capture, t, warm);
             break;
         }
+        default:
+            throw invalid_field("method", std::to_string(static_cast<int>(o.method)),
+                                "is not an iterative method");
     }
     r.image = crop_to_capture(g, r.image);
     return r;
@@ -154,15 +174,50 @@ DecodeResult decode_plane(const Plane& capture, const Plane& psf, const DecodeOp
         options.model, static_cast<int>(capture.rows()), static_cast<int>(capture.cols()),
         static_cast<int>(psf.rows()), static_cast<int>(psf.cols()));
     if (options.warm_start) check_work_plane("warm_start", *options.warm_start, g);
+
+    // Solve for p / s: every method is equivariant under (p, x, lambda_tv, eps) -> s (...).
+    const double peak = capture.abs().maxCoeff();
+    const double s = peak > 0.0 ? peak : 1.0;
+    const Plane p = capture / s;
+    DecodeOptions o = options;
+    o.lambda = options.method == DecodeMethod::kTv ? options.lambda / s : options.lambda;
+    if (o.eps) *o.eps /= s;
+    if (o.noise_sigma) *o.noise_sigma /= s;
+    if (o.warm_start) *o.warm_start /= s;
+
     DecodeResult r;
-    switch (options.method) {
+    switch (o.method) {
         case DecodeMethod::kWiener:
         case DecodeMethod::kTikhonov:
-            r = decode_closed_form(capture, psf, options, g);
+            r = decode_closed_form(p, psf, o, g);
+            break;
+        case DecodeMethod::kTv:
+        case DecodeMethod::kTvqc:
+        case DecodeMethod::kRichardsonLucy:
+            r = decode_iterative(p, psf, o, g);
             break;
         default:
-            r = decode_iterative(capture, psf, options, g);
-            break;
+            throw invalid_field("method", std::to_string(static_cast<int>(o.method)),
+                                "is not a decode method (" + decode_method_names() + ")");
+    }
+    // Back to the capture's units: objectives quadratic in p scale by s^2, TV and the
+    // I-divergence by s; TVQC's recorded residual is relative to eps (unchanged).
+    const bool linear_objective =
+        o.method == DecodeMethod::kTvqc || o.method == DecodeMethod::kRichardsonLucy;
+    const double obj_scale = linear_objective ? s : s * s;
+    r.image *= s;
+    r.residual *= s;
+    r.objective *= obj_scale;
+    for (IterationRecord& h : r.history) {
+        h.objective *= obj_scale;
+        if (o.method != DecodeMethod::kTvqc) h.residual *= s;
+    }
+    // The objective is quadratic in p for most methods: beyond |p| ~ 1e154 it leaves the double
+    // range and is reported as +inf (a figure, not the result); image and residual must be finite.
+    if (!is_all_finite(r.image) || !std::isfinite(r.residual) || std::isnan(r.objective)) {
+        throw RuntimeFailure(std::string("decode (") + decode_method_name(o.method) +
+                             "): the estimate is not finite (largest capture value " + num(peak) +
+                             "); nothing is written");
     }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return r;

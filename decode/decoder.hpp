@@ -47,6 +47,9 @@ struct DecodeOptions {
     std::optional<Plane> warm_start;  // initial x (working size)
     bool record_history = true;
     const std::atomic<bool>* stop = nullptr;  // iterative methods: see IterativeOptions::stop
+    // wiener, tikhonov and tv: transforms and iterates in float32 (FFTW float). tvqc and
+    // richardson-lucy always run in double. Tolerances: tests/decode/test_precision.cpp.
+    bool single_precision = false;
 };
 
 struct DecodeResult {
@@ -56,7 +59,8 @@ struct DecodeResult {
     double objective = 0.0;
     double residual = 0.0;
     bool converged = true;
-    bool interrupted = false;  // ended early by IterativeOptions::stop (DecodeOptions::stop)
+    bool constraint_met = true;  // tvqc: ||A x - p||_2 <= eps at exit (to kTvqcFeasibilityTol)
+    bool interrupted = false;    // ended early by IterativeOptions::stop (DecodeOptions::stop)
     double seconds = 0.0;
 };
 
@@ -71,6 +75,13 @@ struct DecodeResult {
 //   rl        decode/richardson_lucy.hpp; objective the I-divergence
 // Linear model: wiener and tikhonov filter the zero-padded capture on the padded grid (an
 // approximation that ignores the crop); the iterative methods solve the exact linear model.
+// Scale: every method is solved for p / s (s = max |p|, with lambda (tv), eps and noise_sigma
+// (tvqc) and the warm start divided by s) and the estimate multiplied back, so a capture of any
+// magnitude (1e-300 .. 1e300) meets the same numbers inside the solvers; image, residual,
+// objective and history are reported in the capture's units (an objective quadratic in p is +inf
+// beyond |p| ~ 1e154: it left the double range).
+// Result check: an estimate or residual that is not finite (or a NaN objective) throws
+// RuntimeFailure naming the method (never a NaN/Inf image returned as a success).
 DecodeResult decode_plane(const Plane& capture, const Plane& psf, const DecodeOptions& options);
 
 }  // namespace pinmask

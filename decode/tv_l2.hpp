@@ -10,13 +10,23 @@
 //   with |D|^2 = 4 sin^2(pi k / R) + 4 sin^2(pi l / C) and rho_w = rho when nonnegative, else 0.
 // z-step: isotropic shrinkage of grad x + u by lambda / rho; w-step: max(0, x + v);
 // s-step (pointwise): s = (C^T p + rho_s (H x + eta)) / (C^T C 1 + rho_s).
+// Over-relaxation alpha = 1.8: the z-, w- and s-steps see alpha (grad x, x, H x) + (1 - alpha)
+// (previous z, w, s) instead of the new values.
 // Penalties: rho starts at the mean of |H|^2 over the spectrum (rho_s at 1) unless given, and
-// both follow residual balancing (x2 / /2 when one residual exceeds 10x the other) every 10
-// iterations during the first half of the run, then stay fixed (ADMM convergence holds).
-// The estimate returned is x, or w (exactly >= 0) when nonnegative. Objective in the records:
-// 1/2 ||A x - p||_2^2 + lambda TV(x) of that estimate; residual ||A x - p||_2.
-// Cost per iteration: one FFT pair (cyclic), two (linear), plus one when recording with
-// nonnegative. Starting point: the warm start, else x = 0.
+// both follow residual balancing (x2 / /2 when one residual exceeds 2x the other) every 3
+// iterations up to iteration 100, then stay fixed (ADMM convergence holds for the tail).
+// Start (cyclic, no warm start): x0 = the quadratic estimate IFFT[conj(H) P / (|H|^2 + rho
+// |D|^2)] (one inverse FFT), else the warm start (or 0 for the linear model); then z =
+// shrink(grad x0, lambda / rho), u = grad x0 - z, as after a z-step.
+// Scale: solved for p / max|p| with lambda / max|p| and scaled back (decode/decoder.hpp).
+// Precision: single_precision runs the iteration in float32 (FFTW float); sums in double.
+// Loops: the x-step right-hand side, the spectral solve, the s-, z- and w-steps are each one
+// fused pass over raw arrays; every buffer is allocated before the first iteration.
+// The estimate returned is x, or w (exactly >= 0) when nonnegative. Records: objective
+// 1/2 ||A x - p||_2^2 + lambda TV(x) and residual ||A x - p||_2 of the ADMM iterate x (no extra
+// FFT); without nonnegative that is the estimate returned, with it x -> w as ADMM converges.
+// Cost per iteration: one FFT pair (cyclic; plus one inverse when recording), two forward and
+// two inverse transforms (linear).
 #pragma once
 
 #include "decode/convolution.hpp"
@@ -28,7 +38,8 @@ namespace pinmask {
 struct TvL2Options : IterativeOptions {
     double lambda = 1e-3;  // >= 0
     bool nonnegative = false;
-    double rho = 0.0;  // initial ADMM penalty (> 0), or 0 for the automatic choice
+    double rho = 0.0;               // initial ADMM penalty (> 0), or 0 for the automatic choice
+    bool single_precision = false;  // iterate in float32 (FFTW float); see the header comment
 };
 
 // Runs ADMM; result.image is x on the operator's working grid (crop it with crop_to_capture).

@@ -337,7 +337,10 @@ DecodeResult solve_tvqc(const ConvolutionOperator& op, const Plane& capture, con
         }
     }
     r.residual = norm2(res_x);
-    if (r.residual - eps > kTvqcFeasibilityTol * std::max(eps, p_norm)) r.converged = false;
+    if (r.residual - eps > kTvqcFeasibilityTol * std::max(eps, p_norm)) {
+        r.converged = false;
+        r.constraint_met = false;
+    }
     r.image = std::move(x);
     r.objective = total_variation(r.image);
     r.seconds = clock.seconds();

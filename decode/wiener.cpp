@@ -26,7 +26,15 @@ std::complex<double> wiener_gain(std::complex<double> h, double nsr, double floo
 }  // namespace
 
 WienerFilter::WienerFilter(int rows, int cols, ComplexPlane g)
-    : rows_(rows), cols_(cols), fft_(rows, cols), g_(std::move(g)) {}
+    : rows_(rows), cols_(cols), fft_(rows, cols), g_(std::move(g)) {
+    finish();
+}
+
+void WienerFilter::finish() {
+    const double inv_n = 1.0 / (static_cast<double>(rows_) * cols_);
+    g_scaled_ = g_ * inv_n;
+    g_scaled_f_ = g_scaled_.cast<std::complex<float>>();
+}
 
 WienerFilter::WienerFilter(const Plane& psf, int rows, int cols, double nsr,
                            double denominator_floor)
@@ -40,6 +48,7 @@ WienerFilter::WienerFilter(const Plane& psf, int rows, int cols, double nsr,
     for (Eigen::Index i = 0; i < h.size(); ++i) {
         g_.data()[i] = wiener_gain(h.data()[i], nsr, denominator_floor);
     }
+    finish();
 }
 
 WienerFilter::WienerFilter(const Plane& psf, int rows, int cols, const Plane& nsr_per_frequency,
@@ -66,6 +75,7 @@ WienerFilter::WienerFilter(const Plane& psf, int rows, int cols, const Plane& ns
                               wiener_gain(h(k, l), nsr(mk, ml), denominator_floor));
         }
     }
+    finish();
 }
 
 WienerFilter WienerFilter::from_half_spectrum(ComplexPlane g_half, int rows, int cols) {
@@ -91,8 +101,22 @@ void WienerFilter::apply(const Plane& capture, Plane& out, Workspace& ws) const 
             "must match the filter size " + std::to_string(rows_) + " x " + std::to_string(cols_));
     }
     fft_.forward(capture, ws.spectrum);
-    ws.spectrum *= g_;
-    fft_.inverse(ws.spectrum, out, ws.scratch);
+    ws.spectrum *= g_scaled_;  // with the 1/N of the inverse transform
+    fft_.inverse_unscaled_destroy(ws.spectrum, out);
+}
+
+void WienerFilter::apply_single(const Plane& capture, Plane& out, WorkspaceF& ws) const {
+    if (capture.rows() != rows_ || capture.cols() != cols_) {
+        throw invalid_field(
+            "capture", std::to_string(capture.rows()) + " x " + std::to_string(capture.cols()),
+            "must match the filter size " + std::to_string(rows_) + " x " + std::to_string(cols_));
+    }
+    const Fft2f fft(rows_, cols_);
+    ws.in = capture.cast<float>();
+    fft.forward(ws.in, ws.spectrum);
+    ws.spectrum *= g_scaled_f_;
+    fft.inverse_unscaled_destroy(ws.spectrum, ws.out);
+    out = ws.out.cast<double>();
 }
 
 double WienerFilter::gain() const { return g_.size() == 0 ? 0.0 : g_.abs().maxCoeff(); }

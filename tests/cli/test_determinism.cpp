@@ -130,7 +130,7 @@ TEST_CASE("decode twice: byte-identical images and configs") {
     t.run("decode cap.tiff --mask m.mask.json -o wiener.tiff");
     t.run("decode cap.tiff --mask m.mask.json --method tv --iters 30 -o tv.png");
     t.run("psf m.mask.json -o m.psf.tiff");
-    t.run("decode cap.tiff --psf m.psf.tiff --method rl --iters 20 -o from_psf.npy");
+    t.run("decode cap.tiff --psf m.psf.tiff --method richardson-lucy --iters 20 -o from_psf.npy");
     check_identical(t.a, t.b);
 }
 

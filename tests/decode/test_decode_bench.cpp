@@ -17,7 +17,8 @@ TEST_CASE("bench_decode returns every method per size with ratio = seconds / fft
     o.min_batch_seconds = 1e-4;
     o.tvqc_max_iterations = 20;
     const auto records = bench_decode(o);
-    REQUIRE(records.size() == 10);
+    // 8 methods per size, plus tv_l2_to_0.2dB for the sizes 16 n_px (16 here, not 24).
+    REQUIRE(records.size() == 17);
     std::set<std::string> methods;
     for (const auto& r : records) {
         methods.insert(r.method);
@@ -25,13 +26,17 @@ TEST_CASE("bench_decode returns every method per size with ratio = seconds / fft
         CHECK(r.fft_pair_seconds > 0.0);
         CHECK(r.seconds_per_call >= 0.0);
         CHECK(r.ratio == doctest::Approx(r.seconds_per_call / r.fft_pair_seconds));
+        CHECK(r.fft_pair_float_seconds > 0.0);
+        CHECK(r.ratio_float == doctest::Approx(r.seconds_per_call / r.fft_pair_float_seconds));
+        if (r.method == "tv_l2_to_0.2dB") CHECK(r.size == 16);
         if (r.method == "tvqc_to_tolerance") {
             CHECK(r.iterations >= 1);
             CHECK(r.iterations <= 20);
         }
     }
-    CHECK(methods == std::set<std::string>{"wiener", "tikhonov", "tv_l2_iteration",
-                                           "tvqc_to_tolerance", "rl_iteration"});
+    CHECK(methods == std::set<std::string>{"wiener", "wiener_single", "tikhonov", "tv_l2_iteration",
+                                           "tv_l2_iteration_single", "tv_l2_to_0.2dB",
+                                           "tvqc_to_tolerance", "tvqc_iteration", "rl_iteration"});
 }
 
 TEST_CASE("bench_decode validates its options, naming the field") {

@@ -13,6 +13,7 @@
 
 #include "core/image_io.hpp"
 #include "decode/capture.hpp"
+#include "decode/capture_pipeline.hpp"
 #include "decode/decoder.hpp"
 #include "decode/preprocess.hpp"
 
@@ -29,48 +30,51 @@ const fs::path kRealDir = fs::path(PINMASK_SHARED_DIR) / "data" / "real";
 // 1/2 ||p||^2 (x = 0).
 constexpr double kAdmmObjectiveRiseTol = 2e-3;
 
-// A preprocessed (PSF, capture) pair, both L2-normalised.
-struct Pair {
-    Plane psf, capture;
-};
-
-// Tutorial preprocessing: background from the PSF's 10 x 10 patch (rows/cols 5..14) subtracted
-// from both, `rounds` rounds of 2 x 2 box averaging, each divided by its L2 norm.
-Pair preprocess(const fs::path& psf_path, const fs::path& raw_path, int rounds,
-                std::optional<double> raw_bias = std::nullopt) {
-    Plane psf = read_image(psf_path).image.channels.at(0);
-    Plane raw = read_image(raw_path).image.channels.at(0);
-    const double bg = corner_background(psf);
-    psf -= bg;
-    raw -= raw_bias ? *raw_bias : bg;
-    return {l2_normalized(box_downsample(psf, rounds), "psf"),
-            l2_normalized(box_downsample(raw, rounds), "raw")};
+// The capture pipeline (decode/capture_pipeline.hpp) as `pinmask decode` and scripts/demo-real
+// run it: the whole frame (--crop none), the tutorial's background (corner patch of the PSF,
+// or the camera bias), `rounds` rounds of 2 x 2 averaging, L2 normalisation, linear model.
+CaptureDecodeOptions pipeline_options(int rounds, std::optional<double> raw_bias) {
+    CaptureDecodeOptions o;
+    o.crop.mode = CropMode::kNone;
+    o.background = raw_bias ? BackgroundMode::kValue : BackgroundMode::kCorner;
+    o.background_value = raw_bias.value_or(0.0);
+    o.downsample = rounds;
+    o.normalize = NormalizeMode::kL2;
+    o.decode.model = ConvModel::kLinear;
+    return o;
 }
 
-void check_wiener(const Pair& d) {
-    DecodeOptions o;
-    o.model = ConvModel::kLinear;
-    o.method = DecodeMethod::kWiener;
-    o.nsr = 1.0;  // ~1e-4 max|H|^2 for these L2-normalised PSFs: the README's "hand visible"
-    const DecodeResult r = decode_plane(d.capture, d.psf, o);
-    CHECK(r.image.rows() == d.capture.rows());
-    CHECK(r.image.cols() == d.capture.cols());
-    CHECK(is_all_finite(r.image));
-    CHECK(std::isfinite(r.residual));
+CaptureDecodeInputs load(const fs::path& psf_path, const fs::path& raw_path) {
+    CaptureDecodeInputs in;
+    in.capture = read_image(raw_path).image;
+    in.psf = read_image(psf_path).image;
+    in.psf_counts = in.psf.channels.at(0);
+    return in;
 }
 
-void check_tv(const Pair& d) {
-    DecodeOptions o;
-    o.model = ConvModel::kLinear;
-    o.method = DecodeMethod::kTv;
-    o.lambda = 1e-4;  // the ADMM notebook's tau
-    o.nonnegative = true;
-    o.max_iterations = 30;
-    o.tolerance = 0.0;  // run every iteration
-    const DecodeResult r = decode_plane(d.capture, d.psf, o);
-    CHECK(is_all_finite(r.image));
+CaptureDecodeResult check_wiener(const CaptureDecodeInputs& in, CaptureDecodeOptions o) {
+    o.decode.method = DecodeMethod::kWiener;
+    o.decode.nsr = 1.0;  // ~1e-4 max|H|^2 for these L2-normalised PSFs: the README's "hand visible"
+    CaptureDecodeResult r = decode_capture(in, o);
+    CHECK(r.estimate.rows() == r.summary.decoded_rows);
+    CHECK(r.estimate.cols() == r.summary.decoded_cols);
+    CHECK(is_all_finite(r.estimate.channels.at(0)));
+    CHECK(std::isfinite(r.summary.channels.at(0).residual));
+    return r;
+}
+
+void check_tv(const CaptureDecodeInputs& in, CaptureDecodeOptions o) {
+    o.decode.method = DecodeMethod::kTv;
+    o.decode.lambda = 1e-4;  // the ADMM notebook's tau
+    o.decode.nonnegative = true;
+    o.decode.max_iterations = 30;
+    o.decode.tolerance = 0.0;  // run every iteration
+    const CaptureDecodeResult res = decode_capture(in, o);
+    const DecodeResult& r = res.summary.channels.at(0);
+    CHECK(is_all_finite(res.estimate.channels.at(0)));
     REQUIRE(r.history.size() >= 2);
-    const double start = 0.5 * d.capture.square().sum();  // the objective of x = 0
+    // The objective of x = 0 is 1/2 ||p||^2 = 1/2 (the capture window is L2-normalised).
+    const double start = 0.5;
     double lowest = start;
     for (const auto& h : r.history) {
         INFO("iteration " << h.iteration << " objective " << h.objective);
@@ -81,6 +85,14 @@ void check_tv(const Pair& d) {
     // A real decrease, not a flat line: measured 2.5e-4 (hand) and 0.039 (USAF) of the start.
     CHECK(r.history.back().objective < 0.1 * start);
     CHECK(r.history.back().objective <= r.history.front().objective);
+    // The same run in float32 (auto would pick double below 256 x 256): 1e-3 relative l2, as
+    // tests/decode/test_precision.cpp's kSingleTvTol.
+    o.precision = Precision::kSingle;
+    const CaptureDecodeResult single = decode_capture(in, o);
+    CHECK(single.summary.single_precision);
+    const Plane& a = single.estimate.channels.at(0);
+    const Plane& b = res.estimate.channels.at(0);
+    CHECK(std::sqrt((a - b).square().sum() / b.square().sum()) <= 1e-3);
 }
 
 bool have(const fs::path& p) {
@@ -94,21 +106,23 @@ bool have(const fs::path& p) {
 TEST_CASE("DiffuserCam tutorial hand, 1/8 size (150 x 200): Wiener and TV on the linear model") {
     const fs::path dir = kRealDir / "waller-lab-diffusercam-tutorial";
     if (!have(dir / "rawdata_hand_sample.tif")) return;
-    const Pair d = preprocess(dir / "psf_sample.tif", dir / "rawdata_hand_sample.tif", 3);
-    REQUIRE(d.capture.rows() == 150);
-    REQUIRE(d.capture.cols() == 200);
-    check_wiener(d);
-    check_tv(d);
+    const CaptureDecodeInputs in = load(dir / "psf_sample.tif", dir / "rawdata_hand_sample.tif");
+    const CaptureDecodeOptions o = pipeline_options(3, std::nullopt);
+    const CaptureDecodeResult w = check_wiener(in, o);
+    REQUIRE(w.summary.decoded_rows == 150);
+    REQUIRE(w.summary.decoded_cols == 200);
+    check_tv(in, o);
 }
 
 TEST_CASE("DiffuserCam 3D USAF target with PSF plane 18, 1/2 size: Wiener and TV") {
     const fs::path dir = kRealDir / "waller-lab-diffusercam-3d";
     if (!have(dir / "example_raw.png")) return;
-    // The raw image's camera bias is 100 counts (Waller-Lab/DiffuserCam settings); the PSF's
-    // floor comes off with the corner patch.
-    const Pair d = preprocess(dir / "psf_stack" / "psf18.tiff", dir / "example_raw.png", 1, 100.0);
-    REQUIRE(d.capture.rows() == 135);
-    REQUIRE(d.capture.cols() == 160);
-    check_wiener(d);
-    check_tv(d);
+    // The raw image's camera bias is 100 counts (Waller-Lab/DiffuserCam settings), off the
+    // capture only, as scripts/demo-real does (--background 100); the PSF keeps its floor.
+    const CaptureDecodeInputs in = load(dir / "psf_stack" / "psf18.tiff", dir / "example_raw.png");
+    const CaptureDecodeOptions o = pipeline_options(1, 100.0);
+    const CaptureDecodeResult w = check_wiener(in, o);
+    REQUIRE(w.summary.decoded_rows == 135);
+    REQUIRE(w.summary.decoded_cols == 160);
+    check_tv(in, o);
 }

@@ -1,0 +1,168 @@
+#include "cli/decode_flags.hpp"
+
+#include <string>
+
+#include "core/error.hpp"
+
+namespace pinmask::cli {
+
+const char* const kDecodeFooter = R"(
+Steps: dark frame subtracted (same size, 1 or the capture's channels) -> --background ->
+--downsample -> period check -> --crop -> --normalize -> decode each channel (RGB channels in
+parallel threads) -> write.
+Period: the PSF's size. The capture's own period is measured from its autocorrelation and a
+mismatch is reported on stderr and in the stats (skipped, with the reason, when the capture
+holds fewer than two periods along an axis).
+Flags of one method only (--nsr: wiener; --lambda: tikhonov, tv; --regulariser: tikhonov;
+--eps, --noise-sigma: tvqc; --nonneg: tv, tvqc; --iters, --tol: tv, tvqc, richardson-lucy) are
+refused with another method.
+Precision: auto uses float32 (FFTW float) for wiener, tikhonov and tv from 256 x 256 decoded
+pixels on, double below (tvqc and richardson-lucy always double).
+Scale: every solver works on the capture divided by its largest magnitude and scales back, so
+the result does not depend on the capture's units. A TVQC run that ends without meeting
+||Ax - p||_2 <= eps still writes its estimate, exit 0, with a warning on stderr and
+"constraint_met": false in the stats.
+Output: PNG clips negatives to 0 and multiplies by 1/max over all channels (or by --scale),
+then writes 8- or 16-bit; .tif/.tiff (float32) and .npy (float32) hold the raw estimate.
+Orientation: the output is in the decoded window's pixel grid, never flipped or mirrored: row 0
+is the window's top row, column 0 its left column; a capture identical to the PSF decodes to a
+point at (row floor(H/2), column floor(W/2)), the PSF's centre (deconvwnr convention).
+Units: with --normalize none the PSF is scaled to unit sum and the estimate is in capture
+counts; with --normalize l2 both are divided by their L2 norms (the DiffuserCam tutorial).
+Also written: OUT.config.json (the resolved configuration) next to the output. In the stats,
+everything but "timings_s" is the same, byte for byte, for the same inputs and options.
+Ctrl-C (or SIGTERM) during tv, tvqc or richardson-lucy ends the iteration early: the estimate so
+far is written as usual and marked "interrupted" in the stats; a second Ctrl-C kills at once.
+
+Examples:
+  pinmask decode capture.tiff --mask paper.mask.json --dark dark.tiff -o scene.png --stats s.json
+  pinmask decode raw.tif --psf psf.tif --model linear --background corner --downsample 2 \
+      --normalize l2 --crop none --method tv --lambda 1e-4 --iters 100 -o hand.png)";
+
+DecodeFlags add_decode_flags(CLI::App& cmd, DecodeRequest& o) {
+    DecodeFlags f;
+    auto method_flag = [&](CLI::Option* opt, DecodeParameter p) {
+        f.method_flags.emplace_back(opt, p);
+        return opt;
+    };
+    cmd.add_option("capture", o.capture,
+                   "Capture image: TIFF (8/16-bit, float32), PNG (8/16-bit), .npy; grey or RGB")
+        ->required();
+    auto* mask =
+        cmd.add_option("--mask", o.mask, "Mask file (*.mask.json); its PSF is synthesised");
+    auto* psf = cmd.add_option("--psf", o.psf,
+                               "PSF file (float TIFF or .npy, with its sidecar when present)");
+    mask->excludes(psf);
+    psf->excludes(mask);
+    cmd.add_option("--dark", o.dark,
+                   "Dark frame (capture through an all-opaque film), subtracted first; same size");
+    cmd.add_option("--crop", o.crop,
+                   "Window decoded: center (the period centred in the frame), none (whole frame, "
+                   "PSF zero-padded), or X,Y (top-left column,row of one period)")
+        ->capture_default_str();
+    cmd.add_option("--method", o.method,
+                   "wiener (closed form, deconvwnr) | tikhonov (closed form) | tv (TV-L2, ADMM) | "
+                   "tvqc (min TV s.t. ||Ax - p||_2 <= eps) | richardson-lucy")
+        ->capture_default_str();
+    cmd.add_option("--model", o.model,
+                   "cyclic (circular convolution over one period, the paper) | linear (zero-padded "
+                   "convolution then crop: lensless captures, non-cyclic masks)")
+        ->check(CLI::IsMember({"cyclic", "linear"}))
+        ->capture_default_str();
+    method_flag(cmd.add_option("--nsr", o.nsr,
+                               "wiener: noise-to-signal power ratio, dimensionless (>= 0); "
+                               "relative to |H|^2 of the PSF as normalised (sum 1: |H(0)| = 1)")
+                    ->capture_default_str(),
+                DecodeParameter::kNsr);
+    method_flag(cmd.add_option("--lambda", o.lambda,
+                               "tikhonov (> 0, dimensionless) / tv (>= 0, capture units) "
+                               "regularisation weight")
+                    ->capture_default_str(),
+                DecodeParameter::kLambda);
+    method_flag(cmd.add_option("--regulariser", o.regulariser, "tikhonov: identity | gradient")
+                    ->check(CLI::IsMember({"identity", "gradient"}))
+                    ->capture_default_str(),
+                DecodeParameter::kRegulariser);
+    auto* eps = method_flag(
+        cmd.add_option("--eps", o.eps, "tvqc: residual bound ||Ax - p||_2 <= EPS (capture units)"),
+        DecodeParameter::kEps);
+    auto* sigma = method_flag(cmd.add_option("--noise-sigma", o.noise_sigma,
+                                             "tvqc: per-pixel noise sigma (capture units) to "
+                                             "derive EPS"),
+                              DecodeParameter::kNoiseSigma);
+    eps->excludes(sigma);
+    sigma->excludes(eps);
+    method_flag(cmd.add_flag("--nonneg", o.nonnegative, "tv / tvqc: constrain x >= 0"),
+                DecodeParameter::kNonnegative);
+    method_flag(cmd.add_option("--iters", o.iterations,
+                               "tv, tvqc, richardson-lucy: maximum iterations (>= 1)")
+                    ->check(CLI::Range(1, 2147483647))
+                    ->capture_default_str(),
+                DecodeParameter::kIterations);
+    method_flag(cmd.add_option("--tol", o.tolerance,
+                               "tv, tvqc, richardson-lucy: stop at this relative change of x")
+                    ->capture_default_str(),
+                DecodeParameter::kTolerance);
+    cmd.add_option("--downsample", o.downsample,
+                   "K rounds of 2x2 box averaging of capture and PSF (factor 2^K per side)")
+        ->check(CLI::Range(0, 12))
+        ->capture_default_str();
+    cmd.add_option("--background", o.background,
+                   "none | corner (mean of the PSF's rows/cols 5..14, subtracted from PSF and "
+                   "capture, as the DiffuserCam tutorial) | VALUE (counts, from the capture only; "
+                   "|VALUE| <= the capture's largest magnitude)")
+        ->capture_default_str();
+    cmd.add_option("--normalize", o.normalize,
+                   "none (PSF scaled to unit sum) | l2 (capture window and PSF each divided by "
+                   "its L2 norm)")
+        ->check(CLI::IsMember({"none", "l2"}))
+        ->capture_default_str();
+    cmd.add_option("--precision", o.precision,
+                   "auto (float32 from 256 x 256 decoded pixels for wiener, tikhonov, tv) | "
+                   "single | double")
+        ->check(CLI::IsMember({"auto", "single", "double"}))
+        ->capture_default_str();
+    cmd.add_option("--threads", o.threads,
+                   "FFTW threads for transforms of >= 512 x 512 (default: all cores); channels "
+                   "always decode in parallel. Results do not depend on it")
+        ->check(CLI::Range(1, 1024));
+    cmd.add_option("-o,--output", o.output,
+                   "Output image: .png (scaled, see below), .tif/.tiff or .npy (raw float32)")
+        ->required();
+    cmd.add_option("--bits", o.bits, "PNG bit depth: 8 | 16")
+        ->check(CLI::IsMember({8, 16}))
+        ->capture_default_str();
+    cmd.add_option("--scale", o.scale,
+                   "PNG scaling: max (1 / max over all channels) or a factor VALUE (> 0)")
+        ->capture_default_str();
+    cmd.add_option("--stats", o.stats,
+                   "Stats JSON: iterations, objective, residual, period check; wall-clock "
+                   "figures only under \"timings_s\"");
+    cmd.add_flag("--json", o.json, "Print the stats JSON on stdout instead of the summary");
+    cmd.add_flag("--explain", o.explain,
+                 "Say on stderr what each step decided (window, background, period check, "
+                 "precision, threads, FFT planning time)");
+    return f;
+}
+
+void refuse_unused_flags(const DecodeRequest& r, const DecodeFlags& flags) {
+    const DecodeMethod m = parse_decode_method(r.method, "--method");
+    for (const auto& [opt, parameter] : flags.method_flags) {
+        if (opt->count() == 0 || decode_method_uses(m, parameter)) continue;
+        std::string users;
+        for (DecodeMethod other : kDecodeMethods)
+            if (decode_method_uses(other, parameter))
+                users += (users.empty() ? "" : ", ") + std::string(decode_method_name(other));
+        throw invalid_field(opt->get_name(), opt->as<std::string>(),
+                            std::string("is not used by --method ") + decode_method_name(m) +
+                                " (only by " + users + "); remove it or choose that method");
+    }
+    if (m == DecodeMethod::kTikhonov && !(r.lambda > 0.0)) {
+        throw invalid_field("--lambda", std::to_string(r.lambda),
+                            "must be > 0 for tikhonov: lambda 0 is the unregularised inverse "
+                            "filter, which multiplies noise by 1/|H| at the PSF's spectral "
+                            "near-zeros (use --method wiener --nsr 0 for the floored inverse)");
+    }
+}
+
+}  // namespace pinmask::cli

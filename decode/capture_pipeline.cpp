@@ -1,0 +1,202 @@
+#include "decode/capture_pipeline.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <thread>
+
+#include "core/error.hpp"
+#include "core/fft.hpp"
+#include "decode/convolution.hpp"
+#include "decode/decode_method.hpp"
+#include "decode/preprocess.hpp"
+
+namespace pinmask {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::string num(double v) {
+    std::ostringstream s;
+    s.precision(6);
+    s << v;
+    return s.str();
+}
+
+Plane channel_sum(const Image& img) {
+    Plane s = img.channels[0];
+    for (std::size_t ch = 1; ch < img.channels.size(); ++ch) s += img.channels[ch];
+    return s;
+}
+
+std::string size_text(const Image& img) {
+    return std::to_string(img.cols()) + " x " + std::to_string(img.rows()) + " x " +
+           std::to_string(img.n_channels());
+}
+
+}  // namespace
+
+Precision parse_precision(const std::string& t, const std::string& field) {
+    if (t == "auto") return Precision::kAuto;
+    if (t == "single") return Precision::kSingle;
+    if (t == "double") return Precision::kDouble;
+    throw invalid_field(field, t, "must be auto, single or double");
+}
+
+const char* precision_name(Precision p) {
+    switch (p) {
+        case Precision::kAuto:
+            return "auto";
+        case Precision::kSingle:
+            return "single";
+        case Precision::kDouble:
+            return "double";
+    }
+    return "?";
+}
+
+void CaptureDecodeOptions::validate() const {
+    if (downsample < 0 || downsample > 12)
+        throw invalid_field("downsample", std::to_string(downsample), "must be 0..12");
+    if (threads < 0 || threads > 1024)
+        throw invalid_field("threads", std::to_string(threads), "must be 1..1024 (0: all cores)");
+    if (background == BackgroundMode::kValue && !std::isfinite(background_value))
+        throw invalid_field("background", num(background_value), "must be finite");
+    if (is_iterative(decode.method) && decode.max_iterations < 1)
+        throw invalid_field("iterations", std::to_string(decode.max_iterations),
+                            "must be >= 1 (0 iterations would return the starting point)");
+}
+
+CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOptions& o) {
+    o.validate();
+    CaptureDecodeResult out;
+    CaptureDecodeSummary& s = out.summary;
+    Image& capture = in.capture;
+    Image& psf = in.psf;
+    check_image_finite(capture, "capture");
+    if (psf.empty()) throw invalid_field("psf", "empty", "needs at least one pixel");
+    for (const Plane& p : psf.channels) check_psf(p, "PSF");
+
+    auto t0 = Clock::now();
+    if (in.dark) {
+        check_image_finite(*in.dark, "dark frame");
+        capture = subtract_dark(capture, *in.dark);
+    }
+    s.seconds.dark = seconds_since(t0);
+
+    // Background: a value off the capture, or the tutorial's corner patch off PSF and capture.
+    t0 = Clock::now();
+    if (o.background != BackgroundMode::kNone) {
+        double b = o.background_value;
+        if (o.background == BackgroundMode::kCorner) {
+            if (!in.psf_counts) {
+                throw invalid_field("background", "corner",
+                                    "needs a measured PSF: a PSF synthesised from a mask has no "
+                                    "camera background");
+            }
+            b = corner_background(*in.psf_counts);
+            psf.channels.assign(1, *in.psf_counts - b);
+        } else {
+            double peak = 0.0;
+            for (const Plane& p : capture.channels) peak = std::max(peak, p.abs().maxCoeff());
+            if (std::abs(b) > peak) {
+                throw invalid_field("background", num(b),
+                                    "must not exceed the capture's largest magnitude " + num(peak) +
+                                        " counts (it would leave no scene)");
+            }
+        }
+        for (Plane& p : capture.channels) p -= b;
+        s.background = b;
+        s.notes.push_back("background " + num(b) + " subtracted from the capture" +
+                          (o.background == BackgroundMode::kCorner
+                               ? " and the PSF (mean of the PSF's rows/cols 5..14)"
+                               : ""));
+    }
+    for (Plane& p : capture.channels) p = box_downsample(p, o.downsample);
+    for (Plane& p : psf.channels) p = box_downsample(p, o.downsample);
+    for (const Plane& p : psf.channels) check_psf(p, "PSF after preprocessing");
+    s.seconds.preprocess = seconds_since(t0);
+    if (o.downsample > 0)
+        s.notes.push_back("downsampled " + std::to_string(o.downsample) +
+                          " rounds of 2x2: capture " + size_text(capture) + ", PSF " +
+                          size_text(psf));
+
+    // Period check on the full frame (luminance), against the PSF's size.
+    t0 = Clock::now();
+    s.period = check_period(channel_sum(capture), psf.rows(), psf.cols());
+    s.seconds.period_check = seconds_since(t0);
+    if (!s.period.rows.checked)
+        s.notes.push_back("period check skipped along the rows: " + s.period.rows.skip_reason);
+    if (!s.period.cols.checked)
+        s.notes.push_back("period check skipped along the columns: " + s.period.cols.skip_reason);
+
+    t0 = Clock::now();
+    s.window = crop_window(capture.rows(), capture.cols(), psf.rows(), psf.cols(), o.crop);
+    capture = crop(capture, s.window);
+    s.seconds.crop = seconds_since(t0);
+    s.notes.push_back("decoding the window " + std::to_string(s.window.cols) + " x " +
+                      std::to_string(s.window.rows) + " at x=" + std::to_string(s.window.col) +
+                      ", y=" + std::to_string(s.window.row));
+
+    if (o.normalize == NormalizeMode::kL2) {
+        for (Plane& p : capture.channels) {
+            s.capture_l2_norms.push_back(p.matrix().norm());
+            p = l2_normalized(p, "capture window");
+        }
+        for (Plane& p : psf.channels) {
+            s.psf_l2_norms.push_back(p.matrix().norm());
+            p = l2_normalized(p, "PSF");
+        }
+    } else {
+        for (Plane& p : psf.channels) {
+            s.psf_sums.push_back(p.sum());
+            p /= p.sum();
+        }
+    }
+    s.decoded_rows = capture.rows();
+    s.decoded_cols = capture.cols();
+
+    // Precision and threads.
+    DecodeOptions d = o.decode;
+    const bool can_single = d.method == DecodeMethod::kWiener ||
+                            d.method == DecodeMethod::kTikhonov || d.method == DecodeMethod::kTv;
+    const long long pixels = static_cast<long long>(s.decoded_rows) * s.decoded_cols;
+    s.single_precision =
+        can_single && (o.precision == Precision::kSingle ||
+                       (o.precision == Precision::kAuto && pixels >= kSinglePrecisionMinPixels));
+    d.single_precision = s.single_precision;
+    if (o.threads > 0) {
+        set_fft_threads(o.threads);
+    } else {
+        set_fft_threads(static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+    }
+    const ConvGeometry g =
+        make_conv_geometry(d.model, s.decoded_rows, s.decoded_cols, psf.rows(), psf.cols());
+    s.fft_threads = fft_threads_for(g.work_rows, g.work_cols);
+    s.notes.push_back(std::string(decode_method_name(d.method)) + " in " +
+                      (s.single_precision ? "single (float32)" : "double") + " precision on a " +
+                      std::to_string(g.work_rows) + " x " + std::to_string(g.work_cols) +
+                      " grid, " + std::to_string(s.fft_threads) + " FFT thread(s), " +
+                      std::to_string(capture.n_channels()) + " channel(s) in parallel");
+
+    t0 = Clock::now();
+    const double planning_before = fft_plan_stats().planning_seconds;
+    s.channels = decode_channels(capture, psf.channels, d);
+    s.seconds.decode = seconds_since(t0);
+    s.seconds.fft_planning = fft_plan_stats().planning_seconds - planning_before;
+    for (DecodeResult& r : s.channels) {
+        out.estimate.channels.push_back(std::move(r.image));
+        r.image = Plane();
+        s.interrupted = s.interrupted || r.interrupted;
+        s.constraint_met = s.constraint_met && r.constraint_met;
+    }
+    check_image_finite(out.estimate, "decoded estimate");
+    return out;
+}
+
+}  // namespace pinmask
