@@ -86,16 +86,19 @@ std::string vendor_list_text() {
     std::string s = "Vendor presets (explicit flags win over a preset):\n";
     for (const VendorPreset& p : vendor_presets()) {
         std::string formats;
-        for (FabFormat f : p.formats) formats += (formats.empty() ? "" : ",") + fab_format_name(f);
+        for (FabFormat f : p.formats) {
+            if (!formats.empty()) formats.push_back(',');
+            formats.append(fab_format_name(f));
+        }
         char buf[160];
         std::snprintf(buf, sizeof buf, "    formats %s, units %s, tone %s, emulsion %s, rules %s\n",
                       formats.c_str(), fab_unit_name(p.unit).c_str(), tone_name(p.tone).c_str(),
                       p.emulsion_down ? "down" : "up", p.drc.c_str());
-        s += "  " + p.name + ": " + p.description + "\n" + buf;
+        s.append("  ").append(p.name).append(": ").append(p.description).append("\n").append(buf);
     }
     s += "Design-rule presets (set only the rules of the check):\n";
     for (const std::string& n : vendor_names())
-        s += "  " + n + ": " + vendor_rules(n).description + "\n";
+        s.append("  ").append(n).append(": ").append(vendor_rules(n).description).append("\n");
     return s;
 }
 

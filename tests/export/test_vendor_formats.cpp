@@ -15,6 +15,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/image_io.hpp"
 #include "export/dxf_reader.hpp"
 #include "export/dxf_writer.hpp"
 #include "export/export_pipeline.hpp"
@@ -26,6 +27,7 @@
 #include "export/oasis_reader.hpp"
 #include "export/oasis_writer.hpp"
 #include "export/plotter_raster.hpp"
+#include "export/png_preview.hpp"
 #include "export/read_back.hpp"
 #include "export/repetition.hpp"
 #include "export/vendor_presets.hpp"
@@ -315,4 +317,34 @@ TEST_CASE("OASIS and hierarchical GDSII readers: damaged files throw InvalidInpu
     }
     // Any other exception type or a crash fails the case; most damaged files are refused.
     CHECK(refused > trials / 2);
+}
+
+TEST_CASE("--draw polygons: the PNG shows the drawn pinholes black, film mode shows them clear") {
+    const Layout l = tiled_layout();  // clear tone: polygons are the pinholes
+    const double dpi = 254;           // 100 um pixels; a pinhole is 3 pixels across
+    const BoxNm b = bounding_box({l.polygons[0]});
+    const auto col = int((0.5 * double(b.x0 + b.x1) - double(l.extent.x0)) / 1e5);
+    const auto row = int((double(l.extent.y1) - 0.5 * double(b.y0 + b.y1)) / 1e5);
+    // A point of the active area between pinholes: 0.22 mm right of the first pinhole's cell.
+    const int col_gap = col + 4;
+    for (DrawMode mode : {DrawMode::kFilm, DrawMode::kPolygons}) {
+        const std::string path = (std::filesystem::temp_directory_path() /
+                                  ("pinmask-draw-" + std::to_string(::getpid()) + ".png"))
+                                     .string();
+        std::ofstream(path, std::ios::binary) << png_preview(l, dpi, mode);
+        const LoadedImage img = read_image(path);
+        std::filesystem::remove(path);
+        const double hole = img.image.channels[0](row, col) / img.full_scale;
+        const double gap = img.image.channels[0](row, col_gap) / img.full_scale;
+        INFO(draw_mode_name(mode) << " hole " << hole << " gap " << gap);
+        if (mode == DrawMode::kFilm) {
+            CHECK(hole > 0.9);  // clear pinhole in opaque film
+            CHECK(gap < 0.1);
+        } else {
+            CHECK(hole < 0.1);  // the drawn polygon, black on white paper
+            CHECK(gap > 0.9);
+        }
+    }
+    CHECK(tone_label_line(Tone::kDark, true, "mm") == "DARK FILM POS EMUL DOWN UNIT MM");
+    CHECK_THROWS_AS(parse_draw_mode("both", "--draw"), InvalidInput);
 }
