@@ -19,9 +19,9 @@
 #include "cli/compare_report.hpp"
 #include "io/json_strict.hpp"
 #include "io/mask_json.hpp"
-#include "core/output_set.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/output_set.hpp"
 #include "core/units.hpp"
 #include "export/report.hpp"
 

@@ -17,10 +17,10 @@
 #include "cli/interrupt.hpp"
 #include "io/mask_json.hpp"
 #include "io/psf_files.hpp"
-#include "core/output_set.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
+#include "core/output_set.hpp"
 #include "core/units.hpp"
 #include "decode/capture.hpp"
 #include "decode/period.hpp"
@@ -99,9 +99,13 @@ void run_decode(const DecodeRequest& r) {
     const auto t_start = Clock::now();
     // Everything that can be checked without reading pixels, first.
     const OutputKind kind = output_kind(r.output);
-    plan_outputs({{"capture", r.capture}, {"--mask", r.mask}, {"--psf", r.psf}, {"--dark", r.dark},
-                  {"--psf (sidecar)", r.psf.empty() ? "" : io::psf_sidecar_path(r.psf)}},
-                 {{"-o", r.output}, {"-o (config)", r.output + ".config.json"}, {"--stats", r.stats}});
+    plan_outputs(
+        {{"capture", r.capture},
+         {"--mask", r.mask},
+         {"--psf", r.psf},
+         {"--dark", r.dark},
+         {"--psf (sidecar)", r.psf.empty() ? "" : io::psf_sidecar_path(r.psf)}},
+        {{"-o", r.output}, {"-o (config)", r.output + ".config.json"}, {"--stats", r.stats}});
     const fs::path out_dir = fs::path(r.output).parent_path();
     if (!out_dir.empty() && !fs::is_directory(out_dir))
         throw invalid_field("-o", r.output, "the output directory does not exist");

@@ -17,6 +17,8 @@
 #include <vector>
 
 #include "cli/command.hpp"
+#include "io/mask_json.hpp"
+#include "io/psf_files.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
@@ -35,8 +37,6 @@
 #include "export/vendor_rules.hpp"
 #include "export/write_any.hpp"
 #include "export/xor_area.hpp"
-#include "io/mask_json.hpp"
-#include "io/psf_files.hpp"
 
 namespace pinmask::cli {
 namespace {

@@ -8,13 +8,13 @@
 #include <string>
 
 #include "cli/command.hpp"
+#include "io/mask_json.hpp"
+#include "io/psf_files.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
 #include "core/units.hpp"
 #include "design/kernel_validity.hpp"
 #include "design/psf.hpp"
-#include "io/mask_json.hpp"
-#include "io/psf_files.hpp"
 
 namespace pinmask::cli {
 namespace {
