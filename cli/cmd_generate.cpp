@@ -14,6 +14,7 @@
 
 #include "cli/camera_options.hpp"
 #include "cli/command.hpp"
+#include "io/mask_json.hpp"
 #include "cli/psf_options.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
@@ -26,7 +27,6 @@
 #include "design/optics.hpp"
 #include "design/pattern.hpp"
 #include "design/random_sparse.hpp"
-#include "io/mask_json.hpp"
 
 namespace pinmask::cli {
 namespace {

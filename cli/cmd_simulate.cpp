@@ -15,10 +15,10 @@
 
 #include "cli/command.hpp"
 #include "cli/noise_options.hpp"
-#include "core/output_set.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
+#include "core/output_set.hpp"
 #include "core/units.hpp"
 #include "design/kernel_model.hpp"
 #include "design/psf.hpp"
@@ -119,7 +119,8 @@ void run(const SimulateOptions& o, const CLI::App& cmd) {
         throw invalid_field("--dark-frame", o.dark_frame, "must differ from -o");
     }
     plan_outputs({{"mask", o.mask}, {"--scene", fs::exists(o.scene) ? o.scene : ""}},
-                 {{"-o", o.output}, {"--dark-frame", o.dark_frame},
+                 {{"-o", o.output},
+                  {"--dark-frame", o.dark_frame},
                   {"-o (config)", o.output + ".config.json"}});
     if (o.sensor && !o.full_sensor) {
         throw invalid_field("--sensor", *o.sensor, "only applies with --full-sensor");

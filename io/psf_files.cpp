@@ -7,6 +7,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "io/json_strict.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
@@ -14,7 +15,6 @@
 #include "design/kernel.hpp"
 #include "design/kernel_model.hpp"
 #include "design/pattern.hpp"
-#include "io/json_strict.hpp"
 
 namespace pinmask::io {
 namespace {
