@@ -14,7 +14,6 @@
 #include <vector>
 
 #include "cli/command.hpp"
-#include "io/mask_json.hpp"
 #include "cli/noise_options.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -23,6 +22,7 @@
 #include "core/units.hpp"
 #include "design/kernel_model.hpp"
 #include "design/psf.hpp"
+#include "io/mask_json.hpp"
 #include "optimize/scenes.hpp"
 #include "optimize/simulate.hpp"
 
