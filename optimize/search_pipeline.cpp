@@ -185,9 +185,11 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
     out.kernel_resolved = kernel_model_name(kernel.model);
     const ComplexPlane kernel_otf = expand_half_spectrum(kernel_spectrum(kernel, n, ppc), m);
     std::shared_ptr<const AnalyticWienerModel> model;
+    out.prior_description = o.prior.description();
     if (o.weights.analytic_wiener > 0.0) {
-        model = std::make_shared<AnalyticWienerModel>(kernel_otf, make_scene_prior(o.prior, m),
-                                                      o.noise);
+        ScenePrior prior = make_scene_prior(o.prior, m);
+        out.prior_relevance = prior_relevance(prior);
+        model = std::make_shared<AnalyticWienerModel>(kernel_otf, std::move(prior), o.noise);
     }
     const MaskObjective inner(o.weights, model, o.filter);
     const PipelineObjective objective(inner, pattern_frequencies_passed(kernel_otf, n),
