@@ -16,6 +16,37 @@ struct Options {
     bool json = false;
 };
 
+// The objective after one move at the two geometries, with the per-cell ratio.
+void print_objective(double seconds, bool json) {
+    const auto rec = bench_objective({{16, 8}, {32, 21}}, seconds, 1);
+    if (!json) {
+        std::printf("\nobjective after one move (analytic Wiener, optimal filter):\n");
+        std::printf("%6s %4s %5s %14s %18s %16s\n", "n", "ppc", "K", "moves/s", "full evals/s",
+                    "moves/s x n^2");
+    }
+    for (const auto& r : rec) {
+        if (json) {
+            std::cout << nlohmann::json{{"objective_n", r.n},
+                                        {"pixels_per_cell", r.pixels_per_cell},
+                                        {"holes", r.holes},
+                                        {"objective_moves_per_second", r.moves_per_second},
+                                        {"full_evals_per_second", r.full_evals_per_second},
+                                        {"per_cell_rate", r.per_cell_rate}}
+                             .dump()
+                      << "\n";
+        } else {
+            std::printf("%6d %4d %5d %14.4g %18.4g %16.4g\n", r.n, r.pixels_per_cell, r.holes,
+                        r.moves_per_second, r.full_evals_per_second, r.per_cell_rate);
+        }
+    }
+    if (!json && rec.size() == 2) {
+        std::printf(
+            "per-cell ratio 16x16@8px / 32x32@21px: %.1f (target <= 4; not met: the "
+            "objective is O((n ppc)^2) per move)\n",
+            rec[0].per_cell_rate / rec[1].per_cell_rate);
+    }
+}
+
 void run(const Options& o) {
     for (int n : o.sizes) {
         if (n < 4 || n > 4096) throw invalid_field("--sizes", std::to_string(n), "must be 4..4096");
@@ -40,6 +71,7 @@ void run(const Options& o) {
                         r.full_evals_per_second, r.speedup);
         }
     }
+    print_objective(o.seconds, o.json);
 }
 
 const Registration kBenchSearch(

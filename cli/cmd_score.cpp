@@ -126,6 +126,15 @@ void run(const ScoreOptions& o, const CLI::App& cmd) {
         if (!per_scene.empty()) row["per_scene"] = per_scene;
         if (!mm.kernel_description.empty())
             explain.push_back("kernel of " + path + ": " + mm.kernel_description);
+        if (m.analytic && o.explain) {
+            const PriorRelevance pr = prior_relevance(context.prior(mm.period_px));
+            explain.push_back(
+                "prior at " + std::to_string(mm.period_px) + " px: " +
+                std::to_string(pr.irrelevant) + " of " + std::to_string(pr.total) +
+                " frequencies carry < 1e-6 of its peak power (irrelevant to the analytic error; "
+                "still summed, nothing skipped); relevant up to radius " +
+                std::to_string(pr.highest_relevant_radius) + " cycles per period");
+        }
         rows.push_back(std::move(row));
     }
     if (o.explain) {

@@ -92,6 +92,17 @@ void run(const SearchCliOptions& o, const CLI::App& cmd) {
         std::cerr << "pinmask search: interrupted; writing the best " << s.ranked.size()
                   << " candidate(s) found so far\n";
     }
+    if (o.explain) {
+        const PriorRelevance& pr = s.prior_relevance;
+        std::cerr << "explain: prior " << s.prior_description << ": " << pr.irrelevant << " of "
+                  << pr.total
+                  << " frequencies carry < 1e-6 of its peak power (irrelevant to the objective); "
+                     "relevant up to radius "
+                  << pr.highest_relevant_radius
+                  << " cycles per period. Skipped: nothing (the objective still sums every "
+                     "frequency; patterns with a spectral zero where the kernel passes light "
+                  << (p.allow_spectral_zeros ? "were kept, flagged" : "were rejected") << ")\n";
+    }
     const auto paths = write_search_outputs(o.output, s, resolved_config(o, p, s));
     if (!o.json) {
         std::cout << search_summary_markdown(s) << "wrote " << paths.size()
@@ -181,6 +192,9 @@ const Registration kSearch(50, "search", [](CLI::App& app) {
     cmd->add_option("-o,--output", o->output, "Output folder (created)")->required();
     cmd->add_flag("--json", o->json, "Print the ranking as JSON on stdout");
     cmd->add_flag("--quiet", o->quiet, "No progress line on stderr");
+    cmd->add_flag("--explain", o->explain,
+                  "Say on stderr which frequencies the prior makes irrelevant and what was "
+                  "skipped");
     cmd->add_option("--config", o->config,
                     "Settings of an earlier run (its search.config.json, or a hand-written "
                     "subset of its keys); options given here override them")

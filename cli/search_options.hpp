@@ -32,7 +32,7 @@ struct SearchCliOptions {
     double w_analytic = 1.0, w_max_sidelobe = 0.0, w_sidelobe_energy = 0.0, w_min_spectrum = 0.0;
     std::vector<std::string> rerank_scenes{"letter-R", "usaf", "siemens-star"};
     bool rerank_tv = true, no_rerank = false, allow_spectral_zeros = false, json = false,
-         quiet = false;
+         quiet = false, explain = false;
     std::string rank_by = "wiener", output, config;
 };
 

@@ -1,5 +1,7 @@
 #include "optimize/mask_metrics.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -130,6 +132,28 @@ ScenePrior make_scene_prior(const PriorSpec& spec, int m) {
         for (Plane& ch : make_scene(s, m, m).channels) planes.push_back(std::move(ch));
     }
     return scene_prior_from_images(planes, spec.description());
+}
+
+PriorRelevance prior_relevance(const ScenePrior& prior, double fraction) {
+    const Plane& S = prior.power;
+    const int rows = prior.rows(), cols = prior.cols();
+    double peak = 0.0;
+    for (int k = 0; k < rows; ++k)
+        for (int l = 0; l < cols; ++l)
+            if (k != 0 || l != 0) peak = std::max(peak, S(k, l));
+    PriorRelevance r;
+    for (int k = 0; k < rows; ++k)
+        for (int l = 0; l < cols; ++l) {
+            if (k == 0 && l == 0) continue;
+            ++r.total;
+            if (S(k, l) < fraction * peak) {
+                ++r.irrelevant;
+            } else {
+                const double fk = std::min(k, rows - k), fl = std::min(l, cols - l);
+                r.highest_relevant_radius = std::max(r.highest_relevant_radius, std::hypot(fk, fl));
+            }
+        }
+    return r;
 }
 
 NoiseLevel noise_level(const NoiseModel& model) {

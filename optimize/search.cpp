@@ -29,39 +29,6 @@ std::int64_t next_checkpoint(std::int64_t e) {
     return std::max(e + 1, static_cast<std::int64_t>(std::ceil(static_cast<double>(e) * 1.19)));
 }
 
-// The best `capacity` distinct patterns seen by one chain, best first.
-class TopList {
-  public:
-    explicit TopList(int capacity) : capacity_(static_cast<std::size_t>(capacity)) {}
-
-    double worst() const { return items_.size() < capacity_ ? INFINITY : items_.back().objective; }
-    void offer(const Pattern& p, double objective) {
-        if (objective >= worst()) return;
-        std::vector<Cell> key = sorted_pinholes(p);
-        for (const auto& it : items_) {
-            if (it.key == key) return;
-        }
-        Item item{std::move(key), p, objective};
-        const auto pos = std::upper_bound(items_.begin(), items_.end(), item,
-                                          [](const Item& a, const Item& b) { return less(a, b); });
-        items_.insert(pos, std::move(item));
-        if (items_.size() > capacity_) items_.pop_back();
-    }
-    struct Item {
-        std::vector<Cell> key;
-        Pattern pattern;
-        double objective;
-    };
-    static bool less(const Item& a, const Item& b) {
-        return a.objective < b.objective || (a.objective == b.objective && a.key < b.key);
-    }
-    const std::vector<Item>& items() const { return items_; }
-
-  private:
-    std::size_t capacity_;
-    std::vector<Item> items_;
-};
-
 struct ChainShared {
     std::atomic<std::int64_t> evaluations{0};
     std::atomic<double> best{INFINITY};
@@ -75,47 +42,55 @@ class Chain {
         : o_(o),
           obj_(obj),
           sample_(sample),
-          rng_(chain_seed(o.seed, index)),
           cancel_(cancel),
           time_up_(time_up),
           shared_(shared),
-          top_(o.top) {
+          st_{std::mt19937_64(chain_seed(o.seed, index)),
+              0,
+              INFINITY,
+              1,
+              {},
+              TopCandidates(o.top)} {
         for (const Cell& c : o.keep_out) keep_out_.push_back(c);
     }
 
     void run() {
         if (o_.strategy == SearchStrategy::kRandom) {
             while (!should_stop()) {
-                const PatternState s(sample_(rng_));
+                const PatternState s(sample_(st_.rng));
                 record(s, obj_.evaluate(s));
             }
         } else {
             while (!should_stop()) anneal_once();
         }
-        if (evaluations_ > 0 && (checkpoints_.empty() || checkpoints_.back().first != evaluations_))
-            checkpoints_.push_back({evaluations_, best_});
+        if (st_.evaluations > 0 &&
+            (st_.checkpoints.empty() || st_.checkpoints.back().first != st_.evaluations))
+            st_.checkpoints.push_back({st_.evaluations, st_.best_objective});
     }
-    const TopList& top() const { return top_; }
-    std::int64_t evaluations() const { return evaluations_; }
+    const TopCandidates& top() const { return st_.top; }
+    const ChainState& state() const { return st_; }
+    std::int64_t evaluations() const { return st_.evaluations; }
     // (evaluations, best objective so far) at the checkpoint evaluation counts.
-    const std::vector<std::pair<std::int64_t, double>>& checkpoints() const { return checkpoints_; }
+    const std::vector<std::pair<std::int64_t, double>>& checkpoints() const {
+        return st_.checkpoints;
+    }
 
   private:
     bool should_stop() const {
-        if (o_.max_evaluations > 0 && evaluations_ >= o_.max_evaluations) return true;
+        if (o_.max_evaluations > 0 && st_.evaluations >= o_.max_evaluations) return true;
         if (cancel_ && cancel_->load(std::memory_order_relaxed)) return true;
         return time_up_->load(std::memory_order_relaxed);
     }
 
     void record(const PatternState& s, double value) {
-        ++evaluations_;
-        best_ = std::min(best_, value);
-        if (evaluations_ == next_checkpoint_) {
-            checkpoints_.push_back({evaluations_, best_});
-            next_checkpoint_ = next_checkpoint(evaluations_);
+        ++st_.evaluations;
+        st_.best_objective = std::min(st_.best_objective, value);
+        if (st_.evaluations == st_.next_checkpoint) {
+            st_.checkpoints.push_back({st_.evaluations, st_.best_objective});
+            st_.next_checkpoint = next_checkpoint(st_.evaluations);
         }
-        shared_->evaluations.store(evaluations_, std::memory_order_relaxed);
-        if (value < top_.worst()) top_.offer(s.pattern(), value);
+        shared_->evaluations.store(st_.evaluations, std::memory_order_relaxed);
+        if (value < st_.top.worst()) st_.top.offer(s.pattern(), value);
         if (value < shared_->best.load(std::memory_order_relaxed)) {
             shared_->best.store(value, std::memory_order_relaxed);
         }
@@ -129,8 +104,8 @@ class Chain {
     bool propose(const PatternState& s, int& j, Cell& to) {
         std::uniform_int_distribution<int> hole(0, s.holes() - 1), cell(0, s.n() - 1);
         for (int attempt = 0; attempt < 64; ++attempt) {
-            j = hole(rng_);
-            to = {cell(rng_), cell(rng_)};
+            j = hole(st_.rng);
+            to = {cell(st_.rng), cell(st_.rng)};
             if (!blocked(to) && s.is_legal_move(j, to)) return true;
         }
         return false;
@@ -139,7 +114,7 @@ class Chain {
     // One annealing restart: a fresh random start, a geometric temperature schedule over a fixed
     // number of moves (independent of the budget, so runs are reproducible by evaluation count).
     void anneal_once() {
-        PatternState s(sample_(rng_));
+        PatternState s(sample_(st_.rng));
         double current = obj_.evaluate(s);
         record(s, current);
         // Temperature scale: mean |change| of a few trial moves (applied and reverted).
@@ -171,7 +146,7 @@ class Chain {
             s.move(j, to);
             const double v = obj_.evaluate(s);
             record(s, v);
-            if (v <= current || uniform(rng_) < std::exp((current - v) / temperature)) {
+            if (v <= current || uniform(st_.rng) < std::exp((current - v) / temperature)) {
                 current = v;
             } else {
                 s.move(j, from);
@@ -182,16 +157,11 @@ class Chain {
     const SearchOptions& o_;
     const SearchObjective& obj_;
     const std::function<Pattern(std::mt19937_64&)>& sample_;
-    std::mt19937_64 rng_;
     const std::atomic<bool>* cancel_;
     const std::atomic<bool>* time_up_;
     ChainShared* shared_;
-    TopList top_;
     std::vector<Cell> keep_out_;
-    std::int64_t evaluations_ = 0;
-    double best_ = INFINITY;
-    std::int64_t next_checkpoint_ = 1;
-    std::vector<std::pair<std::int64_t, double>> checkpoints_;
+    ChainState st_;
 };
 
 }  // namespace
@@ -312,13 +282,14 @@ SearchSummary run_search(const SearchObjective& objective, const SearchOptions& 
     sample_log();
     summary.seconds = seconds_since(t0);
 
-    std::vector<TopList::Item> all;
+    std::vector<TopCandidates::Item> all;
     for (const auto& chain : chains) {
         summary.evaluations_per_chain.push_back(chain->evaluations());
+        summary.chain_states.push_back(chain->state());
         summary.evaluations += chain->evaluations();
         for (const auto& item : chain->top().items()) all.push_back(item);
     }
-    std::sort(all.begin(), all.end(), TopList::less);
+    std::sort(all.begin(), all.end(), TopCandidates::less);
     for (const auto& item : all) {
         if (static_cast<int>(summary.ranked.size()) == options.top) break;
         const bool seen =

@@ -7,7 +7,9 @@
 // each chain made so the run can be repeated exactly with that evaluation budget.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -54,6 +56,52 @@ struct Candidate {
     std::map<std::string, double> terms;
 };
 
+// The best `capacity` distinct patterns seen by one chain, best first (ties by pattern). A plain
+// value: copyable, so a chain's state can be checkpointed or exchanged between processes.
+class TopCandidates {
+  public:
+    explicit TopCandidates(int capacity = 1) : capacity_(static_cast<std::size_t>(capacity)) {}
+
+    double worst() const { return items_.size() < capacity_ ? INFINITY : items_.back().objective; }
+    void offer(const Pattern& p, double objective) {
+        if (objective >= worst()) return;
+        std::vector<Cell> key = sorted_pinholes(p);
+        for (const auto& it : items_) {
+            if (it.key == key) return;
+        }
+        Item item{std::move(key), p, objective};
+        const auto pos = std::upper_bound(items_.begin(), items_.end(), item,
+                                          [](const Item& a, const Item& b) { return less(a, b); });
+        items_.insert(pos, std::move(item));
+        if (items_.size() > capacity_) items_.pop_back();
+    }
+    struct Item {
+        std::vector<Cell> key;  // sorted pinholes
+        Pattern pattern;
+        double objective;
+    };
+    static bool less(const Item& a, const Item& b) {
+        return a.objective < b.objective || (a.objective == b.objective && a.key < b.key);
+    }
+    const std::vector<Item>& items() const { return items_; }
+
+  private:
+    std::size_t capacity_;
+    std::vector<Item> items_;
+};
+
+// Everything a chain carries from one annealing restart (or random draw) to the next, as a plain
+// value type: its generator, counters, best-so-far log and top list. A chain can be stopped at a
+// restart boundary, its state copied (checkpoint, MPI exchange) and resumed.
+struct ChainState {
+    std::mt19937_64 rng;
+    std::int64_t evaluations = 0;
+    double best_objective = INFINITY;
+    std::int64_t next_checkpoint = 1;  // evaluation count of the next log entry
+    std::vector<std::pair<std::int64_t, double>> checkpoints;  // (evaluations, best so far)
+    TopCandidates top;
+};
+
 struct SearchLogRow {
     double seconds = 0.0;
     std::int64_t evaluations = 0;  // all chains
@@ -80,6 +128,7 @@ struct SearchSummary {
     std::vector<SearchLogRow> log;              // wall-clock samples (timings: not reproducible)
     std::vector<SearchCheckpoint> checkpoints;  // by evaluation count (reproducible)
     std::vector<std::int64_t> evaluations_per_chain;
+    std::vector<ChainState> chain_states;  // each chain's final state (a copyable value)
     std::int64_t evaluations = 0;
     double seconds = 0.0;
     SearchTermination termination = SearchTermination::kTimeBudget;

@@ -25,8 +25,9 @@ double seconds_since(Clock::time_point t0) {
 
 // At most this fraction of a time budget is held back for re-ranking.
 constexpr double kMaxRerankShare = 0.5;
-// Margin on the timed re-ranking of one pattern (timings of one decode scatter by ~10-20 %).
-constexpr double kRerankMargin = 1.25;
+// Margin on the timed re-ranking of one pattern: on a loaded machine one decode scatters by
+// tens of per cent and later candidates can cost more than the probe.
+constexpr double kRerankMargin = 2.0;
 // Decoder runs per scene of a tuned weight: golden section over 8 decades to 0.01 decade
 // (optimize/nsr_tuning: ~15 steps) plus the end points and the final decode.
 constexpr double kTunedDecodesPerScene = 18.0;
@@ -184,9 +185,11 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
     out.kernel_resolved = kernel_model_name(kernel.model);
     const ComplexPlane kernel_otf = expand_half_spectrum(kernel_spectrum(kernel, n, ppc), m);
     std::shared_ptr<const AnalyticWienerModel> model;
+    out.prior_description = o.prior.description();
     if (o.weights.analytic_wiener > 0.0) {
-        model = std::make_shared<AnalyticWienerModel>(kernel_otf, make_scene_prior(o.prior, m),
-                                                      o.noise);
+        ScenePrior prior = make_scene_prior(o.prior, m);
+        out.prior_relevance = prior_relevance(prior);
+        model = std::make_shared<AnalyticWienerModel>(kernel_otf, std::move(prior), o.noise);
     }
     const MaskObjective inner(o.weights, model, o.filter);
     const PipelineObjective objective(inner, pattern_frequencies_passed(kernel_otf, n),

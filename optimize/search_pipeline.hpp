@@ -68,6 +68,8 @@ struct SearchPipelineSummary {
     double search_s = 0.0, rerank_s = 0.0;
     double rerank_reserved_s = 0.0;  // time held back from the search for re-ranking
     int reranked = 0;                // candidates re-ranked (the rest: budget or interrupt)
+    PriorRelevance prior_relevance;  // frequencies the prior makes irrelevant (for --explain)
+    std::string prior_description;
 };
 
 // Progress: (phase "search" | "rerank", fraction 0..1, text).

@@ -130,3 +130,14 @@ TEST_CASE("search --rank-by tv: TV decides the order; --evals 0 and --rank-by bo
     CHECK(r.exit_code == 2);
     CHECK(r.err.find("--rank-by") != std::string::npos);
 }
+
+TEST_CASE("search --explain names the prior's irrelevant frequencies and what was skipped") {
+    TempDir dir("search-explain");
+    const auto r = run_cli(std::string("search") + kSmall +
+                           "--evals 20 --prior text --no-rerank --explain -o " + (dir / "run"));
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.find("explain: prior text") != std::string::npos);
+    CHECK(r.err.find("frequencies carry < 1e-6") != std::string::npos);
+    CHECK(r.err.find("Skipped:") != std::string::npos);
+}

@@ -86,6 +86,15 @@ TEST_CASE("same seed and thread count give identical results with an evaluation 
             CHECK(a.checkpoints[i].best_objective == b.checkpoints[i].best_objective);
         }
         CHECK(a.checkpoints.front().evaluations_per_chain == 1);
+        // Chain states are plain values: the same run gives equal generators and counters.
+        REQUIRE(a.chain_states.size() == 2);
+        for (std::size_t c = 0; c < 2; ++c) {
+            CHECK(a.chain_states[c].rng == b.chain_states[c].rng);
+            CHECK(a.chain_states[c].evaluations == 3000);
+            CHECK(a.chain_states[c].checkpoints == b.chain_states[c].checkpoints);
+            const ChainState copy = a.chain_states[c];
+            CHECK(copy.top.items().size() == a.chain_states[c].top.items().size());
+        }
         CHECK(a.checkpoints.back().best_objective == a.ranked.front().objective);
     }
 }
