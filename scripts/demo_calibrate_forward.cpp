@@ -40,7 +40,8 @@ Plane render(const Mask& m, const Kernel& k, double rot_deg, double scale, int m
     std::vector<Cell> open;
     for (int tr = 0; tr < m.pattern.tiles_rows; ++tr)
         for (int tc = 0; tc < m.pattern.tiles_cols; ++tc)
-            for (const Cell& c : m.pattern.pinholes) open.push_back({c.row + tr * n, c.col + tc * n});
+            for (const Cell& c : m.pattern.pinholes)
+                open.push_back({c.row + tr * n, c.col + tc * n});
     std::shuffle(open.begin(), open.end(), rng);
     open.erase(open.begin(), open.begin() + std::min<std::size_t>(missing, open.size()));
     double ky = 0, kx = 0;
@@ -107,7 +108,8 @@ int main(int argc, char** argv) try {
                 const double dx = c - 0.5 * (point.cols() - 1), dy = r - 0.5 * (point.rows() - 1);
                 const double u = (std::cos(t) * dx + std::sin(t) * dy) / p;
                 const double v = (-std::sin(t) * dx + std::cos(t) * dy) / p;
-                if (std::abs(u) <= 0.5 * mc && std::abs(v) <= 0.5 * mr) point(r, c) += leak / (p * p);
+                if (std::abs(u) <= 0.5 * mc && std::abs(v) <= 0.5 * mr)
+                    point(r, c) += leak / (p * p);
             }
     }
     point *= 1000.0;  // counts
