@@ -24,6 +24,9 @@ void check_range(const char* field, double v, double lo, double hi, const char* 
 constexpr double kDeg = 180.0 / std::numbers::pi;
 // Pixels outside the mask's footprint needed to measure the dark level there.
 constexpr int kMinDarkPixels = 1000;
+// Half-width of the kernel window, in cells: wide enough for the diffraction tails of a Fresnel
+// kernel (N ~ 1) whose neighbours, 2 cells away at the closest, the per-pixel median rejects.
+constexpr double kKernelHalfCells = 2.0;
 
 struct Pass {
     std::vector<Spot> spots;
@@ -229,7 +232,7 @@ CalibrationSummary calibrate_point_source(const Plane& capture, const std::optio
             fluxes.push_back(s.spots[r.spot].flux);
         }
     const double pitch = 0.5 * (s.pitch_x_px + s.pitch_y_px);
-    s.kernel = estimate_kernel(clean, centres, fluxes, static_cast<int>(std::lround(pitch)));
+    s.kernel = estimate_kernel(clean, centres, fluxes, static_cast<int>(std::lround(kKernelHalfCells * pitch)));
     s.kernel_fit = compare_kernel_models(s.kernel.values, mask.camera,
                                          std::max(1, static_cast<int>(std::lround(design_pitch))));
     s.best_model = best_model(s.kernel_fit);

@@ -28,6 +28,10 @@ double median_of(std::vector<double> values);
 struct SpotOptions {
     double threshold_sigmas = 6.0;  // detection threshold on the 3 x 3 mean, in noise sigmas
     int min_area_px = 3;            // smaller components are noise
+    // Second threshold relative to the spots: background + this fraction of the median spot
+    // peak (3 x 3 mean) above background, when higher than the noise threshold. Keeps the
+    // diffraction tails of neighbouring spots (Fresnel kernels) from joining them at high SNR.
+    double relative_threshold = 0.25;
     double saturation_level = std::numeric_limits<double>::infinity();  // raw counts
     // The raw capture the saturation level applies to (before a dark frame was subtracted);
     // null: the image searched.
@@ -43,7 +47,8 @@ struct Spot {
     bool saturated = false;                      // a pixel >= saturation_level
 };
 
-// Spots in scan order of their first pixel.
+// Spots in scan order of their first pixel. Two passes: components above the noise threshold
+// give the median peak; the components above the higher of the two thresholds are the spots.
 std::vector<Spot> detect_spots(const Plane& image, const Background& background,
                                const SpotOptions& options = {});
 

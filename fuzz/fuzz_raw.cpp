@@ -1,7 +1,7 @@
 // Fuzzes the camera RAW reader (core/raw_io read_raw through LibRaw) in every Bayer mode, through
 // a scratch .dng file. An accepted image must be consistent: one channel of a positive size
 // within kMaxImageSamples, finite values, a positive full scale. Seeds: fuzz/corpus/raw/
-// (tests/bad-inputs/generate_raw.py writes the DNG seed).
+// (tests/bad-inputs/generate.py writes the DNG seed).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>

@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "design/camera.hpp"
 #include "design/families.hpp"
+#include "design/psf.hpp"
 #include "tests/calibrate/point_source_model.hpp"
 
 using namespace pinmask;
@@ -227,4 +228,62 @@ TEST_CASE("calibrate: bad captures are refused with a reason") {
         CAPTURE(m);
         CHECK(m.find("max-rotation") != std::string::npos);
     }
+}
+
+TEST_CASE("calibrate: two spots run together are reported merged, not missing") {
+    // Find a mask with two pinholes two cells apart in one row (the closest the spacing rule
+    // allows) and bridge them with light through the closed cell between (a film defect).
+    for (unsigned seed = 1; seed < 50; ++seed) {
+        const Mask mask = paper_mask(seed);
+        std::set<Cell> open(mask.pattern.pinholes.begin(), mask.pattern.pinholes.end());
+        Cell a{-1, -1};
+        for (const Cell& c : mask.pattern.pinholes)
+            if (c.col + 2 < mask.pattern.n && open.count({c.row, c.col + 2})) a = c;
+        if (a.row < 0) continue;
+        PointSourceScene s = scene_for(mask);
+        s.x0 = 24.4;
+        s.y0 = 25.2;
+        s.snr_db = 35;
+        s.spot_px = 8.0;
+        PointSourceScene bridge = s;
+        bridge.pattern.pinholes = {{a.row, a.col + 1}};
+        bridge.pattern.tiles_rows = bridge.pattern.tiles_cols = 1;
+        bridge.snr_db = 300;
+        const Plane capture = test::point_source_capture(s) + test::point_source_spots(bridge);
+        const CalibrationSummary r = calibrate_point_source(capture, std::nullopt, mask);
+        const std::set<Cell> merged(r.merged.begin(), r.merged.end());
+        CHECK(merged == std::set<Cell>{a, {a.row, a.col + 2}});
+        CHECK(r.missing.empty());
+        CHECK(r.match.extra_spots.empty());
+        return;
+    }
+    FAIL("no test mask with two pinholes two cells apart in a row");
+}
+
+TEST_CASE("calibrate: the one-period cyclic PSF matches design/psf when the geometry is exact") {
+    // No rotation, the design's 8 px pitch, box spots of one cell: the period PSF must be the
+    // design's (design/psf synthesis, a separate code path), up to noise and the kernel estimate.
+    const Mask mask = paper_mask(12);
+    PointSourceScene s = scene_for(mask);
+    s.x0 = 27.5;  // the design's kernel centre (ppc/2 - 1/2) plus 3 cells
+    s.y0 = 27.5;
+    s.spot_px = 8.0;
+    s.blur_px = 0.05;
+    s.snr_db = 40;
+    const CalibrationSummary r =
+        calibrate_point_source(test::point_source_capture(s), std::nullopt, mask);
+    REQUIRE(r.psfs.period.has_value());
+    REQUIRE(r.psfs.period->rows() == 128);
+    REQUIRE(r.psfs.period->cols() == 128);
+    CHECK(r.psfs.period->sum() == doctest::Approx(1.0));
+    const Plane design = mask_psf(mask);
+    const double corr = test::normalised_correlation(*r.psfs.period, design);
+    CAPTURE(corr);
+    CHECK(corr >= kPsfCorrelationMin);
+    // A rotation of 0.5 deg drifts 1.1 px over one period: no cyclic PSF, and the reason says so.
+    s.rotation_deg = 0.5;
+    const CalibrationSummary rot =
+        calibrate_point_source(test::point_source_capture(s), std::nullopt, mask);
+    CHECK(!rot.psfs.period.has_value());
+    CHECK(rot.psfs.period_reason.find("drifts") != std::string::npos);
 }
