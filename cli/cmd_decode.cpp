@@ -23,6 +23,7 @@
 #include "core/units.hpp"
 #include "decode/capture.hpp"
 #include "decode/period.hpp"
+#include "design/working_distance.hpp"
 #include "decode/preprocess.hpp"
 #include "design/mask.hpp"
 #include "design/psf.hpp"
@@ -68,7 +69,13 @@ LoadedPsf load_psf(const DecodeRequest& r, bool need_counts) {
                                 "needs a measured PSF (--psf): a PSF synthesised from a mask "
                                 "has no camera background");
         }
-        const Mask mask = io::read_mask_file(r.mask);
+        Mask mask = io::read_mask_file(r.mask);
+        if (r.object_distance) {  // refocus: the PSF for an object at u (issue 12)
+            const double u =
+                parse_length_m(*r.object_distance, "--object-distance", AllowInfinity::kYes);
+            check_object_distance(mask.camera, u, "--object-distance");
+            mask = mask_at_distance(mask, u);
+        }
         p.image = Image(mask_psf(mask));
         p.info = {{"source", "mask"},
                   {"path", r.mask},
@@ -349,6 +356,10 @@ void setup(CLI::App& app) {
                                 "PSF file (float TIFF or .npy, with its sidecar when present)");
     mask->excludes(psf);
     psf->excludes(mask);
+    cmd->add_option("--object-distance", o->object_distance,
+                    "With --mask: decode with the PSF for an object at this distance (e.g. 2m, "
+                    "inf; refocusing after capture): kernel and whole pixels per cell at u")
+        ->needs(mask);
     cmd->add_option("--dark", o->dark,
                     "Dark frame (capture through an all-opaque film), subtracted first; same size");
     cmd->add_option("--crop", o->crop,

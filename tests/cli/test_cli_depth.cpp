@@ -134,3 +134,32 @@ TEST_CASE("depth -o DIR writes the plot (SVG + PNG) and the records; bad input e
     refused("--distances 6m --snr loud", "--snr");
     refused("--distances 6m --scenes nope", "nope");
 }
+
+TEST_CASE("decode --object-distance refocuses: the PSF for that distance (whole pixels at u)") {
+    TempDir dir("refocus");
+    const std::string cam =
+        "--pixel-pitch 3.45um --sensor 1024x1024 --lens-focal 25mm --sensor-distance 20mm "
+        "--object-distance 2m --wavelength 530nm --pinhole 345um";
+    const std::string mask = (dir / "m.mask.json");
+    REQUIRE(run_cli("generate " + cam + " --seed 2 -o " + mask).exit_code == 0);
+    // At 1 m the pitch is 345 um x (1 - 20/25 + 20/1000) / 3.45 um = 22 px exactly (21 at 2 m).
+    const std::string cap = (dir / "c.npy");
+    REQUIRE(
+        run_cli("simulate " + mask + " --geometry exact --object-distance 1m --snr inf -o " + cap)
+            .exit_code == 0);
+    auto psf_rows = [&](const std::string& extra) {
+        const std::string stats = (dir / "s.json");
+        const auto r = run_cli("decode " + cap + " --mask " + mask + " -o " + (dir / "d.npy") +
+                               " --stats " + stats + extra);
+        INFO(r.err);
+        REQUIRE(r.exit_code == 0);
+        return nlohmann::json::parse(test::slurp(stats))["psf"]["rows"].get<int>();
+    };
+    CHECK(psf_rows("") == 16 * 21);
+    CHECK(psf_rows(" --object-distance 1m") == 16 * 22);
+    const auto bad = run_cli("decode " + cap + " --mask " + mask + " -o " + (dir / "x.npy") +
+                             " --object-distance 1cm");
+    CHECK(bad.exit_code == 2);
+    CHECK(contains(bad.err, "--object-distance"));
+    CHECK_FALSE(fs::exists(dir / "x.npy"));
+}
