@@ -77,6 +77,12 @@ void run(const DesignOptions& o) {
     std::string solved;
     if (o.pixels_per_cell || !o.solve.empty()) {
         const WorkingDistance start = compute_working_distance(camera, geometry, wo);
+        if (start.pixels_per_cell > kMaxPixelsPerCell) {
+            throw invalid_field("--solve", "pinhole",
+                                "the pitch at u is " + std::to_string(start.pixels_per_cell) +
+                                    " px per cell, above the " + std::to_string(kMaxPixelsPerCell) +
+                                    " px limit");
+        }
         camera.pinhole_m = pinhole_for_pixels_per_cell(camera, start.pixels_per_cell);
         wo.pixels_per_cell = static_cast<int>(start.pixels_per_cell);
         solved = "solved: the pinhole d above is set to give exactly N at u";
