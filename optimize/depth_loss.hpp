@@ -6,10 +6,11 @@
 //   reference PSNR: the cyclic capture scene (*) A (the decoder's own model) with the same noise
 //                   draw, decoded the same way;
 //   exact PSNR:     on an even window holding the tiled mask's spots and the scene (the axis on a
-//                   pixel corner), the centred m x m crop of the exact capture (the decoder's default window),
-//                   decoded; the scene then appears cyclically shifted (its centre sits on the
-//                   optical axis, not on the crop's centre), so both decodes are compared with the
-//                   scene after the integer cyclic shift that maximises their correlation;
+//                   pixel corner), the centred m x m crop of the exact capture (the decoder's
+//                   default window), decoded; the scene then appears cyclically shifted (its centre
+//                   sits on the optical axis, not on the crop's centre), so both decodes are
+//                   compared with the scene after the integer cyclic shift that maximises their
+//                   correlation;
 //   loss = reference PSNR - exact PSNR, dB, averaged over the scenes.
 // Noise: Gaussian at snr_db from each capture's own mean square (inf: noiseless), one seeded draw
 // per scene shared by both captures.
