@@ -5,10 +5,14 @@
 
 #include "core/error.hpp"
 #include "core/units.hpp"
+#include "io/camera_json.hpp"
 
 namespace pinmask::cli {
 
 void add_camera_options(CLI::App& cmd, CameraOptions& o) {
+    cmd.add_option("--camera", o.camera_file,
+                   "Camera file (*.camera.json, e.g. from design --save-camera) used instead of "
+                   "the preset; camera flags given beside it override its values");
     cmd.add_option("--preset", o.preset,
                    "Camera preset: paper (u 6m, f' 120mm, f 55mm, d 440um, "
                    "w 30um, 720x480, 550nm)")
@@ -25,7 +29,8 @@ void add_camera_options(CLI::App& cmd, CameraOptions& o) {
 }
 
 Camera resolve_camera(const CameraOptions& o) {
-    Camera c = o.base ? *o.base : paper_camera();  // paper: the only preset so far
+    Camera c = o.camera_file ? io::read_camera_file(*o.camera_file)
+                             : (o.base ? *o.base : paper_camera());  // paper: the only preset
     if (o.lens_focal)
         c.lens_focal_m = parse_length_m(*o.lens_focal, "--lens-focal", AllowInfinity::kYes);
     if (o.sensor_distance)
@@ -63,6 +68,22 @@ Camera resolve_camera(const CameraOptions& o) {
         throw;
     }
     return c;
+}
+
+std::vector<CameraInput> camera_inputs(const CameraOptions& o, const Camera& c) {
+    const std::string base =
+        o.camera_file ? "camera file" : (o.base ? "config" : "paper preset default");
+    auto from = [&](const std::optional<std::string>& flag) { return flag ? "flag" : base; };
+    return {
+        {"d (pinhole)", format_length(c.pinhole_m), from(o.pinhole)},
+        {"lambda (wavelength)", format_length(c.wavelength_m), from(o.wavelength)},
+        {"f (lens to sensor)", format_length(c.sensor_distance_m), from(o.sensor_distance)},
+        {"f' (lens focal)", format_length(c.lens_focal_m), from(o.lens_focal)},
+        {"u (object distance)", format_length(c.object_distance_m), from(o.object_distance)},
+        {"w (pixel pitch)", format_length(c.pixel_pitch_m), from(o.pixel_pitch)},
+        {"sensor", std::to_string(c.sensor_cols) + " x " + std::to_string(c.sensor_rows) + " px",
+         from(o.sensor)},
+    };
 }
 
 void add_geometry_options(CLI::App& cmd, GeometryOptions& o) {

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "design/camera.hpp"
 
@@ -13,16 +14,28 @@ namespace pinmask::cli {
 struct CameraOptions {
     std::string preset = "paper";
     std::optional<Camera> base;  // used instead of the preset (search --config's "optics")
+    std::optional<std::string> camera_file;  // --camera FILE (*.camera.json): replaces the preset
     std::optional<std::string> lens_focal, sensor_distance, object_distance, wavelength,
         pixel_pitch, pinhole, sensor;
 };
 
-// --preset, --lens-focal, --sensor-distance, --object-distance, --wavelength, --pixel-pitch,
+// --camera FILE, --preset, --lens-focal, --sensor-distance, --object-distance, --wavelength,
+// --pixel-pitch,
 // --pinhole, --sensor WxH.
 void add_camera_options(CLI::App& cmd, CameraOptions& o);
 
-// The preset with the overrides applied, validated (InvalidInput naming the flag).
+// The preset (or --camera FILE, or `base`) with the flag overrides applied, validated
+// (InvalidInput naming the flag).
 Camera resolve_camera(const CameraOptions& o);
+
+// One input of the camera for reports: symbol, value as typed for people, and where it came
+// from: "flag", "camera file", "config" or "paper preset default".
+struct CameraInput {
+    std::string symbol;
+    std::string value;
+    std::string source;
+};
+std::vector<CameraInput> camera_inputs(const CameraOptions& o, const Camera& resolved);
 
 struct GeometryOptions {
     int grid = 16;         // n

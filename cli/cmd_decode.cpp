@@ -21,6 +21,8 @@
 #include "core/raw_io.hpp"
 #include "decode/capture_pipeline.hpp"
 #include "decode/decode_method.hpp"
+#include "core/units.hpp"
+#include "design/working_distance.hpp"
 #include "design/mask.hpp"
 #include "design/psf.hpp"
 #include "io/mask_json.hpp"
@@ -72,7 +74,13 @@ CaptureDecodeInputs load_inputs(const DecodeRequest& r, BayerMode bayer, bool ne
                                 "needs a measured PSF (--psf): a PSF synthesised from a mask "
                                 "has no camera background");
         }
-        const Mask mask = io::read_mask_file(r.mask);
+        Mask mask = io::read_mask_file(r.mask);
+        if (r.object_distance) {  // refocus: the PSF for an object at u (issue 12)
+            const double u =
+                parse_length_m(*r.object_distance, "--object-distance", AllowInfinity::kYes);
+            check_object_distance(mask.camera, u, "--object-distance");
+            mask = mask_at_distance(mask, u);
+        }
         in.psf = Image(mask_psf(mask));
         info = {{"source", "mask"},
                 {"path", r.mask},

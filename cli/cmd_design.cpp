@@ -4,6 +4,7 @@
 // written as JSON null with the reason under "notes" (key -> text).
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -21,6 +22,7 @@
 #include "design/kernel.hpp"
 #include "design/optics.hpp"
 #include "design/working_distance.hpp"
+#include "io/camera_json.hpp"
 #include "io/json_strict.hpp"
 
 namespace pinmask::cli {
@@ -33,6 +35,7 @@ struct DesignOptions {
     double lsi_tolerance_px = 1.0;
     std::optional<int> pixels_per_cell;  // solve the pinhole for N whole pixels per cell at u
     std::string solve;                   // "pinhole": N = the nearest whole number at u
+    std::string save_camera;             // write the resolved (solved) camera here
     bool json = false;
 };
 
@@ -62,6 +65,17 @@ void run(const DesignOptions& o) {
                             "must be finite and > 0 (0 or less gives an empty object-distance "
                             "range)");
     }
+    if (!o.save_camera.empty()) {
+        const std::filesystem::path out(o.save_camera), dir = out.parent_path();
+        if (!dir.empty() && !std::filesystem::is_directory(dir)) {
+            throw invalid_field("--save-camera", o.save_camera, "its folder does not exist");
+        }
+        if (o.camera.camera_file && std::filesystem::exists(out) &&
+            std::filesystem::equivalent(out, *o.camera.camera_file)) {
+            throw invalid_field("--save-camera", o.save_camera,
+                                "is the --camera input: refusing to overwrite an input");
+        }
+    }
     if (!o.solve.empty() && o.solve != "pinhole") {
         throw invalid_field("--solve", o.solve, "must be 'pinhole'");
     }
@@ -78,6 +92,12 @@ void run(const DesignOptions& o) {
     std::string solved;
     if (o.pixels_per_cell || !o.solve.empty()) {
         const WorkingDistance start = compute_working_distance(camera, geometry, wo);
+        if (start.pixels_per_cell > kMaxPixelsPerCell) {
+            throw invalid_field("--solve", "pinhole",
+                                "the pitch at u is " + std::to_string(start.pixels_per_cell) +
+                                    " px per cell, above the " + std::to_string(kMaxPixelsPerCell) +
+                                    " px limit");
+        }
         camera.pinhole_m = pinhole_for_pixels_per_cell(camera, start.pixels_per_cell);
         wo.pixels_per_cell = static_cast<int>(start.pixels_per_cell);
         solved = "solved: the pinhole d above is set to give exactly N at u";
@@ -87,12 +107,17 @@ void run(const DesignOptions& o) {
     if (!validity.model_accurate) r.kernel_reason = "NOT accurate: " + validity.warnings.front();
     for (const auto& w : validity.warnings) std::cerr << "pinmask: warning: " << w << "\n";
     const WorkingDistance wd = compute_working_distance(camera, geometry, wo);
+    std::vector<CameraInput> inputs = camera_inputs(o.camera, camera);
+    if (!solved.empty()) inputs[0].source = "solved for N px per cell at u";
+    if (!o.save_camera.empty()) io::write_camera_file(o.save_camera, camera);
     if (o.json) {
         auto j = design_json(r, wd);
         j["kernel_warnings"] = validity.warnings;
+        for (const CameraInput& in : inputs) j["input_sources"][in.symbol] = in.source;
         std::cout << io::json_strict::pretty(j) << "\n";
     } else {
-        std::cout << design_table(r, wd, solved);
+        std::cout << design_table(r, wd, solved, inputs);
+        if (!o.save_camera.empty()) std::cerr << "wrote " << o.save_camera << "\n";
     }
 }
 
@@ -134,6 +159,9 @@ void setup(CLI::App& app) {
                     "pinhole: solve d for the whole number of pixels per cell nearest to the "
                     "pitch at u of the given (or preset) pinhole")
         ->check(CLI::IsMember({"pinhole"}));
+    cmd->add_option("--save-camera", o->save_camera,
+                    "Write the camera used (with a solved pinhole) as a *.camera.json file, for "
+                    "--camera FILE of any command");
     cmd->add_flag("--json", o->json, "Print the report as one JSON object on stdout");
     cmd->callback([o] { run(*o); });
 }

@@ -54,6 +54,10 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeRequest& o) {
                                "PSF file (float TIFF or .npy, with its sidecar when present)");
     mask->excludes(psf);
     psf->excludes(mask);
+    cmd.add_option("--object-distance", o.object_distance,
+                   "With --mask: decode with the PSF for an object at this distance (e.g. 2m, "
+                   "inf; refocusing after capture): kernel and whole pixels per cell at u")
+        ->needs(mask);
     cmd.add_option("--dark", o.dark,
                    "Dark frame (capture through an all-opaque film), subtracted first; same size");
     cmd.add_option("--crop", o.crop,

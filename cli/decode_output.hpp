@@ -25,6 +25,8 @@ namespace pinmask::cli {
 // Every flag of `pinmask decode`, with its default (see --help for meanings and units).
 struct DecodeRequest {
     std::string capture, mask, psf, dark;
+    // --object-distance: refocus the mask's PSF to an object at this distance.
+    std::optional<std::string> object_distance;
     std::string crop = "center";    // center | none | X,Y
     std::string method = "wiener";  // decode/decode_method.hpp names
     std::string model = "cyclic";

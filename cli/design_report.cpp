@@ -118,7 +118,7 @@ std::string regime_text(const OpticsReport& r, const WorkingDistance& wd) {
 }  // namespace
 
 std::string design_table(const OpticsReport& r, const WorkingDistance& wd,
-                         const std::string& solved) {
+                         const std::string& solved, const std::vector<CameraInput>& inputs) {
     const Camera& c = r.camera;
     const std::string at_u = "u = " + length(c.object_distance_m);
     std::vector<std::vector<std::string>> rows = {
@@ -186,6 +186,9 @@ std::string design_table(const OpticsReport& r, const WorkingDistance& wd,
         s << a << std::string(w0 + 2 - a.size(), ' ') << b << std::string(w1 + 2 - b.size(), ' ')
           << n << "\n";
     };
+    line("input", "value", "from");
+    for (const CameraInput& in : inputs) line(in.symbol, in.value, in.source);
+    s << "\n";
     line("quantity", "value", "note");
     for (const auto& row : rows) line(row[0], row[1], row[2]);
     return s.str();

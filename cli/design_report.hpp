@@ -3,7 +3,9 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
+#include "cli/camera_options.hpp"
 #include "design/optics.hpp"
 #include "design/working_distance.hpp"
 
@@ -13,8 +15,9 @@ namespace pinmask::cli {
 // keys), "notes" (key -> why a value is null).
 nlohmann::ordered_json design_json(const OpticsReport& r, const WorkingDistance& wd);
 
-// The table (quantity, value, note); `solved` non-empty says the pinhole was solved for N at u.
+// The table (quantity, value, note), after the inputs used (symbol, value, source); `solved`
+// non-empty says the pinhole was solved for N at u.
 std::string design_table(const OpticsReport& r, const WorkingDistance& wd,
-                         const std::string& solved);
+                         const std::string& solved, const std::vector<CameraInput>& inputs);
 
 }  // namespace pinmask::cli

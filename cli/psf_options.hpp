@@ -21,8 +21,8 @@ struct PsfOptions {
 void add_psf_options(CLI::App& cmd, PsfOptions& o);
 
 // The PsfSpec for these flags: pixels per cell as given, else the nearest integer to the pitch
-// at the camera's object distance u (InvalidInput when that is below 1, naming the flag to set); kernel flags checked for
-// consistency (measured needs --kernel-path and only it takes one).
+// at the camera's object distance u (InvalidInput when that is below 1, naming the flag to set);
+// kernel flags checked for consistency (measured needs --kernel-path and only it takes one).
 PsfSpec resolve_psf_spec(const PsfOptions& o, const Camera& c);
 
 }  // namespace pinmask::cli

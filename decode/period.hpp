@@ -100,8 +100,8 @@ struct PeriodCheck {
 // lag when it is as strong as the strongest repeat (kSubharmonicFraction), else the strongest.
 // An axis is skipped (with the reason) when the capture holds fewer than two periods along it
 // (a single period has no repeat to measure), or when no repeat rises above min_rise at all
-// (nothing to compare: not a contradiction of the PSF). Throws InvalidInput for an empty or non-finite
-// capture, an expected size < 1 or options out of range.
+// (nothing to compare: not a contradiction of the PSF). Throws InvalidInput for an empty or
+// non-finite capture, an expected size < 1 or options out of range.
 PeriodCheck check_period(const Plane& capture, int expected_rows, int expected_cols,
                          const PeriodCheckOptions& options = {});
 

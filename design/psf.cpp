@@ -132,8 +132,19 @@ ComplexPlane psf_otf(const Pattern& p, const Kernel& k, int ppc) {
 Kernel mask_kernel(const Mask& mask, KernelOptions options) {
     const int ppc = mask.psf.pixels_per_cell;
     check_psf_memory(mask.pattern.n, ppc, 0, 0);
-    options.max_width_px = std::min(options.max_width_px, torus_side(mask.pattern.n, ppc));
-    return make_kernel(mask.camera, mask.psf.kernel, ppc, options);
+    const int side = torus_side(mask.pattern.n, ppc);
+    options.max_width_px = std::min(options.max_width_px, side);
+    Kernel k = make_kernel(mask.camera, mask.psf.kernel, ppc, options);
+    if (k.values.rows() > side || k.values.cols() > side) {  // a table or image: not cut to fit
+        throw invalid_field(
+            "kernel",
+            std::to_string(k.values.rows()) + " x " + std::to_string(k.values.cols()) + " px",
+            "exceeds the period of " + std::to_string(side) + " x " + std::to_string(side) +
+                " px (grid " + std::to_string(mask.pattern.n) + " x " + std::to_string(ppc) +
+                " px per cell): it would fold onto itself; use a smaller kernel "
+                "image or a larger grid");
+    }
+    return k;
 }
 
 Plane mask_psf(const Mask& mask, const KernelOptions& options) {

@@ -50,7 +50,8 @@ ComplexPlane combine_spectra(const ComplexPlane& pattern_full, const ComplexPlan
 ComplexPlane psf_otf(const Pattern& pattern, const Kernel& kernel, int pixels_per_cell);
 
 // The mask's kernel: make_kernel(camera, psf.kernel, psf.pixels_per_cell, options) with the support
-// capped at the torus side N (a wider support would only fold onto itself).
+// capped at the torus side N (a wider support would only fold onto itself). A kernel that cannot
+// be capped (a measured image, the paper's table) and is wider than N: InvalidInput naming both.
 Kernel mask_kernel(const Mask& mask, KernelOptions options = {});
 
 // synthesize_psf with mask_kernel.

@@ -74,6 +74,16 @@ double pinhole_for_pixels_per_cell(const Camera& c, long long n_px) {
     return static_cast<double>(n_px) * c.pixel_pitch_m / std::fabs(m);
 }
 
+Mask mask_at_distance(const Mask& mask, double u) {
+    validate(mask.camera);
+    check_object_distance(mask.camera, u, "object_distance_m");
+    Mask out = mask;
+    out.camera.object_distance_m = u;
+    const double pitch = pixels_per_cell_at(out.camera, u);
+    out.psf.pixels_per_cell = static_cast<int>(std::clamp(std::round(pitch), 1.0, 65536.0));
+    return out;
+}
+
 WorkingDistance compute_working_distance(const Camera& c, const PatternGeometry& g,
                                          const WorkingDistanceOptions& o) {
     validate(c);

@@ -20,6 +20,7 @@
 #pragma once
 
 #include "design/camera.hpp"
+#include "design/mask.hpp"
 #include "design/optics.hpp"
 
 namespace pinmask {
@@ -65,6 +66,11 @@ double pixels_per_cell_at(const Camera& camera, double object_distance_m);
 // d(N, u) at the camera's u; InvalidInput when M(u) = 0 (f = f' with u = inf: z_eff infinite,
 // every pinhole images to the same spot) or N < 1.
 double pinhole_for_pixels_per_cell(const Camera& camera, long long pixels_per_cell);
+
+// The mask refocused to object distance u (decode --object-distance): the camera's u set to u,
+// pixels per cell the nearest whole number to pitch(u) (at least 1), kernel unchanged (its models
+// evaluate at the camera's u). InvalidInput for an object inside the focal length.
+Mask mask_at_distance(const Mask& mask, double object_distance_m);
 
 // Everything above for the camera at its u; validates camera, geometry, options and the object
 // distance (InvalidInput naming the field).

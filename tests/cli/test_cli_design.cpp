@@ -185,3 +185,36 @@ TEST_CASE("design working-distance edge cases exit 2 with a message") {
     CHECK(run_cli("design --lens-focal 55mm --object-distance 6m --pixels-per-cell 8").exit_code ==
           0);
 }
+
+TEST_CASE("design --save-camera writes a camera file; --camera reads it; flags override it") {
+    pinmask::test::TempDir dir("camera-file");
+    const std::string file = dir / "my.camera.json";
+    const auto saved =
+        run_cli("design " + kIssueCamera + " --pixels-per-cell 21 --save-camera " + file);
+    INFO(saved.err);
+    REQUIRE(saved.exit_code == 0);
+    CHECK(contains(saved.out, "solved for N px per cell at u"));
+    CHECK(contains(saved.out, "flag"));
+    // Read back: the solved pinhole, the file as the source, a flag overriding u.
+    const auto j = design_json("--camera " + file + " --object-distance 3m");
+    CHECK(std::fabs(j["camera"]["pinhole_m"].get<double>() / 345.0e-6 - 1.0) <= kIssueRel);
+    CHECK(j["camera"]["object_distance_m"] == 3.0);
+    CHECK(j["input_sources"]["d (pinhole)"] == "camera file");
+    CHECK(j["input_sources"]["u (object distance)"] == "flag");
+    // Without flags or file, the inputs are marked as the paper preset's defaults.
+    const auto preset = run_cli("design");
+    CHECK(contains(preset.out, "paper preset default"));
+    // Other commands take the file too.
+    const auto gen = run_cli("generate --camera " + file + " --seed 1 -o " + (dir / "m.mask.json"));
+    CHECK(gen.exit_code == 0);
+    // Bad input: missing file, a folder that does not exist, overwriting the input.
+    auto refused = [&](const std::string& args, const std::string& says) {
+        const auto r = run_cli("design " + args);
+        INFO(args << " -> " << r.err);
+        CHECK(r.exit_code == 2);
+        CHECK(contains(r.err, says));
+    };
+    refused("--camera " + (dir / "nope.camera.json"), "nope.camera.json");
+    refused("--save-camera " + (dir / "no/such.camera.json"), "--save-camera");
+    refused("--camera " + file + " --save-camera " + file, "overwrite");
+}

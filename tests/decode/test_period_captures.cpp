@@ -84,8 +84,8 @@ TEST_CASE("period check: no false warning on simulated captures of three cameras
         int period = 0;
         const Plane capture = simulated(k, period, k.camera);
         const PeriodCheck check = check_period(capture, period, period);
-        INFO(k.name << ": period " << period << ", measured " << check.rows.measured_px << " x "
-                    << check.cols.measured_px);
+        INFO(std::string(k.name) << ": period " << period << ", measured " << check.rows.measured_px
+                                 << " x " << check.cols.measured_px);
         CHECK(check.checked());
         CHECK(check.matches());
     }
@@ -99,8 +99,8 @@ TEST_CASE("period check: a pitch 1 % or more off is reported with both figures")
         for (double factor : {1.015, 1 / 1.015}) {
             const int expected = static_cast<int>(std::round(period * factor));
             const PeriodCheck check = check_period(capture, expected, expected);
-            INFO(k.name << ": true " << period << ", expected " << expected << ", measured "
-                        << check.cols.measured_px);
+            INFO(std::string(k.name) << ": true " << period << ", expected " << expected
+                                     << ", measured " << check.cols.measured_px);
             CHECK_FALSE(check.matches());
             for (const AxisPeriodCheck* a : {&check.rows, &check.cols}) {
                 if (!a->checked) continue;

@@ -6,8 +6,10 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "core/image_io.hpp"
 #include "design/psf.hpp"
 #include "design/psf_exact.hpp"
+#include "tests/support/cli_run.hpp"
 #include "tests/support/close.hpp"
 
 using namespace pinmask;
@@ -108,4 +110,23 @@ TEST_CASE("exact geometry: edge cases refused") {
     o.rows = 0;
     m.pattern.pinholes.clear();
     CHECK_THROWS_AS(exact_psf(m, o), InvalidInput);
+}
+
+TEST_CASE("a measured kernel wider than the period is refused, naming both sizes") {
+    Mask m = spaced_mask();
+    m.pattern.n = 4;
+    m.pattern.pinholes = {{0, 0}, {2, 2}};
+    m.psf.pixels_per_cell = 2;  // period 8 px
+    const Plane big = Plane::Constant(9, 9, 1.0);
+    test::TempDir dir("wide-kernel");
+    const std::string path = dir / "k.npy";
+    write_image(path, Image(big));
+    m.psf.kernel.model = "measured";
+    m.psf.kernel.measured_path = path;
+    try {
+        mask_kernel(m);
+        FAIL("accepted");
+    } catch (const InvalidInput& e) {
+        CHECK(std::string(e.what()).find("exceeds the period of 8 x 8") != std::string::npos);
+    }
 }
