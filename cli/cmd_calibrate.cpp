@@ -113,7 +113,9 @@ void run(CalibrateCommandOptions& o) {
     fs::create_directory(stage);
     try {
         io::PsfSidecar side = io::psf_sidecar_for(cal, kernel, o.mask);
-        io::write_psf_files(stage / "psf.tiff", s.psfs.full_frame, side, false);
+        io::PsfSidecar full = side;
+        full.geometry = "full-frame";
+        io::write_psf_files(stage / "psf.tiff", s.psfs.full_frame, full, false);
         if (s.psfs.period)
             io::write_psf_files(stage / "psf-period.tiff", *s.psfs.period, side, false);
         write_image(stage / "kernel.tiff", Image(s.kernel.values));

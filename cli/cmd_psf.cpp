@@ -103,6 +103,7 @@ void run(const PsfCommandOptions& o) {
     for (const auto& w : validity.warnings) std::cerr << "pinmask: warning: " << w << "\n";
 
     io::PsfSidecar s = io::psf_sidecar_for(mask, kernel, o.mask);
+    if (exact) s.geometry = "full-frame";  // a linear PSF of the sensor, not one period
     const auto written = io::write_psf_files(o.output, psf, s, o.npy);
 
     s.rows = static_cast<int>(psf.rows());

@@ -43,15 +43,19 @@ void check_consistent(const PsfSidecar& s) {
              std::to_string(s.pixels_per_cell) + " exceeds " + std::to_string(kMaxPixelsPerCell));
     }
     if (!std::isfinite(s.pixel_pitch_m)) fail("pixel_pitch_m", "must be finite");
+    if (s.geometry != "cyclic" && s.geometry != "full-frame")
+        fail("geometry", "'" + s.geometry + "' must be cyclic or full-frame");
     const long long side = static_cast<long long>(s.grid_n) * s.pixels_per_cell;
-    if (s.rows != side || s.cols != side) {
+    if (s.geometry == "cyclic" && (s.rows != side || s.cols != side)) {
         fail("size_px", "[" + std::to_string(s.rows) + ", " + std::to_string(s.cols) +
                             "] must be grid_n x pixels_per_cell = " + std::to_string(side) +
                             " per side: the PSF of one period");
     }
     const KernelModel model = parse_kernel_model(s.kernel_model, "kernel.model");
     if (model == KernelModel::kAuto) fail("kernel.model", "must be the resolved model, not auto");
-    if (s.wavelengths.empty()) fail("kernel.wavelengths", "must name at least one wavelength");
+    // A measured kernel (a kernel image, a calibration) has no wavelength of its own.
+    if (s.wavelengths.empty() && model != KernelModel::kMeasured)
+        fail("kernel.wavelengths", "must name at least one wavelength");
     double weights = 0.0;
     for (const auto& [lambda, w] : s.wavelengths) {
         if (!(lambda > 0.0) || !std::isfinite(lambda)) {
@@ -63,7 +67,7 @@ void check_consistent(const PsfSidecar& s) {
         weights += w;
     }
     // Weights are written normalised; 1e-6 allows the decimal round trip of a few of them.
-    if (std::fabs(weights - 1.0) > 1e-6) {
+    if (!s.wavelengths.empty() && std::fabs(weights - 1.0) > 1e-6) {
         fail("kernel.wavelengths", "weights sum to " + num(weights) + ", must sum to 1");
     }
     if (!(s.kernel_enclosed_energy >= 0.0 && s.kernel_enclosed_energy <= 1.0)) {
@@ -106,7 +110,7 @@ nlohmann::ordered_json psf_sidecar_to_json(const PsfSidecar& s) {
     for (const auto& [lambda, weight] : s.wavelengths) wl.push_back({lambda, weight});
     nlohmann::ordered_json files = {{"tiff", s.tiff_file}};
     if (!s.npy_file.empty()) files["npy"] = s.npy_file;
-    return {{"format", kPsfFormat},
+    nlohmann::ordered_json j = {{"format", kPsfFormat},
             {"version", kPsfVersion},
             {"mask_geometry_hash", s.mask_geometry_hash},
             {"mask_file", s.mask_file},
@@ -123,6 +127,8 @@ nlohmann::ordered_json psf_sidecar_to_json(const PsfSidecar& s) {
             {"normalisation", s.normalisation},
             {"size_px", {s.rows, s.cols}},
             {"files", files}};
+    if (s.geometry != "cyclic") j["geometry"] = s.geometry;  // cyclic sidecars keep their bytes
+    return j;
 }
 
 PsfSidecar psf_sidecar_from_json(const nlohmann::json& j, const std::string& where) {
@@ -130,7 +136,7 @@ PsfSidecar psf_sidecar_from_json(const nlohmann::json& j, const std::string& whe
         ObjectReader r(
             j, "",
             {"format", "version", "mask_geometry_hash", "mask_file", "grid_n", "pixels_per_cell",
-             "pixel_pitch_m", "kernel", "normalisation", "size_px", "files"});
+             "pixel_pitch_m", "kernel", "normalisation", "size_px", "files", "geometry"});
         r.reject_unknown();
         if (read_string(r.required("format"), "format") != kPsfFormat) {
             json_strict::fail("format", std::string("must be \"") + kPsfFormat + "\"");
@@ -175,6 +181,7 @@ PsfSidecar psf_sidecar_from_json(const nlohmann::json& j, const std::string& whe
         s.normalisation = read_string(r.required("normalisation"), "normalisation");
         if (s.normalisation != "sum=1") json_strict::fail("normalisation", "must be \"sum=1\"");
         std::tie(s.rows, s.cols) = read_int_pair(r.required("size_px"), "size_px", "[rows, cols]");
+        if (const auto* g = r.optional("geometry")) s.geometry = read_string(*g, "geometry");
         ObjectReader files(r.required("files"), "files", {"tiff", "npy"});
         files.reject_unknown();
         s.tiff_file = read_string(files.required("tiff"), files.path("tiff"));

@@ -39,6 +39,10 @@ struct PsfSidecar {
     bool kernel_support_capped = false;
     int kernel_rows = 0, kernel_cols = 0;
     std::string normalisation = "sum=1";
+    // "cyclic": the PSF of one period on the torus (rows = cols = grid_n x pixels_per_cell), the
+    // integer model the decoder assumes; "full-frame": a linear PSF of any size (exact geometry
+    // at an object distance, or a calibrated PSF measured from a point-source capture).
+    std::string geometry = "cyclic";
     int rows = 0, cols = 0;
     std::string tiff_file, npy_file;  // names of the image files ("" when absent)
 };
