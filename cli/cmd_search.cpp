@@ -37,8 +37,18 @@ SearchPipelineOptions make_options(const SearchCliOptions& o, const CLI::App& cm
     p.holes = o.geometry.holes;
     SearchOptions& so = p.search;
     so.strategy = o.strategy == "random" ? SearchStrategy::kRandom : SearchStrategy::kAnneal;
+    if (o.threads < 0)
+        throw invalid_field("--threads", std::to_string(o.threads), "must be >= 1 (0: all cores)");
     so.threads = o.threads > 0 ? o.threads
                                : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    // 1e9 evaluations a chain is more than a day at the fastest rate bench search measures; a
+    // longer search is a --time budget (it always ends, with the best so far).
+    constexpr long long kMaxEvals = 1'000'000'000;
+    if (o.evals && *o.evals > kMaxEvals) {
+        throw invalid_field("--evals", std::to_string(*o.evals),
+                            "must be at most 1e9 evaluations per chain (over a day of search): "
+                            "use --time for longer runs");
+    }
     if (o.evals && *o.evals < 1) {
         throw invalid_field("--evals", std::to_string(*o.evals),
                             "must be >= 1 evaluations per chain (leave it out to search for "
