@@ -200,7 +200,8 @@ std::vector<DecodeBenchRecord> bench_decode(const DecodeBenchOptions& o) {
     std::vector<std::pair<int, int>> shapes;
     for (int n : o.sizes) shapes.emplace_back(n, n);
     shapes.insert(shapes.end(), o.shapes.begin(), o.shapes.end());
-    for (auto [rows, cols] : shapes) {
+    for (const auto& shape : shapes) {
+        const int rows = shape.first, cols = shape.second;  // named: lambdas capture them
         const int n = std::min(rows, cols);
         Plane psf = Plane::Zero(rows, cols);
         psf.block((rows - n) / 2, (cols - n) / 2, n, n) = make_psf(n, rng);

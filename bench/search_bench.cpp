@@ -72,7 +72,8 @@ std::vector<SearchBenchRecord> bench_search(const std::vector<int>& sizes, doubl
 std::vector<ObjectiveBenchRecord> bench_objective(const std::vector<std::pair<int, int>>& configs,
                                                   double seconds, std::uint64_t seed) {
     std::vector<ObjectiveBenchRecord> out;
-    for (const auto& [n, ppc] : configs) {
+    for (const auto& config : configs) {
+        const int n = config.first, ppc = config.second;  // named: lambdas capture them
         Mask mask;
         mask.camera = paper_camera();
         mask.psf.pixels_per_cell = ppc;
