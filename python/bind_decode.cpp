@@ -229,7 +229,7 @@ capture: (rows, cols) or (rows, cols, channels) array, capture units. psf: a PSF
 sum > 0), or mask: a Mask or *.mask.json path (its PSF is synthesised).
 method: wiener (deconvwnr: PSF centre floor(size/2) at the origin, scalar nsr, real part) |
 tikhonov (lambda_, regulariser identity|gradient) | tv (TV-L2 ADMM, lambda_) | tvqc (min TV
-s.t. ||Ax - p||_2 <= eps, or eps from noise_sigma) | rl (Richardson-Lucy). model: cyclic
+s.t. ||Ax - p||_2 <= eps, or eps from noise_sigma) | richardson-lucy. model: cyclic
 (circular convolution over one period) | linear (zero-padded, then cropped). nonneg: x >= 0 for
 tv/tvqc. iters, tol: iterative methods (relative change of x). crop: 'center' | 'none' |
 (row, col) of the period's top-left pixel. dark: dark frame, same size (1 or the capture's

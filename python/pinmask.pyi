@@ -155,7 +155,7 @@ def decode(
     capture: ArrayLike,
     psf: Optional[ArrayLike] = None,
     mask: Optional[MaskLike] = None,
-    method: Literal["wiener", "tikhonov", "tv", "tvqc", "rl"] = "wiener",
+    method: Literal["wiener", "tikhonov", "tv", "tvqc", "richardson-lucy"] = "wiener",
     model: Literal["cyclic", "linear"] = "cyclic",
     nsr: float = 0.01,
     lambda_: float = 1e-3,
