@@ -174,7 +174,6 @@ def metrics(
     mask: MaskLike,
     snr_db: float = 30.0,
     scenes: Sequence[str] = ("letter-R", "usaf"),
-    filter: str = "optimal",
     prior_scenes: int = 16,
     nsr: str = "tuned",
     tv_lambda: str = "1e-3",
@@ -196,7 +195,7 @@ def analytic_error(
     optical_density: Optional[float] = None,
     filter: str = "optimal",
     prior_scenes: int = 16,
-    prior_first_seed: int = 0,
+    prior_first_seed: int = 1000,
 ) -> dict[str, float]: ...
 def simulated_quality(
     mask: MaskLike,
@@ -236,8 +235,12 @@ def search(
     w_sidelobe_energy: float = 0.0,
     w_min_spectrum: float = 0.0,
     prior_scenes: int = 16,
+    keep_out: Literal["none", "border"] = "none",
+    rerank_scenes: Sequence[str] = ("letter-R", "usaf", "siemens-star"),
+    rerank_tv: bool = True,
+    rank_by: Literal["wiener", "tv"] = "wiener",
+    allow_spectral_zeros: bool = False,
     progress: Optional[Callable[[dict[str, Any]], Optional[bool]]] = None,
-    log_interval_s: float = 0.25,
 ) -> dict[str, Any]: ...
 def compare(
     masks: Sequence[MaskLike],
@@ -246,7 +249,6 @@ def compare(
     baseline_count: int = 100,
     snr_db: float = 30.0,
     scenes: Sequence[str] = ("letter-R", "usaf"),
-    filter: str = "optimal",
     prior_scenes: int = 16,
     nsr: str = "tuned",
     tv_lambda: str = "1e-3",
