@@ -157,8 +157,8 @@ void bind_export(py::module_& m) {
            bool label, const std::string& label_id, const py::object& frame,
            const py::object& chord_tol, const py::object& grid, const py::object& hole_side,
            std::size_t max_vertices, int layer, int datatype, const std::string& dxf_layer,
-           double dpi, const py::object& margin, const std::string& vendor, bool require_drc_clean,
-           bool allow_spacing_violations) {
+           std::optional<double> dpi, const py::object& margin, const std::string& vendor,
+           bool require_drc_clean, bool allow_spacing_violations) {
             const std::vector<FabFormat> fmts = parse_formats(formats);
             if (out_dir.empty()) throw invalid_field("-o", "''", "an output directory is required");
             if (fs::exists(out_dir) && !fs::is_directory(out_dir))
@@ -253,12 +253,13 @@ void bind_export(py::module_& m) {
         py::arg("label") = false, py::arg("label_id") = "", py::arg("frame") = "0",
         py::arg("chord_tol") = "auto", py::arg("grid") = "1nm", py::arg("hole_side") = py::none(),
         py::arg("max_vertices") = kGdsFriendlyMaxVertices, py::arg("layer") = 1,
-        py::arg("datatype") = 0, py::arg("dxf_layer") = "PINMASK", py::arg("dpi") = 2400.0,
+        py::arg("datatype") = 0, py::arg("dxf_layer") = "PINMASK", py::arg("dpi") = py::none(),
         py::arg("margin") = "10mm", py::arg("vendor") = "none",
         py::arg("require_drc_clean") = false, py::arg("allow_spacing_violations") = false,
         R"(Writes the fabrication files of `pinmask export MASK -o out_dir` (same options, same
-bytes): out_dir/<stem>.svg .pdf .gds .dxf .gbr .png, all or nothing; each readable format is read
-back from disk and compared with the design (identical polygons or XOR area 0, and the mask
+bytes; export/export_pipeline): formats svg pdf gds oasis dxf gerber png tiff1 ->
+out_dir/<stem>.svg .pdf .gds .oas .dxf .gbr .png .tif, all or nothing; dpi: PNG/TIFF
+resolution (None: the CLI's default per format); each readable format is read back from disk and compared with the design (identical polygons or XOR area 0, and the mask
 hash), else RuntimeError and no file. The design-rule check (vendor film | chrome | none) is
 reported (require_drc_clean: RuntimeError on violations). stem: default the mask file's name
 ('mask' for a Mask object). The export sidecar JSON and the PSF files are the CLI's; write_psf()

@@ -316,7 +316,7 @@ def export_mask(
     layer: int = 1,
     datatype: int = 0,
     dxf_layer: str = "PINMASK",
-    dpi: float = 2400.0,
+    dpi: Optional[float] = None,
     margin: Length = "10mm",
     vendor: str = "none",
     require_drc_clean: bool = False,
