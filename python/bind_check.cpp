@@ -1,6 +1,7 @@
-// The design-rule check (export/drc, geometry, read_any, xor_area): check() follows
-// `pinmask check` (cli/cmd_check.cpp) and returns what its --json prints. Re-pointed at
-// export/read_back (the file-vs-design comparison) when that library call exists (issue 11).
+// The design-rule check: check() follows `pinmask check` (cli/cmd_check.cpp) and returns what
+// its --json prints. A mask: export/drc on its layout; a fabrication file: export/file_check
+// (check_file_geometry: the DRC and the export/read_back comparison with the design). The
+// layout settings come from the arguments: an export sidecar beside the file is not read.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -8,11 +9,13 @@
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "export/drc.hpp"
+#include "export/file_check.hpp"
 #include "export/geometry.hpp"
 #include "export/read_any.hpp"
 #include "export/rings.hpp"
 #include "export/vendor_rules.hpp"
 #include "export/xor_area.hpp"
+#include "io/export_sidecar.hpp"
 #include "io/mask_json.hpp"
 #include "python/common.hpp"
 #include "python/values.hpp"
@@ -71,11 +74,6 @@ LayoutOptions design_options(const CheckArgs& o, const FileGeometry* file) {
     return lo;
 }
 
-bool box_inside(const BoxNm& inner, const BoxNm& outer) {
-    return inner.x0 >= outer.x0 && inner.y0 >= outer.y0 && inner.x1 <= outer.x1 &&
-           inner.y1 <= outer.y1;
-}
-
 bool is_mask_file(const fs::path& path) {
     if (path.extension() == ".json") return true;
     std::ifstream in(path, std::ios::binary);
@@ -120,6 +118,8 @@ void bind_check(py::module_& m) {
             std::string kind;
             std::optional<py::dict> comparison;
             bool comparison_ok = true;
+            std::string settings;
+            DrcReport r;
             if (input_is_mask || is_mask_file(input_text)) {
                 if (!mask.is_none())
                     throw invalid_field("--mask", py::str(mask).cast<std::string>(),
@@ -130,15 +130,21 @@ void bind_check(py::module_& m) {
                                                     input_text, {.allow_spacing_violations = true});
                 l = make_layout(mk, design_options(o, nullptr));
                 rules = resolve_rules(o, rules_for_mask(mk, vendor));
+                py::gil_scoped_release release;
+                r = run_drc(l, rules);
             } else {
                 const FileGeometry file = read_fabrication_file(input_text);
                 kind = fs::path(input_text).extension().string().substr(1);
-                const auto tone = file.info.find("tone");
-                l.tone = tone == file.info.end() ? Tone::kClear : parse_tone(tone->second, "tone");
-                l.extent = bounding_box(file.rings);
+                const fs::path side_path = io::sidecar_path_for(input_text);
+                settings =
+                    fs::is_regular_file(side_path)
+                        ? "from the arguments (sidecar " + side_path.filename().string() +
+                              " not read: give its settings as arguments)"
+                        : "from the flags (no sidecar " + side_path.filename().string() + ")";
+                FileCheckOptions fo;
+                fo.max_xor_nm2 = max_xor_um2 * 1e6;
+                std::optional<Layout> design;
                 if (mask.is_none()) {
-                    l.polygons = file.rings;
-                    l.active_area = l.extent;
                     DrcRules r;
                     r.min_gap_nm = vendor.min_gap_nm;
                     r.min_feature_nm = vendor.min_feature_nm;
@@ -146,35 +152,33 @@ void bind_check(py::module_& m) {
                     rules = resolve_rules(o, r);
                 } else {
                     const Mask mk = mask_arg(mask, true);
-                    const Layout design = make_layout(mk, design_options(o, &file));
-                    const BoxNm outline = bounding_box(design.polygons);
-                    for (const Ring& r : file.rings)
-                        (box_inside(bounding_box({r}), outline) ? l.polygons : l.annotations)
-                            .push_back(r);
-                    l.active_area = design.active_area;
-                    l.extent = box_union(l.extent, design.extent);
+                    design = make_layout(mk, design_options(o, &file));
+                    fo.design = &*design;
                     rules = resolve_rules(o, rules_for_mask(mk, vendor));
-                    const double xor_um2 = xor_area_nm2(l.polygons, design.polygons) * 1e-6;
-                    const std::string mask_hash = geometry_hash(mk);
-                    std::string file_hash;
-                    if (auto it = file.info.find("hash"); it != file.info.end())
-                        file_hash = it->second;
-                    comparison_ok =
-                        xor_um2 <= max_xor_um2 && (file_hash.empty() || file_hash == mask_hash);
-                    py::dict c;
-                    c["mask"] = py::str(mask);
-                    c["xor_area_um2"] = xor_um2;
-                    c["max_xor_area_um2"] = max_xor_um2;
-                    c["file_hash"] = file_hash;
-                    c["mask_hash"] = mask_hash;
-                    c["ok"] = comparison_ok;
-                    comparison = c;
                 }
-            }
-            DrcReport r;
-            {
-                py::gil_scoped_release release;
-                r = run_drc(l, rules);
+                fo.rules = rules;
+                FileCheck fc;
+                {
+                    py::gil_scoped_release release;
+                    fc = check_file_geometry(file, fo);  // export/file_check: DRC + read_back
+                }
+                l = fc.layout;
+                r = fc.drc;
+                if (fc.comparison) {
+                    const ReadBack& k = *fc.comparison;
+                    comparison_ok =
+                        k.xor_area_nm2 <= fo.max_xor_nm2 && (k.file_hash.empty() || k.hash_ok());
+                    py::dict cd;
+                    cd["mask"] = py::str(mask);
+                    cd["xor_area_um2"] = k.xor_area_nm2 * 1e-6;
+                    cd["max_xor_area_um2"] = max_xor_um2;
+                    cd["file_hash"] = k.file_hash;
+                    cd["mask_hash"] = k.design_hash;
+                    cd["rings_only_in_file"] = k.only_file;
+                    cd["rings_only_in_design"] = k.only_design;
+                    cd["ok"] = comparison_ok;
+                    comparison = cd;
+                }
             }
             const bool clean = r.clean() && comparison_ok;
             py::list v;
@@ -196,6 +200,7 @@ void bind_check(py::module_& m) {
             j["input"] = input_text;
             j["kind"] = kind;
             j["vendor"] = vendor_name;
+            j["settings"] = settings;
             j["tone"] = tone_name(l.tone);
             j["polygons"] = l.polygons.size();
             j["annotations"] = l.annotations.size();

@@ -1,14 +1,13 @@
-// Decoding (decode/decoder.hpp, decode/capture.hpp, decode/period.hpp). decode_pipeline() is the
-// one place the steps of `pinmask decode` (cli/cmd_decode.cpp) are composed for Python: dark
-// frame -> period check -> crop -> PSF to unit sum -> decode each channel. When the capture
-// pipeline becomes a library call (decode/capture_pipeline, issue 11), only this function changes.
-// Options are mapped by the CLI's own cli::decode_options and cli::parse_crop, so names, defaults
-// and messages are the CLI's.
+// Decoding: decode() is `pinmask decode` on arrays, one call of decode/capture_pipeline
+// (decode_capture) with the options the CLI maps from the same flags (cli::decode_options,
+// cli::capture_decode_options, cli::parse_crop): names, defaults, messages and numbers are the
+// CLI's.
 #include <atomic>
 
 #include "cli/decode_output.hpp"
 #include "core/error.hpp"
 #include "decode/capture.hpp"
+#include "decode/capture_pipeline.hpp"
 #include "decode/decoder.hpp"
 #include "decode/period.hpp"
 #include "design/psf.hpp"
@@ -35,54 +34,27 @@ struct CaptureArg {
     int cols() const { return plane ? int(plane->cols()) : image.cols(); }
 };
 
+// `pinmask decode`'s library pipeline (decode/capture_pipeline decode_capture: dark frame,
+// period check, crop, PSF to unit sum, precision, each channel decoded) with the CLI's own
+// options (cli::capture_decode_options). The pipeline owns its inputs: a borrowed capture or PSF
+// is copied into it (a C++ copy, not a numpy conversion: input_copies() does not count it).
 DecodeOutput decode_pipeline(CaptureArg& cap, const PlaneArg& psf_in,
                              const std::optional<Image>& dark, const cli::DecodeRequest& r,
                              const std::atomic<bool>* stop) {
-    const CropSpec crop_spec = cli::parse_crop(r.crop);
-    DecodeOptions dopt = cli::decode_options(r);
-    dopt.stop = stop;
-    if (cap.plane) {  // capture first, then the PSF, as the CLI checks them
-        // The message names the first bad pixel; the copy is made only to report it.
-        if (!is_all_finite(*cap.plane)) check_image_finite(Image(*cap.plane), "capture");
-    } else {
-        check_image_finite(cap.image, "capture");
-    }
-    check_psf(psf_in.get(), "PSF");
-    if (dark) {
-        check_image_finite(*dark, "dark frame");
-        if (cap.plane) {
-            cap.image = Image(*cap.plane);
-            cap.plane = nullptr;
-        }
-        cap.image = subtract_dark(cap.image, *dark);
-    }
+    CaptureDecodeOptions options = cli::capture_decode_options(r);
+    options.decode.stop = stop;
+    options.validate();
+    CaptureDecodeInputs in;
+    in.capture = cap.plane ? Image(*cap.plane) : std::move(cap.image);
+    in.psf = Image(psf_in.get());
+    in.dark = dark;
+    CaptureDecodeResult res = decode_capture(std::move(in), options);
     DecodeOutput out;
-    const Plane& psf0 = psf_in.get();
-    if (cap.plane) {
-        out.period = check_period(*cap.plane, int(psf0.rows()), int(psf0.cols()));
-    } else {  // the luminance: sum of the channels
-        Plane lum = cap.image.channels[0];
-        for (std::size_t ch = 1; ch < cap.image.channels.size(); ++ch)
-            lum += cap.image.channels[ch];
-        out.period = check_period(lum, int(psf0.rows()), int(psf0.cols()));
-    }
-    out.window = crop_window(cap.rows(), cap.cols(), int(psf0.rows()), int(psf0.cols()), crop_spec);
-    const bool whole = out.window.row == 0 && out.window.col == 0 &&
-                       out.window.rows == cap.rows() && out.window.cols == cap.cols();
-    if (!whole) {
-        cap.image = crop(cap.plane ? Image(*cap.plane) : cap.image, out.window);
-        cap.plane = nullptr;
-    }
-    // `--normalize none`: the PSF scaled to unit sum (no copy when it already sums to 1).
-    const double sum = psf0.sum();
-    Plane scaled;
-    if (sum != 1.0) scaled = psf0 / sum;
-    const Plane& psf = sum != 1.0 ? scaled : psf0;
-    if (cap.plane) {
-        out.results.push_back(decode_plane(*cap.plane, psf, dopt));
-    } else {
-        out.results = decode_channels(cap.image, {psf}, dopt);
-    }
+    out.window = res.summary.window;
+    out.period = res.summary.period;
+    out.results = std::move(res.summary.channels);
+    for (std::size_t i = 0; i < out.results.size() && i < res.estimate.channels.size(); ++i)
+        out.results[i].image = std::move(res.estimate.channels[i]);
     return out;
 }
 
@@ -229,7 +201,7 @@ capture: (rows, cols) or (rows, cols, channels) array, capture units. psf: a PSF
 sum > 0), or mask: a Mask or *.mask.json path (its PSF is synthesised).
 method: wiener (deconvwnr: PSF centre floor(size/2) at the origin, scalar nsr, real part) |
 tikhonov (lambda_, regulariser identity|gradient) | tv (TV-L2 ADMM, lambda_) | tvqc (min TV
-s.t. ||Ax - p||_2 <= eps, or eps from noise_sigma) | rl (Richardson-Lucy). model: cyclic
+s.t. ||Ax - p||_2 <= eps, or eps from noise_sigma) | richardson-lucy. model: cyclic
 (circular convolution over one period) | linear (zero-padded, then cropped). nonneg: x >= 0 for
 tv/tvqc. iters, tol: iterative methods (relative change of x). crop: 'center' | 'none' |
 (row, col) of the period's top-left pixel. dark: dark frame, same size (1 or the capture's

@@ -1,14 +1,15 @@
-// Mask metrics (optimize/autocorrelation, spectrum_metrics, analytic_error, simulated_metrics).
-// metrics() is the metric row `pinmask compare` prints (cli/compare_data compare_mask, the one
-// routine behind compare's numbers today); when optimize/mask_metrics lands (issue 11) it is
-// re-pointed there. The other functions bind the library metrics one by one.
+// Mask metrics. metrics() is the metric row `pinmask compare` prints (optimize/compare
+// compare_mask over optimize/mask_metrics, the one metric set of score, compare and search).
+// The other functions bind the library metrics one by one (optimize/autocorrelation,
+// spectrum_metrics, analytic_error, simulated_metrics).
 #include "cli/analytic_setup.hpp"
-#include "cli/compare_data.hpp"
 #include "core/error.hpp"
 #include "core/fft.hpp"
 #include "design/psf.hpp"
 #include "optimize/analytic_error.hpp"
 #include "optimize/autocorrelation.hpp"
+#include "optimize/compare.hpp"
+#include "optimize/mask_metrics.hpp"
 #include "optimize/scene_prior.hpp"
 #include "optimize/scenes.hpp"
 #include "optimize/simulated_metrics.hpp"
@@ -19,28 +20,32 @@
 
 namespace pinmask::python {
 
-cli::CompareSettings compare_settings(double snr_db, const std::vector<std::string>& scenes,
-                                      const std::string& filter, int prior_scenes,
-                                      const std::string& nsr, const std::string& tv_lambda,
-                                      int tv_iterations, std::uint64_t seed) {
-    cli::CompareSettings s;
-    s.snr_db = snr_db;
+CompareSettings compare_settings(double snr_db, const std::vector<std::string>& scenes,
+                                 int prior_scenes, const std::string& nsr,
+                                 const std::string& tv_lambda, int tv_iterations,
+                                 std::uint64_t seed) {
+    CompareSettings s;
+    MaskMetricsOptions& m = s.metrics;
+    m.tv = true;
+    m.noise = {noise_level(noise_model(NoiseArgs{snr_db, {}, {}, {}, {}, {}, {}}))};
+    m.prior.count = prior_scenes;
     for (const std::string& item : scenes) {
         SceneSpec spec = scene_from_name(item);
         if (spec.kind == SceneKind::kNatural) spec.seed = 0;
-        s.scenes.push_back(spec);
+        m.scenes.push_back(spec);
     }
-    s.analytic_filter = cli::parse_wiener_filter(filter);
-    s.prior_scenes = prior_scenes;
-    s.wiener_nsr = cli::parse_weight_choice(nsr, "--nsr");
-    s.tv_lambda = cli::parse_weight_choice(tv_lambda, "--tv-lambda");
-    s.tv_iterations = tv_iterations;
+    m.simulation.seed = seed;
+    m.simulation.wiener_nsr = cli::parse_weight_choice(nsr, "--nsr");
+    m.simulation.tv_lambda = cli::parse_weight_choice(tv_lambda, "--tv-lambda");
+    if (tv_iterations < 1)
+        throw invalid_field("--tv-iters", std::to_string(tv_iterations), "must be >= 1");
+    m.simulation.tv_iterations = tv_iterations;
     s.seed = seed;
-    cli::validate(s);
+    validate(s);
     return s;
 }
 
-py::dict row_dict(const cli::CompareRow& r) {
+py::dict row_dict(const CompareRow& r) {
     py::dict d;
     d["name"] = r.name;
     d["kind"] = r.kind;
@@ -59,6 +64,7 @@ py::dict row_dict(const cli::CompareRow& r) {
     d["spectral_flatness"] = r.spectral_flatness;
     d["otf_condition_number"] = r.otf_condition_number;
     d["analytic_wiener_psnr_db"] = r.analytic_wiener_psnr_db;
+    d["analytic_optimal_wiener_psnr_db"] = r.analytic_optimal_wiener_psnr_db;
     d["wiener_psnr_db"] = r.wiener_psnr_db;
     d["wiener_ssim"] = r.wiener_ssim;
     d["wiener_nsr"] = r.wiener_nsr;
@@ -78,34 +84,34 @@ void bind_metrics(py::module_& m) {
     m.def(
         "metrics",
         [](const py::handle& mask_obj, double snr_db, const std::vector<std::string>& scenes,
-           const std::string& filter, int prior_scenes, const std::string& nsr,
-           const std::string& tv_lambda, int tv_iterations, std::uint64_t seed,
-           const std::string& name) {
-            const cli::CompareSettings s = compare_settings(snr_db, scenes, filter, prior_scenes,
-                                                            nsr, tv_lambda, tv_iterations, seed);
+           int prior_scenes, const std::string& nsr, const std::string& tv_lambda,
+           int tv_iterations, std::uint64_t seed, const std::string& name) {
+            const CompareSettings s =
+                compare_settings(snr_db, scenes, prior_scenes, nsr, tv_lambda, tv_iterations, seed);
             const Mask mk = mask_arg(mask_obj, true);
-            cli::CompareEntry e{name, "input",
-                                py::isinstance<py::str>(mask_obj) ? mask_obj.cast<std::string>()
-                                                                  : std::string("python"),
-                                mk};
-            cli::CompareResult r;
+            CompareEntry e{name, "input",
+                           py::isinstance<py::str>(mask_obj) ? mask_obj.cast<std::string>()
+                                                             : std::string("python"),
+                           mk};
+            CompareResult r;
             {
                 py::gil_scoped_release release;
-                cli::SceneCache cache;
-                r = cli::compare_mask(e, s, cache);
+                MetricsContext context(s.metrics);
+                r = compare_mask(e, s, context);
             }
             return row_dict(r.row);
         },
         py::arg("mask"), py::arg("snr_db") = 30.0,
         py::arg("scenes") = std::vector<std::string>{"letter-R", "usaf"},
-        py::arg("filter") = "optimal", py::arg("prior_scenes") = cli::kDefaultPriorScenes,
-        py::arg("nsr") = "tuned", py::arg("tv_lambda") = "1e-3", py::arg("tv_iterations") = 200,
-        py::arg("seed") = 1, py::arg("name") = "mask",
-        "The metric row of `pinmask compare` for one mask (same settings, same numbers): "
-        "sidelobes, spectrum, OTF condition, analytic Wiener PSNR (dB; filter 'optimal' or "
-        "'nsr:VALUE', prior of prior_scenes natural textures), simulated Wiener and TV-L2 PSNR "
-        "(dB) and SSIM over `scenes` at snr_db dB (Gaussian); nsr and tv_lambda: 'tuned' or a "
-        "number > 0.");
+        py::arg("prior_scenes") = kDefaultPriorScenes, py::arg("nsr") = "tuned",
+        py::arg("tv_lambda") = "1e-3", py::arg("tv_iterations") = 200, py::arg("seed") = 1,
+        py::arg("name") = "mask",
+        "The metric row of `pinmask compare` for one mask (optimize/compare over "
+        "optimize/mask_metrics, the set score and search use; same settings, same numbers): "
+        "sidelobes, spectrum, OTF condition, analytic Wiener PSNR (dB; the nsr filter and the "
+        "per-frequency optimal bound; prior of prior_scenes natural textures, seeds 1000..), "
+        "simulated Wiener and TV-L2 PSNR (dB) and SSIM over `scenes` at snr_db dB (Gaussian); "
+        "nsr and tv_lambda: 'tuned' or a number > 0.");
 
     m.def(
         "sidelobes",
@@ -188,7 +194,8 @@ void bind_metrics(py::module_& m) {
         py::arg("read_noise") = py::none(), py::arg("dark_current") = py::none(),
         py::arg("full_well") = py::none(), py::arg("bits") = py::none(),
         py::arg("optical_density") = py::none(), py::arg("filter") = "optimal",
-        py::arg("prior_scenes") = cli::kDefaultPriorScenes, py::arg("prior_first_seed") = 0,
+        py::arg("prior_scenes") = kDefaultPriorScenes,
+        py::arg("prior_first_seed") = kPriorFirstSeed,
         "Expected Wiener error in closed form (optimize/analytic_error): filter 'optimal' "
         "(per-frequency), 'nsr:VALUE' (deconvwnr's fixed NSR) or 'tuned' (the NSR minimising "
         "the expected MSE); prior: the mean |X^|^2 of prior_scenes natural 1/f textures (seeds "

@@ -31,8 +31,10 @@ class Cli:
         self.cwd = cwd
 
     def run(self, *args, expect=0):
+        # FFTW_ESTIMATE plans (no wisdom file), as the module plans: the same rounding.
+        env = dict(os.environ, PINMASK_WISDOM="off")
         p = subprocess.run([self.exe, *map(str, args)], cwd=self.cwd, capture_output=True,
-                           text=True, timeout=300)
+                           text=True, timeout=300, env=env)
         assert p.returncode == expect, (args, p.returncode, p.stdout, p.stderr)
         return p
 

@@ -77,3 +77,17 @@ def test_check_and_export_errors(tmp_path, mask7):
         pinmask.check(str(tmp_path / "none.gds"))
     with pytest.raises(ValueError, match="--vendor|vendor"):
         pinmask.check(mask7, vendor="moon")
+
+
+def test_export_new_formats_same_bytes_as_cli(cli, tmp_path, mask7):
+    """OASIS (read back before commit) and 1-bit TIFF through the same export pipeline."""
+    mask7.save(str(tmp_path / "m.mask.json"))
+    cli.run("export", "m.mask.json", "--format", "oasis,tiff1", "--no-psf", "-o", "cli")
+    out = pinmask.export_mask(str(tmp_path / "m.mask.json"), str(tmp_path / "py"),
+                              formats=["oasis", "tiff1"])
+    assert [f["format"] for f in out["files"]] == ["oasis", "tiff1"]
+    for f in out["files"]:
+        name = f["path"].split("/")[-1]
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
+    assert out["files"][0]["verification"].startswith("read back")
+    assert pinmask.check(str(tmp_path / "py" / "m.oas"), mask=mask7)["comparison"]["ok"]

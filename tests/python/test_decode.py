@@ -63,7 +63,7 @@ def test_wiener_equals_cli(cli, tmp_path, mask7):
                                        ("tikhonov", dict(lambda_=1e-3, regulariser="gradient")),
                                        ("tv", dict(lambda_=1e-3, iters=30)),
                                        ("tvqc", dict(noise_sigma=0.01, iters=30)),
-                                       ("rl", dict(iters=30))])
+                                       ("richardson-lucy", dict(iters=30))])
 @pytest.mark.parametrize("model", ["cyclic", "linear"])
 def test_every_method_equals_cli(cli, tmp_path, mask7, method, kw, model):
     mask7.save(str(tmp_path / "m.mask.json"))
@@ -77,7 +77,7 @@ def test_every_method_equals_cli(cli, tmp_path, mask7, method, kw, model):
     out = pinmask.decode(cap, mask=mask7, method=method, model=model, **kw)
     assert np.array_equal(out["image"].astype(np.float32), np.load(tmp_path / "x.npy"))
     ch = out["channels"][0]
-    if method in ("tv", "tvqc", "rl"):
+    if method in ("tv", "tvqc", "richardson-lucy"):
         assert 1 <= ch["iterations"] <= 30
         assert ch["history"].shape == (ch["iterations"], 4)
 
@@ -104,7 +104,7 @@ def test_ctrl_c_keeps_the_estimate_so_far(mask7):
     def progress(seconds):
         os.kill(os.getpid(), signal.SIGINT)  # as if the user pressed Ctrl-C
 
-    out = pinmask.decode(cap, mask=mask7, method="rl", iters=1000000, tol=0, progress=progress,
+    out = pinmask.decode(cap, mask=mask7, method="richardson-lucy", iters=1000000, tol=0, progress=progress,
                          poll_s=0.01)
     assert out["interrupted"] and out["channels"][0]["iterations"] < 1000000
 

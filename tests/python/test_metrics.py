@@ -26,6 +26,10 @@ def test_metrics_equal_cli_compare(cli, tmp_path, mask7):
     cli_row = j["masks"][0]
     for k in ROW_KEYS:
         assert same(row[k], cli_row[k]), (k, row[k], cli_row[k])
+    # score and compare share one metric set and one prior: the same analytic figures.
+    s = json.loads(cli.run("score", "m.mask.json", "--nsr", "tuned", "--json").stdout)["masks"][0]
+    assert row["analytic_wiener_psnr_db"] == s["analytic_wiener_psnr_db_snr30"]
+    assert row["analytic_optimal_wiener_psnr_db"] == s["analytic_optimal_wiener_psnr_db_snr30"]
 
 
 def test_sidelobes_and_autocorrelation_against_numpy(mask7):
@@ -82,11 +86,12 @@ def test_simulated_quality(mask7):
     (["--photons", "1000", "--read-noise", "5"], dict(photons=1000, read_noise=5), "ph1000"),
 ])
 def test_score_numbers_from_library_metrics(cli, tmp_path, mask7, cli_noise, noise, key):
-    """`pinmask score` (its prior: 64 natural textures from seed 1000; scenes letter-R, usaf,
-    natural; NSR 0.01; noise seed 0) from analytic_error and simulated_quality."""
+    """`pinmask score` (the one prior score and compare share: 16 natural textures from seed
+    1000; scenes letter-R, usaf, natural; NSR 0.01; noise seed 0) from analytic_error and
+    simulated_quality."""
     mask7.save(str(tmp_path / "m.mask.json"))
     j = json.loads(cli.run("score", "m.mask.json", *cli_noise, "--json").stdout)["masks"][0]
-    prior = dict(prior_scenes=64, prior_first_seed=1000)
+    prior = dict(prior_scenes=16, prior_first_seed=1000)
     fixed = pinmask.analytic_error(mask7, filter="nsr:0.01", **prior, **noise)
     optimal = pinmask.analytic_error(mask7, filter="optimal", **prior, **noise)
     assert fixed["psnr_db"] == j[f"analytic_wiener_psnr_db_{key}"]

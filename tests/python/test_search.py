@@ -1,4 +1,4 @@
-"""Search: the module against `pinmask search --no-rerank`, progress and Ctrl-C."""
+"""Search: the module against `pinmask search` (the same pipeline), progress and Ctrl-C."""
 import os
 import signal
 
@@ -10,13 +10,31 @@ import pinmask
 def test_search_same_masks_as_cli(cli, tmp_path):
     cli.run("search", "--preset", "paper", "--grid", "16", "--holes", "20", "--evals", "400",
             "--threads", "1", "--seed", "5", "--top", "3", "--no-rerank", "-o", "runs")
-    r = pinmask.search(grid=16, holes=20, evals=400, threads=1, seed=5, top=3)
-    assert r["stop_reason"] == "evaluation budget" and r["evaluations"] == 400
+    r = pinmask.search(grid=16, holes=20, evals=400, threads=1, seed=5, top=3, rerank_scenes=[])
+    assert r["termination"] == "evaluation budget" and r["evaluations"] == 400
+    assert r["reranked"] == 0
     assert len(r["candidates"]) == 3
     for i, c in enumerate(r["candidates"]):
         assert c["mask"].to_json() == (tmp_path / "runs" / f"rank-{i + 1}.mask.json").read_text()
     objectives = [c["objective"] for c in r["candidates"]]
     assert objectives == sorted(objectives)
+
+
+def test_search_keep_out_and_rerank_same_masks_as_cli(cli, tmp_path):
+    cli.run("search", "--preset", "paper", "--grid", "16", "--holes", "20", "--evals", "200",
+            "--threads", "1", "--seed", "6", "--top", "2", "--keep-out", "border",
+            "--rerank-scenes", "letter-R", "--no-rerank-tv", "-o", "runs")
+    r = pinmask.search(grid=16, holes=20, evals=200, threads=1, seed=6, top=2,
+                       keep_out="border", rerank_scenes=["letter-R"], rerank_tv=False)
+    assert r["reranked"] == 2 and len(r["candidates"]) == 2
+    for i, c in enumerate(r["candidates"]):
+        assert c["reranked"] and c["sim_wiener_psnr_db"] > 0
+        assert c["mask"].to_json() == (tmp_path / "runs" / f"rank-{i + 1}.mask.json").read_text()
+        # keep-out border: no pinhole on the outer ring of the grid
+        for (row, col) in c["mask"].pattern.pinholes:
+            assert 0 < row < 15 and 0 < col < 15
+    psnrs = [c["sim_wiener_psnr_db"] for c in r["candidates"]]
+    assert psnrs == sorted(psnrs, reverse=True)  # re-ranked: best simulated PSNR first
 
 
 def test_search_progress_and_stop():
@@ -27,19 +45,23 @@ def test_search_progress_and_stop():
         return len(rows) < 3  # stop at the third report
 
     r = pinmask.search(grid=16, holes=20, time="60s", threads=1, seed=2, top=2,
-                       progress=progress, log_interval_s=0.02, strategy="random")
-    assert len(rows) == 3 and r["stop_reason"] == "interrupted"
+                       progress=progress, strategy="random", rerank_scenes=[])
+    assert len(rows) == 3 and r["termination"] == "interrupted"
+    assert all(row["phase"] == "search" and 0 <= row["fraction"] <= 1 for row in rows)
     assert r["candidates"] and r["seconds"] < 30
 
 
 def test_search_ctrl_c_keeps_best_so_far():
+    reports = []
+
     def progress(row):
-        if row["evaluations"] > 0:
+        reports.append(row)
+        if len(reports) == 2:  # the first report may come before the first evaluation
             os.kill(os.getpid(), signal.SIGINT)
 
     r = pinmask.search(grid=16, holes=20, time="60s", threads=1, seed=3, top=2,
-                       progress=progress, log_interval_s=0.02)
-    assert r["stop_reason"] == "interrupted"
+                       progress=progress)
+    assert r["termination"] == "interrupted" and r["reranked"] == 0
     assert len(r["candidates"]) >= 1
     best = r["candidates"][0]
     assert best["mask"].pattern.spacing_violations() == []
