@@ -198,7 +198,9 @@ TEST_CASE("tiny and huge pixel pitches: finite report and kernels, or refused na
 
 TEST_CASE("a support that keeps 29 % of the kernel's energy is said, one keeping 99.5 % is not") {
     const Camera c = paper_camera();
-    for (const auto& [per_axis, warned] : {std::pair{0.54, true}, std::pair{0.9975, false}}) {
+    for (const auto& setting : {std::pair{0.54, true}, std::pair{0.9975, false}}) {
+        const double per_axis = setting.first;  // named: CAPTURE's lambda captures it
+        const bool warned = setting.second;
         CAPTURE(per_axis);
         KernelOptions ko;
         ko.energy_fraction = per_axis;  // the 2-D energy is about the square of it
