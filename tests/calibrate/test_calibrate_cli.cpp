@@ -123,7 +123,9 @@ TEST_CASE("pinmask calibrate: bad input exits 2 and writes nothing") {
          "-o"},
     };
     int i = 0;
-    for (const auto& [args, expect] : cases) {
+    for (const auto& c : cases) {
+        const std::string& args = c.first;  // named: CAPTURE's lambda captures it
+        const std::string& expect = c.second;
         ++i;
         CAPTURE(args);
         const auto r = test::run_cli(args);
