@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 
 #include "core/error.hpp"
@@ -44,7 +45,9 @@ CropSpec parse_crop(const std::string& s) {
     if (comma != std::string::npos) {
         const double x = parse_number(s.substr(0, comma), "--crop X");
         const double y = parse_number(s.substr(comma + 1), "--crop Y");
-        if (x == static_cast<int>(x) && y == static_cast<int>(y))
+        // Range first: casting a double outside int's range is undefined behaviour.
+        const auto whole = [](double v) { return std::fabs(v) <= 1e9 && v == std::floor(v); };
+        if (whole(x) && whole(y))
             return {CropMode::kCorner, static_cast<int>(y), static_cast<int>(x)};
     }
     throw invalid_field("--crop", s, "must be center, none or X,Y (integer pixel corner)");

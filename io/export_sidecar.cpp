@@ -1,10 +1,15 @@
 #include "io/export_sidecar.hpp"
 
+#include <cmath>
+#include <cstdint>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <type_traits>
 
 #include "core/error.hpp"
+#include "io/json_strict.hpp"
 
 namespace pinmask::io {
 namespace {
@@ -17,14 +22,50 @@ InvalidInput bad(const std::filesystem::path& p, const std::string& key, const s
     return InvalidInput(p.string() + ": " + key + ": " + rule);
 }
 
+// A sidecar is a few kilobytes (its label lines and file list); anything near this is not one.
+constexpr std::uintmax_t kMaxSidecarBytes = 4u << 20;
+
+// The value at key, of type T, checked before it is converted: a number that does not fit T (a
+// float for an integer, 1e300 for an int, a negative count) is refused, never cast.
 template <class T>
 T get(const json& j, const char* key, const std::filesystem::path& p, const std::string& where) {
+    if (!j.is_object()) throw bad(p, where, "must be an object");
     const auto it = j.find(key);
     if (it == j.end()) throw bad(p, where + "." + key, "is missing");
-    try {
-        return it->get<T>();
-    } catch (const json::exception&) {
-        throw bad(p, where + "." + key, "has the wrong type");
+    const json& v = *it;
+    const std::string at = where + "." + key;
+    if constexpr (std::is_same_v<T, bool>) {
+        if (!v.is_boolean()) throw bad(p, at, "must be true or false");
+        return v.get<bool>();
+    } else if constexpr (std::is_same_v<T, std::string>) {
+        if (!v.is_string()) throw bad(p, at, "must be a string");
+        return v.get<std::string>();
+    } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
+        if (!v.is_array()) throw bad(p, at, "must be an array of strings");
+        std::vector<std::string> out;
+        for (const json& e : v) {
+            if (!e.is_string()) throw bad(p, at, "must be an array of strings");
+            out.push_back(e.get<std::string>());
+        }
+        return out;
+    } else if constexpr (std::is_floating_point_v<T>) {
+        if (!v.is_number() || !std::isfinite(v.get<double>()))
+            throw bad(p, at, "must be a finite number");
+        return v.get<double>();
+    } else {
+        static_assert(std::is_integral_v<T>);
+        if (v.is_number_unsigned()) {
+            const auto u = v.get<std::uint64_t>();
+            if (u > static_cast<std::uint64_t>(std::numeric_limits<T>::max()))
+                throw bad(p, at, "is out of range");
+            return static_cast<T>(u);
+        }
+        if (!v.is_number_integer()) throw bad(p, at, "must be an integer");
+        const auto i = v.get<std::int64_t>();
+        if (i < static_cast<std::int64_t>(std::numeric_limits<T>::min()) ||
+            (std::is_signed_v<T> && i > static_cast<std::int64_t>(std::numeric_limits<T>::max())))
+            throw bad(p, at, "is out of range");
+        return static_cast<T>(i);
     }
 }
 
@@ -93,17 +134,22 @@ std::string export_sidecar_text(const ExportSidecar& s) {
 }
 
 ExportSidecar read_export_sidecar(const std::filesystem::path& p) {
+    std::error_code ec;
+    const std::uintmax_t bytes = std::filesystem::file_size(p, ec);
+    if (!ec && bytes > kMaxSidecarBytes)
+        throw bad(p, "(root)", std::to_string(bytes) + " bytes is too large for an export sidecar");
     std::ifstream in(p, std::ios::binary);
     if (!in) throw RuntimeFailure("cannot read " + p.string());
     std::ostringstream text;
     text << in.rdbuf();
     json j;
     try {
-        j = json::parse(text.str());
+        j = json_strict::parse_strict(text.str());  // nesting bounded, repeated keys refused
     } catch (const json::exception& e) {
         throw bad(p, "(root)", std::string("is not JSON: ") + e.what());
     }
-    if (!j.is_object() || j.value("format", "") != "pinmask-export")
+    if (!j.is_object() || !j.contains("format") || !j["format"].is_string() ||
+        j["format"].get<std::string>() != "pinmask-export")
         throw bad(p, "format", "must be \"pinmask-export\"");
     if (get<int>(j, "version", p, "(root)") != 1) throw bad(p, "version", "must be 1");
     ExportSidecar s;
@@ -117,6 +163,7 @@ ExportSidecar read_export_sidecar(const std::filesystem::path& p) {
     const std::string w = "geometry";
     s.unit = get_or<std::string>(g, "unit", "um", p, w);
     s.grid_nm = get<std::int64_t>(g, "grid_nm", p, w);
+    if (s.grid_nm < 1) throw bad(p, "geometry.grid_nm", "must be at least 1 nm");
     s.tone = get<std::string>(g, "tone", p, w);
     s.mirrored = get<bool>(g, "mirrored", p, w);
     s.shape = get<std::string>(g, "shape", p, w);
@@ -137,6 +184,7 @@ ExportSidecar read_export_sidecar(const std::filesystem::path& p) {
         s.vendor = get_or<std::string>(j["drc"], "vendor", "none", p, "drc");
     if (j.contains("files") && j["files"].is_array())
         for (const json& f : j["files"]) {
+            if (!f.is_object()) throw bad(p, "files[]", "must be an object");
             ExportSidecarFile e;
             e.name = get<std::string>(f, "name", p, "files[]");
             e.format = get<std::string>(f, "format", p, "files[]");
