@@ -17,14 +17,14 @@
 #include "bench/error_time.hpp"
 #include "bench/error_time_plot.hpp"
 #include "bench/error_time_report.hpp"
-#include "cli/command.hpp"
-#include "io/mask_json.hpp"
+#include "cli/commands.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "design/families.hpp"
 #include "design/kernel_model.hpp"
 #include "design/psf.hpp"
+#include "io/mask_json.hpp"
 #include "optimize/scenes.hpp"
 
 namespace pinmask::cli {
@@ -250,67 +250,64 @@ void run(const Options& o) {
               << out_dir.string() << "\n";
 }
 
-const Registration kBenchErrorTime(
-    40, "error-time",
-    [](CLI::App& bench) {
-        auto o = std::make_shared<Options>();
-        auto* cmd = bench.add_subcommand(
-            "error-time",
-            "PSNR against decode time of every decoder for one mask: Wiener at several NSR, "
-            "gradient Tikhonov at several lambda, TV-L2, TVQC and Richardson-Lucy after 1..1000 "
-            "iterations, on simulated one-period captures with Gaussian noise at each SNR. "
-            "Writes CSV, a plot per SNR (SVG + PNG) and a Markdown table of the best point per "
-            "decoder.");
-        auto* mask = cmd->add_option("mask", o->mask, "Mask file (*.mask.json)");
-        cmd->add_option("--preset", o->preset,
-                        "Use a built-in mask instead of a file: paper = `pinmask generate "
-                        "--family paper --seed 1` (the default when no mask is given)")
-            ->check(CLI::IsMember({"paper"}))
-            ->excludes(mask);
-        cmd->add_option("--scenes", o->scenes,
-                        "Comma-separated scenes (letter-R, usaf, siemens-star, checker, point, "
-                        "natural, or image files), rendered at one period")
-            ->capture_default_str();
-        cmd->add_option("--snr", o->snr, "Comma-separated SNRs in dB (Gaussian noise)")
-            ->capture_default_str();
-        cmd->add_option("--iters", o->iters,
-                        "Comma-separated iteration counts of the iterative decoders; each count "
-                        "is a separate run (solver state is not resumable)")
-            ->capture_default_str();
-        cmd->add_option("--nsr", o->nsr, "Comma-separated Wiener noise-to-signal ratios")
-            ->capture_default_str();
-        cmd->add_option("--tikhonov-lambda", o->tikhonov_lambda,
-                        "Comma-separated gradient-Tikhonov weights")
-            ->capture_default_str();
-        cmd->add_option("--tv-lambda", o->tv_lambda, "TV-L2 weight (> 0)")->capture_default_str();
-        cmd->add_option("--repeats", o->repeats,
-                        "Timed runs of a point faster than 0.25 s; the median is kept (>= 1)")
-            ->capture_default_str();
-        cmd->add_option("--seed", o->seed, "Seed of the noise")->capture_default_str();
-        cmd->add_flag("--quick", o->quick,
-                      "Small sweep for smoke tests: iterations 1,10,100, NSR 1e-3,1e-2, Tikhonov "
-                      "1e-3, one timed run per point (overrides those flags)");
-        cmd->add_option("-o,--output", o->output,
-                        "Output directory (created; its parent must exist)")
-            ->required();
-        cmd->add_flag("--json", o->json,
-                      "Print the output paths, the best point per decoder and every curve point "
-                      "as one JSON object on stdout");
-        cmd->footer(
-            "Files in the output directory: error_time.csv (every scene and setting), "
-            "error_time_points.csv (means over scenes: the plotted points), error_time.md (best "
-            "point per decoder), error_time_snrS.svg/.png (time on a log axis, PSNR on y, the "
-            "paper's Wiener 0.004 s and TVQC 7.2 s marked as times), error_time.config.json.\n"
-            "Time: CPU seconds of one decode on one thread (decoders and FFTW are single-threaded, "
-            "so this is the wall time of an idle machine; wall time is in the CSV), filter or "
-            "operator set-up included, FFTW plans made before timing. TVQC's eps comes from the "
-            "true noise sigma (l1-magic rule); Tikhonov uses the gradient regulariser. The "
-            "paper's timings come from its own machine and code.\n"
-            "Example: pinmask bench error-time --preset paper --scenes letter-R,usaf --snr 30 "
-            "-o bench-out/");
-        cmd->callback([o] { run(*o); });
-    },
-    "bench");
-
 }  // namespace
+
+void add_bench_error_time(CLI::App& bench) {
+    auto o = std::make_shared<Options>();
+    auto* cmd = bench.add_subcommand(
+        "error-time",
+        "PSNR against decode time of every decoder for one mask: Wiener at several NSR, "
+        "gradient Tikhonov at several lambda, TV-L2, TVQC and Richardson-Lucy after 1..1000 "
+        "iterations, on simulated one-period captures with Gaussian noise at each SNR. "
+        "Writes CSV, a plot per SNR (SVG + PNG) and a Markdown table of the best point per "
+        "decoder.");
+    auto* mask = cmd->add_option("mask", o->mask, "Mask file (*.mask.json)");
+    cmd->add_option("--preset", o->preset,
+                    "Use a built-in mask instead of a file: paper = `pinmask generate "
+                    "--family paper --seed 1` (the default when no mask is given)")
+        ->check(CLI::IsMember({"paper"}))
+        ->excludes(mask);
+    cmd->add_option("--scenes", o->scenes,
+                    "Comma-separated scenes (letter-R, usaf, siemens-star, checker, point, "
+                    "natural, or image files), rendered at one period")
+        ->capture_default_str();
+    cmd->add_option("--snr", o->snr, "Comma-separated SNRs in dB (Gaussian noise)")
+        ->capture_default_str();
+    cmd->add_option("--iters", o->iters,
+                    "Comma-separated iteration counts of the iterative decoders; each count "
+                    "is a separate run (solver state is not resumable)")
+        ->capture_default_str();
+    cmd->add_option("--nsr", o->nsr, "Comma-separated Wiener noise-to-signal ratios")
+        ->capture_default_str();
+    cmd->add_option("--tikhonov-lambda", o->tikhonov_lambda,
+                    "Comma-separated gradient-Tikhonov weights")
+        ->capture_default_str();
+    cmd->add_option("--tv-lambda", o->tv_lambda, "TV-L2 weight (> 0)")->capture_default_str();
+    cmd->add_option("--repeats", o->repeats,
+                    "Timed runs of a point faster than 0.25 s; the median is kept (>= 1)")
+        ->capture_default_str();
+    cmd->add_option("--seed", o->seed, "Seed of the noise")->capture_default_str();
+    cmd->add_flag("--quick", o->quick,
+                  "Small sweep for smoke tests: iterations 1,10,100, NSR 1e-3,1e-2, Tikhonov "
+                  "1e-3, one timed run per point (overrides those flags)");
+    cmd->add_option("-o,--output", o->output, "Output directory (created; its parent must exist)")
+        ->required();
+    cmd->add_flag("--json", o->json,
+                  "Print the output paths, the best point per decoder and every curve point "
+                  "as one JSON object on stdout");
+    cmd->footer(
+        "Files in the output directory: error_time.csv (every scene and setting), "
+        "error_time_points.csv (means over scenes: the plotted points), error_time.md (best "
+        "point per decoder), error_time_snrS.svg/.png (time on a log axis, PSNR on y, the "
+        "paper's Wiener 0.004 s and TVQC 7.2 s marked as times), error_time.config.json.\n"
+        "Time: CPU seconds of one decode on one thread (decoders and FFTW are single-threaded, "
+        "so this is the wall time of an idle machine; wall time is in the CSV), filter or "
+        "operator set-up included, FFTW plans made before timing. TVQC's eps comes from the "
+        "true noise sigma (l1-magic rule); Tikhonov uses the gradient regulariser. The "
+        "paper's timings come from its own machine and code.\n"
+        "Example: pinmask bench error-time --preset paper --scenes letter-R,usaf --snr 30 "
+        "-o bench-out/");
+    cmd->callback([o] { run(*o); });
+}
+
 }  // namespace pinmask::cli

@@ -13,8 +13,7 @@
 #include <string>
 
 #include "cli/camera_options.hpp"
-#include "cli/command.hpp"
-#include "io/mask_json.hpp"
+#include "cli/commands.hpp"
 #include "cli/psf_options.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
@@ -27,6 +26,7 @@
 #include "design/optics.hpp"
 #include "design/pattern.hpp"
 #include "design/random_sparse.hpp"
+#include "io/mask_json.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -250,7 +250,7 @@ void setup(CLI::App& app) {
     cmd->callback([o, cmd] { run(*o, *cmd); });
 }
 
-const Registration kGenerate(20, "generate", setup);
-
 }  // namespace
+
+void add_generate(CLI::App& app) { setup(app); }
 }  // namespace pinmask::cli

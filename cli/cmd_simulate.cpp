@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/command.hpp"
+#include "cli/commands.hpp"
 #include "cli/noise_options.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -415,7 +415,7 @@ void setup(CLI::App& app) {
     cmd->callback([o, cmd] { run(*o, *cmd); });
 }
 
-const Registration kSimulate(40, "simulate", setup);
-
 }  // namespace
+
+void add_simulate(CLI::App& app) { setup(app); }
 }  // namespace pinmask::cli
