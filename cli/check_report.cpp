@@ -1,11 +1,11 @@
 #include "cli/check_report.hpp"
 
-#include "export/geometry.hpp"
-
 #include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+
+#include "export/geometry.hpp"
 
 namespace pinmask::cli {
 namespace {

@@ -68,7 +68,7 @@ LayoutOptions design_options(const CheckOptions& o, const io::ExportSidecar* sid
 // The mask a sidecar names: its path as recorded, else relative to the sidecar's folder.
 std::string sidecar_mask(const io::ExportSidecar& side, const fs::path& sidecar) {
     for (const fs::path& p : {fs::path(side.mask_path), sidecar.parent_path() / side.mask_path,
-                             sidecar.parent_path() / fs::path(side.mask_path).filename()})
+                              sidecar.parent_path() / fs::path(side.mask_path).filename()})
         if (fs::is_regular_file(p)) return p.string();
     return "";
 }

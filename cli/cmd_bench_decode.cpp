@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/decode_bench.hpp"
-#include "cli/command.hpp"
+#include "cli/commands.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
 
@@ -73,42 +73,40 @@ void run(Options& o) {
     }
 }
 
-const Registration kBenchDecode(
-    10, "decode",
-    [](CLI::App& bench) {
-        auto opts = std::make_shared<Options>();
-        auto* cmd = bench.add_subcommand(
-            "decode",
-            "Decoder time per call on one channel (cyclic model, a seeded 20-pinhole PSF and "
-            "scene, 1% noise) beside bare FFTW r2c + c2r pairs of the same size planned with "
-            "FFTW_MEASURE (double and float), timed in the same run, as ratios to each. Methods: "
-            "wiener and tikhonov (precomputed filter applied; wiener also in float32), one TV-L2 "
-            "ADMM iteration (double and float32), TV-L2 iterations to 0.2 dB of converged on the "
-            "paper problem (sizes 16 n_px up to 256), TVQC run to tolerance 1e-4 and one TVQC "
-            "iteration, one Richardson-Lucy iteration. Each figure is the minimum over --repeat "
-            "timed batches.");
-        cmd->add_option("--sizes", opts->sizes,
-                        "Channel sizes: N (N x N pixels) or RxC, each side 16..8192; 1024 adds "
-                        "~20 s, mostly TVQC")
-            ->delimiter(',')
-            ->capture_default_str();
-        cmd->add_option("--repeat", opts->bench.repeat,
-                        "Timed batches per figure (>= 1); each batch lasts >= 20 ms")
-            ->capture_default_str();
-        cmd->add_option("--tvqc-max-iterations", opts->bench.tvqc_max_iterations,
-                        "Iteration cap of the TVQC run (>= 1)")
-            ->capture_default_str();
-        cmd->add_flag("--json", opts->json,
-                      "One JSON record per line: method, rows, cols, seconds_per_call, "
-                      "fft_pair_seconds, ratio, fft_pair_float_seconds, ratio_float");
-        cmd->footer(
-            "Example: pinmask bench decode --sizes 128,480x720 --repeat 5\n"
-            "Timings depend on the machine and its load; the ratios to the FFT pairs are the "
-            "figures to compare. Our transforms use the process's planner (FFTW_MEASURE with "
-            "the wisdom cache unless PINMASK_WISDOM=off).");
-        cmd->callback([opts] { run(*opts); });
-    },
-    "bench");
-
 }  // namespace
+
+void add_bench_decode(CLI::App& bench) {
+    auto opts = std::make_shared<Options>();
+    auto* cmd = bench.add_subcommand(
+        "decode",
+        "Decoder time per call on one channel (cyclic model, a seeded 20-pinhole PSF and "
+        "scene, 1% noise) beside bare FFTW r2c + c2r pairs of the same size planned with "
+        "FFTW_MEASURE (double and float), timed in the same run, as ratios to each. Methods: "
+        "wiener and tikhonov (precomputed filter applied; wiener also in float32), one TV-L2 "
+        "ADMM iteration (double and float32), TV-L2 iterations to 0.2 dB of converged on the "
+        "paper problem (sizes 16 n_px up to 256), TVQC run to tolerance 1e-4 and one TVQC "
+        "iteration, one Richardson-Lucy iteration. Each figure is the minimum over --repeat "
+        "timed batches.");
+    cmd->add_option("--sizes", opts->sizes,
+                    "Channel sizes: N (N x N pixels) or RxC, each side 16..8192; 1024 adds "
+                    "~20 s, mostly TVQC")
+        ->delimiter(',')
+        ->capture_default_str();
+    cmd->add_option("--repeat", opts->bench.repeat,
+                    "Timed batches per figure (>= 1); each batch lasts >= 20 ms")
+        ->capture_default_str();
+    cmd->add_option("--tvqc-max-iterations", opts->bench.tvqc_max_iterations,
+                    "Iteration cap of the TVQC run (>= 1)")
+        ->capture_default_str();
+    cmd->add_flag("--json", opts->json,
+                  "One JSON record per line: method, rows, cols, seconds_per_call, "
+                  "fft_pair_seconds, ratio, fft_pair_float_seconds, ratio_float");
+    cmd->footer(
+        "Example: pinmask bench decode --sizes 128,480x720 --repeat 5\n"
+        "Timings depend on the machine and its load; the ratios to the FFT pairs are the "
+        "figures to compare. Our transforms use the process's planner (FFTW_MEASURE with "
+        "the wisdom cache unless PINMASK_WISDOM=off).");
+    cmd->callback([opts] { run(*opts); });
+}
+
 }  // namespace pinmask::cli

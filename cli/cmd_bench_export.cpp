@@ -9,7 +9,7 @@
 #include <string>
 
 #include "bench/export_bench.hpp"
-#include "cli/command.hpp"
+#include "cli/commands.hpp"
 #include "core/units.hpp"
 
 namespace pinmask::cli {
@@ -91,7 +91,7 @@ void setup(CLI::App& bench) {
     cmd->callback([o] { run(*o); });
 }
 
-const Registration kBenchExport(30, "export", setup, "bench");
-
 }  // namespace
+
+void add_bench_export(CLI::App& bench) { setup(bench); }
 }  // namespace pinmask::cli

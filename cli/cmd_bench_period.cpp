@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/period_bench.hpp"
-#include "cli/command.hpp"
+#include "cli/commands.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -42,26 +42,23 @@ void run(const Options& o) {
                 r.wiener_period_seconds, period_ratio);
 }
 
-const Registration kBenchPeriod(
-    60, "period",
-    [](CLI::App& bench) {
-        auto opts = std::make_shared<Options>();
-        auto* cmd = bench.add_subcommand(
-            "period",
-            "Cost of decode's period check beside a Wiener decode of the same capture (the "
-            "issue-12 camera: 3.45 um pixels, 21 px per cell, 336 px period, 30 dB), timed in "
-            "the same run; each figure the minimum over --repeat runs.");
-        cmd->footer("Example: pinmask bench period --rows 2048 --cols 2448");
-        cmd->add_option("--rows", opts->bench.rows, "Sensor rows (672..8192)")
-            ->capture_default_str();
-        cmd->add_option("--cols", opts->bench.cols, "Sensor columns (672..8192)")
-            ->capture_default_str();
-        cmd->add_option("--repeat", opts->bench.repeat, "Runs per figure (>= 1)")
-            ->capture_default_str();
-        cmd->add_flag("--json", opts->json, "One JSON object on stdout");
-        cmd->callback([opts] { run(*opts); });
-    },
-    "bench");
-
 }  // namespace
+
+void add_bench_period(CLI::App& bench) {
+    auto opts = std::make_shared<Options>();
+    auto* cmd = bench.add_subcommand(
+        "period",
+        "Cost of decode's period check beside a Wiener decode of the same capture (the "
+        "issue-12 camera: 3.45 um pixels, 21 px per cell, 336 px period, 30 dB), timed in "
+        "the same run; each figure the minimum over --repeat runs.");
+    cmd->footer("Example: pinmask bench period --rows 2048 --cols 2448");
+    cmd->add_option("--rows", opts->bench.rows, "Sensor rows (672..8192)")->capture_default_str();
+    cmd->add_option("--cols", opts->bench.cols, "Sensor columns (672..8192)")
+        ->capture_default_str();
+    cmd->add_option("--repeat", opts->bench.repeat, "Runs per figure (>= 1)")
+        ->capture_default_str();
+    cmd->add_flag("--json", opts->json, "One JSON object on stdout");
+    cmd->callback([opts] { run(*opts); });
+}
+
 }  // namespace pinmask::cli

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/command.hpp"
+#include "cli/commands.hpp"
 #include "cli/fft_setup.hpp"
 #include "core/error.hpp"
 #include "core/fft.hpp"
@@ -67,31 +67,29 @@ void run(const Options& o) {
     std::fflush(stdout);
 }
 
-const Registration kBenchPlan(
-    5, "plan",
-    [](CLI::App& bench) {
-        auto opts = std::make_shared<Options>();
-        auto* cmd = bench.add_subcommand(
-            "plan",
-            "Measure (FFTW_MEASURE) the FFT plans of a camera's sizes, double and float, and "
-            "remember them in the wisdom cache ($XDG_CACHE_HOME/pinmask/wisdom, or "
-            "$PINMASK_WISDOM); prints each plan's time. Later commands rebuild these plans from "
-            "the cache at once, with the same rounding every run.");
-        cmd->add_option("--sizes", opts->sizes,
-                        "Capture sizes: N (N x N pixels) or RxC (rows x cols), comma-separated; "
-                        "the paper: one period 128 and the sensor 480x720")
-            ->delimiter(',')
-            ->capture_default_str();
-        cmd->add_flag("!--no-linear", opts->linear,
-                      "Skip the linear model's padded grid (next 2^a3^b5^c7^d of 2 N - 1) that "
-                      "each size also gets by default");
-        cmd->add_option("--threads", opts->threads,
-                        "FFTW threads for plans of >= 512 x 512 (default: all cores)")
-            ->check(CLI::Range(1, 64));
-        cmd->footer("Example: pinmask bench plan --sizes 128,480x720,300x400");
-        cmd->callback([opts] { run(*opts); });
-    },
-    "bench");
-
 }  // namespace
+
+void add_bench_plan(CLI::App& bench) {
+    auto opts = std::make_shared<Options>();
+    auto* cmd = bench.add_subcommand(
+        "plan",
+        "Measure (FFTW_MEASURE) the FFT plans of a camera's sizes, double and float, and "
+        "remember them in the wisdom cache ($XDG_CACHE_HOME/pinmask/wisdom, or "
+        "$PINMASK_WISDOM); prints each plan's time. Later commands rebuild these plans from "
+        "the cache at once, with the same rounding every run.");
+    cmd->add_option("--sizes", opts->sizes,
+                    "Capture sizes: N (N x N pixels) or RxC (rows x cols), comma-separated; "
+                    "the paper: one period 128 and the sensor 480x720")
+        ->delimiter(',')
+        ->capture_default_str();
+    cmd->add_flag("!--no-linear", opts->linear,
+                  "Skip the linear model's padded grid (next 2^a3^b5^c7^d of 2 N - 1) that "
+                  "each size also gets by default");
+    cmd->add_option("--threads", opts->threads,
+                    "FFTW threads for plans of >= 512 x 512 (default: all cores)")
+        ->check(CLI::Range(1, 64));
+    cmd->footer("Example: pinmask bench plan --sizes 128,480x720,300x400");
+    cmd->callback([opts] { run(*opts); });
+}
+
 }  // namespace pinmask::cli

@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/search_bench.hpp"
-#include "cli/command.hpp"
+#include "cli/commands.hpp"
 #include "core/error.hpp"
 
 namespace pinmask::cli {
@@ -74,27 +74,25 @@ void run(const Options& o) {
     print_objective(o.seconds, o.json);
 }
 
-const Registration kBenchSearch(
-    20, "search",
-    [](CLI::App& bench) {
-        auto opts = std::make_shared<Options>();
-        auto* cmd = bench.add_subcommand(
-            "search",
-            "Incremental single-pinhole moves per second (P^ updated by two plane waves, the "
-            "autocorrelation in O(K), legality in O(1)) beside full re-evaluation per second "
-            "(FFT of the pattern and inverse FFT of |P^|^2), one core, same run.");
-        cmd->add_option("--sizes", opts->sizes, "Pattern sizes n")
-            ->delimiter(',')
-            ->capture_default_str();
-        cmd->add_option("--seconds", opts->seconds, "Seconds per size and method")
-            ->capture_default_str();
-        cmd->add_flag("--json", opts->json,
-                      "One JSON record per line: n, holes, moves_per_second, "
-                      "full_evals_per_second, speedup");
-        cmd->footer("Example: pinmask bench search --sizes 16,64,256 --json");
-        cmd->callback([opts] { run(*opts); });
-    },
-    "bench");
-
 }  // namespace
+
+void add_bench_search(CLI::App& bench) {
+    auto opts = std::make_shared<Options>();
+    auto* cmd = bench.add_subcommand(
+        "search",
+        "Incremental single-pinhole moves per second (P^ updated by two plane waves, the "
+        "autocorrelation in O(K), legality in O(1)) beside full re-evaluation per second "
+        "(FFT of the pattern and inverse FFT of |P^|^2), one core, same run.");
+    cmd->add_option("--sizes", opts->sizes, "Pattern sizes n")
+        ->delimiter(',')
+        ->capture_default_str();
+    cmd->add_option("--seconds", opts->seconds, "Seconds per size and method")
+        ->capture_default_str();
+    cmd->add_flag("--json", opts->json,
+                  "One JSON record per line: n, holes, moves_per_second, "
+                  "full_evals_per_second, speedup");
+    cmd->footer("Example: pinmask bench search --sizes 16,64,256 --json");
+    cmd->callback([opts] { run(*opts); });
+}
+
 }  // namespace pinmask::cli

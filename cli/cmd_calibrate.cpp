@@ -11,7 +11,7 @@
 #include "calibrate/report.hpp"
 #include "cli/calibrate_json.hpp"
 #include "cli/camera_options.hpp"
-#include "cli/command.hpp"
+#include "cli/commands.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
@@ -209,7 +209,7 @@ void setup(CLI::App& app) {
     });
 }
 
-const Registration kCalibrate(62, "calibrate", setup);
-
 }  // namespace
+
+void add_calibrate(CLI::App& app) { setup(app); }
 }  // namespace pinmask::cli

@@ -16,7 +16,7 @@
 
 #include "cli/check_report.hpp"
 #include "cli/check_settings.hpp"
-#include "cli/command.hpp"
+#include "cli/commands.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "export/drc.hpp"
@@ -63,7 +63,8 @@ DrcRules resolve_rules(const CheckOptions& o, DrcRules rules) {
     return rules;
 }
 
-void run(const CheckOptions& o) {
+// Returns the exit code: 0 clean, 1 violations found.
+int run(const CheckOptions& o) {
     if (!fs::is_regular_file(o.input))
         throw invalid_field("input", o.input, "must be an existing mask or fabrication file");
     if (!std::isfinite(o.max_xor_um2) || o.max_xor_um2 < 0)
@@ -145,7 +146,7 @@ void run(const CheckOptions& o) {
         print_check_json(rep);
     else
         print_check_text(rep, vendor);
-    if (!c.clean()) set_exit_code(1);
+    return c.clean() ? 0 : 1;
 }
 
 constexpr const char* kFooter =
@@ -162,7 +163,7 @@ constexpr const char* kFooter =
     "Exit codes: 0 clean, 1 violations or a mismatch with the design, 2 bad input.\n"
     "Example: pinmask export m.mask.json -o fab/ && pinmask check fab/m.gds";
 
-void setup(CLI::App& app) {
+void setup(CLI::App& app, int& exit_code) {
     auto o = std::make_shared<CheckOptions>();
     auto* cmd = app.add_subcommand(
         "check", "Design-rule check of a mask file or an exported fabrication file.");
@@ -207,10 +208,10 @@ void setup(CLI::App& app) {
                   "Print {clean, input, kind, vendor, tone, polygons, annotations, rules, "
                   "measured, counts, truncated, violations: [{rule, message, x_um, y_um, "
                   "polygon_a, polygon_b, value, limit, unit}], comparison} on stdout");
-    cmd->callback([o] { run(*o); });
+    cmd->callback([o, &exit_code] { exit_code = run(*o); });
 }
 
-const Registration kCheck(80, "check", setup);
-
 }  // namespace
+
+void add_check(CLI::App& app, int& exit_code) { setup(app, exit_code); }
 }  // namespace pinmask::cli

@@ -12,13 +12,13 @@
 #include <vector>
 
 #include "cli/analytic_setup.hpp"
-#include "cli/command.hpp"
 #include "cli/command_footers.hpp"
+#include "cli/commands.hpp"
 #include "cli/compare_report.hpp"
 #include "cli/noise_options.hpp"
-#include "core/output_set.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/output_set.hpp"
 #include "export/report.hpp"
 #include "io/json_strict.hpp"
 #include "io/mask_json.hpp"
@@ -244,7 +244,7 @@ void setup(CLI::App& app) {
     cmd->callback([o, cmd] { run(*o, *cmd); });
 }
 
-const Registration kCompare(65, "compare", setup);
-
 }  // namespace
+
+void add_compare(CLI::App& app) { setup(app); }
 }  // namespace pinmask::cli

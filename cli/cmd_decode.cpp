@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "cli/command.hpp"
+#include "cli/commands.hpp"
 #include "cli/decode_flags.hpp"
 #include "cli/decode_output.hpp"
 #include "cli/interrupt.hpp"
@@ -19,12 +19,12 @@
 #include "core/image_io.hpp"
 #include "core/output_set.hpp"
 #include "core/raw_io.hpp"
+#include "core/units.hpp"
 #include "decode/capture_pipeline.hpp"
 #include "decode/decode_method.hpp"
-#include "core/units.hpp"
-#include "design/working_distance.hpp"
 #include "design/mask.hpp"
 #include "design/psf.hpp"
+#include "design/working_distance.hpp"
 #include "io/mask_json.hpp"
 #include "io/psf_files.hpp"
 
@@ -103,9 +103,13 @@ CaptureDecodeInputs load_inputs(const DecodeRequest& r, BayerMode bayer, bool ne
 
 void run_decode(const DecodeRequest& r, BayerMode bayer) {
     const auto t_start = Clock::now();
-    plan_outputs({{"capture", r.capture}, {"--mask", r.mask}, {"--psf", r.psf}, {"--dark", r.dark},
-                  {"--psf (sidecar)", r.psf.empty() ? "" : io::psf_sidecar_path(r.psf)}},
-                 {{"-o", r.output}, {"-o (config)", r.output + ".config.json"}, {"--stats", r.stats}});
+    plan_outputs(
+        {{"capture", r.capture},
+         {"--mask", r.mask},
+         {"--psf", r.psf},
+         {"--dark", r.dark},
+         {"--psf (sidecar)", r.psf.empty() ? "" : io::psf_sidecar_path(r.psf)}},
+        {{"-o", r.output}, {"-o (config)", r.output + ".config.json"}, {"--stats", r.stats}});
     // Everything that can be checked without reading pixels, first.
     const OutputKind kind = output_kind(r.output);
     const fs::path out_dir = fs::path(r.output).parent_path();
@@ -226,7 +230,7 @@ void setup(CLI::App& app) {
     });
 }
 
-const Registration kDecode(50, "decode", setup);
-
 }  // namespace
+
+void add_decode(CLI::App& app) { setup(app); }
 }  // namespace pinmask::cli

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/command.hpp"
+#include "cli/commands.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
@@ -175,7 +175,7 @@ void setup(CLI::App& app) {
     cmd->callback([o] { run(*o); });
 }
 
-const Registration kDepth(95, "depth", setup);
-
 }  // namespace
+
+void add_depth(CLI::App& app) { setup(app); }
 }  // namespace pinmask::cli

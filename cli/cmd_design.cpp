@@ -14,12 +14,12 @@
 #include <vector>
 
 #include "cli/camera_options.hpp"
-#include "cli/command.hpp"
+#include "cli/commands.hpp"
 #include "cli/design_report.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
-#include "design/kernel_validity.hpp"
 #include "design/kernel.hpp"
+#include "design/kernel_validity.hpp"
 #include "design/optics.hpp"
 #include "design/working_distance.hpp"
 #include "io/camera_json.hpp"
@@ -166,7 +166,7 @@ void setup(CLI::App& app) {
     cmd->callback([o] { run(*o); });
 }
 
-const Registration kDesign(10, "design", setup);
-
 }  // namespace
+
+void add_design(CLI::App& app) { setup(app); }
 }  // namespace pinmask::cli

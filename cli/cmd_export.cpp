@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "cli/command.hpp"
+#include "cli/commands.hpp"
 #include "cli/export_options.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -223,7 +223,7 @@ void setup(CLI::App& app) {
     c->callback([f] { run_export(*f); });
 }
 
-const Registration kExport(70, "export", setup);
-
 }  // namespace
+
+void add_export(CLI::App& app) { setup(app); }
 }  // namespace pinmask::cli

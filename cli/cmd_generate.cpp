@@ -1,32 +1,26 @@
 // `pinmask generate`: a pattern from one family (random | paper | mura) for a camera -> a mask
 // file (*.mask.json). The mask file records the whole resolved configuration (geometry, optics,
 // PSF settings, seed, generator), so no separate configuration file is written.
-#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <random>
 #include <sstream>
 #include <string>
 
 #include "cli/camera_options.hpp"
-#include "cli/command.hpp"
-#include "io/mask_json.hpp"
+#include "cli/commands.hpp"
 #include "cli/psf_options.hpp"
 #include "core/error.hpp"
-#include "core/image_io.hpp"
 #include "core/output_set.hpp"
 #include "core/units.hpp"
-#include "design/exclusion_grid.hpp"
 #include "design/families.hpp"
+#include "design/generate_pattern.hpp"
 #include "design/mask.hpp"
-#include "design/mura.hpp"
 #include "design/optics.hpp"
-#include "design/pattern.hpp"
-#include "design/random_sparse.hpp"
+#include "io/mask_json.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -47,111 +41,37 @@ struct GenerateOptions {
     bool json = false;
 };
 
-// The paper and mura families fix some of the geometry: a flag given with another value is an
-// error rather than silently ignored.
-void require_unset_or(const CLI::App& cmd, const char* flag, double given, double fixed,
-                      const std::string& why) {
-    if (cmd.count(flag) > 0 && given != fixed) {
-        std::ostringstream v;
-        v << given;
-        throw invalid_field(flag, v.str(), why);
-    }
-}
-
-Pattern make_pattern(const GenerateOptions& o, const CLI::App& cmd, Family family,
-                     std::size_t& violations) {
-    const GeometryOptions& g = o.geometry;
-    std::mt19937_64 rng(o.seed);
-    Pattern p;
-    if (family == Family::kPaper) {
-        const std::string why =
-            "the paper family fixes n = 16, K = 20, 2 x 2 tiles, spacing 2 "
-            "(use --family random for other geometries)";
-        require_unset_or(cmd, "--grid", g.grid, kPaperGrid, why);
-        require_unset_or(cmd, "--holes", g.holes, kPaperHoles, why);
-        require_unset_or(cmd, "--tiles", g.tiles, kPaperTiles, why);
-        require_unset_or(cmd, "--spacing", g.spacing, kPaperSpacingCells, why);
-        p = paper_pattern(rng);
-    } else if (family == Family::kRandom) {
-        RandomSparseOptions r;
-        r.n = g.grid;
-        r.holes = g.holes;
-        r.min_spacing_cells = g.spacing;
-        r.tiles_rows = g.tiles;
-        r.tiles_cols = g.tiles;
-        r.max_attempts = o.attempts;
-        p = random_sparse_pattern(r, rng);
-    } else {
-        if (g.tiles < 1) throw invalid_field("--tiles", std::to_string(g.tiles), "must be >= 1");
-        p = mura_pattern(g.grid, g.spacing, g.tiles, g.tiles);
-        const int open = static_cast<int>(p.pinholes.size());
-        require_unset_or(cmd, "--holes", g.holes, open,
-                         "a MURA of order " + std::to_string(g.grid) +
-                             " has (p^2 - 1) / 2 = " + std::to_string(open) + " pinholes");
-    }
-    violations = count_spacing_violations(p);
-    if (violations > 0 && !o.allow_violations) {
-        std::ostringstream v;
-        v << p.min_spacing_cells;
-        throw invalid_field("--spacing", v.str(),
-                            "the " + family_name(family) + " pattern of order " +
-                                std::to_string(p.n) + " has " + std::to_string(violations) +
-                                " pinhole pair(s) closer than that on the torus; pass "
-                                "--allow-violations to write it anyway (the file records "
-                                "spacing_violations_allowed), or lower --spacing");
-    }
-    return p;
-}
-
-// Bounds that later commands enforce, checked here so generate never writes a mask they refuse.
-void check_generate_bounds(const GenerateOptions& o) {
-    const GeometryOptions& g = o.geometry;
-    if (g.tiles < 1 || g.tiles > kMaxTiles) {
-        throw invalid_field("--tiles", std::to_string(g.tiles),
-                            "must be between 1 and " + std::to_string(kMaxTiles) +
-                                " (the largest tiling the mask reader and export accept)");
-    }
-    if (g.grid < 1 || g.grid > kMaxGrid) {
-        throw invalid_field("--grid", std::to_string(g.grid),
-                            "must be between 1 and " + std::to_string(kMaxGrid));
-    }
-}
-
-// The PSF of one period is (grid x pixels per cell)^2 samples: it must be an image that psf,
-// simulate and decode can hold (kMaxImageSamples), else generate would write a mask they refuse.
-void check_psf_side(int ppc, int grid, bool given) {
-    const double side = double(ppc) * grid;
-    if (side * side <= double(kMaxImageSamples)) return;
-    const auto max_side = static_cast<long long>(std::sqrt(double(kMaxImageSamples)));
-    throw invalid_field(
-        given ? "--pixels-per-cell" : "pixels per cell (design value from the camera)",
-        std::to_string(ppc),
-        "the PSF of one period would be " + std::to_string(static_cast<long long>(side)) +
-            " px wide (grid " + std::to_string(grid) +
-            " x pixels per cell); psf, simulate and decode hold at most " +
-            std::to_string(kMaxImageSamples) + " samples (kMaxImageSamples), " +
-            std::to_string(max_side) + " px per side: at most " + std::to_string(max_side / grid) +
-            " pixels per cell at grid " + std::to_string(grid));
-}
-
 void run(const GenerateOptions& o, const CLI::App& cmd) {
     const Family family = parse_family(o.family);
     const fs::path out_dir = fs::path(o.output).parent_path();
     if (!out_dir.empty() && !fs::is_directory(out_dir)) {
         throw invalid_field("-o", o.output, "the output directory does not exist");
     }
-    if (o.attempts < 1)
-        throw invalid_field("--attempts", std::to_string(o.attempts), "must be >= 1");
+    GeneratePatternOptions go;
+    go.family = family;
+    go.grid = o.geometry.grid;
+    go.holes = o.geometry.holes;
+    go.tiles = o.geometry.tiles;
+    go.spacing = o.geometry.spacing;
+    go.grid_given = cmd.count("--grid") > 0;
+    go.holes_given = cmd.count("--holes") > 0;
+    go.tiles_given = cmd.count("--tiles") > 0;
+    go.spacing_given = cmd.count("--spacing") > 0;
+    go.seed = o.seed;
+    go.attempts = o.attempts;
+    go.allow_violations = o.allow_violations;
+    go.validate();
     plan_outputs({}, {{"-o", o.output}});
-    check_generate_bounds(o);
 
     Mask m;
     m.camera = resolve_camera(o.camera);
     const double design_ppc = design_pixels_per_cell(m.camera);
     m.psf = resolve_psf_spec(o.psf, m.camera);
-    check_psf_side(m.psf.pixels_per_cell, o.geometry.grid, o.psf.pixels_per_cell.has_value());
-    std::size_t violations = 0;
-    m.pattern = make_pattern(o, cmd, family, violations);
+    check_period_psf_size(m.psf.pixels_per_cell, o.geometry.grid,
+                          o.psf.pixels_per_cell.has_value());
+    const GeneratedPattern gen = generate_pattern(go);
+    const std::size_t violations = gen.spacing_violations;
+    m.pattern = gen.pattern;
     // A MURA does not depend on the seed: recording 0 keeps its file independent of --seed.
     m.provenance.seed = family == Family::kMura ? 0 : o.seed;
     m.provenance.generator = kGenerator;
@@ -250,7 +170,7 @@ void setup(CLI::App& app) {
     cmd->callback([o, cmd] { run(*o, *cmd); });
 }
 
-const Registration kGenerate(20, "generate", setup);
-
 }  // namespace
+
+void add_generate(CLI::App& app) { setup(app); }
 }  // namespace pinmask::cli

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include "cli/command.hpp"
+#include "cli/commands.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
 #include "core/units.hpp"
@@ -194,7 +194,7 @@ void setup(CLI::App& app) {
     cmd->callback([o] { run(*o); });
 }
 
-const Registration kPsf(30, "psf", setup);
-
 }  // namespace
+
+void add_psf(CLI::App& app) { setup(app); }
 }  // namespace pinmask::cli

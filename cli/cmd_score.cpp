@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "cli/analytic_setup.hpp"
-#include "cli/command.hpp"
 #include "cli/command_footers.hpp"
+#include "cli/commands.hpp"
 #include "cli/noise_options.hpp"
 #include "core/error.hpp"
 #include "io/mask_json.hpp"
@@ -129,8 +129,8 @@ void run(const ScoreOptions& o, const CLI::App& cmd) {
         if (m.analytic && o.explain) {
             const PriorRelevance pr = prior_relevance(context.prior(mm.period_px));
             explain.push_back(
-                "prior at " + std::to_string(mm.period_px) + " px: " +
-                std::to_string(pr.irrelevant) + " of " + std::to_string(pr.total) +
+                "prior at " + std::to_string(mm.period_px) +
+                " px: " + std::to_string(pr.irrelevant) + " of " + std::to_string(pr.total) +
                 " frequencies carry < 1e-6 of its peak power (irrelevant to the analytic error; "
                 "still summed, nothing skipped); relevant up to radius " +
                 std::to_string(pr.highest_relevant_radius) + " cycles per period");
@@ -206,7 +206,7 @@ void setup(CLI::App& app) {
     cmd->callback([o, cmd] { run(*o, *cmd); });
 }
 
-const Registration kScore(60, "score", setup);
-
 }  // namespace
+
+void add_score(CLI::App& app) { setup(app); }
 }  // namespace pinmask::cli

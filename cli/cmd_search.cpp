@@ -8,8 +8,8 @@
 
 #include "cli/analytic_setup.hpp"
 #include "cli/camera_options.hpp"
-#include "cli/command.hpp"
 #include "cli/command_footers.hpp"
+#include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/noise_options.hpp"
 #include "cli/progress.hpp"
@@ -17,11 +17,11 @@
 #include "cli/search_options.hpp"
 #include "cli/search_outputs.hpp"
 #include "core/error.hpp"
+#include "core/output_set.hpp"
 #include "core/units.hpp"
 #include "io/optics_json.hpp"
 #include "io/search_config.hpp"
 #include "optimize/search_pipeline.hpp"
-#include "core/output_set.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -141,7 +141,9 @@ void run(const SearchCliOptions& o, const CLI::App& cmd) {
     std::cout << j.dump(2) << "\n";
 }
 
-const Registration kSearch(50, "search", [](CLI::App& app) {
+}  // namespace
+
+void add_search(CLI::App& app) {
     auto o = std::make_shared<SearchCliOptions>();
     auto* cmd = app.add_subcommand(
         "search",
@@ -214,7 +216,6 @@ const Registration kSearch(50, "search", [](CLI::App& app) {
         if (!o->config.empty()) apply_config(io::read_search_config(o->config), *cmd, *o);
         run(*o, *cmd);
     });
-});
+}
 
-}  // namespace
 }  // namespace pinmask::cli

@@ -1,33 +1,28 @@
-// `pinmask simulate`: mask + scene -> a simulated capture (optimize/simulate.hpp), optionally the
-// whole sensor and a matching dark frame, with the resolved configuration written next to the
-// capture as OUT.config.json. All files are staged and appear together or not at all.
-#include <cmath>
+// `pinmask simulate`: mask + scene -> a simulated capture (optimize/simulate_pipeline.hpp),
+// optionally the whole sensor and a matching dark frame, with the resolved configuration written
+// next to the capture as OUT.config.json. All files are staged and appear together or not at all.
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
-#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include "cli/command.hpp"
+#include "cli/commands.hpp"
+#include "cli/image_output.hpp"
 #include "cli/noise_options.hpp"
+#include "cli/simulate_config.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/fft.hpp"
-#include "core/image_io.hpp"
 #include "core/output_set.hpp"
 #include "core/units.hpp"
-#include "design/kernel_model.hpp"
-#include "design/psf.hpp"
-#include "design/psf_exact.hpp"
 #include "design/working_distance.hpp"
 #include "io/mask_json.hpp"
 #include "optimize/scenes.hpp"
-#include "optimize/simulate.hpp"
+#include "optimize/simulate_pipeline.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -55,56 +50,20 @@ struct SimulateOptions {
     int threads = 0;  // FFTW threads for >= 512 x 512 transforms; 0: all cores
 };
 
-std::string fmt(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
-
-std::string lower_ext(const fs::path& path) {
-    std::string ext = path.extension().string();
-    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    return ext;
-}
-
-void check_image_extension(const std::string& path, const std::string& flag) {
-    const std::string ext = lower_ext(path);
-    if (ext != ".tif" && ext != ".tiff" && ext != ".png" && ext != ".npy") {
-        throw invalid_field(flag, path, "must end in .tif, .tiff (float32), .png (16-bit) or .npy");
-    }
-    const fs::path dir = fs::path(path).parent_path();
-    if (!dir.empty() && !fs::is_directory(dir)) {
-        throw invalid_field(flag, path, "the output directory does not exist");
-    }
-}
-
-// Writes `image` to tmp in the format of final_path's extension (already checked): float32 TIFF,
-// 16-bit PNG of [0, 1], float32 npy (core/image_io write_image).
-void write_image_as(const fs::path& tmp, const fs::path& final_path, const Image& image) {
-    const std::string ext = lower_ext(final_path);
-    if (ext == ".png") {
-        write_png(tmp, image, 16);
-    } else if (ext == ".npy") {
-        write_npy(tmp, image, SampleFormat::kFloat32);
-    } else {
-        write_tiff(tmp, image, SampleFormat::kFloat32);
-    }
-}
-
-// The noise model from the flags; `explain` gets a line per noise stage that is not applied.
+// The noise model from the flags; `notes` gets a line per noise stage that is not applied.
 NoiseModel noise_from_flags(const SimulateOptions& o, const CLI::App& cmd,
-                            std::vector<std::string>& explain) {
+                            std::vector<std::string>& notes) {
     if (o.photons) {
         if (cmd.count("--snr") > 0) {
             throw invalid_field("--snr", o.snr, "cannot be combined with --photons");
         }
-        return photon_model(*o.photons, o.sensor_flags, &explain);
+        return photon_model(*o.photons, o.sensor_flags, &notes);
     }
     refuse_sensor_flags_without_photons(cmd);
     NoiseModel m;
     if (o.snr == "inf" || o.snr == "+inf") {
         m.kind = NoiseKind::kNone;
-        explain.push_back("noise skipped: --snr inf (noiseless capture)");
+        notes.push_back("noise skipped: --snr inf (noiseless capture)");
         return m;
     }
     m.kind = NoiseKind::kGaussianSnr;
@@ -113,7 +72,6 @@ NoiseModel noise_from_flags(const SimulateOptions& o, const CLI::App& cmd,
 }
 
 void run(const SimulateOptions& o, const CLI::App& cmd) {
-    std::vector<std::string> explain, noise_notes;
     if (o.threads > 0) set_fft_threads(o.threads);
     // Everything checkable before any work.
     check_image_extension(o.output, "-o");
@@ -128,8 +86,13 @@ void run(const SimulateOptions& o, const CLI::App& cmd) {
     if (o.sensor && !o.full_sensor) {
         throw invalid_field("--sensor", *o.sensor, "only applies with --full-sensor");
     }
-    SimulationOptions sim;
-    sim.noise = noise_from_flags(o, cmd, noise_notes);
+    SimulatePipelineOptions po;
+    SimulationOptions& sim = po.sim;
+    sim.noise = noise_from_flags(o, cmd, po.noise_notes);
+    po.photon_stages = {o.sensor_flags.optical_density.has_value(),
+                        o.sensor_flags.dark_current.has_value(),
+                        o.sensor_flags.read_noise.has_value(), o.sensor_flags.full_well.has_value(),
+                        o.sensor_flags.bits.has_value()};
     sim.seed = o.seed;
     sim.dark_frame = !o.dark_frame.empty();
     if (sim.dark_frame && sim.noise.kind != NoiseKind::kPhoton) {
@@ -137,174 +100,47 @@ void run(const SimulateOptions& o, const CLI::App& cmd) {
                             "needs the photon model (--photons N): the --snr model has no leak, "
                             "dark current or read noise to record");
     }
-    SceneSpec scene_spec = scene_from_name(o.scene);
+    po.scene = scene_from_name(o.scene);
 
     io::MaskReadOptions ro;
     ro.allow_spacing_violations = o.allow_violations;
     const Mask mask = io::read_mask_file(o.mask, ro);
-    const Kernel kernel = mask_kernel(mask);
-    const int ppc = mask.psf.pixels_per_cell;
-    const Plane psf = synthesize_psf(mask.pattern, kernel, ppc);
-    const int m = static_cast<int>(psf.rows());
-    const int holes = static_cast<int>(mask.pattern.pinholes.size());
-    const int cells = mask.pattern.n * mask.pattern.n;
-    explain.push_back("psf: synthesised from the mask, " + std::to_string(m) + " x " +
-                      std::to_string(m) + " pixels per period, kernel " +
-                      kernel_model_name(kernel.model) + " (" + kernel.model_reason + ")");
-    const Image scene = make_scene(scene_spec, m, m);
-    explain.push_back("scene: " + scene_name(scene_spec) + " rendered at one " + std::to_string(m) +
-                      " x " + std::to_string(m) + " period, " + std::to_string(scene.n_channels()) +
-                      " channel(s)");
-    explain.push_back("capture: circular convolution scene (*) PSF over one period");
-
     sim.full_sensor = o.full_sensor;
-    if (o.full_sensor) {
-        sim.sensor_cols = mask.camera.sensor_cols;
-        sim.sensor_rows = mask.camera.sensor_rows;
-        if (o.sensor) {
-            const Size2 s = parse_size(*o.sensor, "--sensor");
-            sim.sensor_cols = s.cols;
-            sim.sensor_rows = s.rows;
-        }
-    } else {
-        explain.push_back(
-            "full-sensor tiling skipped: --full-sensor not given, one period suffices (any one "
-            "full period decodes the scene)");
-    }
-    Plane exact;  // exact geometry: what the sensor records (design/psf_exact.hpp)
-    if (o.geometry == "exact") {
+    if (o.full_sensor && o.sensor) po.sensor = parse_size(*o.sensor, "--sensor");
+    po.exact_geometry = o.geometry == "exact";
+    if (po.exact_geometry) {
         if (o.full_sensor || o.sensor) {
             throw invalid_field(o.full_sensor ? "--full-sensor" : "--sensor", "given",
                                 "--geometry exact always covers the sensor (or --size ROWSxCOLS)");
         }
-        ExactPsfOptions eo;
-        eo.object_distance_m =
-            o.object_distance
-                ? parse_length_m(*o.object_distance, "--object-distance", AllowInfinity::kYes)
-                : mask.camera.object_distance_m;
-        check_object_distance(mask.camera, eo.object_distance_m, "--object-distance");
-        if (o.size) {
-            const Size2 rc = parse_size(*o.size, "--size");  // typed ROWSxCOLS
-            eo.rows = rc.cols;
-            eo.cols = rc.rows;
+        if (o.object_distance) {
+            po.object_distance_m =
+                parse_length_m(*o.object_distance, "--object-distance", AllowInfinity::kYes);
         }
-        exact = exact_psf(mask, eo);
-        sim.exact_psf = &exact;
-        explain.push_back("geometry: exact at u = " + format_length(eo.object_distance_m) + ", " +
-                          std::to_string(exact.rows()) + " x " + std::to_string(exact.cols()) +
-                          " px, scene (*) exact PSF by linear convolution (the cyclic capture "
-                          "above is replaced)");
+        check_object_distance(mask.camera,
+                              po.object_distance_m.value_or(mask.camera.object_distance_m),
+                              "--object-distance");
+        if (o.size) po.window = parse_size(*o.size, "--size");  // typed ROWSxCOLS
     } else if (o.object_distance || o.size) {
         throw invalid_field(o.size ? "--size" : "--object-distance",
                             o.size ? *o.size : *o.object_distance, "only with --geometry exact");
     }
-    const SimulatedCapture s = simulate_capture(scene, psf, holes, cells, sim);
-    if (o.full_sensor) {
-        explain.push_back("full-sensor tiling: the period repeated over " +
-                          std::to_string(sim.sensor_cols) + " x " +
-                          std::to_string(sim.sensor_rows) +
-                          " pixels (periodic extension, exact "
-                          "for the cyclic model), period origin at column " +
-                          std::to_string(s.origin.col) + ", row " + std::to_string(s.origin.row) +
-                          " so the centred crop is the period");
-        if (!s.whole_period_on_sensor) {
-            std::cerr << "pinmask simulate: warning: the sensor is smaller than one " << m << " x "
-                      << m << " period: no full period to decode\n";
-        }
+    const SimulatePipelineResult r = run_simulate_pipeline(mask, po);
+    const SimulatedCapture& s = r.capture;
+    const SimulatePipelineSummary& sum = r.summary;
+    const int m = sum.period_px;
+    const std::vector<std::string>& explain = sum.explain;
+    if (o.full_sensor && !s.whole_period_on_sensor) {
+        std::cerr << "pinmask simulate: warning: the sensor is smaller than one " << m << " x " << m
+                  << " period: no full period to decode\n";
     }
-    switch (sim.noise.kind) {
-        case NoiseKind::kNone:
-            break;
-        case NoiseKind::kGaussianSnr:
-            explain.push_back("noise: Gaussian at " + fmt(sim.noise.snr_db) +
-                              " dB SNR, one draw per pixel (seed " + std::to_string(o.seed) + ")");
-            break;
-        case NoiseKind::kPhoton: {
-            const NoiseModel& nm = sim.noise;
-            std::string stages = "Poisson signal";
-            if (o.sensor_flags.optical_density)
-                stages += " + film leak (OD " + fmt(nm.film_optical_density) + ")";
-            if (o.sensor_flags.dark_current) stages += " + dark current";
-            if (o.sensor_flags.read_noise) stages += ", read noise";
-            if (o.sensor_flags.full_well) stages += ", saturation";
-            if (o.sensor_flags.bits) stages += ", " + std::to_string(nm.adc_bits) + "-bit ADC";
-            explain.push_back("noise: photon model, " + fmt(nm.photons_per_pinhole) +
-                              " e per pinhole, " + stages + " (seed " + std::to_string(o.seed) +
-                              ")");
-            if (s.background[0] > 0.0) {
-                explain.push_back(
-                    "background: the expected leak + dark current stays in the "
-                    "capture (" +
-                    fmt(s.background[0]) + " in channel 0), as a real sensor records it");
-            }
-            break;
-        }
-    }
-    explain.insert(explain.end(), noise_notes.begin(), noise_notes.end());
-    explain.push_back(sim.dark_frame ? "dark frame: all-opaque film, same exposure, seed stream 1"
-                                     : "dark frame skipped: --dark-frame not given");
 
-    // PNG holds [0, 1]: report clipping rather than hide it.
-    for (const auto& [path, img] : {std::pair{o.output, &s.capture}, {o.dark_frame, &s.dark}}) {
-        if (path.empty() || lower_ext(path) != ".png") continue;
-        double lo = 0.0, hi = 0.0;
-        for (const Plane& ch : img->channels) {
-            lo = std::min(lo, ch.minCoeff());
-            hi = std::max(hi, ch.maxCoeff());
-        }
-        if (lo < 0.0 || hi > 1.0) {
-            std::cerr << "pinmask simulate: warning: " << path << ": values in [" << lo << ", "
-                      << hi
-                      << "] are clipped to [0, 1] in a PNG; use .tiff or .npy for raw "
-                         "float values\n";
-        }
-    }
+    warn_png_clipping("pinmask simulate", o.output, s.capture);
+    if (!o.dark_frame.empty()) warn_png_clipping("pinmask simulate", o.dark_frame, s.dark);
 
     const std::string config_path = o.output + ".config.json";
-    ordered_json background = ordered_json::array();
-    for (double b : s.background) background.push_back(b);
-    ordered_json config = {
-        {"format", "pinmask-simulate-config"},
-        {"version", 1},
-        {"mask",
-         {{"path", o.mask},
-          {"geometry_hash", geometry_hash(mask)},
-          {"n", mask.pattern.n},
-          {"holes", holes},
-          {"pixels_per_cell", ppc}}},
-        {"psf",
-         {{"period_px", m},
-          {"kernel", kernel_model_name(kernel.model)},
-          {"kernel_reason", kernel.model_reason},
-          {"kernel_enclosed_energy", kernel.enclosed_energy},
-          {"kernel_support_capped", kernel.support_capped},
-          {"centring", "central element (floor(m/2), floor(m/2)) is the zero shift (deconvwnr)"}}},
-        {"scene",
-         {{"name", scene_name(scene_spec)},
-          {"rows", m},
-          {"cols", m},
-          {"channels", scene.n_channels()}}},
-        {"forward_model", "cyclic: circular convolution over one period"},
-        {"geometry", o.geometry},
-        {"full_sensor",
-         {{"enabled", o.full_sensor},
-          {"rows", s.capture.rows()},
-          {"cols", s.capture.cols()},
-          {"period_origin_row", s.origin.row},
-          {"period_origin_col", s.origin.col},
-          {"whole_period_on_sensor", s.whole_period_on_sensor}}},
-        {"noise", noise_json(sim.noise)},
-        {"seed", o.seed},
-        {"units", sim.noise.kind == NoiseKind::kPhoton
-                      ? "electrons / (photons_per_pinhole * holes); a uniform noiseless scene "
-                        "of value v gives v plus the background"
-                      : "normalised: a uniform noiseless scene of value v gives v"},
-        {"background_per_channel", background},
-        {"outputs",
-         {{"capture", o.output},
-          {"dark_frame", o.dark_frame.empty() ? ordered_json(nullptr) : ordered_json(o.dark_frame)},
-          {"config", config_path}}},
-        {"explain", explain}};
+    SimulateConfigInputs ci{o.mask, o.output, o.dark_frame, o.geometry, o.full_sensor, o.seed};
+    const ordered_json config = simulate_config_json(ci, mask, po, r, explain);
 
     StagedFiles files;
     files.stage(o.output, [&](const fs::path& tmp) { write_image_as(tmp, o.output, s.capture); });
@@ -319,18 +155,7 @@ void run(const SimulateOptions& o, const CLI::App& cmd) {
         for (const std::string& line : explain) std::cerr << "simulate: " << line << "\n";
     }
     if (o.json) {
-        std::cout << ordered_json{{"capture", o.output},
-                                  {"config", config_path},
-                                  {"dark_frame", o.dark_frame.empty() ? ordered_json(nullptr)
-                                                                      : ordered_json(o.dark_frame)},
-                                  {"rows", s.capture.rows()},
-                                  {"cols", s.capture.cols()},
-                                  {"channels", s.capture.n_channels()},
-                                  {"period_px", m},
-                                  {"noise", noise_json(sim.noise)},
-                                  {"background_per_channel", background}}
-                         .dump()
-                  << "\n";
+        std::cout << simulate_summary_json(ci, r, po.sim.noise).dump() << "\n";
         return;
     }
     std::cout << "wrote " << o.output << " (" << s.capture.cols() << " x " << s.capture.rows()
@@ -415,7 +240,7 @@ void setup(CLI::App& app) {
     cmd->callback([o, cmd] { run(*o, *cmd); });
 }
 
-const Registration kSimulate(40, "simulate", setup);
-
 }  // namespace
+
+void add_simulate(CLI::App& app) { setup(app); }
 }  // namespace pinmask::cli

@@ -1,44 +1,14 @@
-// pinmask: the command-line tool. Wires the registered subcommands and maps errors to exit codes.
-#include <algorithm>
+// pinmask: the command-line tool. Wires the subcommands (cli/commands.hpp) and maps errors to exit
+// codes.
 #include <iostream>
-#include <vector>
 
-#include "cli/command.hpp"
+#include "cli/commands.hpp"
 #include "cli/fft_setup.hpp"
 #include "cli/option_checks.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
 #include "core/resource_limits.hpp"
 #include "core/units.hpp"
-
-namespace pinmask::cli {
-namespace {
-
-struct Entry {
-    int order;
-    std::string name;
-    std::function<void(CLI::App&)> setup;
-    std::string parent;
-};
-
-std::vector<Entry>& registry() {
-    static std::vector<Entry> entries;
-    return entries;
-}
-
-int g_exit_code = 0;
-
-}  // namespace
-
-Registration::Registration(int order, std::string name, std::function<void(CLI::App&)> setup,
-                           std::string parent) {
-    registry().push_back({order, std::move(name), std::move(setup), std::move(parent)});
-}
-
-void set_exit_code(int code) { g_exit_code = code; }
-int exit_code() { return g_exit_code; }
-
-}  // namespace pinmask::cli
 
 int main(int argc, char** argv) {
     using namespace pinmask;
@@ -49,15 +19,26 @@ int main(int argc, char** argv) {
         "pinmask"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "pinmask 0.1.0");
-    auto& entries = cli::registry();
-    std::sort(entries.begin(), entries.end(),
-              [](const auto& a, const auto& b) { return a.order < b.order; });
-    for (auto& e : entries) {
-        if (e.parent.empty()) e.setup(app);
-    }
-    for (auto& e : entries) {
-        if (!e.parent.empty()) e.setup(*app.get_subcommand(e.parent));
-    }
+    int exit_code = 0;  // set by a command whose verdict is not "ok" (check: violations)
+    cli::add_design(app);
+    cli::add_generate(app);
+    cli::add_psf(app);
+    cli::add_simulate(app);
+    cli::add_decode(app);
+    cli::add_search(app);
+    cli::add_score(app);
+    cli::add_calibrate(app);
+    cli::add_compare(app);
+    cli::add_export(app);
+    cli::add_check(app, exit_code);
+    cli::add_depth(app);
+    CLI::App& bench = cli::add_bench(app);
+    cli::add_bench_plan(bench);
+    cli::add_bench_decode(bench);
+    cli::add_bench_search(bench);
+    cli::add_bench_export(bench);
+    cli::add_bench_error_time(bench);
+    cli::add_bench_period(bench);
     cli::refuse_negative_unsigned(app);  // --seed -1 must not wrap to 2^64 - 1
     enable_input_protection();           // no output may replace a file this run read
     try {
@@ -75,5 +56,5 @@ int main(int argc, char** argv) {
         std::cerr << "pinmask: failed: " << readable_numbers(e.what()) << "\n";
         return 1;
     }
-    return cli::exit_code();
+    return exit_code;
 }

@@ -1,0 +1,25 @@
+// Image outputs named by a flag: the extension check before any work, writing a staged temporary
+// in the format of the final name's extension, and the PNG clipping warning.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "core/image.hpp"
+
+namespace pinmask::cli {
+
+// InvalidInput naming `flag` unless `path` ends in .tif/.tiff/.png/.npy (any case) and its
+// directory exists.
+void check_image_extension(const std::string& path, const std::string& flag);
+
+// Writes `image` to tmp in the format of final_path's extension (already checked): float32 TIFF,
+// 16-bit PNG of [0, 1], float32 npy.
+void write_image_as(const std::filesystem::path& tmp, const std::filesystem::path& final_path,
+                    const Image& image);
+
+// A PNG holds [0, 1]: warns on stderr ("<who>: warning: ...") when `path` is a PNG and `image`
+// has values outside, rather than hide the clipping.
+void warn_png_clipping(const std::string& who, const std::string& path, const Image& image);
+
+}  // namespace pinmask::cli
