@@ -232,7 +232,8 @@ CalibrationSummary calibrate_point_source(const Plane& capture, const std::optio
             fluxes.push_back(s.spots[r.spot].flux);
         }
     const double pitch = 0.5 * (s.pitch_x_px + s.pitch_y_px);
-    s.kernel = estimate_kernel(clean, centres, fluxes, static_cast<int>(std::lround(kKernelHalfCells * pitch)));
+    s.kernel = estimate_kernel(clean, centres, fluxes,
+                               static_cast<int>(std::lround(kKernelHalfCells * pitch)));
     s.kernel_fit = compare_kernel_models(s.kernel.values, mask.camera,
                                          std::max(1, static_cast<int>(std::lround(design_pitch))));
     s.best_model = best_model(s.kernel_fit);

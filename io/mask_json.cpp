@@ -22,12 +22,12 @@
 #include <string>
 #include <vector>
 
-#include "io/json_strict.hpp"
-#include "io/optics_json.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
 #include "core/resource_limits.hpp"
+#include "io/json_strict.hpp"
+#include "io/optics_json.hpp"
 
 namespace pinmask::io {
 namespace {

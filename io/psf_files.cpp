@@ -7,7 +7,6 @@
 #include <sstream>
 #include <tuple>
 
-#include "io/json_strict.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
@@ -15,6 +14,7 @@
 #include "design/kernel.hpp"
 #include "design/kernel_model.hpp"
 #include "design/pattern.hpp"
+#include "io/json_strict.hpp"
 
 namespace pinmask::io {
 namespace {
@@ -111,22 +111,22 @@ nlohmann::ordered_json psf_sidecar_to_json(const PsfSidecar& s) {
     nlohmann::ordered_json files = {{"tiff", s.tiff_file}};
     if (!s.npy_file.empty()) files["npy"] = s.npy_file;
     nlohmann::ordered_json j = {{"format", kPsfFormat},
-            {"version", kPsfVersion},
-            {"mask_geometry_hash", s.mask_geometry_hash},
-            {"mask_file", s.mask_file},
-            {"grid_n", s.grid_n},
-            {"pixels_per_cell", s.pixels_per_cell},
-            {"pixel_pitch_m", s.pixel_pitch_m},
-            {"kernel",
-             {{"model", s.kernel_model},
-              {"reason", s.kernel_reason},
-              {"wavelengths", wl},
-              {"enclosed_energy", s.kernel_enclosed_energy},
-              {"support_capped", s.kernel_support_capped},
-              {"support_px", {s.kernel_rows, s.kernel_cols}}}},
-            {"normalisation", s.normalisation},
-            {"size_px", {s.rows, s.cols}},
-            {"files", files}};
+                                {"version", kPsfVersion},
+                                {"mask_geometry_hash", s.mask_geometry_hash},
+                                {"mask_file", s.mask_file},
+                                {"grid_n", s.grid_n},
+                                {"pixels_per_cell", s.pixels_per_cell},
+                                {"pixel_pitch_m", s.pixel_pitch_m},
+                                {"kernel",
+                                 {{"model", s.kernel_model},
+                                  {"reason", s.kernel_reason},
+                                  {"wavelengths", wl},
+                                  {"enclosed_energy", s.kernel_enclosed_energy},
+                                  {"support_capped", s.kernel_support_capped},
+                                  {"support_px", {s.kernel_rows, s.kernel_cols}}}},
+                                {"normalisation", s.normalisation},
+                                {"size_px", {s.rows, s.cols}},
+                                {"files", files}};
     if (s.geometry != "cyclic") j["geometry"] = s.geometry;  // cyclic sidecars keep their bytes
     return j;
 }

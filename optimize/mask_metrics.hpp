@@ -65,12 +65,11 @@ ScenePrior make_scene_prior(const PriorSpec& spec, int m);
 // mask does there (the error still sums them: nothing is skipped in the evaluation).
 inline constexpr double kIrrelevantPriorFraction = 1e-6;
 struct PriorRelevance {
-    long long irrelevant = 0;  // frequencies below the fraction
-    long long total = 0;       // frequencies k != 0
+    long long irrelevant = 0;              // frequencies below the fraction
+    long long total = 0;                   // frequencies k != 0
     double highest_relevant_radius = 0.0;  // largest |k| (cycles per period) above the fraction
 };
-PriorRelevance prior_relevance(const ScenePrior& prior,
-                               double fraction = kIrrelevantPriorFraction);
+PriorRelevance prior_relevance(const ScenePrior& prior, double fraction = kIrrelevantPriorFraction);
 
 // ---- Noise levels ----
 // A noise model with the suffix of its keys: Gaussian at S dB -> "snrS", photon level P -> "phP".

@@ -136,15 +136,16 @@ TEST_CASE("pinmask calibrate: bad input exits 2 and writes nothing") {
     }
 }
 
-TEST_CASE("pinmask calibrate --camera: a camera file replaces the mask's camera; flags beside it win") {
+TEST_CASE(
+    "pinmask calibrate --camera: a camera file replaces the mask's camera; flags beside it win") {
     Fixture f;
     // The paper camera at another wavelength, written by design --save-camera.
     const auto d = test::run_cli("design --preset paper --wavelength 633nm --save-camera " +
                                  f.p("he-ne.camera.json"));
     REQUIRE_MESSAGE(d.exit_code == 0, d.err);
-    const auto r = test::run_cli("calibrate " + f.p("point.tiff") + " --mask " +
-                                 f.p("m.mask.json") + " --camera " + f.p("he-ne.camera.json") +
-                                 " -o " + f.p("cal"));
+    const auto r =
+        test::run_cli("calibrate " + f.p("point.tiff") + " --mask " + f.p("m.mask.json") +
+                      " --camera " + f.p("he-ne.camera.json") + " -o " + f.p("cal"));
     REQUIRE_MESSAGE(r.exit_code == 0, r.err);
     const Mask cal = io::read_mask_file(f.dir / "cal" / "calibrated.mask.json");
     CHECK(cal.camera.wavelength_m == doctest::Approx(633e-9));
@@ -154,9 +155,9 @@ TEST_CASE("pinmask calibrate --camera: a camera file replaces the mask's camera;
     REQUIRE_MESSAGE(r2.exit_code == 0, r2.err);
     CHECK(io::read_mask_file(f.dir / "cal2" / "calibrated.mask.json").camera.wavelength_m ==
           doctest::Approx(532e-9));
-    const auto bad = test::run_cli("calibrate " + f.p("point.tiff") + " --mask " +
-                                   f.p("m.mask.json") + " --camera " + f.p("missing.camera.json") +
-                                   " -o " + f.p("cal3"));
+    const auto bad =
+        test::run_cli("calibrate " + f.p("point.tiff") + " --mask " + f.p("m.mask.json") +
+                      " --camera " + f.p("missing.camera.json") + " -o " + f.p("cal3"));
     CHECK(bad.exit_code == 2);
     CHECK(!fs::exists(f.dir / "cal3"));
 }

@@ -191,8 +191,8 @@ TEST_CASE("decode stops iterating on SIGINT and SIGTERM and writes the estimate 
             // 10^9 iterations at tolerance 0: only the signal can end it.
             const Child c = start("decode '" + capture + "' --mask '" + mask + "' --method " +
                                       method + (method == "tvqc" ? " --eps 0.01" : "") +
-                                      " --iters 1000000000 --tol 0 -o '" +
-                                      out.string() + "' --stats '" + stats.string() + "'",
+                                      " --iters 1000000000 --tol 0 -o '" + out.string() +
+                                      "' --stats '" + stats.string() + "'",
                                   dir.path / "stdout.txt");
             interrupt_when(c, sig, [](const std::string& seen) {
                 return seen.find("Ctrl-C stops") != std::string::npos;

@@ -66,12 +66,13 @@ TEST_CASE("priors: natural, text and stars differ, are seeded, and validate thei
     CHECK(parse_prior_spec("stars").kind == PriorKind::kStars);
 }
 
-TEST_CASE("prior relevance: a prior with power only at low frequencies leaves the rest irrelevant") {
+TEST_CASE(
+    "prior relevance: a prior with power only at low frequencies leaves the rest irrelevant") {
     ScenePrior p;
     p.power = Plane::Zero(8, 8);
     p.power(0, 0) = 100.0;
     p.power(0, 1) = p.power(0, 7) = 1.0;  // radius 1 along columns
-    p.power(3, 3) = 1e-9;                  // below 1e-6 of the peak
+    p.power(3, 3) = 1e-9;                 // below 1e-6 of the peak
     const PriorRelevance r = prior_relevance(p);
     CHECK(r.total == 63);
     CHECK(r.irrelevant == 61);
