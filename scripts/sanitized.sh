@@ -12,6 +12,8 @@ san_build_dir=${PINMASK_SAN_BUILD_DIR:-build-san}
 sanitized_build() {
     local launcher=()
     command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+    # Paths relative to the checkout, so a clone elsewhere reuses what an earlier tree compiled.
+    export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD}
     CC=clang CXX=clang++ cmake -S . -B "$san_build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
         -DPINMASK_SANITIZE=ON -DPINMASK_FUZZ=ON "${launcher[@]}" >/dev/null
     local targets=()
