@@ -317,4 +317,27 @@ CompareOutcome run_compare(std::vector<CompareEntry> entries, const CompareRunOp
     return out;
 }
 
+void require_same_camera(const Mask& first, const Mask& m, const std::string& path) {
+    const Camera &a = first.camera, &b = m.camera;
+    const std::pair<const char*, std::pair<double, double>> fields[] = {
+        {"object_distance_m", {a.object_distance_m, b.object_distance_m}},
+        {"lens_focal_m", {a.lens_focal_m, b.lens_focal_m}},
+        {"sensor_distance_m", {a.sensor_distance_m, b.sensor_distance_m}},
+        {"wavelength_m", {a.wavelength_m, b.wavelength_m}},
+        {"pixel_pitch_m", {a.pixel_pitch_m, b.pixel_pitch_m}},
+        {"pinhole_m", {a.pinhole_m, b.pinhole_m}},
+        {"sensor_cols", {a.sensor_cols, b.sensor_cols}},
+        {"sensor_rows", {a.sensor_rows, b.sensor_rows}}};
+    for (const auto& [name, v] : fields) {
+        if (v.first == v.second) continue;
+        std::ostringstream s, f;
+        s << v.second;
+        f << v.first;
+        throw invalid_field(path + ": optics." + name, s.str(),
+                            "differs from the first mask's " + f.str() +
+                                "; a comparison report is for one camera (compare masks of "
+                                "other cameras in separate runs)");
+    }
+}
+
 }  // namespace pinmask

@@ -84,6 +84,11 @@ struct CompareResult {
 // Throws InvalidInput naming the field when the settings are out of range.
 void validate(const CompareSettings& settings);
 
+// Rule: a comparison report describes one camera (page 1 prints it, the baselines are built for
+// it), so every mask must be designed for the first mask's camera; grid sizes may differ. Throws
+// InvalidInput naming `path`'s optics field and both values.
+void require_same_camera(const Mask& first, const Mask& m, const std::string& path);
+
 // Every metric and picture of one mask. `context` holds settings.metrics (the caller builds it
 // once: scenes and prior are shared by masks of one period).
 CompareResult compare_mask(const CompareEntry& entry, const CompareSettings& settings,
