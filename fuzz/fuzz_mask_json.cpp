@@ -5,10 +5,10 @@
 #include <cstdint>
 #include <string>
 
-#include "io/mask_json.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "fuzz/fuzz_support.hpp"
+#include "io/mask_json.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
     pinmask::fuzz::set_memory_limit();

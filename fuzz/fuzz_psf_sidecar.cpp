@@ -8,10 +8,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "io/json_strict.hpp"
-#include "io/psf_files.hpp"
 #include "core/error.hpp"
 #include "fuzz/fuzz_support.hpp"
+#include "io/json_strict.hpp"
+#include "io/psf_files.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace pinmask;

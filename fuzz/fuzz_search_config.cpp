@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <string>
 
-#include "io/search_config.hpp"
 #include "core/error.hpp"
 #include "fuzz/fuzz_support.hpp"
+#include "io/search_config.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace pinmask;

@@ -2,8 +2,8 @@
 
 #include <string>
 
-#include "io/json_strict.hpp"
 #include "core/error.hpp"
+#include "io/json_strict.hpp"
 
 namespace pinmask::io {
 

@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "io/mask_json.hpp"
 #include "design/mask.hpp"
+#include "io/mask_json.hpp"
 #include "tests/support/cli_run.hpp"
 
 using namespace pinmask;

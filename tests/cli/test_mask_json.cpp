@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/error.hpp"
 #include "io/json_strict.hpp"
 #include "io/mask_json.hpp"
-#include "core/error.hpp"
 #include "tests/support/cli_run.hpp"
 
 using namespace pinmask;
