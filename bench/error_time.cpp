@@ -70,14 +70,14 @@ std::vector<Setting> settings(const ErrorTimeOptions& o) {
     for (double nsr : o.wiener_nsr) {
         Setting s{"wiener", "nsr", nsr, 0, {}};
         s.options.method = DecodeMethod::kWiener;
-        s.options.nsr = nsr;
+        s.options.wiener.nsr = nsr;
         out.push_back(s);
     }
     for (double lambda : o.tikhonov_lambda) {
         Setting s{"tikhonov", "lambda", lambda, 0, {}};
         s.options.method = DecodeMethod::kTikhonov;
-        s.options.regulariser = TikhonovRegulariser::kGradient;
-        s.options.lambda = lambda;
+        s.options.tikhonov.regulariser = TikhonovRegulariser::kGradient;
+        s.options.tikhonov.lambda = lambda;
         out.push_back(s);
     }
     const std::pair<const char*, DecodeMethod> iterative[] = {
@@ -88,12 +88,12 @@ std::vector<Setting> settings(const ErrorTimeOptions& o) {
         for (int k : o.iterations) {
             Setting s{name, "", 0.0, k, {}};
             s.options.method = method;
-            s.options.max_iterations = k;
-            s.options.tolerance = 0.0;  // exactly k iterations
+            s.options.iterative.max_iterations = k;
+            s.options.iterative.tolerance = 0.0;  // exactly k iterations
             if (method == DecodeMethod::kTv) {
                 s.parameter = "lambda";
                 s.value = o.tv_lambda;
-                s.options.lambda = o.tv_lambda;
+                s.options.tv.lambda = o.tv_lambda;
             } else if (method == DecodeMethod::kTvqc) {
                 s.parameter = "eps";
             }
@@ -102,7 +102,7 @@ std::vector<Setting> settings(const ErrorTimeOptions& o) {
     }
     for (Setting& s : out) {
         s.options.model = ConvModel::kCyclic;
-        s.options.record_history = false;
+        s.options.iterative.record_history = false;
     }
     return out;
 }
@@ -150,7 +150,7 @@ std::vector<ErrorTimeRecord> run_error_time(const Plane& psf, const std::vector<
         for (const Setting& st : all) {
             if (st.iterations > 1) continue;
             DecodeOptions o = st.options;
-            if (o.method == DecodeMethod::kTvqc) o.noise_sigma = 1e-3;
+            if (o.method == DecodeMethod::kTvqc) o.tvqc.noise_sigma = 1e-3;
             decode_plane(x, psf, o);
         }
     }
@@ -196,7 +196,7 @@ std::vector<ErrorTimeRecord> run_error_time(const Plane& psf, const std::vector<
                     const double c0 = thread_cpu_seconds();
                     for (int ch = 0; ch < cap.capture.n_channels(); ++ch) {
                         DecodeOptions o = st.options;
-                        if (o.method == DecodeMethod::kTvqc) o.noise_sigma = cap.sigma[ch];
+                        if (o.method == DecodeMethod::kTvqc) o.tvqc.noise_sigma = cap.sigma[ch];
                         DecodeResult d = decode_plane(cap.capture.channels[ch], psf, o);
                         run = std::max(run, d.iterations);
                         converged = converged && d.converged;

@@ -88,7 +88,7 @@ PeriodBenchResult bench_period(const PeriodBenchOptions& o) {
     r.check_seconds = best_of(o.repeat, [&] { check = check_period(frame, p, p); });
     r.check_matches = check.matches();
     DecodeOptions d;
-    d.nsr = 1e-3;
+    d.wiener.nsr = 1e-3;
     r.wiener_frame_seconds = best_of(o.repeat, [&] { decode_plane(frame, psf, d); });
     r.wiener_period_seconds = best_of(o.repeat, [&] { decode_plane(period, psf, d); });
     return r;

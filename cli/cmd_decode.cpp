@@ -132,9 +132,10 @@ void run_decode(const DecodeRequest& r, BayerMode bayer) {
     // Iterative methods stop on SIGINT/SIGTERM after their current iteration; the estimate so
     // far is then written like a finished one and marked interrupted.
     if (is_iterative(options.decode.method)) {
-        options.decode.stop = &install_interrupt_flag();
+        options.decode.iterative.stop = &install_interrupt_flag();
         if (::isatty(2))
-            std::cerr << "decode: " << r.method << ", up to " << options.decode.max_iterations
+            std::cerr << "decode: " << r.method << ", up to "
+                      << options.decode.iterative.max_iterations
                       << " iterations; Ctrl-C stops and writes the estimate so far\n";
     }
     const CaptureDecodeResult result = decode_capture(std::move(inputs), options);

@@ -41,7 +41,7 @@ Examples:
 
 DecodeFlags add_decode_flags(CLI::App& cmd, DecodeRequest& o) {
     DecodeFlags f;
-    auto method_flag = [&](CLI::Option* opt, DecodeParameter p) {
+    auto method_flag = [&](CLI::Option* opt, MethodFlag p) {
         f.method_flags.emplace_back(opt, p);
         return opt;
     };
@@ -71,42 +71,42 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeRequest& o) {
     cmd.add_option("--model", o.model,
                    "cyclic (circular convolution over one period, the paper) | linear (zero-padded "
                    "convolution then crop: lensless captures, non-cyclic masks)")
-        ->check(CLI::IsMember({"cyclic", "linear"}))
+        ->check(CLI::IsMember(name_list(kConvModelNames)))
         ->capture_default_str();
     method_flag(cmd.add_option("--nsr", o.nsr,
                                "wiener: noise-to-signal power ratio, dimensionless (>= 0); "
                                "relative to |H|^2 of the PSF as normalised (sum 1: |H(0)| = 1)")
                     ->capture_default_str(),
-                DecodeParameter::kNsr);
+                MethodFlag::kNsr);
     method_flag(cmd.add_option("--lambda", o.lambda,
                                "tikhonov (> 0, dimensionless) / tv (>= 0, capture units) "
                                "regularisation weight")
                     ->capture_default_str(),
-                DecodeParameter::kLambda);
+                MethodFlag::kLambda);
     method_flag(cmd.add_option("--regulariser", o.regulariser, "tikhonov: identity | gradient")
-                    ->check(CLI::IsMember({"identity", "gradient"}))
+                    ->check(CLI::IsMember(name_list(kRegulariserNames)))
                     ->capture_default_str(),
-                DecodeParameter::kRegulariser);
+                MethodFlag::kRegulariser);
     auto* eps = method_flag(
         cmd.add_option("--eps", o.eps, "tvqc: residual bound ||Ax - p||_2 <= EPS (capture units)"),
-        DecodeParameter::kEps);
+        MethodFlag::kEps);
     auto* sigma = method_flag(cmd.add_option("--noise-sigma", o.noise_sigma,
                                              "tvqc: per-pixel noise sigma (capture units) to "
                                              "derive EPS"),
-                              DecodeParameter::kNoiseSigma);
+                              MethodFlag::kNoiseSigma);
     eps->excludes(sigma);
     sigma->excludes(eps);
     method_flag(cmd.add_flag("--nonneg", o.nonnegative, "tv / tvqc: constrain x >= 0"),
-                DecodeParameter::kNonnegative);
+                MethodFlag::kNonnegative);
     method_flag(cmd.add_option("--iters", o.iterations,
                                "tv, tvqc, richardson-lucy: maximum iterations (>= 1)")
                     ->check(CLI::Range(1, 2147483647))
                     ->capture_default_str(),
-                DecodeParameter::kIterations);
+                MethodFlag::kIterations);
     method_flag(cmd.add_option("--tol", o.tolerance,
                                "tv, tvqc, richardson-lucy: stop at this relative change of x")
                     ->capture_default_str(),
-                DecodeParameter::kTolerance);
+                MethodFlag::kTolerance);
     cmd.add_option("--downsample", o.downsample,
                    "K rounds of 2x2 box averaging of capture and PSF (factor 2^K per side)")
         ->check(CLI::Range(0, 12))
@@ -119,12 +119,12 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeRequest& o) {
     cmd.add_option("--normalize", o.normalize,
                    "none (PSF scaled to unit sum) | l2 (capture window and PSF each divided by "
                    "its L2 norm)")
-        ->check(CLI::IsMember({"none", "l2"}))
+        ->check(CLI::IsMember(name_list(kNormalizeModeNames)))
         ->capture_default_str();
     cmd.add_option("--precision", o.precision,
                    "auto (float32 from 256 x 256 decoded pixels for wiener, tikhonov, tv) | "
                    "single | double")
-        ->check(CLI::IsMember({"auto", "single", "double"}))
+        ->check(CLI::IsMember(name_list(kPrecisionNames)))
         ->capture_default_str();
     cmd.add_option("--threads", o.threads,
                    "FFTW threads for transforms of >= 512 x 512 (default: all cores); channels "
@@ -150,23 +150,10 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeRequest& o) {
 }
 
 void refuse_unused_flags(const DecodeRequest& r, const DecodeFlags& flags) {
-    const DecodeMethod m = parse_decode_method(r.method, "--method");
-    for (const auto& [opt, parameter] : flags.method_flags) {
-        if (opt->count() == 0 || decode_method_uses(m, parameter)) continue;
-        std::string users;
-        for (DecodeMethod other : kDecodeMethods)
-            if (decode_method_uses(other, parameter))
-                users += (users.empty() ? "" : ", ") + std::string(decode_method_name(other));
-        throw invalid_field(opt->get_name(), opt->as<std::string>(),
-                            std::string("is not used by --method ") + decode_method_name(m) +
-                                " (only by " + users + "); remove it or choose that method");
-    }
-    if (m == DecodeMethod::kTikhonov && !(r.lambda > 0.0)) {
-        throw invalid_field("--lambda", std::to_string(r.lambda),
-                            "must be > 0 for tikhonov: lambda 0 is the unregularised inverse "
-                            "filter, which multiplies noise by 1/|H| at the PSF's spectral "
-                            "near-zeros (use --method wiener --nsr 0 for the floored inverse)");
-    }
+    std::vector<GivenFlag> given;
+    for (const auto& [opt, flag] : flags.method_flags)
+        if (opt->count() > 0) given.push_back({flag, opt->as<std::string>()});
+    refuse_unused_flags(r, given);
 }
 
 }  // namespace pinmask::cli

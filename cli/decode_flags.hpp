@@ -1,6 +1,7 @@
 // The flags of `pinmask decode` (with their help texts) and the refusal of flags the chosen
 // method does not read: a value given for a parameter the method ignores is an error (exit 2
-// naming the flag), never silently dropped. decode/decode_method.hpp holds the table.
+// naming the flag), never silently dropped: cli/decode_output.hpp write_method_flag says which
+// method's options struct each flag writes to.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -14,7 +15,7 @@ namespace pinmask::cli {
 
 // The method-specific flags as parsed, each with the parameter it sets.
 struct DecodeFlags {
-    std::vector<std::pair<CLI::Option*, DecodeParameter>> method_flags;
+    std::vector<std::pair<CLI::Option*, MethodFlag>> method_flags;
 };
 
 // Adds every decode flag to `cmd`, writing into `request`.

@@ -9,6 +9,7 @@
 #include "core/image_io.hpp"
 #include "core/units.hpp"
 #include "decode/decode_method.hpp"
+#include "decode/decode_modes.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -53,20 +54,97 @@ CropSpec parse_crop(const std::string& s) {
     throw invalid_field("--crop", s, "must be center, none or X,Y (integer pixel corner)");
 }
 
+const char* method_flag_name(MethodFlag f) {
+    switch (f) {
+        case MethodFlag::kNsr:
+            return "--nsr";
+        case MethodFlag::kLambda:
+            return "--lambda";
+        case MethodFlag::kRegulariser:
+            return "--regulariser";
+        case MethodFlag::kEps:
+            return "--eps";
+        case MethodFlag::kNoiseSigma:
+            return "--noise-sigma";
+        case MethodFlag::kNonnegative:
+            return "--nonneg";
+        case MethodFlag::kIterations:
+            return "--iters";
+        case MethodFlag::kTolerance:
+            return "--tol";
+    }
+    return "?";
+}
+
+bool write_method_flag(DecodeOptions& d, MethodFlag f, const DecodeRequest& r) {
+    const DecodeMethod m = d.method;
+    switch (f) {
+        case MethodFlag::kNsr:
+            if (m != DecodeMethod::kWiener) return false;
+            d.wiener.nsr = r.nsr;
+            return true;
+        case MethodFlag::kLambda:
+            if (m == DecodeMethod::kTikhonov) d.tikhonov.lambda = r.lambda;
+            if (m == DecodeMethod::kTv) d.tv.lambda = r.lambda;
+            return m == DecodeMethod::kTikhonov || m == DecodeMethod::kTv;
+        case MethodFlag::kRegulariser:
+            if (m != DecodeMethod::kTikhonov) return false;
+            d.tikhonov.regulariser = parse_regulariser(r.regulariser, "--regulariser");
+            return true;
+        case MethodFlag::kEps:
+            if (m != DecodeMethod::kTvqc) return false;
+            d.tvqc.eps = r.eps;
+            return true;
+        case MethodFlag::kNoiseSigma:
+            if (m != DecodeMethod::kTvqc) return false;
+            d.tvqc.noise_sigma = r.noise_sigma;
+            return true;
+        case MethodFlag::kNonnegative:
+            if (m == DecodeMethod::kTv) d.tv.nonnegative = r.nonnegative;
+            if (m == DecodeMethod::kTvqc) d.tvqc.nonnegative = r.nonnegative;
+            return m == DecodeMethod::kTv || m == DecodeMethod::kTvqc;
+        case MethodFlag::kIterations:
+            if (!is_iterative(m)) return false;
+            d.iterative.max_iterations = r.iterations;
+            return true;
+        case MethodFlag::kTolerance:
+            if (!is_iterative(m)) return false;
+            d.iterative.tolerance = r.tolerance;
+            return true;
+    }
+    return false;
+}
+
+void refuse_unused_flags(const DecodeRequest& r, const std::vector<GivenFlag>& given) {
+    const DecodeMethod m = parse_decode_method(r.method, "--method");
+    for (const GivenFlag& g : given) {
+        DecodeOptions probe;
+        probe.method = m;
+        if (write_method_flag(probe, g.flag, r)) continue;
+        std::string users;
+        for (DecodeMethod other : kDecodeMethods) {
+            probe.method = other;
+            if (write_method_flag(probe, g.flag, r))
+                users += (users.empty() ? "" : ", ") + std::string(decode_method_name(other));
+        }
+        throw invalid_field(method_flag_name(g.flag), g.value,
+                            std::string("is not used by --method ") + decode_method_name(m) +
+                                " (only by " + users + "); remove it or choose that method");
+    }
+    if (m == DecodeMethod::kTikhonov && !(r.lambda > 0.0)) {
+        throw invalid_field("--lambda", std::to_string(r.lambda),
+                            "must be > 0 for tikhonov: lambda 0 is the unregularised inverse "
+                            "filter, which multiplies noise by 1/|H| at the PSF's spectral "
+                            "near-zeros (use --method wiener --nsr 0 for the floored inverse)");
+    }
+}
+
 DecodeOptions decode_options(const DecodeRequest& r) {
     DecodeOptions d;
     d.method = parse_decode_method(r.method, "--method");
-    d.model = r.model == "linear" ? ConvModel::kLinear : ConvModel::kCyclic;
-    d.nsr = r.nsr;
-    d.lambda = r.lambda;
-    d.regulariser = r.regulariser == "gradient" ? TikhonovRegulariser::kGradient
-                                                : TikhonovRegulariser::kIdentity;
-    d.eps = r.eps;
-    d.noise_sigma = r.noise_sigma;
-    d.nonnegative = r.nonnegative;
-    d.max_iterations = r.iterations;
-    d.tolerance = r.tolerance;
-    d.record_history = true;
+    d.model = parse_conv_model(r.model, "--model");
+    for (MethodFlag f : kMethodFlags) write_method_flag(d, f, r);
+    d.iterative.record_history = true;
     return d;
 }
 
@@ -74,12 +152,10 @@ CaptureDecodeOptions capture_decode_options(const DecodeRequest& r) {
     CaptureDecodeOptions o;
     o.crop = parse_crop(r.crop);
     const Background bg = parse_background(r.background);
-    o.background = bg.mode == "none"     ? BackgroundMode::kNone
-                   : bg.mode == "corner" ? BackgroundMode::kCorner
-                                         : BackgroundMode::kValue;
+    o.background = bg.mode;
     o.background_value = bg.value;
     o.downsample = r.downsample;
-    o.normalize = r.normalize == "l2" ? NormalizeMode::kL2 : NormalizeMode::kNone;
+    o.normalize = parse_normalize_mode(r.normalize, "--normalize");
     o.decode = decode_options(r);
     o.precision = parse_precision(r.precision, "--precision");
     o.threads = r.threads;
@@ -101,8 +177,9 @@ void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const Deco
                        {"cols", s.window.cols},
                        {"rows", s.window.rows},
                        {"mode", r.crop}};
-    json norm = {{"mode", r.normalize}};
-    if (r.normalize == "l2") {
+    const NormalizeMode normalize = parse_normalize_mode(r.normalize, "--normalize");
+    json norm = {{"mode", normalize_mode_name(normalize)}};
+    if (normalize == NormalizeMode::kL2) {
         norm["capture_l2_norms"] = s.capture_l2_norms;
         norm["psf_l2_norms"] = s.psf_l2_norms;
     } else {
@@ -110,16 +187,16 @@ void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const Deco
     }
     json backgrounds = json::array();
     if (s.background) backgrounds.push_back(*s.background);
-    stats["preprocess"] = {
-        {"background",
-         {{"mode", r.background == "none" || r.background == "corner" ? r.background : "value"},
-          {"values", backgrounds}}},
-        {"downsample_rounds", r.downsample},
-        {"normalize", norm},
-        {"decoded_rows", s.decoded_rows},
-        {"decoded_cols", s.decoded_cols}};
+    stats["preprocess"] = {{"background",
+                            {{"mode", background_mode_name(parse_background(r.background).mode)},
+                             {"values", backgrounds}}},
+                           {"downsample_rounds", r.downsample},
+                           {"normalize", norm},
+                           {"decoded_rows", s.decoded_rows},
+                           {"decoded_cols", s.decoded_cols}};
     stats["method"] = r.method;
-    stats["precision"] = s.single_precision ? "single" : "double";
+    stats["precision"] =
+        precision_name(s.single_precision ? Precision::kSingle : Precision::kDouble);
     stats["fft_threads"] = s.fft_threads;
     json channels = json::array(), per_channel = json::array(), history_seconds = json::array();
     for (std::size_t ch = 0; ch < s.channels.size(); ++ch) {
@@ -161,8 +238,9 @@ void check_output_range(const Image& estimate, OutputKind kind) {
 }
 
 Background parse_background(const std::string& s) {
-    if (s == "none" || s == "corner") return {s, 0.0};
-    return {"value", parse_number(s, "--background")};
+    for (const auto& [mode, name] : kBackgroundModeNames)
+        if (mode != BackgroundMode::kValue && s == name) return {mode, 0.0};
+    return {BackgroundMode::kValue, parse_number(s, "--background")};
 }
 
 std::optional<double> parse_scale(const std::string& s) {

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/image.hpp"
 #include "decode/capture.hpp"
@@ -53,7 +54,40 @@ struct DecodeRequest {
 // --crop: center (or centre) | none | X,Y (integer top-left column, row). InvalidInput otherwise.
 CropSpec parse_crop(const std::string& text);
 
-// The DecodeOptions of a request (method, model, parameters).
+// The flags that set a parameter of one method's struct in DecodeOptions (decode/decoder.hpp).
+enum class MethodFlag {
+    kNsr,          // wiener.nsr
+    kLambda,       // tikhonov.lambda, tv.lambda
+    kRegulariser,  // tikhonov.regulariser
+    kEps,          // tvqc.eps
+    kNoiseSigma,   // tvqc.noise_sigma
+    kNonnegative,  // tv.nonnegative, tvqc.nonnegative
+    kIterations,   // iterative.max_iterations (tv, tvqc, richardson-lucy)
+    kTolerance,    // iterative.tolerance (tv, tvqc, richardson-lucy)
+};
+inline constexpr MethodFlag kMethodFlags[] = {MethodFlag::kNsr,         MethodFlag::kLambda,
+                                              MethodFlag::kRegulariser, MethodFlag::kEps,
+                                              MethodFlag::kNoiseSigma,  MethodFlag::kNonnegative,
+                                              MethodFlag::kIterations,  MethodFlag::kTolerance};
+// "--nsr", "--lambda", ... (the CLI's spelling).
+const char* method_flag_name(MethodFlag flag);
+
+// Writes the request's value for `flag` into the options of d.method that hold that parameter;
+// false when that method has no such parameter (its value would be dropped). The one place
+// that says which flag goes where: decode_options and the refusals below both use it.
+bool write_method_flag(DecodeOptions& d, MethodFlag flag, const DecodeRequest& request);
+
+// A flag given (the CLI's count, Python's non-None arguments) with its value as text.
+struct GivenFlag {
+    MethodFlag flag;
+    std::string value;
+};
+// InvalidInput (exit 2) naming the first given flag that the request's method does not read
+// and the methods that do; then the refusal of --lambda <= 0 for tikhonov.
+void refuse_unused_flags(const DecodeRequest& request, const std::vector<GivenFlag>& given);
+
+// The DecodeOptions of a request: method (unknown names refused), model, and every parameter
+// the chosen method reads (write_method_flag).
 DecodeOptions decode_options(const DecodeRequest& request);
 // The pipeline options of a request (crop, background, downsample, normalize, decode,
 // precision, threads).
@@ -67,7 +101,7 @@ void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const Deco
 
 // --background: none | corner | a number of counts (mode "value").
 struct Background {
-    std::string mode = "none";
+    BackgroundMode mode = BackgroundMode::kNone;
     double value = 0.0;
 };
 Background parse_background(const std::string& text);

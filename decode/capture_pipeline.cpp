@@ -28,37 +28,12 @@ std::string num(double v) {
     return s.str();
 }
 
-Plane channel_sum(const Image& img) {
-    Plane s = img.channels[0];
-    for (std::size_t ch = 1; ch < img.channels.size(); ++ch) s += img.channels[ch];
-    return s;
-}
-
 std::string size_text(const Image& img) {
     return std::to_string(img.cols()) + " x " + std::to_string(img.rows()) + " x " +
            std::to_string(img.n_channels());
 }
 
 }  // namespace
-
-Precision parse_precision(const std::string& t, const std::string& field) {
-    if (t == "auto") return Precision::kAuto;
-    if (t == "single") return Precision::kSingle;
-    if (t == "double") return Precision::kDouble;
-    throw invalid_field(field, t, "must be auto, single or double");
-}
-
-const char* precision_name(Precision p) {
-    switch (p) {
-        case Precision::kAuto:
-            return "auto";
-        case Precision::kSingle:
-            return "single";
-        case Precision::kDouble:
-            return "double";
-    }
-    return "?";
-}
 
 void CaptureDecodeOptions::validate() const {
     if (downsample < 0 || downsample > 12)
@@ -67,8 +42,9 @@ void CaptureDecodeOptions::validate() const {
         throw invalid_field("threads", std::to_string(threads), "must be 1..1024 (0: all cores)");
     if (background == BackgroundMode::kValue && !std::isfinite(background_value))
         throw invalid_field("background", num(background_value), "must be finite");
-    if (is_iterative(decode.method) && decode.max_iterations < 1)
-        throw invalid_field("iterations", std::to_string(decode.max_iterations),
+    decode.validate();
+    if (is_iterative(decode.method) && decode.iterative.max_iterations < 1)
+        throw invalid_field("iterations", std::to_string(decode.iterative.max_iterations),
                             "must be >= 1 (0 iterations would return the starting point)");
 }
 
@@ -126,9 +102,9 @@ CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOp
                           " rounds of 2x2: capture " + size_text(capture) + ", PSF " +
                           size_text(psf));
 
-    // Period check on the full frame (luminance), against the PSF's size.
+    // Period check on the frame's luminance (strips of it, decode/period.hpp), against the PSF.
     t0 = Clock::now();
-    s.period = check_period(channel_sum(capture), psf.rows(), psf.cols());
+    s.period = check_period(capture, psf.rows(), psf.cols());
     s.seconds.period_check = seconds_since(t0);
     if (!s.period.rows.checked)
         s.notes.push_back("period check skipped along the rows: " + s.period.rows.skip_reason);

@@ -17,22 +17,17 @@
 
 #include "core/image.hpp"
 #include "decode/capture.hpp"
+#include "decode/decode_modes.hpp"
 #include "decode/decoder.hpp"
 #include "decode/period.hpp"
 
 namespace pinmask {
 
-enum class BackgroundMode { kNone, kCorner, kValue };
-enum class NormalizeMode { kNone, kL2 };
-enum class Precision { kAuto, kSingle, kDouble };
+// BackgroundMode, NormalizeMode, Precision and their names: decode/decode_modes.hpp.
 
 // 256 x 256: from here on float32 pays (bench decode) and its error stays below the bound of
 // tests/decode/test_precision.cpp.
 inline constexpr long long kSinglePrecisionMinPixels = 256LL * 256LL;
-
-// "auto" | "single" | "double"; InvalidInput naming `field` otherwise.
-Precision parse_precision(const std::string& text, const std::string& field = "precision");
-const char* precision_name(Precision precision);
 
 struct CaptureDecodeOptions {
     CropSpec crop{};  // kCenter: the period centred in the frame

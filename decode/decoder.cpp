@@ -36,7 +36,7 @@ void check_nonnegative(const char* field, double v) {
         throw invalid_field(field, num(v), "must be finite and >= 0");
 }
 
-void validate(const Plane& capture, const Plane& psf, const DecodeOptions& o) {
+void validate_inputs(const Plane& capture, const Plane& psf) {
     if (capture.size() == 0) throw invalid_field("capture", "empty", "needs at least one pixel");
     if (!is_all_finite(capture)) {
         throw invalid_field("capture", "non-finite values", "every pixel must be finite");
@@ -45,14 +45,6 @@ void validate(const Plane& capture, const Plane& psf, const DecodeOptions& o) {
     if (!is_all_finite(psf))
         throw invalid_field("psf", "non-finite values", "every pixel must be finite");
     if (!(psf.sum() > 0.0)) throw invalid_field("psf sum", num(psf.sum()), "must be > 0");
-    check_nonnegative("nsr", o.nsr);
-    check_nonnegative("lambda", o.lambda);
-    if (o.eps) check_nonnegative("eps", *o.eps);
-    if (o.noise_sigma) check_nonnegative("noise_sigma", *o.noise_sigma);
-    check_nonnegative("tolerance", o.tolerance);
-    if (o.max_iterations < 0) {
-        throw invalid_field("max_iterations", std::to_string(o.max_iterations), "must be >= 0");
-    }
 }
 
 void check_work_plane(const char* field, const Plane& p, const ConvGeometry& g) {
@@ -84,26 +76,28 @@ DecodeResult decode_closed_form(const Plane& capture, const Plane& psf, const De
     Plane x;
     double penalty = 0.0;
     if (o.method == DecodeMethod::kWiener) {
-        if (o.nsr_per_frequency) {
-            check_work_plane("nsr_per_frequency", *o.nsr_per_frequency, g);
-            x = apply_filter(WienerFilter(psf, g.work_rows, g.work_cols, *o.nsr_per_frequency),
+        const WienerParams& w = o.wiener;
+        if (w.nsr_per_frequency) {
+            check_work_plane("wiener.nsr_per_frequency", *w.nsr_per_frequency, g);
+            x = apply_filter(WienerFilter(psf, g.work_rows, g.work_cols, *w.nsr_per_frequency),
                              padded, o.single_precision);
             // (1/N) sum_k NSR(k) |X(k)|^2 over the full spectrum (Parseval form of nsr ||x||^2).
             const ComplexPlane xs = expand_half_spectrum(op.fft().forward(x), g.work_cols);
-            penalty = (o.nsr_per_frequency->cast<std::complex<double>>() * xs * xs.conjugate())
+            penalty = (w.nsr_per_frequency->cast<std::complex<double>>() * xs * xs.conjugate())
                           .real()
                           .sum() /
                       static_cast<double>(x.size());
         } else {
-            x = apply_filter(WienerFilter(psf, g.work_rows, g.work_cols, o.nsr), padded,
+            x = apply_filter(WienerFilter(psf, g.work_rows, g.work_cols, w.nsr), padded,
                              o.single_precision);
-            penalty = o.nsr * x.square().sum();
+            penalty = w.nsr * x.square().sum();
         }
     } else {
+        const TikhonovParams& t = o.tikhonov;
         x = apply_filter(
-            make_tikhonov_filter(psf, g.work_rows, g.work_cols, o.lambda, o.regulariser), padded,
+            make_tikhonov_filter(psf, g.work_rows, g.work_cols, t.lambda, t.regulariser), padded,
             o.single_precision);
-        penalty = tikhonov_penalty(x, o.lambda, o.regulariser);
+        penalty = tikhonov_penalty(x, t.lambda, t.regulariser);
     }
     const double res2 = (op.apply(x) - capture).square().sum();
     r.residual = std::sqrt(res2);
@@ -112,7 +106,7 @@ DecodeResult decode_closed_form(const Plane& capture, const Plane& psf, const De
     return r;
 }
 
-void copy_iterative(const DecodeOptions& o, IterativeOptions& it) {
+void copy_iterative(const IterativeParams& o, IterativeOptions& it) {
     it.max_iterations = o.max_iterations;
     it.tolerance = o.tolerance;
     it.record_history = o.record_history;
@@ -123,37 +117,31 @@ void copy_iterative(const DecodeOptions& o, IterativeOptions& it) {
 DecodeResult decode_iterative(const Plane& capture, const Plane& psf, const DecodeOptions& o,
                               const ConvGeometry& g) {
     const ConvolutionOperator op(psf, g);
-    const Plane* warm = o.warm_start ? &*o.warm_start : nullptr;
+    const Plane* warm = o.iterative.warm_start ? &*o.iterative.warm_start : nullptr;
     DecodeResult r;
     switch (o.method) {
         case DecodeMethod::kTv: {
             TvL2Options t;
-            copy_iterative(o, t);
-            t.lambda = o.lambda;
-            t.nonnegative = o.nonnegative;
+            copy_iterative(o.iterative, t);
+            t.lambda = o.tv.lambda;
+            t.nonnegative = o.tv.nonnegative;
             t.single_precision = o.single_precision;
             r = solve_tv_l2(op, capture, t, warm);
             break;
         }
         case DecodeMethod::kTvqc: {
             TvqcOptions t;
-            copy_iterative(o, t);
-            t.nonnegative = o.nonnegative;
-            if (o.eps) {
-                t.eps = *o.eps;
-            } else if (o.noise_sigma) {
-                t.eps = tvqc_eps_from_sigma(*o.noise_sigma, capture.size());
-            } else {
-                throw invalid_field("eps", "unset",
-                                    "TVQC needs eps or noise_sigma (eps = sigma sqrt(N) "
-                                    "sqrt(1 + 2 sqrt(2 / N)))");
-            }
+            copy_iterative(o.iterative, t);
+            t.nonnegative = o.tvqc.nonnegative;
+            // TvqcParams::validate guarantees exactly one of eps and noise_sigma.
+            t.eps =
+                o.tvqc.eps ? *o.tvqc.eps : tvqc_eps_from_sigma(*o.tvqc.noise_sigma, capture.size());
             r = solve_tvqc(op, capture, t, warm);
             break;
         }
         case DecodeMethod::kRichardsonLucy: {
             RichardsonLucyOptions t;
-            copy_iterative(o, t);
+            copy_iterative(o.iterative, t);
             r = solve_richardson_lucy(op, psf, capture, t, warm);
             break;
         }
@@ -167,23 +155,97 @@ DecodeResult decode_iterative(const Plane& capture, const Plane& psf, const Deco
 
 }  // namespace
 
+void IterativeParams::validate() const {
+    if (max_iterations < 0) {
+        throw invalid_field("iterative.max_iterations", std::to_string(max_iterations),
+                            "must be >= 0");
+    }
+    check_nonnegative("iterative.tolerance", tolerance);
+    if (warm_start && !is_all_finite(*warm_start))
+        throw invalid_field("iterative.warm_start", "non-finite values", "must be finite");
+}
+
+void WienerParams::validate() const {
+    check_nonnegative("wiener.nsr", nsr);
+    if (nsr_per_frequency &&
+        !(nsr_per_frequency->minCoeff() >= 0.0 && is_all_finite(*nsr_per_frequency))) {
+        throw invalid_field("wiener.nsr_per_frequency", "negative or non-finite values",
+                            "every value must be finite and >= 0");
+    }
+}
+
+void TikhonovParams::validate() const {
+    check_nonnegative("tikhonov.lambda", lambda);
+    if (regulariser != TikhonovRegulariser::kIdentity &&
+        regulariser != TikhonovRegulariser::kGradient) {
+        throw invalid_field("tikhonov.regulariser", std::to_string(static_cast<int>(regulariser)),
+                            "must be identity or gradient");
+    }
+}
+
+void TvParams::validate() const { check_nonnegative("tv.lambda", lambda); }
+
+void TvqcParams::validate() const {
+    if (eps) check_nonnegative("tvqc.eps", *eps);
+    if (noise_sigma) check_nonnegative("tvqc.noise_sigma", *noise_sigma);
+    if (!eps && !noise_sigma) {
+        throw invalid_field("tvqc.eps", "unset",
+                            "TVQC needs eps or noise_sigma (eps = sigma sqrt(N) "
+                            "sqrt(1 + 2 sqrt(2 / N)))");
+    }
+    if (eps && noise_sigma) {
+        throw invalid_field(
+            "tvqc.noise_sigma", num(*noise_sigma),
+            "must not be set together with tvqc.eps (" + num(*eps) + "): give one of them");
+    }
+}
+
+void DecodeOptions::validate() const {
+    if (model != ConvModel::kCyclic && model != ConvModel::kLinear)
+        throw invalid_field("model", std::to_string(static_cast<int>(model)),
+                            "must be cyclic or linear");
+    switch (method) {
+        case DecodeMethod::kWiener:
+            wiener.validate();
+            break;
+        case DecodeMethod::kTikhonov:
+            tikhonov.validate();
+            break;
+        case DecodeMethod::kTv:
+            tv.validate();
+            break;
+        case DecodeMethod::kTvqc:
+            tvqc.validate();
+            break;
+        case DecodeMethod::kRichardsonLucy:
+            break;
+        default:
+            throw invalid_field("method", std::to_string(static_cast<int>(method)),
+                                "is not a decode method (" + decode_method_names() + ")");
+    }
+    // Checked for every method (its size needs the working grid: decode_plane checks that).
+    iterative.validate();
+}
+
 DecodeResult decode_plane(const Plane& capture, const Plane& psf, const DecodeOptions& options) {
     const auto t0 = std::chrono::steady_clock::now();
-    validate(capture, psf, options);
+    validate_inputs(capture, psf);
+    options.validate();
     const ConvGeometry g = make_conv_geometry(
         options.model, static_cast<int>(capture.rows()), static_cast<int>(capture.cols()),
         static_cast<int>(psf.rows()), static_cast<int>(psf.cols()));
-    if (options.warm_start) check_work_plane("warm_start", *options.warm_start, g);
+    if (options.iterative.warm_start)
+        check_work_plane("iterative.warm_start", *options.iterative.warm_start, g);
 
     // Solve for p / s: every method is equivariant under (p, x, lambda_tv, eps) -> s (...).
     const double peak = capture.abs().maxCoeff();
     const double s = peak > 0.0 ? peak : 1.0;
     const Plane p = capture / s;
     DecodeOptions o = options;
-    o.lambda = options.method == DecodeMethod::kTv ? options.lambda / s : options.lambda;
-    if (o.eps) *o.eps /= s;
-    if (o.noise_sigma) *o.noise_sigma /= s;
-    if (o.warm_start) *o.warm_start /= s;
+    o.tv.lambda /= s;
+    if (o.tvqc.eps) *o.tvqc.eps /= s;
+    if (o.tvqc.noise_sigma) *o.tvqc.noise_sigma /= s;
+    if (o.iterative.warm_start) *o.iterative.warm_start /= s;
 
     DecodeResult r;
     switch (o.method) {

@@ -32,24 +32,62 @@ struct IterationRecord {
     double residual = 0.0;   // ||A x - p||_2 (TVQC: relative to eps; see tvqc.hpp)
 };
 
-struct DecodeOptions {
-    DecodeMethod method = DecodeMethod::kWiener;
-    ConvModel model = ConvModel::kCyclic;
-    double nsr = 0.01;                       // Wiener: scalar noise-to-signal power ratio
-    std::optional<Plane> nsr_per_frequency;  // Wiener: per-frequency NSR (working size)
-    double lambda = 1e-3;                    // Tikhonov / TV-L2 regularisation weight
-    TikhonovRegulariser regulariser = TikhonovRegulariser::kIdentity;
-    std::optional<double> eps;          // TVQC: ||A x - p||_2 <= eps
-    std::optional<double> noise_sigma;  // TVQC: eps from the noise level when eps unset
-    bool nonnegative = false;           // TV-L2 / TVQC: add x >= 0
+// Options shared by the iterative methods (tv, tvqc, richardson-lucy); closed-form methods
+// read none of them (warm_start excepted: it is checked for size with every method).
+struct IterativeParams {
     int max_iterations = 200;
     double tolerance = 1e-4;          // relative change of x between iterations
     std::optional<Plane> warm_start;  // initial x (working size)
     bool record_history = true;
-    const std::atomic<bool>* stop = nullptr;  // iterative methods: see IterativeOptions::stop
+    const std::atomic<bool>* stop = nullptr;  // see IterativeOptions::stop
+    // InvalidInput naming the field ("iterative.max_iterations", ...), its value and the rule.
+    void validate() const;
+};
+
+struct WienerParams {
+    double nsr = 0.01;                       // scalar noise-to-signal power ratio (>= 0)
+    std::optional<Plane> nsr_per_frequency;  // per-frequency NSR (working size), replaces nsr
+    void validate() const;
+};
+
+struct TikhonovParams {
+    double lambda = 1e-3;  // >= 0 (0: the unregularised inverse filter)
+    TikhonovRegulariser regulariser = TikhonovRegulariser::kIdentity;
+    void validate() const;
+};
+
+struct TvParams {
+    double lambda = 1e-3;  // >= 0, capture units
+    bool nonnegative = false;
+    void validate() const;
+};
+
+struct TvqcParams {
+    std::optional<double> eps;          // ||A x - p||_2 <= eps
+    std::optional<double> noise_sigma;  // eps from the noise level when eps is unset
+    bool nonnegative = false;
+    // Also refuses neither eps nor noise_sigma, and both at once.
+    void validate() const;
+};
+
+// The method, the convolution model, the options every iterative method shares and one struct
+// per method: a method reads its own struct only (richardson-lucy has no parameters beyond the
+// shared iterative ones), so a parameter is never shared by accident between two methods.
+struct DecodeOptions {
+    DecodeMethod method = DecodeMethod::kWiener;
+    ConvModel model = ConvModel::kCyclic;
     // wiener, tikhonov and tv: transforms and iterates in float32 (FFTW float). tvqc and
     // richardson-lucy always run in double. Tolerances: tests/decode/test_precision.cpp.
     bool single_precision = false;
+    IterativeParams iterative;
+    WienerParams wiener;
+    TikhonovParams tikhonov;
+    TvParams tv;
+    TvqcParams tvqc;
+    // The method must be one of kDecodeMethods (an unknown value is an error, never a fall-through
+    // to any method); then the chosen method's struct (and `iterative` for an iterative method).
+    // InvalidInput naming the field, its value and the rule.
+    void validate() const;
 };
 
 struct DecodeResult {

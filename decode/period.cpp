@@ -28,22 +28,34 @@ int good_fft_size(int n) {
     }
 }
 
-// The capture averaged in blocks of b samples across `axis` (the axis the lag does NOT run
-// along), so that at most kMaxAcrossSamples remain: a plane periodic along `axis` stays exactly
-// periodic with the same period, and the autocorrelation costs a fraction of the full frame's.
-Plane bin_across(const Plane& x, Axis axis) {
-    const Eigen::Index across = axis == Axis::kRows ? x.cols() : x.rows();
-    const Eigen::Index b = (across + kMaxAcrossSamples - 1) / kMaxAcrossSamples;
-    if (b <= 1) return x;
-    const Eigen::Index bins = across / b;
-    if (axis == Axis::kRows) {
-        Plane out(x.rows(), bins);
-        for (Eigen::Index k = 0; k < bins; ++k)
-            out.col(k) = x.middleCols(k * b, b).rowwise().mean();
-        return out;
+// The samples the check reads along the lag axis (`axis`) of a rows x cols frame whose value at
+// (r, c) is at(r, c): every line across when there are at most kAcrossStrips * kStripWidth of
+// them, else kAcrossStrips strips of kStripWidth adjacent lines spread evenly across the frame,
+// each strip averaged into one line. A capture periodic along the lag axis gives strips exactly
+// periodic with the same period; reading a few strips instead of the frame keeps the check's
+// cost a small fraction of a one-period decode's.
+template <class At>
+Plane strips_across(Eigen::Index rows, Eigen::Index cols, Axis axis, const At& at) {
+    const Eigen::Index size = axis == Axis::kRows ? rows : cols;
+    const Eigen::Index across = axis == Axis::kRows ? cols : rows;
+    const bool all = across <= Eigen::Index{kAcrossStrips} * kStripWidth;
+    const Eigen::Index n = all ? across : kAcrossStrips;
+    const Eigen::Index w = all ? 1 : kStripWidth;
+    Plane out = Plane::Zero(axis == Axis::kRows ? size : n, axis == Axis::kRows ? n : size);
+    for (Eigen::Index k = 0; k < n; ++k) {
+        // Strip k is centred on (k + 1/2) across / n.
+        const Eigen::Index first =
+            all ? k
+                : std::clamp<Eigen::Index>((2 * k + 1) * across / (2 * n) - w / 2, 0, across - w);
+        for (Eigen::Index j = first; j < first + w; ++j) {
+            if (axis == Axis::kRows) {
+                for (Eigen::Index i = 0; i < size; ++i) out(i, k) += at(i, j);
+            } else {
+                for (Eigen::Index i = 0; i < size; ++i) out(k, i) += at(j, i);
+            }
+        }
     }
-    Plane out(bins, x.cols());
-    for (Eigen::Index k = 0; k < bins; ++k) out.row(k) = x.middleRows(k * b, b).colwise().mean();
+    if (w > 1) out /= static_cast<double>(w);
     return out;
 }
 
@@ -82,7 +94,7 @@ std::optional<ProfilePeak> repeat_near(const std::vector<double>& p, int expecte
     return best;
 }
 
-AxisPeriodCheck check_axis(const Plane& capture, Axis axis, int size, int expected,
+AxisPeriodCheck check_axis(const Plane& strips, Axis axis, int size, int expected,
                            const PeriodCheckOptions& o) {
     AxisPeriodCheck a;
     a.size_px = size;
@@ -96,8 +108,9 @@ AxisPeriodCheck check_axis(const Plane& capture, Axis axis, int size, int expect
     }
     a.checked = true;
     a.tolerance_px = std::max(o.tolerance_px, o.relative_tolerance * expected);
-    const std::vector<double> profile = autocorrelation_profile(bin_across(capture, axis), axis);
     const int max_lag = std::min(size - 2, static_cast<int>(std::floor(size * o.max_lag_fraction)));
+    // Lags up to max_lag + 1: the searches compare each lag with its right neighbour.
+    const std::vector<double> profile = autocorrelation_profile(strips, axis, max_lag + 1);
     const auto best = strongest_repeat(profile, max_lag, o.min_rise);
     // A capture that repeats at P also repeats at every multiple, and a pattern may nearly repeat
     // at a fraction of P: what the decoder needs is a repeat at P itself, so the peak near the
@@ -132,14 +145,17 @@ AxisPeriodCheck check_axis(const Plane& capture, Axis axis, int size, int expect
 
 }  // namespace
 
-std::vector<double> autocorrelation_profile(const Plane& x, Axis axis) {
+std::vector<double> autocorrelation_profile(const Plane& x, Axis axis, int max_lag) {
     if (x.size() == 0) throw InvalidInput("autocorrelation: the plane is empty");
     if (!is_all_finite(x)) throw InvalidInput("autocorrelation: the plane holds NaN or Inf");
     const int rows = static_cast<int>(x.rows()), cols = static_cast<int>(x.cols());
     const bool along_rows = axis == Axis::kRows;
-    // Zero-pad along the lag axis only: at zero lag across the other axis no pair wraps around.
-    const int pr = along_rows ? good_fft_size(2 * rows - 1) : rows;
-    const int pc = along_rows ? cols : good_fft_size(2 * cols - 1);
+    const int side = along_rows ? rows : cols;
+    const int last = max_lag < 0 ? side - 1 : std::min(max_lag, side - 1);
+    // Zero-pad along the lag axis only (at zero lag across the other axis no pair wraps around),
+    // to side + last samples: no lag up to `last` wraps around.
+    const int pr = along_rows ? good_fft_size(rows + last) : rows;
+    const int pc = along_rows ? cols : good_fft_size(cols + last);
     check_memory(double(pr) * pc * 8.0 * 3.0, "the autocorrelation of the capture");
     Plane padded = Plane::Zero(pr, pc);
     padded.topLeftCorner(rows, cols) = x - x.mean();
@@ -150,11 +166,11 @@ std::vector<double> autocorrelation_profile(const Plane& x, Axis axis) {
 
     const int size = along_rows ? rows : cols;
     const double other = along_rows ? cols : rows;
-    std::vector<double> profile(static_cast<std::size_t>(size), 0.0);
+    std::vector<double> profile(static_cast<std::size_t>(last + 1), 0.0);
     const double mean_square = acf(0, 0) / (double(size) * other);
     profile[0] = 1.0;
     if (!(mean_square > 0.0)) return profile;  // constant plane: nothing repeats
-    for (int d = 1; d < size; ++d) {
+    for (int d = 1; d <= last; ++d) {
         const double a = along_rows ? acf(d, 0) : acf(0, d);
         profile[static_cast<std::size_t>(d)] = a / ((size - d) * other) / mean_square;
     }
@@ -184,8 +200,12 @@ std::optional<ProfilePeak> strongest_repeat(const std::vector<double>& p, int ma
     return std::nullopt;  // unreachable: the best peak passes its own threshold
 }
 
-PeriodCheck check_period(const Plane& capture, int expected_rows, int expected_cols,
-                         const PeriodCheckOptions& o) {
+namespace {
+
+// The check on the strips of a rows x cols frame read through at(r, c).
+template <class At>
+PeriodCheck check_frame(Eigen::Index rows, Eigen::Index cols, const At& at, int expected_rows,
+                        int expected_cols, const PeriodCheckOptions& o) {
     if (expected_rows < 1 || expected_cols < 1) {
         throw InvalidInput("period check: expected period " + std::to_string(expected_cols) +
                            " x " + std::to_string(expected_rows) + ": both sides must be >= 1");
@@ -197,18 +217,44 @@ PeriodCheck check_period(const Plane& capture, int expected_rows, int expected_c
             "period check options: need tolerance_px >= 0, relative_tolerance >= 0, min_rise > 0, "
             "0 < max_lag_fraction <= 1, 0 <= search_fraction <= 1");
     }
-    if (capture.size() == 0) throw InvalidInput("period check: the capture is empty");
+    if (rows == 0 || cols == 0) throw InvalidInput("period check: the capture is empty");
     PeriodCheck check;
     check.tolerance_px = o.tolerance_px;
-    check.rows =
-        check_axis(capture, Axis::kRows, static_cast<int>(capture.rows()), expected_rows, o);
-    check.cols =
-        check_axis(capture, Axis::kCols, static_cast<int>(capture.cols()), expected_cols, o);
+    const int r = static_cast<int>(rows), c = static_cast<int>(cols);
+    // An axis with fewer than two periods is skipped before anything is read.
+    auto axis_check = [&](Axis axis, int size, int expected) {
+        if (size < 2 * expected) return check_axis(Plane(), axis, size, expected, o);
+        return check_axis(strips_across(rows, cols, axis, at), axis, size, expected, o);
+    };
+    check.rows = axis_check(Axis::kRows, r, expected_rows);
+    check.cols = axis_check(Axis::kCols, c, expected_cols);
     // The tolerance the axes applied (the larger, when they differ): what a report should quote.
     for (const AxisPeriodCheck* a : {&check.rows, &check.cols}) {
         if (a->checked) check.tolerance_px = std::max(check.tolerance_px, a->tolerance_px);
     }
     return check;
+}
+
+}  // namespace
+
+PeriodCheck check_period(const Plane& capture, int expected_rows, int expected_cols,
+                         const PeriodCheckOptions& o) {
+    return check_frame(
+        capture.rows(), capture.cols(),
+        [&](Eigen::Index r, Eigen::Index c) { return capture(r, c); }, expected_rows, expected_cols,
+        o);
+}
+
+PeriodCheck check_period(const Image& capture, int expected_rows, int expected_cols,
+                         const PeriodCheckOptions& o) {
+    return check_frame(
+        capture.rows(), capture.cols(),
+        [&](Eigen::Index r, Eigen::Index c) {
+            double v = 0.0;
+            for (const Plane& p : capture.channels) v += p(r, c);
+            return v;
+        },
+        expected_rows, expected_cols, o);
 }
 
 }  // namespace pinmask

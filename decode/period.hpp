@@ -23,9 +23,10 @@ namespace pinmask {
 
 enum class Axis { kRows, kCols };
 
-// rho(d) for d = 0 .. size - 1 along `axis` (rows: vertical lag), computed with zero-padded FFTs.
+// rho(d) for d = 0 .. size - 1 along `axis` (rows: vertical lag), computed with FFTs zero-padded
+// to size + the last lag; max_lag >= 0 stops at that lag (fewer samples to transform).
 // Throws InvalidInput for an empty or non-finite plane. A constant plane gives rho = 0 past d = 0.
-std::vector<double> autocorrelation_profile(const Plane& x, Axis axis);
+std::vector<double> autocorrelation_profile(const Plane& x, Axis axis, int max_lag = -1);
 
 // A peak of the profile: the lag refined to sub-pixel by a parabola through the three samples
 // around the integer maximum, the profile's value there, and its rise over the lowest value at
@@ -47,10 +48,14 @@ std::optional<ProfilePeak> strongest_repeat(const std::vector<double>& profile, 
 // Lags whose rise is at least this fraction of the best are treated as the same repeat.
 inline constexpr double kSubharmonicFraction = 0.7;
 
-// The capture is averaged across the lag axis down to at most this many samples before the
-// autocorrelation (blocks of whole pixels; the remainder is dropped): averaging keeps a repeat
-// along the lag axis exact and leaves the cost a small fraction of a decode's.
-inline constexpr int kMaxAcrossSamples = 64;
+// What the check reads: along each axis, kAcrossStrips strips of kStripWidth adjacent lines
+// spread evenly across the frame (every line when the frame has at most kAcrossStrips *
+// kStripWidth across), each strip averaged into one line; the profile is the sum of the strips'
+// autocorrelations. A repeat along the lag axis is exact in every strip, and reading ~64 lines
+// instead of the frame keeps the cost a small fraction of a one-period decode's (`pinmask bench
+// period`). Values outside the strips are not read (decode checks the frame for NaN/Inf first).
+inline constexpr int kAcrossStrips = 16;
+inline constexpr int kStripWidth = 4;
 
 struct PeriodCheckOptions {
     // |measured - expected| allowed is the larger of these: half a pixel (beyond it the period
@@ -96,13 +101,16 @@ struct PeriodCheck {
 };
 
 // Measures the capture's period along each axis and compares it with the expected (PSF) size:
-// the profile of the capture averaged across (kMaxAcrossSamples), the repeat near the expected
+// the profile of the strips (kAcrossStrips, kStripWidth), the repeat near the expected
 // lag when it is as strong as the strongest repeat (kSubharmonicFraction), else the strongest.
 // An axis is skipped (with the reason) when the capture holds fewer than two periods along it
 // (a single period has no repeat to measure), or when no repeat rises above min_rise at all
-// (nothing to compare: not a contradiction of the PSF). Throws InvalidInput for an empty or
-// non-finite capture, an expected size < 1 or options out of range.
+// (nothing to compare: not a contradiction of the PSF). Throws InvalidInput for an empty
+// capture, non-finite values in the strips read, an expected size < 1 or options out of range.
 PeriodCheck check_period(const Plane& capture, int expected_rows, int expected_cols,
+                         const PeriodCheckOptions& options = {});
+// The same on the luminance (sum of the channels) of an image, read only in the strips.
+PeriodCheck check_period(const Image& capture, int expected_rows, int expected_cols,
                          const PeriodCheckOptions& options = {});
 
 }  // namespace pinmask

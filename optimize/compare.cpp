@@ -68,14 +68,14 @@ void fill_pictures(CompareResult& r, const Mask& mask, const Plane& psf, const C
     for (const Plane& ch : cap.capture.channels) {
         DecodeOptions w;
         w.method = DecodeMethod::kWiener;
-        w.nsr = r.row.wiener_nsr;
+        w.wiener.nsr = r.row.wiener_nsr;
         wiener.channels.push_back(decode_plane(ch, psf, w).image);
         DecodeOptions t;
         t.method = DecodeMethod::kTv;
-        t.lambda = r.row.tv_lambda;
-        t.max_iterations = s.metrics.simulation.tv_iterations;
-        t.tolerance = s.metrics.simulation.tv_tolerance;
-        t.record_history = false;
+        t.tv.lambda = r.row.tv_lambda;
+        t.iterative.max_iterations = s.metrics.simulation.tv_iterations;
+        t.iterative.tolerance = s.metrics.simulation.tv_tolerance;
+        t.iterative.record_history = false;
         const DecodeResult d = decode_plane(ch, psf, t);
         p.tv_iterations = std::max(p.tv_iterations, d.iterations);
         tv.channels.push_back(d.image);

@@ -48,10 +48,10 @@ double decoded_psnr(const Plane& capture, const Plane& psf, const Plane& scene, 
                     const DepthOptions& o) {
     DecodeOptions d;
     d.method = tv ? DecodeMethod::kTv : DecodeMethod::kWiener;
-    d.nsr = o.wiener_nsr;
-    d.lambda = o.tv_lambda;
-    d.max_iterations = o.tv_iterations;
-    d.record_history = false;
+    d.wiener.nsr = o.wiener_nsr;
+    d.tv.lambda = o.tv_lambda;
+    d.iterative.max_iterations = o.tv_iterations;
+    d.iterative.record_history = false;
     const Plane x = decode_plane(capture, psf, d).image;
     return psnr_db(x, registered_scene(x, scene));
 }

@@ -118,10 +118,10 @@ SimulatedQuality simulated_quality(const Plane& psf, const std::vector<NamedScen
             DecodeOptions o;
             o.method = DecodeMethod::kTv;
             o.model = ConvModel::kCyclic;
-            o.lambda = w;
-            o.max_iterations = options.tv_iterations;
-            o.tolerance = options.tv_tolerance;
-            o.record_history = false;
+            o.tv.lambda = w;
+            o.iterative.max_iterations = options.tv_iterations;
+            o.iterative.tolerance = options.tv_tolerance;
+            o.iterative.record_history = false;
             for (const Trial& t : trials) out.push_back(decode_plane(t.capture, psf, o).image);
         }
         q.decodes += static_cast<long long>(trials.size());

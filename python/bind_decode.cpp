@@ -3,11 +3,15 @@
 // cli::capture_decode_options, cli::parse_crop): names, defaults, messages and numbers are the
 // CLI's.
 #include <atomic>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "cli/decode_output.hpp"
 #include "core/error.hpp"
 #include "decode/capture.hpp"
 #include "decode/capture_pipeline.hpp"
+#include "decode/decode_modes.hpp"
 #include "decode/decoder.hpp"
 #include "decode/period.hpp"
 #include "design/psf.hpp"
@@ -38,15 +42,16 @@ struct CaptureArg {
 // period check, crop, PSF to unit sum, precision, each channel decoded) with the CLI's own
 // options (cli::capture_decode_options). The pipeline owns its inputs: a borrowed capture or PSF
 // is copied into it (a C++ copy, not a numpy conversion: input_copies() does not count it).
-DecodeOutput decode_pipeline(CaptureArg& cap, const PlaneArg& psf_in,
-                             const std::optional<Image>& dark, const cli::DecodeRequest& r,
+DecodeOutput decode_pipeline(CaptureArg& cap, const PlaneArg& psf_in, bool measured_psf,
+                             const std::optional<Image>& dark, const CaptureDecodeOptions& o,
                              const std::atomic<bool>* stop) {
-    CaptureDecodeOptions options = cli::capture_decode_options(r);
-    options.decode.stop = stop;
-    options.validate();
+    CaptureDecodeOptions options = o;
+    options.decode.iterative.stop = stop;
     CaptureDecodeInputs in;
     in.capture = cap.plane ? Image(*cap.plane) : std::move(cap.image);
     in.psf = Image(psf_in.get());
+    // background="corner" reads the PSF's own values (a measured PSF, as the CLI's --psf file).
+    if (measured_psf && options.background == BackgroundMode::kCorner) in.psf_counts = psf_in.get();
     in.dark = dark;
     CaptureDecodeResult res = decode_capture(std::move(in), options);
     DecodeOutput out;
@@ -81,35 +86,77 @@ py::dict period_dict(const PeriodCheck& p) {
     return d;
 }
 
+// background=: None or "none" | "corner" | a number of counts (the CLI's --background text).
+std::string background_text(const py::handle& b) {
+    if (b.is_none()) return "none";
+    if (py::isinstance<py::str>(b)) return b.cast<std::string>();
+    if (py::isinstance<py::bool_>(b))
+        throw invalid_field("--background", py::str(b).cast<std::string>(),
+                            "must be none, corner or a number of counts");
+    const double v = b.cast<double>();
+    std::ostringstream t;
+    t.precision(17);
+    t << v;
+    return t.str();
+}
+
 }  // namespace
 
 void bind_decode(py::module_& m) {
     m.def(
         "decode",
         [](const py::handle& capture, const py::handle& psf, const py::handle& mask,
-           const std::string& method, const std::string& model, double nsr, double lambda_,
-           const std::string& regulariser, std::optional<double> eps,
-           std::optional<double> noise_sigma, bool nonneg, int iters, double tol,
-           const py::handle& crop, const py::handle& dark, const py::object& progress,
-           double poll_s) {
+           const std::string& method, const std::string& model, std::optional<double> nsr,
+           std::optional<double> lambda_, std::optional<std::string> regulariser,
+           std::optional<double> eps, std::optional<double> noise_sigma, std::optional<bool> nonneg,
+           std::optional<int> iters, std::optional<double> tol, const py::handle& crop,
+           const py::handle& dark, const py::handle& background, int downsample,
+           const std::string& normalize, const std::string& precision, int threads,
+           const py::object& progress, double poll_s) {
             cli::DecodeRequest r;
             r.method = method;
             r.model = model;
-            r.nsr = nsr;
-            r.lambda = lambda_;
-            r.regulariser = regulariser;
+            // The method's own arguments: given (not None) ones are refused when the method does
+            // not read them, as the CLI refuses its flags (cli::refuse_unused_flags).
+            std::vector<cli::GivenFlag> given;
+            auto num = [](double v) {
+                std::ostringstream t;
+                t.precision(17);
+                t << v;
+                return t.str();
+            };
+            if (nsr) given.push_back({cli::MethodFlag::kNsr, num(r.nsr = *nsr)});
+            if (lambda_) given.push_back({cli::MethodFlag::kLambda, num(r.lambda = *lambda_)});
+            if (regulariser)
+                given.push_back({cli::MethodFlag::kRegulariser, r.regulariser = *regulariser});
+            if (eps) given.push_back({cli::MethodFlag::kEps, num(*eps)});
+            if (noise_sigma) given.push_back({cli::MethodFlag::kNoiseSigma, num(*noise_sigma)});
             r.eps = eps;
             r.noise_sigma = noise_sigma;
-            r.nonnegative = nonneg;
-            r.iterations = iters;
-            r.tolerance = tol;
-            if (model != "cyclic" && model != "linear")
-                throw invalid_field("--model", model, "must be cyclic or linear");
-            if (regulariser != "identity" && regulariser != "gradient")
-                throw invalid_field("--regulariser", regulariser, "must be identity or gradient");
-            if (iters < 0) throw invalid_field("--iters", std::to_string(iters), "must be >= 0");
+            if (nonneg) {
+                r.nonnegative = *nonneg;
+                given.push_back({cli::MethodFlag::kNonnegative, *nonneg ? "true" : "false"});
+            }
+            if (iters)
+                given.push_back(
+                    {cli::MethodFlag::kIterations, std::to_string(r.iterations = *iters)});
+            if (tol) given.push_back({cli::MethodFlag::kTolerance, num(r.tolerance = *tol)});
+            parse_conv_model(model, "--model");
+            parse_regulariser(r.regulariser, "--regulariser");
+            if (r.iterations < 1)
+                throw invalid_field("--iters", std::to_string(r.iterations), "must be >= 1");
             if (eps && noise_sigma)
                 throw InvalidInput("--eps excludes --noise-sigma (eps= or noise_sigma=, not both)");
+            parse_normalize_mode(normalize, "--normalize");
+            if (threads < 0 || threads > 1024)
+                throw invalid_field("--threads", std::to_string(threads),
+                                    "must be 1..1024 (0: all cores)");
+            r.background = background_text(background);
+            r.downsample = downsample;
+            r.normalize = normalize;
+            r.precision = precision;
+            r.threads = threads;
+            cli::refuse_unused_flags(r, given);
             if (py::isinstance<py::str>(crop)) {
                 r.crop = crop.cast<std::string>();
             } else {  // (row, col) of the top-left pixel: the CLI's X,Y is col,row
@@ -142,12 +189,21 @@ void bind_decode(py::module_& m) {
             }
             std::optional<Image> dark_img;
             if (!dark.is_none()) dark_img = image_arg(dark, "dark");
+            CaptureDecodeOptions options = cli::capture_decode_options(r);
+            options.validate();
+            if (options.background == BackgroundMode::kCorner && psf.is_none()) {
+                throw invalid_field("--background", "corner",
+                                    "needs a measured PSF (psf=): a PSF synthesised from a mask "
+                                    "has no camera background");
+            }
 
             std::atomic<bool> stop{false};
             DecodeOutput out;
             const Poll poll = run_with_interrupt(
-                [&] { out = decode_pipeline(cap, *psf_arg, dark_img, r, &stop); }, stop, progress,
-                poll_s);
+                [&] {
+                    out = decode_pipeline(cap, *psf_arg, !psf.is_none(), dark_img, options, &stop);
+                },
+                stop, progress, poll_s);
 
             py::dict d;
             Image estimate;
@@ -188,14 +244,16 @@ void bind_decode(py::module_& m) {
             return d;
         },
         py::arg("capture"), py::arg("psf") = py::none(), py::arg("mask") = py::none(),
-        py::arg("method") = "wiener", py::arg("model") = "cyclic", py::arg("nsr") = 0.01,
-        py::arg("lambda_") = 1e-3, py::arg("regulariser") = "identity", py::arg("eps") = py::none(),
-        py::arg("noise_sigma") = py::none(), py::arg("nonneg") = false, py::arg("iters") = 200,
-        py::arg("tol") = 1e-4, py::arg("crop") = "center", py::arg("dark") = py::none(),
-        py::arg("progress") = py::none(), py::arg("poll_s") = 0.05,
-        R"(Decodes a capture as `pinmask decode` does with its default preprocessing
-(--background none, --downsample 0, --normalize none): dark frame subtracted, period check,
-crop of one period, PSF scaled to unit sum, each channel decoded (colour channels in parallel).
+        py::arg("method") = "wiener", py::arg("model") = "cyclic", py::arg("nsr") = py::none(),
+        py::arg("lambda_") = py::none(), py::arg("regulariser") = py::none(),
+        py::arg("eps") = py::none(), py::arg("noise_sigma") = py::none(),
+        py::arg("nonneg") = py::none(), py::arg("iters") = py::none(), py::arg("tol") = py::none(),
+        py::arg("crop") = "center", py::arg("dark") = py::none(), py::arg("background") = "none",
+        py::arg("downsample") = 0, py::arg("normalize") = "none", py::arg("precision") = "auto",
+        py::arg("threads") = 0, py::arg("progress") = py::none(), py::arg("poll_s") = 0.05,
+        R"(Decodes a capture as `pinmask decode` does: dark frame subtracted, background,
+downsampling, period check, crop, normalisation, each channel decoded (colour channels in
+parallel). Same names, defaults, refusals and numbers as the CLI's flags.
 
 capture: (rows, cols) or (rows, cols, channels) array, capture units. psf: a PSF array (any
 sum > 0), or mask: a Mask or *.mask.json path (its PSF is synthesised).
@@ -203,9 +261,17 @@ method: wiener (deconvwnr: PSF centre floor(size/2) at the origin, scalar nsr, r
 tikhonov (lambda_, regulariser identity|gradient) | tv (TV-L2 ADMM, lambda_) | tvqc (min TV
 s.t. ||Ax - p||_2 <= eps, or eps from noise_sigma) | richardson-lucy. model: cyclic
 (circular convolution over one period) | linear (zero-padded, then cropped). nonneg: x >= 0 for
-tv/tvqc. iters, tol: iterative methods (relative change of x). crop: 'center' | 'none' |
+tv/tvqc. iters, tol: iterative methods (relative change of x). Method arguments left None take
+the CLI's defaults (nsr 0.01, lambda_ 1e-3, regulariser identity, nonneg False, iters 200,
+tol 1e-4); one given for a method that does not read it raises ValueError naming it and the
+methods that do (as the CLI refuses --nsr with --method tv). crop: 'center' | 'none' |
 (row, col) of the period's top-left pixel. dark: dark frame, same size (1 or the capture's
-channels).
+channels). background: 'none' | 'corner' (mean of the PSF's rows/cols 5..14, off PSF and
+capture; needs psf=) | a number of counts off the capture. downsample: K rounds of 2x2 box
+averaging of capture and PSF (0..12). normalize: 'none' (PSF to unit sum, estimate in capture
+counts) | 'l2' (capture window and PSF each divided by its L2 norm). precision: 'auto' (float32
+for wiener, tikhonov, tv from 256 x 256 decoded pixels) | 'single' | 'double'. threads: FFTW
+threads for transforms of >= 512 x 512 (0: all cores; results do not depend on it).
 progress: called every poll_s seconds with the elapsed seconds while the decode runs; return
 False to stop. Ctrl-C (KeyboardInterrupt) or False ends an iterative method after its current
 iteration and returns the estimate so far with interrupted = True (as the CLI writes it); a

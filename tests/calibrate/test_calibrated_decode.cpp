@@ -106,7 +106,7 @@ TEST_CASE("calibrated PSF beats the design PSF by >= 2 dB (Wiener)") {
                                                capture.maxCoeff() / std::pow(10, st.snr_db / 20));
         for (auto& v : capture.reshaped()) v += noise(rng);
         DecodeOptions o;
-        o.nsr = st.nsr;
+        o.wiener.nsr = st.nsr;
         const double p_design = aligned_psnr(decode_plane(capture, design, o).image, scene);
         const double p_cal =
             aligned_psnr(decode_plane(capture, cal.psfs.full_frame, o).image, scene);

@@ -247,6 +247,19 @@ TEST_CASE("bad input exits 2 naming the problem and leaves no output") {
         {dir / "cap.tiff --psf " + dir / "zero.tiff", "sums to"},
         {dir / "cap.tiff --psf " + dir / "neg.tiff", "sums to"},
         {dir / "cap.tiff" + psf_arg + " --method magic", "magic"},
+        {dir / "cap.tiff" + psf_arg + " --method rl", "richardson-lucy"},  // one spelling
+        // A flag the method does not read: refused naming the flag, the method and its users.
+        {dir / "cap.tiff" + psf_arg + " --method tv --nsr 0.1",
+         "--nsr = 0.1: is not used by --method tv (only by wiener)"},
+        {dir / "cap.tiff" + psf_arg + " --lambda 0.1",
+         "--lambda = 0.1: is not used by --method wiener (only by tikhonov, tv)"},
+        {dir / "cap.tiff" + psf_arg + " --method tv --regulariser gradient", "--regulariser"},
+        {dir / "cap.tiff" + psf_arg + " --method tv --eps 1", "(only by tvqc)"},
+        {dir / "cap.tiff" + psf_arg + " --method richardson-lucy --noise-sigma 1", "--noise-sigma"},
+        {dir / "cap.tiff" + psf_arg + " --method tikhonov --nonneg", "(only by tv, tvqc)"},
+        {dir / "cap.tiff" + psf_arg + " --iters 3", "(only by tv, tvqc, richardson-lucy)"},
+        {dir / "cap.tiff" + psf_arg + " --method tikhonov --tol 0.1", "--tol"},
+        {dir / "cap.tiff" + psf_arg + " --method tikhonov --lambda 0", "must be > 0 for tikhonov"},
         {dir / "cap.tiff" + psf_arg + " --dark " + dir / "dark_other.tiff", "dark frame"},
         {dir / "cap.tiff" + psf_arg + " --crop 1,0", "crop"},
         {dir / "cap.tiff" + psf_arg + " --crop middle", "--crop"},
@@ -295,7 +308,7 @@ TEST_CASE("decode --mask synthesises the mask's PSF (the one `pinmask psf` write
     const int wr = (rows - n) / 2, wc = (cols - n) / 2;
     const Plane window = read_image(dir / "cap.tiff").image.channels.at(0).block(wr, wc, n, n);
     DecodeOptions o;
-    o.nsr = kMaskNsr;
+    o.wiener.nsr = kMaskNsr;
     const Plane ref = decode_plane(window, psf, o).image;
     const Plane x = read_image(dir / "x.tiff").image.channels.at(0);
     CHECK(test::max_rel_error(x, ref) <= kMaskVsFileDecodeTol);

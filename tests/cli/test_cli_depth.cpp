@@ -61,7 +61,7 @@ double registered_psnr(const Plane& x, const Plane& scene) {
 
 double wiener_psnr(const Plane& capture, const Plane& psf, const Plane& scene) {
     DecodeOptions d;
-    d.nsr = 0.01;
+    d.wiener.nsr = 0.01;
     return registered_psnr(decode_plane(capture, psf, d).image, scene);
 }
 

@@ -23,7 +23,7 @@ TEST_CASE("RGB channels decoded on threads equal one decode_plane call per chann
     for (int ch = 0; ch < 3; ++ch) cap.channels[ch] = random_plane(17, 20, 1 + ch);
     const Plane shared_psf = random_plane(5, 4, 9);
     DecodeOptions o;
-    o.nsr = 0.05;
+    o.wiener.nsr = 0.05;
     // Deterministic FFTW plans: threaded and serial runs give identical numbers.
     const auto shared = decode_channels(cap, {shared_psf}, o);
     REQUIRE(shared.size() == 3);

@@ -40,7 +40,7 @@ TEST_CASE("decode_capture = decode_plane on the centred period (Wiener and TV)")
     for (DecodeMethod m : {DecodeMethod::kWiener, DecodeMethod::kTv}) {
         CaptureDecodeOptions o;
         o.decode.method = m;
-        o.decode.max_iterations = 20;
+        o.decode.iterative.max_iterations = 20;
         const CaptureDecodeResult r = decode_capture(in, o);
         CHECK(r.summary.window.row == n / 2);
         CHECK(r.summary.window.col == n / 2);
@@ -71,7 +71,7 @@ TEST_CASE("CaptureDecodeOptions::validate names the field, the value and the rul
     fails(o, "background");
     o = {};
     o.decode.method = DecodeMethod::kTv;
-    o.decode.max_iterations = 0;
+    o.decode.iterative.max_iterations = 0;
     fails(o, "iterations");
     o.decode.method = DecodeMethod::kWiener;  // closed form: iterations are not read
     CHECK_NOTHROW(o.validate());
@@ -102,7 +102,7 @@ TEST_CASE("precision auto: float32 from 256 x 256 decoded pixels for wiener/tikh
     CHECK_FALSE(decode_capture(in, o).summary.single_precision);
     o.precision = Precision::kAuto;
     o.decode.method = DecodeMethod::kRichardsonLucy;  // always double
-    o.decode.max_iterations = 2;
+    o.decode.iterative.max_iterations = 2;
     CHECK_FALSE(decode_capture(in, o).summary.single_precision);
 }
 
@@ -116,7 +116,7 @@ TEST_CASE("results do not depend on the FFT thread count (512 x 512, single and 
         o.crop.mode = CropMode::kNone;
         o.precision = p;
         o.decode.method = DecodeMethod::kTv;
-        o.decode.max_iterations = 3;
+        o.decode.iterative.max_iterations = 3;
         o.threads = 1;
         const CaptureDecodeResult one = decode_capture(in, o);
         CHECK(one.summary.fft_threads == 1);

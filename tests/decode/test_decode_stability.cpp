@@ -23,9 +23,10 @@ DecodeOptions options_for(DecodeMethod m, ConvModel model = ConvModel::kCyclic) 
     DecodeOptions o;
     o.method = m;
     o.model = model;
-    o.lambda = 1e-2;
-    o.eps = 0.01;
-    o.max_iterations = 300;
+    o.tikhonov.lambda = 1e-2;
+    o.tv.lambda = 1e-2;
+    o.tvqc.eps = 0.01;
+    o.iterative.max_iterations = 300;
     return o;
 }
 
@@ -39,7 +40,7 @@ TEST_CASE("stability: NSR = 0 on a PSF with exact spectral zeros drops those fre
     const ConvolutionOperator op(psf, make_conv_geometry(ConvModel::kCyclic, 8, 8, 1, 2));
     const Plane p = op.apply(x_true);
     DecodeOptions o = options_for(DecodeMethod::kWiener);
-    o.nsr = 0.0;
+    o.wiener.nsr = 0.0;
     const DecodeResult r = decode_plane(p, psf, o);
     const Fft2 fft(8, 8);
     ComplexPlane spec = fft.forward(x_true);
@@ -55,9 +56,9 @@ TEST_CASE("stability: NSR 1e-12 and 1e12") {
     const ConvolutionOperator op(psf, make_conv_geometry(ConvModel::kCyclic, 9, 9, 3, 3));
     const Plane p = op.apply(x_true);
     DecodeOptions o = options_for(DecodeMethod::kWiener);
-    o.nsr = 1e-12;
+    o.wiener.nsr = 1e-12;
     CHECK(max_rel_error(decode_plane(p, psf, o).image, x_true) <= 1e-10);  // bias NSR/|H|^2
-    o.nsr = 1e12;  // x -> A^T p / NSR, relative correction |H|^2 / NSR <= 1e-12
+    o.wiener.nsr = 1e12;  // x -> A^T p / NSR, relative correction |H|^2 / NSR <= 1e-12
     CHECK(max_rel_error(decode_plane(p, psf, o).image, op.adjoint(p) / 1e12) <= 1e-10);
 }
 
@@ -76,9 +77,10 @@ TEST_CASE("stability: constant, all-zero and saturated captures, every method an
                 // Cyclic, unit-sum PSF: Wiener and identity Tikhonov shrink the constant by
                 // 1 / (1 + nsr or lambda); TV-L2 and RL fit it exactly (no gradient, no misfit).
                 // TVQC may return any constant inside the constraint.
-                const double shrink = m == DecodeMethod::kWiener     ? 1.0 / (1.0 + o.nsr)
-                                      : m == DecodeMethod::kTikhonov ? 1.0 / (1.0 + o.lambda)
-                                                                     : 1.0;
+                const double shrink = m == DecodeMethod::kWiener ? 1.0 / (1.0 + o.wiener.nsr)
+                                      : m == DecodeMethod::kTikhonov
+                                          ? 1.0 / (1.0 + o.tikhonov.lambda)
+                                          : 1.0;
                 CHECK((flat.image - 0.7 * shrink).abs().maxCoeff() <= 1e-6);
             }
             if (m == DecodeMethod::kTvqc && model == ConvModel::kCyclic) {
@@ -104,9 +106,10 @@ TEST_CASE("stability: all pinholes on one row (rank-deficient PSF), every method
     const Plane p = op.apply(x);
     for (DecodeMethod m : kAllMethods) {
         DecodeOptions o = options_for(m);
-        o.nsr = 0.0;
-        o.lambda = m == DecodeMethod::kTikhonov ? 0.0 : 1e-3;
-        o.eps = 0.0;
+        o.wiener.nsr = 0.0;
+        o.tikhonov.lambda = 0.0;
+        o.tv.lambda = 1e-3;
+        o.tvqc.eps = 0.0;
         const DecodeResult r = decode_plane(p, psf, o);
         INFO("method " << int(m));
         CHECK(is_all_finite(r.image));
@@ -123,9 +126,10 @@ TEST_CASE("stability: lambda -> 0 and very large, through the facade") {
     for (DecodeMethod m : {DecodeMethod::kTikhonov, DecodeMethod::kTv}) {
         for (double lambda : {0.0, 1e-12, 1e9}) {
             DecodeOptions o = options_for(m);
-            o.lambda = lambda;
-            o.tolerance = 1e-9;
-            o.max_iterations = 3000;
+            o.tikhonov.lambda = lambda;
+            o.tv.lambda = lambda;
+            o.iterative.tolerance = 1e-9;
+            o.iterative.max_iterations = 3000;
             const DecodeResult r = decode_plane(p, psf, o);
             INFO("method " << int(m) << " lambda " << lambda);
             CHECK(is_all_finite(r.image));

@@ -54,16 +54,57 @@ TEST_CASE("decode_plane rejects bad inputs, naming the option") {
         set(fresh);
         check_rejects(p, psf, fresh, field);
     };
-    with([](DecodeOptions& x) { x.nsr = -0.1; }, "nsr");
-    with([](DecodeOptions& x) { x.lambda = -1.0; }, "lambda");
-    with([](DecodeOptions& x) { x.eps = -1.0; }, "eps");
-    with([](DecodeOptions& x) { x.noise_sigma = -1.0; }, "noise_sigma");
-    with([](DecodeOptions& x) { x.max_iterations = -3; }, "max_iterations");
-    with([](DecodeOptions& x) { x.tolerance = -1e-3; }, "tolerance");
-    with([](DecodeOptions& x) { x.warm_start = Plane::Zero(7, 8); }, "warm_start");
-    with([](DecodeOptions& x) { x.nsr_per_frequency = Plane::Constant(8, 9, 0.1); },
+    // Each struct's validate() names the struct and the field.
+    with([](DecodeOptions& x) { x.wiener.nsr = -0.1; }, "wiener.nsr");
+    with(
+        [](DecodeOptions& x) {
+            x.method = DecodeMethod::kTikhonov;
+            x.tikhonov.lambda = -1.0;
+        },
+        "tikhonov.lambda");
+    with(
+        [](DecodeOptions& x) {
+            x.method = DecodeMethod::kTv;
+            x.tv.lambda = std::numeric_limits<double>::quiet_NaN();
+        },
+        "tv.lambda");
+    with(
+        [](DecodeOptions& x) {
+            x.method = DecodeMethod::kTvqc;
+            x.tvqc.eps = -1.0;
+        },
+        "tvqc.eps");
+    with(
+        [](DecodeOptions& x) {
+            x.method = DecodeMethod::kTvqc;
+            x.tvqc.noise_sigma = -1.0;
+        },
+        "tvqc.noise_sigma");
+    with(
+        [](DecodeOptions& x) {
+            x.method = DecodeMethod::kTvqc;
+            x.tvqc.eps = 0.1;
+            x.tvqc.noise_sigma = 0.1;
+        },
+        "tvqc.noise_sigma");  // both: one must go
+    with([](DecodeOptions& x) { x.iterative.max_iterations = -3; }, "iterative.max_iterations");
+    with([](DecodeOptions& x) { x.iterative.tolerance = -1e-3; }, "iterative.tolerance");
+    with([](DecodeOptions& x) { x.iterative.warm_start = Plane::Zero(7, 8); }, "warm_start");
+    with([](DecodeOptions& x) { x.wiener.nsr_per_frequency = Plane::Constant(8, 9, 0.1); },
+         "nsr_per_frequency");
+    with([](DecodeOptions& x) { x.wiener.nsr_per_frequency = Plane::Constant(8, 8, -0.1); },
          "nsr_per_frequency");
     with([](DecodeOptions& x) { x.method = DecodeMethod::kTvqc; }, "eps");  // no eps, no sigma
+    // An enum value outside the table is an error, never a fall-through to some method.
+    with([](DecodeOptions& x) { x.method = static_cast<DecodeMethod>(17); }, "method");
+    with([](DecodeOptions& x) { x.model = static_cast<ConvModel>(5); }, "model");
+    // A method reads its own struct only: a bad value in another method's struct is not read.
+    {
+        DecodeOptions w;
+        w.tv.lambda = -1.0;
+        w.tvqc.eps = -1.0;
+        CHECK_NOTHROW(decode_plane(p, psf, w));
+    }
     o.method = DecodeMethod::kRichardsonLucy;
     Plane neg_psf = psf;
     neg_psf(0, 0) = -0.01;
@@ -74,7 +115,7 @@ TEST_CASE("decode_plane Wiener equals WienerFilter, scalar and per-frequency NSR
     const Plane p = random_plane(12, 9, 83);
     const Plane psf = random_psf(4, 3, 84);
     DecodeOptions o;
-    o.nsr = 0.03;
+    o.wiener.nsr = 0.03;
     const DecodeResult r = decode_plane(p, psf, o);
     CHECK(r.image.rows() == 12);
     CHECK(r.image.cols() == 9);
@@ -82,7 +123,7 @@ TEST_CASE("decode_plane Wiener equals WienerFilter, scalar and per-frequency NSR
     CHECK(max_rel_error(r.image, WienerFilter(psf, 12, 9, 0.03).apply(p)) <= kSamePathTol);
     CHECK_CLOSE(r.objective, r.residual * r.residual + 0.03 * r.image.square().sum(), 1e-12);
 
-    o.nsr_per_frequency = Plane::Constant(12, 9, 0.03);
+    o.wiener.nsr_per_frequency = Plane::Constant(12, 9, 0.03);
     const DecodeResult rf = decode_plane(p, psf, o);
     CHECK(max_rel_error(rf.image, r.image) <= 1e-12);
     CHECK_CLOSE(rf.objective, r.objective, 1e-12);  // Parseval form of nsr ||x||^2
@@ -93,7 +134,7 @@ TEST_CASE("linear model: Wiener on the padded grid, image cropped to the capture
     const Plane psf = random_psf(10, 12, 86);  // DiffuserCam-like: PSF as large as the capture
     DecodeOptions o;
     o.model = ConvModel::kLinear;
-    o.nsr = 0.01;
+    o.wiener.nsr = 0.01;
     const DecodeResult r = decode_plane(p, psf, o);
     const ConvGeometry g = make_conv_geometry(ConvModel::kLinear, 10, 12, 10, 12);
     const Plane ref = crop_to_capture(
@@ -111,8 +152,8 @@ TEST_CASE("iterative methods through the facade: history, warm start of the work
             DecodeOptions o;
             o.method = m;
             o.model = model;
-            o.eps = 0.05;
-            o.max_iterations = 40;
+            o.tvqc.eps = 0.05;
+            o.iterative.max_iterations = 40;
             const DecodeResult r = decode_plane(p, psf, o);
             INFO("method " << int(m) << " model " << int(model));
             CHECK(r.image.rows() == 16);
@@ -121,8 +162,8 @@ TEST_CASE("iterative methods through the facade: history, warm start of the work
             CHECK(r.iterations >= 1);
             CHECK(r.seconds >= 0.0);
             const ConvGeometry g = make_conv_geometry(model, 16, 16, 5, 5);
-            o.warm_start = Plane::Constant(g.work_rows, g.work_cols, 0.5);
-            o.record_history = false;
+            o.iterative.warm_start = Plane::Constant(g.work_rows, g.work_cols, 0.5);
+            o.iterative.record_history = false;
             const DecodeResult w = decode_plane(p, psf, o);
             CHECK(w.history.empty());
             CHECK(is_all_finite(w.image));
@@ -139,11 +180,11 @@ TEST_CASE("a raised stop flag ends every iterative method after the iteration it
             DecodeOptions o;
             o.method = m;
             o.model = model;
-            o.eps = 0.05;
-            o.max_iterations = 1000;
-            o.tolerance = 0.0;  // never converges on its own
+            o.tvqc.eps = 0.05;
+            o.iterative.max_iterations = 1000;
+            o.iterative.tolerance = 0.0;  // never converges on its own
             std::atomic<bool> stop{false};
-            o.stop = &stop;
+            o.iterative.stop = &stop;
             const DecodeResult full = decode_plane(p, psf, o);
             CHECK_FALSE(full.interrupted);
             CHECK(full.iterations == 1000);
@@ -155,8 +196,8 @@ TEST_CASE("a raised stop flag ends every iterative method after the iteration it
             CHECK(cut.history.size() == 1);
             CHECK(is_all_finite(cut.image));
             // The same first iterate as an uninterrupted one-iteration run.
-            o.stop = nullptr;
-            o.max_iterations = 1;
+            o.iterative.stop = nullptr;
+            o.iterative.max_iterations = 1;
             const DecodeResult one = decode_plane(p, psf, o);
             CHECK((cut.image - one.image).abs().maxCoeff() == 0.0);
         }

@@ -84,6 +84,13 @@ TEST_CASE("autocorrelation_profile matches the direct sum (odd, prime, power-of-
             for (std::size_t d = 0; d < ref.size(); ++d)
                 CHECK(std::fabs(fast[d] - ref[d]) <=
                       kProfileVsDirectTol * std::max(1.0, std::fabs(ref[d])));
+            // Stopped at a lag (less padding, no wrap-around up to it): the same values.
+            const int last = static_cast<int>(ref.size()) / 2;
+            const auto part = autocorrelation_profile(x, axis, last);
+            REQUIRE(part.size() == static_cast<std::size_t>(last + 1));
+            for (int d = 0; d <= last; ++d)
+                CHECK(std::fabs(part[std::size_t(d)] - ref[std::size_t(d)]) <=
+                      kProfileVsDirectTol * std::max(1.0, std::fabs(ref[std::size_t(d)])));
         }
     }
     const auto flat = autocorrelation_profile(Plane::Constant(8, 8, 3.0), Axis::kRows);
@@ -191,4 +198,26 @@ TEST_CASE("check_period skips an axis with fewer than two periods, and finds non
 
     CHECK_THROWS_AS(check_period(x, 0, 10), InvalidInput);
     CHECK_THROWS_AS(check_period(Plane(0, 0), 1, 1), InvalidInput);
+}
+
+TEST_CASE("check_period on an image equals the check of its luminance plane (strips read)") {
+    // A frame wide and tall enough for strips (> kAcrossStrips * kStripWidth lines across), three
+    // channels with a common 40 x 36 repeat and different weights.
+    const Plane tile = random_plane(40, 36, 21);
+    Image img;
+    for (double w : {1.0, 0.5, 2.0}) img.channels.push_back(w * tiled(tile, 300, 410, 3, 11));
+    Plane sum = img.channels[0] + img.channels[1] + img.channels[2];
+    const PeriodCheck a = check_period(img, 40, 36);
+    const PeriodCheck b = check_period(sum, 40, 36);
+    REQUIRE(a.rows.found);
+    REQUIRE(a.cols.found);
+    CHECK(a.rows.measured_px == b.rows.measured_px);
+    CHECK(a.cols.measured_px == b.cols.measured_px);
+    CHECK(a.rows.peak_rise == b.rows.peak_rise);
+    CHECK(std::fabs(a.rows.measured_px - 40) <= kSubPixelTol);
+    CHECK(std::fabs(a.cols.measured_px - 36) <= kSubPixelTol);
+    CHECK(a.matches());
+    // A NaN in a line the check reads is an error (never a silent verdict).
+    sum(150, 410 / (2 * kAcrossStrips)) = std::nan("");
+    CHECK_THROWS_AS(check_period(sum, 40, 36), InvalidInput);
 }

@@ -57,8 +57,8 @@ TEST_CASE("single precision: wiener and tikhonov within kSingleClosedFormTol of 
     for (DecodeMethod m : {DecodeMethod::kWiener, DecodeMethod::kTikhonov}) {
         DecodeOptions o;
         o.method = m;
-        o.nsr = 1e-3;
-        o.lambda = 1e-3;
+        o.wiener.nsr = 1e-3;
+        o.tikhonov.lambda = 1e-3;
         const Plane d = decode_plane(P.p, P.psf, o).image;
         o.single_precision = true;
         const Plane s = decode_plane(P.p, P.psf, o).image;
@@ -76,11 +76,11 @@ TEST_CASE("single precision: TV-L2 (cyclic and linear) within kSingleTvTol of do
         DecodeOptions o;
         o.method = DecodeMethod::kTv;
         o.model = model;
-        o.lambda = 1e-3;
-        o.nonnegative = model == ConvModel::kLinear;
-        o.max_iterations = 60;
-        o.tolerance = 0.0;
-        o.record_history = false;
+        o.tv.lambda = 1e-3;
+        o.tv.nonnegative = model == ConvModel::kLinear;
+        o.iterative.max_iterations = 60;
+        o.iterative.tolerance = 0.0;
+        o.iterative.record_history = false;
         const Plane d = decode_plane(P.p, P.psf, o).image;
         o.single_precision = true;
         const Plane s = decode_plane(P.p, P.psf, o).image;
@@ -95,17 +95,17 @@ TEST_CASE("scale invariance: every method, captures scaled by 2^-900 .. 2^900") 
                            DecodeMethod::kTvqc, DecodeMethod::kRichardsonLucy}) {
         DecodeOptions o;
         o.method = m;
-        o.max_iterations = 30;
-        o.tolerance = 0.0;
-        o.eps = 0.3;
+        o.iterative.max_iterations = 30;
+        o.iterative.tolerance = 0.0;
+        o.tvqc.eps = 0.3;
         Plane p = P.p;
         if (m == DecodeMethod::kRichardsonLucy) p = p.max(0.0);
         const DecodeResult ref = decode_plane(p, P.psf, o);
         for (int k : {-900, -100, 100, 900}) {
             const double s = std::ldexp(1.0, k);
             DecodeOptions os = o;
-            os.lambda = o.lambda * (m == DecodeMethod::kTv ? s : 1.0);
-            os.eps = *o.eps * s;
+            os.tv.lambda = o.tv.lambda * s;
+            os.tvqc.eps = *o.tvqc.eps * s;
             const DecodeResult r = decode_plane(p * s, P.psf, os);
             INFO("method " << int(m) << " scale 2^" << k);
             REQUIRE(is_all_finite(r.image));
@@ -122,9 +122,9 @@ TEST_CASE("a capture with one pixel at 1e300 decodes to a finite estimate (no In
     for (DecodeMethod m : {DecodeMethod::kWiener, DecodeMethod::kTv, DecodeMethod::kTvqc}) {
         DecodeOptions o;
         o.method = m;
-        o.max_iterations = 20;
-        o.eps = 1e298;
-        o.lambda = 1e297;
+        o.iterative.max_iterations = 20;
+        o.tvqc.eps = 1e298;
+        o.tv.lambda = 1e297;
         const DecodeResult r = decode_plane(P.p, P.psf, o);
         INFO("method " << int(m));
         CHECK(is_all_finite(r.image));
@@ -136,11 +136,11 @@ TEST_CASE("TVQC on a 1e30-scaled capture: finite, and converged only when the co
     const Problem P = make(32, 17);
     DecodeOptions o;
     o.method = DecodeMethod::kTvqc;
-    o.noise_sigma = 0.01 * 1e30;
-    o.max_iterations = 400;
+    o.tvqc.noise_sigma = 0.01 * 1e30;
+    o.iterative.max_iterations = 400;
     const DecodeResult r = decode_plane(P.p * 1e30, P.psf, o);
     CHECK(is_all_finite(r.image));
-    const double eps = tvqc_eps_from_sigma(*o.noise_sigma, P.p.size());
+    const double eps = tvqc_eps_from_sigma(*o.tvqc.noise_sigma, P.p.size());
     CHECK(r.constraint_met == (r.residual <= eps * (1.0 + 1e-6)));
     if (r.converged) CHECK(r.constraint_met);
 }
@@ -154,11 +154,11 @@ TEST_CASE("TVQC that cannot meet its constraint in the iterations given says so"
     Plane psf = Plane::Constant(4, 4, 1.0 / 16.0);  // a box: H = 0 at the checkerboard frequency
     DecodeOptions o;
     o.method = DecodeMethod::kTvqc;
-    o.eps = 1e-3;
-    o.max_iterations = 5;
+    o.tvqc.eps = 1e-3;
+    o.iterative.max_iterations = 5;
     const DecodeResult r = decode_plane(p, psf, o);
     CHECK(is_all_finite(r.image));
     CHECK_FALSE(r.constraint_met);
     CHECK_FALSE(r.converged);
-    CHECK(r.residual > *o.eps);
+    CHECK(r.residual > *o.tvqc.eps);
 }

@@ -54,7 +54,8 @@ CaptureDecodeInputs load(const fs::path& psf_path, const fs::path& raw_path) {
 
 CaptureDecodeResult check_wiener(const CaptureDecodeInputs& in, CaptureDecodeOptions o) {
     o.decode.method = DecodeMethod::kWiener;
-    o.decode.nsr = 1.0;  // ~1e-4 max|H|^2 for these L2-normalised PSFs: the README's "hand visible"
+    o.decode.wiener.nsr =
+        1.0;  // ~1e-4 max|H|^2 for these L2-normalised PSFs: the README's "hand visible"
     CaptureDecodeResult r = decode_capture(in, o);
     CHECK(r.estimate.rows() == r.summary.decoded_rows);
     CHECK(r.estimate.cols() == r.summary.decoded_cols);
@@ -65,10 +66,10 @@ CaptureDecodeResult check_wiener(const CaptureDecodeInputs& in, CaptureDecodeOpt
 
 void check_tv(const CaptureDecodeInputs& in, CaptureDecodeOptions o) {
     o.decode.method = DecodeMethod::kTv;
-    o.decode.lambda = 1e-4;  // the ADMM notebook's tau
-    o.decode.nonnegative = true;
-    o.decode.max_iterations = 30;
-    o.decode.tolerance = 0.0;  // run every iteration
+    o.decode.tv.lambda = 1e-4;  // the ADMM notebook's tau
+    o.decode.tv.nonnegative = true;
+    o.decode.iterative.max_iterations = 30;
+    o.decode.iterative.tolerance = 0.0;  // run every iteration
     const CaptureDecodeResult res = decode_capture(in, o);
     const DecodeResult& r = res.summary.channels.at(0);
     CHECK(is_all_finite(res.estimate.channels.at(0)));

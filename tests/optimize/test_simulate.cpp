@@ -160,7 +160,7 @@ TEST_CASE("noiseless capture + Wiener with a tiny NSR recovers the scene (PSNR >
             o.noise.kind = NoiseKind::kNone;
             const SimulatedCapture s = simulate_capture(scene, psf, holes, n * n, o);
             DecodeOptions d;
-            d.nsr = 1e-12;
+            d.wiener.nsr = 1e-12;
             const Plane x = decode_plane(s.capture.channels[0], psf, d).image;
             CHECK(psnr_db(x, scene.channels[0]) > 60.0);
         }

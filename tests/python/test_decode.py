@@ -190,3 +190,91 @@ def test_eps_and_noise_sigma_exclude_each_other(mask7):
     cap = pinmask.simulate(mask7, "letter-R", snr_db=30)["capture"]
     with pytest.raises(ValueError, match="--eps excludes --noise-sigma"):
         pinmask.decode(cap, mask=mask7, method="tvqc", eps=1.0, noise_sigma=0.01)
+
+
+@pytest.mark.parametrize("method,kw,flag,users", [
+    ("tv", dict(nsr=0.1), "--nsr", "wiener"),
+    ("wiener", dict(lambda_=0.1), "--lambda", "tikhonov, tv"),
+    ("tv", dict(regulariser="gradient"), "--regulariser", "tikhonov"),
+    ("richardson-lucy", dict(eps=1.0), "--eps", "tvqc"),
+    ("tv", dict(noise_sigma=1.0), "--noise-sigma", "tvqc"),
+    ("tikhonov", dict(nonneg=True), "--nonneg", "tv, tvqc"),
+    ("wiener", dict(iters=5), "--iters", "tv, tvqc, richardson-lucy"),
+    ("tikhonov", dict(tol=0.1), "--tol", "tv, tvqc, richardson-lucy"),
+])
+def test_argument_the_method_ignores_is_refused_as_the_cli_does(cli, tmp_path, mask7, method, kw,
+                                                                 flag, users):
+    """Never silently dropped: the same message as the CLI's refusal of the flag."""
+    cap = pinmask.simulate(mask7, "letter-R", snr_db=30)["capture"]
+    with pytest.raises(ValueError, match=f"is not used by --method {method} \\(only by {users}\\)"):
+        pinmask.decode(cap, mask=mask7, method=method, **kw)
+    mask7.save(str(tmp_path / "m.mask.json"))
+    np.save(tmp_path / "cap.npy", cap)
+    value = next(iter(kw.values()))
+    args = [flag] if value is True else [flag, value]
+    msg = cli.error("decode", "cap.npy", "--mask", "m.mask.json", "--method", method, *args,
+                    "-o", "x.npy")
+    assert f"is not used by --method {method} (only by {users})" in msg
+
+
+def test_preprocessing_arguments_equal_cli(cli, tmp_path, mask7):
+    """background, downsample, normalize, precision, threads: the CLI's flags, the same bytes."""
+    mask7.save(str(tmp_path / "m.mask.json"))
+    cli.run("simulate", "m.mask.json", "--scene", "letter-R", "--snr", "30", "--seed", "3",
+            "--full-sensor", "-o", "cap.npy")
+    cap = np.load(tmp_path / "cap.npy")
+    for kw, flags in [
+        (dict(background=0.01), ["--background", "0.01"]),
+        (dict(downsample=1), ["--downsample", "1"]),
+        (dict(normalize="l2"), ["--normalize", "l2"]),
+        (dict(precision="single", threads=1), ["--precision", "single", "--threads", "1"]),
+        (dict(background="none", downsample=1, normalize="l2", precision="double", threads=2),
+         ["--background", "none", "--downsample", "1", "--normalize", "l2", "--precision",
+          "double", "--threads", "2"]),
+    ]:
+        cli.run("decode", "cap.npy", "--mask", "m.mask.json", *flags, "-o", "x.npy")
+        out = pinmask.decode(cap, mask=mask7, **kw)
+        assert np.array_equal(out["image"].astype(np.float32), np.load(tmp_path / "x.npy")), kw
+
+
+def test_downsample_halves_the_window_and_precision_changes_rounding_only(mask7):
+    cap = pinmask.simulate(mask7, "letter-R", snr_db=30, full_sensor=True)["capture"]
+    full = pinmask.decode(cap, mask=mask7)
+    half = pinmask.decode(cap, mask=mask7, downsample=1)
+    assert half["window"][2:] == (full["window"][2] // 2, full["window"][3] // 2)
+    d = pinmask.decode(cap, mask=mask7, precision="double")["image"]
+    s = pinmask.decode(cap, mask=mask7, precision="single")["image"]
+    assert not np.array_equal(d, s)  # single really ran in float32
+    assert np.linalg.norm(s - d) <= 1e-4 * np.linalg.norm(d)  # rounding of float32 transforms
+
+
+def test_background_corner_equals_cli_and_needs_a_measured_psf(cli, tmp_path, mask7):
+    cap = pinmask.simulate(mask7, "letter-R", snr_db=30, full_sensor=True)["capture"]
+    with pytest.raises(ValueError, match="needs a measured PSF"):
+        pinmask.decode(cap, mask=mask7, background="corner")
+    # A measured PSF: the mask's, with a 20 px border, on a flat camera background of 0.5
+    # counts (the corner patch, rows/cols 5..14, lies in the border: exactly 0.5).
+    psf = np.pad(np.array(pinmask.psf(mask7)), 20) + 0.5
+    np.save(tmp_path / "psf.npy", psf)
+    np.save(tmp_path / "cap.npy", cap + 0.5)
+    cli.run("decode", "cap.npy", "--psf", "psf.npy", "--background", "corner", "-o", "x.npy")
+    out = pinmask.decode(cap + 0.5, psf=psf, background="corner")
+    assert np.array_equal(out["image"].astype(np.float32), np.load(tmp_path / "x.npy"))
+
+
+@pytest.mark.parametrize("kw,pattern", [
+    (dict(normalize="l1"), "--normalize"),
+    (dict(precision="half"), "--precision"),
+    (dict(threads=-1), "--threads"),
+    (dict(threads=5000), "--threads"),
+    (dict(downsample=13), "downsample"),
+    (dict(downsample=-1), "downsample"),
+    (dict(background="sky"), "--background"),
+    (dict(background=float("nan")), "background"),
+    (dict(background=True), "--background"),
+    (dict(background=1e300), "background"),
+])
+def test_bad_preprocessing_arguments_are_value_errors(mask7, kw, pattern):
+    cap = pinmask.simulate(mask7, "letter-R", snr_db=30)["capture"]
+    with pytest.raises(ValueError, match=pattern):
+        pinmask.decode(cap, mask=mask7, **kw)
