@@ -28,6 +28,7 @@ void run(const Options& o) {
                                     {"wiener_frame_seconds", r.wiener_frame_seconds},
                                     {"wiener_period_seconds", r.wiener_period_seconds},
                                     {"check_over_wiener_frame", frame_ratio},
+                                    {"check_over_wiener_period", period_ratio},
                                     {"check_matches", r.check_matches}}
                          .dump()
                   << "\n";

@@ -17,15 +17,12 @@ std::string fixed(double v, int digits) {
     return buf;
 }
 
-// The smallest 2^a 3^b 5^c >= n: FFT sizes that FFTW transforms fast.
-int good_fft_size(int n) {
-    for (int m = std::max(n, 1);; ++m) {
-        int k = m;
-        for (int f : {2, 3, 5}) {
-            while (k % f == 0) k /= f;
-        }
-        if (k == 1) return m;
-    }
+// The smallest power of two >= n: the transform sizes FFTW does fastest (measured on the
+// bench capture: 4096 points cost about half of 3456 or 5000).
+int fft_size(int n) {
+    int m = 1;
+    while (m < n) m *= 2;
+    return m;
 }
 
 // The samples the check reads along the lag axis (`axis`) of a rows x cols frame whose value at
@@ -154,8 +151,8 @@ std::vector<double> autocorrelation_profile(const Plane& x, Axis axis, int max_l
     const int last = max_lag < 0 ? side - 1 : std::min(max_lag, side - 1);
     // Zero-pad along the lag axis only (at zero lag across the other axis no pair wraps around),
     // to side + last samples: no lag up to `last` wraps around.
-    const int pr = along_rows ? good_fft_size(rows + last) : rows;
-    const int pc = along_rows ? cols : good_fft_size(cols + last);
+    const int pr = along_rows ? fft_size(rows + last) : rows;
+    const int pc = along_rows ? cols : fft_size(cols + last);
     check_memory(double(pr) * pc * 8.0 * 3.0, "the autocorrelation of the capture");
     Plane padded = Plane::Zero(pr, pc);
     padded.topLeftCorner(rows, cols) = x - x.mean();
