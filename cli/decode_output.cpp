@@ -1,14 +1,6 @@
 #include "cli/decode_output.hpp"
 
-#include <algorithm>
-#include <cctype>
-#include <cmath>
 #include <cstdio>
-
-#include "core/error.hpp"
-#include "core/image_io.hpp"
-#include "core/units.hpp"
-#include "decode/decode_method.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -37,54 +29,6 @@ nlohmann::json axis_json(const AxisPeriodCheck& a) {
 }
 
 }  // namespace
-
-CropSpec parse_crop(const std::string& s) {
-    if (s == "center" || s == "centre") return {CropMode::kCenter};
-    if (s == "none") return {CropMode::kNone};
-    const auto comma = s.find(',');
-    if (comma != std::string::npos) {
-        const double x = parse_number(s.substr(0, comma), "--crop X");
-        const double y = parse_number(s.substr(comma + 1), "--crop Y");
-        // Range first: casting a double outside int's range is undefined behaviour.
-        const auto whole = [](double v) { return std::fabs(v) <= 1e9 && v == std::floor(v); };
-        if (whole(x) && whole(y))
-            return {CropMode::kCorner, static_cast<int>(y), static_cast<int>(x)};
-    }
-    throw invalid_field("--crop", s, "must be center, none or X,Y (integer pixel corner)");
-}
-
-DecodeOptions decode_options(const DecodeRequest& r) {
-    DecodeOptions d;
-    d.method = parse_decode_method(r.method, "--method");
-    d.model = r.model == "linear" ? ConvModel::kLinear : ConvModel::kCyclic;
-    d.nsr = r.nsr;
-    d.lambda = r.lambda;
-    d.regulariser = r.regulariser == "gradient" ? TikhonovRegulariser::kGradient
-                                                : TikhonovRegulariser::kIdentity;
-    d.eps = r.eps;
-    d.noise_sigma = r.noise_sigma;
-    d.nonnegative = r.nonnegative;
-    d.max_iterations = r.iterations;
-    d.tolerance = r.tolerance;
-    d.record_history = true;
-    return d;
-}
-
-CaptureDecodeOptions capture_decode_options(const DecodeRequest& r) {
-    CaptureDecodeOptions o;
-    o.crop = parse_crop(r.crop);
-    const Background bg = parse_background(r.background);
-    o.background = bg.mode == "none"     ? BackgroundMode::kNone
-                   : bg.mode == "corner" ? BackgroundMode::kCorner
-                                         : BackgroundMode::kValue;
-    o.background_value = bg.value;
-    o.downsample = r.downsample;
-    o.normalize = r.normalize == "l2" ? NormalizeMode::kL2 : NormalizeMode::kNone;
-    o.decode = decode_options(r);
-    o.precision = parse_precision(r.precision, "--precision");
-    o.threads = r.threads;
-    return o;
-}
 
 void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const DecodeRequest& r,
                       const CaptureDecodeSummary& s) {
@@ -147,31 +91,6 @@ void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const Deco
     timings["history_seconds"] = history_seconds;
 }
 
-void check_output_range(const Image& estimate, OutputKind kind) {
-    if (kind == OutputKind::kPng) return;
-    double peak = 0.0;
-    for (const Plane& p : estimate.channels) peak = std::max(peak, p.abs().maxCoeff());
-    if (peak > 3.4028234663852886e38) {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%.3g", peak);
-        throw invalid_field("-o", buf,
-                            "the estimate exceeds the float32 range of .tif/.npy output "
-                            "(|x| <= 3.4e38); scale the capture down or write a .png");
-    }
-}
-
-Background parse_background(const std::string& s) {
-    if (s == "none" || s == "corner") return {s, 0.0};
-    return {"value", parse_number(s, "--background")};
-}
-
-std::optional<double> parse_scale(const std::string& s) {
-    if (s == "max") return std::nullopt;
-    const double v = parse_number(s, "--scale");
-    if (!(v > 0.0)) throw invalid_field("--scale", s, "must be max or a factor > 0");
-    return v;
-}
-
 nlohmann::json config_json(const DecodeRequest& r) {
     auto opt = [](const std::optional<double>& v) {
         return v ? nlohmann::json(*v) : nlohmann::json();
@@ -206,57 +125,6 @@ nlohmann::json config_json(const DecodeRequest& r) {
             {"precision", r.precision},
             {"threads", r.threads == 0 ? nlohmann::json("all") : nlohmann::json(r.threads)},
             {"orientation", "capture pixel grid, not flipped or mirrored"}};
-}
-
-OutputKind output_kind(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (ext == ".png") return OutputKind::kPng;
-    if (ext == ".tif" || ext == ".tiff") return OutputKind::kTiff;
-    if (ext == ".npy") return OutputKind::kNpy;
-    throw invalid_field("-o", path.string(),
-                        "the extension must be .png (scaled 8/16-bit), .tif/.tiff or .npy "
-                        "(raw float32)");
-}
-
-const char* output_kind_name(OutputKind kind) {
-    switch (kind) {
-        case OutputKind::kPng:
-            return "png";
-        case OutputKind::kTiff:
-            return "tiff-float32";
-        case OutputKind::kNpy:
-            return "npy-float32";
-    }
-    return "?";
-}
-
-ScaledImage scale_for_png(const Image& estimate, std::optional<double> scale) {
-    ScaledImage s;
-    s.image = estimate;
-    for (Plane& p : s.image.channels) {
-        p = p.max(0.0);
-        if (p.size() > 0) s.max_value = std::max(s.max_value, p.maxCoeff());
-    }
-    s.factor = scale ? *scale : (s.max_value > 0.0 ? 1.0 / s.max_value : 0.0);
-    for (Plane& p : s.image.channels) p = (p * s.factor).min(1.0);
-    return s;
-}
-
-void write_output_image(const std::filesystem::path& path, const Image& image, OutputKind kind,
-                        int bits) {
-    switch (kind) {
-        case OutputKind::kPng:
-            write_png(path, image, bits);
-            return;
-        case OutputKind::kTiff:
-            write_tiff(path, image, SampleFormat::kFloat32);
-            return;
-        case OutputKind::kNpy:
-            write_npy(path, image, SampleFormat::kFloat32);
-            return;
-    }
 }
 
 nlohmann::json period_check_json(const PeriodCheck& check) {
