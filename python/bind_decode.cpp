@@ -1,13 +1,13 @@
 // Decoding: decode() is `pinmask decode` on arrays, one call of decode/capture_pipeline
-// (decode_capture) with the options the CLI maps from the same flags (cli::decode_options,
-// cli::capture_decode_options, cli::parse_crop): names, defaults, messages and numbers are the
+// (decode_capture) with the options the CLI maps from the same flags (decode_options,
+// capture_decode_options, parse_crop): names, defaults, messages and numbers are the
 // CLI's.
 #include <atomic>
 
-#include "cli/decode_output.hpp"
 #include "core/error.hpp"
 #include "decode/capture.hpp"
 #include "decode/capture_pipeline.hpp"
+#include "decode/decode_request.hpp"
 #include "decode/decoder.hpp"
 #include "decode/period.hpp"
 #include "design/psf.hpp"
@@ -36,12 +36,12 @@ struct CaptureArg {
 
 // `pinmask decode`'s library pipeline (decode/capture_pipeline decode_capture: dark frame,
 // period check, crop, PSF to unit sum, precision, each channel decoded) with the CLI's own
-// options (cli::capture_decode_options). The pipeline owns its inputs: a borrowed capture or PSF
+// options (capture_decode_options). The pipeline owns its inputs: a borrowed capture or PSF
 // is copied into it (a C++ copy, not a numpy conversion: input_copies() does not count it).
 DecodeOutput decode_pipeline(CaptureArg& cap, const PlaneArg& psf_in,
-                             const std::optional<Image>& dark, const cli::DecodeRequest& r,
+                             const std::optional<Image>& dark, const DecodeRequest& r,
                              const std::atomic<bool>* stop) {
-    CaptureDecodeOptions options = cli::capture_decode_options(r);
+    CaptureDecodeOptions options = capture_decode_options(r);
     options.decode.stop = stop;
     options.validate();
     CaptureDecodeInputs in;
@@ -92,7 +92,7 @@ void bind_decode(py::module_& m) {
            std::optional<double> noise_sigma, bool nonneg, int iters, double tol,
            const py::handle& crop, const py::handle& dark, const py::object& progress,
            double poll_s) {
-            cli::DecodeRequest r;
+            DecodeRequest r;
             r.method = method;
             r.model = model;
             r.nsr = nsr;
