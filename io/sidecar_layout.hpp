@@ -31,6 +31,16 @@ struct CheckLayoutSettings {
     bool mirror = false;
 };
 
+// The settings from their text as given (lengths with a unit or plain metres, parsed here;
+// InvalidInput naming the flag).
+CheckLayoutSettings check_layout_settings(const std::optional<std::string>& shape,
+                                          const std::optional<int>& sides,
+                                          const std::optional<std::string>& hole_side,
+                                          const std::optional<std::string>& frame,
+                                          const std::optional<std::string>& chord_tol,
+                                          const std::optional<std::string>& tone,
+                                          const std::optional<std::string>& units, bool mirror);
+
 // The sidecar's layout settings, every given setting required to agree with it (InvalidInput
 // naming the flag otherwise); without a sidecar, the given settings over the defaults.
 LayoutOptions check_layout(const CheckLayoutSettings& given, const ExportSidecar* side);

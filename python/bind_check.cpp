@@ -60,23 +60,15 @@ DrcRules resolve_rules(const CheckArgs& o, DrcRules rules) {
     return rules;
 }
 
-// The given layout settings (io/sidecar_layout: the same rules as `pinmask check`).
+// The given layout settings (io/sidecar_layout: the same rules as `pinmask check`); a length is
+// a float in metres or a string with a unit, read by the same parser.
 io::CheckLayoutSettings layout_settings(const CheckArgs& o) {
-    io::CheckLayoutSettings g;
-    g.shape = o.shape;
-    g.sides = o.sides;
-    const auto length = [](const py::object& v,
-                           const char* flag) -> std::optional<io::GivenLength> {
+    const auto text = [](const py::object& v) -> std::optional<std::string> {
         if (v.is_none()) return std::nullopt;
-        return io::GivenLength{length_value(v, flag, false), py::str(v).cast<std::string>()};
+        return py::str(v).cast<std::string>();
     };
-    g.hole_side = length(o.hole_side, "--hole-side");
-    g.frame = length(o.frame, "--frame");
-    g.chord_tol = length(o.chord_tol, "--chord-tol");
-    g.tone = o.tone;
-    g.units = o.units;
-    g.mirror = o.mirror;
-    return g;
+    return io::check_layout_settings(o.shape, o.sides, text(o.hole_side), text(o.frame),
+                                     text(o.chord_tol), o.tone, o.units, o.mirror);
 }
 
 bool is_mask_file(const fs::path& path) {
