@@ -9,17 +9,14 @@
 
 #include "optimize/analytic_error.hpp"
 #include "optimize/mask_metrics.hpp"
+#include "optimize/metric_spellings.hpp"
 #include "optimize/simulated_metrics.hpp"
 
 namespace pinmask::cli {
 
-// "optimal" (per-frequency Wiener filter) or "nsr:VALUE" (deconvwnr's fixed NSR, > 0);
-// InvalidInput naming --filter otherwise.
-WienerFilterSpec parse_wiener_filter(const std::string& text);
-
-// A simulated decoder's weight (Wiener NSR, TV lambda): "tuned" or a number > 0; InvalidInput
-// naming `flag` otherwise.
-WeightChoice parse_weight_choice(const std::string& text, const std::string& flag);
+// The filter and weight spellings (optimize/metric_spellings.hpp), under their old names.
+using pinmask::parse_weight_choice;
+using pinmask::parse_wiener_filter;
 
 // --prior and --prior-scenes.
 struct PriorFlags {

@@ -1,75 +1,19 @@
 #include "cli/check_settings.hpp"
 
-#include <cmath>
-
-#include "core/error.hpp"
-#include "core/units.hpp"
+#include "io/sidecar_layout.hpp"
 
 namespace pinmask::cli {
 
 namespace fs = std::filesystem;
 
-// Layout settings: the sidecar's, with every explicit flag required to agree; or the flags.
+// The flags as given settings; the rules are io/sidecar_layout's (shared with the Python module).
 LayoutOptions design_options(const CheckOptions& o, const io::ExportSidecar* side) {
-    LayoutOptions lo;
-    auto agree = [&](const char* flag, const std::string& given, const std::string& recorded,
-                     bool same) {
-        if (!same)
-            throw invalid_field(flag, given,
-                                "disagrees with the export sidecar, which records " + recorded +
-                                    " (omit the flag to use the sidecar, or --no-sidecar)");
-    };
-    if (side) {
-        lo.tone = parse_tone(side->tone, "sidecar geometry.tone");
-        lo.mirror = side->mirrored;
-        lo.shape = parse_hole_shape(side->shape, "sidecar geometry.shape");
-        lo.polygon_sides = side->drawn_sides;
-        lo.hole_side_m = side->hole_side_m;
-        lo.chord_tolerance_m = side->chord_tolerance_m;
-        lo.frame_m = side->frame_m;
-        lo.marks = side->marks;
-        lo.label_lines = side->label;
-        lo.max_vertices = side->max_vertices;
-        lo.grid_m = double(side->grid_nm) * 1e-9;
-    }
-    auto length = [&](const std::optional<std::string>& v, const char* flag, double& field) {
-        if (!v) return;
-        const double m = parse_length_m(*v, flag);
-        if (side) agree(flag, *v, std::to_string(field) + " m", std::fabs(m - field) <= 1e-12);
-        field = m;
-    };
-    length(o.hole_side, "--hole-side", lo.hole_side_m);
-    length(o.frame, "--frame", lo.frame_m);
-    length(o.chord_tol, "--chord-tol", lo.chord_tolerance_m);
-    if (o.shape) {
-        const HoleShape s = parse_hole_shape(*o.shape, "--shape");
-        if (side) agree("--shape", *o.shape, side->shape, s == lo.shape);
-        lo.shape = s;
-    }
-    if (o.sides) {
-        if (side && lo.shape == HoleShape::kPolygon)
-            agree("--sides", std::to_string(*o.sides), std::to_string(side->drawn_sides),
-                  *o.sides == side->drawn_sides);
-        lo.polygon_sides = *o.sides;
-    }
-    if (o.tone) {
-        const Tone t = parse_tone(*o.tone, "--tone");
-        if (side) agree("--tone", *o.tone, side->tone, t == lo.tone);
-        lo.tone = t;
-    }
-    if (o.mirror) {
-        if (side) agree("--mirror", "given", "not mirrored", side->mirrored);
-        lo.mirror = true;
-    }
-    if (o.units && side) agree("--units", *o.units, side->unit, *o.units == side->unit);
-    return lo;
+    return io::check_layout(io::check_layout_settings(o.shape, o.sides, o.hole_side, o.frame,
+                                                      o.chord_tol, o.tone, o.units, o.mirror),
+                            side);
 }
 
-// The mask a sidecar names: its path as recorded, else relative to the sidecar's folder.
 std::string sidecar_mask(const io::ExportSidecar& side, const fs::path& sidecar) {
-    for (const fs::path& p : {fs::path(side.mask_path), sidecar.parent_path() / side.mask_path,
-                              sidecar.parent_path() / fs::path(side.mask_path).filename()})
-        if (fs::is_regular_file(p)) return p.string();
-    return "";
+    return io::sidecar_mask(side, sidecar);
 }
 }  // namespace pinmask::cli

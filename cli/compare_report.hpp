@@ -1,31 +1,20 @@
-// `pinmask compare` results as the plain data of the report library (export/report.hpp) and as
-// a text table: the metrics table shared by stdout and page 1, and one page of captioned
-// panels per mask.
+// `pinmask compare`'s text and JSON renderings of its results (the report data itself is
+// optimize/compare_report.hpp's).
 #pragma once
 
 #include <nlohmann/json.hpp>
 #include <string>
-#include <vector>
 
-#include "design/camera.hpp"
 #include "export/report.hpp"
 #include "optimize/compare.hpp"
+#include "optimize/compare_report.hpp"
 
 namespace pinmask::cli {
 
-// What page 1 says besides the table: the camera and the settings, in words.
-struct CompareSummary {
-    Camera camera;
-    std::vector<std::string> settings_lines;
-    std::vector<std::string> baseline_lines;  // what each baseline is, or why it is missing
-    std::string noise_text;  // the noise levels in words ("Gaussian noise at SNR 30 dB")
-};
-
-// "SNR 30 dB" or "photon model, 2 e per pinhole" (the shown capture's caption).
-std::string noise_caption(const NoiseModel& model);
-
-// The metrics table, one row per result (text cells, units in the second header line).
-ReportTable compare_table(const std::vector<CompareResult>& results);
+using pinmask::compare_document;
+using pinmask::compare_table;
+using pinmask::CompareSummary;
+using pinmask::noise_caption;
 
 // The table as aligned text for stdout, with a legend line.
 std::string compare_table_text(const ReportTable& table);
@@ -33,9 +22,5 @@ std::string compare_table_text(const ReportTable& table);
 // One row as JSON (compare --json and the report config): the table figures plus every noise
 // level under score's keys.
 nlohmann::ordered_json compare_row_json(const CompareRow& row);
-
-// The whole report document.
-ReportDocument compare_document(const std::vector<CompareResult>& results,
-                                const CompareSettings& settings, const CompareSummary& summary);
 
 }  // namespace pinmask::cli

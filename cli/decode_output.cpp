@@ -1,8 +1,5 @@
 #include "cli/decode_output.hpp"
 
-#include <algorithm>
-#include <cctype>
-#include <cmath>
 #include <cstdio>
 
 #include "core/error.hpp"
@@ -38,129 +35,6 @@ nlohmann::json axis_json(const AxisPeriodCheck& a) {
 }
 
 }  // namespace
-
-CropSpec parse_crop(const std::string& s) {
-    if (s == "center" || s == "centre") return {CropMode::kCenter};
-    if (s == "none") return {CropMode::kNone};
-    const auto comma = s.find(',');
-    if (comma != std::string::npos) {
-        const double x = parse_number(s.substr(0, comma), "--crop X");
-        const double y = parse_number(s.substr(comma + 1), "--crop Y");
-        // Range first: casting a double outside int's range is undefined behaviour.
-        const auto whole = [](double v) { return std::fabs(v) <= 1e9 && v == std::floor(v); };
-        if (whole(x) && whole(y))
-            return {CropMode::kCorner, static_cast<int>(y), static_cast<int>(x)};
-    }
-    throw invalid_field("--crop", s, "must be center, none or X,Y (integer pixel corner)");
-}
-
-const char* method_flag_name(MethodFlag f) {
-    switch (f) {
-        case MethodFlag::kNsr:
-            return "--nsr";
-        case MethodFlag::kLambda:
-            return "--lambda";
-        case MethodFlag::kRegulariser:
-            return "--regulariser";
-        case MethodFlag::kEps:
-            return "--eps";
-        case MethodFlag::kNoiseSigma:
-            return "--noise-sigma";
-        case MethodFlag::kNonnegative:
-            return "--nonneg";
-        case MethodFlag::kIterations:
-            return "--iters";
-        case MethodFlag::kTolerance:
-            return "--tol";
-    }
-    return "?";
-}
-
-bool write_method_flag(DecodeOptions& d, MethodFlag f, const DecodeRequest& r) {
-    const DecodeMethod m = d.method;
-    switch (f) {
-        case MethodFlag::kNsr:
-            if (m != DecodeMethod::kWiener) return false;
-            d.wiener.nsr = r.nsr;
-            return true;
-        case MethodFlag::kLambda:
-            if (m == DecodeMethod::kTikhonov) d.tikhonov.lambda = r.lambda;
-            if (m == DecodeMethod::kTv) d.tv.lambda = r.lambda;
-            return m == DecodeMethod::kTikhonov || m == DecodeMethod::kTv;
-        case MethodFlag::kRegulariser:
-            if (m != DecodeMethod::kTikhonov) return false;
-            d.tikhonov.regulariser = parse_regulariser(r.regulariser, "--regulariser");
-            return true;
-        case MethodFlag::kEps:
-            if (m != DecodeMethod::kTvqc) return false;
-            d.tvqc.eps = r.eps;
-            return true;
-        case MethodFlag::kNoiseSigma:
-            if (m != DecodeMethod::kTvqc) return false;
-            d.tvqc.noise_sigma = r.noise_sigma;
-            return true;
-        case MethodFlag::kNonnegative:
-            if (m == DecodeMethod::kTv) d.tv.nonnegative = r.nonnegative;
-            if (m == DecodeMethod::kTvqc) d.tvqc.nonnegative = r.nonnegative;
-            return m == DecodeMethod::kTv || m == DecodeMethod::kTvqc;
-        case MethodFlag::kIterations:
-            if (!is_iterative(m)) return false;
-            d.iterative.max_iterations = r.iterations;
-            return true;
-        case MethodFlag::kTolerance:
-            if (!is_iterative(m)) return false;
-            d.iterative.tolerance = r.tolerance;
-            return true;
-    }
-    return false;
-}
-
-void refuse_unused_flags(const DecodeRequest& r, const std::vector<GivenFlag>& given) {
-    const DecodeMethod m = parse_decode_method(r.method, "--method");
-    for (const GivenFlag& g : given) {
-        DecodeOptions probe;
-        probe.method = m;
-        if (write_method_flag(probe, g.flag, r)) continue;
-        std::string users;
-        for (DecodeMethod other : kDecodeMethods) {
-            probe.method = other;
-            if (write_method_flag(probe, g.flag, r))
-                users += (users.empty() ? "" : ", ") + std::string(decode_method_name(other));
-        }
-        throw invalid_field(method_flag_name(g.flag), g.value,
-                            std::string("is not used by --method ") + decode_method_name(m) +
-                                " (only by " + users + "); remove it or choose that method");
-    }
-    if (m == DecodeMethod::kTikhonov && !(r.lambda > 0.0)) {
-        throw invalid_field("--lambda", std::to_string(r.lambda),
-                            "must be > 0 for tikhonov: lambda 0 is the unregularised inverse "
-                            "filter, which multiplies noise by 1/|H| at the PSF's spectral "
-                            "near-zeros (use --method wiener --nsr 0 for the floored inverse)");
-    }
-}
-
-DecodeOptions decode_options(const DecodeRequest& r) {
-    DecodeOptions d;
-    d.method = parse_decode_method(r.method, "--method");
-    d.model = parse_conv_model(r.model, "--model");
-    for (MethodFlag f : kMethodFlags) write_method_flag(d, f, r);
-    d.iterative.record_history = true;
-    return d;
-}
-
-CaptureDecodeOptions capture_decode_options(const DecodeRequest& r) {
-    CaptureDecodeOptions o;
-    o.crop = parse_crop(r.crop);
-    const Background bg = parse_background(r.background);
-    o.background = bg.mode;
-    o.background_value = bg.value;
-    o.downsample = r.downsample;
-    o.normalize = parse_normalize_mode(r.normalize, "--normalize");
-    o.decode = decode_options(r);
-    o.precision = parse_precision(r.precision, "--precision");
-    o.threads = r.threads;
-    return o;
-}
 
 void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const DecodeRequest& r,
                       const CaptureDecodeSummary& s) {
@@ -224,32 +98,6 @@ void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const Deco
     timings["history_seconds"] = history_seconds;
 }
 
-void check_output_range(const Image& estimate, OutputKind kind) {
-    if (kind == OutputKind::kPng) return;
-    double peak = 0.0;
-    for (const Plane& p : estimate.channels) peak = std::max(peak, p.abs().maxCoeff());
-    if (peak > 3.4028234663852886e38) {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%.3g", peak);
-        throw invalid_field("-o", buf,
-                            "the estimate exceeds the float32 range of .tif/.npy output "
-                            "(|x| <= 3.4e38); scale the capture down or write a .png");
-    }
-}
-
-Background parse_background(const std::string& s) {
-    for (const auto& [mode, name] : kBackgroundModeNames)
-        if (mode != BackgroundMode::kValue && s == name) return {mode, 0.0};
-    return {BackgroundMode::kValue, parse_number(s, "--background")};
-}
-
-std::optional<double> parse_scale(const std::string& s) {
-    if (s == "max") return std::nullopt;
-    const double v = parse_number(s, "--scale");
-    if (!(v > 0.0)) throw invalid_field("--scale", s, "must be max or a factor > 0");
-    return v;
-}
-
 nlohmann::json config_json(const DecodeRequest& r) {
     auto opt = [](const std::optional<double>& v) {
         return v ? nlohmann::json(*v) : nlohmann::json();
@@ -284,57 +132,6 @@ nlohmann::json config_json(const DecodeRequest& r) {
             {"precision", r.precision},
             {"threads", r.threads == 0 ? nlohmann::json("all") : nlohmann::json(r.threads)},
             {"orientation", "capture pixel grid, not flipped or mirrored"}};
-}
-
-OutputKind output_kind(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (ext == ".png") return OutputKind::kPng;
-    if (ext == ".tif" || ext == ".tiff") return OutputKind::kTiff;
-    if (ext == ".npy") return OutputKind::kNpy;
-    throw invalid_field("-o", path.string(),
-                        "the extension must be .png (scaled 8/16-bit), .tif/.tiff or .npy "
-                        "(raw float32)");
-}
-
-const char* output_kind_name(OutputKind kind) {
-    switch (kind) {
-        case OutputKind::kPng:
-            return "png";
-        case OutputKind::kTiff:
-            return "tiff-float32";
-        case OutputKind::kNpy:
-            return "npy-float32";
-    }
-    return "?";
-}
-
-ScaledImage scale_for_png(const Image& estimate, std::optional<double> scale) {
-    ScaledImage s;
-    s.image = estimate;
-    for (Plane& p : s.image.channels) {
-        p = p.max(0.0);
-        if (p.size() > 0) s.max_value = std::max(s.max_value, p.maxCoeff());
-    }
-    s.factor = scale ? *scale : (s.max_value > 0.0 ? 1.0 / s.max_value : 0.0);
-    for (Plane& p : s.image.channels) p = (p * s.factor).min(1.0);
-    return s;
-}
-
-void write_output_image(const std::filesystem::path& path, const Image& image, OutputKind kind,
-                        int bits) {
-    switch (kind) {
-        case OutputKind::kPng:
-            write_png(path, image, bits);
-            return;
-        case OutputKind::kTiff:
-            write_tiff(path, image, SampleFormat::kFloat32);
-            return;
-        case OutputKind::kNpy:
-            write_npy(path, image, SampleFormat::kFloat32);
-            return;
-    }
 }
 
 nlohmann::json period_check_json(const PeriodCheck& check) {

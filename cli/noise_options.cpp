@@ -1,7 +1,5 @@
 #include "cli/noise_options.hpp"
 
-#include <cmath>
-#include <limits>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -13,32 +11,10 @@ namespace {
 
 using io::json_strict::finite_or_null;
 
-constexpr std::size_t kMaxNoiseLevels = 64;
-
 constexpr const char* kSensorFlags[] = {"--read-noise", "--dark-current", "--bits", "--full-well",
                                         "--optical-density"};
 
 }  // namespace
-
-void validate_naming_flags(const NoiseModel& m) {
-    try {
-        validate(m);
-    } catch (const InvalidInput& e) {
-        static const std::pair<std::string, std::string> kNames[] = {
-            {"photons_per_pinhole", "--photons"},
-            {"read_noise_e", "--read-noise"},
-            {"dark_current_e", "--dark-current"},
-            {"full_well_e", "--full-well"},
-            {"adc_bits", "--bits"},
-            {"film_optical_density", "--optical-density"},
-            {"snr_db", "--snr"}};
-        const std::string what = e.what();
-        for (const auto& [field, flag] : kNames) {
-            if (what.rfind(field + " = ", 0) == 0) throw InvalidInput(flag + " (" + what + ")");
-        }
-        throw;
-    }
-}
 
 void add_sensor_flags(CLI::App& cmd, SensorFlags& f) {
     cmd.add_option("--read-noise", f.read_noise,
@@ -55,35 +31,6 @@ void add_sensor_flags(CLI::App& cmd, SensorFlags& f) {
                    "Photon model: optical density OD of the opaque film (transmission 10^-OD); "
                    "its leak over the closed cells adds a uniform background (default: "
                    "perfectly opaque)");
-}
-
-NoiseModel photon_model(double photons_per_pinhole, const SensorFlags& f,
-                        std::vector<std::string>* skipped) {
-    NoiseModel m;
-    m.kind = NoiseKind::kPhoton;
-    m.photons_per_pinhole = photons_per_pinhole;
-    m.read_noise_e = f.read_noise.value_or(0.0);
-    m.dark_current_e = f.dark_current.value_or(0.0);
-    m.adc_bits = f.bits.value_or(0);
-    m.full_well_e = f.full_well.value_or(std::numeric_limits<double>::infinity());
-    m.film_optical_density = f.optical_density.value_or(std::numeric_limits<double>::infinity());
-    if (f.bits && !f.full_well) {
-        throw invalid_field("--bits", std::to_string(*f.bits),
-                            "needs --full-well E (the ADC full scale in electrons)");
-    }
-    validate_naming_flags(m);
-    if (skipped) {
-        auto note = [&](bool given, const std::string& line) {
-            if (!given) skipped->push_back(line);
-        };
-        note(f.read_noise.has_value(), "read noise skipped: --read-noise not given");
-        note(f.dark_current.has_value(), "dark current skipped: --dark-current not given");
-        note(f.full_well.has_value(), "saturation skipped: --full-well not given");
-        note(f.bits.has_value(), "quantisation skipped: --bits not given");
-        note(f.optical_density.has_value(),
-             "film leakage skipped: --optical-density not given (perfectly opaque film)");
-    }
-    return m;
 }
 
 std::vector<std::string> split_list(const std::string& text, const std::string& flag) {
@@ -115,41 +62,20 @@ void add_noise_flags(CLI::App& cmd, NoiseFlags& f, const std::string& default_sn
 }
 
 std::vector<NoiseLevel> noise_levels(const NoiseFlags& f, const CLI::App& cmd, std::string* text) {
-    std::vector<NoiseLevel> out;
-    std::string levels;
-    const auto number = [](double v) {
-        std::ostringstream s;
-        s << v;
-        return s.str();
-    };
+    NoiseLevelSettings s;
+    s.sensor = f.sensor;
     if (!f.photons.empty()) {
         if (cmd.count("--snr") > 0)
             throw invalid_field("--snr", f.snr, "cannot be combined with --photons");
-        for (const std::string& s : split_list(f.photons, "--photons")) {
-            const double ppp = parse_number(s, "--photons");
-            out.push_back(noise_level(photon_model(ppp, f.sensor)));
-            levels += (levels.empty() ? "" : ",") + number(ppp);
-        }
-        const NoiseModel& m = out.front().model;
-        if (text) {
-            *text = "the photon model at " + levels +
-                    " electrons per pixel per pinhole (read noise " + number(m.read_noise_e) +
-                    " e, dark current " + number(m.dark_current_e) + " e, film OD " +
-                    number(m.film_optical_density) + ")";
-        }
-        return out;
+        for (const std::string& item : split_list(f.photons, "--photons"))
+            s.photons.push_back(parse_number(item, "--photons"));
+    } else {
+        refuse_sensor_flags_without_photons(cmd);
+        s.snr_db.clear();
+        for (const std::string& item : split_list(f.snr, "--snr"))
+            s.snr_db.push_back(parse_number(item, "--snr"));
     }
-    refuse_sensor_flags_without_photons(cmd);
-    for (const std::string& s : split_list(f.snr, "--snr")) {
-        NoiseModel m;
-        m.kind = NoiseKind::kGaussianSnr;
-        m.snr_db = parse_number(s, "--snr");
-        validate_naming_flags(m);
-        out.push_back(noise_level(m));
-        levels += (levels.empty() ? "" : ",") + number(m.snr_db);
-    }
-    if (text) *text = "Gaussian noise at SNR " + levels + " dB";
-    return out;
+    return pinmask::noise_levels(s, text);
 }
 
 void refuse_sensor_flags_without_photons(const CLI::App& cmd) {

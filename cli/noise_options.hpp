@@ -11,25 +11,19 @@
 #include <vector>
 
 #include "optimize/mask_metrics.hpp"
+#include "optimize/noise_levels.hpp"
 #include "optimize/noise_model.hpp"
 
 namespace pinmask::cli {
 
-struct SensorFlags {
-    std::optional<double> read_noise, dark_current, full_well, optical_density;
-    std::optional<int> bits;
-};
+// The sensor settings as parsed (optimize/noise_levels.hpp).
+using SensorFlags = SensorSettings;
 
 // Registers the five flags on cmd.
 void add_sensor_flags(CLI::App& cmd, SensorFlags& flags);
 
-// The photon model at `photons_per_pinhole` with the sensor flags, validated (InvalidInput
-// naming the flag). `skipped`, when given, gets one line per stage the flags leave out.
-NoiseModel photon_model(double photons_per_pinhole, const SensorFlags& flags,
-                        std::vector<std::string>* skipped = nullptr);
-
-// validate(model) with the flag in front of the field name: "--photons (photons_per_pinhole = ...".
-void validate_naming_flags(const NoiseModel& model);
+using pinmask::photon_model;
+using pinmask::validate_naming_flags;
 
 // InvalidInput when a sensor flag was given on cmd without the photon model.
 void refuse_sensor_flags_without_photons(const CLI::App& cmd);
@@ -45,8 +39,9 @@ struct NoiseFlags {
 // Registers --snr (default `default_snr`), --photons and the sensor flags on cmd.
 void add_noise_flags(CLI::App& cmd, NoiseFlags& flags, const std::string& default_snr);
 
-// The levels the flags give (InvalidInput naming the flag); `text`, when given, gets a phrase
-// for --explain and reports ("Gaussian noise at SNR 20,30 dB" / "the photon model at ...").
+// The levels the flags give (optimize/noise_levels over the parsed lists; InvalidInput naming
+// the flag); `text`, when given, gets a phrase for --explain and reports ("Gaussian noise at
+// SNR 20,30 dB" / "the photon model at ...").
 std::vector<NoiseLevel> noise_levels(const NoiseFlags& flags, const CLI::App& cmd,
                                      std::string* text = nullptr);
 

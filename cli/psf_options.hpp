@@ -3,26 +3,17 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
-#include <optional>
-#include <string>
 
-#include "design/camera.hpp"
-#include "design/mask.hpp"
+#include "design/psf_settings.hpp"
 
 namespace pinmask::cli {
 
-struct PsfOptions {
-    std::string kernel = "auto";
-    std::string kernel_path;
-    std::optional<int> pixels_per_cell;
-};
+// The settings as parsed (design/psf_settings.hpp).
+using PsfOptions = PsfSettings;
 
 // --kernel, --kernel-path, --pixels-per-cell.
 void add_psf_options(CLI::App& cmd, PsfOptions& o);
 
-// The PsfSpec for these flags: pixels per cell as given, else the nearest integer to the pitch
-// at the camera's object distance u (InvalidInput when that is below 1, naming the flag to set);
-// kernel flags checked for consistency (measured needs --kernel-path and only it takes one).
-PsfSpec resolve_psf_spec(const PsfOptions& o, const Camera& c);
+using pinmask::resolve_psf_spec;
 
 }  // namespace pinmask::cli

@@ -17,7 +17,7 @@
 
 namespace pinmask::cli {
 
-inline constexpr const char* kSearchGenerator = "pinmask search 0.1.0";
+using io::kSearchGenerator;
 
 struct SearchCliOptions {
     CameraOptions camera;

@@ -30,6 +30,9 @@
 
 namespace pinmask::io {
 
+// The generator string of a search run (its masks' provenance and its resolved configuration).
+inline constexpr const char* kSearchGenerator = "pinmask search 0.1.0";
+
 inline constexpr const char* kSearchConfigFormat = "pinmask-search-config";
 inline constexpr int kSearchConfigVersion = 1;
 

@@ -1,7 +1,8 @@
 // The design-rule check: check() follows `pinmask check` (cli/cmd_check.cpp) and returns what
 // its --json prints. A mask: export/drc on its layout; a fabrication file: export/file_check
 // (check_file_geometry: the DRC and the export/read_back comparison with the design). The
-// layout settings come from the arguments: an export sidecar beside the file is not read.
+// layout settings come from the export sidecar beside the file when there is one (as the CLI;
+// io/sidecar_layout), else from the arguments.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,7 @@
 #include "export/xor_area.hpp"
 #include "io/export_sidecar.hpp"
 #include "io/mask_json.hpp"
+#include "io/sidecar_layout.hpp"
 #include "python/common.hpp"
 #include "python/values.hpp"
 
@@ -39,9 +41,11 @@ struct CheckArgs {
     py::object min_gap, min_feature, min_spacing;
     std::optional<std::size_t> max_vertices;
     std::size_t list = 20;
-    std::string shape = "square";
-    int sides = 8;
+    std::optional<std::string> shape;
+    std::optional<int> sides;
     py::object hole_side, frame, chord_tol;
+    std::optional<std::string> tone, units;
+    bool mirror = false;
 };
 
 DrcRules resolve_rules(const CheckArgs& o, DrcRules rules) {
@@ -56,22 +60,15 @@ DrcRules resolve_rules(const CheckArgs& o, DrcRules rules) {
     return rules;
 }
 
-LayoutOptions design_options(const CheckArgs& o, const FileGeometry* file) {
-    LayoutOptions lo;
-    lo.shape = parse_hole_shape(o.shape, "--shape");
-    lo.polygon_sides = o.sides;
-    if (!o.hole_side.is_none()) lo.hole_side_m = length_value(o.hole_side, "--hole-side", false);
-    if (!o.frame.is_none()) lo.frame_m = length_value(o.frame, "--frame", false);
-    if (!o.chord_tol.is_none())
-        lo.chord_tolerance_m = length_value(o.chord_tol, "--chord-tol", false);
-    if (file) {
-        const auto& info = file->info;
-        if (auto it = info.find("tone"); it != info.end()) lo.tone = parse_tone(it->second, "tone");
-        if (auto it = info.find("mirrored"); it != info.end()) lo.mirror = it->second == "yes";
-        if (auto it = info.find("grid_nm"); it != info.end())
-            lo.grid_m = parse_number(it->second, "grid_nm") * 1e-9;
-    }
-    return lo;
+// The given layout settings (io/sidecar_layout: the same rules as `pinmask check`); a length is
+// a float in metres or a string with a unit, read by the same parser.
+io::CheckLayoutSettings layout_settings(const CheckArgs& o) {
+    const auto text = [](const py::object& v) -> std::optional<std::string> {
+        if (v.is_none()) return std::nullopt;
+        return py::str(v).cast<std::string>();
+    };
+    return io::check_layout_settings(o.shape, o.sides, text(o.hole_side), text(o.frame),
+                                     text(o.chord_tol), o.tone, o.units, o.mirror);
 }
 
 bool is_mask_file(const fs::path& path) {
@@ -99,10 +96,13 @@ void bind_check(py::module_& m) {
         [](const py::handle& input, const py::handle& mask, const std::string& vendor_name,
            const py::object& min_gap, const py::object& min_feature, const py::object& min_spacing,
            std::optional<std::size_t> max_vertices, std::size_t list, double max_xor_um2,
-           const std::string& shape, int sides, const py::object& hole_side,
-           const py::object& frame, const py::object& chord_tol) {
-            CheckArgs o{min_gap, min_feature, min_spacing, max_vertices, list,
-                        shape,   sides,       hole_side,   frame,        chord_tol};
+           const std::optional<std::string>& shape, std::optional<int> sides,
+           const py::object& hole_side, const py::object& frame, const py::object& chord_tol,
+           const std::optional<std::string>& tone, const std::optional<std::string>& units,
+           bool mirror, bool no_sidecar) {
+            CheckArgs o{min_gap,   min_feature, min_spacing, max_vertices, list,  shape, sides,
+                        hole_side, frame,       chord_tol,   tone,         units, mirror};
+            const io::CheckLayoutSettings given = layout_settings(o);
             if (!std::isfinite(max_xor_um2) || max_xor_um2 < 0)
                 throw invalid_field("--max-xor-um2", std::to_string(max_xor_um2),
                                     "must be finite and >= 0");
@@ -128,7 +128,7 @@ void bind_check(py::module_& m) {
                 const Mask mk = input_is_mask ? input.cast<Mask>()
                                               : io::read_mask_file(
                                                     input_text, {.allow_spacing_violations = true});
-                l = make_layout(mk, design_options(o, nullptr));
+                l = make_layout(mk, io::check_layout(given, nullptr));
                 rules = resolve_rules(o, rules_for_mask(mk, vendor));
                 py::gil_scoped_release release;
                 r = run_drc(l, rules);
@@ -136,25 +136,48 @@ void bind_check(py::module_& m) {
                 const FileGeometry file = read_fabrication_file(input_text);
                 kind = fs::path(input_text).extension().string().substr(1);
                 const fs::path side_path = io::sidecar_path_for(input_text);
-                settings =
-                    fs::is_regular_file(side_path)
-                        ? "from the arguments (sidecar " + side_path.filename().string() +
-                              " not read: give its settings as arguments)"
-                        : "from the flags (no sidecar " + side_path.filename().string() + ")";
+                std::optional<io::ExportSidecar> side;
+                if (!no_sidecar && fs::is_regular_file(side_path))
+                    side = io::read_export_sidecar(side_path);
+                std::optional<Mask> design_mask;
+                std::string mask_text;
+                if (!mask.is_none()) {
+                    design_mask = mask_arg(mask, true);
+                    mask_text = py::str(mask).cast<std::string>();
+                }
+                if (side) {
+                    settings = "from " + side_path.string();
+                    if (!design_mask) {
+                        mask_text = io::sidecar_mask(*side, side_path);
+                        if (!mask_text.empty())
+                            design_mask =
+                                io::read_mask_file(mask_text, {.allow_spacing_violations = true});
+                    }
+                    io::check_sidecar_unit(*side, file);
+                } else {
+                    settings = "from the flags (no sidecar " + side_path.filename().string() + ")";
+                }
                 FileCheckOptions fo;
                 fo.max_xor_nm2 = max_xor_um2 * 1e6;
                 std::optional<Layout> design;
-                if (mask.is_none()) {
+                if (!design_mask) {
                     DrcRules r;
                     r.min_gap_nm = vendor.min_gap_nm;
                     r.min_feature_nm = vendor.min_feature_nm;
                     r.max_vertices = vendor.max_vertices;
                     rules = resolve_rules(o, r);
+                    if (side) {
+                        const auto& a = side->active_area_nm;
+                        const std::int64_t fr = std::llround(side->frame_m * 1e9);
+                        fo.outline = BoxNm{a[0] - fr, a[1] - fr, a[2] + fr, a[3] + fr};
+                    }
                 } else {
-                    const Mask mk = mask_arg(mask, true);
-                    design = make_layout(mk, design_options(o, &file));
+                    LayoutOptions lo = io::check_layout(given, side ? &*side : nullptr);
+                    if (!side) io::apply_file_declarations(lo, file);
+                    design = make_layout(*design_mask, lo);
                     fo.design = &*design;
-                    rules = resolve_rules(o, rules_for_mask(mk, vendor));
+                    fo.whole_layout = side.has_value();
+                    rules = resolve_rules(o, rules_for_mask(*design_mask, vendor));
                 }
                 fo.rules = rules;
                 FileCheck fc;
@@ -169,7 +192,7 @@ void bind_check(py::module_& m) {
                     comparison_ok =
                         k.xor_area_nm2 <= fo.max_xor_nm2 && (k.file_hash.empty() || k.hash_ok());
                     py::dict cd;
-                    cd["mask"] = py::str(mask);
+                    cd["mask"] = mask_text;
                     cd["xor_area_um2"] = k.xor_area_nm2 * 1e-6;
                     cd["max_xor_area_um2"] = max_xor_um2;
                     cd["file_hash"] = k.file_hash;
@@ -222,15 +245,21 @@ void bind_check(py::module_& m) {
         py::arg("input"), py::arg("mask") = py::none(), py::arg("vendor") = "film",
         py::arg("min_gap") = py::none(), py::arg("min_feature") = py::none(),
         py::arg("min_spacing") = py::none(), py::arg("max_vertices") = py::none(),
-        py::arg("list") = 20, py::arg("max_xor_um2") = 0.0, py::arg("shape") = "square",
-        py::arg("sides") = 8, py::arg("hole_side") = py::none(), py::arg("frame") = py::none(),
-        py::arg("chord_tol") = py::none(),
+        py::arg("list") = 20, py::arg("max_xor_um2") = 0.0, py::arg("shape") = py::none(),
+        py::arg("sides") = py::none(), py::arg("hole_side") = py::none(),
+        py::arg("frame") = py::none(), py::arg("chord_tol") = py::none(),
+        py::arg("tone") = py::none(), py::arg("units") = py::none(), py::arg("mirror") = false,
+        py::arg("no_sidecar") = false,
         R"(The design-rule check of `pinmask check` (returns what its --json prints; `clean` is
 its exit status): input a Mask, a *.mask.json or a fabrication file (.gds .dxf .gbr .svg); with
 mask (the design a file was exported from) the file's pinholes are compared by exact XOR area
-(max_xor_um2, um^2) and geometry hash. vendor film | chrome | none; min_gap, min_feature,
-min_spacing override it (lengths); shape/sides/hole_side/frame/chord_tol describe the design
-as given to export. Distances in the result are in um.)");
+(max_xor_um2, um^2) and geometry hash. A fabrication file's export sidecar NAME.export.json
+beside it (written by export) gives the layout settings (tone, mirroring, shape, frame, marks,
+label) and the mask when mask is None; the given shape/sides/hole_side/frame/chord_tol/tone/
+units/mirror must then agree with it (ValueError naming the flag); no_sidecar ignores it.
+Without a sidecar those arguments describe the design as given to export (tone, mirroring and
+grid as the file declares them). vendor film | chrome | none; min_gap, min_feature, min_spacing
+override it (lengths). Distances in the result are in um.)");
 }
 
 }  // namespace pinmask::python

@@ -1,17 +1,18 @@
 // Comparison of masks and its report: compare() is `pinmask compare`'s library pipeline
-// (optimize/compare run_compare: baselines, metric rows) and its report pages (cli/compare_report,
-// export/report); the CLI's report.config.json and its table text are not written here (the rows
-// are returned instead).
+// (optimize/compare run_compare: baselines, metric rows) and its report pages
+// (optimize/compare_report, export/report); the CLI's report.config.json and its table text are not
+// written here (the rows are returned instead).
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
 
-#include "cli/compare_report.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "export/report.hpp"
 #include "io/mask_json.hpp"
+#include "optimize/compare_report.hpp"
 #include "python/common.hpp"
+#include "python/level_args.hpp"
 #include "python/metrics_common.hpp"
 #include "python/values.hpp"
 
@@ -27,12 +28,18 @@ void bind_compare(py::module_& m) {
     m.def(
         "compare",
         [](const py::list& masks, const std::optional<std::string>& report, bool baselines,
-           int baseline_count, double snr_db, const std::vector<std::string>& scenes,
+           int baseline_count, const py::object& snr_db, const std::vector<std::string>& scenes,
            int prior_scenes, const std::string& nsr, const std::string& tv_lambda,
-           int tv_iterations, std::uint64_t seed, bool allow_violations) {
+           int tv_iterations, std::uint64_t seed, bool allow_violations, const py::object& photons,
+           std::optional<double> read_noise, std::optional<double> dark_current,
+           std::optional<double> full_well, std::optional<int> bits,
+           std::optional<double> optical_density, const py::object& prior) {
+            const SensorSettings sensor{read_noise, dark_current, full_well, optical_density, bits};
+            std::string noise_text;
             CompareRunOptions options;
-            options.settings =
-                compare_settings(snr_db, scenes, prior_scenes, nsr, tv_lambda, tv_iterations, seed);
+            options.settings = compare_settings(
+                noise_levels_arg(snr_db, photons, sensor, {30.0}, &noise_text),
+                prior_arg(prior, prior_scenes), scenes, nsr, tv_lambda, tv_iterations, seed);
             options.baselines = baselines;
             options.baseline_count = baseline_count;
             options.validate();
@@ -61,11 +68,9 @@ void bind_compare(py::module_& m) {
                 py::gil_scoped_release release;
                 outcome = run_compare(entries, options);
                 if (report) {
-                    cli::CompareSummary summary;
+                    CompareSummary summary;
                     summary.camera = entries.front().mask.camera;
-                    std::ostringstream noise;
-                    noise << "Gaussian noise at SNR " << snr_db << " dB";
-                    summary.noise_text = noise.str();
+                    summary.noise_text = noise_text;
                     summary.baseline_lines = outcome.baseline_lines;
                     std::string scene_list;
                     for (const auto& s : scenes) scene_list += (scene_list.empty() ? "" : ",") + s;
@@ -76,7 +81,7 @@ void bind_compare(py::module_& m) {
                         " iterations max), noise seed " + std::to_string(seed) +
                         ". Analytic prior: " + options.settings.metrics.prior.description() + "."};
                     const ReportDocument doc =
-                        cli::compare_document(outcome.results, options.settings, summary);
+                        compare_document(outcome.results, options.settings, summary);
                     StagedFiles files;
                     for (const auto& [path, bytes] : render_report(doc, *report)) {
                         files.stage_bytes(path, bytes);
@@ -98,16 +103,20 @@ void bind_compare(py::module_& m) {
             return out;
         },
         py::arg("masks"), py::arg("report") = py::none(), py::arg("baselines") = false,
-        py::arg("baseline_count") = 100, py::arg("snr_db") = 30.0,
+        py::arg("baseline_count") = 100, py::arg("snr_db") = py::none(),
         py::arg("scenes") = std::vector<std::string>{"letter-R", "usaf"},
         py::arg("prior_scenes") = kDefaultPriorScenes, py::arg("nsr") = "tuned",
         py::arg("tv_lambda") = "1e-3", py::arg("tv_iterations") = 200, py::arg("seed") = 1,
-        py::arg("allow_violations") = false,
+        py::arg("allow_violations") = false, py::arg("photons") = py::none(),
+        py::arg("read_noise") = py::none(), py::arg("dark_current") = py::none(),
+        py::arg("full_well") = py::none(), py::arg("bits") = py::none(),
+        py::arg("optical_density") = py::none(), py::arg("prior") = "natural",
         R"(Compares masks (Mask objects or *.mask.json paths; one camera) as `pinmask compare`:
 a metric row per mask (see metrics()), with baselines the median of baseline_count random
 valid masks, the paper-like geometry and a MURA; report: a .pdf, .svg or .png path for the
 multi-page report (written atomically; SVG/PNG: one file per page). Returns {rows, report:
 [paths written], warnings: [baselines left out and why], baselines: [what each baseline is]}.
+Noise (snr_db or photons with the sensor stages) and prior as in metrics().
 The run is optimize/compare's run_compare (one camera rule, baselines, metric rows).)");
 }
 

@@ -1,17 +1,17 @@
 // Decoding: decode() is `pinmask decode` on arrays, one call of decode/capture_pipeline
-// (decode_capture) with the options the CLI maps from the same flags (cli::decode_options,
-// cli::capture_decode_options, cli::parse_crop): names, defaults, messages and numbers are the
+// (decode_capture) with the options the CLI maps from the same flags (decode_options,
+// capture_decode_options, parse_crop): names, defaults, messages and numbers are the
 // CLI's.
 #include <atomic>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "cli/decode_output.hpp"
 #include "core/error.hpp"
 #include "decode/capture.hpp"
 #include "decode/capture_pipeline.hpp"
 #include "decode/decode_modes.hpp"
+#include "decode/decode_request.hpp"
 #include "decode/decoder.hpp"
 #include "decode/period.hpp"
 #include "design/psf.hpp"
@@ -40,7 +40,7 @@ struct CaptureArg {
 
 // `pinmask decode`'s library pipeline (decode/capture_pipeline decode_capture: dark frame,
 // period check, crop, PSF to unit sum, precision, each channel decoded) with the CLI's own
-// options (cli::capture_decode_options). The pipeline owns its inputs: a borrowed capture or PSF
+// options (capture_decode_options). The pipeline owns its inputs: a borrowed capture or PSF
 // is copied into it (a C++ copy, not a numpy conversion: input_copies() does not count it).
 DecodeOutput decode_pipeline(CaptureArg& cap, const PlaneArg& psf_in, bool measured_psf,
                              const std::optional<Image>& dark, const CaptureDecodeOptions& o,
@@ -113,34 +113,34 @@ void bind_decode(py::module_& m) {
            const py::handle& dark, const py::handle& background, int downsample,
            const std::string& normalize, const std::string& precision, int threads,
            const py::object& progress, double poll_s) {
-            cli::DecodeRequest r;
+            DecodeRequest r;
             r.method = method;
             r.model = model;
             // The method's own arguments: given (not None) ones are refused when the method does
-            // not read them, as the CLI refuses its flags (cli::refuse_unused_flags).
-            std::vector<cli::GivenFlag> given;
+            // not read them, as the CLI refuses its flags (refuse_unused_flags).
+            std::vector<GivenFlag> given;
             auto num = [](double v) {
                 std::ostringstream t;
                 t.precision(17);
                 t << v;
                 return t.str();
             };
-            if (nsr) given.push_back({cli::MethodFlag::kNsr, num(r.nsr = *nsr)});
-            if (lambda_) given.push_back({cli::MethodFlag::kLambda, num(r.lambda = *lambda_)});
+            if (nsr) given.push_back({MethodFlag::kNsr, num(r.nsr = *nsr)});
+            if (lambda_) given.push_back({MethodFlag::kLambda, num(r.lambda = *lambda_)});
             if (regulariser)
-                given.push_back({cli::MethodFlag::kRegulariser, r.regulariser = *regulariser});
-            if (eps) given.push_back({cli::MethodFlag::kEps, num(*eps)});
-            if (noise_sigma) given.push_back({cli::MethodFlag::kNoiseSigma, num(*noise_sigma)});
+                given.push_back({MethodFlag::kRegulariser, r.regulariser = *regulariser});
+            if (eps) given.push_back({MethodFlag::kEps, num(*eps)});
+            if (noise_sigma) given.push_back({MethodFlag::kNoiseSigma, num(*noise_sigma)});
             r.eps = eps;
             r.noise_sigma = noise_sigma;
             if (nonneg) {
                 r.nonnegative = *nonneg;
-                given.push_back({cli::MethodFlag::kNonnegative, *nonneg ? "true" : "false"});
+                given.push_back({MethodFlag::kNonnegative, *nonneg ? "true" : "false"});
             }
             if (iters)
                 given.push_back(
-                    {cli::MethodFlag::kIterations, std::to_string(r.iterations = *iters)});
-            if (tol) given.push_back({cli::MethodFlag::kTolerance, num(r.tolerance = *tol)});
+                    {MethodFlag::kIterations, std::to_string(r.iterations = *iters)});
+            if (tol) given.push_back({MethodFlag::kTolerance, num(r.tolerance = *tol)});
             parse_conv_model(model, "--model");
             parse_regulariser(r.regulariser, "--regulariser");
             if (r.iterations < 1)
@@ -156,7 +156,7 @@ void bind_decode(py::module_& m) {
             r.normalize = normalize;
             r.precision = precision;
             r.threads = threads;
-            cli::refuse_unused_flags(r, given);
+            refuse_unused_flags(r, given);
             if (py::isinstance<py::str>(crop)) {
                 r.crop = crop.cast<std::string>();
             } else {  // (row, col) of the top-left pixel: the CLI's X,Y is col,row
@@ -189,7 +189,7 @@ void bind_decode(py::module_& m) {
             }
             std::optional<Image> dark_img;
             if (!dark.is_none()) dark_img = image_arg(dark, "dark");
-            CaptureDecodeOptions options = cli::capture_decode_options(r);
+            CaptureDecodeOptions options = capture_decode_options(r);
             options.validate();
             if (options.background == BackgroundMode::kCorner && psf.is_none()) {
                 throw invalid_field("--background", "corner",

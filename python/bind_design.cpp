@@ -6,7 +6,9 @@
 #include "core/units.hpp"
 #include "design/camera.hpp"
 #include "design/kernel_model.hpp"
+#include "design/kernel_validity.hpp"
 #include "design/optics.hpp"
+#include "design/working_distance.hpp"
 #include "python/common.hpp"
 #include "python/values.hpp"
 
@@ -24,7 +26,8 @@ double length_value(const py::handle& v, const std::string& field, bool allow_in
     return x;
 }
 
-py::dict optics_dict(const OpticsReport& r) {
+py::dict optics_dict(const OpticsReport& r, const WorkingDistance& wd,
+                     const std::vector<std::string>& kernel_warnings) {
     py::dict d;
     d["camera"] = r.camera;
     d["geometry"] =
@@ -58,6 +61,17 @@ py::dict optics_dict(const OpticsReport& r) {
     d["light_gain"] = r.light_gain;
     d["kernel_model"] = kernel_model_name(r.kernel_model);
     d["kernel_reason"] = r.kernel_reason;
+    // The working distance (design/working_distance.hpp), under design --json's keys.
+    d["whole_pixels_per_cell_at_u"] = wd.pixels_per_cell;
+    d["pinhole_for_pixels_per_cell_m"] = wd.pinhole_for_pixels_per_cell_m;
+    d["period_at_u_px"] = wd.period_px;
+    d["lsi_mismatch_at_u_px"] = wd.lsi_mismatch_px;
+    d["object_distance_range_m"] = py::make_tuple(wd.range_near_m, wd.range_far_m);
+    d["optimum_pinhole_lensless_m"] = wd.optimum_pinhole_lensless_m;
+    d["optimum_pinhole_with_lens_m"] = wd.optimum_pinhole_with_lens_m;
+    d["spot_spread_cells"] = wd.spot_spread_cells;
+    d["spot_spreads_beyond_cell"] = wd.spreads_beyond_cell();
+    d["kernel_warnings"] = kernel_warnings;
     return d;
 }
 
@@ -131,15 +145,33 @@ void bind_design(py::module_& m) {
             PatternGeometry g{grid, holes, tiles, tiles};
             OpticsOptions o;
             o.lsi_tolerance_px = lsi_tolerance_px;
-            return optics_dict(compute_optics(camera.value_or(paper_camera()), g,
-                                              parse_kernel_model(kernel, "--kernel"), o));
+            const Camera c = camera.value_or(paper_camera());
+            const KernelModel model = parse_kernel_model(kernel, "--kernel");
+            if (!(lsi_tolerance_px > 0) || !std::isfinite(lsi_tolerance_px)) {
+                throw invalid_field("--lsi-tolerance", std::to_string(lsi_tolerance_px),
+                                    "must be finite and > 0 (0 or less gives an empty "
+                                    "object-distance range)");
+            }
+            check_object_distance(c, c.object_distance_m, "--object-distance");
+            OpticsReport r = compute_optics(c, g, model, o);
+            // As `pinmask design`: a kernel model outside its validity says so in the reason.
+            const KernelValidity validity = kernel_validity(c, r.kernel_model);
+            if (!validity.model_accurate)
+                r.kernel_reason = "NOT accurate: " + validity.warnings.front();
+            const WorkingDistance wd = compute_working_distance(c, g, {lsi_tolerance_px, 0});
+            return optics_dict(r, wd, validity.warnings);
         },
         py::arg("camera") = py::none(), py::arg("grid") = 16, py::arg("holes") = 20,
         py::arg("tiles") = 2, py::arg("kernel") = "auto", py::arg("lsi_tolerance_px") = 1.0,
-        "The optics report of `pinmask design --json` as a dict (same keys; lengths in metres "
-        "with _m suffixes, infinite values as float('inf') where the CLI writes null and a "
-        "note). grid n (cells per side), holes K, tiles per side, kernel "
-        "auto|box|fraunhofer|fresnel|paper-fig3b|measured, lsi_tolerance_px in pixels.");
+        "The optics report of `pinmask design --json` as a dict (same keys and numbers; lengths "
+        "in metres with _m suffixes, infinite values as float('inf') where the CLI writes null "
+        "and a note), the working distance included: whole_pixels_per_cell_at_u, "
+        "pinhole_for_pixels_per_cell_m, period_at_u_px, lsi_mismatch_at_u_px, "
+        "object_distance_range_m (near, far; far inf when shift invariant to infinity), "
+        "optimum_pinhole_lensless_m, optimum_pinhole_with_lens_m, spot_spread_cells (cells), "
+        "spot_spreads_beyond_cell, kernel_warnings. grid n (cells per side), holes K, tiles per "
+        "side, kernel auto|box|fraunhofer|fresnel|paper-fig3b|measured, lsi_tolerance_px in "
+        "pixels.");
 
     m.def(
         "kernel_models",

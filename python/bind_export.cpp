@@ -10,12 +10,12 @@
 #include <iterator>
 #include <sstream>
 
-#include "cli/export_options.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "export/drc.hpp"
 #include "export/export_pipeline.hpp"
+#include "export/export_request.hpp"
 #include "export/geometry.hpp"
 #include "export/read_any.hpp"
 #include "export/read_back.hpp"
@@ -52,12 +52,12 @@ py::list rings_list(const std::vector<Ring>& rings) {
 py::tuple box_tuple(const BoxNm& b) { return py::make_tuple(b.x0, b.y0, b.x1, b.y1); }
 
 // `pinmask export`'s layout flags (cli/export_options: the same checks and defaults).
-cli::ExportFlags layout_flags(const std::string& tone, const std::string& shape, int sides,
-                              bool mirror, bool marks, const std::optional<std::string>& label,
-                              const py::object& frame, const py::object& chord_tol,
-                              const py::object& grid, const py::object& hole_side,
-                              std::size_t max_vertices) {
-    cli::ExportFlags f;
+ExportRequest layout_flags(const std::string& tone, const std::string& shape, int sides,
+                           bool mirror, bool marks, const std::optional<std::string>& label,
+                           const py::object& frame, const py::object& chord_tol,
+                           const py::object& grid, const py::object& hole_side,
+                           std::size_t max_vertices) {
+    ExportRequest f;
     f.tone = tone;
     f.shape = shape;
     f.sides = sides;
@@ -108,10 +108,10 @@ void bind_export(py::module_& m) {
            const py::object& frame, const py::object& chord_tol, const py::object& grid,
            const py::object& hole_side, std::size_t max_vertices, bool allow_spacing_violations) {
             const Mask mk = mask_arg(mask_obj, allow_spacing_violations);
-            cli::ExportFlags f = layout_flags(tone, shape, sides, mirror, marks, label, frame,
-                                              chord_tol, grid, hole_side, max_vertices);
+            ExportRequest f = layout_flags(tone, shape, sides, mirror, marks, label, frame,
+                                           chord_tol, grid, hole_side, max_vertices);
             f.allow_spacing_violations = allow_spacing_violations;
-            const LayoutOptions lo = cli::export_options_from(f, mk, label.value_or("mask")).layout;
+            const LayoutOptions lo = export_options_from(f, mk, label.value_or("mask")).layout;
             py::gil_scoped_release release;
             return make_layout(mk, lo);
         };
@@ -182,7 +182,7 @@ void bind_export(py::module_& m) {
             if (stem.empty() || stem.find('/') != std::string::npos)
                 throw invalid_field("--stem", stem, "must be a plain file name");
             // `pinmask export`'s flags -> the library pipeline (export/export_pipeline).
-            cli::ExportFlags f =
+            ExportRequest f =
                 layout_flags(tone, shape, sides, mirror, marks,
                              label ? std::optional<std::string>(label_id.empty() ? stem : label_id)
                                    : std::nullopt,
@@ -198,7 +198,7 @@ void bind_export(py::module_& m) {
             f.require_drc_clean = require_drc_clean;
             f.allow_spacing_violations = allow_spacing_violations;
             f.no_psf = true;
-            const ExportOptions o = cli::export_options_from(f, mk, stem);
+            const ExportOptions o = export_options_from(f, mk, stem);
             py::list files;
             ExportSummary summary;
             {

@@ -5,14 +5,15 @@
 #include <random>
 #include <sstream>
 
-#include "cli/psf_options.hpp"
 #include "core/error.hpp"
 #include "design/exclusion_grid.hpp"
 #include "design/families.hpp"
+#include "design/generate_pattern.hpp"
 #include "design/mask.hpp"
 #include "design/mura.hpp"
 #include "design/optics.hpp"
 #include "design/pattern.hpp"
+#include "design/psf_settings.hpp"
 #include "design/random_sparse.hpp"
 #include "io/json_strict.hpp"
 #include "io/mask_json.hpp"
@@ -37,68 +38,6 @@ std::vector<Cell> cells_from(const py::iterable& it) {
         cells.push_back({rc.first, rc.second});
     }
     return cells;
-}
-
-void require_unset_or(const std::optional<double>& given, const char* flag, double fixed,
-                      const std::string& why) {
-    if (given && *given != fixed) {
-        std::ostringstream v;
-        v << *given;
-        throw invalid_field(flag, v.str(), why);
-    }
-}
-
-// `pinmask generate`'s make_pattern (cli/cmd_generate.cpp) with the flags as optionals (None:
-// not given).
-Pattern make_pattern(Family family, const std::optional<int>& grid, const std::optional<int>& holes,
-                     const std::optional<int>& tiles, const std::optional<double>& spacing,
-                     std::uint64_t seed, int attempts, bool allow_violations,
-                     std::size_t& violations) {
-    const int g_grid = grid.value_or(16), g_holes = holes.value_or(20), g_tiles = tiles.value_or(2);
-    const double g_spacing = spacing.value_or(2.0);
-    std::mt19937_64 rng(seed);
-    Pattern p;
-    auto opt = [](const auto& o) {
-        return o ? std::optional<double>(static_cast<double>(*o)) : std::nullopt;
-    };
-    if (family == Family::kPaper) {
-        const std::string why =
-            "the paper family fixes n = 16, K = 20, 2 x 2 tiles, spacing 2 "
-            "(use --family random for other geometries)";
-        require_unset_or(opt(grid), "--grid", kPaperGrid, why);
-        require_unset_or(opt(holes), "--holes", kPaperHoles, why);
-        require_unset_or(opt(tiles), "--tiles", kPaperTiles, why);
-        require_unset_or(spacing, "--spacing", kPaperSpacingCells, why);
-        p = paper_pattern(rng);
-    } else if (family == Family::kRandom) {
-        RandomSparseOptions r;
-        r.n = g_grid;
-        r.holes = g_holes;
-        r.min_spacing_cells = g_spacing;
-        r.tiles_rows = g_tiles;
-        r.tiles_cols = g_tiles;
-        r.max_attempts = attempts;
-        p = random_sparse_pattern(r, rng);
-    } else {
-        if (g_tiles < 1) throw invalid_field("--tiles", std::to_string(g_tiles), "must be >= 1");
-        p = mura_pattern(g_grid, g_spacing, g_tiles, g_tiles);
-        const int open = static_cast<int>(p.pinholes.size());
-        require_unset_or(opt(holes), "--holes", open,
-                         "a MURA of order " + std::to_string(g_grid) +
-                             " has (p^2 - 1) / 2 = " + std::to_string(open) + " pinholes");
-    }
-    violations = count_spacing_violations(p);
-    if (violations > 0 && !allow_violations) {
-        std::ostringstream v;
-        v << p.min_spacing_cells;
-        throw invalid_field("--spacing", v.str(),
-                            "the " + family_name(family) + " pattern of order " +
-                                std::to_string(p.n) + " has " + std::to_string(violations) +
-                                " pinhole pair(s) closer than that on the torus; pass "
-                                "--allow-violations to write it anyway (the file records "
-                                "spacing_violations_allowed), or lower --spacing");
-    }
-    return p;
 }
 
 }  // namespace
@@ -254,20 +193,35 @@ void bind_mask(py::module_& m) {
            const std::string& kernel, const std::string& kernel_path,
            std::optional<int> pixels_per_cell) {
             const Family fam = parse_family(family);
-            if (attempts < 1)
-                throw invalid_field("--attempts", std::to_string(attempts), "must be >= 1");
+            // `pinmask generate`'s order: options, camera, PSF, PSF size, pattern
+            // (design/generate_pattern: the one pattern pipeline, same checks and messages).
+            GeneratePatternOptions go;
+            go.family = fam;
+            go.grid = grid.value_or(go.grid);
+            go.holes = holes.value_or(go.holes);
+            go.tiles = tiles.value_or(go.tiles);
+            go.spacing = spacing.value_or(go.spacing);
+            go.grid_given = grid.has_value();
+            go.holes_given = holes.has_value();
+            go.tiles_given = tiles.has_value();
+            go.spacing_given = spacing.has_value();
+            go.seed = seed;
+            go.attempts = attempts;
+            go.allow_violations = allow_violations;
+            go.validate();
             Mask mk;
             mk.camera = camera.value_or(paper_camera());
             validate(mk.camera);
-            cli::PsfOptions po;
+            PsfSettings po;
             po.kernel = kernel;
             po.kernel_path = kernel_path;
             po.pixels_per_cell = pixels_per_cell;
             parse_kernel_model(kernel, "--kernel");
-            mk.psf = cli::resolve_psf_spec(po, mk.camera);
-            std::size_t violations = 0;
-            mk.pattern = make_pattern(fam, grid, holes, tiles, spacing, seed, attempts,
-                                      allow_violations, violations);
+            mk.psf = resolve_psf_spec(po, mk.camera);
+            check_period_psf_size(mk.psf.pixels_per_cell, go.grid, pixels_per_cell.has_value());
+            const GeneratedPattern gen = generate_pattern(go);
+            const std::size_t violations = gen.spacing_violations;
+            mk.pattern = gen.pattern;
             mk.provenance.seed = fam == Family::kMura ? 0 : seed;
             mk.provenance.generator = kGenerator;
             mk.provenance.family = family_name(fam);

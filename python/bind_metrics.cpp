@@ -2,7 +2,6 @@
 // compare_mask over optimize/mask_metrics, the one metric set of score, compare and search).
 // The other functions bind the library metrics one by one (optimize/autocorrelation,
 // spectrum_metrics, analytic_error, simulated_metrics).
-#include "cli/analytic_setup.hpp"
 #include "core/error.hpp"
 #include "core/fft.hpp"
 #include "design/psf.hpp"
@@ -10,33 +9,35 @@
 #include "optimize/autocorrelation.hpp"
 #include "optimize/compare.hpp"
 #include "optimize/mask_metrics.hpp"
+#include "optimize/metric_spellings.hpp"
 #include "optimize/scene_prior.hpp"
 #include "optimize/scenes.hpp"
 #include "optimize/simulated_metrics.hpp"
 #include "optimize/spectrum_metrics.hpp"
 #include "python/common.hpp"
+#include "python/level_args.hpp"
 #include "python/metrics_common.hpp"
 #include "python/values.hpp"
 
 namespace pinmask::python {
 
-CompareSettings compare_settings(double snr_db, const std::vector<std::string>& scenes,
-                                 int prior_scenes, const std::string& nsr,
+CompareSettings compare_settings(std::vector<NoiseLevel> levels, PriorSpec prior,
+                                 const std::vector<std::string>& scenes, const std::string& nsr,
                                  const std::string& tv_lambda, int tv_iterations,
                                  std::uint64_t seed) {
     CompareSettings s;
     MaskMetricsOptions& m = s.metrics;
     m.tv = true;
-    m.noise = {noise_level(noise_model(NoiseArgs{snr_db, {}, {}, {}, {}, {}, {}}))};
-    m.prior.count = prior_scenes;
+    m.noise = std::move(levels);
+    m.prior = std::move(prior);
     for (const std::string& item : scenes) {
         SceneSpec spec = scene_from_name(item);
         if (spec.kind == SceneKind::kNatural) spec.seed = 0;
         m.scenes.push_back(spec);
     }
     m.simulation.seed = seed;
-    m.simulation.wiener_nsr = cli::parse_weight_choice(nsr, "--nsr");
-    m.simulation.tv_lambda = cli::parse_weight_choice(tv_lambda, "--tv-lambda");
+    m.simulation.wiener_nsr = parse_weight_choice(nsr, "--nsr");
+    m.simulation.tv_lambda = parse_weight_choice(tv_lambda, "--tv-lambda");
     if (tv_iterations < 1)
         throw invalid_field("--tv-iters", std::to_string(tv_iterations), "must be >= 1");
     m.simulation.tv_iterations = tv_iterations;
@@ -71,23 +72,47 @@ py::dict row_dict(const CompareRow& r) {
     d["tv_psnr_db"] = r.tv_psnr_db;
     d["tv_ssim"] = r.tv_ssim;
     d["tv_lambda"] = r.tv_lambda;
+    // Every level under score's keys (cli/analytic_setup metrics_json names them the same way).
+    for (const LevelMetrics& l : r.metrics.levels) {
+        const std::string& k = l.level.key;
+        if (l.analytic) {
+            d[py::str("analytic_wiener_psnr_db_" + k)] = l.analytic->psnr_db;
+            d[py::str("analytic_wiener_nsr_" + k)] = l.analytic->nsr;
+            d[py::str("analytic_optimal_wiener_psnr_db_" + k)] = l.analytic->optimal_psnr_db;
+        }
+        const std::pair<const char*, const std::optional<SimulatedQuality>*> sims[] = {
+            {"wiener", &l.wiener}, {"tv", &l.tv}};
+        for (const auto& [metric, q] : sims) {
+            if (!*q) continue;
+            const std::string name = metric;
+            d[py::str(name + "_psnr_db_" + k)] = (*q)->mean_psnr_db;
+            d[py::str(name + "_ssim_" + k)] = (*q)->mean_ssim;
+            d[py::str(name + (name == "wiener" ? "_nsr_" : "_lambda_") + k)] = (*q)->weight;
+        }
+    }
     return d;
 }
 
 namespace {
 
-WienerFilterSpec filter_spec(const std::string& text) { return cli::parse_wiener_filter(text); }
+WienerFilterSpec filter_spec(const std::string& text) { return parse_wiener_filter(text); }
 
 }  // namespace
 
 void bind_metrics(py::module_& m) {
     m.def(
         "metrics",
-        [](const py::handle& mask_obj, double snr_db, const std::vector<std::string>& scenes,
-           int prior_scenes, const std::string& nsr, const std::string& tv_lambda,
-           int tv_iterations, std::uint64_t seed, const std::string& name) {
-            const CompareSettings s =
-                compare_settings(snr_db, scenes, prior_scenes, nsr, tv_lambda, tv_iterations, seed);
+        [](const py::handle& mask_obj, const py::object& snr_db,
+           const std::vector<std::string>& scenes, int prior_scenes, const std::string& nsr,
+           const std::string& tv_lambda, int tv_iterations, std::uint64_t seed,
+           const std::string& name, const py::object& photons, std::optional<double> read_noise,
+           std::optional<double> dark_current, std::optional<double> full_well,
+           std::optional<int> bits, std::optional<double> optical_density,
+           const py::object& prior) {
+            const SensorSettings sensor{read_noise, dark_current, full_well, optical_density, bits};
+            const CompareSettings s = compare_settings(
+                noise_levels_arg(snr_db, photons, sensor, {30.0}), prior_arg(prior, prior_scenes),
+                scenes, nsr, tv_lambda, tv_iterations, seed);
             const Mask mk = mask_arg(mask_obj, true);
             CompareEntry e{name, "input",
                            py::isinstance<py::str>(mask_obj) ? mask_obj.cast<std::string>()
@@ -101,17 +126,27 @@ void bind_metrics(py::module_& m) {
             }
             return row_dict(r.row);
         },
-        py::arg("mask"), py::arg("snr_db") = 30.0,
+        py::arg("mask"), py::arg("snr_db") = py::none(),
         py::arg("scenes") = std::vector<std::string>{"letter-R", "usaf"},
         py::arg("prior_scenes") = kDefaultPriorScenes, py::arg("nsr") = "tuned",
         py::arg("tv_lambda") = "1e-3", py::arg("tv_iterations") = 200, py::arg("seed") = 1,
-        py::arg("name") = "mask",
-        "The metric row of `pinmask compare` for one mask (optimize/compare over "
-        "optimize/mask_metrics, the set score and search use; same settings, same numbers): "
-        "sidelobes, spectrum, OTF condition, analytic Wiener PSNR (dB; the nsr filter and the "
-        "per-frequency optimal bound; prior of prior_scenes natural textures, seeds 1000..), "
-        "simulated Wiener and TV-L2 PSNR (dB) and SSIM over `scenes` at snr_db dB (Gaussian); "
-        "nsr and tv_lambda: 'tuned' or a number > 0.");
+        py::arg("name") = "mask", py::arg("photons") = py::none(),
+        py::arg("read_noise") = py::none(), py::arg("dark_current") = py::none(),
+        py::arg("full_well") = py::none(), py::arg("bits") = py::none(),
+        py::arg("optical_density") = py::none(), py::arg("prior") = "natural",
+        R"(The metric row of `pinmask compare` for one mask (optimize/compare over
+optimize/mask_metrics, the set score and search use; same settings, same numbers): sidelobes,
+spectrum, OTF condition, analytic Wiener PSNR (dB; the nsr filter and the per-frequency optimal
+bound), simulated Wiener and TV-L2 PSNR (dB) and SSIM over `scenes`.
+Noise (as --snr / --photons and the sensor flags): snr_db, Gaussian SNR in dB, a number or a
+list (None: 30 dB); or photons, the photon model at that many electrons per pixel through one
+pinhole (a number or a list), with read_noise (rms electrons), dark_current (mean electrons per
+pixel), full_well (electrons), bits (ADC, needs full_well) and optical_density (film OD).
+The unsuffixed keys are the first level's; every level is also under score's keys
+(analytic_wiener_psnr_db_snr30, wiener_psnr_db_ph100, ...).
+Prior of the analytic error (as --prior / --prior-scenes): 'natural' | 'text' | 'stars' or image
+files (a list of paths or one comma-separated string), prior_scenes sample scenes (1..4096).
+nsr and tv_lambda: 'tuned' or a number > 0.)");
 
     m.def(
         "sidelobes",
@@ -222,7 +257,7 @@ void bind_metrics(py::module_& m) {
             so.noise_seeds = noise_seeds;
             so.seed = seed;
             so.tv_iterations = tv_iterations;
-            const WeightChoice w = cli::parse_weight_choice(weight, "weight");
+            const WeightChoice w = parse_weight_choice(weight, "weight");
             (decoder == "wiener" ? so.wiener_nsr : so.tv_lambda) = w;
             so.validate();
             SimulatedQuality q;

@@ -4,15 +4,16 @@
 #include <atomic>
 #include <memory>
 
-#include "cli/analytic_setup.hpp"
-#include "cli/psf_options.hpp"
-#include "cli/search_options.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "design/optics.hpp"
 #include "design/psf.hpp"
+#include "design/psf_settings.hpp"
+#include "io/search_config.hpp"
+#include "optimize/metric_spellings.hpp"
 #include "optimize/search_pipeline.hpp"
 #include "python/common.hpp"
+#include "python/level_args.hpp"
 #include "python/values.hpp"
 
 namespace pinmask::python {
@@ -35,21 +36,24 @@ void bind_search(py::module_& m) {
         [](const std::optional<Camera>& camera, int grid, int holes, int tiles, double spacing,
            const std::string& kernel, const std::string& kernel_path,
            std::optional<int> pixels_per_cell, const std::string& strategy, const std::string& time,
-           std::int64_t evals, int threads, std::uint64_t seed, int top, double snr_db,
+           std::int64_t evals, int threads, std::uint64_t seed, int top, const py::object& snr_db,
            const std::string& filter, double w_analytic, double w_max_sidelobe,
            double w_sidelobe_energy, double w_min_spectrum, int prior_scenes,
            const std::string& keep_out, const std::vector<std::string>& rerank_scenes,
            bool rerank_tv, const std::string& rank_by, bool allow_spectral_zeros,
-           const py::object& progress) {
+           const py::object& progress, const py::object& photons, std::optional<double> read_noise,
+           std::optional<double> dark_current, std::optional<double> full_well,
+           std::optional<int> bits, std::optional<double> optical_density,
+           const py::object& prior) {
             SearchPipelineOptions p;
             p.tmpl.camera = camera.value_or(paper_camera());
             validate(p.tmpl.camera);
             parse_kernel_model(kernel, "--kernel");
-            cli::PsfOptions po;
+            PsfSettings po;
             po.kernel = kernel;
             po.kernel_path = kernel_path;
             po.pixels_per_cell = pixels_per_cell;
-            p.tmpl.psf = cli::resolve_psf_spec(po, p.tmpl.camera);
+            p.tmpl.psf = resolve_psf_spec(po, p.tmpl.camera);
             p.tmpl.pattern.n = grid;
             p.tmpl.pattern.tiles_rows = p.tmpl.pattern.tiles_cols = tiles;
             p.tmpl.pattern.min_spacing_cells = spacing;
@@ -69,15 +73,23 @@ void bind_search(py::module_& m) {
             if (top < 1 || top > 1000)
                 throw invalid_field("--top", std::to_string(top), "must be between 1 and 1000");
             p.keep_out = keep_out;
-            p.noise = noise_model(NoiseArgs{snr_db, {}, {}, {}, {}, {}, {}});
-            p.prior.count = prior_scenes;
-            p.filter = cli::parse_wiener_filter(filter);
+            const SensorSettings sensor{read_noise, dark_current, full_well, optical_density, bits};
+            const std::vector<NoiseLevel> levels =
+                noise_levels_arg(snr_db, photons, sensor, {30.0});
+            if (levels.size() != 1) {
+                throw InvalidInput(
+                    "--snr/--photons: search optimises one noise level; give one value "
+                    "(score and compare take lists)");
+            }
+            p.noise = levels.front().model;
+            p.prior = prior_arg(prior, prior_scenes);
+            p.filter = parse_wiener_filter(filter);
             p.weights = {w_analytic, w_max_sidelobe, w_sidelobe_energy, w_min_spectrum};
             p.allow_spectral_zeros = allow_spectral_zeros;
             for (const auto& name : rerank_scenes) p.rerank_scenes.push_back(scene_from_name(name));
             p.rerank_tv = rerank_tv && !rerank_scenes.empty();
             p.rank_by = parse_rank_by(rank_by);
-            p.generator = cli::kSearchGenerator;
+            p.generator = io::kSearchGenerator;
             p.validate();
 
             std::atomic<bool> cancel{false};
@@ -141,25 +153,32 @@ void bind_search(py::module_& m) {
         py::arg("tiles") = 2, py::arg("spacing") = 2.0, py::arg("kernel") = "auto",
         py::arg("kernel_path") = "", py::arg("pixels_per_cell") = py::none(),
         py::arg("strategy") = "anneal", py::arg("time") = "20s", py::arg("evals") = 0,
-        py::arg("threads") = 1, py::arg("seed") = 1, py::arg("top") = 5, py::arg("snr_db") = 30.0,
-        py::arg("filter") = "optimal", py::arg("w_analytic") = 1.0, py::arg("w_max_sidelobe") = 0.0,
-        py::arg("w_sidelobe_energy") = 0.0, py::arg("w_min_spectrum") = 0.0,
-        py::arg("prior_scenes") = kDefaultPriorScenes, py::arg("keep_out") = "none",
+        py::arg("threads") = 1, py::arg("seed") = 1, py::arg("top") = 5,
+        py::arg("snr_db") = py::none(), py::arg("filter") = "optimal", py::arg("w_analytic") = 1.0,
+        py::arg("w_max_sidelobe") = 0.0, py::arg("w_sidelobe_energy") = 0.0,
+        py::arg("w_min_spectrum") = 0.0, py::arg("prior_scenes") = kDefaultPriorScenes,
+        py::arg("keep_out") = "none",
         py::arg("rerank_scenes") = std::vector<std::string>{"letter-R", "usaf", "siemens-star"},
         py::arg("rerank_tv") = true, py::arg("rank_by") = "wiener",
         py::arg("allow_spectral_zeros") = false, py::arg("progress") = py::none(),
+        py::arg("photons") = py::none(), py::arg("read_noise") = py::none(),
+        py::arg("dark_current") = py::none(), py::arg("full_well") = py::none(),
+        py::arg("bits") = py::none(), py::arg("optical_density") = py::none(),
+        py::arg("prior") = "natural",
         R"(Searches masks for a camera (grid n, holes K, tiles, spacing in cells) as
 `pinmask search` (the same pipeline, optimize/search_pipeline): strategy random | anneal, a
 time budget (time, '20s', '2min'; it covers the re-ranking too) or evals per chain (> 0:
 deterministic for the same seed and threads), threads independent chains, top candidates,
 keep_out 'none' | 'border'; objective: the weighted sum of analytic_wiener (-expected Wiener PSNR
-in dB at snr_db, filter 'optimal' or 'nsr:VALUE', prior of prior_scenes natural textures),
+at the noise level, filter 'optimal' or 'nsr:VALUE', prior as in metrics()),
 max_sidelobe, sidelobe_energy, min_spectrum; patterns with a spectral zero are rejected unless
 allow_spectral_zeros. The top candidates are re-ranked by simulated decodes of rerank_scenes
 (empty list: no re-ranking, as --no-rerank) ranked by rank_by 'wiener' | 'tv'.
 progress(row) is called with {phase: 'search' | 'rerank', fraction, text}; returning False
 stops the search. Ctrl-C (KeyboardInterrupt) stops it too: the best candidates so far are
 returned, termination 'interrupted'.
+Noise: ONE level, snr_db (Gaussian, dB; None: 30) or photons (electrons per pixel per pinhole)
+with read_noise, dark_current, full_well, bits, optical_density, as metrics().
 Returns {candidates: [{mask, objective, terms, reranked, sim_wiener_psnr_db, sim_tv_psnr_db,
 tv_lambda, spectral_zero}] best first, evaluations, evaluations_per_chain, seconds (all),
 search_seconds, rerank_seconds, reranked, termination, kernel, log: [{seconds, evaluations,

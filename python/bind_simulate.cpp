@@ -3,12 +3,12 @@
 #include <cmath>
 #include <sstream>
 
-#include "cli/noise_options.hpp"
 #include "core/error.hpp"
 #include "core/resource_limits.hpp"
 #include "core/units.hpp"
 #include "design/psf.hpp"
 #include "io/mask_json.hpp"
+#include "optimize/noise_levels.hpp"
 #include "optimize/scenes.hpp"
 #include "optimize/simulate.hpp"
 #include "python/common.hpp"
@@ -16,34 +16,27 @@
 
 namespace pinmask::python {
 
+SensorSettings sensor_settings(const NoiseArgs& a) {
+    SensorSettings f;
+    f.read_noise = a.read_noise;
+    f.dark_current = a.dark_current;
+    f.full_well = a.full_well;
+    f.optical_density = a.optical_density;
+    f.bits = a.bits;
+    return f;
+}
+
 NoiseModel noise_model(const NoiseArgs& a) {
+    const SensorSettings sensor = sensor_settings(a);
     if (a.photons) {
         if (a.snr_db) {
             std::ostringstream v;
             v << *a.snr_db;
             throw invalid_field("--snr", v.str(), "cannot be combined with --photons");
         }
-        cli::SensorFlags f;
-        f.read_noise = a.read_noise;
-        f.dark_current = a.dark_current;
-        f.full_well = a.full_well;
-        f.optical_density = a.optical_density;
-        f.bits = a.bits;
-        return cli::photon_model(*a.photons, f, nullptr);
+        return photon_model(*a.photons, sensor, nullptr);
     }
-    const std::pair<bool, const char*> given[] = {
-        {a.read_noise.has_value(), "--read-noise"},
-        {a.dark_current.has_value(), "--dark-current"},
-        {a.full_well.has_value(), "--full-well"},
-        {a.bits.has_value(), "--bits"},
-        {a.optical_density.has_value(), "--optical-density"}};
-    for (const auto& [is_given, flag] : given) {
-        if (is_given) {
-            throw InvalidInput(std::string(flag) +
-                               ": a sensor parameter of the photon model; give --photons too "
-                               "(the --snr model is Gaussian noise at a fixed SNR)");
-        }
-    }
+    refuse_sensor_settings_without_photons(sensor);
     NoiseModel m;
     const double snr = a.snr_db.value_or(30.0);
     if (std::isinf(snr) && snr > 0) {

@@ -10,14 +10,15 @@
 
 namespace pinmask::python {
 
-// `pinmask compare`'s make_options with the same flags (same checks and messages): Gaussian
-// noise at snr_db, the natural prior of prior_scenes textures, every metric (tv included).
-CompareSettings compare_settings(double snr_db, const std::vector<std::string>& scenes,
-                                 int prior_scenes, const std::string& nsr,
+// `pinmask compare`'s make_options with the same flags (same checks and messages): the noise
+// levels and prior of python/level_args, every metric (tv included).
+CompareSettings compare_settings(std::vector<NoiseLevel> levels, PriorSpec prior,
+                                 const std::vector<std::string>& scenes, const std::string& nsr,
                                  const std::string& tv_lambda, int tv_iterations,
                                  std::uint64_t seed);
 
-// A metric row as a dict with the keys of `pinmask compare --json` (infinities as float inf).
+// A metric row as a dict with the keys of `pinmask compare --json` (infinities as float inf),
+// every noise level under score's keys (analytic_wiener_psnr_db_snr30, wiener_psnr_db_ph100, ...).
 py::dict row_dict(const CompareRow& row);
 
 }  // namespace pinmask::python

@@ -13,6 +13,8 @@ ArrayLike = npt.ArrayLike
 Length = Union[float, str]  # metres, or a string with a unit: "440um", "55mm", "6m", "inf"
 PathLikeStr = Union[str, PathLike[str]]
 MaskLike = Union["Mask", PathLikeStr]
+Levels = Union[float, Sequence[float]]  # one noise level or a list (score's keys per level)
+Prior = Union[str, Sequence[PathLikeStr]]  # natural | text | stars, or image files
 
 class Camera:
     object_distance_m: float  # u, +inf: distant object
@@ -177,7 +179,7 @@ def decode(
 ) -> dict[str, Any]: ...
 def metrics(
     mask: MaskLike,
-    snr_db: float = 30.0,
+    snr_db: Optional[Levels] = None,  # dB; None: 30
     scenes: Sequence[str] = ("letter-R", "usaf"),
     prior_scenes: int = 16,
     nsr: str = "tuned",
@@ -185,6 +187,13 @@ def metrics(
     tv_iterations: int = 200,
     seed: int = 1,
     name: str = "mask",
+    photons: Optional[Levels] = None,  # electrons per pixel through one pinhole (photon model)
+    read_noise: Optional[float] = None,  # rms electrons
+    dark_current: Optional[float] = None,  # mean electrons per pixel
+    full_well: Optional[float] = None,  # electrons
+    bits: Optional[int] = None,  # ADC bits 1..24, needs full_well
+    optical_density: Optional[float] = None,  # film OD (transmission 10^-OD)
+    prior: Prior = "natural",
 ) -> dict[str, Any]: ...
 def sidelobes(pattern: Pattern) -> dict[str, Any]: ...
 def autocorrelation(pattern: Pattern) -> npt.NDArray[np.int32]: ...
@@ -233,7 +242,7 @@ def search(
     threads: int = 1,
     seed: int = 1,
     top: int = 5,
-    snr_db: float = 30.0,
+    snr_db: Optional[float] = None,  # dB; None: 30 (search takes one level)
     filter: str = "optimal",
     w_analytic: float = 1.0,
     w_max_sidelobe: float = 0.0,
@@ -246,13 +255,20 @@ def search(
     rank_by: Literal["wiener", "tv"] = "wiener",
     allow_spectral_zeros: bool = False,
     progress: Optional[Callable[[dict[str, Any]], Optional[bool]]] = None,
+    photons: Optional[float] = None,  # one level
+    read_noise: Optional[float] = None,
+    dark_current: Optional[float] = None,
+    full_well: Optional[float] = None,
+    bits: Optional[int] = None,
+    optical_density: Optional[float] = None,
+    prior: Prior = "natural",
 ) -> dict[str, Any]: ...
 def compare(
     masks: Sequence[MaskLike],
     report: Optional[str] = None,
     baselines: bool = False,
     baseline_count: int = 100,
-    snr_db: float = 30.0,
+    snr_db: Optional[Levels] = None,  # dB; None: 30
     scenes: Sequence[str] = ("letter-R", "usaf"),
     prior_scenes: int = 16,
     nsr: str = "tuned",
@@ -260,6 +276,13 @@ def compare(
     tv_iterations: int = 200,
     seed: int = 1,
     allow_violations: bool = False,
+    photons: Optional[Levels] = None,  # electrons per pixel through one pinhole (photon model)
+    read_noise: Optional[float] = None,  # rms electrons
+    dark_current: Optional[float] = None,  # mean electrons per pixel
+    full_well: Optional[float] = None,  # electrons
+    bits: Optional[int] = None,  # ADC bits 1..24, needs full_well
+    optical_density: Optional[float] = None,  # film OD (transmission 10^-OD)
+    prior: Prior = "natural",
 ) -> dict[str, Any]: ...
 
 class Layout:
@@ -337,11 +360,15 @@ def check(
     max_vertices: Optional[int] = None,
     list: int = 20,
     max_xor_um2: float = 0.0,
-    shape: str = "square",
-    sides: int = 8,
+    shape: Optional[str] = None,  # square | circle | polygon (None: sidecar, else square)
+    sides: Optional[int] = None,
     hole_side: Optional[Length] = None,
     frame: Optional[Length] = None,
     chord_tol: Optional[Length] = None,
+    tone: Optional[str] = None,
+    units: Optional[str] = None,
+    mirror: bool = False,
+    no_sidecar: bool = False,  # ignore NAME.export.json beside a fabrication file
 ) -> dict[str, Any]: ...
 def is_library_buffer(array: object) -> bool: ...
 def input_copies() -> int: ...

@@ -14,6 +14,7 @@ double length_value(const py::handle& v, const std::string& field, bool allow_in
 }  // namespace pinmask::python
 
 #include "design/mask.hpp"
+#include "optimize/noise_levels.hpp"
 #include "optimize/noise_model.hpp"
 
 namespace pinmask::python {
@@ -25,6 +26,8 @@ struct NoiseArgs {
     std::optional<int> bits;
 };
 NoiseModel noise_model(const NoiseArgs& a);
+// The sensor stages of the args (optimize/noise_levels.hpp).
+SensorSettings sensor_settings(const NoiseArgs& a);
 
 // A mask argument: a Mask, or a path to a *.mask.json.
 Mask mask_arg(const py::handle& obj, bool allow_spacing_violations = false);

@@ -10,11 +10,10 @@ import pinmask
 def test_optics_equals_cli_design_json(cli):
     j = json.loads(cli.run("design", "--preset", "paper", "--json").stdout)
     d = pinmask.optics()
-    # The optics report's numbers (the working-distance figures the CLI adds, e.g.
-    # whole_pixels_per_cell_at_u, are not in optics() yet: README "Not done").
-    keys = [k for k, v in j.items() if isinstance(v, (int, float)) and not isinstance(v, bool)
-            and k in d]
-    assert len(keys) > 15
+    # Every number design --json prints, the working distance included (test_parity.py checks
+    # the other keys and other cameras).
+    keys = [k for k, v in j.items() if isinstance(v, (int, float)) and not isinstance(v, bool)]
+    assert len(keys) > 25 and all(k in d for k in keys), [k for k in keys if k not in d]
     for k in keys:
         assert d[k] == j[k], k  # the same library call: identical doubles
     assert d["kernel_model"] == j["kernel_model"]

@@ -24,7 +24,7 @@ import pinmask
     (lambda: pinmask.mask_from_json('{"format": "pinmask-mask", "format": "x"}'), "format"),
     (lambda: pinmask.generate(grid=5000, holes=1), "5000"),
     (lambda: pinmask.generate(attempts=0), "--attempts"),
-    (lambda: pinmask.psf(pinmask.generate(pixels_per_cell=60000)), "memory bound"),
+    (lambda: pinmask.generate(pixels_per_cell=60000), "--pixels-per-cell"),
     (lambda: pinmask.Pattern(n=4, pinholes=[(9, 9)]).validate(), "outside"),
     (lambda: pinmask.sidelobes(pinmask.Pattern(n=4, pinholes=[])), "pinhole"),
     (lambda: pinmask.layout(pinmask.generate(), frame="-1mm"), "frame"),

@@ -57,3 +57,21 @@ def test_readme_python_example_runs(source_dir, tmp_path, monkeypatch):
     assert len(blocks) == 1, "the Python section holds one python example"
     monkeypatch.chdir(tmp_path)
     exec(compile(blocks[0], "README.md (Python example)", "exec"), {})
+
+
+def test_stub_parameters_match_the_module(source_dir):
+    """Every function's parameter names in pinmask.pyi are the module's, in the same order."""
+    _, tree = stub_names(str(source_dir / "python" / "pinmask.pyi"))
+    checked = 0
+    for node in tree.body:
+        if not isinstance(node, ast.FunctionDef):
+            continue
+        doc = (getattr(pinmask, node.name).__doc__ or "").split("\n", 1)[0]
+        m = re.match(rf"{node.name}\((.*)\) ->", doc)
+        if not m:  # overloaded or not a pybind11 function
+            continue
+        # pybind11 writes "name: type = default" per parameter; defaults may hold commas.
+        names = re.findall(r"(?:^|, )(\w+): ", m.group(1))
+        assert [a.arg for a in node.args.args] == names, node.name
+        checked += 1
+    assert checked > 30

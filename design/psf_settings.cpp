@@ -1,0 +1,44 @@
+#include "design/psf_settings.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "core/units.hpp"
+#include "design/working_distance.hpp"
+
+namespace pinmask {
+
+PsfSpec resolve_psf_spec(const PsfSettings& o, const Camera& c) {
+    if (o.kernel == "measured" && o.kernel_path.empty()) {
+        throw invalid_field("--kernel", "measured", "needs --kernel-path FILE");
+    }
+    if (o.kernel != "measured" && !o.kernel_path.empty()) {
+        throw invalid_field("--kernel-path", o.kernel_path, "only used with --kernel measured");
+    }
+    PsfSpec spec;
+    spec.kernel.model = o.kernel;
+    spec.kernel.measured_path = o.kernel_path;
+    if (o.pixels_per_cell) {
+        if (*o.pixels_per_cell < 1) {
+            throw invalid_field("--pixels-per-cell", std::to_string(*o.pixels_per_cell),
+                                "must be >= 1");
+        }
+        spec.pixels_per_cell = *o.pixels_per_cell;
+        return spec;
+    }
+    const double design = pixels_per_cell_at(c, c.object_distance_m);
+    const double rounded = std::round(design);
+    if (!(rounded >= 1.0) || rounded > 1e6) {
+        std::ostringstream v;
+        v << design;
+        throw invalid_field(
+            "pixels per cell at u (d |1 - f/f' + f/u| / w)", v.str(),
+            "rounds to less than 1 pixel (f = " + format_length(c.sensor_distance_m) +
+                ", f' = " + format_length(c.lens_focal_m) + "): give --pixels-per-cell explicitly");
+    }
+    spec.pixels_per_cell = static_cast<int>(rounded);
+    return spec;
+}
+
+}  // namespace pinmask

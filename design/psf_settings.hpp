@@ -1,0 +1,26 @@
+// The PSF settings a user gives (kernel model, measured kernel file, image-plane cell pitch in
+// pixels) and the PsfSpec they resolve to for a camera. Shared by generate, search, simulate and
+// the Python module; errors name the command-line flag.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "design/camera.hpp"
+#include "design/mask.hpp"
+
+namespace pinmask {
+
+struct PsfSettings {
+    std::string kernel = "auto";  // auto | box | fraunhofer | fresnel | paper-fig3b | measured
+    std::string kernel_path;      // the kernel image, only with kernel "measured"
+    std::optional<int> pixels_per_cell;  // >= 1; empty: from the camera (below)
+};
+
+// The PsfSpec for these settings: pixels per cell as given, else the nearest integer to the pitch
+// d |1 - f/f' + f/u| / w at the camera's object distance u (InvalidInput when that is below 1,
+// naming --pixels-per-cell); kernel settings checked for consistency (measured needs
+// --kernel-path and only it takes one).
+PsfSpec resolve_psf_spec(const PsfSettings& o, const Camera& c);
+
+}  // namespace pinmask

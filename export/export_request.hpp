@@ -1,0 +1,32 @@
+// An export as a user asks for it (the settings of `pinmask export`, text as given, units
+// parsed here) and the ExportOptions it becomes: a --vendor preset under the explicit settings.
+// Shared by export, check and the Python module; errors name the command-line flag.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+
+#include "design/mask.hpp"
+#include "export/export_pipeline.hpp"
+
+namespace pinmask {
+
+struct ExportRequest {
+    std::string input, output, stem, vendor = "none", shape = "square", chord_tol = "auto",
+                                     margin = "10mm", label_id, dxf_layer = "PINMASK",
+                                     draw = "film", hierarchy = "auto";
+    std::optional<std::string> formats, units, tone, emulsion, frame, grid, circles, kerf,
+        hole_side, max_snap_error;
+    std::optional<std::size_t> max_vertices;
+    std::optional<double> dpi;
+    int sides = 8, layer = 1, datatype = 0;
+    bool mirror = false, marks = false, label = false, require_drc_clean = false,
+         allow_spacing_violations = false, json = false, no_psf = false, psf_npy = false;
+};
+
+// Settings over the --vendor preset over the defaults; InvalidInput names the flag.
+ExportOptions export_options_from(const ExportRequest& f, const Mask& mask,
+                                  const std::string& stem);
+
+}  // namespace pinmask

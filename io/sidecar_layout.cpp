@@ -1,0 +1,115 @@
+#include "io/sidecar_layout.hpp"
+
+#include <cmath>
+
+#include "core/error.hpp"
+#include "core/units.hpp"
+#include "export/fab_units.hpp"
+
+namespace pinmask::io {
+
+namespace fs = std::filesystem;
+
+CheckLayoutSettings check_layout_settings(const std::optional<std::string>& shape,
+                                          const std::optional<int>& sides,
+                                          const std::optional<std::string>& hole_side,
+                                          const std::optional<std::string>& frame,
+                                          const std::optional<std::string>& chord_tol,
+                                          const std::optional<std::string>& tone,
+                                          const std::optional<std::string>& units, bool mirror) {
+    const auto length = [](const std::optional<std::string>& v,
+                           const char* flag) -> std::optional<GivenLength> {
+        if (!v) return std::nullopt;
+        return GivenLength{parse_length_m(*v, flag), *v};
+    };
+    CheckLayoutSettings g;
+    g.shape = shape;
+    g.sides = sides;
+    g.hole_side = length(hole_side, "--hole-side");
+    g.frame = length(frame, "--frame");
+    g.chord_tol = length(chord_tol, "--chord-tol");
+    g.tone = tone;
+    g.units = units;
+    g.mirror = mirror;
+    return g;
+}
+
+LayoutOptions check_layout(const CheckLayoutSettings& o, const ExportSidecar* side) {
+    LayoutOptions lo;
+    auto agree = [&](const char* flag, const std::string& given, const std::string& recorded,
+                     bool same) {
+        if (!same)
+            throw invalid_field(flag, given,
+                                "disagrees with the export sidecar, which records " + recorded +
+                                    " (omit the flag to use the sidecar, or --no-sidecar)");
+    };
+    if (side) {
+        lo.tone = parse_tone(side->tone, "sidecar geometry.tone");
+        lo.mirror = side->mirrored;
+        lo.shape = parse_hole_shape(side->shape, "sidecar geometry.shape");
+        lo.polygon_sides = side->drawn_sides;
+        lo.hole_side_m = side->hole_side_m;
+        lo.chord_tolerance_m = side->chord_tolerance_m;
+        lo.frame_m = side->frame_m;
+        lo.marks = side->marks;
+        lo.label_lines = side->label;
+        lo.max_vertices = side->max_vertices;
+        lo.grid_m = double(side->grid_nm) * 1e-9;
+    }
+    auto length = [&](const std::optional<GivenLength>& v, const char* flag, double& field) {
+        if (!v) return;
+        if (side)
+            agree(flag, v->text, std::to_string(field) + " m", std::fabs(v->m - field) <= 1e-12);
+        field = v->m;
+    };
+    length(o.hole_side, "--hole-side", lo.hole_side_m);
+    length(o.frame, "--frame", lo.frame_m);
+    length(o.chord_tol, "--chord-tol", lo.chord_tolerance_m);
+    if (o.shape) {
+        const HoleShape s = parse_hole_shape(*o.shape, "--shape");
+        if (side) agree("--shape", *o.shape, side->shape, s == lo.shape);
+        lo.shape = s;
+    }
+    if (o.sides) {
+        if (side && lo.shape == HoleShape::kPolygon)
+            agree("--sides", std::to_string(*o.sides), std::to_string(side->drawn_sides),
+                  *o.sides == side->drawn_sides);
+        lo.polygon_sides = *o.sides;
+    }
+    if (o.tone) {
+        const Tone t = parse_tone(*o.tone, "--tone");
+        if (side) agree("--tone", *o.tone, side->tone, t == lo.tone);
+        lo.tone = t;
+    }
+    if (o.mirror) {
+        if (side) agree("--mirror", "given", "not mirrored", side->mirrored);
+        lo.mirror = true;
+    }
+    if (o.units && side) agree("--units", *o.units, side->unit, *o.units == side->unit);
+    return lo;
+}
+
+void apply_file_declarations(LayoutOptions& lo, const FileGeometry& file) {
+    const auto& info = file.info;
+    if (auto it = info.find("tone"); it != info.end()) lo.tone = parse_tone(it->second, "tone");
+    if (auto it = info.find("mirrored"); it != info.end()) lo.mirror = it->second == "yes";
+    if (auto it = info.find("grid_nm"); it != info.end())
+        lo.grid_m = parse_number(it->second, "grid_nm") * 1e-9;
+}
+
+void check_sidecar_unit(const ExportSidecar& side, const FileGeometry& file) {
+    const auto u = file.info.find("unit_nm");
+    if (u != file.info.end() &&
+        std::to_string(nm_per_unit(parse_fab_unit(side.unit, "sidecar unit"))) != u->second)
+        throw invalid_field("file unit", u->second + " nm",
+                            "disagrees with the sidecar's unit " + side.unit);
+}
+
+std::string sidecar_mask(const ExportSidecar& side, const fs::path& sidecar) {
+    for (const fs::path& p : {fs::path(side.mask_path), sidecar.parent_path() / side.mask_path,
+                              sidecar.parent_path() / fs::path(side.mask_path).filename()})
+        if (fs::is_regular_file(p)) return p.string();
+    return "";
+}
+
+}  // namespace pinmask::io

@@ -1,0 +1,33 @@
+// `pinmask compare` results as the plain data of the report library (export/report.hpp): the
+// metrics table shared by stdout and page 1, and one page of captioned panels per mask. Used by
+// the compare command and the Python module.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "design/camera.hpp"
+#include "export/report.hpp"
+#include "optimize/compare.hpp"
+
+namespace pinmask {
+
+// What page 1 says besides the table: the camera and the settings, in words.
+struct CompareSummary {
+    Camera camera;
+    std::vector<std::string> settings_lines;
+    std::vector<std::string> baseline_lines;  // what each baseline is, or why it is missing
+    std::string noise_text;  // the noise levels in words ("Gaussian noise at SNR 30 dB")
+};
+
+// "SNR 30 dB" or "photon model, 2 e per pinhole" (the shown capture's caption).
+std::string noise_caption(const NoiseModel& model);
+
+// The metrics table, one row per result (text cells, units in the second header line).
+ReportTable compare_table(const std::vector<CompareResult>& results);
+
+// The whole report document.
+ReportDocument compare_document(const std::vector<CompareResult>& results,
+                                const CompareSettings& settings, const CompareSummary& summary);
+
+}  // namespace pinmask

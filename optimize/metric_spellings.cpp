@@ -1,0 +1,25 @@
+#include "optimize/metric_spellings.hpp"
+
+#include "core/error.hpp"
+#include "core/units.hpp"
+
+namespace pinmask {
+
+WienerFilterSpec parse_wiener_filter(const std::string& text) {
+    if (text == "optimal") return {WienerFilterKind::kOptimal, 0.0};
+    if (text.rfind("nsr:", 0) == 0) {
+        const double nsr = parse_number(text.substr(4), "--filter nsr");
+        if (!(nsr > 0.0)) throw invalid_field("--filter", text, "NSR must be > 0");
+        return {WienerFilterKind::kFixedNsr, nsr};
+    }
+    throw invalid_field("--filter", text, "expected 'optimal' or 'nsr:VALUE' (e.g. nsr:0.01)");
+}
+
+WeightChoice parse_weight_choice(const std::string& text, const std::string& flag) {
+    if (text == "tuned") return {true, 0.0};
+    const double v = parse_number(text, flag);
+    if (!(v > 0.0)) throw invalid_field(flag, text, "must be > 0 or 'tuned'");
+    return {false, v};
+}
+
+}  // namespace pinmask

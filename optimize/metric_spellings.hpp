@@ -1,0 +1,21 @@
+// The text spellings of the metric settings that score, compare, search and the Python module
+// share: the Wiener filter of the analytic error and a simulated decoder's weight. Errors name
+// the command-line flag (the Python module raises the same message).
+#pragma once
+
+#include <string>
+
+#include "optimize/analytic_error.hpp"
+#include "optimize/simulated_metrics.hpp"
+
+namespace pinmask {
+
+// "optimal" (per-frequency Wiener filter) or "nsr:VALUE" (deconvwnr's fixed NSR, > 0);
+// InvalidInput naming --filter otherwise.
+WienerFilterSpec parse_wiener_filter(const std::string& text);
+
+// A simulated decoder's weight (Wiener NSR, TV lambda): "tuned" or a number > 0; InvalidInput
+// naming `flag` otherwise.
+WeightChoice parse_weight_choice(const std::string& text, const std::string& flag);
+
+}  // namespace pinmask
