@@ -95,7 +95,8 @@ SearchPipelineOptions make_options(const SearchCliOptions& o, const CLI::App& cm
 void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd, RankComm& comm,
          bool& started) {
     SearchPipelineOptions p = make_options(o, cmd);
-    setup_cluster(cf, comm, checkpoint_config(resolved_config(o, p, {}), comm.size(), cf), p);
+    setup_cluster(cf, comm, checkpoint_config(resolved_config(o, p, {}), comm.size(), cf), o.output,
+                  p);
     started = true;  // from here an error may be one rank's alone
     const bool root = comm.rank() == 0;
     ProgressLine bar;
@@ -149,9 +150,8 @@ void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd,
     std::cout << j.dump(2) << "\n";
 }
 
-// Under mpirun every rank runs the command. Errors while setting up are every rank's alike
-// (same flags; rank 0 broadcasts the --resume verdict): rank 0 reports, the others leave with
-// the same code silently. A later error may be one rank's alone: it ends the whole job.
+// Under mpirun every rank runs this. Set-up errors are every rank's alike: rank 0 reports, the
+// others leave silently with the same code. A later error may be one rank's: it ends the job.
 void run_on_ranks(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd) {
     RankComm& comm = world_comm();  // MPI starts here, and only under a launcher
     bool started = false;

@@ -38,7 +38,7 @@ nlohmann::ordered_json checkpoint_config(nlohmann::ordered_json resolved, int ra
 }
 
 void setup_cluster(const ClusterFlags& f, RankComm& comm, const nlohmann::ordered_json& config,
-                   SearchPipelineOptions& p) {
+                   const std::string& output, SearchPipelineOptions& p) {
     p.comm = &comm;
     p.islands.migrate_every = f.migrate_every;
     p.islands.checkpoint_every = f.checkpoint_every;
@@ -53,6 +53,15 @@ void setup_cluster(const ClusterFlags& f, RankComm& comm, const nlohmann::ordere
         const std::filesystem::path parent = path.has_parent_path() ? path.parent_path() : ".";
         if (!std::filesystem::is_directory(parent))
             throw invalid_field("--checkpoint", f.checkpoint, "its folder does not exist");
+        // Not one of the run's own outputs (they are written at the end, over it).
+        const std::filesystem::path out = std::filesystem::weakly_canonical(output);
+        if (std::filesystem::weakly_canonical(path).parent_path() == out) {
+            const std::string name = path.filename().string();
+            if (name == "run-log.csv" || name == "summary.md" || name == "timing.csv" ||
+                name == "search.config.json" || name.rfind("rank-", 0) == 0)
+                throw invalid_field("--checkpoint", f.checkpoint,
+                                    "is one of the output files of -o " + output);
+        }
         if (p.search.max_evaluations == 0)
             throw InvalidInput(
                 "--checkpoint: needs an evaluation budget (--evals); a --time run does not "

@@ -28,8 +28,9 @@ void add_cluster_flags(CLI::App& cmd, ClusterFlags& f);
 nlohmann::ordered_json checkpoint_config(nlohmann::ordered_json resolved, int ranks,
                                          const ClusterFlags& f);
 
-// Sets p.comm and p.islands (collective: call on every rank). `config` is checkpoint_config().
+// Sets p.comm and p.islands (collective: call on every rank). `config` is checkpoint_config();
+// `output` the -o folder (the checkpoint may not be one of its files).
 void setup_cluster(const ClusterFlags& f, RankComm& comm, const nlohmann::ordered_json& config,
-                   SearchPipelineOptions& p);
+                   const std::string& output, SearchPipelineOptions& p);
 
 }  // namespace pinmask::cli

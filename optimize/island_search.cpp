@@ -16,13 +16,15 @@ const TopCandidates::Item* chain_best(const ChainState& s) {
 }  // namespace
 
 void IslandOptions::validate() const {
-    if (migrate_every < 0) {
+    // Periods up to the largest evaluation budget (1e9 per chain): boundary counts never overflow.
+    constexpr std::int64_t kMaxPeriod = 1'000'000'000;
+    if (migrate_every < 0 || migrate_every > kMaxPeriod) {
         throw invalid_field("--migrate-every", std::to_string(migrate_every),
-                            "must be >= 0 evaluations per chain (0: no migration)");
+                            "must be 0 (no migration) to 1e9 evaluations per chain");
     }
-    if (checkpoint_every < 0) {
+    if (checkpoint_every < 0 || checkpoint_every > kMaxPeriod) {
         throw invalid_field("--checkpoint-every", std::to_string(checkpoint_every),
-                            "must be >= 0 evaluations per chain (0: no checkpoints)");
+                            "must be 0 (no checkpoints) to 1e9 evaluations per chain");
     }
     if (checkpoint_every > 0 && !checkpoint) {
         throw InvalidInput("--checkpoint-every: needs --checkpoint FILE");
