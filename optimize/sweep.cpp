@@ -132,10 +132,11 @@ Mask sweep_best_mask(const SearchPipelineOptions& options, const SweepPointResul
     return m;
 }
 
-std::vector<SweepPointResult> run_sweep(const std::vector<SearchPipelineOptions>& points,
+std::vector<SweepPointResult> run_sweep(RankComm& comm,
+                                        const std::vector<SearchPipelineOptions>& points,
                                         const SweepProgress& progress) {
     const WorkQueueResult q = run_work_queue(
-        static_cast<int>(points.size()),
+        comm, static_cast<int>(points.size()),
         [&](int i) { return encode_sweep_result(run_sweep_point(points[i])); }, progress);
     if (q.failed_index >= 0) {
         const std::string msg = "point " + std::to_string(q.failed_index) + ": " + q.failure;

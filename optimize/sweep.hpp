@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "design/mask.hpp"
+#include "optimize/rank_comm.hpp"
 #include "optimize/search_pipeline.hpp"
 
 namespace pinmask {
@@ -41,12 +42,13 @@ Mask sweep_best_mask(const SearchPipelineOptions& options, const SweepPointResul
 // (points done, points in all, index of the point just done): rank 0's progress.
 using SweepProgress = std::function<void(int done, int count, int index)>;
 
-// Runs every point: over the ranks of MPI_COMM_WORLD when MPI is initialised with more than one
-// rank (rank 0 hands out point indices and runs points itself between messages; workers send
-// results back as bytes), else in order. Returns the results in point order on rank 0 and an
+// Runs every point: over the ranks of `comm` when it has more than one (optimize/work_queue: rank
+// 0 hands out point indices and runs points itself too; workers send results back as bytes),
+// else in order. Returns the results in point order on rank 0 and an
 // empty vector on the other ranks. The first failing point (lowest index) is rethrown on rank 0
 // after every rank stopped; other ranks return empty.
-std::vector<SweepPointResult> run_sweep(const std::vector<SearchPipelineOptions>& points,
+std::vector<SweepPointResult> run_sweep(RankComm& comm,
+                                        const std::vector<SearchPipelineOptions>& points,
                                         const SweepProgress& progress = {});
 
 }  // namespace pinmask

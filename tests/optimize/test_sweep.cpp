@@ -69,8 +69,9 @@ TEST_CASE("a sweep is one search per point: same best masks as running each sear
     const std::vector<SearchPipelineOptions> points{small_point(3, 1), small_point(4, 1),
                                                     small_point(4, 2)};
     std::vector<int> done_order;
+    LocalComm comm;
     const std::vector<SweepPointResult> results =
-        run_sweep(points, [&](int done, int count, int index) {
+        run_sweep(comm, points, [&](int done, int count, int index) {
             CHECK(count == 3);
             CHECK(done == static_cast<int>(done_order.size()) + 1);
             done_order.push_back(index);
@@ -96,14 +97,15 @@ TEST_CASE("a sweep is one search per point: same best masks as running each sear
 }
 
 TEST_CASE("work queue (one process): results by index, the lowest failure reported") {
-    const WorkQueueResult ok =
-        run_work_queue(4, [](int i) { return std::string(static_cast<std::size_t>(i), 'a'); });
+    LocalComm comm;
+    const WorkQueueResult ok = run_work_queue(
+        comm, 4, [](int i) { return std::string(static_cast<std::size_t>(i), 'a'); });
     CHECK(ok.failed_index == -1);
     REQUIRE(ok.results.size() == 4);
     for (int i = 0; i < 4; ++i)
         CHECK(ok.results[i] == std::string(static_cast<std::size_t>(i), 'a'));
     int ran = 0;
-    const WorkQueueResult bad = run_work_queue(5, [&](int i) -> std::string {
+    const WorkQueueResult bad = run_work_queue(comm, 5, [&](int i) -> std::string {
         ++ran;
         if (i == 1) throw InvalidInput("holes: bad");
         if (i == 3) throw std::runtime_error("later");
