@@ -13,6 +13,7 @@
 #include "cli/sweep_outputs.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
+#include "design/packing_bound.hpp"
 #include "io/sweep_config.hpp"
 #include "optimize/mpi/mpi_comm.hpp"
 #include "optimize/sweep.hpp"
@@ -36,6 +37,13 @@ SearchPipelineOptions point_options(const io::SweepPoint& point, std::size_t ind
         apply_config(point.config, shadow, *o);
         o->threads = point.config.threads.value_or(1);
         SearchPipelineOptions p = search_pipeline_options(*o, shadow);
+        // A proven-infeasible K fails here, before any rank starts work, not at its point.
+        const PackingUpperBound most =
+            packing_upper_bound(p.tmpl.pattern.n, p.tmpl.pattern.min_spacing_cells);
+        if (p.holes > most.count)
+            throw invalid_field(
+                "holes", std::to_string(p.holes),
+                "at most " + std::to_string(most.count) + " pinholes fit (" + most.reason + ")");
         SearchPipelineSummary kernel_only;
         kernel_only.kernel_resolved = p.tmpl.psf.kernel.model;
         resolved = resolved_config(*o, p, kernel_only);

@@ -80,6 +80,10 @@ void check_point(const Json& doc) {
             }
         }
     }
+    if (const auto t = doc.find("threads"); t != doc.end() && *t == 0)
+        fail("threads",
+             "must be >= 1 in a sweep (0, all cores, would make a point's chains and "
+             "so its result depend on the machine)");
     const auto evals = doc.find("evaluations_per_chain");
     if (evals == doc.end() || !evals->is_number_integer() || evals->get<std::int64_t>() < 1)
         fail("evaluations_per_chain",

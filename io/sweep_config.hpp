@@ -8,14 +8,15 @@
 // "optics.pinhole_m", "prior.family", "seed", ...): any search option may vary. The grid is the
 // Cartesian product over the keys in alphabetical order, the last varying fastest. Every point is
 // the base with its values set, parsed by the search-config codec: a bad point is refused before
-// any search starts. Sweep rules on top of the search codec's: exactly one of "grid" and "points";
-// a grid key has a non-empty list; "format", "version", "generator", "kernel_resolved" and "time"
-// cannot vary; every point has an evaluation budget (evaluations_per_chain >= 1: points are
-// reproducible); a varied "optics.*" key needs a complete base "optics" object; "noise.snr_db"
-// belongs to the Gaussian model and "noise.photons_per_pinhole" (and the sensor keys) to the photon
-// model. "threads" defaults to 1 per point (a rank's search), so results do not depend on the
-// machine. Errors are InvalidInput naming the key path ("grid.holes[2]", "points[1].noise.snr_db",
-// ...).
+// any search starts.
+// Sweep rules on top of the search codec's: exactly one of "grid" and "points"; a grid key has
+// a non-empty list; "format", "version", "generator", "kernel_resolved" and "time" cannot vary;
+// every point has an evaluation budget (evaluations_per_chain >= 1: points are reproducible); a
+// varied "optics.*" key needs a complete base "optics" object; "noise.snr_db" belongs to the
+// Gaussian model, "noise.photons_per_pinhole" and the sensor keys to the photon model; "threads"
+// defaults to 1 per point (a rank's search) and cannot be 0 (all cores), so results do not
+// depend on the machine. Errors are InvalidInput naming the key path ("grid.holes: ...", or
+// "grid point 3 (holes = 0): holes: 0 must be >= 1" for a value the search codec refuses).
 #pragma once
 
 #include <cstddef>

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "io/sweep_config.hpp"
 #include "tests/support/cli_run.hpp"
 
 using pinmask::test::CliResult;
@@ -134,4 +135,18 @@ TEST_CASE("sweep: a bad sweep file is exit 2 naming the key, before any work, on
             CHECK(!fs::exists(dir.path / "out"));
         }
     }
+}
+
+TEST_CASE("sweep --help: the example sweep file it teaches is a valid sweep file") {
+    const auto r = run_cli("sweep --help");
+    REQUIRE(r.exit_code == 0);
+    // The example runs from the line after "Example:" to the line before "or \"points\"".
+    const auto from = r.out.find("Example:\n");
+    const auto to = r.out.find("or \"points\"");
+    REQUIRE(from != std::string::npos);
+    REQUIRE(to != std::string::npos);
+    const std::string example = r.out.substr(from + 9, to - from - 9);
+    const pinmask::io::SweepConfig c = pinmask::io::parse_sweep_config(example);
+    CHECK(c.points.size() == 9);
+    CHECK(c.keys == std::vector<std::string>{"holes", "noise.photons_per_pinhole"});
 }

@@ -101,6 +101,8 @@ TEST_CASE("bad sweep files are refused naming the key") {
     CHECK(has(refusal(sweep(R"("grid": {"evaluations_per_chain": [10, 0]})")),
               "evaluations_per_chain"));
     CHECK(has(refusal(sweep(R"("grid": {"format": ["x"]})")), "grid.format: 'format' cannot vary"));
+    CHECK(
+        has(refusal(sweep(R"("grid": {"threads": [1, 0]})")), "threads: must be >= 1 in a sweep"));
     // A value the search codec refuses, named with the point.
     const std::string bad_holes = refusal(sweep(R"("grid": {"holes": [3, 0]})"));
     CHECK(has(bad_holes, "grid point 1 (holes = 0): holes: 0 must be >= 1"));
