@@ -27,9 +27,8 @@
 #include "optimize/search_pipeline.hpp"
 
 namespace pinmask::cli {
-namespace {
 
-SearchPipelineOptions make_options(const SearchCliOptions& o, const CLI::App& cmd) {
+SearchPipelineOptions search_pipeline_options(const SearchCliOptions& o, const CLI::App& cmd) {
     SearchPipelineOptions p;
     const Camera camera = resolve_camera(o.camera);
     p.tmpl.camera = camera;
@@ -81,6 +80,13 @@ SearchPipelineOptions make_options(const SearchCliOptions& o, const CLI::App& cm
     p.rank_by = parse_rank_by(o.rank_by);
     p.generator = kSearchGenerator;
     p.validate();
+    return p;
+}
+
+namespace {
+
+SearchPipelineOptions make_options(const SearchCliOptions& o, const CLI::App& cmd) {
+    SearchPipelineOptions p = search_pipeline_options(o, cmd);
     if (o.output.empty()) throw InvalidInput("-o/--output: an output folder is required");
     {
         const std::filesystem::path dir = o.output;  // rank-N.mask.json are checked when staged
@@ -170,17 +176,7 @@ void run_on_ranks(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::
 
 }  // namespace
 
-void add_search(CLI::App& app) {
-    auto o = std::make_shared<SearchCliOptions>();
-    auto cf = std::make_shared<ClusterFlags>();
-    auto* cmd = app.add_subcommand(
-        "search",
-        "Search random sparse cyclic patterns under the spacing rule for the mask that decodes "
-        "best. The objective is the analytic expected Wiener PSNR (closed form from the OTF, the "
-        "scene prior and the noise model: Gaussian --snr or the photon model --photons) plus "
-        "optional sidelobe and spectrum terms; patterns with a spectral zero are rejected; the "
-        "top candidates are re-ranked by simulated Wiener or TV reconstruction of held-out "
-        "scenes, all inside --time.");
+void add_search_flags(CLI::App* cmd, const std::shared_ptr<SearchCliOptions>& o) {
     add_camera_options(*cmd, o->camera);
     add_geometry_options(*cmd, o->geometry);
     add_psf_options(*cmd, o->psf);
@@ -235,6 +231,20 @@ void add_search(CLI::App& app) {
     cmd->add_flag("--explain", o->explain,
                   "Say on stderr which frequencies the prior makes irrelevant and what was "
                   "skipped");
+}
+
+void add_search(CLI::App& app) {
+    auto o = std::make_shared<SearchCliOptions>();
+    auto cf = std::make_shared<ClusterFlags>();
+    auto* cmd = app.add_subcommand(
+        "search",
+        "Search random sparse cyclic patterns under the spacing rule for the mask that decodes "
+        "best. The objective is the analytic expected Wiener PSNR (closed form from the OTF, the "
+        "scene prior and the noise model: Gaussian --snr or the photon model --photons) plus "
+        "optional sidelobe and spectrum terms; patterns with a spectral zero are rejected; the "
+        "top candidates are re-ranked by simulated Wiener or TV reconstruction of held-out "
+        "scenes, all inside --time.");
+    add_search_flags(cmd, o);
     cmd->add_option("--config", o->config,
                     "Settings of an earlier run (its search.config.json, or a hand-written "
                     "subset of its keys); options given here override them")

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -38,6 +39,13 @@ struct SearchCliOptions {
 
 // The settings of --config FILE, for every option the command line did not give.
 void apply_config(const io::SearchConfig& c, const CLI::App& cmd, SearchCliOptions& o);
+
+// The flags of `pinmask search` but --config, registered on cmd (cli/cmd_search.cpp). `pinmask
+// sweep` registers them on an unparsed app so apply_config fills every option from a point.
+void add_search_flags(CLI::App* cmd, const std::shared_ptr<SearchCliOptions>& o);
+
+// The pipeline options the flags give, validated; -o is not checked here (cli/cmd_search.cpp).
+SearchPipelineOptions search_pipeline_options(const SearchCliOptions& o, const CLI::App& cmd);
 
 // The resolved configuration of a run.
 nlohmann::ordered_json resolved_config(const SearchCliOptions& o, const SearchPipelineOptions& p,
