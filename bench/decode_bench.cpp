@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <functional>
 #include <limits>
 #include <random>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/fft.hpp"
 #include "decode/convolution.hpp"
 #include "decode/richardson_lucy.hpp"
 #include "decode/tikhonov.hpp"
@@ -29,22 +31,32 @@ constexpr double kNoiseRelative = 0.01;
 // Iterations added to measure one iteration as a difference (amortises the solver's setup).
 constexpr int kExtraIterations = 10;
 
-double seconds_since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+// Wall time (steady clock) or the calling thread's CPU time (CLOCK_THREAD_CPUTIME_ID), seconds.
+struct BenchClock {
+    bool cpu = false;
+    double now() const {
+        if (cpu) {
+            timespec ts{};
+            clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+            return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+        }
+        return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
+    }
+};
 
 // Minimum over `repeat` batches of the per-call time of fn; a batch repeats fn until it lasts
 // min_batch seconds (calibrated once).
-double time_per_call(const std::function<void()>& fn, int repeat, double min_batch) {
-    auto t0 = Clock::now();
+double time_per_call(const std::function<void()>& fn, int repeat, double min_batch,
+                     const BenchClock& clock) {
+    double t0 = clock.now();
     fn();
-    const double once = std::max(seconds_since(t0), 1e-9);
+    const double once = std::max(clock.now() - t0, 1e-9);
     const int calls = std::max(1, static_cast<int>(std::ceil(min_batch / once)));
     double best = std::numeric_limits<double>::infinity();
     for (int r = 0; r < repeat; ++r) {
-        t0 = Clock::now();
+        t0 = clock.now();
         for (int i = 0; i < calls; ++i) fn();
-        best = std::min(best, seconds_since(t0) / calls);
+        best = std::min(best, (clock.now() - t0) / calls);
     }
     return best;
 }
@@ -68,13 +80,14 @@ Plane make_scene(int n, std::mt19937_64& rng) {
 }
 
 // The bare FFTW r2c + c2r pair on FFTW-allocated buffers, planned with FFTW_MEASURE (the
-// planner times candidates: the fastest pair FFTW offers on this machine, single-threaded).
-double time_fft_pair(int rows, int cols, int repeat, double min_batch) {
+// planner times candidates: the fastest pair FFTW offers on this machine) with `threads`.
+double time_fft_pair(int rows, int cols, int repeat, double min_batch, int threads,
+                     const BenchClock& clock) {
     const std::size_t real = static_cast<std::size_t>(rows) * cols;
     const std::size_t half = static_cast<std::size_t>(rows) * (cols / 2 + 1);
     double* x = fftw_alloc_real(real);
     fftw_complex* spec = fftw_alloc_complex(half);
-    fftw_plan_with_nthreads(1);
+    fftw_plan_with_nthreads(threads);
     fftw_plan r2c = fftw_plan_dft_r2c_2d(rows, cols, x, spec, FFTW_MEASURE);
     fftw_plan c2r = fftw_plan_dft_c2r_2d(rows, cols, spec, x, FFTW_MEASURE);
     for (std::size_t i = 0; i < real; ++i) x[i] = static_cast<double>(i % 97) / 97.0;
@@ -83,7 +96,7 @@ double time_fft_pair(int rows, int cols, int repeat, double min_batch) {
             fftw_execute(r2c);
             fftw_execute(c2r);
         },
-        repeat, min_batch);
+        repeat, min_batch, clock);
     fftw_destroy_plan(r2c);
     fftw_destroy_plan(c2r);
     fftw_free(spec);
@@ -91,12 +104,13 @@ double time_fft_pair(int rows, int cols, int repeat, double min_batch) {
     return t;
 }
 
-double time_fft_pair_float(int rows, int cols, int repeat, double min_batch) {
+double time_fft_pair_float(int rows, int cols, int repeat, double min_batch, int threads,
+                           const BenchClock& clock) {
     const std::size_t real = static_cast<std::size_t>(rows) * cols;
     const std::size_t half = static_cast<std::size_t>(rows) * (cols / 2 + 1);
     float* x = fftwf_alloc_real(real);
     fftwf_complex* spec = fftwf_alloc_complex(half);
-    fftwf_plan_with_nthreads(1);
+    fftwf_plan_with_nthreads(threads);
     fftwf_plan r2c = fftwf_plan_dft_r2c_2d(rows, cols, x, spec, FFTW_MEASURE);
     fftwf_plan c2r = fftwf_plan_dft_c2r_2d(rows, cols, spec, x, FFTW_MEASURE);
     for (std::size_t i = 0; i < real; ++i) x[i] = static_cast<float>(i % 97) / 97.0f;
@@ -105,7 +119,7 @@ double time_fft_pair_float(int rows, int cols, int repeat, double min_batch) {
             fftwf_execute(r2c);
             fftwf_execute(c2r);
         },
-        repeat, min_batch);
+        repeat, min_batch, clock);
     fftwf_destroy_plan(r2c);
     fftwf_destroy_plan(c2r);
     fftwf_free(spec);
@@ -185,6 +199,13 @@ void validate(const DecodeBenchOptions& o) {
         throw invalid_field("min_batch_seconds", std::to_string(o.min_batch_seconds),
                             "must be > 0");
     }
+    if (o.threads < 1 || o.threads > 1024) {
+        throw invalid_field("threads", std::to_string(o.threads), "must be 1..1024");
+    }
+    if (o.cpu_time && o.threads != 1) {
+        throw invalid_field("cpu_time", "with threads " + std::to_string(o.threads),
+                            "CPU time counts the calling thread only: use threads = 1");
+    }
     if (o.tvqc_max_iterations < 1) {
         throw invalid_field("tvqc_max_iterations", std::to_string(o.tvqc_max_iterations),
                             "must be >= 1");
@@ -195,6 +216,14 @@ void validate(const DecodeBenchOptions& o) {
 
 std::vector<DecodeBenchRecord> bench_decode(const DecodeBenchOptions& o) {
     validate(o);
+    // The run's thread count, restored however the run ends.
+    struct ThreadsScope {
+        int saved = fft_threads();
+        explicit ThreadsScope(int t) { set_fft_threads(t); }
+        ~ThreadsScope() { set_fft_threads(saved); }
+    } threads_scope(o.threads);
+    BenchClock clock;
+    clock.cpu = o.cpu_time;
     std::vector<DecodeBenchRecord> out;
     std::mt19937_64 rng(o.seed);
     std::vector<std::pair<int, int>> shapes;
@@ -214,8 +243,11 @@ std::vector<DecodeBenchRecord> bench_decode(const DecodeBenchOptions& o) {
         std::normal_distribution<double> noise(0.0, sigma);
         for (Eigen::Index i = 0; i < p.size(); ++i) p.data()[i] += noise(rng);
 
-        const double pair = time_fft_pair(rows, cols, o.repeat, o.min_batch_seconds);
-        const double pair_f = time_fft_pair_float(rows, cols, o.repeat, o.min_batch_seconds);
+        const int threads = fft_threads_for(rows, cols);  // what the library's plans use
+        const double pair =
+            time_fft_pair(rows, cols, o.repeat, o.min_batch_seconds, threads, clock);
+        const double pair_f =
+            time_fft_pair_float(rows, cols, o.repeat, o.min_batch_seconds, threads, clock);
         auto add = [&](const char* method, double t, int iterations = 1, bool converged = true) {
             DecodeBenchRecord rec;
             rec.method = method;
@@ -236,19 +268,21 @@ std::vector<DecodeBenchRecord> bench_decode(const DecodeBenchOptions& o) {
         WienerFilter::WorkspaceF wsf;
         Plane x;
         add("wiener",
-            time_per_call([&] { wiener.apply(p, x, ws); }, o.repeat, o.min_batch_seconds));
-        add("wiener_single",
-            time_per_call([&] { wiener.apply_single(p, x, wsf); }, o.repeat, o.min_batch_seconds));
+            time_per_call([&] { wiener.apply(p, x, ws); }, o.repeat, o.min_batch_seconds, clock));
+        add("wiener_single", time_per_call([&] { wiener.apply_single(p, x, wsf); }, o.repeat,
+                                           o.min_batch_seconds, clock));
 
         const WienerFilter tik =
             make_tikhonov_filter(psf, rows, cols, 0.01, TikhonovRegulariser::kGradient);
-        add("tikhonov", time_per_call([&] { tik.apply(p, x, ws); }, o.repeat, o.min_batch_seconds));
+        add("tikhonov",
+            time_per_call([&] { tik.apply(p, x, ws); }, o.repeat, o.min_batch_seconds, clock));
 
         // One iteration as the difference of a (1 + m)-iteration and a 1-iteration run.
         auto per_iteration = [&](const std::function<void(int)>& solve) {
-            const double t1 = time_per_call([&] { solve(1); }, o.repeat, o.min_batch_seconds);
-            const double tm =
-                time_per_call([&] { solve(1 + kExtraIterations); }, o.repeat, o.min_batch_seconds);
+            const double t1 =
+                time_per_call([&] { solve(1); }, o.repeat, o.min_batch_seconds, clock);
+            const double tm = time_per_call([&] { solve(1 + kExtraIterations); }, o.repeat,
+                                            o.min_batch_seconds, clock);
             // Under load the difference of two noisy timings can vanish; then the plain average
             // over the longer run (which includes the set-up once) bounds it from above.
             return tm > t1 ? (tm - t1) / kExtraIterations : tm / (1 + kExtraIterations);
@@ -276,7 +310,8 @@ std::vector<DecodeBenchRecord> bench_decode(const DecodeBenchOptions& o) {
             t2.record_history = false;
             t2.max_iterations = c.iterations;
             add("tv_l2_to_0.2dB",
-                time_per_call([&] { solve_tv_l2(op, p, t2); }, o.repeat, o.min_batch_seconds),
+                time_per_call([&] { solve_tv_l2(op, p, t2); }, o.repeat, o.min_batch_seconds,
+                              clock),
                 c.iterations, c.reached);
         }
 
@@ -286,9 +321,9 @@ std::vector<DecodeBenchRecord> bench_decode(const DecodeBenchOptions& o) {
         qc.tolerance = 1e-4;
         qc.record_history = false;
         // One whole run, timed once: it lasts many FFT pairs, long enough to be stable.
-        const auto t0 = Clock::now();
+        const double t0 = clock.now();
         const DecodeResult last = solve_tvqc(op, p, qc);
-        const double t_qc = seconds_since(t0);
+        const double t_qc = clock.now() - t0;
         add("tvqc_to_tolerance", t_qc, last.iterations, last.converged);
         qc.max_iterations = 1 + kExtraIterations;
         add("tvqc_iteration", per_iteration([&](int iters) {

@@ -98,6 +98,13 @@ void add_bench_decode(CLI::App& bench) {
     cmd->add_option("--tvqc-max-iterations", opts->bench.tvqc_max_iterations,
                     "Iteration cap of the TVQC run (>= 1)")
         ->capture_default_str();
+    cmd->add_option("--threads", opts->bench.threads,
+                    "FFTW threads of our transforms and of the reference pairs alike (1..1024; "
+                    "only sizes from 512 x 512 up use more than one)")
+        ->capture_default_str();
+    cmd->add_flag("--cpu-time", opts->bench.cpu_time,
+                  "Time this thread's CPU time instead of wall time (for a loaded machine; use "
+                  "with --threads 1)");
     cmd->add_flag("--json", opts->json,
                   "One JSON record per line: method, rows, cols, seconds_per_call, "
                   "fft_pair_seconds, ratio, fft_pair_float_seconds, ratio_float");

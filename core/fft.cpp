@@ -161,45 +161,86 @@ bool threaded_size(int rows, int cols) {
 
 bool is_float(Kind k) { return k == Kind::kR2CF || k == Kind::kC2RF; }
 
+// FFTW's double and single precision APIs behind one name, so the real-transform code below is
+// written once for both precisions.
+template <class T>
+struct Fftw;
+template <>
+struct Fftw<double> {
+    using Complex = fftw_complex;
+    using PlanT = fftw_plan;
+    static double* alloc_real(std::size_t n) { return fftw_alloc_real(n); }
+    static Complex* alloc_complex(std::size_t n) { return fftw_alloc_complex(n); }
+    static void free(void* p) { fftw_free(p); }
+    static PlanT r2c(int r, int c, double* in, Complex* out, unsigned f) {
+        return fftw_plan_dft_r2c_2d(r, c, in, out, f);
+    }
+    static PlanT c2r(int r, int c, Complex* in, double* out, unsigned f) {
+        return fftw_plan_dft_c2r_2d(r, c, in, out, f);
+    }
+    static void execute_r2c(void* p, double* in, Complex* out) {
+        fftw_execute_dft_r2c(static_cast<PlanT>(p), in, out);
+    }
+    static void execute_c2r(void* p, Complex* in, double* out) {
+        fftw_execute_dft_c2r(static_cast<PlanT>(p), in, out);
+    }
+};
+template <>
+struct Fftw<float> {
+    using Complex = fftwf_complex;
+    using PlanT = fftwf_plan;
+    static float* alloc_real(std::size_t n) { return fftwf_alloc_real(n); }
+    static Complex* alloc_complex(std::size_t n) { return fftwf_alloc_complex(n); }
+    static void free(void* p) { fftwf_free(p); }
+    static PlanT r2c(int r, int c, float* in, Complex* out, unsigned f) {
+        return fftwf_plan_dft_r2c_2d(r, c, in, out, f);
+    }
+    static PlanT c2r(int r, int c, Complex* in, float* out, unsigned f) {
+        return fftwf_plan_dft_c2r_2d(r, c, in, out, f);
+    }
+    static void execute_r2c(void* p, float* in, Complex* out) {
+        fftwf_execute_dft_r2c(static_cast<PlanT>(p), in, out);
+    }
+    static void execute_c2r(void* p, Complex* in, float* out) {
+        fftwf_execute_dft_c2r(static_cast<PlanT>(p), in, out);
+    }
+};
+
+// One real-transform plan (r2c when forward, else c2r) in precision T on scratch buffers.
+template <class T>
+void* make_real_plan(bool forward, int rows, int cols, unsigned flags) {
+    using F = Fftw<T>;
+    T* re = F::alloc_real(static_cast<std::size_t>(rows) * cols);
+    auto* cx = F::alloc_complex(static_cast<std::size_t>(rows) * (cols / 2 + 1));
+    void* plan = forward ? F::r2c(rows, cols, re, cx, flags) : F::c2r(rows, cols, cx, re, flags);
+    F::free(re);
+    F::free(cx);
+    return plan;
+}
+
 // Makes one plan with `flags` on fftw_malloc'd scratch buffers (never the caller's data).
 void* make_plan(Kind kind, int rows, int cols, unsigned flags) {
-    const std::size_t n_real = static_cast<std::size_t>(rows) * cols;
-    const std::size_t n_half = static_cast<std::size_t>(rows) * (cols / 2 + 1);
-    void* plan = nullptr;
     switch (kind) {
         case Kind::kR2C:
-        case Kind::kC2R: {
-            double* re = fftw_alloc_real(n_real);
-            fftw_complex* cx = fftw_alloc_complex(n_half);
-            plan = kind == Kind::kR2C ? fftw_plan_dft_r2c_2d(rows, cols, re, cx, flags)
-                                      : fftw_plan_dft_c2r_2d(rows, cols, cx, re, flags);
-            fftw_free(re);
-            fftw_free(cx);
-            break;
-        }
+        case Kind::kC2R:
+            return make_real_plan<double>(kind == Kind::kR2C, rows, cols, flags);
         case Kind::kR2CF:
-        case Kind::kC2RF: {
-            float* re = fftwf_alloc_real(n_real);
-            fftwf_complex* cx = fftwf_alloc_complex(n_half);
-            plan = kind == Kind::kR2CF ? fftwf_plan_dft_r2c_2d(rows, cols, re, cx, flags)
-                                       : fftwf_plan_dft_c2r_2d(rows, cols, cx, re, flags);
-            fftwf_free(re);
-            fftwf_free(cx);
-            break;
-        }
+        case Kind::kC2RF:
+            return make_real_plan<float>(kind == Kind::kR2CF, rows, cols, flags);
         case Kind::kC2CForward:
         case Kind::kC2CBackward: {
-            fftw_complex* in = fftw_alloc_complex(n_real);
-            fftw_complex* out = fftw_alloc_complex(n_real);
-            plan =
+            const std::size_t n = static_cast<std::size_t>(rows) * cols;
+            fftw_complex* in = fftw_alloc_complex(n);
+            fftw_complex* out = fftw_alloc_complex(n);
+            void* plan =
                 fftw_plan_dft_2d(rows, cols, in, out,
                                  kind == Kind::kC2CForward ? FFTW_FORWARD : FFTW_BACKWARD, flags);
             fftw_free(in);
             fftw_free(out);
-            break;
+            return plan;
         }
     }
-    return plan;
+    return nullptr;
 }
 
 // Returns the cached plan for (kind, rows, cols, threads), creating it on first use. Execution
@@ -251,7 +292,6 @@ void check_size(int rows, int cols) {
 }
 
 fftw_complex* as_fftw(std::complex<double>* p) { return reinterpret_cast<fftw_complex*>(p); }
-fftwf_complex* as_fftwf(std::complex<float>* p) { return reinterpret_cast<fftwf_complex*>(p); }
 
 bool aligned(const void* p) {
     return fftw_alignment_of(reinterpret_cast<double*>(const_cast<void*>(p))) == 0;
@@ -276,6 +316,38 @@ void with_aligned(In* in, std::size_t n_in, Out* out, std::size_t n_out, F&& exe
 
 std::string plan_size_text(Eigen::Index r, Eigen::Index c) {
     return std::to_string(r) + " x " + std::to_string(c);
+}
+
+// r2c of x (rows x cols) into out (resized to the half spectrum), precision T.
+template <class T, class PlaneT, class CPlaneT>
+void real_forward(void* plan, int rows, int cols, const PlaneT& x, CPlaneT& out) {
+    if (x.rows() != rows || x.cols() != cols) {
+        throw InvalidInput("FFT input is " + plan_size_text(x.rows(), x.cols()) + ", plan is " +
+                           plan_size_text(rows, cols));
+    }
+    out.resize(rows, cols / 2 + 1);
+    // r2c with the default FFTW_PRESERVE_INPUT leaves the input untouched.
+    with_aligned(const_cast<T*>(x.data()), static_cast<std::size_t>(x.size()), out.data(),
+                 static_cast<std::size_t>(out.size()), [&](T* in, std::complex<T>* o) {
+                     Fftw<T>::execute_r2c(plan, in,
+                                          reinterpret_cast<typename Fftw<T>::Complex*>(o));
+                 });
+}
+
+// c2r of spectrum (destroyed) into out, no 1/N, precision T.
+template <class T, class PlaneT, class CPlaneT>
+void real_inverse_destroy(void* plan, int rows, int cols, CPlaneT& spectrum, PlaneT& out) {
+    if (spectrum.rows() != rows || spectrum.cols() != cols / 2 + 1) {
+        throw InvalidInput("inverse FFT input is " +
+                           plan_size_text(spectrum.rows(), spectrum.cols()) +
+                           ", expected half spectrum " + plan_size_text(rows, cols / 2 + 1));
+    }
+    out.resize(rows, cols);
+    with_aligned(spectrum.data(), static_cast<std::size_t>(spectrum.size()), out.data(),
+                 static_cast<std::size_t>(out.size()), [&](std::complex<T>* in, T* o) {
+                     Fftw<T>::execute_c2r(plan, reinterpret_cast<typename Fftw<T>::Complex*>(in),
+                                          o);
+                 });
 }
 
 }  // namespace
@@ -363,16 +435,7 @@ ComplexPlane Fft2::forward(const Plane& x) const {
 }
 
 void Fft2::forward(const Plane& x, ComplexPlane& out) const {
-    if (x.rows() != rows_ || x.cols() != cols_) {
-        throw InvalidInput("FFT input is " + plan_size_text(x.rows(), x.cols()) + ", plan is " +
-                           plan_size_text(rows_, cols_));
-    }
-    out.resize(rows_, half_cols());
-    // r2c with the default FFTW_PRESERVE_INPUT leaves the input untouched.
-    with_aligned(const_cast<double*>(x.data()), static_cast<std::size_t>(x.size()), out.data(),
-                 static_cast<std::size_t>(out.size()), [&](double* in, std::complex<double>* o) {
-                     fftw_execute_dft_r2c(static_cast<fftw_plan>(r2c_), in, as_fftw(o));
-                 });
+    real_forward<double>(r2c_, rows_, cols_, x, out);
 }
 
 Plane Fft2::inverse(const ComplexPlane& spectrum) const {
@@ -383,27 +446,13 @@ Plane Fft2::inverse(const ComplexPlane& spectrum) const {
 }
 
 void Fft2::inverse(const ComplexPlane& spectrum, Plane& out, ComplexPlane& scratch) const {
-    if (spectrum.rows() != rows_ || spectrum.cols() != half_cols()) {
-        throw InvalidInput("inverse FFT input is " +
-                           plan_size_text(spectrum.rows(), spectrum.cols()) +
-                           ", expected half spectrum " + plan_size_text(rows_, half_cols()));
-    }
     scratch = spectrum;  // multi-dimensional c2r destroys its input
     inverse_unscaled_destroy(scratch, out);
     out *= 1.0 / (static_cast<double>(rows_) * cols_);  // the one place 1/N is applied
 }
 
 void Fft2::inverse_unscaled_destroy(ComplexPlane& spectrum, Plane& out) const {
-    if (spectrum.rows() != rows_ || spectrum.cols() != half_cols()) {
-        throw InvalidInput("inverse FFT input is " +
-                           plan_size_text(spectrum.rows(), spectrum.cols()) +
-                           ", expected half spectrum " + plan_size_text(rows_, half_cols()));
-    }
-    out.resize(rows_, cols_);
-    with_aligned(spectrum.data(), static_cast<std::size_t>(spectrum.size()), out.data(),
-                 static_cast<std::size_t>(out.size()), [&](std::complex<double>* in, double* o) {
-                     fftw_execute_dft_c2r(static_cast<fftw_plan>(c2r_), as_fftw(in), o);
-                 });
+    real_inverse_destroy<double>(c2r_, rows_, cols_, spectrum, out);
 }
 
 Fft2f::Fft2f(int rows, int cols) : rows_(rows), cols_(cols) {
@@ -413,15 +462,7 @@ Fft2f::Fft2f(int rows, int cols) : rows_(rows), cols_(cols) {
 }
 
 void Fft2f::forward(const PlaneF& x, ComplexPlaneF& out) const {
-    if (x.rows() != rows_ || x.cols() != cols_) {
-        throw InvalidInput("FFT input is " + plan_size_text(x.rows(), x.cols()) + ", plan is " +
-                           plan_size_text(rows_, cols_));
-    }
-    out.resize(rows_, half_cols());
-    with_aligned(const_cast<float*>(x.data()), static_cast<std::size_t>(x.size()), out.data(),
-                 static_cast<std::size_t>(out.size()), [&](float* in, std::complex<float>* o) {
-                     fftwf_execute_dft_r2c(static_cast<fftwf_plan>(r2c_), in, as_fftwf(o));
-                 });
+    real_forward<float>(r2c_, rows_, cols_, x, out);
 }
 
 void Fft2f::inverse(const ComplexPlaneF& spectrum, PlaneF& out, ComplexPlaneF& scratch) const {
@@ -431,16 +472,7 @@ void Fft2f::inverse(const ComplexPlaneF& spectrum, PlaneF& out, ComplexPlaneF& s
 }
 
 void Fft2f::inverse_unscaled_destroy(ComplexPlaneF& spectrum, PlaneF& out) const {
-    if (spectrum.rows() != rows_ || spectrum.cols() != half_cols()) {
-        throw InvalidInput("inverse FFT input is " +
-                           plan_size_text(spectrum.rows(), spectrum.cols()) +
-                           ", expected half spectrum " + plan_size_text(rows_, half_cols()));
-    }
-    out.resize(rows_, cols_);
-    with_aligned(spectrum.data(), static_cast<std::size_t>(spectrum.size()), out.data(),
-                 static_cast<std::size_t>(out.size()), [&](std::complex<float>* in, float* o) {
-                     fftwf_execute_dft_c2r(static_cast<fftwf_plan>(c2r_), as_fftwf(in), o);
-                 });
+    real_inverse_destroy<float>(c2r_, rows_, cols_, spectrum, out);
 }
 
 FftC2::FftC2(int rows, int cols) : rows_(rows), cols_(cols) {

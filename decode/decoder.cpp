@@ -55,53 +55,60 @@ void check_work_plane(const char* field, const Plane& p, const ConvGeometry& g) 
     if (!is_all_finite(p)) throw invalid_field(field, "non-finite values", "must be finite");
 }
 
-Plane apply_filter(const WienerFilter& f, const Plane& p, bool single) {
+Plane apply_filter(const WienerFilter& f, const Plane& p, bool single, SpectralSums& sums) {
     Plane out;
     if (single) {
         WienerFilter::WorkspaceF ws;
-        f.apply_single(p, out, ws);
+        f.apply_single(p, out, ws, &sums);
     } else {
         WienerFilter::Workspace ws;
-        f.apply(p, out, ws);
+        f.apply(p, out, ws, &sums);
     }
     return out;
 }
 
-// Closed-form methods: x = G p on the working grid (capture zero-padded for the linear model).
-DecodeResult decode_closed_form(const Plane& capture, const Plane& psf, const DecodeOptions& o,
-                                const ConvGeometry& g) {
-    const Plane padded = pad_to_work(g, capture);
-    const ConvolutionOperator op(psf, g);
-    DecodeResult r;
-    Plane x;
-    double penalty = 0.0;
+// The filter of a closed-form method from the operator's OTF (the PSF is transformed once), and
+// in `weight` its penalty as a half-spectrum weight (SpectralSums): nsr ||x||^2, the
+// per-frequency (1/N) sum_k NSR(k) |X(k)|^2, or lambda ||L x||^2.
+WienerFilter closed_form_filter(const ConvolutionOperator& op, const DecodeOptions& o,
+                                Plane& weight) {
+    const ConvGeometry& g = op.geometry();
+    const int R = g.work_rows, C = g.work_cols;
     if (o.method == DecodeMethod::kWiener) {
         const WienerParams& w = o.wiener;
         if (w.nsr_per_frequency) {
             check_work_plane("wiener.nsr_per_frequency", *w.nsr_per_frequency, g);
-            x = apply_filter(WienerFilter(psf, g.work_rows, g.work_cols, *w.nsr_per_frequency),
-                             padded, o.single_precision);
-            // (1/N) sum_k NSR(k) |X(k)|^2 over the full spectrum (Parseval form of nsr ||x||^2).
-            const ComplexPlane xs = expand_half_spectrum(op.fft().forward(x), g.work_cols);
-            penalty = (w.nsr_per_frequency->cast<std::complex<double>>() * xs * xs.conjugate())
-                          .real()
-                          .sum() /
-                      static_cast<double>(x.size());
-        } else {
-            x = apply_filter(WienerFilter(psf, g.work_rows, g.work_cols, w.nsr), padded,
-                             o.single_precision);
-            penalty = w.nsr * x.square().sum();
+            weight = fold_full_spectrum_weight(*w.nsr_per_frequency);
+            return WienerFilter::from_otf(op.otf(), R, C, *w.nsr_per_frequency);
         }
-    } else {
-        const TikhonovParams& t = o.tikhonov;
-        x = apply_filter(
-            make_tikhonov_filter(psf, g.work_rows, g.work_cols, t.lambda, t.regulariser), padded,
-            o.single_precision);
-        penalty = tikhonov_penalty(x, t.lambda, t.regulariser);
+        weight = w.nsr * half_spectrum_multiplicity(R, C);
+        return WienerFilter::from_otf(op.otf(), R, C, w.nsr);
     }
-    const double res2 = (op.apply(x) - capture).square().sum();
+    const TikhonovParams& t = o.tikhonov;
+    weight = t.lambda * tikhonov_symbol(R, C, t.regulariser) * half_spectrum_multiplicity(R, C);
+    return make_tikhonov_filter_from_otf(op.otf(), R, C, t.lambda, t.regulariser);
+}
+
+// Closed-form methods: x = G p on the working grid (capture zero-padded for the linear model).
+// Transforms: the PSF's OTF (one forward, shared by the filter and the model) and the filter's
+// r2c + c2r pair. The penalty, and for the cyclic model the residual ||h (*) x - p||, are summed
+// over the spectrum in the filter's own pass (Parseval); only the linear model's residual, which
+// sees the crop, costs another pair (A x in the spatial domain).
+DecodeResult decode_closed_form(const Plane& capture, const Plane& psf, const DecodeOptions& o,
+                                const ConvGeometry& g) {
+    const ConvolutionOperator op(psf, g);
+    const bool cyclic = g.model == ConvModel::kCyclic;
+    Plane weight;
+    const WienerFilter filter = closed_form_filter(op, o, weight);
+    SpectralSums sums;
+    sums.weight = &weight;
+    if (cyclic) sums.otf = &op.otf();
+    const Plane x =
+        apply_filter(filter, cyclic ? capture : pad_to_work(g, capture), o.single_precision, sums);
+    const double res2 = cyclic ? sums.residual2 : (op.apply(x) - capture).square().sum();
+    DecodeResult r;
     r.residual = std::sqrt(res2);
-    r.objective = res2 + penalty;
+    r.objective = res2 + sums.penalty;
     r.image = crop_to_capture(g, x);
     return r;
 }

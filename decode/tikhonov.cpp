@@ -14,10 +14,25 @@ WienerFilter make_tikhonov_filter(const Plane& psf, int rows, int cols, double l
     if (!(lambda >= 0.0) || !std::isfinite(lambda)) {
         throw invalid_field("lambda", std::to_string(lambda), "must be finite and >= 0");
     }
-    const ComplexPlane h = psf2otf(psf, rows, cols);
-    const Plane l2 = regulariser == TikhonovRegulariser::kGradient
-                         ? gradient_gram_symbol(rows, cols)
-                         : Plane::Ones(h.rows(), h.cols());
+    return make_tikhonov_filter_from_otf(psf2otf(psf, rows, cols), rows, cols, lambda, regulariser);
+}
+
+Plane tikhonov_symbol(int rows, int cols, TikhonovRegulariser regulariser) {
+    return regulariser == TikhonovRegulariser::kGradient ? gradient_gram_symbol(rows, cols)
+                                                         : Plane::Ones(rows, cols / 2 + 1);
+}
+
+WienerFilter make_tikhonov_filter_from_otf(const ComplexPlane& h, int rows, int cols, double lambda,
+                                           TikhonovRegulariser regulariser) {
+    if (!(lambda >= 0.0) || !std::isfinite(lambda)) {
+        throw invalid_field("lambda", std::to_string(lambda), "must be finite and >= 0");
+    }
+    if (rows < 1 || cols < 1 || h.rows() != rows || h.cols() != cols / 2 + 1) {
+        throw invalid_field(
+            "otf", std::to_string(h.rows()) + " x " + std::to_string(h.cols()),
+            "must be the half spectrum of " + std::to_string(rows) + " x " + std::to_string(cols));
+    }
+    const Plane l2 = tikhonov_symbol(rows, cols, regulariser);
     ComplexPlane g(h.rows(), h.cols());
     for (Eigen::Index i = 0; i < h.size(); ++i) {
         const double denom = std::norm(h.data()[i]) + lambda * l2.data()[i];

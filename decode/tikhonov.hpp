@@ -20,6 +20,12 @@ namespace pinmask {
 WienerFilter make_tikhonov_filter(const Plane& psf, int rows, int cols, double lambda,
                                   TikhonovRegulariser regulariser);
 
+// The same from H = psf2otf(psf, rows, cols) already computed (half spectrum, field "otf").
+WienerFilter make_tikhonov_filter_from_otf(const ComplexPlane& otf, int rows, int cols,
+                                           double lambda, TikhonovRegulariser regulariser);
+// |L|^2 on the half spectrum: 1 (identity) or 4 sin^2(pi k / R) + 4 sin^2(pi l / C) (gradient).
+Plane tikhonov_symbol(int rows, int cols, TikhonovRegulariser regulariser);
+
 // lambda ||L x||_2^2 for the given regulariser.
 double tikhonov_penalty(const Plane& x, double lambda, TikhonovRegulariser regulariser);
 

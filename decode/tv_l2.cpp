@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "core/error.hpp"
@@ -63,6 +64,132 @@ struct Prec<float> {
     using F = Fft2f;
 };
 
+// Sums the z-step gathers when asked (adaptation, records): residuals and TV, in double.
+struct ZSums {
+    double prim2 = 0.0, dual2 = 0.0, tv = 0.0;
+};
+
+// The ADMM state of the z = grad x split, raw arrays of R x C (row-major).
+template <class T>
+struct ZState {
+    T* zr;
+    T* zc;
+    T* ur;
+    T* uc;
+};
+
+// One pixel of the z-step: isotropic shrinkage by thr of the over-relaxed gradient
+// alpha g + (1 - alpha) z + u; z, u updated in place. Branch-free, on restrict pointers, in a TU
+// built with -fno-math-errno (decode/CMakeLists.txt), so the compiler vectorises the row loop:
+// f = max(0, 1 - thr / max(|a|, tiny)) is 1 - thr / |a| when |a| > thr, else 0.
+template <class T, bool kStats>
+inline void z_point(T gr, T gc, Eigen::Index i, T* __restrict zr, T* __restrict zc,
+                    T* __restrict ur, T* __restrict uc, T alpha, T thr, bool want_tv, ZSums& sums) {
+    const T zr0 = zr[i], zc0 = zc[i];
+    const T ar = alpha * gr + (T(1) - alpha) * zr0 + ur[i];
+    const T ac = alpha * gc + (T(1) - alpha) * zc0 + uc[i];
+    const T mag = std::sqrt(ar * ar + ac * ac);
+    const T f = std::max(T(0), T(1) - thr / std::max(mag, std::numeric_limits<T>::min()));
+    const T zr1 = f * ar, zc1 = f * ac;
+    zr[i] = zr1;
+    zc[i] = zc1;
+    ur[i] = ar - zr1;
+    uc[i] = ac - zc1;
+    if (kStats) {
+        const double pr = double(gr) - zr1, pc = double(gc) - zc1;
+        const double dr = double(zr1) - zr0, dc = double(zc1) - zc0;
+        sums.prim2 += pr * pr + pc * pc;
+        sums.dual2 += dr * dr + dc * dc;
+        if (want_tv) sums.tv += std::sqrt(double(gr) * gr + double(gc) * gc);
+    }
+}
+
+// z-step of row r (periodic forward differences of x: the row below, the pixel to the right).
+template <class T, bool kStats>
+void z_row(const T* __restrict x, int R, int C, int r, const ZState<T>& s, T alpha, T thr,
+           bool want_tv, ZSums& sums) {
+    const T* __restrict xr = x + Eigen::Index(r) * C;
+    const T* __restrict xd = x + Eigen::Index(r + 1 < R ? r + 1 : 0) * C;
+    T* __restrict zr = s.zr + Eigen::Index(r) * C;
+    T* __restrict zc = s.zc + Eigen::Index(r) * C;
+    T* __restrict ur = s.ur + Eigen::Index(r) * C;
+    T* __restrict uc = s.uc + Eigen::Index(r) * C;
+    if (kStats) {
+        for (int c = 0; c + 1 < C; ++c) {
+            z_point<T, kStats>(xd[c] - xr[c], xr[c + 1] - xr[c], c, zr, zc, ur, uc, alpha, thr,
+                               want_tv, sums);
+        }
+    } else {  // z_point's arithmetic written out: this form is the one GCC 12 vectorises
+        const T beta = T(1) - alpha, tiny = std::numeric_limits<T>::min();
+        for (int c = 0; c + 1 < C; ++c) {
+            const T ar = alpha * (xd[c] - xr[c]) + beta * zr[c] + ur[c];
+            const T ac = alpha * (xr[c + 1] - xr[c]) + beta * zc[c] + uc[c];
+            const T f = std::max(T(0), T(1) - thr / std::max(std::sqrt(ar * ar + ac * ac), tiny));
+            zr[c] = f * ar;
+            zc[c] = f * ac;
+            ur[c] = ar - f * ar;
+            uc[c] = ac - f * ac;
+        }
+    }
+    const int c = C - 1;
+    z_point<T, kStats>(xd[c] - xr[c], xr[0] - xr[c], c, zr, zc, ur, uc, alpha, thr, want_tv, sums);
+}
+
+// x-step right-hand side of row r: rho grad^T (z - u) [+ rho (w - v)], where grad^T d = -div d
+// = -(d_r(i) - d_r(i - row) + d_c(i) - d_c(i - 1)) (periodic). Reads rows r and r - 1 of z, u.
+template <class T>
+void rhs_row(int R, int C, int r, const ZState<T>& s, const T* w, const T* v, T rho, T* t) {
+    const Eigen::Index o = Eigen::Index(r) * C;
+    const Eigen::Index ou = Eigen::Index(r > 0 ? r - 1 : R - 1) * C;
+    const T *zr = s.zr, *zc = s.zc, *ur = s.ur, *uc = s.uc;
+    {
+        const Eigen::Index i = o, left = o + C - 1;
+        t[i] =
+            rho * ((zr[ou] - ur[ou]) - (zr[i] - ur[i]) + (zc[left] - uc[left]) - (zc[i] - uc[i]));
+    }
+    for (int c = 1; c < C; ++c) {
+        const Eigen::Index i = o + c, up = ou + c;
+        t[i] =
+            rho * ((zr[up] - ur[up]) - (zr[i] - ur[i]) + (zc[i - 1] - uc[i - 1]) - (zc[i] - uc[i]));
+    }
+    if (w != nullptr) {
+        for (int c = 0; c < C; ++c) t[o + c] += rho * (w[o + c] - v[o + c]);
+    }
+}
+
+// w-step of row r: projection on x >= 0 of the over-relaxed alpha x + (1 - alpha) w + v.
+// Adds ||x - w||^2 and ||w - w_old||^2 to the sums when asked.
+template <class T, bool kStats>
+void w_row(const T* x, int C, int r, T* w, T* v, T alpha, ZSums& sums) {
+    const Eigen::Index o = Eigen::Index(r) * C;
+    for (Eigen::Index i = o; i < o + C; ++i) {
+        const T xh = alpha * x[i] + (T(1) - alpha) * w[i];
+        const T w_new = std::max(T(0), xh + v[i]);
+        if (kStats) {
+            const double dw = double(w_new) - w[i], pw = double(x[i]) - w_new;
+            sums.dual2 += dw * dw;
+            sums.prim2 += pw * pw;
+        }
+        v[i] = v[i] + xh - w_new;
+        w[i] = w_new;
+    }
+}
+
+// The fused pass after the x-step: per row the z-step, the w-step, and the right-hand side of
+// the next x-step for the row above (whose z, u, w, v are final); row 0's at the end.
+template <class T, bool kStats>
+ZSums fused_pass(const T* x, int R, int C, const ZState<T>& s, T* w, T* v, T alpha, T thr, T rho,
+                 bool want_tv, T* t) {
+    ZSums sums;
+    for (int r = 0; r < R; ++r) {
+        z_row<T, kStats>(x, R, C, r, s, alpha, thr, want_tv, sums);
+        if (w != nullptr) w_row<T, kStats>(x, C, r, w, v, alpha, sums);
+        if (r > 0) rhs_row(R, C, r, s, w, v, rho, t);
+    }
+    rhs_row(R, C, 0, s, w, v, rho, t);
+    return sums;
+}
+
 // The ADMM iteration in precision T on the normalised problem (capture / scale, lambda / scale).
 // Fused pointwise loops over raw arrays; every buffer is allocated before the loop.
 template <class T>
@@ -113,40 +240,37 @@ DecodeResult run_admm(const ConvolutionOperator& op, const Plane& capture_d, con
     update_denominator();
 
     P x = warm_start ? P((*warm_start / scale).cast<T>()) : P(P::Zero(R, Cc));
-    P zr(R, Cc), zc(R, Cc), ur = P::Zero(R, Cc), uc = P::Zero(R, Cc), tmp(R, Cc), x_old(R, Cc);
-    P w, v, s, eta, hx;
+    P zr = P::Zero(R, Cc), zc = P::Zero(R, Cc), ur = P::Zero(R, Cc), uc = P::Zero(R, Cc),
+      tmp(R, Cc), x_old(R, Cc);
+    P w, v, s, eta, hx, tmp2;
+    const ZState<T> zs{zr.data(), zc.data(), ur.data(), uc.data()};
 
-    auto grad_at = [&](const T* xs, Eigen::Index i, int r, int c, T& gr, T& gc) {
-        const Eigen::Index down = r + 1 < R ? i + Cc : i - Eigen::Index(r) * Cc;
-        const Eigen::Index right = c + 1 < Cc ? i + 1 : i - c;
-        gr = xs[down] - xs[i];
-        gc = xs[right] - xs[i];
-    };
     const bool init = !warm_start && !linear;
     if (init) {  // x0 = the quadratic (gradient-Tikhonov, weight rho) estimate: one inverse FFT
         for (Eigen::Index i = 0; i < nh; ++i) spec.data()[i] = htp.data()[i] * inv_denom.data()[i];
         fft.inverse_unscaled_destroy(spec, x);
     }
-    for (int r = 0, i = 0; r < R; ++r)
-        for (int c = 0; c < Cc; ++c, ++i) grad_at(x.data(), i, r, c, zr.data()[i], zc.data()[i]);
-    if (init || warm_start) {  // z = shrink(grad x0, lambda / rho), u = grad x0 - z
-        const double thr0 = lambda / rho;
-        for (Eigen::Index i = 0; i < n; ++i) {
-            const double gr = zr.data()[i], gc = zc.data()[i];
-            const double mag = std::sqrt(gr * gr + gc * gc);
-            const double f = mag > thr0 ? 1.0 - thr0 / mag : 0.0;
-            zr.data()[i] = T(f * gr);
-            zc.data()[i] = T(f * gc);
-            ur.data()[i] = T(gr - f * gr);
-            uc.data()[i] = T(gc - f * gc);
-        }
+    // z = shrink(grad x0, lambda / rho), u = grad x0 - z (as after a z-step with alpha = 1 from
+    // z = u = 0); with neither a start estimate nor a warm start, z = grad x0 = 0 and u = 0.
+    {
+        ZSums unused;
+        const T thr0 = static_cast<T>(init || warm_start ? lambda / rho : 0.0);
+        for (int r = 0; r < R; ++r)
+            z_row<T, false>(x.data(), R, Cc, r, zs, T(1), thr0, false, unused);
     }
     if (nn) {
         w = x.max(T(0));
         v = P::Zero(R, Cc);
     }
+    auto full_rhs = [&] {
+        for (int r = 0; r < R; ++r)
+            rhs_row(R, Cc, r, zs, nn ? w.data() : nullptr, nn ? v.data() : nullptr,
+                    static_cast<T>(rho), tmp.data());
+    };
+    full_rhs();
     if (linear) {
         hx.resize(R, Cc);
+        tmp2.resize(R, Cc);
         fft.forward(x, spec);
         for (Eigen::Index i = 0; i < nh; ++i) spec.data()[i] *= H.data()[i] * T(inv_n);
         fft.inverse_unscaled_destroy(spec, hx);
@@ -158,46 +282,31 @@ DecodeResult run_admm(const ConvolutionOperator& op, const Plane& capture_d, con
     r.converged = false;
 
     for (int k = 1; k <= o.max_iterations; ++k) {
-        // x-step right-hand side: rho grad^T (z - u) + rho (w - v), one fused pass.
-        {
-            const T* zr_ = zr.data();
-            const T* zc_ = zc.data();
-            const T* ur_ = ur.data();
-            const T* uc_ = uc.data();
-            T* t = tmp.data();
-            const T trho = static_cast<T>(rho);
-            for (int rr = 0, i = 0; rr < R; ++rr) {
-                const Eigen::Index up = rr > 0 ? -Eigen::Index(Cc) : Eigen::Index(R - 1) * Cc;
-                for (int c = 0; c < Cc; ++c, ++i) {
-                    const Eigen::Index left = c > 0 ? i - 1 : i + Cc - 1;
-                    // grad^T d = -div d: -(d_r(i) - d_r(i - row) + d_c(i) - d_c(i - 1))
-                    const T dr = zr_[i] - ur_[i], dr_up = zr_[i + up] - ur_[i + up];
-                    const T dc = zc_[i] - uc_[i], dc_left = zc_[left] - uc_[left];
-                    t[i] = trho * (dr_up - dr + dc_left - dc);
-                }
-            }
-            if (nn) {
-                for (Eigen::Index i = 0; i < n; ++i) t[i] += trho * (w.data()[i] - v.data()[i]);
-            }
-        }
+        // x-step: tmp holds rho grad^T (z - u) [+ rho (w - v)] from the previous fused pass.
         fft.forward(tmp, spec);
+        Cx* sp = spec.data();
+        Cx* sp2 = spec2.data();
+        const T* id = inv_denom.data();
+        const Cx* Hd = H.data();
         if (linear) {
-            for (Eigen::Index i = 0; i < n; ++i) tmp.data()[i] = s.data()[i] - eta.data()[i];
-            fft.forward(tmp, spec2);
+            for (Eigen::Index i = 0; i < n; ++i) tmp2.data()[i] = s.data()[i] - eta.data()[i];
+            fft.forward(tmp2, spec2);
             const T trs = static_cast<T>(rho_s);
             for (Eigen::Index i = 0; i < nh; ++i) {
-                const Cx xs = (spec.data()[i] + trs * std::conj(H.data()[i]) * spec2.data()[i]) *
-                              inv_denom.data()[i];
-                spec.data()[i] = xs;
-                spec2.data()[i] = xs * H.data()[i];
+                const Cx xs = (sp[i] + trs * std::conj(Hd[i]) * sp2[i]) * id[i];
+                sp[i] = xs;
+                sp2[i] = xs * Hd[i];
+            }
+        } else if (o.record_history) {
+            const Cx* htpd = htp.data();
+            for (Eigen::Index i = 0; i < nh; ++i) {
+                const Cx xs = (sp[i] + htpd[i]) * id[i];
+                sp[i] = xs;
+                sp2[i] = xs * Hd[i];
             }
         } else {
-            const bool want_ax = o.record_history;
-            for (Eigen::Index i = 0; i < nh; ++i) {
-                const Cx xs = (spec.data()[i] + htp.data()[i]) * inv_denom.data()[i];
-                spec.data()[i] = xs;
-                if (want_ax) spec2.data()[i] = xs * H.data()[i];
-            }
+            const Cx* htpd = htp.data();
+            for (Eigen::Index i = 0; i < nh; ++i) sp[i] = (sp[i] + htpd[i]) * id[i];
         }
         x_old.swap(x);
         fft.inverse_unscaled_destroy(spec, x);
@@ -224,51 +333,31 @@ DecodeResult run_admm(const ConvolutionOperator& op, const Plane& capture_d, con
             dual_s = rho_s * std::sqrt(dual_s);
         }
 
-        // z-step: isotropic shrinkage of the over-relaxed gradient plus u, by lambda / rho;
-        // the residuals, TV and the change of x in the same pass.
-        const double thr = lambda / rho;
-        double prim2 = 0.0, dual2 = 0.0, tv = 0.0, dx2 = 0.0, x2 = 0.0;
-        {
-            const T* xs = x.data();
-            for (int rr = 0, i = 0; rr < R; ++rr) {
-                for (int c = 0; c < Cc; ++c, ++i) {
-                    T gr, gc;
-                    grad_at(xs, i, rr, c, gr, gc);
-                    const double zr0 = zr.data()[i], zc0 = zc.data()[i];
-                    const double ar = alpha * gr + (1.0 - alpha) * zr0 + ur.data()[i];
-                    const double ac = alpha * gc + (1.0 - alpha) * zc0 + uc.data()[i];
-                    const double mag = std::sqrt(ar * ar + ac * ac);
-                    const double f = mag > thr ? 1.0 - thr / mag : 0.0;
-                    const double zr1 = f * ar, zc1 = f * ac;
-                    zr.data()[i] = static_cast<T>(zr1);
-                    zc.data()[i] = static_cast<T>(zc1);
-                    ur.data()[i] = static_cast<T>(ar - zr1);
-                    uc.data()[i] = static_cast<T>(ac - zc1);
-                    prim2 += (gr - zr1) * (gr - zr1) + (gc - zc1) * (gc - zc1);
-                    dual2 += (zr1 - zr0) * (zr1 - zr0) + (zc1 - zc0) * (zc1 - zc0);
-                    tv += std::sqrt(double(gr) * gr + double(gc) * gc);
-                    const double d = double(xs[i]) - x_old.data()[i];
-                    dx2 += d * d;
-                    x2 += double(xs[i]) * xs[i];
-                }
-            }
-        }
-        // w-step: projection on x >= 0 of the over-relaxed x_hat + v.
-        if (nn) {
-            double dw2 = 0.0;
-            for (Eigen::Index i = 0; i < n; ++i) {
-                const double xh = alpha * x.data()[i] + (1.0 - alpha) * w.data()[i];
-                const double w_new = std::max(0.0, xh + v.data()[i]);
-                dw2 += (w_new - w.data()[i]) * (w_new - w.data()[i]);
-                v.data()[i] = static_cast<T>(v.data()[i] + xh - w_new);
-                prim2 += (x.data()[i] - w_new) * (x.data()[i] - w_new);
-                w.data()[i] = static_cast<T>(w_new);
-            }
-            dual2 += dw2;
-        }
+        // z-step (isotropic shrinkage of the over-relaxed gradient plus u, by lambda / rho),
+        // w-step and the next right-hand side in one pass; the residual and TV sums only on the
+        // iterations that use them (adaptation, records).
+        const bool adapt = k % kAdaptEvery == 0 && k <= kAdaptUntil;
+        const bool stats = adapt || o.record_history;
+        const T ta = static_cast<T>(alpha), tthr = static_cast<T>(lambda / rho);
+        T* wd = nn ? w.data() : nullptr;
+        T* vd = nn ? v.data() : nullptr;
+        const ZSums sums =
+            stats ? fused_pass<T, true>(x.data(), R, Cc, zs, wd, vd, ta, tthr, static_cast<T>(rho),
+                                        o.record_history, tmp.data())
+                  : fused_pass<T, false>(x.data(), R, Cc, zs, wd, vd, ta, tthr, static_cast<T>(rho),
+                                         false, tmp.data());
 
         r.iterations = k;
-        const double change = dx2 == 0.0 ? 0.0 : (x2 > 0.0 ? std::sqrt(dx2 / x2) : 1e300);
+        // Relative change of x (Eigen's vectorised reductions); tolerance 0 stops only when x
+        // did not change at all (a comparison that ends at the first difference).
+        bool small_change = false;
+        if (o.tolerance > 0.0) {
+            const double dx2 = double((x - x_old).square().sum());
+            const double x2 = double(x.square().sum());
+            small_change = dx2 == 0.0 || (x2 > 0.0 && std::sqrt(dx2 / x2) <= o.tolerance);
+        } else {
+            small_change = (x == x_old).all();
+        }
         if (o.record_history) {
             // Records follow the ADMM iterate x (for nonnegative, w = max(x + v, 0) tends to x):
             // residual ||C H x - p||, objective 1/2 residual^2 + lambda TV(x), capture units.
@@ -283,20 +372,21 @@ DecodeResult run_admm(const ConvolutionOperator& op, const Plane& capture_d, con
             IterationRecord rec;
             rec.iteration = k;
             rec.residual = std::sqrt(res2) * scale;
-            rec.objective = (0.5 * res2 + lambda * tv) * scale * scale;
+            rec.objective = (0.5 * res2 + lambda * sums.tv) * scale * scale;
             rec.seconds = clock.seconds();
             r.history.push_back(rec);
         }
-        if (iteration_ends(change <= o.tolerance, o, r)) break;
+        if (iteration_ends(small_change, o, r)) break;
 
-        if (k % kAdaptEvery == 0 && k <= kAdaptUntil) {
-            const double f = balance(std::sqrt(prim2), rho * std::sqrt(dual2), rho);
+        if (adapt) {
+            const double f = balance(std::sqrt(sums.prim2), rho * std::sqrt(sums.dual2), rho);
             double fs = 1.0;
             if (linear) fs = balance(prim_s, dual_s, rho_s);
             if (f != 1.0) {
                 ur /= T(f);
                 uc /= T(f);
                 if (nn) v /= T(f);
+                full_rhs();  // the fused pass built it with the old rho and u
             }
             if (fs != 1.0) eta /= T(fs);
             if (f != 1.0 || fs != 1.0) update_denominator();

@@ -19,9 +19,15 @@
 // |D|^2)] (one inverse FFT), else the warm start (or 0 for the linear model); then z =
 // shrink(grad x0, lambda / rho), u = grad x0 - z, as after a z-step.
 // Scale: solved for p / max|p| with lambda / max|p| and scaled back (decode/decoder.hpp).
-// Precision: single_precision runs the iteration in float32 (FFTW float); sums in double.
-// Loops: the x-step right-hand side, the spectral solve, the s-, z- and w-steps are each one
-// fused pass over raw arrays; every buffer is allocated before the first iteration.
+// Precision: single_precision runs the iteration in float32 (FFTW float), the pointwise steps in
+// float too; the residual, TV and change sums in double.
+// Loops (cyclic, per iteration): the spectral solve, and one fused pass over the rows that does
+// the z-step, the w-step and the next x-step's right-hand side rho grad^T (z - u) [+ rho (w - v)]
+// for the row above (row 0's at the end), branch-free so the compiler vectorises the rows; the
+// residual and TV sums are gathered only on the iterations that use them (adaptation every 3rd
+// iteration, records), the relative change by a vectorised reduction when tolerance > 0 (a
+// comparison for tolerance 0). When residual balancing changes rho, the right-hand side is
+// rebuilt in a separate pass. Every buffer is allocated before the first iteration.
 // The estimate returned is x, or w (exactly >= 0) when nonnegative. Records: objective
 // 1/2 ||A x - p||_2^2 + lambda TV(x) and residual ||A x - p||_2 of the ADMM iterate x (no extra
 // FFT); without nonnegative that is the estimate returned, with it x -> w as ADMM converges.

@@ -51,4 +51,12 @@ TEST_CASE("bench_decode validates its options, naming the field") {
     o.repeat = 1;
     o.tvqc_max_iterations = 0;
     CHECK_THROWS_WITH_AS(bench_decode(o), doctest::Contains("tvqc_max_iterations"), InvalidInput);
+    o.tvqc_max_iterations = 1;
+    for (int t : {0, -1, 1025}) {
+        o.threads = t;
+        CHECK_THROWS_WITH_AS(bench_decode(o), doctest::Contains("threads"), InvalidInput);
+    }
+    o.threads = 2;
+    o.cpu_time = true;
+    CHECK_THROWS_WITH_AS(bench_decode(o), doctest::Contains("cpu_time"), InvalidInput);
 }

@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "decode/convolution.hpp"
 #include "decode/decoder.hpp"
+#include "decode/tikhonov.hpp"
 #include "decode/wiener.hpp"
 #include "tests/decode/test_decode_support.hpp"
 #include "tests/support/close.hpp"
@@ -20,6 +21,12 @@ namespace {
 
 // Same computation along the facade and along the direct object: rounding only.
 constexpr double kSamePathTol = 1e-14;
+// The closed-form residual and penalty summed over the spectrum (Parseval) against the same
+// figures computed in the spatial domain from the returned image: two roundings of sums of N
+// terms whose size is that of the sum (nsr and lambda keep the residual a sizeable part of ||p||).
+constexpr double kParsevalTol = 1e-10;
+// Single precision: the sums come from the float spectrum, the reference from the float image.
+constexpr double kParsevalSingleTol = 1e-5;
 
 void check_rejects(const Plane& capture, const Plane& psf, const DecodeOptions& o,
                    const char* field) {
@@ -127,6 +134,63 @@ TEST_CASE("decode_plane Wiener equals WienerFilter, scalar and per-frequency NSR
     const DecodeResult rf = decode_plane(p, psf, o);
     CHECK(max_rel_error(rf.image, r.image) <= 1e-12);
     CHECK_CLOSE(rf.objective, r.objective, 1e-12);  // Parseval form of nsr ||x||^2
+}
+
+TEST_CASE("closed form: residual and objective from the spectrum equal the spatial ones") {
+    for (const auto& sz : {std::pair{12, 9}, std::pair{16, 16}, std::pair{7, 13}}) {
+        const int R = sz.first, C = sz.second;
+        const Plane p = random_plane(R, C, 91);
+        const Plane psf = random_psf(3, 4, 92);
+        const Eigen::MatrixXd A = dense_circulant(psf, R, C);
+        Plane nsr_pf = random_plane(R, C, 93, 0.01, 0.2);  // asymmetric on purpose
+        for (int variant = 0; variant < 5; ++variant) {
+            for (bool single : {false, true}) {
+                DecodeOptions o;
+                o.single_precision = single;
+                o.nsr = 0.05;
+                o.lambda = 0.07;
+                if (variant == 1) o.nsr_per_frequency = nsr_pf;
+                if (variant >= 2) o.method = DecodeMethod::kTikhonov;
+                o.regulariser =
+                    variant == 3 ? TikhonovRegulariser::kIdentity : TikhonovRegulariser::kGradient;
+                if (variant == 4) o.lambda = 0.0;  // the gradient pseudo-inverse
+                const DecodeResult r = decode_plane(p, psf, o);
+                const Eigen::VectorXd e = A * as_vector(r.image) - as_vector(p);
+                double penalty = 0.0;
+                if (variant == 0) penalty = o.nsr * r.image.square().sum();
+                if (variant == 1) {  // the full-spectrum sum, with the full spectrum expanded
+                    const Fft2 fft(R, C);
+                    const ComplexPlane X = expand_half_spectrum(fft.forward(r.image), C);
+                    penalty = (nsr_pf * X.abs2()).sum() / double(R * C);
+                }
+                if (variant >= 2) penalty = tikhonov_penalty(r.image, o.lambda, o.regulariser);
+                const double tol = single ? kParsevalSingleTol : kParsevalTol;
+                INFO(R << " x " << C << " variant " << variant << " single " << single);
+                if (variant == 4) {  // exact fit: both residuals are rounding, ~0 against ||p||
+                    const double pn = p.matrix().norm();
+                    CHECK(r.residual <= tol * pn);
+                    CHECK(e.norm() <= tol * pn);
+                    continue;
+                }
+                CHECK_CLOSE(r.residual, e.norm(), tol);
+                CHECK_CLOSE(r.objective, e.squaredNorm() + penalty, tol);
+            }
+        }
+    }
+}
+
+TEST_CASE("spectrum weights: multiplicity and folding reproduce full-spectrum sums") {
+    for (const auto& sz : {std::pair{6, 8}, std::pair{5, 7}}) {
+        const int R = sz.first, C = sz.second;
+        const Plane x = random_plane(R, C, 94);
+        const Plane w = random_plane(R, C, 95, 0.0, 1.0);
+        const ComplexPlane half = Fft2(R, C).forward(x);
+        const ComplexPlane full = expand_half_spectrum(half, C);
+        CHECK_CLOSE((half_spectrum_multiplicity(R, C) * half.abs2()).sum(), full.abs2().sum(),
+                    kSamePathTol * 100);
+        CHECK_CLOSE((fold_full_spectrum_weight(w) * half.abs2()).sum(), (w * full.abs2()).sum(),
+                    kSamePathTol * 100);
+    }
 }
 
 TEST_CASE("linear model: Wiener on the padded grid, image cropped to the capture size") {
