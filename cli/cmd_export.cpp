@@ -177,10 +177,9 @@ void setup(CLI::App& app) {
                   "up: right-reading from the emulsion side; down: mirrored, right-reading "
                   "through the base (= --mirror). Default up");
     c->add_flag("--mirror", f->mirror, "Mirror about the y axis (= --emulsion down)");
-    c->add_option(
-        "--draw", f->draw,
-        "PDF/PNG: film (as the film looks) | polygons (the drawn polygons black on "
-        "white, e.g. opaque pinholes). SVG always holds the drawn polygons. Default film");
+    c->add_option("--draw", f->draw,
+                  "PDF/PNG/SVG: film (as the film looks) | polygons (the drawn polygons black on "
+                  "white, e.g. opaque pinholes). Default: film for PDF and PNG, polygons for SVG");
     c->add_option("--circles", f->circles,
                   "Round pinholes in DXF/Gerber: native (CIRCLE, circular flashes) | polygon "
                   "(default polygon)");

@@ -77,7 +77,7 @@ ExportOptions export_options_from(const ExportFlags& f, const Mask& mask, const 
         l.label_lines = default_label_lines(mask, f.label_id.empty() ? stem : f.label_id);
         l.label_lines.push_back(tone_label_line(l.tone, l.mirror, fab_unit_name(o.write.unit)));
     }
-    o.write.draw = parse_draw_mode(f.draw, "--draw");
+    if (f.draw) o.write.draw = o.write.svg_draw = parse_draw_mode(*f.draw, "--draw");
     if (f.hierarchy != "auto" && f.hierarchy != "flat" && f.hierarchy != "cells")
         throw invalid_field("--hierarchy", f.hierarchy, "must be auto, flat or cells");
     const std::size_t holes = mask.pattern.pinholes.size() *
@@ -116,9 +116,12 @@ io::ExportSidecar export_sidecar_of(const ExportFlags& f, const Mask& mask, cons
     d.label = o.layout.label_lines;
     d.max_vertices = o.layout.max_vertices;
     d.draw = draw_mode_name(o.write.draw);
+    d.svg_draw = draw_mode_name(o.write.svg_draw);
     d.circles = o.write.native_circles && !l.circles.empty() ? "native" : "polygon";
     d.hierarchy = o.write.gds_hierarchy ? "cells" : "flat";
     d.kerf_m = o.kerf_m;
+    d.png_dpi = o.write.png_dpi;
+    d.pdf_margin_m = o.write.pdf.margin_m;
     d.active_area_nm = {l.active_area.x0, l.active_area.y0, l.active_area.x1, l.active_area.y1};
     d.extent_nm = {l.extent.x0, l.extent.y0, l.extent.x1, l.extent.y1};
     d.polygons = l.polygons.size();
