@@ -87,6 +87,7 @@ Mask uniform_mask(const ExportBenchOptions& o, std::size_t count) {
     Mask m;
     m.camera.pinhole_m = o.pinhole_m;
     m.pattern.n = o.n;
+    m.pattern.tiles_rows = m.pattern.tiles_cols = 1;
     m.pattern.min_spacing_cells = 0.0;
     m.provenance.spacing_violations_allowed = true;
     std::mt19937_64 rng(o.seed);

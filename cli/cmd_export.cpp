@@ -18,6 +18,7 @@
 #include "core/units.hpp"
 #include "design/psf.hpp"
 #include "export/export_pipeline.hpp"
+#include "export/file_check.hpp"
 #include "export/read_back.hpp"
 #include "export/vendor_presets.hpp"
 #include "io/export_sidecar.hpp"
@@ -102,6 +103,7 @@ void run_export(const ExportFlags& f) {
                 if (!out) throw RuntimeFailure("cannot write " + tmp.string());
             }
             if (is_readable(e.format)) check = verify_written(file_bytes(tmp), e.format, s.layout);
+            if (is_picture(e.format)) check = verify_picture(tmp, e.format, s.layout, o.write);
         });
         string detail;
         if (e.format == FabFormat::kGds || e.format == FabFormat::kOasis)

@@ -88,6 +88,63 @@ std::optional<FabFormat> picture_format_of(const std::filesystem::path& path) {
     return std::nullopt;
 }
 
+PictureComparison compare_picture(const std::filesystem::path& path, FabFormat format,
+                                  const Layout& design, const PictureCheckOptions& o) {
+    if (!is_picture(format))
+        throw invalid_field("format", fab_format_name(format),
+                            "is not a picture (pdf, png, tiff1)");
+    if (format == FabFormat::kTiff1) {
+        const RasterComparison r =
+            compare_raster(read_tiff1_file(path), design, DrawMode::kFilm, 0);
+        return {
+            "1-bit pixels vs the design rasterised at pixel centres at the file's dpi "
+            "(tolerance 0 pixels)",
+            r.describe(), r.ok()};
+    }
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec) throw RuntimeFailure("cannot read " + path.string() + ": " + ec.message());
+    check_memory(double(size) * 2.0, "reading " + path.string());
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes(size, '\0');
+    if (!in.read(bytes.data(), std::streamsize(size)))
+        throw RuntimeFailure("cannot read " + path.string());
+    try {
+        if (format == FabFormat::kPng) {
+            if (!(o.png_dpi > 0))
+                throw invalid_field("png dpi", std::to_string(o.png_dpi),
+                                    "is unknown: a PNG is checked with its export sidecar");
+            const RasterComparison r =
+                compare_raster(read_png_bytes(bytes, o.png_dpi), design, o.draw, kRasterEdgePixels);
+            return {
+                "grey pixels (black below half grey) vs the design rasterised at pixel "
+                "centres, differences allowed within " +
+                    std::to_string(kRasterEdgePixels) + " px of an edge",
+                r.describe(), r.ok()};
+        }
+        PdfOptions po = o.pdf;
+        po.draw = o.draw;
+        const PdfComparison r = compare_pdf(read_pdf_page(bytes), design, po);
+        return {"filled paths of the content stream vs the design's page, ring by ring",
+                r.describe(), r.ok()};
+    } catch (const InvalidInput& e) {
+        throw InvalidInput(path.string() + ": " + e.what());
+    }
+}
+
+std::string verify_picture(const std::filesystem::path& path, FabFormat format,
+                           const Layout& design, const WriteOptions& w) {
+    PictureCheckOptions o;
+    o.draw = w.draw;
+    o.png_dpi = w.png_dpi;
+    o.pdf = w.pdf;
+    const PictureComparison c = compare_picture(path, format, design, o);
+    if (!c.ok)
+        throw RuntimeFailure(fab_format_name(format) +
+                             " file read back differs from the design: " + c.result);
+    return "read back: " + c.result;
+}
+
 FileCheck check_picture_file(const std::filesystem::path& path, const Layout& design,
                              const PictureCheckOptions& o) {
     const std::optional<FabFormat> f = picture_format_of(path);
@@ -95,46 +152,7 @@ FileCheck check_picture_file(const std::filesystem::path& path, const Layout& de
         throw invalid_field("file", path.string(), "extension must be .pdf, .png, .tif or .tiff");
     protect_input(path);
     FileCheck c;
-    PictureComparison pc;
-    if (*f == FabFormat::kTiff1) {
-        const RasterComparison r =
-            compare_raster(read_tiff1_file(path), design, DrawMode::kFilm, 0);
-        pc = {
-            "1-bit pixels vs the design rasterised at pixel centres at the file's dpi "
-            "(tolerance 0 pixels)",
-            r.describe(), r.ok()};
-    } else {
-        std::error_code ec;
-        const auto size = std::filesystem::file_size(path, ec);
-        if (ec) throw RuntimeFailure("cannot read " + path.string() + ": " + ec.message());
-        check_memory(double(size) * 2.0, "reading " + path.string());
-        std::ifstream in(path, std::ios::binary);
-        std::string bytes(size, '\0');
-        if (!in.read(bytes.data(), std::streamsize(size)))
-            throw RuntimeFailure("cannot read " + path.string());
-        try {
-            if (*f == FabFormat::kPng) {
-                if (!(o.png_dpi > 0))
-                    throw invalid_field("png dpi", std::to_string(o.png_dpi),
-                                        "is unknown: a PNG is checked with its export sidecar");
-                const RasterComparison r = compare_raster(read_png_bytes(bytes, o.png_dpi), design,
-                                                          o.draw, kRasterEdgePixels);
-                pc = {
-                    "grey pixels (black below half grey) vs the design rasterised at pixel "
-                    "centres, differences allowed within " +
-                        std::to_string(kRasterEdgePixels) + " px of an edge",
-                    r.describe(), r.ok()};
-            } else {
-                PdfOptions po = o.pdf;
-                po.draw = o.draw;
-                const PdfComparison r = compare_pdf(read_pdf_page(bytes), design, po);
-                pc = {"filled paths of the content stream vs the design's page, ring by ring",
-                      r.describe(), r.ok()};
-            }
-        } catch (const InvalidInput& e) {
-            throw InvalidInput(path.string() + ": " + e.what());
-        }
-    }
+    const PictureComparison pc = compare_picture(path, *f, design, o);
     c.picture = pc;
     c.layout = design;
     c.drc = run_drc(c.layout, o.rules);

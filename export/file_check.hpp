@@ -22,6 +22,7 @@
 #include "export/pdf_writer.hpp"
 #include "export/read_back.hpp"
 #include "export/rings.hpp"
+#include "export/write_any.hpp"
 
 namespace pinmask {
 
@@ -65,6 +66,17 @@ struct PictureCheckOptions {
     PdfOptions pdf;                   // PDF: margin (title lines default)
     DrcRules rules;
 };
+
+// The picture at `path` in `format` (pdf, png, tiff1) against `design` (as below). Throws
+// InvalidInput for an unreadable file, RuntimeFailure when it cannot be read.
+PictureComparison compare_picture(const std::filesystem::path& path, FabFormat format,
+                                  const Layout& design, const PictureCheckOptions& options);
+
+// Export's verification of a picture it has just written with `written` (draw mode, PNG dpi,
+// PDF margin): compare_picture must agree, else RuntimeFailure saying what differs. Returns
+// "read back: " and the comparison.
+std::string verify_picture(const std::filesystem::path& path, FabFormat format,
+                           const Layout& design, const WriteOptions& written);
 
 // Reads the picture at `path` (format by extension: .pdf .png .tif/.tiff) and compares it with
 // `design`: 1-bit TIFF pixel for pixel at its own dpi (tolerance 0), PNG within
