@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <numeric>
 #include <random>
 
 #include "core/error.hpp"
@@ -79,10 +80,31 @@ Mask bench_mask(const ExportBenchOptions& o, int n, int tiles) {
 
 Mask bench_mask(const ExportBenchOptions& o) { return bench_mask(o, o.n, 1); }
 
+// Uniformly random cells (no structure for a dictionary to share): as many pinholes as the
+// jittered lattice, any positions (spacing rule off; drawn at half the cell so neighbours stay
+// separate polygons).
+Mask uniform_mask(const ExportBenchOptions& o, std::size_t count) {
+    Mask m;
+    m.camera.pinhole_m = o.pinhole_m;
+    m.pattern.n = o.n;
+    m.pattern.tiles_rows = m.pattern.tiles_cols = 1;
+    m.pattern.min_spacing_cells = 0.0;
+    m.provenance.spacing_violations_allowed = true;
+    std::mt19937_64 rng(o.seed);
+    std::vector<int> cells(std::size_t(o.n) * std::size_t(o.n));
+    std::iota(cells.begin(), cells.end(), 0);
+    for (std::size_t k = 0; k < count && k < cells.size(); ++k) {  // partial Fisher-Yates
+        std::uniform_int_distribution<std::size_t> pick(k, cells.size() - 1);
+        std::swap(cells[k], cells[pick(rng)]);
+        m.pattern.pinholes.push_back({cells[k] / o.n, cells[k] % o.n});
+    }
+    return m;
+}
+
 // File sizes of one mask: flat GDSII, hierarchical GDSII and OASIS, each read back and checked
 // equal to the layout (so a small file is never a wrong one).
-ExportSizeRecord sizes_of(const std::string& name, const Mask& mask) {
-    const Layout l = make_layout(mask, {});
+ExportSizeRecord sizes_of(const std::string& name, const Mask& mask, const LayoutOptions& lo = {}) {
+    const Layout l = make_layout(mask, lo);
     ExportSizeRecord r;
     r.mask = name;
     r.pinholes = l.polygons.size();
@@ -158,6 +180,9 @@ ExportBenchResult bench_export(const ExportBenchOptions& o) {
     // Data volume: the bench mask as one tile, and the same cell count as a quarter-size
     // pattern tiled 4 x 4 (the cyclic tiling every coded mask has).
     res.sizes.push_back(sizes_of(std::to_string(o.n) + "^2 cells, 1 tile", mask));
+    res.sizes.push_back(sizes_of(std::to_string(o.n) + "^2 uniform random",
+                                 uniform_mask(o, mask.pattern.pinholes.size()),
+                                 {.hole_side_m = 0.5 * o.pinhole_m}));  // neighbours apart
     if (o.n % 4 == 0 && o.n >= 64)
         res.sizes.push_back(sizes_of(std::to_string(o.n / 4) + "^2 cells x 4 x 4 tiles",
                                      bench_mask(o, o.n / 4, 4)));

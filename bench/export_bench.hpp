@@ -6,8 +6,9 @@
 //   layout            make_layout             vs copying the resulting polygon list
 //   <format> write    writer + fwrite to disk vs fwrite of the same number of bytes
 //   <format> read     reader on the bytes     vs copying the bytes
-// and the data volume of flat GDSII, hierarchical GDSII (SREF/AREF) and OASIS for the mask as one
-// tile and as an (n/4)^2 pattern tiled 4 x 4 (each file read back equal to its layout).
+// and the data volume of flat GDSII, hierarchical GDSII (SREF/AREF and window cells) and OASIS
+// for the mask as one tile, for as many uniformly random pinholes (no structure to share), and
+// as an (n/4)^2 pattern tiled 4 x 4 (each file read back equal to its layout).
 // Each stage is timed as wall-clock seconds and as CPU seconds of the calling thread (what "on
 // one core" costs, undisturbed by other processes on a shared machine); each figure is the
 // minimum over `repeat` runs. Ratios use the CPU times.

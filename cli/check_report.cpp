@@ -33,7 +33,7 @@ void print_check_json(const CheckReport& rep) {
     const bool clean = c.clean();
     nlohmann::ordered_json v = nlohmann::ordered_json::array();
     for (const DrcViolation& x : r.violations) {
-        v.push_back({{"rule", x.rule},
+        v.push_back({{"rule", drc_rule_name(x.rule)},
                      {"message", x.message},
                      {"x_um", double(x.where.x) * 1e-3},
                      {"y_um", double(x.where.y) * 1e-3},
@@ -41,7 +41,7 @@ void print_check_json(const CheckReport& rep) {
                      {"polygon_b", index_or_null(x.polygon_b)},
                      {"value", x.value},
                      {"limit", x.limit},
-                     {"unit", x.rule == "vertices" || x.rule == "ring" ? "vertices" : "nm"}});
+                     {"unit", drc_rule_unit(x.rule)}});
     }
     nlohmann::ordered_json j = {
         {"clean", clean},
@@ -76,6 +76,9 @@ void print_check_json(const CheckReport& rep) {
             {"rings_only_in_design", k.only_design},
             {"ok", k.xor_area_nm2 <= c.max_xor_nm2 && (k.file_hash.empty() || k.hash_ok())}};
     }
+    if (c.picture)
+        j["picture"] = {
+            {"method", c.picture->method}, {"result", c.picture->result}, {"ok", c.picture->ok}};
     std::cout << j.dump() << "\n";
 }
 
@@ -106,6 +109,9 @@ void print_check_text(const CheckReport& rep, const VendorRules& vendor) {
         s << "  vs design   " << rep.mask << ": " << k.describe() << " (max XOR "
           << c.max_xor_nm2 * 1e-6 << " um^2)" << (ok ? "" : "  MISMATCH") << "\n";
     }
+    if (c.picture)
+        s << "  vs design   " << rep.mask << ": " << c.picture->method << ": " << c.picture->result
+          << (c.picture->ok ? "" : "  MISMATCH") << "\n";
     if (!rep.note.empty()) s << "  note        " << rep.note << "\n";
     if (r.clean()) {
         s << "  violations  none\n";
@@ -120,7 +126,7 @@ void print_check_text(const CheckReport& rep, const VendorRules& vendor) {
           << (r.truncated ? ", scan stopped early" : "") << "; at most " << rep.list
           << " listed per rule\n";
         for (const DrcViolation& v : r.violations) {
-            s << "    " << v.rule << ": " << v.message << "\n";
+            s << "    " << drc_rule_name(v.rule) << ": " << v.message << "\n";
         }
     }
     s << "  result      " << (clean ? "clean" : "FAILED") << "\n";

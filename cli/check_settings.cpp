@@ -16,4 +16,29 @@ LayoutOptions design_options(const CheckOptions& o, const io::ExportSidecar* sid
 std::string sidecar_mask(const io::ExportSidecar& side, const fs::path& sidecar) {
     return io::sidecar_mask(side, sidecar);
 }
+
+namespace {
+
+std::int64_t length_nm(const std::string& text, const char* flag, std::int64_t min_nm) {
+    const double nm = std::round(parse_length_m(text, flag) * 1e9);
+    if (!(nm >= double(min_nm)) || nm > 1e12) {
+        throw invalid_field(flag, text,
+                            "must be between " + std::to_string(min_nm) + " nm and 1e12 nm (1 km)");
+    }
+    return static_cast<std::int64_t>(nm);
+}
+
+}  // namespace
+
+DrcRules resolve_rules(const CheckOptions& o, DrcRules rules) {
+    if (o.min_gap) rules.min_gap_nm = length_nm(*o.min_gap, "--min-gap", 1);
+    if (o.min_feature) rules.min_feature_nm = length_nm(*o.min_feature, "--min-feature", 0);
+    if (o.min_spacing) {
+        rules.min_center_spacing_nm = double(length_nm(*o.min_spacing, "--min-spacing", 0));
+    }
+    if (o.max_vertices) rules.max_vertices = *o.max_vertices;
+    rules.max_reported_per_rule = o.list;
+    return rules;
+}
+
 }  // namespace pinmask::cli

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "export/drc.hpp"
 #include "export/geometry.hpp"
 #include "io/export_sidecar.hpp"
 
@@ -31,6 +32,9 @@ struct CheckOptions {
 // Layout settings: the sidecar's (when given), every explicit flag required to agree with it
 // (InvalidInput naming the flag otherwise); without a sidecar, the flags.
 LayoutOptions design_options(const CheckOptions& o, const io::ExportSidecar* side);
+
+// The rules: `rules` (the vendor's or the mask's) with every explicit flag applied.
+DrcRules resolve_rules(const CheckOptions& o, DrcRules rules);
 
 // The mask a sidecar names: its recorded path, else relative to the sidecar's folder; "" when
 // none exists.

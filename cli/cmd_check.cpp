@@ -14,6 +14,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli/check_picture.hpp"
 #include "cli/check_report.hpp"
 #include "cli/check_settings.hpp"
 #include "cli/commands.hpp"
@@ -43,26 +44,6 @@ bool is_mask_file(const fs::path& path) {
     return in && c == '{';
 }
 
-std::int64_t length_nm(const std::string& text, const char* flag, std::int64_t min_nm) {
-    const double nm = std::round(parse_length_m(text, flag) * 1e9);
-    if (!(nm >= double(min_nm)) || nm > 1e12) {
-        throw invalid_field(flag, text,
-                            "must be between " + std::to_string(min_nm) + " nm and 1e12 nm (1 km)");
-    }
-    return static_cast<std::int64_t>(nm);
-}
-
-DrcRules resolve_rules(const CheckOptions& o, DrcRules rules) {
-    if (o.min_gap) rules.min_gap_nm = length_nm(*o.min_gap, "--min-gap", 1);
-    if (o.min_feature) rules.min_feature_nm = length_nm(*o.min_feature, "--min-feature", 0);
-    if (o.min_spacing) {
-        rules.min_center_spacing_nm = double(length_nm(*o.min_spacing, "--min-spacing", 0));
-    }
-    if (o.max_vertices) rules.max_vertices = *o.max_vertices;
-    rules.max_reported_per_rule = o.list;
-    return rules;
-}
-
 // Returns the exit code: 0 clean, 1 violations found.
 int run(const CheckOptions& o) {
     if (!fs::is_regular_file(o.input))
@@ -74,7 +55,10 @@ int run(const CheckOptions& o) {
     const VendorRules vendor = vendor_rules(o.vendor);
     CheckReport rep{.input = o.input, .vendor = o.vendor, .mask = o.mask, .list = o.list};
     FileCheck c;
-    if (is_mask_file(o.input)) {
+    if (const auto picture = picture_format_of(o.input); picture && !is_mask_file(o.input)) {
+        rep.kind = fab_format_name(*picture);
+        c = check_picture(o, vendor, rep);
+    } else if (is_mask_file(o.input)) {
         if (!o.mask.empty())
             throw invalid_field("--mask", o.mask, "only used with a fabrication file");
         rep.kind = "mask";
@@ -158,6 +142,10 @@ constexpr const char* kFooter =
     "must agree with the sidecar or the check stops (exit 2). Without a sidecar, give --mask "
     "and the export's --shape/--sides/--hole-side/--frame/--chord-tol; tone, mirroring and grid "
     "are read from the file; its rings inside the design's outline are the pinholes.\n"
+    "Pictures (.pdf .png .tif) are compared with the design drawn the same way: the 1-bit TIFF "
+    "pixel for pixel at its dpi, the PNG within 1 px of an edge (dpi from the sidecar), the PDF "
+    "ring by ring within 1/256 pt (Cairo's coordinate step); the design itself is then "
+    "design-rule checked.\n"
     "Rules (exact, integer nm): ring, vertices, self_intersection, orientation (CCW), area, "
     "feature, gap, touching, overlap, spacing (pinhole centroids on the tiled mask).\n"
     "Exit codes: 0 clean, 1 violations or a mismatch with the design, 2 bad input.\n"
@@ -168,7 +156,9 @@ void setup(CLI::App& app, int& exit_code) {
     auto* cmd = app.add_subcommand(
         "check", "Design-rule check of a mask file or an exported fabrication file.");
     cmd->footer(kFooter);
-    cmd->add_option("input", o->input, "A *.mask.json, or a .gds/.dxf/.gbr/.svg file")->required();
+    cmd->add_option("input", o->input,
+                    "A *.mask.json, or a .gds/.oas/.dxf/.gbr/.svg/.pdf/.png/.tif file")
+        ->required();
     cmd->add_option("--vendor", o->vendor,
                     "Process limits: film (features and gaps >= 16 um, 20000 dpi plotter), chrome "
                     "(>= 1 um), none (polygons must only not touch); all: <= 199 vertices")

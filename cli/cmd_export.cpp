@@ -18,6 +18,7 @@
 #include "core/units.hpp"
 #include "design/psf.hpp"
 #include "export/export_pipeline.hpp"
+#include "export/file_check.hpp"
 #include "export/read_back.hpp"
 #include "export/vendor_presets.hpp"
 #include "io/export_sidecar.hpp"
@@ -102,6 +103,7 @@ void run_export(const ExportFlags& f) {
                 if (!out) throw RuntimeFailure("cannot write " + tmp.string());
             }
             if (is_readable(e.format)) check = verify_written(file_bytes(tmp), e.format, s.layout);
+            if (is_picture(e.format)) check = verify_picture(tmp, e.format, s.layout, o.write);
         });
         string detail;
         if (e.format == FabFormat::kGds || e.format == FabFormat::kOasis)
@@ -177,10 +179,9 @@ void setup(CLI::App& app) {
                   "up: right-reading from the emulsion side; down: mirrored, right-reading "
                   "through the base (= --mirror). Default up");
     c->add_flag("--mirror", f->mirror, "Mirror about the y axis (= --emulsion down)");
-    c->add_option(
-        "--draw", f->draw,
-        "PDF/PNG: film (as the film looks) | polygons (the drawn polygons black on "
-        "white, e.g. opaque pinholes). SVG always holds the drawn polygons. Default film");
+    c->add_option("--draw", f->draw,
+                  "PDF/PNG/SVG: film (as the film looks) | polygons (the drawn polygons black on "
+                  "white, e.g. opaque pinholes). Default: film for PDF and PNG, polygons for SVG");
     c->add_option("--circles", f->circles,
                   "Round pinholes in DXF/Gerber: native (CIRCLE, circular flashes) | polygon "
                   "(default polygon)");

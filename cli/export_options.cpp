@@ -27,9 +27,12 @@ io::ExportSidecar export_sidecar_of(const ExportFlags& f, const Mask& mask, cons
     d.label = o.layout.label_lines;
     d.max_vertices = o.layout.max_vertices;
     d.draw = draw_mode_name(o.write.draw);
+    d.svg_draw = draw_mode_name(o.write.svg_draw);
     d.circles = o.write.native_circles && !l.circles.empty() ? "native" : "polygon";
     d.hierarchy = o.write.gds_hierarchy ? "cells" : "flat";
     d.kerf_m = o.kerf_m;
+    d.png_dpi = o.write.png_dpi;
+    d.pdf_margin_m = o.write.pdf.margin_m;
     d.active_area_nm = {l.active_area.x0, l.active_area.y0, l.active_area.x1, l.active_area.y1};
     d.extent_nm = {l.extent.x0, l.extent.y0, l.extent.x1, l.extent.y1};
     d.polygons = l.polygons.size();

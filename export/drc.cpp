@@ -30,13 +30,31 @@ constexpr std::size_t kLocateVertices = 512;
 // A flood of pair violations (e.g. thousands of copies of one polygon) stops the scan here.
 constexpr std::size_t kMaxPairViolations = 100'000;
 
-const std::array<const char*, 10> kRuleOrder = {
-    "ring",    "vertices", "self_intersection", "orientation", "area",
-    "feature", "overlap",  "touching",          "gap",         "spacing"};
-std::size_t rule_rank(const std::string& rule) {
-    return static_cast<std::size_t>(std::find(kRuleOrder.begin(), kRuleOrder.end(), rule) -
-                                    kRuleOrder.begin());
+// The one name table of the rules, in report order (the enum's order).
+struct RuleName {
+    DrcRule rule;
+    const char* name;
+    const char* unit;
+};
+constexpr std::array<RuleName, kDrcRuleCount> kRuleNames = {{
+    {DrcRule::kRing, "ring", "vertices"},
+    {DrcRule::kVertices, "vertices", "vertices"},
+    {DrcRule::kSelfIntersection, "self_intersection", "nm"},
+    {DrcRule::kOrientation, "orientation", "nm"},
+    {DrcRule::kArea, "area", "nm"},
+    {DrcRule::kFeature, "feature", "nm"},
+    {DrcRule::kOverlap, "overlap", "nm"},
+    {DrcRule::kTouching, "touching", "nm"},
+    {DrcRule::kGap, "gap", "nm"},
+    {DrcRule::kSpacing, "spacing", "nm"},
+}};
+const RuleName& rule_entry(DrcRule rule) {
+    const auto i = static_cast<std::size_t>(rule);
+    if (i >= kRuleNames.size() || kRuleNames[i].rule != rule)
+        throw RuntimeFailure("DRC rule table out of order");  // a programming error
+    return kRuleNames[i];
 }
+std::size_t rule_rank(DrcRule rule) { return static_cast<std::size_t>(rule); }
 
 struct StopScan {};
 
@@ -107,8 +125,8 @@ class Checker {
         return std::string(group_name(in_[i].group)) + " " + std::to_string(in_[i].index);
     }
     const Ring& ring(std::size_t i) const { return *in_[i].ring; }
-    void add(const std::string& rule, const std::string& message, PointNm where, std::size_t a,
-             std::size_t b, double value, double limit);
+    void add(DrcRule rule, const std::string& message, PointNm where, std::size_t a, std::size_t b,
+             double value, double limit);
     void check_ring(std::size_t i);
     void check_width(std::size_t i);
     void check_edge_pair(std::size_t i, std::size_t e, std::size_t f);
@@ -120,14 +138,14 @@ class Checker {
     std::vector<RingInfo> info_;
     DrcReport report_;
     std::vector<DrcViolation> found_;
-    std::map<std::string, std::size_t> stored_;
+    std::map<DrcRule, std::size_t> stored_;
     bool pair_stage_ = false;
     std::size_t pair_found_ = 0;
 };
 
-void Checker::add(const std::string& rule, const std::string& message, PointNm where, std::size_t a,
+void Checker::add(DrcRule rule, const std::string& message, PointNm where, std::size_t a,
                   std::size_t b, double value, double limit) {
-    ++report_.counts[rule];
+    ++report_.counts[drc_rule_name(rule)];
     // Pairs arrive in sweep order: keep them all (up to the flood limit), sort, then trim.
     if (pair_stage_) {
         if (++pair_found_ > kMaxPairViolations) throw StopScan{};
@@ -142,7 +160,7 @@ void Checker::check_ring(std::size_t i) {
     RingInfo& info = info_[i];
     const std::size_t n = r.size();
     if (n < 3) {
-        add("ring", name(i) + ": " + std::to_string(n) + " vertices; a polygon needs >= 3",
+        add(DrcRule::kRing, name(i) + ": " + std::to_string(n) + " vertices; a polygon needs >= 3",
             n ? r.front() : PointNm{}, i, kNoPolygon, double(n), 3);
         return;
     }
@@ -155,7 +173,7 @@ void Checker::check_ring(std::size_t i) {
     }
     // Clear regions are derived, not drawn: no file carries them, so no vertex limit applies.
     if (n > rules_.max_vertices && in_[i].group != Group::kClearRegion) {
-        add("vertices",
+        add(DrcRule::kVertices,
             name(i) + ": " + std::to_string(n) + " vertices, limit " +
                 std::to_string(rules_.max_vertices),
             r.front(), i, kNoPolygon, double(n), double(rules_.max_vertices));
@@ -197,21 +215,21 @@ void Checker::check_ring(std::size_t i) {
                                     ? " (the last vertex repeats the first; rings close implicitly)"
                                 : area2 == 0 ? " (zero area)"
                                              : "";
-        add("self_intersection",
+        add(DrcRule::kSelfIntersection,
             name(i) + ": not a simple polygon (edges cross or touch) near " +
                 at_um(double(where.x), double(where.y)) + why,
             where, i, kNoPolygon, 0, 0);
     } else {
         info.orientation = area2 > 0 ? 1 : -1;
         if (area2 < 0) {
-            add("orientation", name(i) + ": clockwise; rings must be counter-clockwise", r.front(),
-                i, kNoPolygon, 0, 0);
+            add(DrcRule::kOrientation, name(i) + ": clockwise; rings must be counter-clockwise",
+                r.front(), i, kNoPolygon, 0, 0);
         }
     }
     if (const auto& box = in_[i].area) {
         for (const PointNm& p : r) {
             if (p.x >= box->x0 && p.x <= box->x1 && p.y >= box->y0 && p.y <= box->y1) continue;
-            add("area",
+            add(DrcRule::kArea,
                 name(i) + ": vertex " + at_um(double(p.x), double(p.y)) + " outside the area " +
                     at_um(double(box->x0), double(box->y0)) + " - " +
                     at_um(double(box->x1), double(box->y1)),
@@ -239,7 +257,7 @@ void Checker::check_edge_pair(std::size_t i, std::size_t e, std::size_t f) {
         report_.measured.min_feature_nm = std::min(report_.measured.min_feature_nm, t.dist);
         const Int128 f2 = Int128(rules_.min_feature_nm) * rules_.min_feature_nm;
         if (rules_.min_feature_nm > 0 && segments_closer(a, b, c, d, f2)) {
-            add("feature",
+            add(DrcRule::kFeature,
                 name(i) + ": width " + um(t.dist) + " < " + um(double(rules_.min_feature_nm)) +
                     " at " + at_um(t.x, t.y),
                 to_point(t.x, t.y), i, kNoPolygon, t.dist, double(rules_.min_feature_nm));
@@ -249,7 +267,7 @@ void Checker::check_edge_pair(std::size_t i, std::size_t e, std::size_t f) {
         if (!segments_closer(a, b, c, d, g2)) return;
         const Approach t = segment_approach(a, b, c, d);
         report_.measured.min_gap_nm = std::min(report_.measured.min_gap_nm, t.dist);
-        add("gap",
+        add(DrcRule::kGap,
             name(i) + ": notch " + um(t.dist) + " wide < " + um(double(rules_.min_gap_nm)) +
                 " at " + at_um(t.x, t.y),
             to_point(t.x, t.y), i, i, t.dist, double(rules_.min_gap_nm));
@@ -319,15 +337,16 @@ void Checker::check_pair(std::size_t i, std::size_t j) {
     report_.measured.min_gap_nm = std::min(report_.measured.min_gap_nm, best.dist);
     const std::string pair = name(i) + " and " + name(j);
     if (contact) {
-        std::string rule = "touching", note;
+        DrcRule rule = DrcRule::kTouching;
+        std::string note;
         if (p.simple && q.simple) {
-            if (intersection_area_nm2({r}, {s}) > 0) rule = "overlap";
+            if (intersection_area_nm2({r}, {s}) > 0) rule = DrcRule::kOverlap;
         } else {
             note = " (overlap not classified: not simple)";
         }
         add(rule,
-            pair + (rule == "overlap" ? " overlap" : " touch") + " at " + at_um(best.x, best.y) +
-                note,
+            pair + (rule == DrcRule::kOverlap ? " overlap" : " touch") + " at " +
+                at_um(best.x, best.y) + note,
             to_point(best.x, best.y), i, j, 0, double(rules_.min_gap_nm));
         return;
     }
@@ -335,7 +354,7 @@ void Checker::check_pair(std::size_t i, std::size_t j) {
     if (s_in_r || r_in_s) {
         const PointNm where = s_in_r ? s[0] : r[0];
         report_.measured.min_gap_nm = 0;
-        add("overlap",
+        add(DrcRule::kOverlap,
             pair + " overlap: " + name(s_in_r ? j : i) + " lies inside " + name(s_in_r ? i : j) +
                 " at " + at_um(double(where.x), double(where.y)),
             where, i, j, 0, double(rules_.min_gap_nm));
@@ -346,7 +365,7 @@ void Checker::check_pair(std::size_t i, std::size_t j) {
             if (!segments_closer(r[e], r[(e + 1) % r.size()], s[f], s[(f + 1) % s.size()], g2)) {
                 continue;
             }
-            add("gap",
+            add(DrcRule::kGap,
                 pair + ": gap " + um(best.dist) + " < " + um(double(rules_.min_gap_nm)) + " at " +
                     at_um(best.x, best.y),
                 to_point(best.x, best.y), i, j, best.dist, double(rules_.min_gap_nm));
@@ -376,7 +395,7 @@ void Checker::check_spacing() {
             std::min(report_.measured.min_center_spacing_nm, d);
         if (d >= limit) return;
         const double mx = 0.5 * (p.cx + q.cx), my = 0.5 * (p.cy + q.cy);
-        add("spacing",
+        add(DrcRule::kSpacing,
             name(i) + " and " + name(j) + ": centres " + um(d) + " apart < " + um(s) + " at " +
                 at_um(mx, my),
             to_point(mx, my), i, j, d, s);
@@ -414,7 +433,7 @@ DrcReport Checker::run() {
                          return x.polygon_a != y.polygon_a ? x.polygon_a < y.polygon_a
                                                            : x.polygon_b < y.polygon_b;
                      });
-    std::map<std::string, std::size_t> kept;
+    std::map<DrcRule, std::size_t> kept;
     for (DrcViolation& v : found_) {
         if (kept[v.rule]++ < rules_.max_reported_per_rule)
             report_.violations.push_back(std::move(v));
@@ -499,6 +518,10 @@ DrcReport run_drc(const Layout& layout, const DrcRules& rules) {
     }
     return run_checked(in, rules);
 }
+
+std::string drc_rule_name(DrcRule rule) { return rule_entry(rule).name; }
+
+std::string drc_rule_unit(DrcRule rule) { return rule_entry(rule).unit; }
 
 DrcRules rules_for_mask(const Mask& mask, const VendorRules& vendor) {
     DrcRules rules;

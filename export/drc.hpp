@@ -1,7 +1,8 @@
 // Design-rule check of exported mask geometry (rings in integer nanometres, export/layout.hpp).
 // Every verdict is exact: vertices are integers, and distances are compared squared in 128-bit
 // integer arithmetic (coordinates within +-kMaxCoordNm, export/xor_area.hpp); only the reported
-// measurements are rounded to double. Rules (DrcViolation::rule):
+// measurements are rounded to double. Rules (DrcRule, named by
+// the one table drc_rule_name):
 //   ring              fewer than 3 vertices
 //   vertices          more than max_vertices vertices (GDSII record limits, export/vendor_rules)
 //   self_intersection not a simple polygon (CGAL::is_simple_2): crossing or touching edges,
@@ -42,6 +43,25 @@ namespace pinmask {
 // is below 1e-6 nm, so a pair counts as too close only when short by more than this.
 inline constexpr double kCentroidToleranceNm = 1e-3;
 
+enum class DrcRule {
+    kRing,
+    kVertices,
+    kSelfIntersection,
+    kOrientation,
+    kArea,
+    kFeature,
+    kOverlap,
+    kTouching,
+    kGap,
+    kSpacing
+};
+inline constexpr std::size_t kDrcRuleCount = 10;
+
+// The rule's name as reports, counts and JSON spell it ("self_intersection", ...), and the unit
+// of its measured value and limit ("vertices" for ring and vertices, else "nm").
+std::string drc_rule_name(DrcRule rule);
+std::string drc_rule_unit(DrcRule rule);
+
 struct DrcRules {
     double min_center_spacing_nm = 0.0;  // 0: not checked
     std::int64_t min_gap_nm = 1;         // >= 1 (touching is always a violation)
@@ -55,7 +75,7 @@ struct DrcRules {
 inline constexpr std::size_t kNoPolygon = std::numeric_limits<std::size_t>::max();
 
 struct DrcViolation {
-    std::string rule;                    // one of the rule names above
+    DrcRule rule = DrcRule::kRing;
     std::string message;                 // for people: polygons, measured value and limit in um
     PointNm where;                       // location of the problem
     std::size_t polygon_a = kNoPolygon;  // index of the polygon(s) involved
@@ -74,7 +94,7 @@ struct DrcMeasured {
 
 struct DrcReport {
     std::vector<DrcViolation> violations;       // at most max_reported_per_rule per rule
-    std::map<std::string, std::size_t> counts;  // rule -> number of violations found
+    std::map<std::string, std::size_t> counts;  // drc_rule_name -> violations found
     bool truncated = false;  // the pair scan stopped early (a flood of violations)
     std::size_t polygons_checked = 0;
     DrcMeasured measured;

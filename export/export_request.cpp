@@ -77,7 +77,7 @@ ExportOptions export_options_from(const ExportRequest& f, const Mask& mask, cons
         l.label_lines = default_label_lines(mask, f.label_id.empty() ? stem : f.label_id);
         l.label_lines.push_back(tone_label_line(l.tone, l.mirror, fab_unit_name(o.write.unit)));
     }
-    o.write.draw = parse_draw_mode(f.draw, "--draw");
+    if (f.draw) o.write.draw = o.write.svg_draw = parse_draw_mode(*f.draw, "--draw");
     if (f.hierarchy != "auto" && f.hierarchy != "flat" && f.hierarchy != "cells")
         throw invalid_field("--hierarchy", f.hierarchy, "must be auto, flat or cells");
     const std::size_t holes = mask.pattern.pinholes.size() *

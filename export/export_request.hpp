@@ -15,8 +15,8 @@ namespace pinmask {
 struct ExportRequest {
     std::string input, output, stem, vendor = "none", shape = "square", chord_tol = "auto",
                                      margin = "10mm", label_id, dxf_layer = "PINMASK",
-                                     draw = "film", hierarchy = "auto";
-    std::optional<std::string> formats, units, tone, emulsion, frame, grid, circles, kerf,
+                                     hierarchy = "auto";
+    std::optional<std::string> draw, formats, units, tone, emulsion, frame, grid, circles, kerf,
         hole_side, max_snap_error;
     std::optional<std::size_t> max_vertices;
     std::optional<double> dpi;

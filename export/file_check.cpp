@@ -1,6 +1,15 @@
 #include "export/file_check.hpp"
 
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+
+#include "core/error.hpp"
+#include "core/output_set.hpp"
+#include "core/resource_limits.hpp"
 #include "export/geometry.hpp"
+#include "export/pdf_reader.hpp"
+#include "export/raster_check.hpp"
 #include "export/shapes.hpp"
 
 namespace pinmask {
@@ -62,6 +71,91 @@ FileCheck check_file_geometry(const FileGeometry& file, const FileCheckOptions& 
         c.comparison =
             compare_rings(l.polygons, o.design->polygons, file_hash, o.design->mask_hash);
     c.drc = run_drc(l, o.rules);
+    return c;
+}
+
+bool is_picture(FabFormat f) {
+    return f == FabFormat::kPdf || f == FabFormat::kPng || f == FabFormat::kTiff1;
+}
+
+std::optional<FabFormat> picture_format_of(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext == ".pdf") return FabFormat::kPdf;
+    if (ext == ".png") return FabFormat::kPng;
+    if (ext == ".tif" || ext == ".tiff") return FabFormat::kTiff1;
+    return std::nullopt;
+}
+
+PictureComparison compare_picture(const std::filesystem::path& path, FabFormat format,
+                                  const Layout& design, const PictureCheckOptions& o) {
+    if (!is_picture(format))
+        throw invalid_field("format", fab_format_name(format),
+                            "is not a picture (pdf, png, tiff1)");
+    if (format == FabFormat::kTiff1) {
+        const RasterComparison r =
+            compare_raster(read_tiff1_file(path), design, DrawMode::kFilm, 0);
+        return {
+            "1-bit pixels vs the design rasterised at pixel centres at the file's dpi "
+            "(tolerance 0 pixels)",
+            r.describe(), r.ok()};
+    }
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec) throw RuntimeFailure("cannot read " + path.string() + ": " + ec.message());
+    check_memory(double(size) * 2.0, "reading " + path.string());
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes(size, '\0');
+    if (!in.read(bytes.data(), std::streamsize(size)))
+        throw RuntimeFailure("cannot read " + path.string());
+    try {
+        if (format == FabFormat::kPng) {
+            if (!(o.png_dpi > 0))
+                throw invalid_field("png dpi", std::to_string(o.png_dpi),
+                                    "is unknown: a PNG is checked with its export sidecar");
+            const RasterComparison r =
+                compare_raster(read_png_bytes(bytes, o.png_dpi), design, o.draw, kRasterEdgePixels);
+            return {
+                "grey pixels (black below half grey) vs the design rasterised at pixel "
+                "centres, differences allowed within " +
+                    std::to_string(kRasterEdgePixels) + " px of an edge",
+                r.describe(), r.ok()};
+        }
+        PdfOptions po = o.pdf;
+        po.draw = o.draw;
+        const PdfComparison r = compare_pdf(read_pdf_page(bytes), design, po);
+        return {"filled paths of the content stream vs the design's page, ring by ring",
+                r.describe(), r.ok()};
+    } catch (const InvalidInput& e) {
+        throw InvalidInput(path.string() + ": " + e.what());
+    }
+}
+
+std::string verify_picture(const std::filesystem::path& path, FabFormat format,
+                           const Layout& design, const WriteOptions& w) {
+    PictureCheckOptions o;
+    o.draw = w.draw;
+    o.png_dpi = w.png_dpi;
+    o.pdf = w.pdf;
+    const PictureComparison c = compare_picture(path, format, design, o);
+    if (!c.ok)
+        throw RuntimeFailure(fab_format_name(format) +
+                             " file read back differs from the design: " + c.result);
+    return "read back: " + c.result;
+}
+
+FileCheck check_picture_file(const std::filesystem::path& path, const Layout& design,
+                             const PictureCheckOptions& o) {
+    const std::optional<FabFormat> f = picture_format_of(path);
+    if (!f)
+        throw invalid_field("file", path.string(), "extension must be .pdf, .png, .tif or .tiff");
+    protect_input(path);
+    FileCheck c;
+    const PictureComparison pc = compare_picture(path, *f, design, o);
+    c.picture = pc;
+    c.layout = design;
+    c.drc = run_drc(c.layout, o.rules);
     return c;
 }
 

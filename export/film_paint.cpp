@@ -1,6 +1,7 @@
 #include "export/film_paint.hpp"
 
 #include "core/error.hpp"
+#include "export/rings.hpp"
 
 namespace pinmask {
 namespace {
@@ -17,10 +18,22 @@ void add_rings(cairo_t* cr, const std::vector<Ring>& rings) {
 
 }  // namespace
 
-void fill_rings(cairo_t* cr, const std::vector<Ring>& rings) {
-    cairo_set_source_rgb(cr, 0, 0, 0);
+void fill_rings(cairo_t* cr, const std::vector<Ring>& rings, bool white) {
+    cairo_set_fill_rule(cr, CAIRO_FILL_RULE_WINDING);
+    const double c = white ? 1 : 0;
+    cairo_set_source_rgb(cr, c, c, c);
     add_rings(cr, rings);
     cairo_fill(cr);
+}
+
+std::vector<FilmFill> film_fills(const Layout& layout, DrawMode mode) {
+    const bool clear = layout.tone == Tone::kClear && mode == DrawMode::kFilm;
+    std::vector<FilmFill> out;
+    if (clear) out.push_back({false, {box_ring(layout.extent)}});
+    FilmFill drawn{clear, layout.polygons};
+    drawn.rings.insert(drawn.rings.end(), layout.annotations.begin(), layout.annotations.end());
+    out.push_back(std::move(drawn));
+    return out;
 }
 
 DrawMode parse_draw_mode(std::string_view text, std::string_view field) {
@@ -34,18 +47,7 @@ DrawMode parse_draw_mode(std::string_view text, std::string_view field) {
 std::string draw_mode_name(DrawMode mode) { return mode == DrawMode::kFilm ? "film" : "polygons"; }
 
 void paint_film(cairo_t* cr, const Layout& layout, DrawMode mode) {
-    cairo_set_fill_rule(cr, CAIRO_FILL_RULE_WINDING);
-    const bool clear = layout.tone == Tone::kClear && mode == DrawMode::kFilm;
-    if (clear) {
-        const BoxNm& e = layout.extent;
-        cairo_set_source_rgb(cr, 0, 0, 0);
-        cairo_rectangle(cr, double(e.x0), double(e.y0), double(e.x1 - e.x0), double(e.y1 - e.y0));
-        cairo_fill(cr);
-    }
-    cairo_set_source_rgb(cr, clear ? 1 : 0, clear ? 1 : 0, clear ? 1 : 0);
-    add_rings(cr, layout.polygons);
-    add_rings(cr, layout.annotations);
-    cairo_fill(cr);
+    for (const FilmFill& f : film_fills(layout, mode)) fill_rings(cr, f.rings, f.white);
 }
 
 void check_cairo(cairo_t* cr, const std::string& what) {

@@ -25,10 +25,20 @@ enum class DrawMode { kFilm, kPolygons };
 DrawMode parse_draw_mode(std::string_view text, std::string_view field);
 std::string draw_mode_name(DrawMode mode);
 
+// One fill of a picture: rings in one path, filled (non-zero winding) in one colour.
+struct FilmFill {
+    bool white = false;  // else black
+    std::vector<Ring> rings;
+};
+
+// What paint_film paints, in order: clear tone in film mode: the extent black, then every
+// polygon and annotation white; otherwise every polygon and annotation black.
+std::vector<FilmFill> film_fills(const Layout& layout, DrawMode mode = DrawMode::kFilm);
+
 void paint_film(cairo_t* cr, const Layout& layout, DrawMode mode = DrawMode::kFilm);
 
-// Fills the rings black (nanometre user space), one path.
-void fill_rings(cairo_t* cr, const std::vector<Ring>& rings);
+// Fills the rings black (or white) (nanometre user space), one path.
+void fill_rings(cairo_t* cr, const std::vector<Ring>& rings, bool white = false);
 
 // Throws RuntimeFailure naming `what` when the surface or context is in an error state.
 void check_cairo(cairo_t* cr, const std::string& what);

@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "export/geometry.hpp"
 #include "export/repetition.hpp"
+#include "export/window_cells.hpp"
 
 namespace pinmask {
 namespace {
@@ -174,15 +175,38 @@ std::string gds_stream(const Layout& layout, const GdsOptions& o) {
             s.xy({at}, false);
             s.empty_record(kEndEl);
         };
+        // Short cell names (they are repeated in every reference): "P" + 4 hex digits of the
+        // mask hash + S<k> (a shape) or W<k> (a window of shapes, export/window_cells).
+        const std::string prefix = "P" + layout.mask_hash.substr(0, 4);
+        const std::string shape_name = prefix + "S", window_name = prefix + "W";
         for (std::size_t k = 0; k < rep.shapes.size(); ++k) {
             s.timestamps(kBgnStr);
-            s.string_record(kStrName, top + "_S" + std::to_string(k));
+            s.string_record(kStrName, shape_name + std::to_string(k));
             boundary(rep.shapes[k]);
+            s.empty_record(kEndStr);
+        }
+        const std::size_t name_bytes = (prefix.size() + 5 + 1) / 2 * 2;  // ~4 digits
+        WindowCells windows = find_window_cells(
+            rep.placements, {.ref_bytes = 24 + name_bytes, .cell_bytes = 28 + 4 + name_bytes + 4});
+        // Stay within the structure count pinmask's reader accepts (export/gds_reader).
+        constexpr std::size_t kMaxWindowCells = 50'000;
+        if (windows.cells.size() > kMaxWindowCells) windows = {};
+        for (std::size_t k = 0; k < windows.cells.size(); ++k) {
+            s.timestamps(kBgnStr);
+            s.string_record(kStrName, window_name + std::to_string(k));
+            for (const Placement& p : windows.cells[k])
+                sref(shape_name + std::to_string(p.shape), p.at);
             s.empty_record(kEndStr);
         }
         s.timestamps(kBgnStr);
         s.string_record(kStrName, top + "_TILE");
-        for (const Placement& p : rep.placements) sref(top + "_S" + std::to_string(p.shape), p.at);
+        if (windows.w > 0) {
+            for (const Placement& u : windows.uses)
+                sref(window_name + std::to_string(u.shape), u.at);
+        } else {
+            for (const Placement& p : rep.placements)
+                sref(shape_name + std::to_string(p.shape), p.at);
+        }
         s.empty_record(kEndStr);
         s.timestamps(kBgnStr);
         s.string_record(kStrName, top);

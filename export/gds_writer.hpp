@@ -21,12 +21,15 @@ struct GdsOptions {
     // The user unit (UNITS' first real: user units per database unit, 1e-3 for um, 1e-6 for mm,
     // 1e-9 / 0.0254 for inches); the database unit stays 1 nm, so coordinates do not change.
     FabUnit unit = FabUnit::kMicrometre;
-    // Hierarchy: each distinct pinhole polygon becomes a structure "PINMASK_<hash>_S<k>" holding
-    // it at the origin; a structure "PINMASK_<hash>_TILE" references them (SREF) for one tile,
-    // and the top structure places the tile as an array (AREF, tile columns x rows at the tile
-    // pitch) when the pinholes repeat exactly across tiles (export/repetition), else references
-    // every pinhole itself. Marks, label and text stay in the top structure. Flattened, the same
-    // polygons as the flat stream.
+    // Hierarchy: each distinct pinhole polygon becomes a structure "P<hhhh>S<k>" (hhhh: the
+    // first 4 hex digits of the mask hash; short, because every reference repeats the name)
+    // holding it at the origin; each distinct window of one tile's pinholes (export/
+    // window_cells, when that makes the file smaller) a structure "P<hhhh>W<k>" referencing the
+    // shapes; a structure "PINMASK_<hash>_TILE" references the windows (or the shapes, one SREF
+    // per pinhole) for one tile, and the top structure places the tile as an array (AREF, tile
+    // columns x rows at the tile pitch) when the pinholes repeat exactly across tiles
+    // (export/repetition), else once. Marks, label and text stay in the top structure.
+    // Flattened, the same polygons as the flat stream.
     bool hierarchy = false;
 };
 

@@ -17,7 +17,7 @@
 namespace pinmask {
 namespace {
 
-constexpr double kPointsPerNm = 72.0 / 25.4e6;
+constexpr double kPointsPerNm = kPdfPointsPerNm;
 constexpr std::int64_t kTextPixelNm = 100'000;   // title font pixel: 0.1 mm (0.7 mm capitals)
 constexpr std::int64_t kTextGapNm = 20'000;      // gap between font bars
 constexpr std::int64_t kBarHeightNm = 250'000;   // scale bar thickness
@@ -60,7 +60,7 @@ std::vector<std::string> default_title_lines(const Layout& layout, DrawMode draw
             "SCALE 1:1 - PRINT AT 100 PERCENT", "GRID " + std::to_string(layout.grid_nm) + " NM"};
 }
 
-std::string pdf_document(const Layout& layout, const PdfOptions& o) {
+PdfDrawing pdf_drawing(const Layout& layout, const PdfOptions& o) {
     if (!(o.margin_m >= 0) || !std::isfinite(o.margin_m))
         throw invalid_field("margin", std::to_string(o.margin_m), "must be >= 0");
     const std::int64_t margin = std::llround(o.margin_m * 1e9);
@@ -86,6 +86,18 @@ std::string pdf_document(const Layout& layout, const PdfOptions& o) {
     if (w_pt > kMaxPagePoints || h_pt > kMaxPagePoints)
         throw invalid_field("pdf page", std::to_string(w_pt) + " x " + std::to_string(h_pt) + " pt",
                             "is larger than the PDF page limit of 14400 pt (5.08 m)");
+    PdfDrawing d{
+        .width_pt = w_pt, .height_pt = h_pt, .page_nm = page_nm, .margin_nm = margin, .fills = {}};
+    d.fills = film_fills(layout, o.draw);
+    d.fills.push_back({false, std::move(ink)});
+    return d;
+}
+
+std::string pdf_document(const Layout& layout, const PdfOptions& o) {
+    const PdfDrawing d = pdf_drawing(layout, o);
+    const double w_pt = d.width_pt, h_pt = d.height_pt;
+    const std::int64_t margin = d.margin_nm;
+    const BoxNm& page_nm = d.page_nm;
 
     std::string out;
     {
@@ -106,8 +118,7 @@ std::string pdf_document(const Layout& layout, const PdfOptions& o) {
         cairo_translate(cr.get(), double(margin) * kPointsPerNm, double(margin) * kPointsPerNm);
         cairo_scale(cr.get(), kPointsPerNm, -kPointsPerNm);
         cairo_translate(cr.get(), -double(page_nm.x0), -double(page_nm.y1));
-        paint_film(cr.get(), layout, o.draw);
-        fill_rings(cr.get(), ink);
+        for (const PdfFill& f : d.fills) fill_rings(cr.get(), f.rings, f.white);
         check_cairo(cr.get(), "PDF drawing");
         cr.reset();
         cairo_surface_finish(surface.get());

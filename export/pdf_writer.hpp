@@ -23,7 +23,23 @@ struct PdfOptions {
 // The default title block lines for a layout.
 std::vector<std::string> default_title_lines(const Layout& layout, DrawMode draw = DrawMode::kFilm);
 
-// The complete PDF file. Throws InvalidInput for a negative margin.
+// What the PDF page holds, in the order it is painted: fills of one colour, each one path of
+// rings in layout nanometres (y up). Page point (x, y) of a layout point (y up, as PDF):
+// x_pt = (x - page_nm.x0 + margin_nm) * kPdfPointsPerNm, y_pt = (y - page_nm.y0 + margin_nm) *
+// kPdfPointsPerNm. The white page itself (Cairo's paint) is not among the fills.
+inline constexpr double kPdfPointsPerNm = 72.0 / 25.4e6;
+using PdfFill = FilmFill;
+struct PdfDrawing {
+    double width_pt = 0, height_pt = 0;
+    BoxNm page_nm;  // everything drawn, before the margin
+    std::int64_t margin_nm = 0;
+    std::vector<PdfFill> fills;  // film (export/film_paint paint_fills), then scale bar and title
+};
+
+// The page's geometry. Throws InvalidInput for a negative margin or a page over 14400 pt.
+PdfDrawing pdf_drawing(const Layout& layout, const PdfOptions& options = {});
+
+// The complete PDF file (pdf_drawing painted by Cairo).
 std::string pdf_document(const Layout& layout, const PdfOptions& options = {});
 
 // Length of the scale bar for an extent of width w_nm: the largest 1, 2 or 5 x 10^k nm that is

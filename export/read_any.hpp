@@ -1,6 +1,6 @@
 // The fabrication formats by name and extension, and reading any readable one back
-// (GDSII, OASIS, DXF, Gerber, SVG; PDF, PNG and the 1-bit TIFF are written only: the TIFF is
-// checked against the layout pixel by pixel by export/plotter_raster instead).
+// (GDSII, OASIS, DXF, Gerber, SVG as geometry; PDF, PNG and the 1-bit TIFF are pictures,
+// compared with their design by export/file_check compare_picture instead).
 #pragma once
 
 #include <filesystem>

@@ -3,11 +3,14 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <sstream>
 #include <string>
 
 #include "core/error.hpp"
 #include "export/decimal.hpp"
 #include "export/geometry.hpp"
+#include "export/svg_writer.hpp"
 
 namespace pinmask {
 namespace {
@@ -172,6 +175,21 @@ void check_scale(std::string_view root, std::size_t at) {
                           " um (pinmask reads files whose user unit is 1 um)");
 }
 
+// The viewBox as a box in layout nanometres (y up), or nullopt when absent or malformed.
+std::optional<BoxNm> viewbox_nm(std::string_view root) {
+    std::string_view vb;
+    if (!attribute(root, "viewBox", vb)) return std::nullopt;
+    std::string t(vb);
+    for (char& c : t)
+        if (c == ',') c = ' ';
+    std::istringstream in(t);
+    std::string w[4];
+    if (!(in >> w[0] >> w[1] >> w[2] >> w[3])) return std::nullopt;
+    std::int64_t v[4];
+    for (int i = 0; i < 4; ++i) v[i] = parse_scaled(w[i], kMicrometreDigits, "svg viewBox");
+    return BoxNm{v[0], -(v[1] + v[3]), v[0] + v[2], -v[1]};
+}
+
 // Elements that change geometry and are not implemented are refused by name; elements that
 // carry no geometry are allowed.
 void check_element(std::string_view text, std::size_t pos) {
@@ -219,7 +237,11 @@ FileGeometry read_svg(std::string_view text) {
         if (stop == std::string_view::npos) throw bad(meta, "<metadata> is not closed");
         g.info = parse_info(text.substr(meta + 10, stop - meta - 10));
     }
-    check_scale(text.substr(root, text.find('>', root) - root), root);
+    const std::string_view root_tag = text.substr(root, text.find('>', root) - root);
+    check_scale(root_tag, root);
+    // A film drawing's opaque plate (export/svg_writer kSvgFilmGroup): read, checked, left out.
+    std::vector<Ring> plate;
+    bool in_plate = false;
     for (std::size_t pos = root; (pos = text.find('<', pos)) != std::string_view::npos; ++pos) {
         if (text.substr(pos, 4) == "<!--") {  // comments may contain anything
             const std::size_t stop = text.find("-->", pos);
@@ -230,6 +252,13 @@ FileGeometry read_svg(std::string_view text) {
         if (meta != std::string_view::npos && pos > meta && pos < text.find("</metadata>", meta))
             continue;
         check_element(text, pos);
+        if (text.substr(pos, 3) == "<g ") {
+            std::string_view id;
+            const std::string_view tag = text.substr(pos, text.find('>', pos) - pos);
+            in_plate = attribute(tag, "id", id) && id == kSvgFilmGroup;
+        } else if (text.substr(pos, 4) == "</g>") {
+            in_plate = false;
+        }
         const bool is_path = text.substr(pos, 6) == "<path " || text.substr(pos, 6) == "<path\n";
         const bool is_polygon = text.substr(pos, 9) == "<polygon ";
         if (!is_path && !is_polygon) continue;
@@ -239,12 +268,26 @@ FileGeometry read_svg(std::string_view text) {
         std::string_view data;
         if (!attribute(tag, is_path ? "d" : "points", data))
             throw bad(pos, is_path ? "<path> without a d attribute" : "<polygon> without points");
-        PathParser parser(data, pos, g.rings);
+        PathParser parser(data, pos, in_plate ? plate : g.rings);
         if (is_path)
             parser.parse_path();
         else
             parser.parse_points();
         pos = close;
+    }
+    if (!plate.empty()) {
+        const std::optional<BoxNm> vb = viewbox_nm(root_tag);
+        if (plate.size() != 1 || !vb || canonical_rings(plate) != canonical_rings({box_ring(*vb)}))
+            throw bad(root, std::string("group ") + kSvgFilmGroup +
+                                " (the opaque plate of a film drawing) must hold one rectangle, "
+                                "the viewBox");
+        const auto draw = g.info.find("draw");
+        if (draw == g.info.end() || draw->second != "film")
+            throw bad(root, std::string("group ") + kSvgFilmGroup +
+                                " in a drawing whose metadata does not say draw=film");
+    } else if (auto d = g.info.find("draw");
+               d != g.info.end() && d->second == "film" && g.info["tone"] == "clear") {
+        throw bad(root, "a clear-tone film drawing (draw=film) without its opaque plate group");
     }
     return g;
 }

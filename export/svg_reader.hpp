@@ -8,7 +8,9 @@
 // <rect>, <circle>, <ellipse>, <line>, <polyline>, <text>, <image>, <defs>...), a transform or
 // style attribute, fill="none", and a viewBox whose scale is not 1 user unit = 1 um (width and
 // height, when given, must equal the viewBox size in micrometres; without them the user unit is
-// taken as 1 um, pinmask's convention).
+// taken as 1 um, pinmask's convention). Both draw modes are read: a film drawing's plate group
+// (export/svg_writer kSvgFilmGroup) must be one rectangle equal to the viewBox and is not
+// returned; the rings on it (white) are the drawn rings, as the black ones of a polygons drawing.
 #pragma once
 
 #include <string_view>

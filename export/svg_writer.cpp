@@ -2,6 +2,7 @@
 
 #include "export/decimal.hpp"
 #include "export/geometry.hpp"
+#include "export/rings.hpp"
 
 namespace pinmask {
 namespace {
@@ -9,10 +10,13 @@ namespace {
 constexpr int kMicrometreDigits = 3;  // nm -> um
 constexpr int kMillimetreDigits = 6;  // nm -> mm
 
-void append_group(std::string& out, const char* id, const std::vector<Ring>& rings) {
+void append_group(std::string& out, const char* id, const std::vector<Ring>& rings,
+                  const char* fill) {
     out += "<g id=\"";
     out += id;
-    out += "\" fill=\"#000000\" stroke=\"none\">\n";
+    out += "\" fill=\"";
+    out += fill;
+    out += "\" stroke=\"none\">\n";
     for (const Ring& r : rings) {
         out += "<path d=\"";
         for (std::size_t i = 0; i < r.size(); ++i) {
@@ -28,17 +32,24 @@ void append_group(std::string& out, const char* id, const std::vector<Ring>& rin
 
 }  // namespace
 
-std::string svg_document(const Layout& layout) {
+std::string svg_document(const Layout& layout, DrawMode draw) {
     const BoxNm& e = layout.extent;
     std::string out;
     std::size_t vertices = 0;
     for (const Ring& r : layout.polygons) vertices += r.size();
     out.reserve(512 + vertices * 24 + layout.polygons.size() * 16);
     out += "<?xml version=\"1.0\" encoding=\"UTF-8\" standalone=\"no\"?>\n";
-    out += "<!-- pinmask fabrication drawing, scale 1:1. Filled paths are the ";
-    out += layout.tone == Tone::kClear ? "clear (transparent)" : "opaque";
+    // The film of a clear-tone layout: the extent opaque, the drawn (clear) rings white on it.
+    const bool film = draw == DrawMode::kFilm && layout.tone == Tone::kClear;
+    out += "<!-- pinmask fabrication drawing, scale 1:1. ";
+    out += film ? "The film as it looks: black = opaque, white = clear; the white paths are the "
+                  "drawn polygons, the clear"
+                : "Black paths are the drawn polygons, the ";
+    out += layout.tone == Tone::kClear ? (film ? "" : "clear (transparent)") : "opaque";
     out += " areas of the mask (tone ";
     out += tone_name(layout.tone);
+    out += ", draw ";
+    out += draw_mode_name(draw);
     out +=
         "). Units: viewBox in micrometres (1 user unit = 1 um), width and height in "
         "millimetres; y points down (y_svg = -y). Mirrored: ";
@@ -58,9 +69,13 @@ std::string svg_document(const Layout& layout) {
     append_scaled(out, e.y1 - e.y0, kMicrometreDigits);
     out += "\">\n<metadata>pinmask ";
     out += layout_info(layout, "um");
+    out += " draw=";
+    out += draw_mode_name(draw);
     out += "</metadata>\n";
-    append_group(out, "pattern", layout.polygons);
-    append_group(out, "annotations", layout.annotations);
+    if (film) append_group(out, kSvgFilmGroup, {box_ring(e)}, "#000000");
+    const char* fill = film ? "#ffffff" : "#000000";
+    append_group(out, "pattern", layout.polygons, fill);
+    append_group(out, "annotations", layout.annotations, fill);
     out += "</svg>\n";
     return out;
 }

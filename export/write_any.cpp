@@ -13,7 +13,7 @@ std::string write_fabrication_bytes(const Layout& layout, FabFormat format,
                                     const WriteOptions& options) {
     switch (format) {
         case FabFormat::kSvg:
-            return svg_document(layout);
+            return svg_document(layout, options.svg_draw);
         case FabFormat::kGds: {
             GdsOptions g = options.gds;
             g.unit = options.unit;

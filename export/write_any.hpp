@@ -18,10 +18,11 @@ struct WriteOptions {
     GdsOptions gds;  // layer, datatype (its unit is set from `unit`)
     DxfOptions dxf;  // layer (its unit and circles are set from `unit` and `native_circles`)
     PdfOptions pdf;  // margin (its draw mode is set from `draw`)
-    double png_dpi = 2400.0;              // PNG preview resolution
-    FabUnit unit = FabUnit::kMicrometre;  // DXF drawing unit, GDSII user unit
-    DrawMode draw = DrawMode::kFilm;      // PDF and PNG: the film, or the drawn polygons
-    bool native_circles = false;          // DXF CIRCLE and Gerber flashes for round pinholes
+    double png_dpi = 2400.0;                  // PNG preview resolution
+    FabUnit unit = FabUnit::kMicrometre;      // DXF drawing unit, GDSII user unit
+    DrawMode draw = DrawMode::kFilm;          // PDF and PNG: the film, or the drawn polygons
+    DrawMode svg_draw = DrawMode::kPolygons;  // SVG (a fabrication drawing: polygons by default)
+    bool native_circles = false;              // DXF CIRCLE and Gerber flashes for round pinholes
     // GDSII: one structure per pinhole shape referenced per pinhole (SREF), and an array
     // (AREF) of one tile where the pinholes repeat across tiles; false: flat boundaries.
     bool gds_hierarchy = false;

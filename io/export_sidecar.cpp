@@ -114,9 +114,12 @@ std::string export_sidecar_text(const ExportSidecar& s) {
           {"label", s.label},
           {"max_vertices", s.max_vertices},
           {"draw", s.draw},
+          {"svg_draw", s.svg_draw},
           {"circles", s.circles},
           {"hierarchy", s.hierarchy},
           {"kerf_m", s.kerf_m},
+          {"png_dpi", s.png_dpi},
+          {"pdf_margin_m", s.pdf_margin_m},
           {"active_area_nm", box(s.active_area_nm)},
           {"extent_nm", box(s.extent_nm)},
           {"polygons", s.polygons},
@@ -177,9 +180,16 @@ ExportSidecar read_export_sidecar(const std::filesystem::path& p) {
     s.label = get<std::vector<std::string>>(g, "label", p, w);
     s.max_vertices = get<std::size_t>(g, "max_vertices", p, w);
     s.draw = get_or<std::string>(g, "draw", "film", p, w);
+    s.svg_draw = get_or<std::string>(g, "svg_draw", "polygons", p, w);
     s.circles = get_or<std::string>(g, "circles", "polygon", p, w);
     s.hierarchy = get_or<std::string>(g, "hierarchy", "flat", p, w);
     s.kerf_m = get_or<double>(g, "kerf_m", 0.0, p, w);
+    s.png_dpi = get_or<double>(g, "png_dpi", 0.0, p, w);
+    s.pdf_margin_m = get_or<double>(g, "pdf_margin_m", 10e-3, p, w);
+    if (!(s.png_dpi >= 0 && s.png_dpi <= 1e6))
+        throw bad(p, "geometry.png_dpi", "must be in 0..1000000");
+    if (!(s.pdf_margin_m >= 0 && s.pdf_margin_m <= 1))
+        throw bad(p, "geometry.pdf_margin_m", "must be in 0..1 m");
     if (j.contains("drc") && j["drc"].is_object())
         s.vendor = get_or<std::string>(j["drc"], "vendor", "none", p, "drc");
     if (j.contains("files") && j["files"].is_array())

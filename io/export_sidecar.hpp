@@ -45,8 +45,10 @@ struct ExportSidecar {
     bool marks = false;
     std::vector<std::string> label;  // label lines (empty: none)
     std::size_t max_vertices = 199;
-    std::string draw = "film", circles = "polygon", hierarchy = "flat";
+    std::string draw = "film", svg_draw = "polygons", circles = "polygon", hierarchy = "flat";
     double kerf_m = 0.0;
+    double png_dpi = 0.0;         // PNG preview resolution (0: unknown, an older sidecar)
+    double pdf_margin_m = 10e-3;  // PDF margin around the drawing
     std::array<std::int64_t, 4> active_area_nm{}, extent_nm{};
     std::size_t polygons = 0, annotations = 0;
     // Design-rule check at export

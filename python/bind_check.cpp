@@ -207,7 +207,7 @@ void bind_check(py::module_& m) {
             py::list v;
             for (const DrcViolation& x : r.violations) {
                 py::dict d;
-                d["rule"] = x.rule;
+                d["rule"] = drc_rule_name(x.rule);
                 d["message"] = x.message;
                 d["x_um"] = double(x.where.x) * 1e-3;
                 d["y_um"] = double(x.where.y) * 1e-3;
@@ -215,7 +215,7 @@ void bind_check(py::module_& m) {
                 d["polygon_b"] = index_or_none(x.polygon_b);
                 d["value"] = x.value;
                 d["limit"] = x.limit;
-                d["unit"] = x.rule == "vertices" || x.rule == "ring" ? "vertices" : "nm";
+                d["unit"] = drc_rule_unit(x.rule);
                 v.append(d);
             }
             py::dict j;

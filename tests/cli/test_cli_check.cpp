@@ -190,7 +190,7 @@ TEST_CASE("check: a dark-tone GDSII with frame and marks; the frame must be give
     CHECK(j["comparison"]["xor_area_um2"].get<double>() > 0.0);
 }
 
-TEST_CASE("check FILE takes the export sidecar: clean on every readable format, no flags") {
+TEST_CASE("check FILE takes the export sidecar: clean on every format export writes, no flags") {
     TempDir dir("check-sidecar");
     // 16 x 16 pattern, 2 x 2 tiles, pinholes 2 cells apart.
     const std::string mask =
@@ -203,10 +203,14 @@ TEST_CASE("check FILE takes the export sidecar: clean on every readable format, 
         {"dark", "--tone positive --emulsion down --marks --label --frame 1mm --units mm"},
         {"round", "--shape circle --hole-side 300um --circles native --units in --label"},
         {"cells", "--hierarchy cells --grid 10nm --frame 500um --marks"},
+        {"drawn", "--draw polygons --marks --label"},
     };
     for (const Variant& v : variants) {
         const std::string out = dir / v.name;
-        const auto e = run_cli("export '" + mask + "' --format svg,gds,oasis,dxf,gerber --no-psf " +
+        // 10 um pixels for the pictures (the default 25400 dpi TIFF would be 20000^2 pixels).
+        const auto e = run_cli("export '" + mask +
+                               "' --format svg,gds,oasis,dxf,gerber,pdf,png,tiff1 --dpi 2540 "
+                               "--no-psf " +
                                v.flags + " -o '" + out + "'");
         INFO(v.name << ": " << e.err);
         REQUIRE(e.exit_code == 0);
@@ -220,7 +224,28 @@ TEST_CASE("check FILE takes the export sidecar: clean on every readable format, 
             CHECK(j["comparison"]["rings_only_in_file"] == 0);
             CHECK(j["settings"].get<std::string>().find("export.json") != std::string::npos);
         }
+        // The pictures: compared with the design drawn the same way (no flags either).
+        for (const std::string ext : {"pdf", "png", "tif"}) {
+            const auto c = run_cli("check '" + out + "/m." + ext + "' --json");
+            INFO(v.name << " " << ext << ": " << c.err << c.out);
+            CHECK(c.exit_code == 0);
+            const auto j = json_of(c);
+            CHECK(j["clean"] == true);
+            CHECK(j["picture"]["ok"] == true);
+        }
     }
+    // A picture of another design is not clean: the dark-tone TIFF checked against the clear
+    // sidecar's settings (copied beside it) differs pixel by pixel.
+    fs::copy_file(dir.path / "clear" / "m.export.json", dir.path / "dark" / "x.export.json");
+    fs::copy_file(dir.path / "dark" / "m.tif", dir.path / "dark" / "x.tif");
+    const auto other = run_cli("check '" + (dir / "dark") + "/x.tif' --json");
+    CHECK(other.exit_code == 1);
+    CHECK(json_of(other)["picture"]["ok"] == false);
+    // A PNG without its sidecar has no known dpi: refused (exit 2) naming what is missing.
+    const auto no_dpi =
+        run_cli("check '" + (dir / "dark") + "/m.png' --no-sidecar --mask '" + mask + "'");
+    CHECK(no_dpi.exit_code == 2);
+    CHECK(no_dpi.err.find("png dpi") != std::string::npos);
     // An explicit flag that disagrees with the sidecar stops the check (exit 2, names the flag).
     const auto bad = run_cli("check '" + (dir / "dark") + "/m.gds' --frame 2mm");
     CHECK(bad.exit_code == 2);

@@ -40,7 +40,7 @@ TEST_CASE("two squares exactly at the minimum gap pass, one nanometre closer fai
     const auto r = run_drc({square(0, 0, 440'000), square(455'999, 0, 440'000)}, rules);
     REQUIRE(r.violations.size() == 1);
     const auto& v = r.violations[0];
-    CHECK(v.rule == "gap");
+    CHECK(v.rule == DrcRule::kGap);
     CHECK(v.polygon_a == 0);
     CHECK(v.polygon_b == 1);
     CHECK(v.value == 15'999.0);
@@ -89,7 +89,7 @@ TEST_CASE("clockwise rings, explicitly closed rings and degenerate rings are rep
     const Ring cw(ccw.rbegin(), ccw.rend());
     const auto r = run_drc({cw}, DrcRules{});
     REQUIRE(r.violations.size() == 1);
-    CHECK(r.violations[0].rule == "orientation");
+    CHECK(r.violations[0].rule == DrcRule::kOrientation);
     Ring closed = ccw;
     closed.push_back(ccw.front());
     const auto c = run_drc({closed}, DrcRules{});
@@ -123,7 +123,7 @@ TEST_CASE("vertex limits: a 200-gon breaks the GDS-friendly limit, not the hard 
     rules.max_vertices = kGdsFriendlyMaxVertices;
     const auto r = run_drc({circle}, rules);
     REQUIRE(r.violations.size() == 1);
-    CHECK(r.violations[0].rule == "vertices");
+    CHECK(r.violations[0].rule == DrcRule::kVertices);
     CHECK(r.violations[0].value == 200.0);
     CHECK(r.measured.min_feature_nm > 1.99e6);  // about the diameter
 }
@@ -326,4 +326,19 @@ TEST_CASE("dark tone: touching pieces are fine, the clear regions between them a
     rules = DrcRules{};
     rules.max_vertices = 3;
     CHECK(count(run_drc(l, rules), "vertices") == 5);
+}
+
+TEST_CASE("every DRC rule has one distinct name from the one table, in report order") {
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < kDrcRuleCount; ++i) {
+        const auto rule = static_cast<DrcRule>(i);
+        const std::string name = drc_rule_name(rule);
+        CHECK(!name.empty());
+        names.insert(name);
+        CHECK(drc_rule_unit(rule) ==
+              (rule == DrcRule::kRing || rule == DrcRule::kVertices ? "vertices" : "nm"));
+    }
+    CHECK(names.size() == kDrcRuleCount);
+    CHECK(drc_rule_name(DrcRule::kSelfIntersection) == "self_intersection");
+    CHECK(drc_rule_name(DrcRule::kSpacing) == "spacing");
 }
