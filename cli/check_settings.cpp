@@ -1,5 +1,10 @@
 #include "cli/check_settings.hpp"
 
+#include <cmath>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/units.hpp"
 #include "io/sidecar_layout.hpp"
 
 namespace pinmask::cli {

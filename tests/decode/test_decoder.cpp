@@ -147,23 +147,23 @@ TEST_CASE("closed form: residual and objective from the spectrum equal the spati
             for (bool single : {false, true}) {
                 DecodeOptions o;
                 o.single_precision = single;
-                o.nsr = 0.05;
-                o.lambda = 0.07;
-                if (variant == 1) o.nsr_per_frequency = nsr_pf;
+                o.wiener.nsr = 0.05;
+                o.tikhonov.lambda = 0.07;
+                if (variant == 1) o.wiener.nsr_per_frequency = nsr_pf;
                 if (variant >= 2) o.method = DecodeMethod::kTikhonov;
-                o.regulariser =
+                o.tikhonov.regulariser =
                     variant == 3 ? TikhonovRegulariser::kIdentity : TikhonovRegulariser::kGradient;
-                if (variant == 4) o.lambda = 0.0;  // the gradient pseudo-inverse
+                if (variant == 4) o.tikhonov.lambda = 0.0;  // the gradient pseudo-inverse
                 const DecodeResult r = decode_plane(p, psf, o);
                 const Eigen::VectorXd e = A * as_vector(r.image) - as_vector(p);
                 double penalty = 0.0;
-                if (variant == 0) penalty = o.nsr * r.image.square().sum();
+                if (variant == 0) penalty = o.wiener.nsr * r.image.square().sum();
                 if (variant == 1) {  // the full-spectrum sum, with the full spectrum expanded
                     const Fft2 fft(R, C);
                     const ComplexPlane X = expand_half_spectrum(fft.forward(r.image), C);
                     penalty = (nsr_pf * X.abs2()).sum() / double(R * C);
                 }
-                if (variant >= 2) penalty = tikhonov_penalty(r.image, o.lambda, o.regulariser);
+                if (variant >= 2) penalty = tikhonov_penalty(r.image, o.tikhonov.lambda, o.tikhonov.regulariser);
                 const double tol = single ? kParsevalSingleTol : kParsevalTol;
                 INFO(R << " x " << C << " variant " << variant << " single " << single);
                 if (variant == 4) {  // exact fit: both residuals are rounding, ~0 against ||p||
