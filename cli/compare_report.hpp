@@ -30,6 +30,11 @@ ReportTable compare_table(const std::vector<CompareResult>& results);
 // The table as aligned text for stdout, with a legend line.
 std::string compare_table_text(const ReportTable& table);
 
+// The PSNR-against-K view (issue 13): the masks ordered by pinhole count K with their light gain
+// (K times one pinhole's light) and analytic and simulated Wiener PSNR, one line each. Empty
+// when all masks have the same K (nothing to compare across K).
+std::string compare_holes_text(const std::vector<CompareResult>& results);
+
 // One row as JSON (compare --json and the report config): the table figures plus every noise
 // level under score's keys.
 nlohmann::ordered_json compare_row_json(const CompareRow& row);
