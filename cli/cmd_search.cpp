@@ -144,11 +144,11 @@ void run(const SearchCliOptions& o, const CLI::App& cmd) {
         j["ranked"].push_back(r);
     }
     for (const RankedMask& r : s.best_per_holes) {
-        j["best_per_holes"].push_back(
-            {{"holes", r.mask.pattern.pinholes.size()},
-             {"objective", r.objective},
-             {"analytic_wiener_psnr_db", r.mask.provenance.scores.at("analytic_wiener_psnr_db")},
-             {"spectral_zero", r.spectral_zero}});
+        nlohmann::ordered_json row{{"holes", r.mask.pattern.pinholes.size()},
+                                   {"objective", r.objective},
+                                   {"spectral_zero", r.spectral_zero}};
+        for (const auto& [k, v] : r.mask.provenance.scores) row[k] = v;  // analytic PSNR, terms
+        j["best_per_holes"].push_back(row);
     }
     std::cout << j.dump(2) << "\n";
 }
