@@ -14,6 +14,8 @@ namespace {
 constexpr double kSmallestTabulatedX = 1e-6;
 // Widest u range tabulated (e^48 ~ 7e20 in x / (N sigma^2)); beyond it the exact sum is used.
 constexpr double kMaxRange = 48.0;
+// Largest table kept (bytes); a larger pattern (n ~ 250 and up) keeps the exact O(m^2) sums.
+constexpr double kMaxTableBytes = 256.0 * 1024 * 1024;
 
 }  // namespace
 
@@ -74,7 +76,9 @@ AliasedWiener::AliasedWiener(std::shared_ptr<const AnalyticWienerModel> model, i
 
 void AliasedWiener::build_tables(double u_lo, double u_hi) {
     const int cells = n_ * n_, aliases = p_ * p_;
-    points_ = static_cast<int>(std::ceil((u_hi - u_lo) / step_)) + 1;
+    const int points = static_cast<int>(std::ceil((u_hi - u_lo) / step_)) + 1;
+    if (static_cast<double>(cells) * points * width_ * sizeof(double) > kMaxTableBytes) return;
+    points_ = points;
     u0_ = u_lo;
     table_.assign(static_cast<std::size_t>(cells) * points_ * width_, 0.0);
     const double nsr = filter_.nsr;

@@ -14,7 +14,8 @@
 // of the direct O(m^2) sum). The u range covers x in [1e-6, 1] and the noise variances the noise
 // model can give for any K in 1..n^2; a frequency outside it (near spectral zero, noise-free model)
 // is summed exactly over its p^2 aliases, so correctness never depends on the range, only speed
-// does.
+// does. Tables over 256 MB (n above ~250) are not built: every frequency is then summed exactly,
+// O(m^2) per call as before.
 #pragma once
 
 #include <memory>
