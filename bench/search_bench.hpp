@@ -1,6 +1,7 @@
-// Search throughput: incremental single-pinhole moves (two plane waves on P^, O(K) on the
-// autocorrelation, O(1) legality) against full re-evaluation of the same quantities from scratch
-// (FFT of the occupancy and inverse FFT of |P^|^2), timed in the same run.
+// Search throughput (the objective after one move reads optimize/aliased_wiener tables, O(n^2)):
+// incremental single-pinhole moves (two plane waves on P^, O(K) on the autocorrelation, O(1)
+// legality) against full re-evaluation of the same quantities from scratch (FFT of the occupancy
+// and inverse FFT of |P^|^2), timed in the same run.
 #pragma once
 
 #include <cstdint>

@@ -86,10 +86,17 @@ std::vector<CameraInput> camera_inputs(const CameraOptions& o, const Camera& c) 
     };
 }
 
-void add_geometry_options(CLI::App& cmd, GeometryOptions& o) {
+void add_geometry_options(CLI::App& cmd, GeometryOptions& o, std::string* holes_range) {
     cmd.add_option("--grid", o.grid, "Pattern size n (n x n cells, 1..4096)")
         ->capture_default_str();
-    cmd.add_option("--holes", o.holes, "Number of pinholes K")->capture_default_str();
+    if (holes_range) {
+        cmd.add_option("--holes", *holes_range,
+                       "Number of pinholes K, or a range A..B: the search adds and removes "
+                       "pinholes, keeps the best mask per K and plots predicted PSNR against K")
+            ->capture_default_str();
+    } else {
+        cmd.add_option("--holes", o.holes, "Number of pinholes K")->capture_default_str();
+    }
     cmd.add_option("--tiles", o.tiles, "Tiles per side of the cyclic mask")->capture_default_str();
     cmd.add_option("--spacing", o.spacing,
                    "Minimum pinhole centre spacing in cells, on the torus (2 = no two pinholes in "

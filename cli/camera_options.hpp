@@ -44,7 +44,9 @@ struct GeometryOptions {
     double spacing = 2.0;  // min centre spacing, cells
 };
 
-// --grid, --holes, --tiles, --spacing (defaults: the paper's 16, 20, 2, 2.0).
-void add_geometry_options(CLI::App& cmd, GeometryOptions& o);
+// --grid, --holes, --tiles, --spacing (defaults: the paper's 16, 20, 2, 2.0). With
+// `holes_range` (search), --holes is read as text into it instead: K or a range A..B
+// (optimize/search_pipeline parse_holes_range), o.holes unused.
+void add_geometry_options(CLI::App& cmd, GeometryOptions& o, std::string* holes_range = nullptr);
 
 }  // namespace pinmask::cli

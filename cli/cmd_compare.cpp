@@ -164,7 +164,7 @@ void run(const Options& o, const CLI::App& cmd) {
         std::cout << j.dump(2) << "\n";
         return;
     }
-    std::cout << compare_table_text(compare_table(out.results));
+    std::cout << compare_table_text(compare_table(out.results)) << compare_holes_text(out.results);
     for (const auto& r : out.results) {
         if (r.row.metrics.spectral_zero->found)
             std::cout << "warning: " << r.row.name << ": " << r.row.metrics.spectral_zero->message()

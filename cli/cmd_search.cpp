@@ -36,7 +36,7 @@ SearchPipelineOptions search_pipeline_options(const SearchCliOptions& o, const C
     p.tmpl.pattern.n = o.geometry.grid;
     p.tmpl.pattern.tiles_rows = p.tmpl.pattern.tiles_cols = o.geometry.tiles;
     p.tmpl.pattern.min_spacing_cells = o.geometry.spacing;
-    p.holes = o.geometry.holes;
+    std::tie(p.holes, p.max_holes) = parse_holes_range(o.holes);
     SearchOptions& so = p.search;
     so.strategy = o.strategy == "random" ? SearchStrategy::kRandom : SearchStrategy::kAnneal;
     if (o.threads < 0)
@@ -90,10 +90,14 @@ SearchPipelineOptions make_options(const SearchCliOptions& o, const CLI::App& cm
     if (o.output.empty()) throw InvalidInput("-o/--output: an output folder is required");
     {
         const std::filesystem::path dir = o.output;  // rank-N.mask.json are checked when staged
-        plan_outputs({{"--config", o.config}}, {{"-o (run log)", dir / "run-log.csv", true},
-                                                {"-o (summary)", dir / "summary.md", true},
-                                                {"-o (timing)", dir / "timing.csv", true},
-                                                {"-o (config)", dir / "search.config.json", true}});
+        std::vector<NamedPath> outs{{"-o (run log)", dir / "run-log.csv", true},
+                                    {"-o (summary)", dir / "summary.md", true},
+                                    {"-o (timing)", dir / "timing.csv", true},
+                                    {"-o (config)", dir / "search.config.json", true}};
+        if (p.max_holes > 0)
+            for (const char* f : {"holes.csv", "holes.svg", "holes.png"})
+                outs.push_back({"-o (per-K table and plot)", dir / f, true});
+        plan_outputs({{"--config", o.config}}, outs);
     }
     return p;
 }
@@ -131,8 +135,9 @@ void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd,
     const auto paths = write_search_outputs(o.output, s, resolved_config(o, p, s));
     if (!o.json) {
         std::cout << search_summary_markdown(s) << "wrote " << paths.size()
-                  << " masks, run-log.csv, timing.csv, summary.md and search.config.json to "
-                  << o.output << "\n";
+                  << " masks, run-log.csv, timing.csv, summary.md and search.config.json"
+                  << (s.best_per_holes.empty() ? "" : ", holes.csv/.svg/.png, best-K*.mask.json")
+                  << " to " << o.output << "\n";
         return;
     }
     nlohmann::ordered_json j{{"output", o.output},
@@ -152,6 +157,13 @@ void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd,
                                  {"reranked", s.ranked[i].reranked}};
         for (const auto& [k, v] : s.ranked[i].mask.provenance.scores) r[k] = v;
         j["ranked"].push_back(r);
+    }
+    for (const RankedMask& r : s.best_per_holes) {
+        nlohmann::ordered_json row{{"holes", r.mask.pattern.pinholes.size()},
+                                   {"objective", r.objective},
+                                   {"spectral_zero", r.spectral_zero}};
+        for (const auto& [k, v] : r.mask.provenance.scores) row[k] = v;  // analytic PSNR, terms
+        j["best_per_holes"].push_back(row);
     }
     std::cout << j.dump(2) << "\n";
 }
@@ -178,7 +190,7 @@ void run_on_ranks(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::
 
 void add_search_flags(CLI::App* cmd, const std::shared_ptr<SearchCliOptions>& o) {
     add_camera_options(*cmd, o->camera);
-    add_geometry_options(*cmd, o->geometry);
+    add_geometry_options(*cmd, o->geometry, &o->holes);
     add_psf_options(*cmd, o->psf);
     cmd->add_option("--strategy", o->strategy,
                     "random: sample valid patterns, keep the best (the paper's approach, the "

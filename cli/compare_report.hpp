@@ -19,6 +19,8 @@ using pinmask::noise_caption;
 // The table as aligned text for stdout, with a legend line.
 std::string compare_table_text(const ReportTable& table);
 
+using pinmask::compare_holes_text;
+
 // One row as JSON (compare --json and the report config): the table figures plus every noise
 // level under score's keys.
 nlohmann::ordered_json compare_row_json(const CompareRow& row);

@@ -35,7 +35,10 @@ void apply_config(const io::SearchConfig& c, const CLI::App& cmd, SearchCliOptio
     set("--seed", o.seed, c.seed);
     set("--top", o.top, c.top);
     set("--grid", o.geometry.grid, c.grid);
-    set("--holes", o.geometry.holes, c.holes);
+    if (c.holes && !given("--holes")) {
+        o.holes = std::to_string(*c.holes);
+        if (c.max_holes && *c.max_holes > 0) o.holes += ".." + std::to_string(*c.max_holes);
+    }
     set("--tiles", o.geometry.tiles, c.tiles);
     set("--spacing", o.geometry.spacing, c.min_spacing_cells);
     set("--keep-out", o.keep_out, c.keep_out);
@@ -99,6 +102,7 @@ nlohmann::ordered_json resolved_config(const SearchCliOptions& o, const SearchPi
             {"top", o.top},
             {"grid", p.tmpl.pattern.n},
             {"holes", p.holes},
+            {"max_holes", p.max_holes},
             {"tiles", p.tmpl.pattern.tiles_rows},
             {"min_spacing_cells", p.tmpl.pattern.min_spacing_cells},
             {"keep_out", o.keep_out},

@@ -7,6 +7,7 @@
 #include "core/atomic_file.hpp"
 #include "io/json_strict.hpp"
 #include "io/mask_json.hpp"
+#include "optimize/holes_plot.hpp"
 
 namespace pinmask::cli {
 namespace fs = std::filesystem;
@@ -54,6 +55,18 @@ std::string search_summary_markdown(const SearchPipelineSummary& summary) {
               << " (kept because of --allow-spectral-zeros)\n";
         }
     }
+    if (!summary.best_per_holes.empty()) {
+        s << "\nBest mask per pinhole count (predicted by the analytic objective; light gain = K "
+             "times one pinhole's light):\n\n"
+          << "| K | light gain | objective | analytic Wiener PSNR (dB) | geometry hash | "
+             "spectral zero |\n|---:|---:|---:|---:|---|---|\n";
+        for (const RankedMask& r : summary.best_per_holes) {
+            const std::size_t k = r.mask.pattern.pinholes.size();
+            s << "| " << k << " | " << k << "x | " << fmt(r.objective, "%.4f") << " | "
+              << fmt(score_or_nan(r.mask, "analytic_wiener_psnr_db")) << " | "
+              << geometry_hash(r.mask) << " | " << (r.spectral_zero ? "yes" : "no") << " |\n";
+        }
+    }
     if (summary.planned_s > 0.0) {  // timings only for time-budget runs (never reproducible)
         s << "Time: planned " << fmt(summary.planned_s, "%.2f") << " s, used "
           << fmt(summary.used_s, "%.2f") << " s (search " << fmt(summary.search_s, "%.2f")
@@ -91,6 +104,26 @@ std::vector<fs::path> write_search_outputs(const fs::path& dir,
                << fmt(row.best_objective, "%.9g") << "\n";
     }
     files.stage_bytes(dir / "timing.csv", timing.str());
+    if (!summary.best_per_holes.empty()) {
+        std::ostringstream csv;
+        csv << "holes,light_gain,objective,analytic_wiener_psnr_db,spectral_zero,geometry_hash\n";
+        std::vector<HolesPoint> points;
+        for (const RankedMask& r : summary.best_per_holes) {
+            const int k = static_cast<int>(r.mask.pattern.pinholes.size());
+            const double psnr = score_or_nan(r.mask, "analytic_wiener_psnr_db");
+            csv << k << "," << k << "," << fmt(r.objective, "%.9g") << "," << fmt(psnr, "%.9g")
+                << "," << (r.spectral_zero ? 1 : 0) << "," << geometry_hash(r.mask) << "\n";
+            points.push_back({k, psnr});
+            const fs::path p = dir / ("best-K" + std::to_string(k) + ".mask.json");
+            files.stage(p, [&](const fs::path& tmp) { io::write_mask_file(tmp, r.mask); });
+        }
+        files.stage_bytes(dir / "holes.csv", csv.str());
+        const std::string title = "search: predicted PSNR of the best mask per pinhole count";
+        files.stage(dir / "holes.svg",
+                    [&](const fs::path& tmp) { write_holes_svg(tmp, points, title); });
+        files.stage(dir / "holes.png",
+                    [&](const fs::path& tmp) { write_holes_png(tmp, points, title); });
+    }
     files.stage_bytes(dir / "summary.md",
                       "# Search summary\n\n" + search_summary_markdown(summary));
     files.stage_bytes(dir / "search.config.json", io::json_strict::pretty(config) + "\n");

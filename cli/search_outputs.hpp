@@ -6,6 +6,11 @@
 //                  also planned vs used time (with --evals no timings: byte-identical)
 //   timing.csv     seconds, evaluations, best_objective sampled by wall clock (never identical)
 //   search.config.json                      the resolved configuration of the run
+// With --holes A..B also (issue 13):
+//   holes.csv      K, light gain, objective, predicted (analytic) Wiener PSNR, spectral zero,
+//                  geometry hash of the best mask at each K (summary.md holds the same table)
+//   holes.svg, holes.png   predicted PSNR against K, light gain K beside it (optimize/holes_plot)
+//   best-K<K>.mask.json    the best mask at each K
 #pragma once
 
 #include <filesystem>

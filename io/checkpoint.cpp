@@ -70,6 +70,12 @@ OrderedJson chain_json(const ChainState& s) {
     for (const auto& item : s.top.items())
         top.push_back({{"objective", finite_or_null(item.objective)},
                        {"pattern", pattern_json(item.pattern)}});
+    OrderedJson per_holes = OrderedJson::array();
+    for (const auto& [k, best] : s.best_per_holes)
+        for (const auto& item : best.items())
+            per_holes.push_back({{"holes", k},
+                                 {"objective", finite_or_null(item.objective)},
+                                 {"pattern", pattern_json(item.pattern)}});
     return {{"rng", rng.str()},
             {"evaluations", s.evaluations},
             {"best_objective", finite_or_null(s.best_objective)},
@@ -77,13 +83,14 @@ OrderedJson chain_json(const ChainState& s) {
             {"log", log},
             {"top_capacity", s.top.capacity()},
             {"top", top},
-            {"start", s.start ? pattern_json(*s.start) : OrderedJson(nullptr)}};
+            {"start", s.start ? pattern_json(*s.start) : OrderedJson(nullptr)},
+            {"best_per_holes", per_holes}};
 }
 
 ChainState read_chain(const Json& j, const std::string& path) {
     ObjectReader r(j, path,
                    {"rng", "evaluations", "best_objective", "next_log_at", "log", "top_capacity",
-                    "top", "start"});
+                    "top", "start", "best_per_holes"});
     r.reject_unknown();
     ChainState s;
     std::istringstream rng(read_string(r.required("rng"), r.path("rng")));
@@ -120,6 +127,22 @@ ChainState read_chain(const Json& j, const std::string& path) {
     }
     const Json& start = r.required("start");
     if (!start.is_null()) s.start = read_pattern(start, r.path("start"));
+    // With a pinhole-count range (search --holes A..B): the best pattern at every K seen.
+    if (const Json* per_holes = r.optional("best_per_holes")) {
+        if (!per_holes->is_array())
+            fail(r.path("best_per_holes"), "must be an array of {holes, objective, pattern}");
+        for (std::size_t i = 0; i < per_holes->size(); ++i) {
+            const std::string p = indexed(r.path("best_per_holes"), i);
+            ObjectReader b((*per_holes)[i], p, {"holes", "objective", "pattern"});
+            b.reject_unknown();
+            const int k = read_int(b.required("holes"), b.path("holes"));
+            if (k < 1) fail(b.path("holes"), "must be >= 1");
+            const auto [it, fresh] = s.best_per_holes.try_emplace(k, 1);
+            if (!fresh) fail(b.path("holes"), "repeats a pinhole count already listed");
+            it->second.offer(read_pattern(b.required("pattern"), b.path("pattern")),
+                             read_objective(b.required("objective"), b.path("objective")));
+        }
+    }
     return s;
 }
 

@@ -60,6 +60,7 @@ SearchConfig parse_search_config(const std::string& text) {
                     "top",
                     "grid",
                     "holes",
+                    "max_holes",
                     "tiles",
                     "min_spacing_cells",
                     "keep_out",
@@ -117,6 +118,8 @@ SearchConfig parse_search_config(const std::string& text) {
         read_into(r, key, *field,
                   [](const Json& v, const std::string& p) { return int_at_least(v, p, 1); });
     }
+    read_into(r, "max_holes", c.max_holes,
+              [](const Json& v, const std::string& p) { return int_at_least(v, p, 0); });
     read_into(r, "min_spacing_cells", c.min_spacing_cells, [](const Json& v, const std::string& p) {
         const double s = read_number(v, p);
         if (!(s > 0)) fail(p, "must be > 0");

@@ -5,6 +5,7 @@
 //   {"format": "pinmask-search-config", "version": 1, "generator" (informational),
 //    "strategy": "random" | "anneal", "time": "20s", "evaluations_per_chain": >= 0 (0: --time),
 //    "threads": >= 0, "seed": >= 0, "top": >= 1, "grid", "holes", "tiles" (integers >= 1),
+//    "max_holes": >= 0 (0: K fixed at "holes"; else the range holes..max_holes),
 //    "min_spacing_cells": > 0, "keep_out": "none" | "border", "pixels_per_cell": >= 1,
 //    "kernel_requested": auto | box | fraunhofer | fresnel | paper-fig3b | measured,
 //    "kernel_resolved" (informational), "kernel_path": file of --kernel measured,
@@ -41,7 +42,7 @@ inline constexpr int kSearchConfigVersion = 1;
 struct SearchConfig {
     std::optional<std::string> strategy, time, keep_out, kernel, kernel_path, filter;
     std::optional<std::int64_t> evaluations_per_chain;
-    std::optional<int> threads, top, grid, holes, tiles, pixels_per_cell, prior_scenes;
+    std::optional<int> threads, top, grid, holes, max_holes, tiles, pixels_per_cell, prior_scenes;
     std::optional<std::uint64_t> seed;
     std::optional<double> min_spacing_cells, snr_db;
     std::optional<double> w_analytic, w_max_sidelobe, w_sidelobe_energy, w_min_spectrum;

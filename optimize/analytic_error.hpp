@@ -76,9 +76,13 @@ class AnalyticWienerModel {
     // log10 NSR, optimize/nsr_tuning.hpp).
     AnalyticError evaluate_tuned_nsr(const ComplexPlane& pattern_spectrum) const;
 
+    // |K^|^2 / |K^(0)|^2 on the m x m period (optimize/aliased_wiener groups it by alias).
+    const Plane& kernel_power() const { return kernel_power_; }
+    // Per-pixel noise variance sigma^2 of the noise model for these capture statistics.
+    double noise_variance(double mean_square_capture, int open_cells, int total_cells) const;
+
   private:
     Plane pattern_power(const ComplexPlane& pattern_spectrum) const;
-    double noise_variance(double mean_square_capture, int open_cells, int total_cells) const;
     double mse_of(const Plane& pattern_power, double sigma2, const WienerFilterSpec& f) const;
     double mean_square_of(const Plane& pattern_power) const;
 

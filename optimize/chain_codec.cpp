@@ -52,6 +52,15 @@ void encode_chain_state(ByteWriter& w, const ChainState& s) {
     }
     w.u64(s.start ? 1 : 0);
     if (s.start) encode_pattern(w, *s.start);
+    w.u64(s.best_per_holes.size());  // a pinhole-count range: the best pattern per K
+    for (const auto& [k, top] : s.best_per_holes) {
+        w.i64(k);
+        w.u64(top.items().size());
+        for (const auto& item : top.items()) {
+            w.f64(item.objective);
+            encode_pattern(w, item.pattern);
+        }
+    }
 }
 
 ChainState decode_chain_state(ByteReader& r) {
@@ -76,6 +85,18 @@ ChainState decode_chain_state(ByteReader& r) {
         s.top.offer(decode_pattern(r), objective);
     }
     if (r.u64() != 0) s.start = decode_pattern(r);
+    const std::size_t counts = r.count(16);
+    for (std::size_t i = 0; i < counts; ++i) {
+        const std::int64_t k = r.i64();
+        if (k < 1 || k > 100'000'000) throw RuntimeFailure("corrupt message: pinhole count");
+        TopCandidates& top = s.best_per_holes.try_emplace(static_cast<int>(k), 1).first->second;
+        const std::size_t n = r.count(48);
+        if (n > 1) throw RuntimeFailure("corrupt message: best per pinhole count");
+        for (std::size_t j = 0; j < n; ++j) {
+            const double objective = r.f64();
+            top.offer(decode_pattern(r), objective);
+        }
+    }
     return s;
 }
 

@@ -163,6 +163,22 @@ ReportTable compare_table(const std::vector<CompareResult>& results) {
     return t;
 }
 
+std::string compare_holes_text(const std::vector<CompareResult>& results) {
+    std::vector<const CompareRow*> rows;
+    for (const CompareResult& r : results) rows.push_back(&r.row);
+    std::stable_sort(rows.begin(), rows.end(),
+                     [](const CompareRow* a, const CompareRow* b) { return a->holes < b->holes; });
+    if (rows.empty() || rows.front()->holes == rows.back()->holes) return "";
+    std::ostringstream s;
+    s << "PSNR against pinhole count (light gain = K x one pinhole's light):\n";
+    for (const CompareRow* r : rows) {
+        s << "  K " << r->holes << "  light " << r->holes << "x  analytic W "
+          << db(r->analytic_wiener_psnr_db) << " dB  sim W " << db(r->wiener_psnr_db) << " dB  "
+          << r->name << "\n";
+    }
+    return s.str();
+}
+
 ReportDocument compare_document(const std::vector<CompareResult>& results, const CompareSettings& s,
                                 const CompareSummary& summary) {
     const Camera& c = summary.camera;
@@ -204,6 +220,8 @@ ReportDocument compare_document(const std::vector<CompareResult>& results, const
             "in [0, 1], SSIM with an 11 x 11 Gaussian window; means over the scenes. Each mask is "
             "simulated on its own period m = n x pixels per cell.",
     };
+    const std::string holes = compare_holes_text(results);
+    if (!holes.empty()) d.notes.push_back(holes);
     for (std::size_t i = 0; i < results.size(); ++i)
         d.pages.push_back(mask_page(results[i], i, c, s));
     return d;

@@ -26,6 +26,11 @@ std::string noise_caption(const NoiseModel& model);
 // The metrics table, one row per result (text cells, units in the second header line).
 ReportTable compare_table(const std::vector<CompareResult>& results);
 
+// The PSNR-against-K view (issue 13): the masks ordered by pinhole count K with their light gain
+// (K times one pinhole's light) and analytic and simulated Wiener PSNR, one line each. Empty
+// when all masks have the same K (nothing to compare across K).
+std::string compare_holes_text(const std::vector<CompareResult>& results);
+
 // The whole report document.
 ReportDocument compare_document(const std::vector<CompareResult>& results,
                                 const CompareSettings& settings, const CompareSummary& summary);

@@ -61,10 +61,18 @@ MaskObjective::MaskObjective(ObjectiveWeights weights,
     }
 }
 
+std::shared_ptr<const AliasedWiener> MaskObjective::aliased(int n) const {
+    const std::lock_guard<std::mutex> lock(aliased_mutex_);
+    if (!aliased_ || aliased_->n() != n) {
+        aliased_ = std::make_shared<const AliasedWiener>(model_, n, filter_);
+    }
+    return aliased_;
+}
+
 double MaskObjective::evaluate(const PatternState& s) const {
     double total = 0.0;
     if (weights_.analytic_wiener > 0.0) {
-        total -= weights_.analytic_wiener * model_->evaluate(s.spectrum(), filter_).psnr_db;
+        total -= weights_.analytic_wiener * aliased(s.n())->evaluate(s.spectrum()).psnr_db;
     }
     if (weights_.max_sidelobe > 0.0 || weights_.sidelobe_energy > 0.0) {
         const SidelobeTerms t = sidelobes(s);

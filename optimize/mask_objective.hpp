@@ -1,7 +1,10 @@
 // The search objective (lower is better), a weighted sum of terms each of which is computed only
 // when its weight is non-zero:
 //   analytic_wiener   -expected Wiener PSNR in dB (optimize/analytic_error: closed form from the
-//                     OTF A^ = P^ K^, the scene prior and the noise model; O(m^2), no FFT)
+//                     OTF A^ = P^ K^, the scene prior and the noise model). evaluate() reads it
+//                     from per-alias tables (optimize/aliased_wiener, built on first use for the
+//                     pattern size): O(n^2) per call, within the tables' interpolation error of
+//                     the direct O(m^2) sum that terms() reports.
 //   max_sidelobe      max autocorrelation sidelobe / K (0 .. 1)
 //   sidelobe_energy   integrated sidelobe level sum_{d != 0} R(d)^2 / K^2
 //   min_spectrum      -min_{k != 0} |P^(k)| / sqrt(K)  (sqrt(K) is |P^| of a flat spectrum with
@@ -10,7 +13,9 @@
 #pragma once
 
 #include <memory>
+#include <mutex>
 
+#include "optimize/aliased_wiener.hpp"
 #include "optimize/analytic_error.hpp"
 #include "optimize/search.hpp"
 
@@ -38,9 +43,14 @@ class MaskObjective : public SearchObjective {
     const ObjectiveWeights& weights() const { return weights_; }
 
   private:
+    // The per-alias tables for patterns of size n, built once (thread-safe).
+    std::shared_ptr<const AliasedWiener> aliased(int n) const;
+
     ObjectiveWeights weights_;
     std::shared_ptr<const AnalyticWienerModel> model_;
     WienerFilterSpec filter_;
+    mutable std::mutex aliased_mutex_;
+    mutable std::shared_ptr<const AliasedWiener> aliased_;
 };
 
 }  // namespace pinmask

@@ -121,6 +121,30 @@ void PatternState::update_spectrum(Cell from, Cell to) {
     }
 }
 
+void PatternState::add_wave(Cell at, double sign) {
+    const int n = pattern_.n;
+    const std::complex<double>* w = twiddle_.data();
+    int ib = 0, jb = 0;
+    for (int k = 0; k < n; ++k) {
+        row_wave_[k] = sign * w[ib];
+        col_wave_[k] = w[jb];
+        ib += at.row;
+        if (ib >= n) ib -= n;
+        jb += at.col;
+        if (jb >= n) jb -= n;
+    }
+    const double* cb = reinterpret_cast<const double*>(col_wave_.data());
+    for (int k = 0; k < n; ++k) {
+        double* row = reinterpret_cast<double*>(&spectrum_(k, 0));
+        const double br = row_wave_[k].real(), bi = row_wave_[k].imag();
+        for (int l = 0; l < n; ++l) {
+            const double xr = cb[2 * l], xi = cb[2 * l + 1];
+            row[2 * l] += br * xr - bi * xi;
+            row[2 * l + 1] += br * xi + bi * xr;
+        }
+    }
+}
+
 void PatternState::add_autocorrelation(int j, Cell at, int delta) {
     const int n = pattern_.n;
     int* r = autocorr_.data();
@@ -148,6 +172,34 @@ void PatternState::move(int j, Cell to) {
     add_exclusion(to, +1);
     occupied_[index(to)] = 1;
     update_spectrum(from, to);
+}
+
+bool PatternState::can_add(Cell c) const {
+    if (c.row < 0 || c.row >= n() || c.col < 0 || c.col >= n()) return false;
+    return occupied_[index(c)] == 0 && exclusion_[index(c)] == 0;
+}
+
+void PatternState::add(Cell c) {
+    assert(can_add(c));
+    pattern_.pinholes.push_back(c);
+    const int j = holes() - 1;
+    add_autocorrelation(j, c, +1);
+    autocorr_[0] += 1;
+    add_exclusion(c, +1);
+    occupied_[index(c)] = 1;
+    add_wave(c, +1.0);
+}
+
+void PatternState::remove(int j) {
+    assert(holes() > 1 && j >= 0 && j < holes());
+    const Cell at = pattern_.pinholes[static_cast<std::size_t>(j)];
+    add_autocorrelation(j, at, -1);
+    autocorr_[0] -= 1;
+    add_exclusion(at, -1);
+    occupied_[index(at)] = 0;
+    pattern_.pinholes[static_cast<std::size_t>(j)] = pattern_.pinholes.back();
+    pattern_.pinholes.pop_back();
+    add_wave(at, -1.0);
 }
 
 }  // namespace pinmask

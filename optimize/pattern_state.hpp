@@ -5,6 +5,9 @@
 // w^(k a_r + l a_c): O(n^2), no FFT. It changes R by at most 4 (K - 1) entries: O(K). An exclusion
 // count per cell (how many pinholes lie closer than the spacing rule) makes "is this move legal"
 // O(1) and its update O(s^2), s = ceil(min_spacing_cells).
+// Adding or removing one pinhole (search --holes A..B, issue 13) changes P^ by one plane wave
+// (O(n^2)) and R by 2 (K - 1) + 1 entries (O(K)); the spacing rule is the same torus rule, so it
+// holds across tile seams (the mask is the pattern repeated).
 #pragma once
 
 #include <cstdint>
@@ -38,6 +41,14 @@ class PatternState {
     // Staying put (to == current cell) is not a legal move.
     void move(int j, Cell to);
 
+    // True when a pinhole may be added at `c`: inside the grid, empty, and no pinhole closer than
+    // the spacing rule on the torus.
+    bool can_add(Cell c) const;
+    // Adds a pinhole at `c` (must satisfy can_add; asserted in debug builds) as the last one.
+    void add(Cell c);
+    // Removes pinhole j (K must stay >= 1; asserted); the last pinhole takes index j.
+    void remove(int j);
+
     // Recomputes spectrum and autocorrelation from scratch (design/psf pattern_spectrum and
     // optimize/autocorrelation), for tests and to resynchronise accumulated round-off.
     void recompute();
@@ -46,6 +57,7 @@ class PatternState {
     std::size_t index(Cell c) const { return static_cast<std::size_t>(c.row) * pattern_.n + c.col; }
     void add_exclusion(Cell c, int delta);
     void update_spectrum(Cell from, Cell to);
+    void add_wave(Cell at, double sign);  // P^ += sign w^(k at.r + l at.c)
     void add_autocorrelation(int j, Cell at, int delta);
     // Exclusion that pinhole at `c` alone contributes to cell `t` (0 or 1).
     bool excludes(Cell c, Cell t) const;

@@ -105,6 +105,10 @@ class Chain {
         }
         shared_->evaluations.store(st_.evaluations, std::memory_order_relaxed);
         if (value < st_.top.worst()) st_.top.offer(s.pattern(), value);
+        if (o_.holes_range()) {
+            TopCandidates& best = st_.best_per_holes.try_emplace(s.holes(), 1).first->second;
+            if (value < best.worst()) best.offer(s.pattern(), value);
+        }
         if (value < shared_->best.load(std::memory_order_relaxed)) {
             shared_->best.store(value, std::memory_order_relaxed);
         }
@@ -123,6 +127,54 @@ class Chain {
             if (!blocked(to) && s.is_legal_move(j, to)) return true;
         }
         return false;
+    }
+
+    // An empty cell where a pinhole may be added, or false after a bounded number of draws.
+    bool propose_add(const PatternState& s, Cell& at) {
+        std::uniform_int_distribution<int> cell(0, s.n() - 1);
+        for (int attempt = 0; attempt < 64; ++attempt) {
+            at = {cell(st_.rng), cell(st_.rng)};
+            if (!blocked(at) && s.can_add(at)) return true;
+        }
+        return false;
+    }
+
+    // One annealing move: a swap, or with a pinhole-count range an add or a remove. Applies it
+    // and returns the undo; false when no legal move was found.
+    struct Undo {
+        enum { kMove, kAdded, kRemoved } kind = kMove;
+        int j = 0;
+        Cell cell{};
+        void apply(PatternState& s) const {
+            if (kind == kMove) s.move(j, cell);
+            if (kind == kAdded) s.remove(s.holes() - 1);
+            if (kind == kRemoved) s.add(cell);
+        }
+    };
+    bool step(PatternState& s, std::uniform_real_distribution<double>& uniform, Undo& undo) {
+        if (o_.holes_range()) {
+            const double u = uniform(st_.rng);
+            Cell at;
+            if (u < 0.5 * o_.resize_probability && s.holes() < o_.max_holes && propose_add(s, at)) {
+                s.add(at);
+                undo = {Undo::kAdded, 0, {}};
+                return true;
+            }
+            if (u >= 0.5 * o_.resize_probability && u < o_.resize_probability &&
+                s.holes() > o_.min_holes) {
+                std::uniform_int_distribution<int> hole(0, s.holes() - 1);
+                const int j = hole(st_.rng);
+                undo = {Undo::kRemoved, 0, s.pattern().pinholes[static_cast<std::size_t>(j)]};
+                s.remove(j);
+                return true;
+            }
+        }
+        int j;
+        Cell to;
+        if (!propose(s, j, to)) return false;
+        undo = {Undo::kMove, j, s.pattern().pinholes[static_cast<std::size_t>(j)]};
+        s.move(j, to);
+        return true;
     }
 
     // One annealing restart: a fresh random start, a geometric temperature schedule over a fixed
@@ -152,19 +204,16 @@ class Chain {
         const std::int64_t moves = o_.anneal_restart_moves;
         for (std::int64_t m = 0; m < moves && !should_stop(); ++m) {
             if ((m & 4095) == 4095) s.recompute();  // bound accumulated round-off in P^
-            int j;
-            Cell to;
-            if (!propose(s, j, to)) return;  // stuck: restart
+            Undo undo;
+            if (!step(s, uniform, undo)) return;  // stuck: restart
             const double temperature =
                 t0 * std::pow(o_.anneal_final_temperature_ratio, static_cast<double>(m) / moves);
-            const Cell from = s.pattern().pinholes[static_cast<std::size_t>(j)];
-            s.move(j, to);
             const double v = obj_.evaluate(s);
             record(s, v);
             if (v <= current || uniform(st_.rng) < std::exp((current - v) / temperature)) {
                 current = v;
             } else {
-                s.move(j, from);
+                undo.apply(s);
             }
         }
     }
@@ -228,6 +277,17 @@ void SearchOptions::validate() const {
     if (!(anneal_final_temperature_ratio > 0.0 && anneal_final_temperature_ratio <= 1.0)) {
         throw invalid_field("anneal_final_temperature_ratio",
                             std::to_string(anneal_final_temperature_ratio), "must be in (0, 1]");
+    }
+    if (min_holes != 0 || max_holes != 0) {
+        if (min_holes < 1 || max_holes < min_holes) {
+            throw invalid_field("holes range",
+                                std::to_string(min_holes) + ".." + std::to_string(max_holes),
+                                "must satisfy 1 <= min_holes <= max_holes");
+        }
+    }
+    if (!(resize_probability >= 0.0 && resize_probability <= 1.0)) {
+        throw invalid_field("resize_probability", std::to_string(resize_probability),
+                            "must be in [0, 1]");
     }
     if (!(log_interval_s > 0.0)) {
         throw invalid_field("log_interval_s", std::to_string(log_interval_s), "must be > 0");
@@ -371,6 +431,25 @@ SearchSummary summarize_chains(const SearchObjective& objective, const SearchOpt
         c.objective = item.objective;
         c.terms = objective.terms(PatternState(item.pattern));
         summary.ranked.push_back(std::move(c));
+    }
+    if (options.holes_range()) {
+        std::map<int, TopCandidates::Item> best;
+        for (const ChainState& st : states) {
+            for (const auto& [k, top] : st.best_per_holes) {
+                if (top.items().empty()) continue;
+                const TopCandidates::Item& item = top.items().front();
+                const auto it = best.find(k);
+                if (it == best.end() || TopCandidates::less(item, it->second))
+                    best.insert_or_assign(k, item);
+            }
+        }
+        for (const auto& [k, item] : best) {
+            Candidate c;
+            c.pattern = item.pattern;
+            c.objective = item.objective;
+            c.terms = objective.terms(PatternState(item.pattern));
+            summary.best_per_holes.push_back(std::move(c));
+        }
     }
     // Checkpoints merged over chains: every chain records at the same evaluation counts.
     std::vector<std::int64_t> counts;

@@ -1,6 +1,9 @@
 // Mask search over cyclic patterns under the spacing rule (issue: search strategies).
 //   random: sample valid random patterns and keep the best (the paper's approach; the baseline).
 //   anneal: simulated annealing moving one pinhole to a legal empty cell, fixed-length restarts.
+//           With a pinhole-count range (min_holes..max_holes, issue 13) a move may also add a
+//           pinhole at a legal empty cell or remove one, so the chain chooses K; the best pattern
+//           at every K evaluated is kept beside the overall top list.
 // Chains are independent, one per thread, each with its own generator seeded from (seed, chain).
 // With an evaluation budget the result is identical for the same seed and thread count. With a
 // time budget the amount of work depends on the machine; the summary records the evaluations
@@ -46,6 +49,12 @@ struct SearchOptions {
     double anneal_final_temperature_ratio = 1e-3;
     std::vector<Cell> keep_out;    // cells no pinhole may occupy
     double log_interval_s = 0.25;  // run-log sampling period
+    // Pinhole-count range: both 0 keeps K fixed (the sampler's K). Else 1 <= min_holes <=
+    // max_holes: annealing adds and removes pinholes within the range, each with probability
+    // resize_probability / 2 per move (when legal), and the best pattern per K is kept.
+    int min_holes = 0, max_holes = 0;
+    double resize_probability = 0.2;
+    bool holes_range() const { return max_holes > 0; }
 
     // Throws InvalidInput naming the field, value and rule.
     void validate() const;
@@ -125,6 +134,10 @@ struct SearchSegments {
     };
     // Returns false to end the search (every chain stops where it is).
     std::function<bool(const Boundary&, std::vector<ChainState>& states)> at_boundary;
+    // Only with a pinhole-count range (SearchOptions::min_holes..max_holes): for every K the
+    // chain evaluated, the best pattern at that K (a TopCandidates of capacity 1). Empty
+    // otherwise.
+    std::map<int, TopCandidates> best_per_holes;
 };
 
 struct SearchLogRow {
@@ -154,6 +167,9 @@ struct SearchSummary {
     std::vector<SearchCheckpoint> checkpoints;  // by evaluation count (reproducible)
     std::vector<std::int64_t> evaluations_per_chain;
     std::vector<ChainState> chain_states;  // each chain's final state (a copyable value)
+    // With a pinhole-count range: the best pattern at each K any chain evaluated, ascending K
+    // (objective and terms as in `ranked`). Empty otherwise.
+    std::vector<Candidate> best_per_holes;
     std::int64_t evaluations = 0;
     double seconds = 0.0;
     SearchTermination termination = SearchTermination::kTimeBudget;
@@ -164,7 +180,8 @@ using SearchProgress = std::function<void(const SearchLogRow& row, double budget
 
 // Runs the search. `sample` draws a valid random pattern (the random family with the wanted n,
 // K, spacing and keep-out cells), used by the random strategy and for annealing starts; annealing
-// moves keep K and the spacing rule and avoid options.keep_out.
+// moves keep the spacing rule and avoid options.keep_out, and keep K unless a pinhole-count
+// range is set (then K stays inside it; the sampler must draw K inside it too).
 // `cancel` (may be null) stops all chains cleanly; the best so far is returned.
 SearchSummary run_search(const SearchObjective& objective, const SearchOptions& options,
                          const std::function<Pattern(std::mt19937_64& rng)>& sample,

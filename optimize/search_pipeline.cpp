@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/fft.hpp"
 #include "design/kernel_model.hpp"
+#include "design/packing_bound.hpp"
 #include "design/psf.hpp"
 #include "design/random_sparse.hpp"
 #include "optimize/island_search.hpp"
@@ -133,6 +134,29 @@ RankBy parse_rank_by(const std::string& text) {
     throw invalid_field("--rank-by", text, "must be wiener or tv");
 }
 
+std::pair<int, int> parse_holes_range(const std::string& text) {
+    const auto whole_int = [&](const std::string& t, int& v) {
+        if (t.empty() || t.size() > 9) return false;
+        for (const char c : t)
+            if (c < '0' || c > '9') return false;
+        v = std::stoi(t);
+        return true;
+    };
+    const std::size_t dots = text.find("..");
+    int a = 0, b = 0;
+    if (dots == std::string::npos) {
+        if (!whole_int(text, a) || a < 1)
+            throw invalid_field("--holes", text, "must be a pinhole count K >= 1 or a range A..B");
+        return {a, 0};
+    }
+    if (!whole_int(text.substr(0, dots), a) || !whole_int(text.substr(dots + 2), b)) {
+        throw invalid_field("--holes", text, "a range must be A..B with whole numbers A and B");
+    }
+    if (a < 1) throw invalid_field("--holes", text, "the range must start at A >= 1");
+    if (a > b) throw invalid_field("--holes", text, "the range A..B must have A <= B");
+    return {a, b};
+}
+
 std::vector<Cell> keep_out_cells(const std::string& spec, int n) {
     std::vector<Cell> cells;
     if (spec == "none") return cells;
@@ -152,7 +176,20 @@ std::vector<Cell> keep_out_cells(const std::string& spec, int n) {
 
 void SearchPipelineOptions::validate() const {
     pinmask::validate(tmpl.pattern);
-    if (holes < 1) throw invalid_field("--holes", std::to_string(holes), "must be >= 1");
+    const std::string holes_text =
+        std::to_string(holes) + (max_holes > 0 ? ".." + std::to_string(max_holes) : "");
+    if (holes < 1) throw invalid_field("--holes", holes_text, "must be >= 1");
+    if (max_holes != 0 && max_holes < holes)
+        throw invalid_field("--holes", holes_text, "the range A..B must have A <= B");
+    const PackingUpperBound bound =
+        packing_upper_bound(tmpl.pattern.n, tmpl.pattern.min_spacing_cells);
+    if (std::max(holes, max_holes) > bound.count) {
+        throw invalid_field("--holes", holes_text,
+                            "the spacing rule (" + std::to_string(tmpl.pattern.min_spacing_cells) +
+                                " cells) allows at most " + std::to_string(bound.count) +
+                                " pinholes on the " + std::to_string(tmpl.pattern.n) + " x " +
+                                std::to_string(tmpl.pattern.n) + " grid (" + bound.reason + ")");
+    }
     search.validate();
     islands.validate();
     pinmask::validate(noise);
@@ -205,8 +242,25 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
     ro.min_spacing_cells = o.tmpl.pattern.min_spacing_cells;
     ro.tiles_rows = o.tmpl.pattern.tiles_rows;
     ro.tiles_cols = o.tmpl.pattern.tiles_cols;
+    if (o.max_holes > 0) {
+        so.min_holes = o.holes;
+        so.max_holes = o.max_holes;
+    }
+    // With a K range each start draws K uniformly in it; when the random family cannot place
+    // that many (near the packing limit) K halves its distance to A until it can (A itself
+    // failing is the user's error, raised as is). Annealing can still add pinholes up to B.
     const auto sample = [&](std::mt19937_64& rng) {
-        return sample_pattern(ro, so.keep_out, o.keep_out, rng);
+        if (o.max_holes == 0) return sample_pattern(ro, so.keep_out, o.keep_out, rng);
+        RandomSparseOptions r = ro;
+        r.holes = std::uniform_int_distribution<int>(o.holes, o.max_holes)(rng);
+        for (;;) {
+            try {
+                return sample_pattern(r, so.keep_out, o.keep_out, rng);
+            } catch (const InvalidInput&) {
+                if (r.holes == o.holes) throw;
+                r.holes = o.holes + (r.holes - o.holes) / 2;
+            }
+        }
     };
     std::mt19937_64 probe_rng(o.search.seed);  // fail fast on infeasible requests
     const Pattern probe = sample(probe_rng);
@@ -283,7 +337,7 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
     }
 
     const std::vector<std::uint8_t> passed = pattern_frequencies_passed(kernel_otf, n);
-    for (const Candidate& c : out.search.ranked) {
+    const auto ranked_mask = [&](const Candidate& c) {
         RankedMask r;
         r.mask = o.tmpl;
         r.mask.pattern = c.pattern;
@@ -300,8 +354,11 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
         r.spectral_zero = z.found;
         r.spectral_zero_message = z.message();
         if (z.found) r.mask.provenance.scores["spectral_zero"] = 1.0;
-        out.ranked.push_back(std::move(r));
-    }
+        return r;
+    };
+    for (const Candidate& c : out.search.ranked) out.ranked.push_back(ranked_mask(c));
+    for (const Candidate& c : out.search.best_per_holes)
+        out.best_per_holes.push_back(ranked_mask(c));
 
     const auto r0 = Clock::now();
     const bool interrupted = cancel && cancel->load();

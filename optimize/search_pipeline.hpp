@@ -31,8 +31,11 @@ std::string rank_by_name(RankBy r);
 RankBy parse_rank_by(const std::string& text);  // InvalidInput naming --rank-by
 
 struct SearchPipelineOptions {
-    Mask tmpl;                      // camera, PSF settings, pattern n, tiles, spacing (no pinholes)
-    int holes = 20;                 // K, >= 1
+    Mask tmpl;       // camera, PSF settings, pattern n, tiles, spacing (no pinholes)
+    int holes = 20;  // K, >= 1 (with max_holes: the smallest K)
+    // Pinhole-count range (issue 13, --holes A..B): 0 = K fixed at `holes`; else the search adds
+    // and removes pinholes within holes..max_holes and keeps the best mask per K.
+    int max_holes = 0;
     SearchOptions search;           // strategy, threads, budgets, seed, top (keep_out set below)
     std::string keep_out = "none";  // none | border
     NoiseModel noise;               // the objective's noise model (Gaussian SNR or photon)
@@ -67,6 +70,9 @@ struct RankedMask {
 
 struct SearchPipelineSummary {
     std::vector<RankedMask> ranked;  // best first
+    // With a pinhole-count range: the best mask at each K the search evaluated, ascending K
+    // (objective and analytic terms only: not re-ranked by simulation). Empty otherwise.
+    std::vector<RankedMask> best_per_holes;
     SearchSummary search;
     SearchTermination termination = SearchTermination::kTimeBudget;
     std::string kernel_resolved;  // the kernel model used
@@ -88,6 +94,10 @@ using PipelineProgress = std::function<void(const std::string&, double, const st
 SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& options,
                                           const std::atomic<bool>* cancel = nullptr,
                                           const PipelineProgress& progress = {});
+
+// "K" or "A..B" (--holes); InvalidInput naming --holes for anything else (A > B, A < 1, junk).
+// Returns {A, B} with B = 0 for a single K.
+std::pair<int, int> parse_holes_range(const std::string& text);
 
 // Keep-out cells of a spec (none | border) on an n x n grid; InvalidInput naming --keep-out.
 std::vector<Cell> keep_out_cells(const std::string& spec, int n);

@@ -175,6 +175,17 @@ TEST_CASE("compare prints a table; grid sizes may differ, each mask on its own p
     CHECK(r.out.find("a.mask.json") != std::string::npos);
     CHECK(r.out.find("c.mask.json") != std::string::npos);
     CHECK(r.out.find("PSNR dB") != std::string::npos);
+    // K differs (5 and 6): the PSNR-against-K view lists them by K with the light gain.
+    const std::size_t view = r.out.find("PSNR against pinhole count");
+    REQUIRE(view != std::string::npos);
+    const std::size_t k5 = r.out.find("K 5  light 5x", view),
+                      k6 = r.out.find("K 6  light 6x", view);
+    CHECK(k5 != std::string::npos);
+    CHECK(k6 != std::string::npos);
+    CHECK(k5 < k6);
+    const auto same = run_cli("compare " + m.a + " " + m.b + kFast);  // both K = 5: no view
+    REQUIRE(same.exit_code == 0);
+    CHECK(same.out.find("PSNR against pinhole count") == std::string::npos);
     const auto j = run_cli("compare " + m.a + " " + c + kFast + "--json");
     REQUIRE(j.exit_code == 0);
     CHECK(nlohmann::json::parse(j.out)["masks"][1]["period_px"] == 44);

@@ -141,3 +141,59 @@ TEST_CASE("search --explain names the prior's irrelevant frequencies and what wa
     CHECK(r.err.find("frequencies carry < 1e-6") != std::string::npos);
     CHECK(r.err.find("Skipped:") != std::string::npos);
 }
+
+TEST_CASE("search --holes A..B: best mask per K, table and plot; bad ranges name --holes") {
+    TempDir dir("search-holes");
+    const std::string args =
+        " --grid 8 --pixels-per-cell 4 --tiles 1 --prior-scenes 2 --threads 1 --top 2 --seed 3 "
+        "--evals 400 --no-rerank --quiet --photons 3 --read-noise 3 ";
+    const auto r = run_cli("search" + args + "--holes 3..8 --json -o " + (dir / "run"));
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const fs::path run = dir.path / "run";
+    for (const char* f : {"holes.csv", "holes.svg", "holes.png"}) CHECK(fs::exists(run / f));
+    const auto j = nlohmann::json::parse(r.out);
+    REQUIRE(j["best_per_holes"].is_array());
+    int previous = 0;
+    for (const auto& row : j["best_per_holes"]) {
+        const int k = row["holes"].template get<int>();
+        CHECK(k >= 3);
+        CHECK(k <= 8);
+        CHECK(k > previous);  // ascending, one row per K
+        previous = k;
+        // The per-K mask file holds K pinholes and the predicted PSNR the table shows.
+        const auto mask =
+            nlohmann::json::parse(slurp(run / ("best-K" + std::to_string(k) + ".mask.json")));
+        CHECK(mask.dump().find("analytic_wiener_psnr_db") != std::string::npos);
+    }
+    CHECK(j["best_per_holes"].size() >= 3);
+    const std::string csv = slurp(run / "holes.csv");
+    CHECK(csv.rfind("holes,light_gain,objective,analytic_wiener_psnr_db", 0) == 0);
+    CHECK(slurp(run / "summary.md").find("Best mask per pinhole count") != std::string::npos);
+    const auto config = nlohmann::json::parse(slurp(run / "search.config.json"));
+    CHECK(config["holes"] == 3);
+    CHECK(config["max_holes"] == 8);
+    // Same seed and --evals: byte-identical table and plot.
+    const auto again = run_cli("search" + args + "--holes 3..8 -o " + (dir / "again"));
+    REQUIRE(again.exit_code == 0);
+    CHECK(slurp(dir.path / "again" / "holes.csv") == csv);
+    CHECK(slurp(dir.path / "again" / "holes.svg") == slurp(run / "holes.svg"));
+    // --config repeats the range.
+    const auto from_config = run_cli("search --config " + (run / "search.config.json").string() +
+                                     " --quiet -o " + (dir / "cfg"));
+    REQUIRE(from_config.exit_code == 0);
+    CHECK(slurp(dir.path / "cfg" / "holes.csv") == csv);
+    // A single K keeps today's outputs: no per-K table.
+    const auto single = run_cli("search" + args + "--holes 5 -o " + (dir / "single"));
+    REQUIRE(single.exit_code == 0);
+    CHECK_FALSE(fs::exists(dir.path / "single" / "holes.csv"));
+    // Bad ranges: exit 2, the message names --holes, nothing written.
+    for (const char* bad :
+         {"8..3", "0..5", "3..", "..5", "3..x", "3..100", "nan", "99999999999..3"}) {
+        const auto b = run_cli("search" + args + "--holes " + bad + " -o " + (dir / "bad"));
+        INFO(bad << ": " << b.err);
+        CHECK(b.exit_code == 2);
+        CHECK(b.err.find("--holes") != std::string::npos);
+        CHECK_FALSE(fs::exists(dir.path / "bad"));
+    }
+}

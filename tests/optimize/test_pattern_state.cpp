@@ -91,3 +91,81 @@ TEST_CASE("moves across the seam respect the torus spacing rule") {
     CHECK(s.is_legal_move(0, {0, 1}));        // a pinhole's own exclusion does not block it
     CHECK_FALSE(s.is_legal_move(0, {4, 4}));  // occupied
 }
+
+namespace {
+
+// Independent legality check for adding at `c`: brute-force torus distances to every pinhole.
+bool brute_force_can_add(const Pattern& p, Cell c) {
+    for (const Cell& q : p.pinholes) {
+        if (q == c) return false;
+        if (torus_distance_cells(q, c, p.n) < p.min_spacing_cells - kSpacingTolerance) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+TEST_CASE("add and remove moves equal full recomputation and keep the spacing rule") {
+    struct Geometry {
+        int n, holes, step;
+        double spacing;
+    };
+    for (const Geometry g : {Geometry{16, 20, 2, 2.0}, Geometry{17, 12, 3, 2.5},
+                             Geometry{5, 3, 2, 1.0}, Geometry{32, 40, 4, 3.0}}) {
+        PatternState state(lattice_pattern(g.n, g.holes, g.step, g.spacing));
+        std::mt19937_64 rng(static_cast<unsigned>(g.n * 100 + g.holes));
+        std::uniform_int_distribution<int> pick_cell(0, g.n - 1), pick_kind(0, 2);
+        int adds = 0, removes = 0, moves = 0;
+        for (int m = 0; m < 6000; ++m) {
+            const Cell c{pick_cell(rng), pick_cell(rng)};
+            const int kind = pick_kind(rng);
+            if (kind == 0) {
+                const bool legal = state.can_add(c);
+                REQUIRE(legal == brute_force_can_add(state.pattern(), c));
+                if (legal) {
+                    state.add(c);
+                    ++adds;
+                }
+            } else if (kind == 1 && state.holes() > 1) {
+                std::uniform_int_distribution<int> pick_hole(0, state.holes() - 1);
+                state.remove(pick_hole(rng));
+                ++removes;
+            } else {
+                std::uniform_int_distribution<int> pick_hole(0, state.holes() - 1);
+                const int j = pick_hole(rng);
+                const bool legal = state.is_legal_move(j, c);
+                REQUIRE(legal == brute_force_legal(state.pattern(), j, c));
+                if (legal) {
+                    state.move(j, c);
+                    ++moves;
+                }
+            }
+        }
+        INFO("n " << g.n << ": adds " << adds << ", removes " << removes << ", moves " << moves);
+        CHECK(adds > 100);
+        CHECK(removes > 100);
+        CHECK(spacing_violations(state.pattern()).empty());
+        const ComplexPlane full = pattern_spectrum(state.pattern());
+        CHECK((state.spectrum() - full).abs().maxCoeff() <= kIncrementalSpectrumTol);
+        CHECK(std::abs(state.spectrum()(0, 0).real() - state.holes()) <= kIncrementalSpectrumTol);
+        CHECK(state.autocorrelation() == direct_autocorrelation(state.pattern()));
+    }
+}
+
+TEST_CASE("adding across the seam respects the torus spacing rule") {
+    Pattern p;
+    p.n = 8;
+    p.pinholes = {{0, 0}};
+    PatternState s(p);
+    CHECK_FALSE(s.can_add({7, 7}));  // diagonal neighbour across the corner
+    CHECK_FALSE(s.can_add({0, 7}));
+    CHECK_FALSE(s.can_add({0, 0}));  // occupied
+    CHECK(s.can_add({0, 6}));        // distance 2 across the seam
+    s.add({0, 6});
+    CHECK_FALSE(s.can_add({0, 7}));
+    s.remove(0);  // (0, 6) remains, now pinhole 0
+    CHECK(s.pattern().pinholes.size() == 1);
+    CHECK(s.pattern().pinholes[0] == Cell{0, 6});
+    CHECK(s.can_add({0, 0}));        // distance 2 from (0, 6) across the seam: legal again
+    CHECK_FALSE(s.can_add({1, 7}));  // diagonal neighbour of (0, 6)
+}

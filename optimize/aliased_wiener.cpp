@@ -1,0 +1,179 @@
+#include "optimize/aliased_wiener.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/error.hpp"
+#include "optimize/image_quality.hpp"
+
+namespace pinmask {
+namespace {
+
+// x below this (|P^| / K < 1e-3, next to a spectral zero) is summed exactly, never tabulated.
+constexpr double kSmallestTabulatedX = 1e-6;
+// Widest u range tabulated (e^48 ~ 7e20 in x / (N sigma^2)); beyond it the exact sum is used.
+constexpr double kMaxRange = 48.0;
+// Largest table kept (bytes); a larger pattern (n ~ 250 and up) keeps the exact O(m^2) sums.
+constexpr double kMaxTableBytes = 256.0 * 1024 * 1024;
+
+}  // namespace
+
+AliasedWiener::AliasedWiener(std::shared_ptr<const AnalyticWienerModel> model, int n,
+                             const WienerFilterSpec& filter)
+    : model_(std::move(model)), n_(n), filter_(filter) {
+    if (!model_) throw InvalidInput("AliasedWiener: no analytic Wiener model");
+    const int m = model_->period();
+    if (n < 1 || m % n != 0) {
+        throw InvalidInput("pattern size " + std::to_string(n) + " does not divide the period " +
+                           std::to_string(m));
+    }
+    if (filter.kind == WienerFilterKind::kFixedNsr &&
+        (!(filter.nsr > 0.0) || !std::isfinite(filter.nsr))) {
+        throw invalid_field("nsr", std::to_string(filter.nsr), "must be finite and > 0");
+    }
+    p_ = m / n;
+    const int cells = n * n, aliases = p_ * p_;
+    const Plane& kp = model_->kernel_power();
+    const Plane& s = model_->prior().power;
+    capture_weight_.assign(cells, 0.0);
+    kp_.resize(static_cast<std::size_t>(cells) * aliases);
+    s_.resize(kp_.size());
+    for (int ar = 0; ar < n; ++ar)
+        for (int ac = 0; ac < n; ++ac) {
+            const int a = ar * n + ac;
+            std::size_t at = static_cast<std::size_t>(a) * aliases;
+            for (int i = 0; i < p_; ++i)
+                for (int j = 0; j < p_; ++j, ++at) {
+                    kp_[at] = kp(ar + i * n, ac + j * n);
+                    s_[at] = s(ar + i * n, ac + j * n);
+                    capture_weight_[a] += kp_[at] * s_[at];
+                }
+        }
+    if (filter.kind == WienerFilterKind::kFixedNsr) {
+        width_ = 4;
+        build_tables(std::log(kSmallestTabulatedX), step_);
+        return;
+    }
+    // Noise variances over every K in 1..n^2 and every mean(c^2) a pattern can give
+    // (x(0) = 1, 0 <= x <= 1 elsewhere).
+    width_ = 2;
+    const double big_n = static_cast<double>(m) * m;
+    double total = 0.0;
+    for (double c : capture_weight_) total += c;
+    double nu_lo = INFINITY, nu_hi = 0.0;
+    for (double ms : {capture_weight_[0] / (big_n * big_n), total / (big_n * big_n)})
+        for (int open : {1, cells}) {
+            const double nu = big_n * model_->noise_variance(ms, open, cells);
+            nu_lo = std::min(nu_lo, nu);
+            nu_hi = std::max(nu_hi, nu);
+        }
+    if (!(nu_lo > 0.0) || !std::isfinite(nu_hi)) return;  // noise-free: exact sums only
+    const double u_hi = -std::log(nu_lo) + 0.5;
+    const double u_lo = std::max(std::log(kSmallestTabulatedX / nu_hi) - 0.5, u_hi - kMaxRange);
+    build_tables(u_lo, u_hi);
+}
+
+void AliasedWiener::build_tables(double u_lo, double u_hi) {
+    const int cells = n_ * n_, aliases = p_ * p_;
+    const int points = static_cast<int>(std::ceil((u_hi - u_lo) / step_)) + 1;
+    if (static_cast<double>(cells) * points * width_ * sizeof(double) > kMaxTableBytes) return;
+    points_ = points;
+    u0_ = u_lo;
+    table_.assign(static_cast<std::size_t>(cells) * points_ * width_, 0.0);
+    const double nsr = filter_.nsr;
+    for (int a = 0; a < cells; ++a) {
+        const double* kp = kp_.data() + static_cast<std::size_t>(a) * aliases;
+        const double* s = s_.data() + static_cast<std::size_t>(a) * aliases;
+        for (int i = 0; i < points_; ++i) {
+            const double e = std::exp(u0_ + i * step_);
+            double* out = table_.data() + (static_cast<std::size_t>(a) * points_ + i) * width_;
+            if (width_ == 2) {  // optimal: s / (1 + e kp s), e = x / (N sigma^2)
+                for (int j = 0; j < aliases; ++j) {
+                    const double q = e * kp[j] * s[j], d = 1.0 + q;
+                    out[0] += s[j] / d;
+                    out[1] -= s[j] * q / (d * d);
+                }
+            } else {  // fixed NSR, e = x, h = x kp
+                for (int j = 0; j < aliases; ++j) {
+                    const double h = e * kp[j], d = h + nsr, d2 = d * d, d3 = d2 * d;
+                    out[0] += nsr * nsr * s[j] / d2;
+                    out[1] -= 2.0 * nsr * nsr * s[j] * h / d3;
+                    out[2] += h / d2;
+                    out[3] += h * (nsr - h) / d3;
+                }
+            }
+        }
+    }
+}
+
+// The per-frequency terms of optimize/analytic_error.cpp, summed over the aliases of a.
+double AliasedWiener::exact_sum(int a, double x, double n_sigma2) const {
+    const int aliases = p_ * p_;
+    const double* kp = kp_.data() + static_cast<std::size_t>(a) * aliases;
+    const double* s = s_.data() + static_cast<std::size_t>(a) * aliases;
+    double sum = 0.0;
+    for (int j = 0; j < aliases; ++j) {
+        const double h = x * kp[j];
+        if (filter_.kind == WienerFilterKind::kFixedNsr) {
+            const double d = h + filter_.nsr;
+            sum += (filter_.nsr * filter_.nsr * s[j] + h * n_sigma2) / (d * d);
+        } else {
+            const double d = h * s[j] + n_sigma2;
+            sum += d > 0.0 ? s[j] * n_sigma2 / d : s[j];
+        }
+    }
+    return sum;
+}
+
+AnalyticError AliasedWiener::evaluate(const ComplexPlane& p) const {
+    if (p.rows() != n_ || p.cols() != n_) {
+        throw InvalidInput("pattern spectrum is " + std::to_string(p.rows()) + " x " +
+                           std::to_string(p.cols()) + ": the aliased model was built for " +
+                           std::to_string(n_) + " x " + std::to_string(n_));
+    }
+    const double k = p(0, 0).real();
+    if (!(k >= 0.5)) {
+        throw InvalidInput("pattern spectrum: P^(0) = " + std::to_string(k) +
+                           ": must be the pinhole count K >= 1");
+    }
+    const double m = static_cast<double>(n_) * p_, big_n = m * m, inv_k2 = 1.0 / (k * k);
+    double ms = 0.0;
+    for (int ar = 0; ar < n_; ++ar)
+        for (int ac = 0; ac < n_; ++ac)
+            ms += std::norm(p(ar, ac)) * inv_k2 * capture_weight_[ar * n_ + ac];
+    AnalyticError e;
+    e.mean_square_capture = ms / (big_n * big_n);
+    const int open = static_cast<int>(std::lround(k));
+    e.noise_variance = model_->noise_variance(e.mean_square_capture, open, n_ * n_);
+    const double nu = big_n * e.noise_variance;
+    const bool optimal = filter_.kind == WienerFilterKind::kOptimal;
+    const double u_end = u0_ + (points_ - 1) * step_, inv_step = 1.0 / step_;
+    const double log_nu = optimal ? std::log(nu) : 0.0;
+    double sum = 0.0;
+    for (int ar = 0; ar < n_; ++ar)
+        for (int ac = 0; ac < n_; ++ac) {
+            const int a = ar * n_ + ac;
+            const double x = std::norm(p(ar, ac)) * inv_k2;
+            const double u = x > 0.0 ? std::log(x) - log_nu : -INFINITY;
+            if (!(points_ > 1 && u >= u0_ && u < u_end)) {
+                sum += exact_sum(a, x, nu);
+                continue;
+            }
+            const double t = (u - u0_) * inv_step;
+            const int i = static_cast<int>(t);
+            const double f = t - i, g = 1.0 - f;
+            const double h00 = (1.0 + 2.0 * f) * g * g, h10 = f * g * g * step_;
+            const double h01 = f * f * (3.0 - 2.0 * f), h11 = -f * f * g * step_;
+            const double* r = table_.data() + (static_cast<std::size_t>(a) * points_ + i) * width_;
+            const double* q = r + width_;
+            sum += h00 * r[0] + h10 * r[1] + h01 * q[0] + h11 * q[1];
+            if (!optimal) sum += nu * (h00 * r[2] + h10 * r[3] + h01 * q[2] + h11 * q[3]);
+        }
+    e.mse = sum / (big_n * big_n);
+    e.psnr_db = psnr_from_mse(e.mse);
+    e.nsr = optimal ? 0.0 : filter_.nsr;
+    return e;
+}
+
+}  // namespace pinmask
