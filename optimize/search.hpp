@@ -114,6 +114,10 @@ struct ChainState {
     // The start of the next annealing restart when set (a pattern migrated from another chain,
     // optimize/island_search); else the restart draws a random pattern. Unused by random search.
     std::optional<Pattern> start;
+    // Only with a pinhole-count range (SearchOptions::min_holes..max_holes): for every K the
+    // chain evaluated, the best pattern at that K (a TopCandidates of capacity 1). Empty
+    // otherwise.
+    std::map<int, TopCandidates> best_per_holes;
 };
 
 // A search run in segments (issue 17: migration between processes, checkpoints). Every chain
@@ -134,10 +138,6 @@ struct SearchSegments {
     };
     // Returns false to end the search (every chain stops where it is).
     std::function<bool(const Boundary&, std::vector<ChainState>& states)> at_boundary;
-    // Only with a pinhole-count range (SearchOptions::min_holes..max_holes): for every K the
-    // chain evaluated, the best pattern at that K (a TopCandidates of capacity 1). Empty
-    // otherwise.
-    std::map<int, TopCandidates> best_per_holes;
 };
 
 struct SearchLogRow {
