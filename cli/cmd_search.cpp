@@ -28,61 +28,6 @@
 
 namespace pinmask::cli {
 
-SearchPipelineOptions search_pipeline_options(const SearchCliOptions& o, const CLI::App& cmd) {
-    SearchPipelineOptions p;
-    const Camera camera = resolve_camera(o.camera);
-    p.tmpl.camera = camera;
-    p.tmpl.psf = resolve_psf_spec(o.psf, camera);
-    p.tmpl.pattern.n = o.geometry.grid;
-    p.tmpl.pattern.tiles_rows = p.tmpl.pattern.tiles_cols = o.geometry.tiles;
-    p.tmpl.pattern.min_spacing_cells = o.geometry.spacing;
-    std::tie(p.holes, p.max_holes) = parse_holes_range(o.holes);
-    SearchOptions& so = p.search;
-    so.strategy = o.strategy == "random" ? SearchStrategy::kRandom : SearchStrategy::kAnneal;
-    if (o.threads < 0)
-        throw invalid_field("--threads", std::to_string(o.threads), "must be >= 1 (0: all cores)");
-    so.threads = o.threads > 0 ? o.threads
-                               : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-    // 1e9 evaluations a chain is more than a day at the fastest rate bench search measures; a
-    // longer search is a --time budget (it always ends, with the best so far).
-    constexpr long long kMaxEvals = 1'000'000'000;
-    if (o.evals && *o.evals > kMaxEvals) {
-        throw invalid_field("--evals", std::to_string(*o.evals),
-                            "must be at most 1e9 evaluations per chain (over a day of search): "
-                            "use --time for longer runs");
-    }
-    if (o.evals && *o.evals < 1) {
-        throw invalid_field("--evals", std::to_string(*o.evals),
-                            "must be >= 1 evaluations per chain (leave it out to search for "
-                            "--time instead)");
-    }
-    so.time_budget_s = o.evals ? 0.0 : parse_duration_s(o.time, "--time");
-    so.max_evaluations = o.evals.value_or(0);
-    so.seed = o.seed;
-    so.top = o.top;
-    if (o.top < 1 || o.top > 1000)
-        throw invalid_field("--top", std::to_string(o.top), "must be between 1 and 1000");
-    p.keep_out = o.keep_out;
-    const std::vector<NoiseLevel> levels = noise_levels(o.noise, cmd);
-    if (levels.size() != 1) {
-        throw InvalidInput(
-            "--snr/--photons: search optimises one noise level; give one value "
-            "(score and compare take lists)");
-    }
-    p.noise = levels.front().model;
-    p.prior = prior_spec(o.prior);
-    p.filter = parse_wiener_filter(o.filter);
-    p.weights = {o.w_analytic, o.w_max_sidelobe, o.w_sidelobe_energy, o.w_min_spectrum};
-    p.allow_spectral_zeros = o.allow_spectral_zeros;
-    if (!o.no_rerank)
-        for (const auto& name : o.rerank_scenes) p.rerank_scenes.push_back(scene_from_name(name));
-    p.rerank_tv = o.rerank_tv && !o.no_rerank;
-    p.rank_by = parse_rank_by(o.rank_by);
-    p.generator = kSearchGenerator;
-    p.validate();
-    return p;
-}
-
 namespace {
 
 SearchPipelineOptions make_options(const SearchCliOptions& o, const CLI::App& cmd) {
