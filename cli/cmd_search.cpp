@@ -1,5 +1,6 @@
 // `pinmask search`: find masks for a camera that decode better than random draws. Parses flags
 // (and --config), calls optimize/search_pipeline, writes the outputs (cli/search_outputs).
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -14,6 +15,7 @@
 #include "cli/noise_options.hpp"
 #include "cli/progress.hpp"
 #include "cli/psf_options.hpp"
+#include "cli/search_cluster.hpp"
 #include "cli/search_options.hpp"
 #include "cli/search_outputs.hpp"
 #include "core/error.hpp"
@@ -21,6 +23,7 @@
 #include "core/units.hpp"
 #include "io/optics_json.hpp"
 #include "io/search_config.hpp"
+#include "optimize/mpi/mpi_comm.hpp"
 #include "optimize/search_pipeline.hpp"
 
 namespace pinmask::cli {
@@ -89,14 +92,20 @@ SearchPipelineOptions make_options(const SearchCliOptions& o, const CLI::App& cm
     return p;
 }
 
-void run(const SearchCliOptions& o, const CLI::App& cmd) {
-    const SearchPipelineOptions p = make_options(o, cmd);
+void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd, RankComm& comm,
+         bool& started) {
+    SearchPipelineOptions p = make_options(o, cmd);
+    setup_cluster(cf, comm, checkpoint_config(resolved_config(o, p, {}), comm.size(), cf), o.output,
+                  p);
+    started = true;  // from here an error may be one rank's alone
+    const bool root = comm.rank() == 0;
     ProgressLine bar;
     const auto& interrupted = install_interrupt_flag();
     const SearchPipelineSummary s = run_search_pipeline(
         p, &interrupted, [&](const std::string& phase, double fraction, const std::string& text) {
-            if (!o.quiet) bar.update(fraction, phase + ": " + text);
+            if (!o.quiet && root) bar.update(fraction, phase + ": " + text);
         });
+    if (!root) return;  // rank 0 holds every chain's result and alone writes
     bar.finish();
     if (s.termination == SearchTermination::kInterrupted) {
         std::cerr << "pinmask search: interrupted; writing the best " << s.ranked.size()
@@ -141,10 +150,29 @@ void run(const SearchCliOptions& o, const CLI::App& cmd) {
     std::cout << j.dump(2) << "\n";
 }
 
+// Under mpirun every rank runs this. Set-up errors are every rank's alike: rank 0 reports, the
+// others leave silently with the same code. A later error may be one rank's: it ends the job.
+void run_on_ranks(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd) {
+    RankComm& comm = world_comm();  // MPI starts here, and only under a launcher
+    bool started = false;
+    try {
+        run(o, cf, cmd, comm, started);
+    } catch (const std::exception& e) {
+        if (comm.size() == 1) throw;
+        const int code = dynamic_cast<const InvalidInput*>(&e) ? 2 : 1;
+        if (!started && comm.rank() == 0) throw;
+        if (!started) std::exit(code);
+        std::cerr << "pinmask search: rank " << comm.rank() << ": " << e.what() << "\n";
+        abort_job_if_distributed(code);
+        throw;
+    }
+}
+
 }  // namespace
 
 void add_search(CLI::App& app) {
     auto o = std::make_shared<SearchCliOptions>();
+    auto cf = std::make_shared<ClusterFlags>();
     auto* cmd = app.add_subcommand(
         "search",
         "Search random sparse cyclic patterns under the spacing rule for the mask that decodes "
@@ -211,10 +239,11 @@ void add_search(CLI::App& app) {
                     "Settings of an earlier run (its search.config.json, or a hand-written "
                     "subset of its keys); options given here override them")
         ->check(CLI::ExistingFile);
+    add_cluster_flags(*cmd, *cf);
     cmd->footer(kSearchFooter);
-    cmd->callback([o, cmd] {
+    cmd->callback([o, cf, cmd] {
         if (!o->config.empty()) apply_config(io::read_search_config(o->config), *cmd, *o);
-        run(*o, *cmd);
+        run_on_ranks(*o, *cf, *cmd);
     });
 }
 

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
 #include <thread>
 
 #include "core/error.hpp"
@@ -50,23 +53,34 @@ class Chain {
               INFINITY,
               1,
               {},
-              TopCandidates(o.top)} {
+              TopCandidates(o.top),
+              {}} {
         for (const Cell& c : o.keep_out) keep_out_.push_back(c);
     }
 
-    void run() {
+    // Runs until the chain finishes or, at a restart boundary, has made at least `pause_at`
+    // evaluations (0: no pause). Returns true when finished.
+    bool run(std::int64_t pause_at = 0) {
+        const auto pausing = [&] { return pause_at > 0 && st_.evaluations >= pause_at; };
         if (o_.strategy == SearchStrategy::kRandom) {
-            while (!should_stop()) {
+            while (!should_stop() && !pausing()) {
                 const PatternState s(sample_(st_.rng));
                 record(s, obj_.evaluate(s));
             }
         } else {
-            while (!should_stop()) anneal_once();
+            while (!should_stop() && !pausing()) anneal_once();
         }
+        if (!should_stop()) return false;
+        finish();
+        return true;
+    }
+    // Records the final (evaluations, best) entry of the chain's log once.
+    void finish() {
         if (st_.evaluations > 0 &&
             (st_.checkpoints.empty() || st_.checkpoints.back().first != st_.evaluations))
             st_.checkpoints.push_back({st_.evaluations, st_.best_objective});
     }
+    ChainState& mutable_state() { return st_; }
     const TopCandidates& top() const { return st_.top; }
     const ChainState& state() const { return st_; }
     std::int64_t evaluations() const { return st_.evaluations; }
@@ -114,7 +128,8 @@ class Chain {
     // One annealing restart: a fresh random start, a geometric temperature schedule over a fixed
     // number of moves (independent of the budget, so runs are reproducible by evaluation count).
     void anneal_once() {
-        PatternState s(sample_(st_.rng));
+        PatternState s(st_.start ? *st_.start : sample_(st_.rng));
+        st_.start.reset();
         double current = obj_.evaluate(s);
         record(s, current);
         // Temperature scale: mean |change| of a few trial moves (applied and reverted).
@@ -221,29 +236,34 @@ void SearchOptions::validate() const {
 
 SearchSummary run_search(const SearchObjective& objective, const SearchOptions& options,
                          const std::function<Pattern(std::mt19937_64&)>& sample,
-                         const std::atomic<bool>* cancel, const SearchProgress& progress) {
+                         const std::atomic<bool>* cancel, const SearchProgress& progress,
+                         const SearchSegments* segments) {
     options.validate();
+    const bool segmented = segments != nullptr && segments->at_boundary;
+    if (segmented && segments->every < 1) {
+        throw invalid_field("segments.every", std::to_string(segments->every), "must be >= 1");
+    }
     const auto t0 = Clock::now();
     std::atomic<bool> time_up{false};
     std::vector<ChainShared> shared(static_cast<std::size_t>(options.threads));
     std::vector<std::unique_ptr<Chain>> chains;
+    const int first_chain = segments ? segments->first_chain : 0;
     for (int c = 0; c < options.threads; ++c) {
-        chains.push_back(std::make_unique<Chain>(options, objective, sample, c, cancel, &time_up,
+        chains.push_back(std::make_unique<Chain>(options, objective, sample, first_chain + c,
+                                                 cancel, &time_up,
                                                  &shared[static_cast<std::size_t>(c)]));
     }
-    std::vector<std::exception_ptr> errors(chains.size());
-    std::atomic<int> running{options.threads};
-    std::vector<std::thread> workers;
-    for (std::size_t c = 0; c < chains.size(); ++c) {
-        workers.emplace_back([&, c] {
-            try {
-                chains[c]->run();
-            } catch (...) {
-                errors[c] = std::current_exception();
-                time_up = true;  // stop the others too
-            }
-            --running;
-        });
+    if (segments && !segments->resume.empty()) {
+        if (segments->resume.size() != chains.size()) {
+            throw invalid_field(
+                "resume", std::to_string(segments->resume.size()) + " chains",
+                "must be one state per chain (" + std::to_string(chains.size()) + ")");
+        }
+        for (std::size_t c = 0; c < chains.size(); ++c) {
+            chains[c]->mutable_state() = segments->resume[c];
+            shared[c].evaluations = segments->resume[c].evaluations;
+            shared[c].best = segments->resume[c].best_objective;
+        }
     }
     SearchSummary summary;
     auto sample_log = [&] {
@@ -258,36 +278,86 @@ SearchSummary run_search(const SearchObjective& objective, const SearchOptions& 
         return row;
     };
     double next_log = 0.0;
-    while (running.load() > 0) {
-        const double now = seconds_since(t0);
-        if (options.time_budget_s > 0.0 && now >= options.time_budget_s) time_up = true;
-        if (now >= next_log) {
-            const SearchLogRow row = sample_log();
-            double fraction = 0.0;
-            if (options.time_budget_s > 0.0) fraction = now / options.time_budget_s;
-            if (options.max_evaluations > 0) {
-                fraction = std::max(
-                    fraction, static_cast<double>(row.evaluations) /
-                                  (static_cast<double>(options.max_evaluations) * options.threads));
-            }
-            if (progress) progress(row, std::min(fraction, 1.0));
-            next_log = now + options.log_interval_s;
+    std::int64_t segment = segments ? segments->first_segment : 0;
+    std::vector<char> finished(chains.size(), 0);
+    for (;;) {
+        const std::int64_t pause_at = segmented ? (segment + 1) * segments->every : 0;
+        std::vector<std::exception_ptr> errors(chains.size());
+        std::mutex mutex;
+        std::condition_variable cv;
+        int running = options.threads;
+        std::vector<std::thread> workers;
+        for (std::size_t c = 0; c < chains.size(); ++c) {
+            workers.emplace_back([&, c] {
+                try {
+                    finished[c] = chains[c]->run(pause_at) ? 1 : 0;
+                } catch (...) {
+                    errors[c] = std::current_exception();
+                    time_up = true;  // stop the others too
+                }
+                const std::lock_guard<std::mutex> lock(mutex);
+                --running;
+                cv.notify_all();
+            });
         }
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        for (;;) {
+            {
+                std::unique_lock<std::mutex> lock(mutex);
+                if (cv.wait_for(lock, std::chrono::milliseconds(5), [&] { return running == 0; }))
+                    break;
+            }
+            const double now = seconds_since(t0);
+            if (options.time_budget_s > 0.0 && now >= options.time_budget_s) time_up = true;
+            if (now >= next_log) {
+                const SearchLogRow row = sample_log();
+                double fraction = 0.0;
+                if (options.time_budget_s > 0.0) fraction = now / options.time_budget_s;
+                if (options.max_evaluations > 0) {
+                    fraction = std::max(
+                        fraction,
+                        static_cast<double>(row.evaluations) /
+                            (static_cast<double>(options.max_evaluations) * options.threads));
+                }
+                if (progress) progress(row, std::min(fraction, 1.0));
+                next_log = now + options.log_interval_s;
+            }
+        }
+        for (auto& w : workers) w.join();
+        for (const auto& e : errors) {
+            if (e) std::rethrow_exception(e);
+        }
+        if (!segmented) break;
+        ++segment;
+        SearchSegments::Boundary b;
+        b.segment = segment;
+        b.finished = std::all_of(finished.begin(), finished.end(), [](char f) { return f != 0; });
+        b.stopping = time_up.load() || (cancel && cancel->load());
+        std::vector<ChainState> states;
+        for (const auto& chain : chains) states.push_back(chain->state());
+        const bool go_on = segments->at_boundary(b, states);
+        for (std::size_t c = 0; c < chains.size(); ++c)
+            chains[c]->mutable_state() = std::move(states[c]);
+        if (!go_on) break;
     }
-    for (auto& w : workers) w.join();
-    for (const auto& e : errors) {
-        if (e) std::rethrow_exception(e);
-    }
+    for (auto& chain : chains) chain->finish();
     sample_log();
-    summary.seconds = seconds_since(t0);
+    std::vector<ChainState> states;
+    for (const auto& chain : chains) states.push_back(chain->state());
+    SearchSummary merged =
+        summarize_chains(objective, options, std::move(states), cancel && cancel->load());
+    merged.log = std::move(summary.log);
+    merged.seconds = seconds_since(t0);
+    return merged;
+}
 
+SearchSummary summarize_chains(const SearchObjective& objective, const SearchOptions& options,
+                               std::vector<ChainState> states, bool cancelled) {
+    SearchSummary summary;
     std::vector<TopCandidates::Item> all;
-    for (const auto& chain : chains) {
-        summary.evaluations_per_chain.push_back(chain->evaluations());
-        summary.chain_states.push_back(chain->state());
-        summary.evaluations += chain->evaluations();
-        for (const auto& item : chain->top().items()) all.push_back(item);
+    for (const ChainState& st : states) {
+        summary.evaluations_per_chain.push_back(st.evaluations);
+        summary.evaluations += st.evaluations;
+        for (const auto& item : st.top.items()) all.push_back(item);
     }
     std::sort(all.begin(), all.end(), TopCandidates::less);
     for (const auto& item : all) {
@@ -304,24 +374,24 @@ SearchSummary run_search(const SearchObjective& objective, const SearchOptions& 
     }
     // Checkpoints merged over chains: every chain records at the same evaluation counts.
     std::vector<std::int64_t> counts;
-    for (const auto& chain : chains)
-        for (const auto& [e, best] : chain->checkpoints()) counts.push_back(e);
+    for (const ChainState& st : states)
+        for (const auto& [e, best] : st.checkpoints) counts.push_back(e);
     std::sort(counts.begin(), counts.end());
     counts.erase(std::unique(counts.begin(), counts.end()), counts.end());
     for (const std::int64_t e : counts) {
         SearchCheckpoint cp;
         cp.evaluations_per_chain = e;
         cp.best_objective = INFINITY;
-        for (const auto& chain : chains) {
-            cp.evaluations += std::min(e, chain->evaluations());
-            for (const auto& [ce, best] : chain->checkpoints()) {
+        for (const ChainState& st : states) {
+            cp.evaluations += std::min(e, st.evaluations);
+            for (const auto& [ce, best] : st.checkpoints) {
                 if (ce > e) break;
                 cp.best_objective = std::min(cp.best_objective, best);
             }
         }
         summary.checkpoints.push_back(cp);
     }
-    if (cancel && cancel->load()) {
+    if (cancelled) {
         summary.termination = SearchTermination::kInterrupted;
     } else if (options.max_evaluations > 0 &&
                std::all_of(summary.evaluations_per_chain.begin(),
@@ -331,6 +401,7 @@ SearchSummary run_search(const SearchObjective& objective, const SearchOptions& 
     } else {
         summary.termination = SearchTermination::kTimeBudget;
     }
+    summary.chain_states = std::move(states);
     return summary;
 }
 

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -84,6 +85,7 @@ class TopCandidates {
         return a.objective < b.objective || (a.objective == b.objective && a.key < b.key);
     }
     const std::vector<Item>& items() const { return items_; }
+    int capacity() const { return static_cast<int>(capacity_); }
 
   private:
     std::size_t capacity_;
@@ -100,6 +102,29 @@ struct ChainState {
     std::int64_t next_checkpoint = 1;  // evaluation count of the next log entry
     std::vector<std::pair<std::int64_t, double>> checkpoints;  // (evaluations, best so far)
     TopCandidates top;
+    // The start of the next annealing restart when set (a pattern migrated from another chain,
+    // optimize/island_search); else the restart draws a random pattern. Unused by random search.
+    std::optional<Pattern> start;
+};
+
+// A search run in segments (issue 17: migration between processes, checkpoints). Every chain
+// pauses at its first restart boundary (between annealing restarts; between draws for random
+// search) at or after (segment + 1) * every evaluations, or when it finishes; then at_boundary
+// runs on the calling thread with every chain's state, may change them (ChainState::start) and
+// says whether to go on. Pausing at a restart boundary changes nothing in a chain's work, so a
+// segmented run equals an unsegmented one unless the hook changes a state.
+struct SearchSegments {
+    std::int64_t every = 0;          // evaluations per chain between boundaries, >= 1
+    int first_chain = 0;             // chain c is seeded from (seed, first_chain + c)
+    std::int64_t first_segment = 0;  // boundaries already passed (a resumed run)
+    std::vector<ChainState> resume;  // states to continue from (empty: fresh from the seed)
+    struct Boundary {
+        std::int64_t segment = 0;  // boundaries passed, this one included
+        bool finished = false;     // every chain here finished (budget, time, cancel)
+        bool stopping = false;     // this process's time budget ran out or it was cancelled
+    };
+    // Returns false to end the search (every chain stops where it is).
+    std::function<bool(const Boundary&, std::vector<ChainState>& states)> at_boundary;
 };
 
 struct SearchLogRow {
@@ -144,6 +169,13 @@ using SearchProgress = std::function<void(const SearchLogRow& row, double budget
 SearchSummary run_search(const SearchObjective& objective, const SearchOptions& options,
                          const std::function<Pattern(std::mt19937_64& rng)>& sample,
                          const std::atomic<bool>* cancel = nullptr,
-                         const SearchProgress& progress = {});
+                         const SearchProgress& progress = {},
+                         const SearchSegments* segments = nullptr);
+
+// The ranked candidates, evaluation counts and reproducible checkpoints of a set of chain states
+// (what run_search returns for its chains; for chains of several processes gathered in one).
+// Termination: interrupted when `cancelled`, else evaluation budget when every chain made it.
+SearchSummary summarize_chains(const SearchObjective& objective, const SearchOptions& options,
+                               std::vector<ChainState> states, bool cancelled);
 
 }  // namespace pinmask

@@ -11,6 +11,7 @@
 #include "design/kernel_model.hpp"
 #include "design/psf.hpp"
 #include "design/random_sparse.hpp"
+#include "optimize/island_search.hpp"
 #include "optimize/simulated_metrics.hpp"
 #include "optimize/spectrum_metrics.hpp"
 
@@ -153,6 +154,7 @@ void SearchPipelineOptions::validate() const {
     pinmask::validate(tmpl.pattern);
     if (holes < 1) throw invalid_field("--holes", std::to_string(holes), "must be >= 1");
     search.validate();
+    islands.validate();
     pinmask::validate(noise);
     prior.validate();
     weights.validate();
@@ -252,18 +254,24 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
                      o.search.time_budget_s - seconds_since(t0) - out.rerank_reserved_s);
     }
     const auto s0 = Clock::now();
-    out.search =
-        run_search(objective, so, sample, cancel, [&](const SearchLogRow& row, double fraction) {
-            if (!progress) return;
-            std::ostringstream t;
-            t.precision(4);
-            t << "best " << row.best_objective << ", "
-              << (row.seconds > 0 ? row.evaluations / row.seconds : 0.0) << " evals/s, "
-              << static_cast<int>(row.seconds) << " s";
-            progress("search", fraction, t.str());
-        });
+    LocalComm one_process;
+    RankComm& comm = o.comm ? *o.comm : one_process;
+    out.search = run_island_search(comm, objective, so, sample, o.islands, cancel,
+                                   [&](const SearchLogRow& row, double fraction) {
+                                       if (!progress) return;
+                                       std::ostringstream t;
+                                       t.precision(4);
+                                       t << "best " << row.best_objective << ", "
+                                         << (row.seconds > 0 ? row.evaluations / row.seconds : 0.0)
+                                         << " evals/s, " << static_cast<int>(row.seconds) << " s";
+                                       progress("search", fraction, t.str());
+                                   });
     out.search_s = seconds_since(s0);
     out.termination = out.search.termination;
+    if (comm.rank() != 0) {  // rank 0 holds every rank's chains and alone re-ranks and writes
+        out.used_s = seconds_since(t0);
+        return out;
+    }
     if (out.search.ranked.empty()) {
         throw RuntimeFailure(
             out.search.evaluations == 0

@@ -17,8 +17,10 @@
 
 #include "design/mask.hpp"
 #include "optimize/analytic_error.hpp"
+#include "optimize/island_search.hpp"
 #include "optimize/mask_metrics.hpp"
 #include "optimize/mask_objective.hpp"
+#include "optimize/rank_comm.hpp"
 #include "optimize/search.hpp"
 
 namespace pinmask {
@@ -42,6 +44,11 @@ struct SearchPipelineOptions {
     bool rerank_tv = true;                 // also simulate TV when re-ranking
     RankBy rank_by = RankBy::kWiener;      // kTv: TV with lambda tuned per mask decides
     std::string generator = "pinmask search";
+    // Issue 17: the ranks to spread the chains over (null: this process alone) and the island
+    // model's migration and checkpoints (optimize/island_search). Only rank 0's summary holds
+    // the ranked masks; other ranks return after the search.
+    RankComm* comm = nullptr;
+    IslandOptions islands;
 
     // InvalidInput naming the flag, value and rule.
     void validate() const;

@@ -1,0 +1,208 @@
+#include "io/checkpoint.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "io/json_strict.hpp"
+
+namespace pinmask::io {
+namespace {
+
+using namespace json_strict;
+
+// A checkpoint holds a few KiB per chain (the generator state); 1 GiB is far past any real run.
+constexpr std::uintmax_t kMaxCheckpointBytes = std::uintmax_t{1} << 30;
+
+OrderedJson pattern_json(const Pattern& p) {
+    OrderedJson holes = OrderedJson::array();
+    for (const Cell& c : p.pinholes) holes.push_back({c.row, c.col});
+    return {{"n", p.n},
+            {"tiles_rows", p.tiles_rows},
+            {"tiles_cols", p.tiles_cols},
+            {"min_spacing_cells", p.min_spacing_cells},
+            {"pinholes", holes}};
+}
+
+Pattern read_pattern(const Json& j, const std::string& path) {
+    ObjectReader r(j, path, {"n", "tiles_rows", "tiles_cols", "min_spacing_cells", "pinholes"});
+    r.reject_unknown();
+    Pattern p;
+    p.n = read_int(r.required("n"), r.path("n"));
+    p.tiles_rows = read_int(r.required("tiles_rows"), r.path("tiles_rows"));
+    p.tiles_cols = read_int(r.required("tiles_cols"), r.path("tiles_cols"));
+    p.min_spacing_cells = read_number(r.required("min_spacing_cells"), r.path("min_spacing_cells"));
+    const Json& holes = r.required("pinholes");
+    if (!holes.is_array()) fail(r.path("pinholes"), "must be an array of [row, col]");
+    for (std::size_t i = 0; i < holes.size(); ++i) {
+        const auto [row, col] =
+            read_int_pair(holes[i], indexed(r.path("pinholes"), i), "[row, col]");
+        p.pinholes.push_back({row, col});
+    }
+    try {
+        validate(p);
+    } catch (const InvalidInput& e) {
+        fail(path, e.what());
+    }
+    return p;
+}
+
+// null (no value yet) -> +inf; otherwise a finite number.
+double read_objective(const Json& j, const std::string& path) {
+    return j.is_null() ? INFINITY : read_number(j, path);
+}
+
+std::int64_t read_count(const Json& j, const std::string& path) {
+    if (!j.is_number_integer() || j.get<std::int64_t>() < 0) fail(path, "must be an integer >= 0");
+    return j.get<std::int64_t>();
+}
+
+OrderedJson chain_json(const ChainState& s) {
+    std::ostringstream rng;
+    rng << s.rng;
+    OrderedJson log = OrderedJson::array();
+    for (const auto& [e, best] : s.checkpoints) log.push_back({e, finite_or_null(best)});
+    OrderedJson top = OrderedJson::array();
+    for (const auto& item : s.top.items())
+        top.push_back({{"objective", finite_or_null(item.objective)},
+                       {"pattern", pattern_json(item.pattern)}});
+    return {{"rng", rng.str()},
+            {"evaluations", s.evaluations},
+            {"best_objective", finite_or_null(s.best_objective)},
+            {"next_log_at", s.next_checkpoint},
+            {"log", log},
+            {"top_capacity", s.top.capacity()},
+            {"top", top},
+            {"start", s.start ? pattern_json(*s.start) : OrderedJson(nullptr)}};
+}
+
+ChainState read_chain(const Json& j, const std::string& path) {
+    ObjectReader r(j, path,
+                   {"rng", "evaluations", "best_objective", "next_log_at", "log", "top_capacity",
+                    "top", "start"});
+    r.reject_unknown();
+    ChainState s;
+    std::istringstream rng(read_string(r.required("rng"), r.path("rng")));
+    rng >> s.rng;
+    if (!rng) fail(r.path("rng"), "is not a std::mt19937_64 state (312 words and an index)");
+    s.evaluations = read_count(r.required("evaluations"), r.path("evaluations"));
+    s.best_objective = read_objective(r.required("best_objective"), r.path("best_objective"));
+    s.next_checkpoint = read_count(r.required("next_log_at"), r.path("next_log_at"));
+    const Json& log = r.required("log");
+    if (!log.is_array()) fail(r.path("log"), "must be an array of [evaluations, best]");
+    for (std::size_t i = 0; i < log.size(); ++i) {
+        const std::string p = indexed(r.path("log"), i);
+        if (!log[i].is_array() || log[i].size() != 2) fail(p, "must be [evaluations, best]");
+        s.checkpoints.push_back(
+            {read_count(log[i][0], p + "[0]"), read_objective(log[i][1], p + "[1]")});
+    }
+    const int capacity = read_int(r.required("top_capacity"), r.path("top_capacity"));
+    if (capacity < 1 || capacity > 1000) fail(r.path("top_capacity"), "must be in 1..1000");
+    s.top = TopCandidates(capacity);
+    const Json& top = r.required("top");
+    if (!top.is_array() || top.size() > static_cast<std::size_t>(capacity))
+        fail(r.path("top"), "must be an array of at most top_capacity candidates");
+    double previous = -INFINITY;
+    for (std::size_t i = 0; i < top.size(); ++i) {
+        const std::string p = indexed(r.path("top"), i);
+        ObjectReader t(top[i], p, {"objective", "pattern"});
+        t.reject_unknown();
+        const double objective = read_number(t.required("objective"), t.path("objective"));
+        if (objective < previous) fail(t.path("objective"), "candidates must be best first");
+        previous = objective;
+        const std::size_t before = s.top.items().size();
+        s.top.offer(read_pattern(t.required("pattern"), t.path("pattern")), objective);
+        if (s.top.items().size() != before + 1) fail(p, "repeats a pattern already listed");
+    }
+    const Json& start = r.required("start");
+    if (!start.is_null()) s.start = read_pattern(start, r.path("start"));
+    return s;
+}
+
+}  // namespace
+
+std::string checkpoint_to_json(const SearchCheckpointFile& c) {
+    OrderedJson chains = OrderedJson::array();
+    for (const ChainState& s : c.chains) chains.push_back(chain_json(s));
+    const OrderedJson j{{"format", kCheckpointFormat},
+                        {"version", kCheckpointVersion},
+                        {"config", c.config},
+                        {"segment", c.segment},
+                        {"evaluations_between_boundaries", c.every},
+                        {"chains", chains}};
+    return pretty(j) + "\n";
+}
+
+SearchCheckpointFile parse_checkpoint(const std::string& text) {
+    Json j;
+    try {
+        j = parse_strict(text);
+    } catch (const nlohmann::json::exception& e) {
+        fail("(root)", std::string("not valid JSON: ") + e.what());
+    }
+    ObjectReader r(
+        j, "",
+        {"format", "version", "config", "segment", "evaluations_between_boundaries", "chains"});
+    r.reject_unknown();
+    if (read_string(r.required("format"), "format") != kCheckpointFormat)
+        fail("format", std::string("must be \"") + kCheckpointFormat + "\"");
+    if (read_int(r.required("version"), "version") != kCheckpointVersion)
+        fail("version", "must be " + std::to_string(kCheckpointVersion));
+    SearchCheckpointFile c;
+    const Json& config = r.required("config");
+    if (!config.is_object()) fail("config", "must be an object");
+    c.config = OrderedJson::parse(config.dump());
+    c.segment = read_count(r.required("segment"), "segment");
+    c.every =
+        read_count(r.required("evaluations_between_boundaries"), "evaluations_between_boundaries");
+    if (c.segment < 1) fail("segment", "must be >= 1");
+    if (c.every < 1) fail("evaluations_between_boundaries", "must be >= 1");
+    const Json& chains = r.required("chains");
+    if (!chains.is_array() || chains.empty()) fail("chains", "must be a non-empty array");
+    for (std::size_t i = 0; i < chains.size(); ++i)
+        c.chains.push_back(read_chain(chains[i], indexed("chains", i)));
+    return c;
+}
+
+void write_checkpoint(const std::filesystem::path& path, const SearchCheckpointFile& c) {
+    write_bytes_atomic(path, checkpoint_to_json(c));
+}
+
+SearchCheckpointFile read_checkpoint(const std::filesystem::path& path) {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec) throw InvalidInput("--resume " + path.string() + ": cannot read: " + ec.message());
+    if (size > kMaxCheckpointBytes)
+        throw InvalidInput("--resume " + path.string() + ": " + std::to_string(size) +
+                           " bytes is not a search checkpoint (at most 1 GiB)");
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    if (!in) throw InvalidInput("--resume " + path.string() + ": cannot read");
+    try {
+        return parse_checkpoint(ss.str());
+    } catch (const InvalidInput& e) {
+        throw InvalidInput("--resume " + path.string() + ": " + e.what());
+    }
+}
+
+std::vector<std::string> differing_keys(const nlohmann::ordered_json& a,
+                                        const nlohmann::ordered_json& b) {
+    std::set<std::string> keys;
+    for (const auto& [k, v] : a.items()) keys.insert(k);
+    for (const auto& [k, v] : b.items()) keys.insert(k);
+    std::vector<std::string> out;
+    for (const std::string& k : keys) {
+        // Compared as unordered JSON: a file's nested objects may list keys in another order.
+        if (!a.contains(k) || !b.contains(k) ||
+            Json::parse(a.at(k).dump()) != Json::parse(b.at(k).dump()))
+            out.push_back(k);
+    }
+    return out;
+}
+
+}  // namespace pinmask::io
