@@ -5,12 +5,14 @@
 
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <sstream>
 #include <string>
 
 #include "core/error.hpp"
 #include "decode/convolution.hpp"
 #include "decode/decode_method.hpp"
+#include "decode/plan_cache.hpp"
 #include "decode/richardson_lucy.hpp"
 #include "decode/tikhonov.hpp"
 #include "decode/tv_l2.hpp"
@@ -67,11 +69,19 @@ Plane apply_filter(const WienerFilter& f, const Plane& p, bool single) {
     return out;
 }
 
+// The operator A: from DecodeOptions::plans when set (built once per PSF and grid), else new.
+std::shared_ptr<const ConvolutionOperator> operator_for(const Plane& psf, const ConvGeometry& g,
+                                                        const DecodeOptions& o) {
+    if (o.plans) return o.plans->conv_operator(psf, g);
+    return std::make_shared<const ConvolutionOperator>(psf, g);
+}
+
 // Closed-form methods: x = G p on the working grid (capture zero-padded for the linear model).
 DecodeResult decode_closed_form(const Plane& capture, const Plane& psf, const DecodeOptions& o,
                                 const ConvGeometry& g) {
     const Plane padded = pad_to_work(g, capture);
-    const ConvolutionOperator op(psf, g);
+    const auto op_ptr = operator_for(psf, g, o);
+    const ConvolutionOperator& op = *op_ptr;
     DecodeResult r;
     Plane x;
     double penalty = 0.0;
@@ -87,6 +97,9 @@ DecodeResult decode_closed_form(const Plane& capture, const Plane& psf, const De
                           .real()
                           .sum() /
                       static_cast<double>(x.size());
+        } else if (o.plans) {
+            x = apply_filter(*o.plans->filter(psf, g, o), padded, o.single_precision);
+            penalty = w.nsr * x.square().sum();
         } else {
             x = apply_filter(WienerFilter(psf, g.work_rows, g.work_cols, w.nsr), padded,
                              o.single_precision);
@@ -94,9 +107,10 @@ DecodeResult decode_closed_form(const Plane& capture, const Plane& psf, const De
         }
     } else {
         const TikhonovParams& t = o.tikhonov;
-        x = apply_filter(
-            make_tikhonov_filter(psf, g.work_rows, g.work_cols, t.lambda, t.regulariser), padded,
-            o.single_precision);
+        x = o.plans ? apply_filter(*o.plans->filter(psf, g, o), padded, o.single_precision)
+                    : apply_filter(make_tikhonov_filter(psf, g.work_rows, g.work_cols, t.lambda,
+                                                        t.regulariser),
+                                   padded, o.single_precision);
         penalty = tikhonov_penalty(x, t.lambda, t.regulariser);
     }
     const double res2 = (op.apply(x) - capture).square().sum();
@@ -116,7 +130,8 @@ void copy_iterative(const IterativeParams& o, IterativeOptions& it) {
 // Iterative methods on the working grid; the result's image is cropped to the capture.
 DecodeResult decode_iterative(const Plane& capture, const Plane& psf, const DecodeOptions& o,
                               const ConvGeometry& g) {
-    const ConvolutionOperator op(psf, g);
+    const auto op_ptr = operator_for(psf, g, o);
+    const ConvolutionOperator& op = *op_ptr;
     const Plane* warm = o.iterative.warm_start ? &*o.iterative.warm_start : nullptr;
     DecodeResult r;
     switch (o.method) {

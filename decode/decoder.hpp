@@ -15,6 +15,8 @@
 
 namespace pinmask {
 
+class DecodePlanCache;  // decode/plan_cache.hpp
+
 enum class DecodeMethod { kWiener, kTikhonov, kTv, kTvqc, kRichardsonLucy };
 
 // cyclic: circular convolution over one period (the paper; x has the capture's size).
@@ -84,6 +86,9 @@ struct DecodeOptions {
     TikhonovParams tikhonov;
     TvParams tv;
     TvqcParams tvqc;
+    // Optional: operators and closed-form filters made once and reused across calls with the same
+    // PSF and grid (decode/plan_cache.hpp; batch decode). Not owned; results are the same bytes.
+    DecodePlanCache* plans = nullptr;
     // The method must be one of kDecodeMethods (an unknown value is an error, never a fall-through
     // to any method); then the chosen method's struct (and `iterative` for an iterative method).
     // InvalidInput naming the field, its value and the rule.
