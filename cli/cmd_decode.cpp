@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -11,22 +12,18 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/decode_batch.hpp"
 #include "cli/decode_flags.hpp"
+#include "cli/decode_inputs.hpp"
 #include "cli/decode_output.hpp"
 #include "cli/interrupt.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
-#include "core/image_io.hpp"
 #include "core/output_set.hpp"
-#include "core/raw_io.hpp"
-#include "core/units.hpp"
 #include "decode/capture_pipeline.hpp"
 #include "decode/decode_method.hpp"
-#include "design/mask.hpp"
-#include "design/psf.hpp"
-#include "design/working_distance.hpp"
-#include "io/mask_json.hpp"
 #include "io/psf_files.hpp"
+#include "optimize/mpi/mpi_comm.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -37,68 +34,6 @@ using nlohmann::json;
 
 double seconds_since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-// Loads the capture, the PSF (file or synthesised from a mask; `counts` keeps a PSF file's own
-// values for --background corner) and the dark frame; `info` describes them for the stats.
-CaptureDecodeInputs load_inputs(const DecodeRequest& r, BayerMode bayer, bool need_counts,
-                                json& stats) {
-    if (r.mask.empty() && r.psf.empty()) {
-        throw InvalidInput("decode needs the PSF: give --mask FILE.mask.json or --psf FILE");
-    }
-    CaptureDecodeInputs in;
-    RawInfo raw;
-    LoadedImage loaded = read_capture(r.capture, bayer, &raw);  // RAW: --bayer
-    if (!raw.note.empty()) std::cerr << "decode: " << r.capture << ": " << raw.note << "\n";
-    in.capture = std::move(loaded.image);
-    check_image_finite(in.capture, "capture " + r.capture);
-    stats["capture"] = {{"path", r.capture},
-                        {"rows", in.capture.rows()},
-                        {"cols", in.capture.cols()},
-                        {"channels", in.capture.n_channels()},
-                        {"full_scale", loaded.full_scale}};
-    json info;
-    if (!r.psf.empty()) {
-        io::PsfFile file = io::read_psf_file(r.psf);
-        info = {{"source", "psf-file"}, {"path", r.psf}, {"sidecar", file.sidecar.has_value()}};
-        if (file.sidecar) {
-            info["mask_geometry_hash"] = file.sidecar->mask_geometry_hash;
-            info["pixels_per_cell"] = file.sidecar->pixels_per_cell;
-            info["kernel_model"] = file.sidecar->kernel_model;
-        }
-        in.psf = Image(std::move(file.psf));
-        if (need_counts) in.psf_counts = read_image(r.psf).image.channels.at(0);
-    } else {
-        if (need_counts) {
-            throw invalid_field("--background", "corner",
-                                "needs a measured PSF (--psf): a PSF synthesised from a mask "
-                                "has no camera background");
-        }
-        Mask mask = io::read_mask_file(r.mask);
-        if (r.object_distance) {  // refocus: the PSF for an object at u (issue 12)
-            const double u =
-                parse_length_m(*r.object_distance, "--object-distance", AllowInfinity::kYes);
-            check_object_distance(mask.camera, u, "--object-distance");
-            mask = mask_at_distance(mask, u);
-        }
-        in.psf = Image(mask_psf(mask));
-        info = {{"source", "mask"},
-                {"path", r.mask},
-                {"mask_geometry_hash", geometry_hash(mask)},
-                {"pixels_per_cell", mask.psf.pixels_per_cell},
-                {"kernel_model", mask.psf.kernel.model}};
-    }
-    check_psf(in.psf.channels[0], "PSF " + (r.psf.empty() ? r.mask : r.psf));
-    info["rows"] = in.psf.rows();
-    info["cols"] = in.psf.cols();
-    stats["psf"] = info;
-    if (!r.dark.empty()) {
-        in.dark = read_capture(r.dark, bayer).image;
-        check_image_finite(*in.dark, "dark frame " + r.dark);
-    }
-    stats["dark"] =
-        in.dark ? json{{"path", r.dark}, {"subtracted", true}} : json{{"subtracted", false}};
-    return in;
 }
 
 void run_decode(const DecodeRequest& r, BayerMode bayer) {
@@ -212,6 +147,21 @@ void run_decode(const DecodeRequest& r, BayerMode bayer) {
               << (r.stats.empty() ? "" : ", " + r.stats) << "\n";
 }
 
+// Under mpirun every rank runs the batch. Set-up errors are every rank's alike: rank 0 reports,
+// the others leave with the same code; a decode error on any rank is reported by rank 0 after
+// every rank discarded its staged files (cli/decode_batch.hpp).
+void run_batch_on_ranks(const DecodeRequest& r, const BatchRequest& b, BayerMode bayer) {
+    RankComm& comm = world_comm();  // MPI starts here, and only under a launcher
+    try {
+        run_decode_batch(r, b, bayer, comm);
+    } catch (const BatchQuietExit& q) {
+        std::exit(q.code);
+    } catch (const std::exception& e) {
+        if (comm.size() == 1 || comm.rank() == 0) throw;
+        std::exit(dynamic_cast<const InvalidInput*>(&e) ? 2 : 1);
+    }
+}
+
 void setup(CLI::App& app) {
     auto o = std::make_shared<DecodeRequest>();
     auto* cmd = app.add_subcommand(
@@ -225,8 +175,20 @@ void setup(CLI::App& app) {
                     "Camera RAW captures and dark frames: sum2x2 (half-resolution grey, the pixel "
                     "pitch doubles) | green (alias g) | r | b; see core/raw_io.hpp")
         ->capture_default_str();
-    cmd->callback([o, flags, bayer] {
+    auto batch = std::make_shared<BatchRequest>();
+    cmd->add_option("--batch", batch->list,
+                    "Decode many captures with one PSF and these flags: a directory (its .tif, "
+                    ".tiff, .png, .npy files) or a text file of paths, one a line; -o is then a "
+                    "directory (STEM.EXT per capture, batch-summary.json). Under mpirun the "
+                    "captures are shared among the ranks");
+    cmd->add_option("--batch-format", batch->format, "--batch outputs: tiff | png | npy")
+        ->capture_default_str();
+    cmd->add_flag("--batch-stats", batch->stats, "--batch: also write STEM.stats.json per capture");
+    cmd->callback([o, flags, bayer, batch] {
         refuse_unused_flags(*o, *flags);
+        if (!batch->list.empty()) return run_batch_on_ranks(*o, *batch, parse_bayer_mode(*bayer));
+        if (o->capture.empty())
+            throw InvalidInput("decode needs a capture file (or --batch LIST_OR_DIR)");
         run_decode(*o, parse_bayer_mode(*bayer));
     });
 }

@@ -5,12 +5,14 @@
 
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <sstream>
 #include <string>
 
 #include "core/error.hpp"
 #include "decode/convolution.hpp"
 #include "decode/decode_method.hpp"
+#include "decode/plan_cache.hpp"
 #include "decode/richardson_lucy.hpp"
 #include "decode/tikhonov.hpp"
 #include "decode/tv_l2.hpp"
@@ -67,44 +69,48 @@ Plane apply_filter(const WienerFilter& f, const Plane& p, bool single, SpectralS
     return out;
 }
 
-// The filter of a closed-form method from the operator's OTF (the PSF is transformed once), and
-// in `weight` its penalty as a half-spectrum weight (SpectralSums): nsr ||x||^2, the
+// The operator A: from DecodeOptions::plans when set (built once per PSF and grid), else new.
+std::shared_ptr<const ConvolutionOperator> operator_for(const Plane& psf, const ConvGeometry& g,
+                                                        const DecodeOptions& o) {
+    if (o.plans) return o.plans->conv_operator(psf, g);
+    return std::make_shared<const ConvolutionOperator>(psf, g);
+}
+
+// The penalty of a closed-form method as a half-spectrum weight (SpectralSums): nsr ||x||^2, the
 // per-frequency (1/N) sum_k NSR(k) |X(k)|^2, or lambda ||L x||^2.
-WienerFilter closed_form_filter(const ConvolutionOperator& op, const DecodeOptions& o,
-                                Plane& weight) {
-    const ConvGeometry& g = op.geometry();
+Plane closed_form_weight(const ConvGeometry& g, const DecodeOptions& o) {
     const int R = g.work_rows, C = g.work_cols;
     if (o.method == DecodeMethod::kWiener) {
         const WienerParams& w = o.wiener;
-        if (w.nsr_per_frequency) {
-            check_work_plane("wiener.nsr_per_frequency", *w.nsr_per_frequency, g);
-            weight = fold_full_spectrum_weight(*w.nsr_per_frequency);
-            return WienerFilter::from_otf(op.otf(), R, C, *w.nsr_per_frequency);
-        }
-        weight = w.nsr * half_spectrum_multiplicity(R, C);
-        return WienerFilter::from_otf(op.otf(), R, C, w.nsr);
+        if (w.nsr_per_frequency) return fold_full_spectrum_weight(*w.nsr_per_frequency);
+        return w.nsr * half_spectrum_multiplicity(R, C);
     }
     const TikhonovParams& t = o.tikhonov;
-    weight = t.lambda * tikhonov_symbol(R, C, t.regulariser) * half_spectrum_multiplicity(R, C);
-    return make_tikhonov_filter_from_otf(op.otf(), R, C, t.lambda, t.regulariser);
+    return t.lambda * tikhonov_symbol(R, C, t.regulariser) * half_spectrum_multiplicity(R, C);
 }
 
 // Closed-form methods: x = G p on the working grid (capture zero-padded for the linear model).
 // Transforms: the PSF's OTF (one forward, shared by the filter and the model) and the filter's
-// r2c + c2r pair. The penalty, and for the cyclic model the residual ||h (*) x - p||, are summed
-// over the spectrum in the filter's own pass (Parseval); only the linear model's residual, which
-// sees the crop, costs another pair (A x in the spatial domain).
+// r2c + c2r pair; with DecodeOptions::plans the OTF and a scalar-NSR or Tikhonov filter come
+// from the cache (same bytes). The penalty, and for the cyclic model the residual
+// ||h (*) x - p||, are summed over the spectrum in the filter's own pass (Parseval); only the
+// linear model's residual, which sees the crop, costs another pair (A x in the spatial domain).
 DecodeResult decode_closed_form(const Plane& capture, const Plane& psf, const DecodeOptions& o,
                                 const ConvGeometry& g) {
-    const ConvolutionOperator op(psf, g);
+    const auto op_ptr = operator_for(psf, g, o);
+    const ConvolutionOperator& op = *op_ptr;
     const bool cyclic = g.model == ConvModel::kCyclic;
-    Plane weight;
-    const WienerFilter filter = closed_form_filter(op, o, weight);
+    const bool cacheable =
+        !(o.method == DecodeMethod::kWiener && o.wiener.nsr_per_frequency.has_value());
+    const std::shared_ptr<const WienerFilter> filter =
+        o.plans && cacheable ? o.plans->filter(psf, g, o)
+                             : std::make_shared<const WienerFilter>(closed_form_filter(op, o));
+    const Plane weight = closed_form_weight(g, o);
     SpectralSums sums;
     sums.weight = &weight;
     if (cyclic) sums.otf = &op.otf();
     const Plane x =
-        apply_filter(filter, cyclic ? capture : pad_to_work(g, capture), o.single_precision, sums);
+        apply_filter(*filter, cyclic ? capture : pad_to_work(g, capture), o.single_precision, sums);
     const double res2 = cyclic ? sums.residual2 : (op.apply(x) - capture).square().sum();
     DecodeResult r;
     r.residual = std::sqrt(res2);
@@ -123,7 +129,8 @@ void copy_iterative(const IterativeParams& o, IterativeOptions& it) {
 // Iterative methods on the working grid; the result's image is cropped to the capture.
 DecodeResult decode_iterative(const Plane& capture, const Plane& psf, const DecodeOptions& o,
                               const ConvGeometry& g) {
-    const ConvolutionOperator op(psf, g);
+    const auto op_ptr = operator_for(psf, g, o);
+    const ConvolutionOperator& op = *op_ptr;
     const Plane* warm = o.iterative.warm_start ? &*o.iterative.warm_start : nullptr;
     DecodeResult r;
     switch (o.method) {
@@ -161,6 +168,23 @@ DecodeResult decode_iterative(const Plane& capture, const Plane& psf, const Deco
 }
 
 }  // namespace
+
+WienerFilter closed_form_filter(const ConvolutionOperator& op, const DecodeOptions& o) {
+    const ConvGeometry& g = op.geometry();
+    const int R = g.work_rows, C = g.work_cols;
+    if (o.method == DecodeMethod::kWiener) {
+        const WienerParams& w = o.wiener;
+        if (w.nsr_per_frequency) {
+            check_work_plane("wiener.nsr_per_frequency", *w.nsr_per_frequency, g);
+            return WienerFilter::from_otf(op.otf(), R, C, *w.nsr_per_frequency);
+        }
+        return WienerFilter::from_otf(op.otf(), R, C, w.nsr);
+    }
+    if (o.method != DecodeMethod::kTikhonov)
+        throw InvalidInput("closed_form_filter: the method must be wiener or tikhonov");
+    const TikhonovParams& t = o.tikhonov;
+    return make_tikhonov_filter_from_otf(op.otf(), R, C, t.lambda, t.regulariser);
+}
 
 void IterativeParams::validate() const {
     if (max_iterations < 0) {

@@ -15,6 +15,10 @@
 
 namespace pinmask {
 
+class DecodePlanCache;      // decode/plan_cache.hpp
+class ConvolutionOperator;  // decode/convolution.hpp
+class WienerFilter;         // decode/wiener.hpp
+
 enum class DecodeMethod { kWiener, kTikhonov, kTv, kTvqc, kRichardsonLucy };
 
 // cyclic: circular convolution over one period (the paper; x has the capture's size).
@@ -84,6 +88,9 @@ struct DecodeOptions {
     TikhonovParams tikhonov;
     TvParams tv;
     TvqcParams tvqc;
+    // Optional: operators and closed-form filters made once and reused across calls with the same
+    // PSF and grid (decode/plan_cache.hpp; batch decode). Not owned; results are the same bytes.
+    DecodePlanCache* plans = nullptr;
     // The method must be one of kDecodeMethods (an unknown value is an error, never a fall-through
     // to any method); then the chosen method's struct (and `iterative` for an iterative method).
     // InvalidInput naming the field, its value and the rule.
@@ -121,5 +128,9 @@ struct DecodeResult {
 // Result check: an estimate or residual that is not finite (or a NaN objective) throws
 // RuntimeFailure naming the method (never a NaN/Inf image returned as a success).
 DecodeResult decode_plane(const Plane& capture, const Plane& psf, const DecodeOptions& options);
+
+// The filter of a closed-form method (wiener with a scalar or per-frequency NSR, tikhonov) from
+// the operator's OTF, exactly as decode_plane builds it (the plan cache builds it here too).
+WienerFilter closed_form_filter(const ConvolutionOperator& op, const DecodeOptions& o);
 
 }  // namespace pinmask

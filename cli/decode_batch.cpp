@@ -1,0 +1,253 @@
+#include "cli/decode_batch.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+
+#include "cli/decode_inputs.hpp"
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/output_set.hpp"
+#include "decode/batch.hpp"
+#include "decode/decode_method.hpp"
+
+namespace pinmask::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string lower(std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+bool capture_extension(const fs::path& p) {
+    const std::string e = lower(p.extension().string());
+    return e == ".tif" || e == ".tiff" || e == ".png" || e == ".npy";
+}
+
+Bytes to_bytes(const std::string& s) { return Bytes(s.begin(), s.end()); }
+std::string from_bytes(const Bytes& b) { return std::string(b.begin(), b.end()); }
+
+// The deterministic record of one capture for the summary.
+json capture_entry(const DecodeRequest& rc, const CaptureDecodeSummary& sum) {
+    json channels = json::array();
+    for (const DecodeResult& d : sum.channels) {
+        channels.push_back({{"iterations", d.iterations},
+                            {"residual", d.residual},
+                            {"objective", d.objective},
+                            {"converged", d.converged},
+                            {"constraint_met", d.constraint_met}});
+    }
+    return {{"input", rc.capture},
+            {"output", rc.output},
+            {"window",
+             {{"col", sum.window.col},
+              {"row", sum.window.row},
+              {"cols", sum.window.cols},
+              {"rows", sum.window.rows}}},
+            {"single_precision", sum.single_precision},
+            {"period", period_check_json(sum.period)},
+            {"channels", channels}};
+}
+
+// Decodes one capture and stages its files exactly as `pinmask decode` writes them.
+json decode_one(BatchDecoder& decoder, const DecodeRequest& rc, BayerMode bayer,
+                StagedFiles& files) {
+    const OutputKind kind = output_kind(rc.output);
+    const std::optional<double> scale = parse_scale(rc.scale);
+    json stats = {{"format", "pinmask-decode-stats"}, {"version", 2}};
+    json timings;
+    json shared_stats;
+    Image capture = load_capture(rc.capture, bayer, stats);
+    const CaptureDecodeResult result = decoder.decode(std::move(capture));
+    const CaptureDecodeSummary& sum = result.summary;
+    std::istringstream warnings(period_warning(sum.period));
+    for (std::string line; std::getline(warnings, line);)
+        std::cerr << "pinmask: warning: " << rc.capture << ": " << line << "\n";
+    add_summary_json(stats, timings, rc, sum);
+    check_output_range(result.estimate, kind);
+    json output = {{"path", rc.output},
+                   {"format", output_kind_name(kind)},
+                   {"config", rc.output + ".config.json"}};
+    if (kind == OutputKind::kPng) {
+        const ScaledImage png = scale_for_png(result.estimate, scale);
+        files.stage(rc.output, [&](const fs::path& tmp) {
+            write_output_image(tmp, png.image, kind, rc.bits);
+        });
+        output["bits"] = rc.bits;
+        output["scaling"] = scale ? "factor" : "max";
+        output["scale_factor"] = png.factor;
+        output["max_value"] = png.max_value;
+    } else {
+        files.stage(rc.output, [&](const fs::path& tmp) {
+            write_output_image(tmp, result.estimate, kind, rc.bits);
+        });
+    }
+    const json config = config_json(rc);
+    files.stage_bytes(rc.output + ".config.json", config.dump(2) + "\n");
+    if (!rc.stats.empty()) {
+        stats["output"] = output;
+        stats["config"] = config;
+        stats["timings_s"] = timings;
+        files.stage_bytes(rc.stats, stats.dump(2) + "\n");
+    }
+    return capture_entry(rc, sum);
+}
+
+}  // namespace
+
+std::vector<std::string> batch_inputs(const std::string& list_or_dir) {
+    std::error_code ec;
+    if (list_or_dir.empty() || !fs::exists(list_or_dir, ec))
+        throw invalid_field("--batch", list_or_dir, "no such directory or list file");
+    std::vector<std::string> paths;
+    if (fs::is_directory(list_or_dir, ec)) {
+        for (const auto& e : fs::directory_iterator(list_or_dir))
+            if (e.is_regular_file() && capture_extension(e.path()))
+                paths.push_back(e.path().string());
+        std::sort(paths.begin(), paths.end());
+        if (paths.empty())
+            throw invalid_field("--batch", list_or_dir,
+                                "the directory holds no capture (.tif, .tiff, .png, .npy)");
+        return paths;
+    }
+    std::ifstream in(list_or_dir);
+    if (!in) throw invalid_field("--batch", list_or_dir, "cannot be read");
+    for (std::string line; std::getline(in, line);) {
+        while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back())))
+            line.pop_back();
+        std::size_t start = 0;
+        while (start < line.size() && std::isspace(static_cast<unsigned char>(line[start])))
+            ++start;
+        line = line.substr(start);
+        if (line.empty() || line[0] == '#') continue;
+        if (!fs::is_regular_file(line, ec))
+            throw invalid_field("--batch", line, "listed in " + list_or_dir + ": no such file");
+        paths.push_back(line);
+    }
+    if (paths.empty()) throw invalid_field("--batch", list_or_dir, "the list names no capture");
+    return paths;
+}
+
+void run_decode_batch(const DecodeRequest& r, const BatchRequest& b, BayerMode bayer,
+                      RankComm& comm) {
+    // Set-up: the same on every rank (same files, same flags), before any work.
+    if (!r.capture.empty())
+        throw invalid_field("--batch", b.list, "give either a capture or --batch, not both");
+    if (!r.stats.empty())
+        throw invalid_field("--stats", r.stats, "with --batch use --batch-stats (one per capture)");
+    if (r.output.empty() || !fs::is_directory(r.output))
+        throw invalid_field("-o", r.output, "with --batch must be an existing directory");
+    const std::string ext = lower(b.format);
+    if (ext != "tiff" && ext != "png" && ext != "npy")
+        throw invalid_field("--batch-format", b.format, "must be tiff, png or npy");
+    const std::vector<std::string> inputs = batch_inputs(b.list);
+    std::vector<DecodeRequest> requests;
+    std::map<std::string, std::string> by_stem;
+    std::vector<NamedPath> in_paths = {
+        {"--mask", r.mask}, {"--psf", r.psf}, {"--dark", r.dark}, {"--batch", b.list}};
+    std::vector<NamedPath> out_paths;
+    const fs::path dir = r.output;
+    for (const std::string& path : inputs) {
+        const std::string stem = fs::path(path).stem().string();
+        const auto [it, fresh] = by_stem.emplace(stem, path);
+        if (!fresh)
+            throw invalid_field(
+                "--batch", path,
+                "has the same output name " + stem + "." + ext + " as " + it->second);
+        DecodeRequest rc = r;
+        rc.capture = path;
+        rc.output = (dir / (stem + "." + ext)).string();
+        rc.stats = b.stats ? (dir / (stem + ".stats.json")).string() : "";
+        in_paths.push_back({"--batch", path});
+        out_paths.push_back({"-o", rc.output});
+        out_paths.push_back({"-o (config)", rc.output + ".config.json"});
+        if (b.stats) out_paths.push_back({"--batch-stats", rc.stats});
+        requests.push_back(rc);
+    }
+    const std::string summary_path = (dir / "batch-summary.json").string();
+    out_paths.push_back({"-o (summary)", summary_path});
+    plan_outputs(in_paths, out_paths);
+    CaptureDecodeOptions options = capture_decode_options(r);
+    options.validate();
+    json shared_stats;
+    BatchDecoder decoder(
+        load_shared_inputs(r, bayer, options.background == BackgroundMode::kCorner, shared_stats),
+        options);
+
+    // This rank's captures; the first error stops this rank's work.
+    StagedFiles files;
+    json mine = {{"entries", json::array()}};
+    for (std::size_t i : batch_share(requests.size(), comm.rank(), comm.size())) {
+        try {
+            json entry = decode_one(decoder, requests[i], bayer, files);
+            mine["entries"].push_back({{"index", i}, {"entry", entry}});
+        } catch (const std::exception& e) {
+            mine["error"] = {{"index", i},
+                             {"code", dynamic_cast<const InvalidInput*>(&e) ? 2 : 1},
+                             {"message", e.what()}};
+            break;
+        }
+    }
+    // Rank 0 gathers, decides and stages the summary; every rank learns the verdict.
+    const std::vector<Bytes> all = comm.gather(to_bytes(mine.dump()), 0);
+    json verdict = {{"ok", true}};
+    json summary;
+    if (comm.rank() == 0) {
+        std::vector<json> entries(requests.size());
+        for (const Bytes& bytes : all) {
+            const json part = json::parse(from_bytes(bytes));
+            for (const json& e : part["entries"])
+                entries[e["index"].get<std::size_t>()] = e["entry"];
+            if (part.contains("error") &&
+                (verdict["ok"] || part["error"]["index"] < verdict["error"]["index"])) {
+                verdict = {{"ok", false}, {"error", part["error"]}};
+            }
+        }
+        summary = {{"format", "pinmask-decode-batch"},
+                   {"version", 1},
+                   {"method", r.method},
+                   {"psf", shared_stats["psf"]},
+                   {"config", config_json(DecodeRequest(r))},
+                   {"captures", entries}};
+        summary["config"].erase("capture");
+        summary["config"].erase("output");
+        summary["config"].erase("stats");
+        if (verdict["ok"]) files.stage_bytes(summary_path, summary.dump(2) + "\n");
+    }
+    Bytes verdict_bytes = to_bytes(verdict.dump());
+    comm.broadcast(verdict_bytes, 0);
+    verdict = json::parse(from_bytes(verdict_bytes));
+    if (!verdict["ok"]) {
+        const json& e = verdict["error"];
+        const int code = e["code"].get<int>();
+        if (comm.rank() != 0) throw BatchQuietExit{code};
+        const std::string message = requests[e["index"].get<std::size_t>()].capture + ": " +
+                                    e["message"].get<std::string>() + " (nothing written)";
+        if (code == 2) throw InvalidInput(message);
+        throw RuntimeFailure(message);
+    }
+    files.commit();
+    comm.barrier();
+    if (comm.rank() != 0) return;
+    if (r.json) {
+        std::cout << summary.dump(2) << "\n";
+        return;
+    }
+    for (const DecodeRequest& rc : requests)
+        std::cout << "decode " << rc.capture << " -> " << rc.output << "\n";
+    std::cout << "batch    " << requests.size() << " captures on " << comm.size() << " rank(s), "
+              << decoder.plans().filters_built() << " filter(s) and "
+              << decoder.plans().operators_built() << " operator(s) built on rank 0\n"
+              << "  wrote    " << summary_path << "\n";
+}
+
+}  // namespace pinmask::cli

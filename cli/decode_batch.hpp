@@ -1,0 +1,44 @@
+// `pinmask decode --batch LIST_OR_DIR -o DIR` (issue 17): many captures, one PSF, the same
+// flags. The inputs: a directory (its .tif/.tiff/.png/.npy files, sorted by name) or a text
+// file of paths, one a line (blank lines and lines starting with '#' skipped; relative paths
+// are relative to the current directory). For each capture DIR/STEM.EXT (EXT from
+// --batch-format), DIR/STEM.EXT.config.json and with --batch-stats DIR/STEM.stats.json, the
+// same files `pinmask decode CAPTURE -o DIR/STEM.EXT` writes; DIR/batch-summary.json lists every
+// capture in input order (deterministic: no timings, no rank count).
+//
+// Ranks (RankComm): capture i is decoded by rank i % size; each rank stages its own files, rank 0
+// gathers the per-capture results and stages the summary, and every rank commits only when no
+// rank failed: an error anywhere leaves no file. The bytes do not depend on the rank count.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cli/decode_output.hpp"
+#include "core/raw_io.hpp"
+#include "optimize/rank_comm.hpp"
+
+namespace pinmask::cli {
+
+struct BatchRequest {
+    std::string list;             // --batch: a directory or a list file
+    std::string format = "tiff";  // --batch-format: tiff | png | npy
+    bool stats = false;           // --batch-stats
+};
+
+// The capture paths of --batch, in order. InvalidInput naming --batch for a missing path, an
+// empty directory or list, or a listed file that does not exist.
+std::vector<std::string> batch_inputs(const std::string& list_or_dir);
+
+// Thrown on ranks other than 0 when the batch failed on some rank: rank 0 reports the error,
+// the others leave with `code` after their staged files are discarded.
+struct BatchQuietExit {
+    int code;
+};
+
+// Runs the batch on every rank of `comm` (r: the decode flags, r.output the directory). Prints
+// (rank 0 only) one line per capture and the summary path, or the summary JSON with --json.
+void run_decode_batch(const DecodeRequest& r, const BatchRequest& b, BayerMode bayer,
+                      RankComm& comm);
+
+}  // namespace pinmask::cli

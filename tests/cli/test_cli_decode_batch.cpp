@@ -1,0 +1,142 @@
+// `pinmask decode --batch` (issue 17) end to end: three simulated captures (generate, simulate
+// with three seeds) decoded as a batch give the same bytes as `pinmask decode` on each alone,
+// for a directory and a list file; bad inputs exit 2 naming the flag and write nothing.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "tests/support/cli_run.hpp"
+
+using pinmask::test::run_cli;
+using pinmask::test::slurp;
+using pinmask::test::TempDir;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kFlags = " --method tikhonov --lambda 1e-3 ";
+
+// m.mask.json and caps/c1..c3.tiff (simulate with seeds 1..3) in `dir`.
+void make_captures(const TempDir& dir) {
+    REQUIRE(run_cli("generate --grid 8 --holes 6 --tiles 2 --pixels-per-cell 4 --seed 3 -o " +
+                    dir / "m.mask.json")
+                .exit_code == 0);
+    fs::create_directory(dir.path / "caps");
+    for (int s = 1; s <= 3; ++s) {
+        const auto r =
+            run_cli("simulate " + dir / "m.mask.json" + " --scene letter-R --snr 30 --seed " +
+                    std::to_string(s) + " -o " + dir / ("caps/c" + std::to_string(s) + ".tiff"));
+        INFO(r.err);
+        REQUIRE(r.exit_code == 0);
+    }
+}
+
+// The number of files in `d`; none may be a temporary.
+int file_count(const fs::path& d) {
+    int n = 0;
+    for (const auto& e : fs::directory_iterator(d)) {
+        CHECK(e.path().string().find(".tmp") == std::string::npos);
+        ++n;
+    }
+    return n;
+}
+
+}  // namespace
+
+TEST_CASE("decode --batch: each output has the bytes of decoding that capture alone") {
+    TempDir dir("cli-decode-batch");
+    make_captures(dir);
+    fs::create_directory(dir.path / "single");
+    for (const std::string fmt : {"tiff", "png"}) {
+        const std::string flags = " --method wiener --nsr 1e-3 ";
+        const fs::path out = dir.path / ("batch-" + fmt);
+        fs::create_directory(out);
+        const auto r = run_cli("decode --batch caps --mask m.mask.json" + flags +
+                                   "--batch-stats --batch-format " + fmt + " -o " + out.string(),
+                               dir.path);
+        INFO(r.err);
+        REQUIRE(r.exit_code == 0);
+        const auto summary = nlohmann::json::parse(slurp(out / "batch-summary.json"));
+        REQUIRE(summary["captures"].size() == 3);
+        for (int s = 1; s <= 3; ++s) {
+            const std::string stem = "c" + std::to_string(s);
+            const std::string single = "single/" + stem + "." + fmt;
+            REQUIRE(
+                run_cli("decode caps/" + stem + ".tiff --mask m.mask.json" + flags + "-o " + single,
+                        dir.path)
+                    .exit_code == 0);
+            CHECK(slurp(out / (stem + "." + fmt)) == slurp(dir.path / single));
+            CHECK(fs::exists(out / (stem + ".stats.json")));
+            CHECK(summary["captures"][s - 1]["input"] == "caps/" + stem + ".tiff");
+        }
+        CHECK(file_count(out) == 3 * 3 + 1);  // image, config, stats per capture; the summary
+    }
+    // A list file in another order and another method (the operator path): the same bytes too.
+    {
+        std::ofstream(dir.path / "list.txt") << "# captures\ncaps/c3.tiff\n\n  caps/c1.tiff\n";
+        fs::create_directory(dir.path / "listed");
+        const auto r =
+            run_cli("decode --batch list.txt --mask m.mask.json" + kFlags + "-o listed", dir.path);
+        INFO(r.err);
+        REQUIRE(r.exit_code == 0);
+        for (const std::string stem : {"c3", "c1"}) {
+            REQUIRE(run_cli("decode caps/" + stem + ".tiff --mask m.mask.json" + kFlags +
+                                "-o single/" + stem + "-tik.tiff",
+                            dir.path)
+                        .exit_code == 0);
+            CHECK(slurp(dir.path / ("listed/" + stem + ".tiff")) ==
+                  slurp(dir.path / ("single/" + stem + "-tik.tiff")));
+        }
+        const auto summary = nlohmann::json::parse(slurp(dir.path / "listed/batch-summary.json"));
+        CHECK(summary["captures"][0]["input"] == "caps/c3.tiff");
+        CHECK(summary["captures"][1]["input"] == "caps/c1.tiff");
+    }
+}
+
+TEST_CASE("decode --batch: bad inputs exit 2 naming the flag, nothing written") {
+    TempDir dir("cli-decode-batch-bad");
+    make_captures(dir);
+    fs::create_directory(dir.path / "out");
+    fs::create_directory(dir.path / "empty");
+    std::ofstream(dir.path / "empty.txt") << "# nothing\n\n";
+    std::ofstream(dir.path / "missing.txt") << "caps/c1.tiff\ncaps/nope.tiff\n";
+    std::ofstream(dir.path / "twice.txt") << "caps/c1.tiff\ncaps/c1.tiff\n";
+    fs::copy_file(dir.path / "caps/c2.tiff", dir.path / "c2.tiff");
+    std::ofstream(dir.path / "clash.txt") << "caps/c2.tiff\nc2.tiff\n";
+    const std::string m = " --mask m.mask.json ";
+    struct Case {
+        std::string args, flag;
+    };
+    const Case cases[] = {
+        {"--batch empty" + m + "-o out", "--batch"},
+        {"--batch empty.txt" + m + "-o out", "--batch"},
+        {"--batch missing.txt" + m + "-o out", "--batch"},
+        {"--batch twice.txt" + m + "-o out", "--batch"},
+        {"--batch clash.txt" + m + "-o out", "--batch"},
+        {"--batch no-such-dir" + m + "-o out", "--batch"},
+        {"--batch caps" + m + "-o no-such-dir", "-o"},
+        {"--batch caps" + m + "-o m.mask.json", "-o"},
+        {"--batch caps" + m + "-o out --batch-format jpg", "--batch-format"},
+        {"--batch caps" + m + "-o out --stats s.json", "--stats"},
+        {"caps/c1.tiff --batch caps" + m + "-o out", "--batch"},
+        {"--batch caps -o out", "--mask"},
+    };
+    for (const Case& c : cases) {
+        const auto r = run_cli("decode " + c.args, dir.path);
+        INFO(c.args, "\n", r.err);
+        CHECK(r.exit_code == 2);
+        CHECK(r.err.find(c.flag) != std::string::npos);
+        CHECK(fs::is_empty(dir.path / "out"));
+    }
+    // A capture that cannot be read, second of three: no file of any capture remains.
+    std::ofstream(dir.path / "bad.npy") << "not an npy file";
+    std::ofstream(dir.path / "bad.txt") << "caps/c1.tiff\nbad.npy\ncaps/c3.tiff\n";
+    const auto r = run_cli("decode --batch bad.txt" + m + "-o out", dir.path);
+    INFO(r.err);
+    CHECK(r.exit_code == 2);
+    CHECK(fs::is_empty(dir.path / "out"));
+    CHECK(run_cli("decode" + m + "-o out/x.tiff", dir.path).exit_code == 2);
+}
