@@ -2,9 +2,12 @@
 
 #include <mpi.h>
 
+#include <algorithm>
+#include <chrono>
 #include <climits>
 #include <cstdlib>
 #include <string>
+#include <thread>
 
 #include "core/error.hpp"
 
@@ -127,10 +130,19 @@ class MpiComm : public RankComm {
               "MPI_Send");
     }
     Message receive(int source, int tag) override {
+        // Polls with a growing sleep (50 us .. 2 ms) instead of a blocking MPI_Probe: Open MPI
+        // busy-waits inside a blocking probe, which takes a core from the threads that do the
+        // work beside a waiting rank (the sweep's rank 0 runs points while it serves the queue).
         MPI_Status st;
-        check(MPI_Probe(source == kAnySource ? MPI_ANY_SOURCE : source,
-                        tag == kAnyTag ? MPI_ANY_TAG : tag, MPI_COMM_WORLD, &st),
-              "MPI_Probe");
+        const int src = source == kAnySource ? MPI_ANY_SOURCE : source;
+        const int tg = tag == kAnyTag ? MPI_ANY_TAG : tag;
+        for (auto pause = std::chrono::microseconds(50);;) {
+            int ready = 0;
+            check(MPI_Iprobe(src, tg, MPI_COMM_WORLD, &ready, &st), "MPI_Iprobe");
+            if (ready) break;
+            std::this_thread::sleep_for(pause);
+            pause = std::min(pause * 2, std::chrono::microseconds(2000));
+        }
         int count = 0;
         check(MPI_Get_count(&st, MPI_BYTE, &count), "MPI_Get_count");
         Message m;
