@@ -28,6 +28,7 @@
 #include "export/vendor_rules.hpp"
 #include "io/export_sidecar.hpp"
 #include "io/mask_json.hpp"
+#include "io/sidecar_layout.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -75,12 +76,8 @@ int run(const CheckOptions& o) {
             side = io::read_export_sidecar(side_path);
         if (side) {
             rep.settings = "from " + side_path.string();
-            if (rep.mask.empty()) rep.mask = sidecar_mask(*side, side_path);
-            const auto u = file.info.find("unit_nm");
-            if (u != file.info.end() && std::to_string(nm_per_unit(parse_fab_unit(
-                                            side->unit, "sidecar unit"))) != u->second)
-                throw invalid_field("file unit", u->second + " nm",
-                                    "disagrees with the sidecar's unit " + side->unit);
+            if (rep.mask.empty()) rep.mask = io::sidecar_mask(*side, side_path);
+            io::check_sidecar_unit(*side, file);
         } else {
             rep.settings = "from the flags (no sidecar " + side_path.filename().string() + ")";
         }
@@ -91,15 +88,7 @@ int run(const CheckOptions& o) {
         if (!rep.mask.empty()) {
             mask = io::read_mask_file(rep.mask, {.allow_spacing_violations = true});
             LayoutOptions lo = design_options(o, side ? &*side : nullptr);
-            if (!side) {  // tone, mirroring and grid as the file declares them
-                const auto& info = file.info;
-                if (auto it = info.find("tone"); it != info.end())
-                    lo.tone = parse_tone(it->second, "tone");
-                if (auto it = info.find("mirrored"); it != info.end())
-                    lo.mirror = it->second == "yes";
-                if (auto it = info.find("grid_nm"); it != info.end())
-                    lo.grid_m = parse_number(it->second, "grid_nm") * 1e-9;
-            }
+            if (!side) io::apply_file_declarations(lo, file);  // as the file declares them
             design = make_layout(*mask, lo);
             fo.design = &*design;
             fo.whole_layout = side.has_value();
