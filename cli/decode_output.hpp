@@ -26,20 +26,20 @@ using pinmask::capture_decode_options;
 using pinmask::check_output_range;
 using pinmask::decode_options;
 using pinmask::DecodeRequest;
+using pinmask::GivenFlag;
+using pinmask::kMethodFlags;
+using pinmask::method_flag_name;
+using pinmask::MethodFlag;
 using pinmask::output_kind;
 using pinmask::output_kind_name;
 using pinmask::OutputKind;
 using pinmask::parse_background;
 using pinmask::parse_crop;
-using pinmask::GivenFlag;
-using pinmask::kMethodFlags;
-using pinmask::method_flag_name;
-using pinmask::MethodFlag;
-using pinmask::refuse_unused_flags;
-using pinmask::write_method_flag;
 using pinmask::parse_scale;
+using pinmask::refuse_unused_flags;
 using pinmask::scale_for_png;
 using pinmask::ScaledImage;
+using pinmask::write_method_flag;
 using pinmask::write_output_image;
 
 // Adds the pipeline's results to the stats JSON and its timings to `timings`. Everything

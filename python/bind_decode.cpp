@@ -138,8 +138,7 @@ void bind_decode(py::module_& m) {
                 given.push_back({MethodFlag::kNonnegative, *nonneg ? "true" : "false"});
             }
             if (iters)
-                given.push_back(
-                    {MethodFlag::kIterations, std::to_string(r.iterations = *iters)});
+                given.push_back({MethodFlag::kIterations, std::to_string(r.iterations = *iters)});
             if (tol) given.push_back({MethodFlag::kTolerance, num(r.tolerance = *tol)});
             parse_conv_model(model, "--model");
             parse_regulariser(r.regulariser, "--regulariser");

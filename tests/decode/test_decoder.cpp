@@ -163,7 +163,8 @@ TEST_CASE("closed form: residual and objective from the spectrum equal the spati
                     const ComplexPlane X = expand_half_spectrum(fft.forward(r.image), C);
                     penalty = (nsr_pf * X.abs2()).sum() / double(R * C);
                 }
-                if (variant >= 2) penalty = tikhonov_penalty(r.image, o.tikhonov.lambda, o.tikhonov.regulariser);
+                if (variant >= 2)
+                    penalty = tikhonov_penalty(r.image, o.tikhonov.lambda, o.tikhonov.regulariser);
                 const double tol = single ? kParsevalSingleTol : kParsevalTol;
                 INFO(R << " x " << C << " variant " << variant << " single " << single);
                 if (variant == 4) {  // exact fit: both residuals are rounding, ~0 against ||p||
