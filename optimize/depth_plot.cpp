@@ -1,6 +1,5 @@
 #include "optimize/depth_plot.hpp"
 
-#include <cairo-svg.h>
 #include <cairo.h>
 
 #include <algorithm>
@@ -10,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "core/units.hpp"
+#include "optimize/plot_canvas.hpp"
 
 namespace pinmask {
 namespace {
@@ -17,21 +17,10 @@ namespace {
 constexpr int kWidth = 900, kHeight = 560;
 constexpr double kLeft = 80, kRight = 30, kTop = 60, kBottom = 70;
 
-struct SurfaceDel {
-    void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
-};
-struct ContextDel {
-    void operator()(cairo_t* c) const { cairo_destroy(c); }
-};
-
 double inv(double u) { return std::isinf(u) ? 0.0 : 1.0 / u; }
 
 void label(cairo_t* cr, double x, double y, const std::string& s, double size, double align) {
-    cairo_set_font_size(cr, size);
-    cairo_text_extents_t e;
-    cairo_text_extents(cr, s.c_str(), &e);
-    cairo_move_to(cr, x - align * e.width, y);
-    cairo_show_text(cr, s.c_str());
+    plot_label(cr, x, y, s, size, align);
 }
 
 void draw(cairo_t* cr, const std::vector<DepthRecord>& recs, double design_u,
@@ -112,44 +101,20 @@ void draw(cairo_t* cr, const std::vector<DepthRecord>& recs, double design_u,
     }
 }
 
-void check(cairo_t* cr, cairo_surface_t* s, const std::filesystem::path& path) {
-    cairo_surface_flush(s);
-    const cairo_status_t st =
-        cairo_status(cr) != CAIRO_STATUS_SUCCESS ? cairo_status(cr) : cairo_surface_status(s);
-    if (st != CAIRO_STATUS_SUCCESS) {
-        throw RuntimeFailure("depth plot " + path.string() + ": " + cairo_status_to_string(st));
-    }
-}
-
 }  // namespace
 
 void write_depth_svg(const std::filesystem::path& path, const std::vector<DepthRecord>& recs,
                      double design_u, const std::string& title) {
     if (recs.empty()) throw InvalidInput("depth plot: no distances");
-    std::unique_ptr<cairo_surface_t, SurfaceDel> s(
-        cairo_svg_surface_create(path.c_str(), kWidth, kHeight));
-    std::unique_ptr<cairo_t, ContextDel> cr(cairo_create(s.get()));
-    draw(cr.get(), recs, design_u, title);
-    check(cr.get(), s.get(), path);
-    cr.reset();
-    cairo_surface_finish(s.get());
-    if (cairo_surface_status(s.get()) != CAIRO_STATUS_SUCCESS) {
-        throw RuntimeFailure("depth plot " + path.string() + ": " +
-                             cairo_status_to_string(cairo_surface_status(s.get())));
-    }
+    write_plot_svg(path, kWidth, kHeight, "depth plot",
+                   [&](cairo_t* cr) { draw(cr, recs, design_u, title); });
 }
 
 void write_depth_png(const std::filesystem::path& path, const std::vector<DepthRecord>& recs,
                      double design_u, const std::string& title) {
     if (recs.empty()) throw InvalidInput("depth plot: no distances");
-    std::unique_ptr<cairo_surface_t, SurfaceDel> s(
-        cairo_image_surface_create(CAIRO_FORMAT_RGB24, kWidth, kHeight));
-    std::unique_ptr<cairo_t, ContextDel> cr(cairo_create(s.get()));
-    draw(cr.get(), recs, design_u, title);
-    check(cr.get(), s.get(), path);
-    if (cairo_surface_write_to_png(s.get(), path.c_str()) != CAIRO_STATUS_SUCCESS) {
-        throw RuntimeFailure("depth plot " + path.string() + ": PNG write failed");
-    }
+    write_plot_png(path, kWidth, kHeight, "depth plot",
+                   [&](cairo_t* cr) { draw(cr, recs, design_u, title); });
 }
 
 }  // namespace pinmask

@@ -1,6 +1,5 @@
 #include "optimize/holes_plot.hpp"
 
-#include <cairo-svg.h>
 #include <cairo.h>
 
 #include <algorithm>
@@ -9,6 +8,7 @@
 #include <memory>
 
 #include "core/error.hpp"
+#include "optimize/plot_canvas.hpp"
 
 namespace pinmask {
 namespace {
@@ -16,19 +16,8 @@ namespace {
 constexpr int kWidth = 900, kHeight = 560;
 constexpr double kLeft = 80, kRight = 90, kTop = 60, kBottom = 90;
 
-struct SurfaceDel {
-    void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
-};
-struct ContextDel {
-    void operator()(cairo_t* c) const { cairo_destroy(c); }
-};
-
 void label(cairo_t* cr, double x, double y, const std::string& s, double size, double align) {
-    cairo_set_font_size(cr, size);
-    cairo_text_extents_t e;
-    cairo_text_extents(cr, s.c_str(), &e);
-    cairo_move_to(cr, x - align * e.width, y);
-    cairo_show_text(cr, s.c_str());
+    plot_label(cr, x, y, s, size, align);
 }
 
 std::string number(double v, const char* spec) {
@@ -126,15 +115,6 @@ void draw(cairo_t* cr, const std::vector<HolesPoint>& pts, const std::string& ti
     label(cr, kLeft + 320, ly, "light gain K (right axis)", 12, 0.0);
 }
 
-void check(cairo_t* cr, cairo_surface_t* s, const std::filesystem::path& path) {
-    cairo_surface_flush(s);
-    const cairo_status_t st =
-        cairo_status(cr) != CAIRO_STATUS_SUCCESS ? cairo_status(cr) : cairo_surface_status(s);
-    if (st != CAIRO_STATUS_SUCCESS) {
-        throw RuntimeFailure("holes plot " + path.string() + ": " + cairo_status_to_string(st));
-    }
-}
-
 void check_points(const std::vector<HolesPoint>& pts) {
     if (pts.empty()) throw InvalidInput("holes plot: no pinhole counts");
     for (const auto& p : pts) {
@@ -149,30 +129,13 @@ void check_points(const std::vector<HolesPoint>& pts) {
 void write_holes_svg(const std::filesystem::path& path, const std::vector<HolesPoint>& pts,
                      const std::string& title) {
     check_points(pts);
-    std::unique_ptr<cairo_surface_t, SurfaceDel> s(
-        cairo_svg_surface_create(path.c_str(), kWidth, kHeight));
-    std::unique_ptr<cairo_t, ContextDel> cr(cairo_create(s.get()));
-    draw(cr.get(), pts, title);
-    check(cr.get(), s.get(), path);
-    cr.reset();
-    cairo_surface_finish(s.get());
-    if (cairo_surface_status(s.get()) != CAIRO_STATUS_SUCCESS) {
-        throw RuntimeFailure("holes plot " + path.string() + ": " +
-                             cairo_status_to_string(cairo_surface_status(s.get())));
-    }
+    write_plot_svg(path, kWidth, kHeight, "holes plot", [&](cairo_t* cr) { draw(cr, pts, title); });
 }
 
 void write_holes_png(const std::filesystem::path& path, const std::vector<HolesPoint>& pts,
                      const std::string& title) {
     check_points(pts);
-    std::unique_ptr<cairo_surface_t, SurfaceDel> s(
-        cairo_image_surface_create(CAIRO_FORMAT_RGB24, kWidth, kHeight));
-    std::unique_ptr<cairo_t, ContextDel> cr(cairo_create(s.get()));
-    draw(cr.get(), pts, title);
-    check(cr.get(), s.get(), path);
-    if (cairo_surface_write_to_png(s.get(), path.c_str()) != CAIRO_STATUS_SUCCESS) {
-        throw RuntimeFailure("holes plot " + path.string() + ": PNG write failed");
-    }
+    write_plot_png(path, kWidth, kHeight, "holes plot", [&](cairo_t* cr) { draw(cr, pts, title); });
 }
 
 }  // namespace pinmask

@@ -1,6 +1,5 @@
 #include "optimize/sweep_plot.hpp"
 
-#include <cairo-svg.h>
 #include <cairo.h>
 
 #include <algorithm>
@@ -10,6 +9,7 @@
 #include <memory>
 
 #include "core/error.hpp"
+#include "optimize/plot_canvas.hpp"
 
 namespace pinmask {
 namespace {
@@ -18,19 +18,8 @@ constexpr int kWidth = 900, kHeight = 560;
 constexpr double kLeft = 80, kRight = 230, kTop = 60, kBottom = 70;
 constexpr int kTicks = 5;
 
-struct SurfaceDel {
-    void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
-};
-struct ContextDel {
-    void operator()(cairo_t* c) const { cairo_destroy(c); }
-};
-
 void label(cairo_t* cr, double x, double y, const std::string& s, double size, double align) {
-    cairo_set_font_size(cr, size);
-    cairo_text_extents_t e;
-    cairo_text_extents(cr, s.c_str(), &e);
-    cairo_move_to(cr, x - align * e.width, y);
-    cairo_show_text(cr, s.c_str());
+    plot_label(cr, x, y, s, size, align);
 }
 
 std::string number(double v) {
@@ -130,14 +119,6 @@ void draw(cairo_t* cr, const SweepPlot& plot) {
     }
 }
 
-void check(cairo_t* cr, cairo_surface_t* s, const std::filesystem::path& path) {
-    cairo_surface_flush(s);
-    const cairo_status_t st =
-        cairo_status(cr) != CAIRO_STATUS_SUCCESS ? cairo_status(cr) : cairo_surface_status(s);
-    if (st != CAIRO_STATUS_SUCCESS)
-        throw RuntimeFailure("sweep plot " + path.string() + ": " + cairo_status_to_string(st));
-}
-
 void require_points(const SweepPlot& plot) {
     for (const auto& s : plot.series)
         for (const auto& [x, y] : s.points)
@@ -149,27 +130,12 @@ void require_points(const SweepPlot& plot) {
 
 void write_sweep_plot_svg(const std::filesystem::path& path, const SweepPlot& plot) {
     require_points(plot);
-    std::unique_ptr<cairo_surface_t, SurfaceDel> s(
-        cairo_svg_surface_create(path.c_str(), kWidth, kHeight));
-    std::unique_ptr<cairo_t, ContextDel> cr(cairo_create(s.get()));
-    draw(cr.get(), plot);
-    check(cr.get(), s.get(), path);
-    cr.reset();
-    cairo_surface_finish(s.get());
-    if (cairo_surface_status(s.get()) != CAIRO_STATUS_SUCCESS)
-        throw RuntimeFailure("sweep plot " + path.string() + ": " +
-                             cairo_status_to_string(cairo_surface_status(s.get())));
+    write_plot_svg(path, kWidth, kHeight, "sweep plot", [&](cairo_t* cr) { draw(cr, plot); });
 }
 
 void write_sweep_plot_png(const std::filesystem::path& path, const SweepPlot& plot) {
     require_points(plot);
-    std::unique_ptr<cairo_surface_t, SurfaceDel> s(
-        cairo_image_surface_create(CAIRO_FORMAT_RGB24, kWidth, kHeight));
-    std::unique_ptr<cairo_t, ContextDel> cr(cairo_create(s.get()));
-    draw(cr.get(), plot);
-    check(cr.get(), s.get(), path);
-    if (cairo_surface_write_to_png(s.get(), path.c_str()) != CAIRO_STATUS_SUCCESS)
-        throw RuntimeFailure("sweep plot " + path.string() + ": PNG write failed");
+    write_plot_png(path, kWidth, kHeight, "sweep plot", [&](cairo_t* cr) { draw(cr, plot); });
 }
 
 }  // namespace pinmask
