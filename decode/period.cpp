@@ -37,11 +37,7 @@ Plane strips_across(Eigen::Index rows, Eigen::Index cols, Axis axis, const At& a
     const Eigen::Index across = axis == Axis::kRows ? cols : rows;
     const bool all = across <= Eigen::Index{kAcrossStrips} * kStripWidth;
     const Eigen::Index n = all ? across : kAcrossStrips;
-    // A frame of at most kWholeFrameSamples is read whole (its strips widened to tile it): on a
-    // few periods of a small capture, 8 lines a strip measured the pitch 1 % off (1100 x 1100 px,
-    // 336 px period); reading it all costs little at that size.
-    const bool small = double(rows) * double(cols) <= kWholeFrameSamples;
-    const Eigen::Index w = all ? 1 : small ? across / n : kStripWidth;
+    const Eigen::Index w = all ? 1 : kStripWidth;
     Plane out = Plane::Zero(axis == Axis::kRows ? size : n, axis == Axis::kRows ? n : size);
     for (Eigen::Index k = 0; k < n; ++k) {
         // Strip k is centred on (k + 1/2) across / n.

@@ -57,8 +57,6 @@ inline constexpr double kSubharmonicFraction = 0.7;
 // outside the strips are not read (decode checks the frame for NaN/Inf first).
 inline constexpr int kAcrossStrips = 8;
 inline constexpr int kStripWidth = 8;
-// Frames of at most this many pixels are read whole (strips widened to tile the frame).
-inline constexpr double kWholeFrameSamples = 4.0 * 1024 * 1024;
 
 struct PeriodCheckOptions {
     // |measured - expected| allowed is the larger of these: half a pixel (beyond it the period
