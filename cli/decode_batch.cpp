@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -16,6 +15,7 @@
 #include "core/output_set.hpp"
 #include "decode/batch.hpp"
 #include "decode/decode_method.hpp"
+#include "io/capture_list.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -26,11 +26,6 @@ using nlohmann::json;
 std::string lower(std::string s) {
     for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return s;
-}
-
-bool capture_extension(const fs::path& p) {
-    const std::string e = lower(p.extension().string());
-    return e == ".tif" || e == ".tiff" || e == ".png" || e == ".npy";
 }
 
 Bytes to_bytes(const std::string& s) { return Bytes(s.begin(), s.end()); }
@@ -104,39 +99,6 @@ json decode_one(BatchDecoder& decoder, const DecodeRequest& rc, BayerMode bayer,
 
 }  // namespace
 
-std::vector<std::string> batch_inputs(const std::string& list_or_dir) {
-    std::error_code ec;
-    if (list_or_dir.empty() || !fs::exists(list_or_dir, ec))
-        throw invalid_field("--batch", list_or_dir, "no such directory or list file");
-    std::vector<std::string> paths;
-    if (fs::is_directory(list_or_dir, ec)) {
-        for (const auto& e : fs::directory_iterator(list_or_dir))
-            if (e.is_regular_file() && capture_extension(e.path()))
-                paths.push_back(e.path().string());
-        std::sort(paths.begin(), paths.end());
-        if (paths.empty())
-            throw invalid_field("--batch", list_or_dir,
-                                "the directory holds no capture (.tif, .tiff, .png, .npy)");
-        return paths;
-    }
-    std::ifstream in(list_or_dir);
-    if (!in) throw invalid_field("--batch", list_or_dir, "cannot be read");
-    for (std::string line; std::getline(in, line);) {
-        while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back())))
-            line.pop_back();
-        std::size_t start = 0;
-        while (start < line.size() && std::isspace(static_cast<unsigned char>(line[start])))
-            ++start;
-        line = line.substr(start);
-        if (line.empty() || line[0] == '#') continue;
-        if (!fs::is_regular_file(line, ec))
-            throw invalid_field("--batch", line, "listed in " + list_or_dir + ": no such file");
-        paths.push_back(line);
-    }
-    if (paths.empty()) throw invalid_field("--batch", list_or_dir, "the list names no capture");
-    return paths;
-}
-
 void run_decode_batch(const DecodeRequest& r, const BatchRequest& b, BayerMode bayer,
                       RankComm& comm) {
     // Set-up: the same on every rank (same files, same flags), before any work.
@@ -149,7 +111,7 @@ void run_decode_batch(const DecodeRequest& r, const BatchRequest& b, BayerMode b
     const std::string ext = lower(b.format);
     if (ext != "tiff" && ext != "png" && ext != "npy")
         throw invalid_field("--batch-format", b.format, "must be tiff, png or npy");
-    const std::vector<std::string> inputs = batch_inputs(b.list);
+    const std::vector<std::string> inputs = io::capture_list(b.list);
     std::vector<DecodeRequest> requests;
     std::map<std::string, std::string> by_stem;
     std::vector<NamedPath> in_paths = {

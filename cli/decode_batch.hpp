@@ -1,10 +1,9 @@
 // `pinmask decode --batch LIST_OR_DIR -o DIR` (issue 17): many captures, one PSF, the same
-// flags. The inputs: a directory (its .tif/.tiff/.png/.npy files, sorted by name) or a text
-// file of paths, one a line (blank lines and lines starting with '#' skipped; relative paths
-// are relative to the current directory). For each capture DIR/STEM.EXT (EXT from
-// --batch-format), DIR/STEM.EXT.config.json and with --batch-stats DIR/STEM.stats.json, the
-// same files `pinmask decode CAPTURE -o DIR/STEM.EXT` writes; DIR/batch-summary.json lists every
-// capture in input order (deterministic: no timings, no rank count).
+// flags. The inputs: io/capture_list (a directory or a list file). For each capture
+// DIR/STEM.EXT (EXT from --batch-format), DIR/STEM.EXT.config.json and with --batch-stats
+// DIR/STEM.stats.json, the same files `pinmask decode CAPTURE -o DIR/STEM.EXT` writes;
+// DIR/batch-summary.json lists every capture in input order (deterministic: no timings, no rank
+// count).
 //
 // Ranks (RankComm): capture i is decoded by rank i % size; each rank stages its own files, rank 0
 // gathers the per-capture results and stages the summary, and every rank commits only when no
@@ -25,10 +24,6 @@ struct BatchRequest {
     std::string format = "tiff";  // --batch-format: tiff | png | npy
     bool stats = false;           // --batch-stats
 };
-
-// The capture paths of --batch, in order. InvalidInput naming --batch for a missing path, an
-// empty directory or list, or a listed file that does not exist.
-std::vector<std::string> batch_inputs(const std::string& list_or_dir);
 
 // Thrown on ranks other than 0 when the batch failed on some rank: rank 0 reports the error,
 // the others leave with `code` after their staged files are discarded.

@@ -1,0 +1,58 @@
+#include "io/capture_list.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.hpp"
+
+namespace pinmask::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool capture_extension(const fs::path& p) {
+    std::string e = p.extension().string();
+    for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return e == ".tif" || e == ".tiff" || e == ".png" || e == ".npy";
+}
+
+std::string trimmed(const std::string& line) {
+    std::size_t start = 0, end = line.size();
+    while (start < end && std::isspace(static_cast<unsigned char>(line[start]))) ++start;
+    while (end > start && std::isspace(static_cast<unsigned char>(line[end - 1]))) --end;
+    return line.substr(start, end - start);
+}
+
+}  // namespace
+
+std::vector<std::string> capture_list(const std::string& list_or_dir) {
+    std::error_code ec;
+    if (list_or_dir.empty() || !fs::exists(list_or_dir, ec))
+        throw invalid_field("--batch", list_or_dir, "no such directory or list file");
+    std::vector<std::string> paths;
+    if (fs::is_directory(list_or_dir, ec)) {
+        for (const auto& e : fs::directory_iterator(list_or_dir))
+            if (e.is_regular_file() && capture_extension(e.path()))
+                paths.push_back(e.path().string());
+        std::sort(paths.begin(), paths.end());
+        if (paths.empty())
+            throw invalid_field("--batch", list_or_dir,
+                                "the directory holds no capture (.tif, .tiff, .png, .npy)");
+        return paths;
+    }
+    std::ifstream in(list_or_dir);
+    if (!in) throw invalid_field("--batch", list_or_dir, "cannot be read");
+    for (std::string raw; std::getline(in, raw);) {
+        const std::string line = trimmed(raw);
+        if (line.empty() || line[0] == '#') continue;
+        if (!fs::is_regular_file(line, ec))
+            throw invalid_field("--batch", line, "listed in " + list_or_dir + ": no such file");
+        paths.push_back(line);
+    }
+    if (paths.empty()) throw invalid_field("--batch", list_or_dir, "the list names no capture");
+    return paths;
+}
+
+}  // namespace pinmask::io
