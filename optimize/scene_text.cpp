@@ -22,6 +22,9 @@ struct SurfaceDeleter {
 struct ContextDeleter {
     void operator()(cairo_t* c) const { cairo_destroy(c); }
 };
+struct FontOptionsDeleter {
+    void operator()(cairo_font_options_t* o) const { cairo_font_options_destroy(o); }
+};
 
 constexpr int kTextLines = 8;  // lines per frame height
 constexpr double kStarPixelsPerStar = 200.0;
@@ -47,6 +50,15 @@ Plane text_scene(int rows, int cols, std::uint64_t seed) {
     const double line = static_cast<double>(rows) / kTextLines;
     cairo_select_font_face(cr.get(), "sans-serif", CAIRO_FONT_SLANT_NORMAL,
                            CAIRO_FONT_WEIGHT_NORMAL);
+    // Every font option set explicitly: left at their defaults, hinting and metrics are resolved
+    // from whatever Cairo drew first in the process (a PDF report turns metric hinting off), so
+    // the same seed drew other pages after a report.
+    std::unique_ptr<cairo_font_options_t, FontOptionsDeleter> options(cairo_font_options_create());
+    cairo_font_options_set_antialias(options.get(), CAIRO_ANTIALIAS_GRAY);
+    cairo_font_options_set_hint_style(options.get(), CAIRO_HINT_STYLE_NONE);
+    cairo_font_options_set_hint_metrics(options.get(), CAIRO_HINT_METRICS_OFF);
+    cairo_font_options_set_subpixel_order(options.get(), CAIRO_SUBPIXEL_ORDER_DEFAULT);
+    cairo_set_font_options(cr.get(), options.get());
     cairo_set_font_size(cr.get(), 0.8 * line);
     cairo_set_source_rgba(cr.get(), 0, 0, 0, 1);
     std::mt19937_64 rng(seed);

@@ -95,9 +95,8 @@ def test_metrics_text_prior_equals_cli_compare(cli, tmp_path, mask7):
     assert_rows_equal(row, j["masks"][0], ["snr20", "snr40"])
 
 
-@pytest.mark.xfail(strict=True, reason="known bug (README Not done): optimize/scene_text's Cairo "
-                   "toy font resolves its hinting on first use, so text scenes drawn after any "
-                   "Cairo text (a compare report) differ within one process")
+# The text prior draws the same pages whatever Cairo drew before in the process (a report
+# turns metric hinting off; optimize/scene_text sets every font option itself).
 def test_text_prior_same_after_a_report(tmp_path):
     import subprocess
     import sys
