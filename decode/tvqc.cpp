@@ -300,7 +300,8 @@ void pdhg(const ConvolutionOperator& op, const Plane& capture, const TvqcOptions
             // Per pixel, no reduction (so the row loop vectorises): the squared dual residual
             // (y_old - y_new) / sigma - grad (x_old - x_new) and |grad x_new| go to row buffers,
             // summed in double below.
-            auto point = [&](Eigen::Index i, Eigen::Index rt, int c) {
+            // with_tv: std::true_type when the records need TV (a second sqrt per pixel).
+            auto point = [&](Eigen::Index i, Eigen::Index rt, int c, auto with_tv) {
                 const Eigen::Index dn = i + od;
                 const T gr = xq[dn] - xq[i], gc = xq[rt] - xq[i];
                 const T sr = dq[dn] - dq[i], sc = dq[rt] - dq[i];  // grad of the step
@@ -312,10 +313,17 @@ void pdhg(const ConvolutionOperator& op, const Plane& capture, const TvqcOptions
                 ycq[i] = nc;
                 const T er = (yro - nr) * inv_s - sr, ec = (yco - nc) * inv_s - sc;
                 eq[c] = er * er + ec * ec;
-                tq[c] = std::sqrt(gr * gr + gc * gc);
+                if constexpr (decltype(with_tv)::value) tq[c] = std::sqrt(gr * gr + gc * gc);
             };
-            for (int c = 0; c + 1 < W; ++c) point(o0 + c, o0 + c + 1, c);
-            point(o0 + W - 1, o0, W - 1);
+            auto row = [&](auto with_tv) {
+                for (int c = 0; c + 1 < W; ++c) point(o0 + c, o0 + c + 1, c, with_tv);
+                point(o0 + W - 1, o0, W - 1, with_tv);
+            };
+            if (want_tv) {
+                row(std::true_type{});
+            } else {
+                row(std::false_type{});
+            }
             if (want_dres) d2 += row_sum(row_e, W);
             if (want_tv) tv += row_sum(row_tv, W);
         };
