@@ -331,11 +331,22 @@ std::vector<DecodeBenchRecord> bench_decode(const DecodeBenchOptions& o) {
                 qc.tolerance = 0.0;
                 solve_tvqc(op, p, qc);
             }));
+        qc.single_precision = true;
+        add("tvqc_iteration_single", per_iteration([&](int iters) {
+                qc.max_iterations = iters;
+                qc.tolerance = 0.0;
+                solve_tvqc(op, p, qc);
+            }));
 
         RichardsonLucyOptions rl;
         rl.tolerance = 0.0;
         rl.record_history = false;
         add("rl_iteration", per_iteration([&](int iters) {
+                rl.max_iterations = iters;
+                solve_richardson_lucy(op, psf, p, rl);
+            }));
+        rl.single_precision = true;
+        add("rl_iteration_single", per_iteration([&](int iters) {
                 rl.max_iterations = iters;
                 solve_richardson_lucy(op, psf, p, rl);
             }));

@@ -16,6 +16,9 @@
 //   tv_l2_iteration   one ADMM iteration of solve_tv_l2: (time of 1 + m iterations - time of 1) / m
 //   tvqc_to_tolerance a whole solve_tvqc run at tolerance 1e-4 (eps from the noise level), capped
 //                     at tvqc_max_iterations, timed once; its iteration count is reported
+//   tvqc_iteration    one TVQC iteration, measured like tv_l2_iteration (the first 1 + m include
+//                     the step balance's adaptation)
+//   tvqc_iteration_single, rl_iteration_single  the same in float32
 //   rl_iteration      one Richardson-Lucy iteration, measured like tv_l2_iteration
 // Each other figure is the minimum over `repeat` timed batches of the per-call time (batches last
 // at least min_batch_seconds): the minimum is the figure least disturbed by other load.

@@ -48,6 +48,7 @@ struct SimulateOptions {
     bool json = false;
     bool explain = false;
     int threads = 0;  // FFTW threads for >= 512 x 512 transforms; 0: all cores
+    std::string precision = "auto";
 };
 
 // The noise model from the flags; `notes` gets a line per noise stage that is not applied.
@@ -94,6 +95,7 @@ void run(const SimulateOptions& o, const CLI::App& cmd) {
                         o.sensor_flags.read_noise.has_value(), o.sensor_flags.full_well.has_value(),
                         o.sensor_flags.bits.has_value()};
     sim.seed = o.seed;
+    sim.precision = parse_precision(o.precision, "--precision");
     sim.dark_frame = !o.dark_frame.empty();
     if (sim.dark_frame && sim.noise.kind != NoiseKind::kPhoton) {
         throw invalid_field("--dark-frame", o.dark_frame,
@@ -109,10 +111,6 @@ void run(const SimulateOptions& o, const CLI::App& cmd) {
     if (o.full_sensor && o.sensor) po.sensor = parse_size(*o.sensor, "--sensor");
     po.exact_geometry = o.geometry == "exact";
     if (po.exact_geometry) {
-        if (o.full_sensor || o.sensor) {
-            throw invalid_field(o.full_sensor ? "--full-sensor" : "--sensor", "given",
-                                "--geometry exact always covers the sensor (or --size ROWSxCOLS)");
-        }
         if (o.object_distance) {
             po.object_distance_m =
                 parse_length_m(*o.object_distance, "--object-distance", AllowInfinity::kYes);
@@ -232,6 +230,11 @@ void setup(CLI::App& app) {
                     "FFTW threads for transforms of >= 512 x 512 (default: all cores); the "
                     "capture does not depend on it")
         ->check(CLI::Range(1, 1024));
+    cmd->add_option("--precision", o->precision,
+                    "auto (float32 from a 256 x 256 convolution grid) | single | double: the "
+                    "convolution's precision (noise is always drawn in double)")
+        ->check(CLI::IsMember(name_list(kPrecisionNames)))
+        ->capture_default_str();
     cmd->add_flag("--allow-violations", o->allow_violations,
                   "Read a mask whose pinholes break its spacing rule");
     cmd->add_flag("--json", o->json, "Print a JSON summary on stdout");

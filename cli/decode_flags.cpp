@@ -16,8 +16,9 @@ holds fewer than two periods along an axis).
 Flags of one method only (--nsr: wiener; --lambda: tikhonov, tv; --regulariser: tikhonov;
 --eps, --noise-sigma: tvqc; --nonneg: tv, tvqc; --iters, --tol: tv, tvqc, richardson-lucy) are
 refused with another method.
-Precision: auto uses float32 (FFTW float) for wiener, tikhonov and tv from 256 x 256 decoded
-pixels on, double below (tvqc and richardson-lucy always double).
+Precision: auto uses float32 (FFTW float) for every method from 256 x 256 decoded pixels on,
+double below; a PSF whose values cancel beyond float32's range runs in double (auto, with a
+note in --explain) or is refused (single).
 Scale: every solver works on the capture divided by its largest magnitude and scales back, so
 the result does not depend on the capture's units. A TVQC run that ends without meeting
 ||Ax - p||_2 <= eps still writes its estimate, exit 0, with a warning on stderr and
@@ -122,8 +123,8 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeRequest& o) {
         ->check(CLI::IsMember(name_list(kNormalizeModeNames)))
         ->capture_default_str();
     cmd.add_option("--precision", o.precision,
-                   "auto (float32 from 256 x 256 decoded pixels for wiener, tikhonov, tv) | "
-                   "single | double")
+                   "auto (float32 from 256 x 256 decoded pixels, every method) | single | "
+                   "double")
         ->check(CLI::IsMember(name_list(kPrecisionNames)))
         ->capture_default_str();
     cmd.add_option("--threads", o.threads,

@@ -51,6 +51,7 @@ ordered_json simulate_config_json(const SimulateConfigInputs& in, const Mask& ma
           {"whole_period_on_sensor", s.whole_period_on_sensor}}},
         {"noise", noise_json(po.sim.noise)},
         {"seed", in.seed},
+        {"precision", sum.single_precision ? "single" : "double"},
         {"units", po.sim.noise.kind == NoiseKind::kPhoton
                       ? "electrons / (photons_per_pinhole * holes); a uniform noiseless scene "
                         "of value v gives v plus the background"

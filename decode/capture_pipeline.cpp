@@ -10,6 +10,7 @@
 #include "core/fft.hpp"
 #include "decode/convolution.hpp"
 #include "decode/decode_method.hpp"
+#include "decode/precision.hpp"
 #include "decode/preprocess.hpp"
 
 namespace pinmask {
@@ -139,12 +140,20 @@ CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOp
 
     // Precision and threads.
     DecodeOptions d = o.decode;
-    const bool can_single = d.method == DecodeMethod::kWiener ||
-                            d.method == DecodeMethod::kTikhonov || d.method == DecodeMethod::kTv;
     const long long pixels = static_cast<long long>(s.decoded_rows) * s.decoded_cols;
-    s.single_precision =
-        can_single && (o.precision == Precision::kSingle ||
-                       (o.precision == Precision::kAuto && pixels >= kSinglePrecisionMinPixels));
+    const bool want_single =
+        o.precision == Precision::kSingle ||
+        (o.precision == Precision::kAuto && pixels >= kSinglePrecisionMinPixels);
+    std::string float_problem;  // a PSF that float32 cannot hold (decode/precision.hpp)
+    for (const Plane& p : psf.channels) {
+        if (want_single && float_problem.empty()) float_problem = single_precision_problem(p);
+    }
+    if (!float_problem.empty()) {
+        if (o.precision == Precision::kSingle)
+            throw invalid_field("precision", "single", float_problem + "; use double or auto");
+        s.notes.push_back("precision: double instead of float32: " + float_problem);
+    }
+    s.single_precision = want_single && float_problem.empty();
     d.single_precision = s.single_precision;
     if (o.threads > 0) {
         set_fft_threads(o.threads);

@@ -6,8 +6,11 @@
 // Units: with normalize kNone the PSF is scaled to unit sum and the estimate is in capture
 // counts; with kL2 the capture window and the PSF are each divided by their L2 norm (the
 // DiffuserCam tutorial's preprocessing, decode/preprocess.hpp).
-// Precision (kAuto): float32 for wiener, tikhonov and tv when the decoded window has at least
-// kSinglePrecisionMinPixels pixels, double otherwise (tvqc and richardson-lucy: always double).
+// Precision (kAuto): float32 for every method when the decoded window has at least
+// kSinglePrecisionMinPixels pixels, double otherwise. A PSF that float32 cannot hold
+// (single_precision_problem, decode/precision.hpp: values that cancel) runs in double under kAuto
+// (a note says why) and is refused under kSingle (InvalidInput, field "precision"). Captures of
+// any magnitude are safe: the solvers divide them by their largest magnitude first.
 // Threads: FFTW threads for transforms of >= 512 x 512 (core/fft.hpp) and one thread per channel.
 #pragma once
 
@@ -20,14 +23,13 @@
 #include "decode/decode_modes.hpp"
 #include "decode/decoder.hpp"
 #include "decode/period.hpp"
+#include "decode/precision.hpp"
 
 namespace pinmask {
 
 // BackgroundMode, NormalizeMode, Precision and their names: decode/decode_modes.hpp.
 
-// 256 x 256: from here on float32 pays (bench decode) and its error stays below the bound of
-// tests/decode/test_precision.cpp.
-inline constexpr long long kSinglePrecisionMinPixels = 256LL * 256LL;
+// kSinglePrecisionMinPixels (256 x 256, the rule of --precision auto): decode/precision.hpp.
 
 struct CaptureDecodeOptions {
     CropSpec crop{};  // kCenter: the period centred in the frame

@@ -147,6 +147,7 @@ DecodeResult decode_iterative(const Plane& capture, const Plane& psf, const Deco
             TvqcOptions t;
             copy_iterative(o.iterative, t);
             t.nonnegative = o.tvqc.nonnegative;
+            t.single_precision = o.single_precision;
             // TvqcParams::validate guarantees exactly one of eps and noise_sigma.
             t.eps =
                 o.tvqc.eps ? *o.tvqc.eps : tvqc_eps_from_sigma(*o.tvqc.noise_sigma, capture.size());
@@ -156,6 +157,7 @@ DecodeResult decode_iterative(const Plane& capture, const Plane& psf, const Deco
         case DecodeMethod::kRichardsonLucy: {
             RichardsonLucyOptions t;
             copy_iterative(o.iterative, t);
+            t.single_precision = o.single_precision;
             r = solve_richardson_lucy(op, psf, capture, t, warm);
             break;
         }

@@ -80,8 +80,8 @@ struct TvqcParams {
 struct DecodeOptions {
     DecodeMethod method = DecodeMethod::kWiener;
     ConvModel model = ConvModel::kCyclic;
-    // wiener, tikhonov and tv: transforms and iterates in float32 (FFTW float). tvqc and
-    // richardson-lucy always run in double. Tolerances: tests/decode/test_precision.cpp.
+    // Every method: transforms and iterates in float32 (FFTW float); set-up, sums and the
+    // reported residual and objective stay in double. Tolerances: tests/decode/test_precision.cpp.
     bool single_precision = false;
     IterativeParams iterative;
     WienerParams wiener;

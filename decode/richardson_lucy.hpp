@@ -8,7 +8,10 @@
 // reproduces the capture's mean for the cyclic model). A pixel that reaches 0 stays 0.
 // Records: objective is the I-divergence sum(p log(p / A x) - p + A x) (0 log 0 = 0), which RL
 // does not increase (it is the EM algorithm for this likelihood); residual ||A x - p||_2.
-// Cost per iteration: two FFT pairs.
+// Cost per iteration: two FFT pairs, and two fused pointwise passes (the ratio, the update).
+// Precision: single_precision runs the iteration in float32 (FFTW float) on the operator H / H(0)
+// and the iterate H(0) x (the update is invariant under that scaling; it keeps float32 values near
+// 1 for a PSF of any scale); the start, the sums and the records are in double.
 #pragma once
 
 #include "decode/convolution.hpp"
@@ -20,7 +23,9 @@ namespace pinmask {
 // Relative floor of the divisions of Richardson-Lucy.
 inline constexpr double kRlTiny = 1e-12;
 
-struct RichardsonLucyOptions : IterativeOptions {};
+struct RichardsonLucyOptions : IterativeOptions {
+    bool single_precision = false;  // iterate in float32 (FFTW float); see the header comment
+};
 
 // Runs RL; result.image is x (>= 0) on the operator's working grid. Throws InvalidInput for a PSF
 // with negative values (pass the PSF the operator was built from) or bad options.

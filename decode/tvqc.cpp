@@ -4,9 +4,11 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <type_traits>
 
 #include "core/error.hpp"
 #include "decode/gradient.hpp"
+#include "decode/precision.hpp"
 
 namespace pinmask {
 namespace {
@@ -24,15 +26,6 @@ constexpr double kPinvRelThreshold = 1e-10;
 constexpr double kStepSafety = 0.99;
 
 double norm2(const Plane& a) { return std::sqrt(a.square().sum()); }
-
-// sum_k |S_k|^2 over the full spectrum of a real plane with `cols` columns, from its half
-// spectrum (columns 1 .. ceil(cols / 2) - 1 stand for two columns each).
-double half_spectrum_energy(const ComplexPlane& half, int cols) {
-    const Eigen::Index hc = half.cols();
-    double e = 2.0 * half.abs2().sum() - half.col(0).abs2().sum();
-    if (cols % 2 == 0 && hc > 1) e -= half.col(hc - 1).abs2().sum();
-    return e;
-}
 
 // Smallest t in [0, 1] with ||r + t d|| <= eps, or the t in [0, 1] minimising ||r + t d||.
 double feasibility_step(const Plane& r, const Plane& d, double eps) {
@@ -112,6 +105,319 @@ FeasiblePoint smooth_feasible_point(const ConvolutionOperator& op, const Plane& 
     return best;
 }
 
+// Block weights: beta for A (beta = sqrt(8) / rms|H| puts the typical gain of beta A at the
+// gradient's bound sqrt 8, so the two dual blocks have comparable scales; the preconditioner
+// makes convergence hold for any beta, this choice makes it fast), gamma for I.
+double tvqc_beta(const ComplexPlane& H) {
+    return std::sqrt(8.0) / std::sqrt(std::max(H.abs2().mean(), 1e-300));
+}
+
+// The iteration in precision T from x (working grid, double, updated in place), fused loops on
+// raw arrays (see the header): per iteration two forward transforms, one spectral pass, two
+// inverse transforms, one pass over the working grid and two over the capture window. The data
+// block is held as beta A x and beta p (beta H has rms sqrt 8: float-safe whatever the PSF's
+// scale). Every buffer is allocated before the first iteration; sums are in double.
+template <class T>
+void pdhg(const ConvolutionOperator& op, const Plane& capture, const TvqcOptions& o, double p_norm,
+          Plane& x_io, DecodeResult& r, const SolverClock& clock) {
+    using Types = PrecisionTypes<T>;
+    using P = typename Types::Plane;
+    using S = typename Types::Spectrum;
+    using Cx = std::complex<T>;
+    const ConvGeometry& g = op.geometry();
+    const int R = g.work_rows, W = g.work_cols, hc = W / 2 + 1;
+    const int cr = g.crop_row, cc = g.crop_col, pr = g.capture_rows, pc = g.capture_cols;
+    const bool linear = g.model == ConvModel::kLinear;
+    const bool nn = o.nonnegative;
+    const double eps = o.eps;
+    const typename Types::Fft fft(R, W);
+    const ComplexPlane& H = op.otf();
+    const double beta = tvqc_beta(H);
+    const double gamma = nn ? 1.0 : 0.0;
+    const double radius = beta * eps;
+    const Plane ax0 = op.apply(x_io);
+    if (!std::is_same_v<T, double>) {
+        const double mag = std::max(
+            {beta * capture.abs().maxCoeff(), beta * ax0.abs().maxCoeff(), x_io.abs().maxCoeff()});
+        if (!fits_single_precision(mag)) {
+            throw invalid_field("single_precision", "true",
+                                "TVQC's iterates reach " + std::to_string(mag) +
+                                    ", beyond float32's safe range: run it in double");
+        }
+    }
+
+    // Spectral constants with the inverse transform's 1/N folded in: M^-1 / N and beta H.
+    // M = grad^T grad + beta^2 |H|^2 + gamma^2 >= K^T K (C^T C <= I), so ||K M^-1/2|| <= 1.
+    const double inv_n = 1.0 / (static_cast<double>(R) * W);
+    const Plane gram = gradient_gram_symbol(R, W);
+    const Eigen::Index nh = Eigen::Index(R) * hc;
+    P m_inv(R, hc);
+    S bh(R, hc);
+    for (Eigen::Index i = 0; i < nh; ++i) {
+        const std::complex<double> h = H.data()[i];
+        const double m =
+            1.0 / std::max(gram.data()[i] + beta * beta * std::norm(h) + gamma * gamma, 1e-300);
+        m_inv.data()[i] =
+            static_cast<T>(std::min(m * inv_n, double(std::numeric_limits<T>::max())));
+        bh.data()[i] = Cx(beta * h);
+    }
+
+    P x = x_io.cast<T>();
+    P dx(R, W), aw(R, W), kty = P::Zero(R, W);  // kty = grad^T y1 + gamma y_w (spatial K^T y)
+    P yr = P::Zero(R, W), yc = P::Zero(R, W), yw;
+    if (nn) yw = P::Zero(R, W);
+    P bax = (beta * ax0).cast<T>(), bp = (beta * capture).cast<T>(), yq = P::Zero(pr, pc);
+    P pad;
+    if (linear) pad = P::Zero(R, W);
+    S spec(R, hc), spec2(R, hc), spec3(R, hc);
+    // Row buffers of the per-pixel terms of the sums: the loops store them (no reduction, so
+    // they vectorise) and Eigen sums each row in double (its vectorised reduction).
+    using Row = Eigen::Array<T, Eigen::Dynamic, 1>;
+    const int row_len = std::max(W, pc);
+    Row row_e(row_len), row_tv(row_len), row_a(row_len), row_b(row_len);
+    auto row_sum = [](const Row& row, int len) {
+        return row.head(len).template cast<double>().sum();
+    };
+    T* const xp = x.data();
+    T* const dp = dx.data();
+    T* const yrp = yr.data();
+    T* const ycp = yc.data();
+    T* const ywp = nn ? yw.data() : nullptr;
+    T* const kp = kty.data();
+
+    double tau = kStepSafety, sigma = kStepSafety, alpha = kAlpha0;
+    double dres_prev = -1.0;  // dual residual of the previous iteration (< 0: none yet)
+    auto relative_residual = [&](double res) {
+        return eps > 0.0 ? res / eps : (p_norm > 0.0 ? res / p_norm : res);
+    };
+    r.converged = false;
+    for (int k = 1; k <= o.max_iterations; ++k) {
+        // F[K^T y] = F[grad^T y1 + gamma y_w] + conj(beta H) F[C^T y_q].
+        fft.forward(kty, spec2);
+        if (linear) {
+            pad.block(cr, cc, pr, pc) = yq;
+            fft.forward(pad, spec);
+        } else {
+            fft.forward(yq, spec);
+        }
+        // One spectral pass: K^T y, its energy for the step balance (Parseval, half spectrum
+        // with multiplicity), M^-1 K^T y / N and beta H M^-1 K^T y / N.
+        const bool adapt = alpha > kAlphaStop && dres_prev >= 0.0;
+        double energy = 0.0;
+        for (int kr = 0; kr < R; ++kr) {
+            T* __restrict eq = row_e.data();
+            for (int l = 0; l < hc; ++l) {
+                const Eigen::Index i = Eigen::Index(kr) * hc + l;
+                // Complex products written out: std::complex's operator* calls __muldc3 (the
+                // C99 Inf/NaN rules), which costs more than the rest of the pass.
+                const T br = bh.data()[i].real(), bi = bh.data()[i].imag();
+                const T sr = spec.data()[i].real(), si = spec.data()[i].imag();
+                const T ktr = br * sr + bi * si + spec2.data()[i].real();  // conj(b) s + K1^T y
+                const T kti = br * si - bi * sr + spec2.data()[i].imag();
+                eq[l] = ktr * ktr + kti * kti;
+                const T m = m_inv.data()[i];
+                const T qr = ktr * m, qi = kti * m;
+                spec2.data()[i] = Cx(qr, qi);
+                spec3.data()[i] = Cx(qr * br - qi * bi, qr * bi + qi * br);
+            }
+            if (adapt) {  // Parseval on the half spectrum: columns 1 .. ceil(W / 2) - 1 twice
+                energy += 2.0 * row_sum(row_e, hc) - double(eq[0]);
+                if (W % 2 == 0 && hc > 1) energy -= double(eq[hc - 1]);
+            }
+        }
+        // Adaptive balance of tau and sigma (product constant), Goldstein et al.: the primal
+        // residual is K^T y (G = 0), the dual residual comes from the previous dual step.
+        if (adapt) {
+            const double pres = std::sqrt(energy * inv_n);
+            if (pres > kDelta * dres_prev) {
+                tau /= 1.0 - alpha;
+                sigma *= 1.0 - alpha;
+                alpha *= kEta;
+            } else if (pres < dres_prev / kDelta) {
+                tau *= 1.0 - alpha;
+                sigma /= 1.0 - alpha;
+                alpha *= kEta;
+            }
+        }
+        fft.inverse_unscaled_destroy(spec2, dx);  // M^-1 K^T y
+        fft.inverse_unscaled_destroy(spec3, aw);  // beta H M^-1 K^T y (before the crop)
+
+        const T tt = static_cast<T>(tau), st = static_cast<T>(sigma), gt = static_cast<T>(gamma);
+        const T inv_s = T(1) / st;
+        // The dual residual feeds the step balance only while it adapts; the change only a
+        // tolerance > 0; alpha never grows, so a skipped sum is never needed later.
+        const bool want_dres = alpha > kAlphaStop;
+        const bool want_change = o.tolerance > 0.0;
+        double xn2 = 0.0, step2 = 0.0, d2 = 0.0, neg2 = 0.0, tv = 0.0;
+        const bool want_tv = o.record_history;
+        // Primal step of row rr: x <- x - tau dx, dx <- the step d; the non-negativity block.
+        auto x_row = [&](int rr) {
+            T* __restrict xq = xp;
+            T* __restrict dq = dp;
+            const Eigen::Index o0 = Eigen::Index(rr) * W;
+            T* __restrict aq = row_a.data();
+            T* __restrict bq = row_b.data();
+            for (int c = 0; c < W; ++c) {
+                const Eigen::Index i = o0 + c;
+                const T d = tt * dq[i];
+                const T xn = xq[i] - d;
+                xq[i] = xn;
+                dq[i] = d;
+                aq[c] = xn * xn;
+                bq[c] = d * d;
+            }
+            if (want_change) {
+                xn2 += row_sum(row_a, W);
+                step2 += row_sum(row_b, W);
+            }
+            if (!nn) return;
+            T* __restrict wq = ywp;
+            for (int c = 0; c < W; ++c) {
+                const Eigen::Index i = o0 + c;
+                const T xn = xq[i], d = dq[i], ywo = wq[i];
+                const T ywn = std::min(T(0), ywo + st * gt * (xn - d));  // at xbar = x_new - d
+                const T e = (ywo - ywn) * inv_s - gt * d;
+                aq[c] = e * e;
+                wq[i] = ywn;
+                const T neg = std::min(xn, T(0));
+                bq[c] = neg * neg;
+            }
+            if (want_dres) d2 += row_sum(row_a, W);
+            neg2 += row_sum(row_b, W);
+        };
+        // Dual step of the gradient block, row rr (rows rr and rr + 1 of x final): y1 <- the
+        // projection on the unit ball of y1 + sigma grad xbar, xbar = x_new - d. The last column
+        // (periodic neighbour) apart, so the row loop has no wrap-around index.
+        auto dual_row = [&](int rr) {
+            const T* __restrict xq = xp;
+            const T* __restrict dq = dp;
+            T* __restrict yrq = yrp;
+            T* __restrict ycq = ycp;
+            const Eigen::Index o0 = Eigen::Index(rr) * W;
+            const Eigen::Index od = Eigen::Index(rr + 1 < R ? rr + 1 : 0) * W - o0;
+            T* __restrict eq = row_e.data();
+            T* __restrict tq = row_tv.data();
+            // Per pixel, no reduction (so the row loop vectorises): the squared dual residual
+            // (y_old - y_new) / sigma - grad (x_old - x_new) and |grad x_new| go to row buffers,
+            // summed in double below.
+            // with_tv: std::true_type when the records need TV (a second sqrt per pixel).
+            auto point = [&](Eigen::Index i, Eigen::Index rt, int c, auto with_tv) {
+                const Eigen::Index dn = i + od;
+                const T gr = xq[dn] - xq[i], gc = xq[rt] - xq[i];
+                const T sr = dq[dn] - dq[i], sc = dq[rt] - dq[i];  // grad of the step
+                const T yro = yrq[i], yco = ycq[i];
+                const T ar = yro + st * (gr - sr), ac = yco + st * (gc - sc);
+                const T f = T(1) / std::max(T(1), std::sqrt(ar * ar + ac * ac));
+                const T nr = ar * f, nc = ac * f;
+                yrq[i] = nr;
+                ycq[i] = nc;
+                const T er = (yro - nr) * inv_s - sr, ec = (yco - nc) * inv_s - sc;
+                eq[c] = er * er + ec * ec;
+                if constexpr (decltype(with_tv)::value) tq[c] = std::sqrt(gr * gr + gc * gc);
+            };
+            auto row = [&](auto with_tv) {
+                for (int c = 0; c + 1 < W; ++c) point(o0 + c, o0 + c + 1, c, with_tv);
+                point(o0 + W - 1, o0, W - 1, with_tv);
+            };
+            if (want_tv) {
+                row(std::true_type{});
+            } else {
+                row(std::false_type{});
+            }
+            if (want_dres) d2 += row_sum(row_e, W);
+            if (want_tv) tv += row_sum(row_tv, W);
+        };
+        // K^T y of row rr (rows rr - 1 and rr of y1 final): -div y1 + gamma y_w.
+        auto kty_row = [&](int rr) {
+            const T* __restrict yrq = yrp;
+            const T* __restrict ycq = ycp;
+            T* __restrict kq = kp;
+            const Eigen::Index o0 = Eigen::Index(rr) * W;
+            const Eigen::Index up = Eigen::Index(rr > 0 ? rr - 1 : R - 1) * W - o0;
+            kq[o0] = yrq[o0 + up] - yrq[o0] + ycq[o0 + W - 1] - ycq[o0];
+            for (Eigen::Index i = o0 + 1; i < o0 + W; ++i)
+                kq[i] = yrq[i + up] - yrq[i] + ycq[i - 1] - ycq[i];
+            if (nn) {
+                for (Eigen::Index i = o0; i < o0 + W; ++i) kq[i] += gt * ywp[i];
+            }
+        };
+        for (int rr = 0; rr < R; ++rr) {
+            x_row(rr);
+            if (rr >= 1) dual_row(rr - 1);
+            if (rr >= 2) kty_row(rr - 1);
+        }
+        dual_row(R - 1);
+        if (R > 1) kty_row(R - 1);
+        kty_row(0);
+
+        // The data block in two passes over the capture window: beta A x_new and the norms of
+        // v / sigma - beta p (v = y_q + sigma beta A xbar) and of the residual; then y_q <- v -
+        // sigma proj_B(v / sigma) = (1 - min(1, radius / |z|)) (v - sigma beta p).
+        double zn2 = 0.0, res2 = 0.0;
+        for (int i = 0; i < pr; ++i) {
+            const T* __restrict wrow = aw.data() + Eigen::Index(cr + i) * W + cc;
+            T* __restrict ba = bax.data() + Eigen::Index(i) * pc;
+            const T* __restrict b = bp.data() + Eigen::Index(i) * pc;
+            const T* __restrict q = yq.data() + Eigen::Index(i) * pc;
+            T* __restrict aq = row_a.data();
+            T* __restrict bq = row_b.data();
+            for (int c = 0; c < pc; ++c) {
+                const T t = tt * wrow[c];
+                const T ban = ba[c] - t;
+                ba[c] = ban;
+                const T z = q[c] * inv_s + (ban - t) - b[c];
+                const T e = ban - b[c];
+                aq[c] = z * z;
+                bq[c] = e * e;
+            }
+            zn2 += row_sum(row_a, pc);
+            res2 += row_sum(row_b, pc);
+        }
+        const double zn = std::sqrt(zn2);
+        const T keep = static_cast<T>(zn > radius ? 1.0 - radius / zn : 0.0);
+        double q2 = 0.0;
+        for (int i = 0; i < pr; ++i) {
+            const T* __restrict wrow = aw.data() + Eigen::Index(cr + i) * W + cc;
+            const T* __restrict ba = bax.data() + Eigen::Index(i) * pc;
+            const T* __restrict b = bp.data() + Eigen::Index(i) * pc;
+            T* __restrict q = yq.data() + Eigen::Index(i) * pc;
+            T* __restrict aq = row_a.data();
+            for (int c = 0; c < pc; ++c) {
+                const T t = tt * wrow[c];
+                const T v = q[c] + st * (ba[c] - t);
+                const T qn = keep * (v - st * b[c]);
+                const T e = (q[c] - qn) * inv_s - t;
+                aq[c] = e * e;
+                q[c] = qn;
+            }
+            if (want_dres) q2 += row_sum(row_a, pc);
+        }
+        dres_prev = std::sqrt(d2 + q2);
+
+        // tolerance 0 never stops on the change (its sums are skipped), as a nonzero step never
+        // met change <= 0.
+        const double change = !want_change   ? std::numeric_limits<double>::infinity()
+                              : step2 == 0.0 ? 0.0
+                                             : std::sqrt(step2 / xn2);
+        const double res = std::sqrt(res2) / beta;
+        const double viol = std::max(res - eps, 0.0) + (nn ? std::sqrt(neg2) : 0.0);
+        r.iterations = k;
+        if (o.record_history) {
+            IterationRecord rec;
+            rec.iteration = k;
+            rec.objective = tv;
+            rec.residual = relative_residual(res);
+            rec.seconds = clock.seconds();
+            r.history.push_back(rec);
+        }
+        // k >= 2: the first primal step starts from y = 0 and does not move x.
+        const bool converged =
+            k >= 2 && change <= o.tolerance && viol <= o.tolerance * std::max(eps, p_norm);
+        if (iteration_ends(converged, o, r)) break;
+    }
+    x_io = x.template cast<double>();
+}
+
 }  // namespace
 
 double tvqc_eps_from_sigma(double noise_sigma, long long n) {
@@ -141,9 +447,7 @@ DecodeResult solve_tvqc(const ConvolutionOperator& op, const Plane& capture, con
     DecodeResult r;
     const double p_norm = norm2(capture);
     const double eps = o.eps;
-    auto relative_residual = [&](double res) {
-        return eps > 0.0 ? res / eps : (p_norm > 0.0 ? res / p_norm : res);
-    };
+    const bool nn = o.nonnegative;
     if (eps >= p_norm) {  // x = 0 is feasible and has TV = 0
         r.image = Plane::Zero(g.work_rows, g.work_cols);
         r.residual = p_norm;
@@ -155,32 +459,13 @@ DecodeResult solve_tvqc(const ConvolutionOperator& op, const Plane& capture, con
 
     const Fft2& fft = op.fft();
     const ComplexPlane& H = op.otf();
-    const bool nn = o.nonnegative;
-    // Block weights: beta for A, gamma for I. beta = sqrt(8) / rms|H| puts the typical gain of
-    // beta A at the gradient's bound sqrt 8, so the two dual blocks have comparable scales (the
-    // preconditioner below makes convergence hold for any beta; this choice makes it fast).
-    const double beta = std::sqrt(8.0) / std::sqrt(std::max(H.abs2().mean(), 1e-300));
-    const double gamma = nn ? 1.0 : 0.0;
-    // Fourier-diagonal preconditioner T = M^-1, M = grad^T grad + beta^2 H^* H + gamma^2 I >=
-    // K^T K (C^T C <= I), so ||K M^-1/2|| <= 1 and tau sigma < 1 suffices.
-    const Plane m_inv = 1.0 / (gradient_gram_symbol(g.work_rows, g.work_cols) +
-                               beta * beta * H.abs2() + gamma * gamma)
-                                  .max(1e-300);
-    double tau = kStepSafety, sigma = kStepSafety, alpha = kAlpha0;
-    const Plane center = beta * capture;
-    const double radius = beta * eps;
-    const ComplexPlane beta_hc = beta * H.conjugate();
-    const bool linear = g.model == ConvModel::kLinear;
-    const int cr = g.crop_row, cc = g.crop_col, pr = g.capture_rows, pc = g.capture_cols;
-
-    ComplexPlane spec, spec2, scratch;
-    Plane work, pad_buf;
-    if (linear) pad_buf = Plane::Zero(g.work_rows, g.work_cols);
+    ComplexPlane spec, scratch;
+    Plane work;
     auto apply_a = [&](const Plane& x, Plane& out) {  // out = A x
         fft.forward(x, spec);
         spec *= H;
         fft.inverse(spec, work, scratch);
-        out = work.block(cr, cc, pr, pc);
+        out = work.block(g.crop_row, g.crop_col, g.capture_rows, g.capture_cols);
     };
 
     const FeasiblePoint start =
@@ -188,121 +473,12 @@ DecodeResult solve_tvqc(const ConvolutionOperator& op, const Plane& capture, con
     Plane x = warm_start  ? *warm_start
               : eps > 0.0 ? start.x
                           : Plane::Zero(g.work_rows, g.work_cols);
-    // K x = (grad x, beta A x, gamma x), cached as grad x and A x (the gamma block is x).
-    Plane kx_r, kx_c, ax;
-    gradient(x, kx_r, kx_c);
-    apply_a(x, ax);
-    Plane y_r = Plane::Zero(g.work_rows, g.work_cols), y_c = y_r, y_w;
-    Plane y_q = Plane::Zero(pr, pc);
-    if (nn) y_w = Plane::Zero(g.work_rows, g.work_cols);
-
-    // Buffers reused by every iteration (no allocation inside the loop).
-    Plane x_new(g.work_rows, g.work_cols), dx, nr, nc, yr_new(x_new), yc_new(x_new), yw_new;
-    Plane ax_new(pr, pc), v(pr, pc);
-    if (nn) yw_new.resize(g.work_rows, g.work_cols);
-    double dres_prev = -1.0;  // dual residual of the previous iteration (< 0: none yet)
-    r.converged = false;
-    for (int k = 1; k <= o.max_iterations; ++k) {
-        // K^T y in Fourier space: F[-div y1 + gamma y_w] + beta conj(H) F[C^T y_q].
-        divergence(y_r, y_c, work);  // K^T y = -(div y1 - gamma y_w) + ...
-        if (nn) work -= gamma * y_w;
-        fft.forward(work, spec2);
-        if (linear) {
-            pad_buf.block(cr, cc, pr, pc) = y_q;
-            fft.forward(pad_buf, spec);
-        } else {
-            fft.forward(y_q, spec);
-        }
-        spec2 = beta_hc * spec - spec2;
-
-        // Adaptive balance of tau and sigma (product constant), Goldstein et al.: the primal
-        // residual is K^T y (G = 0; its norm by Parseval), the dual residual comes from the
-        // previous dual step.
-        if (alpha > kAlphaStop && dres_prev >= 0.0) {
-            const double pres =
-                std::sqrt(half_spectrum_energy(spec2, g.work_cols) / double(x.size()));
-            if (pres > kDelta * dres_prev) {
-                tau /= 1.0 - alpha;
-                sigma *= 1.0 - alpha;
-                alpha *= kEta;
-            } else if (pres < dres_prev / kDelta) {
-                tau *= 1.0 - alpha;
-                sigma /= 1.0 - alpha;
-                alpha *= kEta;
-            }
-        }
-
-        // Primal step x_new = x - tau M^-1 K^T y, and A x_new from the same spectrum.
-        spec2 *= m_inv.cast<std::complex<double>>();
-        fft.inverse(spec2, dx, scratch);
-        spec2 *= H;
-        fft.inverse(spec2, work, scratch);
-        double x_new_norm2 = 0.0, step_norm2 = 0.0;
-        for (Eigen::Index i = 0; i < x.size(); ++i) {
-            const double d = tau * dx.data()[i];
-            const double xn = x.data()[i] - d;
-            x_new.data()[i] = xn;
-            x_new_norm2 += xn * xn;
-            step_norm2 += d * d;
-        }
-        ax_new = ax - tau * work.block(cr, cc, pr, pc);
-        const double change = step_norm2 == 0.0 ? 0.0 : std::sqrt(step_norm2 / x_new_norm2);
-        gradient(x_new, nr, nc);
-
-        // Dual step at xbar = 2 x_new - x, K xbar from the cached K x; the gradient block and
-        // its share of the dual residual in one pass.
-        double d2 = 0.0;
-        for (Eigen::Index i = 0; i < x.size(); ++i) {
-            const double kr = kx_r.data()[i], kc = kx_c.data()[i];
-            const double gr = nr.data()[i], gc = nc.data()[i];
-            const double yr = y_r.data()[i], yc = y_c.data()[i];
-            double ar = yr + sigma * (2.0 * gr - kr), ac = yc + sigma * (2.0 * gc - kc);
-            const double scale = std::max(1.0, std::sqrt(ar * ar + ac * ac));
-            ar /= scale;
-            ac /= scale;
-            yr_new.data()[i] = ar;
-            yc_new.data()[i] = ac;
-            const double er = (yr - ar) / sigma - (kr - gr), ec = (yc - ac) / sigma - (kc - gc);
-            d2 += er * er + ec * ec;
-        }
-        // proj_B(v / sigma) = center + z min(1, radius / |z|) with z = v / sigma - center, so
-        // v - sigma proj_B(v / sigma) = (1 - min(1, radius / |z|)) (v - sigma center).
-        v = y_q + (sigma * beta) * (2.0 * ax_new - ax);
-        const double zn = std::sqrt((v / sigma - center).square().sum());
-        const double keep = zn > radius ? 1.0 - radius / zn : 0.0;
-        v = keep * (v - sigma * center);
-        d2 += ((y_q - v) / sigma - beta * (ax - ax_new)).square().sum();
-        if (nn) {
-            yw_new = (y_w + (sigma * gamma) * (2.0 * x_new - x)).min(0.0);
-            d2 += ((y_w - yw_new) / sigma - gamma * (x - x_new)).square().sum();
-        }
-        dres_prev = std::sqrt(d2);
-
-        x.swap(x_new);
-        ax.swap(ax_new);
-        kx_r.swap(nr);
-        kx_c.swap(nc);
-        y_r.swap(yr_new);
-        y_c.swap(yc_new);
-        y_q.swap(v);
-        if (nn) y_w.swap(yw_new);
-
-        const double res = norm2(ax - capture);
-        const double viol = std::max(res - eps, 0.0) + (nn ? norm2(x.min(0.0)) : 0.0);
-        r.iterations = k;
-        if (o.record_history) {
-            IterationRecord rec;
-            rec.iteration = k;
-            rec.objective = total_variation(kx_r, kx_c);
-            rec.residual = relative_residual(res);
-            rec.seconds = clock.seconds();
-            r.history.push_back(rec);
-        }
-        // k >= 2: the first primal step starts from y = 0 and does not move x.
-        const bool converged =
-            k >= 2 && change <= o.tolerance && viol <= o.tolerance * std::max(eps, p_norm);
-        if (iteration_ends(converged, o, r)) break;
+    if (o.single_precision) {
+        pdhg<float>(op, capture, o, p_norm, x, r, clock);
+    } else {
+        pdhg<double>(op, capture, o, p_norm, x, r, clock);
     }
+    Plane ax;
     if (o.max_iterations == 0) r.converged = true;
 
     // Feasibility restoration: eps > 0, the smallest step towards the feasible smooth point

@@ -17,7 +17,18 @@
 // iteration) and tau sigma = 0.99^2 < 1 converges (Pock and Chambolle 2011, preconditioned
 // PDHG). tau / sigma is rebalanced by the adaptive PDHG rule of Goldstein, Li and Yuan (2015),
 // alpha_0 = 0.5, eta = 0.95, Delta = 1.5, until alpha < 1e-3.
-// Cost per iteration: two FFT pairs (three while the step balance adapts).
+// Cost per iteration: two FFT pairs (two forward: the K^T y blocks; two inverse: M^-1 K^T y and
+// beta H M^-1 K^T y) and fused pointwise loops without temporaries: one spectral pass (K^T y,
+// its energy for the step balance, both preconditioned spectra, the 1/N folded in), one pass
+// over the working grid (primal step, non-negativity block, gradient dual step with its
+// residual and TV, and the next iteration's spatial K^T y, one row behind) and two over the
+// capture window (beta A x, the ball's norm and the residual; then the projection). The
+// iterates keep x and the step d = x_old - x_new, so xbar = x - d and grad x_old are never
+// stored. Every buffer is allocated before the first iteration.
+// Precision: single_precision runs the iteration in float32 (FFTW float; the data block held as
+// beta A x and beta p, beta H having rms sqrt 8); the starting point, the exit repair, the sums,
+// records and the returned residual and objective are in double. InvalidInput (field
+// single_precision) when the iterates would leave float32's safe range (decode/precision.hpp).
 // Starting point: the warm start, else the smooth feasible point x_f: the gradient-Tikhonov
 // estimate IFFT[conj(H) P / (|H|^2 + lambda |D|^2)] with the largest lambda (bisection in
 // log lambda, 16 steps over 24 decades) whose residual is <= 0.99 eps. Its cost is ~20 FFTs.
@@ -55,6 +66,7 @@ inline constexpr double kTvqcFeasibilityTol = 1e-6;
 struct TvqcOptions : IterativeOptions {
     double eps = 0.0;  // >= 0, same units as the capture
     bool nonnegative = false;
+    bool single_precision = false;  // iterate in float32 (FFTW float); see the header comment
 };
 
 // eps = sigma sqrt(N) sqrt(1 + 2 sqrt(2 / N)) for N >= 1 measurements and noise sigma >= 0.

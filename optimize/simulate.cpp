@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "core/fft.hpp"
 #include "core/resource_limits.hpp"
+#include "decode/precision.hpp"
 #include "decode/psf2otf.hpp"
 
 namespace pinmask {
@@ -24,6 +25,35 @@ std::mt19937_64 stream_rng(std::uint64_t seed, std::uint32_t stream, int channel
     std::seed_seq seq{static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32),
                       stream, static_cast<std::uint32_t>(channel)};
     return std::mt19937_64(seq);
+}
+
+// The float32 convolutions: inputs scaled to magnitude <= 1 (a by max|a|, the transfer function
+// by sum|b| >= max|F[b]|), transformed with FFTW float, scaled back in double.
+double scale_of(double v) { return v > 0.0 ? v : 1.0; }
+
+// a (*) b for b given by its transfer function (half spectrum, double).
+Plane convolve_single(const Plane& a, const ComplexPlane& b_spectrum, double b_l1) {
+    const double sa = scale_of(a.abs().maxCoeff()), sb = scale_of(b_l1);
+    const Fft2f fft(static_cast<int>(a.rows()), static_cast<int>(a.cols()));
+    ComplexPlaneF spec, scratch;
+    fft.forward((a / sa).cast<float>(), spec);
+    spec *= (b_spectrum / sb).cast<std::complex<float>>();
+    PlaneF out;
+    fft.inverse(spec, out, scratch);
+    return out.cast<double>() * (sa * sb);
+}
+
+// a (*) b, circular on a's grid, both real planes of the same size.
+Plane convolve_single(const Plane& a, const Plane& b) {
+    const double sa = scale_of(a.abs().maxCoeff()), sb = scale_of(b.abs().sum());
+    const Fft2f fft(static_cast<int>(a.rows()), static_cast<int>(a.cols()));
+    ComplexPlaneF spec, spec_b, scratch;
+    fft.forward((a / sa).cast<float>(), spec);
+    fft.forward((b / sb).cast<float>(), spec_b);
+    spec *= spec_b;
+    PlaneF out;
+    fft.inverse(spec, out, scratch);
+    return out.cast<double>() * (sa * sb);
 }
 
 constexpr std::uint32_t kCaptureStream = 0;
@@ -45,7 +75,7 @@ void SimulationOptions::validate() const {
     }
 }
 
-Plane cyclic_capture(const Plane& scene, const Plane& psf) {
+Plane cyclic_capture(const Plane& scene, const Plane& psf, bool single_precision) {
     if (psf.size() == 0 || !psf.isFinite().all() || !(psf.sum() > 0.0)) {
         throw InvalidInput("simulate: the PSF must be non-empty and finite, with sum > 0");
     }
@@ -56,13 +86,18 @@ Plane cyclic_capture(const Plane& scene, const Plane& psf) {
     }
     if (!scene.isFinite().all()) throw InvalidInput("simulate: the scene has non-finite values");
     const int rows = static_cast<int>(psf.rows()), cols = static_cast<int>(psf.cols());
-    const Fft2 fft(rows, cols);
-    Plane c = fft.inverse(fft.forward(scene) * psf2otf(psf, rows, cols));
+    Plane c;
+    if (single_precision) {  // |H| <= sum|a|: the transfer function scaled to at most 1
+        c = convolve_single(scene, psf2otf(psf, rows, cols), psf.abs().sum());
+    } else {
+        const Fft2 fft(rows, cols);
+        c = fft.inverse(fft.forward(scene) * psf2otf(psf, rows, cols));
+    }
     if (scene.minCoeff() >= 0.0 && psf.minCoeff() >= 0.0) c = c.max(0.0);
     return c;
 }
 
-Plane linear_capture(const Plane& scene, const Plane& w) {
+Plane linear_capture(const Plane& scene, const Plane& w, bool single_precision) {
     if (scene.size() == 0 || w.size() == 0) throw InvalidInput("linear_capture: empty input");
     if (!is_all_finite(scene) || !is_all_finite(w)) {
         throw InvalidInput("linear_capture: the scene or the PSF holds NaN or Inf");
@@ -74,12 +109,22 @@ Plane linear_capture(const Plane& scene, const Plane& w) {
     Plane a = Plane::Zero(fr, fc), b = Plane::Zero(fr, fc);
     a.topLeftCorner(mr, mc) = scene;
     b.topLeftCorner(R, C) = w;
-    const Fft2 fft(fr, fc);
-    const Plane full = fft.inverse(fft.forward(a) * fft.forward(b));
+    Plane full;
+    if (single_precision) {
+        full = convolve_single(a, b);
+    } else {
+        const Fft2 fft(fr, fc);
+        full = fft.inverse(fft.forward(a) * fft.forward(b));
+    }
     // full(k) = sum_i x(i) w(k - i); c(r) = full(r + floor(m / 2)).
     Plane c = full.block(mr / 2, mc / 2, R, C);
     if (scene.minCoeff() >= 0.0 && w.minCoeff() >= 0.0) c = c.max(0.0);
     return c;
+}
+
+bool simulate_in_single(Precision precision, long long rows, long long cols) {
+    return precision == Precision::kSingle ||
+           (precision == Precision::kAuto && rows * cols >= kSinglePrecisionMinPixels);
 }
 
 TileOrigin centred_tile_origin(int frame_rows, int frame_cols, int period_rows, int period_cols) {
@@ -124,8 +169,12 @@ SimulatedCapture simulate_capture(const Image& scene, const Plane& psf, int open
     const NoiseModel& m = options.noise;
     const double scale = m.photons_per_pinhole * open_cells;  // electrons per normalised unit
     for (int ch = 0; ch < scene.n_channels(); ++ch) {
-        Plane clean = options.exact_psf ? linear_capture(scene.channels[ch], *options.exact_psf)
-                                        : cyclic_capture(scene.channels[ch], psf);
+        Plane clean = options.exact_psf
+                          ? linear_capture(scene.channels[ch], *options.exact_psf,
+                                           simulate_in_single(options.precision, rows + pr - 1LL,
+                                                              cols + pc - 1LL))
+                          : cyclic_capture(scene.channels[ch], psf,
+                                           simulate_in_single(options.precision, pr, pc));
         if (options.full_sensor && !options.exact_psf) {
             clean = tile_period(clean, rows, cols, out.origin);
         }

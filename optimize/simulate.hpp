@@ -24,6 +24,14 @@
 // saturation and ADC, in the same units. It is drawn from its own seed stream, so asking for it
 // does not change the capture. Subtracting it (pinmask decode --dark) removes the background.
 //
+// Precision: the convolutions (cyclic_capture, linear_capture) run in double, or in float32 (FFTW
+// float) on the scene divided by max|x| and the PSF divided by sum|a| (so every float value is
+// at most 1 and the FFT sums at most N, whatever the inputs' scale: no overflow), scaled back in
+// double. Noise, tiling, background and the dark frame are always double. kAuto picks float32
+// for a convolution grid of at least kSinglePrecisionMinPixels (256 x 256). The float capture
+// differs from the double one by float rounding: tests/optimize/test_simulate_precision.cpp
+// states the bound.
+//
 // Seeds: channel ch of the capture draws from std::mt19937_64(seed_seq{seed low 32 bits, seed
 // high 32 bits, 0, ch}); the dark frame uses stream 1 in place of 0.
 #pragma once
@@ -32,6 +40,7 @@
 #include <vector>
 
 #include "core/image.hpp"
+#include "decode/decode_modes.hpp"
 #include "optimize/noise_model.hpp"
 
 namespace pinmask {
@@ -47,6 +56,8 @@ struct SimulationOptions {
     // at this PSF's size (the sensor window) instead of the tiled cyclic capture; full_sensor and
     // the sensor size are then ignored. Not owned: must outlive the simulate_capture call.
     const Plane* exact_psf = nullptr;
+    // The convolution's precision (see above); kDouble keeps the library's historical bytes.
+    Precision precision = Precision::kDouble;
 
     // Throws InvalidInput naming the field: the noise model (noise_model.hpp validate), sensor
     // size >= 1 when full_sensor, dark_frame only with the photon model (the Gaussian SNR model
@@ -75,7 +86,8 @@ struct SimulatedCapture {
 // have the same size; psf finite with sum > 0; scene finite (InvalidInput otherwise). When both
 // are non-negative the exact result is too, and FFT rounding below 0 is clipped to 0 (the photon
 // model needs a non-negative capture).
-Plane cyclic_capture(const Plane& scene, const Plane& psf);
+// single_precision: the float32 convolution described at the top.
+Plane cyclic_capture(const Plane& scene, const Plane& psf, bool single_precision = false);
 
 // Exact geometry: the noiseless capture of an m_r x m_c scene through the sensor-window PSF w
 // (R x C, the optical axis at its centre), linear convolution (no wrap-around):
@@ -83,7 +95,10 @@ Plane cyclic_capture(const Plane& scene, const Plane& psf);
 // i.e. scene pixel (i, j) is a point source (i - floor(m_r/2), j - floor(m_c/2)) pixels off the
 // axis and shifts the whole PSF by that much; the result has the window's size. By zero-padded
 // FFT; scene and PSF finite (InvalidInput otherwise), negative rounding clipped as above.
-Plane linear_capture(const Plane& scene, const Plane& window_psf);
+Plane linear_capture(const Plane& scene, const Plane& window_psf, bool single_precision = false);
+
+// Whether a convolution on a rows x cols grid runs in float32 under `precision`.
+bool simulate_in_single(Precision precision, long long rows, long long cols);
 
 // The origin that puts a period at the centred crop of an R x C frame: ((R - m_r) / 2,
 // (C - m_c) / 2), rounded towards minus infinity (negative when the frame is smaller).

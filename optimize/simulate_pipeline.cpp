@@ -116,6 +116,15 @@ SimulatePipelineResult run_simulate_pipeline(const Mask& mask,
                           " px, scene (*) exact PSF by linear convolution (the cyclic capture "
                           "above is replaced)");
     }
+    // The convolution grid: one period, or the full linear convolution over the exact window.
+    const long long grid_rows = options.exact_geometry ? exact.rows() + m - 1LL : m;
+    const long long grid_cols = options.exact_geometry ? exact.cols() + m - 1LL : m;
+    sum.single_precision = simulate_in_single(sim.precision, grid_rows, grid_cols);
+    explain.push_back(std::string("precision: the convolution in ") +
+                      (sum.single_precision ? "float32 (FFTW float)" : "double") + " on a " +
+                      std::to_string(grid_rows) + " x " + std::to_string(grid_cols) +
+                      " grid (--precision " + precision_name(sim.precision) +
+                      "; auto: float32 from 256 x 256)");
     out.capture = simulate_capture(scene, psf, sum.holes, cells, sim);
     const SimulatedCapture& s = out.capture;
     if (sim.full_sensor) {

@@ -18,8 +18,8 @@ namespace pinmask {
 
 struct SimulatePipelineOptions {
     SceneSpec scene = scene_from_name("letter-R");
-    // noise, seed, full_sensor, dark_frame. The sensor size is the mask camera's (or `sensor`);
-    // exact_psf is set by the pipeline.
+    // noise, seed, full_sensor, dark_frame, precision. The sensor size is the mask camera's (or
+    // `sensor`); exact_psf is set by the pipeline.
     SimulationOptions sim;
     std::optional<Size2> sensor;  // full_sensor: WIDTHxHEIGHT instead of the mask's camera
     bool exact_geometry = false;  // every pinhole at its true position (design/psf_exact)
@@ -45,6 +45,7 @@ struct SimulatePipelineSummary {
     std::string scene_name;
     int scene_channels = 0;
     double object_distance_m = 0.0;    // exact geometry: the u used
+    bool single_precision = false;     // the convolution ran in float32 (SimulationOptions)
     std::vector<std::string> explain;  // what was run and skipped, and why (for --explain)
 };
 

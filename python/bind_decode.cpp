@@ -269,7 +269,7 @@ channels). background: 'none' | 'corner' (mean of the PSF's rows/cols 5..14, off
 capture; needs psf=) | a number of counts off the capture. downsample: K rounds of 2x2 box
 averaging of capture and PSF (0..12). normalize: 'none' (PSF to unit sum, estimate in capture
 counts) | 'l2' (capture window and PSF each divided by its L2 norm). precision: 'auto' (float32
-for wiener, tikhonov, tv from 256 x 256 decoded pixels) | 'single' | 'double'. threads: FFTW
+for every method from 256 x 256 decoded pixels) | 'single' | 'double'. threads: FFTW
 threads for transforms of >= 512 x 512 (0: all cores; results do not depend on it).
 progress: called every poll_s seconds with the elapsed seconds while the decode runs; return
 False to stop. Ctrl-C (KeyboardInterrupt) or False ends an iterative method after its current

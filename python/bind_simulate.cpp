@@ -93,12 +93,13 @@ void bind_simulate(py::module_& m) {
            std::optional<double> dark_current, std::optional<double> full_well,
            std::optional<int> bits, std::optional<double> optical_density, bool full_sensor,
            std::optional<std::pair<int, int>> sensor, bool dark_frame, std::uint64_t seed,
-           bool allow_violations) {
+           bool allow_violations, const std::string& precision) {
             SimulationOptions sim;
             sim.noise = noise_model(
                 {snr_db, photons, read_noise, dark_current, full_well, optical_density, bits});
             sim.seed = seed;
             sim.dark_frame = dark_frame;
+            sim.precision = parse_precision(precision, "--precision");
             if (sensor && !full_sensor) {
                 throw invalid_field(
                     "--sensor",
@@ -148,6 +149,7 @@ void bind_simulate(py::module_& m) {
         py::arg("bits") = py::none(), py::arg("optical_density") = py::none(),
         py::arg("full_sensor") = false, py::arg("sensor") = py::none(),
         py::arg("dark_frame") = false, py::arg("seed") = 1, py::arg("allow_violations") = false,
+        py::arg("precision") = "auto",
         "A simulated capture, as `pinmask simulate` computes it: the scene (a name, rendered at "
         "one period, or an array of the period's size, values in [0, 1]) convolved with the "
         "mask's PSF over one period, tiled over the sensor with full_sensor (sensor = (cols, "
@@ -155,7 +157,8 @@ void bind_simulate(py::module_& m) {
         "float('inf') = noiseless) or the photon model (photons = electrons per pinhole for a "
         "uniform scene of 1, read_noise e rms, dark_current e, full_well e, bits of the ADC, "
         "optical_density of the film). dark_frame (photon model only) also draws the frame "
-        "through all-opaque film. Units: normalised capture units (noise_model.hpp). Returns "
+        "through all-opaque film. Units: normalised capture units (noise_model.hpp). precision: "
+        "the convolution's, 'auto' (float32 from a 256 x 256 grid) | 'single' | 'double'. Returns "
         "{capture, dark (None unless asked), clean, background (per channel), origin (row, col) "
         "of the period in the frame, whole_period_on_sensor, psf}.");
 }

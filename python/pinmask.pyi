@@ -152,6 +152,7 @@ def simulate(
     dark_frame: bool = False,
     seed: int = 1,
     allow_violations: bool = False,
+    precision: Literal["auto", "single", "double"] = "auto",
 ) -> dict[str, Any]: ...
 def decode(
     capture: ArrayLike,

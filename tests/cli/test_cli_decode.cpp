@@ -347,3 +347,20 @@ TEST_CASE("bench plan fills the wisdom cache; a corrupt cache is ignored with a 
     CHECK(corrupt.out.find("measured") != std::string::npos);
     ::setenv("PINMASK_WISDOM", "off", 1);
 }
+
+TEST_CASE("--precision single applies to tvqc and richardson-lucy (no longer double only)") {
+    TempDir dir("cli-decode-precision");
+    const Plane psf = pattern_psf();
+    write_float(dir / "psf.tiff", Image(psf));
+    write_float(dir / "cap.tiff", Image(circular_capture(smooth_scene(kN, 0.1), psf)));
+    for (const char* method : {"tvqc --eps 0.5", "richardson-lucy"}) {
+        for (const char* precision : {"single", "double"}) {
+            const auto r = run_cli("decode " + dir / "cap.tiff" + " --psf " + dir / "psf.tiff" +
+                                   " --method " + method + " --iters 5 --precision " + precision +
+                                   " -o " + dir / "x.tiff" + " --stats " + dir / "s.json");
+            INFO(method << " " << precision << ": " << r.err);
+            REQUIRE(r.exit_code == 0);
+            CHECK(read_json(dir / "s.json")["precision"] == precision);
+        }
+    }
+}

@@ -152,3 +152,33 @@ TEST_CASE("simulate refuses bad requests with exit 2 and writes nothing") {
     CHECK(run_cli("simulate " + m.mask + " -o " + (m.dir / "x.bmp")).exit_code == 2);
     CHECK(run_cli("simulate " + (m.dir / "missing.mask.json") + " -o " + out).exit_code == 2);
 }
+
+TEST_CASE("simulate --precision: double = the default bytes (128 px < 256), single within float") {
+    PaperMask m;
+    const std::string base = m.dir / "base.tiff", dbl = m.dir / "dbl.tiff",
+                      sgl = m.dir / "sgl.tiff";
+    const std::string args = "simulate " + m.mask + " --scene usaf --snr 30 --seed 4 ";
+    REQUIRE(run_cli(args + "-o " + base).exit_code == 0);
+    REQUIRE(run_cli(args + "--precision double -o " + dbl).exit_code == 0);
+    CHECK(slurp(base) == slurp(dbl));
+    auto cfg_base = nlohmann::json::parse(slurp(base + ".config.json"));
+    auto cfg_dbl = nlohmann::json::parse(slurp(dbl + ".config.json"));
+    for (const char* k : {"outputs", "explain"}) {  // the file names and the flag as typed
+        cfg_base.erase(k);
+        cfg_dbl.erase(k);
+    }
+    CHECK(cfg_base == cfg_dbl);
+    const auto r = run_cli(args + "--precision single --explain -o " + sgl);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.find("convolution in float32") != std::string::npos);
+    CHECK(nlohmann::json::parse(slurp(sgl + ".config.json"))["precision"] == "single");
+    CHECK(nlohmann::json::parse(slurp(dbl + ".config.json"))["precision"] == "double");
+    // The float32 convolution moves each value by float rounding of the capture's scale
+    // (tests/optimize/test_simulate_precision.cpp); the file stores float32 either way.
+    const pinmask::Plane a = read_plane(sgl), b = read_plane(dbl);
+    CHECK(std::sqrt((a - b).square().sum() / b.square().sum()) <= 5e-6);
+    const auto bad = run_cli(args + "--precision half -o " + (m.dir / "bad.tiff"));
+    CHECK(bad.exit_code == 2);
+    CHECK(bad.err.find("--precision") != std::string::npos);
+    CHECK_FALSE(fs::exists(m.dir / "bad.tiff"));
+}

@@ -17,8 +17,8 @@ TEST_CASE("bench_decode returns every method per size with ratio = seconds / fft
     o.min_batch_seconds = 1e-4;
     o.tvqc_max_iterations = 20;
     const auto records = bench_decode(o);
-    // 8 methods per size, plus tv_l2_to_0.2dB for the sizes 16 n_px (16 here, not 24).
-    REQUIRE(records.size() == 17);
+    // 10 methods per size, plus tv_l2_to_0.2dB for the sizes 16 n_px (16 here, not 24).
+    REQUIRE(records.size() == 21);
     std::set<std::string> methods;
     for (const auto& r : records) {
         methods.insert(r.method);
@@ -36,7 +36,9 @@ TEST_CASE("bench_decode returns every method per size with ratio = seconds / fft
     }
     CHECK(methods == std::set<std::string>{"wiener", "wiener_single", "tikhonov", "tv_l2_iteration",
                                            "tv_l2_iteration_single", "tv_l2_to_0.2dB",
-                                           "tvqc_to_tolerance", "tvqc_iteration", "rl_iteration"});
+                                           "tvqc_to_tolerance", "tvqc_iteration",
+                                           "tvqc_iteration_single", "rl_iteration",
+                                           "rl_iteration_single"});
 }
 
 TEST_CASE("bench_decode validates its options, naming the field") {

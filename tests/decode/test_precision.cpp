@@ -26,6 +26,17 @@ constexpr double kSingleClosedFormTol = 5e-6;
 // for a filter; measured ~2e-5 at 256 x 256 and 60 iterations. 1e-3 relative l2 is far below
 // what a person sees (0.01 dB) and far below the 0.2 dB the PSNR targets care about.
 constexpr double kSingleTvTol = 1e-3;
+// TVQC in float32 after 60 iterations: the iterates start at the double feasible point (cast
+// to float: 6e-8 relative) and PDHG moves them by steps much smaller than x, each step carrying
+// float rounding (eps_f log2 N of the step); the l2 error stays near the rounding of x itself:
+// measured 8e-8 (cyclic and linear, 256 x 256). 1e-6 is a 12x margin; a float/double mix-up
+// in a step or a wrong scale shows at >= 1e-4.
+constexpr double kSingleTvqcTol = 1e-6;
+// Richardson-Lucy in float32 after 60 iterations: the multiplicative update is smooth but not a
+// contraction (EM converges sublinearly), so each iteration's rounding (two FFT pairs, ~eps_f
+// log2 N) adds up rather than being damped: measured 2.0e-7 / 2.2e-7 (cyclic / linear).
+// 3e-6 is a 14x margin.
+constexpr double kSingleRlTol = 3e-6;
 // Scale invariance: the facade divides by max |p| and multiplies back; both steps are exact in
 // binary for powers of two, so a 2^k-scaled capture gives the same estimate times 2^k up to
 // the rounding of the division by max |p| (a few ulps).
@@ -161,4 +172,32 @@ TEST_CASE("TVQC that cannot meet its constraint in the iterations given says so"
     CHECK_FALSE(r.constraint_met);
     CHECK_FALSE(r.converged);
     CHECK(r.residual > *o.tvqc.eps);
+}
+
+TEST_CASE("single precision: TVQC and Richardson-Lucy (cyclic and linear) within tolerance") {
+    const bool sanitized = std::getenv("PINMASK_SANITIZED") != nullptr;
+    const int n = sanitized ? 64 : 256;
+    const Problem P = make(n, 31);
+    for (DecodeMethod m : {DecodeMethod::kTvqc, DecodeMethod::kRichardsonLucy}) {
+        for (ConvModel model : {ConvModel::kCyclic, ConvModel::kLinear}) {
+            DecodeOptions o;
+            o.method = m;
+            o.model = model;
+            o.tvqc.noise_sigma = 0.01 / std::sqrt(3.0);  // the uniform noise of make()
+            o.tvqc.nonnegative = model == ConvModel::kLinear;
+            o.iterative.max_iterations = 60;
+            o.iterative.tolerance = 0.0;
+            o.iterative.record_history = false;
+            const Plane p = m == DecodeMethod::kRichardsonLucy ? Plane(P.p.max(0.0)) : P.p;
+            const DecodeResult d = decode_plane(p, P.psf, o);
+            o.single_precision = true;
+            const DecodeResult s = decode_plane(p, P.psf, o);
+            const int method_id = static_cast<int>(m), model_id = static_cast<int>(model);
+            const double err = rel_l2(s.image, d.image);
+            INFO("method " << method_id << " model " << model_id << " rel l2 " << err);
+            CHECK(err <= (m == DecodeMethod::kTvqc ? kSingleTvqcTol : kSingleRlTol));
+            CHECK(err > 0.0);  // it really ran in float
+            CHECK(s.constraint_met == d.constraint_met);
+        }
+    }
 }

@@ -67,3 +67,21 @@ def test_unknown_scene_same_message_as_cli(cli, tmp_path, mask7):
     with pytest.raises(ValueError) as e:
         pinmask.simulate(mask7, "no-such-scene")
     assert str(e.value) == msg
+
+
+def test_simulate_precision_matches_cli_and_double(cli, tmp_path, mask7):
+    """precision: double is the default's bytes below 256 x 256; single equals the CLI's
+    --precision single and stays within float rounding of double (the 5e-6 relative l2 bound
+    of tests/optimize/test_simulate_precision.cpp); a bad name names the flag."""
+    mask7.save(str(tmp_path / "m.mask.json"))
+    d = pinmask.simulate(mask7, "usaf", snr_db=30, seed=2)["capture"]
+    assert np.array_equal(d, pinmask.simulate(mask7, "usaf", snr_db=30, seed=2,
+                                              precision="double")["capture"])
+    s = pinmask.simulate(mask7, "usaf", snr_db=30, seed=2, precision="single")["capture"]
+    assert not np.array_equal(s, d)
+    assert np.linalg.norm(s - d) <= 5e-6 * np.linalg.norm(d)
+    cli.run("simulate", "m.mask.json", "--scene", "usaf", "--snr", "30", "--seed", "2",
+            "--precision", "single", "-o", "cap.npy")
+    assert np.array_equal(s.astype(np.float32), np.load(tmp_path / "cap.npy"))
+    with pytest.raises(ValueError, match="--precision"):
+        pinmask.simulate(mask7, precision="half")
