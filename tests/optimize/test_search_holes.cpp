@@ -72,7 +72,7 @@ struct HeldOut {
 }  // namespace
 
 TEST_CASE("search --holes 5..40 beats the best median random mask of any single K (dim light)") {
-    // Same sizes under PINMASK_SANITIZED: ~7 s of work in Release, a few minutes sanitized.
+    // Same sizes under PINMASK_SANITIZED: ~10 s of work in Release, a few minutes sanitized.
     const int n = 16, scenes = 3, draws = 7;
     const Mask tmpl = paper_template(n);
     const int m = n * tmpl.psf.pixels_per_cell;
