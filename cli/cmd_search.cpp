@@ -155,8 +155,9 @@ void add_search_flags(CLI::App* cmd, const std::shared_ptr<SearchCliOptions>& o)
     add_noise_flags(*cmd, o->noise, "30");
     add_prior_flags(*cmd, o->prior);
     cmd->add_option("--filter", o->filter,
-                    "Wiener filter the analytic error assumes: optimal (per-frequency) or "
-                    "nsr:VALUE (deconvwnr's fixed NSR)")
+                    "Wiener filter the analytic error assumes: optimal (per-frequency), tuned "
+                    "(deconvwnr's NSR tuned per mask, as simulated), nsr:VALUE (fixed NSR) or "
+                    "auto (tuned with --photons, optimal with --snr)")
         ->capture_default_str();
     cmd->add_option("--w-analytic", o->w_analytic, "Weight of -analytic Wiener PSNR (dB)")
         ->capture_default_str();

@@ -179,7 +179,7 @@ SearchPipelineOptions search_pipeline_options(const SearchCliOptions& o, const C
     }
     p.noise = levels.front().model;
     p.prior = prior_spec(o.prior);
-    p.filter = parse_wiener_filter(o.filter);
+    p.filter = parse_search_filter(o.filter, p.noise);
     p.weights = {o.w_analytic, o.w_max_sidelobe, o.w_sidelobe_energy, o.w_min_spectrum};
     p.allow_spectral_zeros = o.allow_spectral_zeros;
     if (!o.no_rerank)

@@ -24,7 +24,7 @@ struct SearchCliOptions {
     CameraOptions camera;
     GeometryOptions geometry;
     PsfOptions psf;
-    std::string strategy = "anneal", time = "20s", filter = "optimal", keep_out = "none";
+    std::string strategy = "anneal", time = "20s", filter = "auto", keep_out = "none";
     std::optional<std::int64_t> evals;
     int threads = 0, top = 5;
     std::uint64_t seed = 1;

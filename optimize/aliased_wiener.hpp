@@ -16,9 +16,20 @@
 // is summed exactly over its p^2 aliases, so correctness never depends on the range, only speed
 // does. Tables over 256 MB (n above ~250) are not built: every frequency is then summed exactly,
 // O(m^2) per call as before.
+//
+// Tuned NSR (kTunedNsr: the scalar-NSR filter with its NSR chosen per pattern, as the simulated
+// and decoded Wiener does): the fixed-NSR sums above at NSRs on a grid of kNsrGridPerDecade
+// steps per decade over [10^kTuneMinLog10, 10^kTuneMaxLog10] (optimize/nsr_tuning), each grid
+// NSR's tables built on first use; per pattern a descent on the grid from a start set by the
+// noise level, then the parabola through the grid minimum and its two neighbours (in log NSR)
+// gives the tuned MSE. The MSE is unimodal in log NSR for every pattern tried (as the golden
+// section of evaluate_tuned_nsr assumes), so the result does not depend on the start. Each grid
+// NSR's tables take n^2 x 223 x 32 bytes (1.8 MB at n = 16; kept up to 8 MB, n ~ 34; above
+// that the exact sums are used, O(m^2) per grid NSR visited).
 #pragma once
 
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "optimize/analytic_error.hpp"
@@ -36,9 +47,26 @@ class AliasedWiener {
     // AnalyticWienerModel::evaluate up to the tabulation error. O(n^2).
     AnalyticError evaluate(const ComplexPlane& pattern_spectrum) const;
 
+    // Grid steps per decade of the tuned-NSR mode.
+    static constexpr int kNsrGridPerDecade = 32;
+
   private:
-    double exact_sum(int a, double x, double n_sigma2) const;  // F_a over its p^2 aliases
+    // F_a over its p^2 aliases; nsr: the fixed filter's NSR (ignored by the optimal filter).
+    double exact_sum(int a, double x, double n_sigma2, double nsr) const;
     void build_tables(double u_lo, double u_hi);
+    // Fixed-NSR tables [a][point][G1, dG1/du, G2, dG2/du] on u = log x for one NSR.
+    std::vector<double> fixed_nsr_table(double nsr, double u_lo, int points) const;
+    // N^2 MSE of the fixed NSR filter for the pattern's x(a), from one grid NSR's tables.
+    double fixed_nsr_sum(int grid_index, const std::vector<double>& x, double nu) const;
+    AnalyticError evaluate_tuned(const ComplexPlane& pattern_spectrum) const;
+
+    // Tuned mode: one slot per grid NSR, built on first use (thread-safe).
+    struct NsrSlot {
+        std::once_flag once;
+        std::vector<double> table;
+    };
+    std::vector<std::unique_ptr<NsrSlot>> nsr_slots_;
+    double nsr_start_scale_ = 1.0;  // starting grid NSR = this * N sigma^2
 
     std::shared_ptr<const AnalyticWienerModel> model_;
     int n_ = 0, p_ = 0;

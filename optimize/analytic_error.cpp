@@ -14,7 +14,13 @@ std::string size_text(Eigen::Index r, Eigen::Index c) {
     return std::to_string(r) + " x " + std::to_string(c);
 }
 
+// The per-frequency sums take a fixed or optimal filter; kTunedNsr is a search over fixed ones.
 void check_filter(const WienerFilterSpec& f) {
+    if (f.kind == WienerFilterKind::kTunedNsr) {
+        throw invalid_field("filter", "tuned",
+                            "a tuned NSR is evaluated by AnalyticWienerModel (evaluate_tuned_nsr), "
+                            "not per frequency");
+    }
     if (f.kind == WienerFilterKind::kFixedNsr && (!(f.nsr > 0.0) || !std::isfinite(f.nsr))) {
         throw invalid_field("nsr", std::to_string(f.nsr), "must be finite and > 0");
     }
@@ -157,6 +163,7 @@ double AnalyticWienerModel::noise_variance(double mean_square, int open_cells,
 
 AnalyticError AnalyticWienerModel::evaluate(const ComplexPlane& p,
                                             const WienerFilterSpec& filter) const {
+    if (filter.kind == WienerFilterKind::kTunedNsr) return evaluate_tuned_nsr(p);
     check_filter(filter);
     const Plane pp = pattern_power(p);
     AnalyticError e;

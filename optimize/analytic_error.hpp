@@ -28,7 +28,11 @@
 
 namespace pinmask {
 
-enum class WienerFilterKind { kFixedNsr, kOptimal };
+// kFixedNsr: decode's Wiener at a given NSR; kOptimal: the per-frequency Wiener filter (a lower
+// bound no decoder here reaches); kTunedNsr: decode's Wiener with the NSR that minimises the
+// expected MSE of this pattern (evaluate_tuned_nsr), which is what the simulated figures
+// (optimize/simulated_metrics, NSR tuned per mask) and `search --photons` judge by.
+enum class WienerFilterKind { kFixedNsr, kOptimal, kTunedNsr };
 
 struct WienerFilterSpec {
     WienerFilterKind kind = WienerFilterKind::kFixedNsr;
@@ -68,7 +72,8 @@ class AnalyticWienerModel {
     const ScenePrior& prior() const { return prior_; }
     const NoiseModel& noise() const { return noise_; }
 
-    // Expected error of the pattern (n x n spectrum, n divides m) under the given filter.
+    // Expected error of the pattern (n x n spectrum, n divides m) under the given filter
+    // (kTunedNsr: evaluate_tuned_nsr).
     AnalyticError evaluate(const ComplexPlane& pattern_spectrum,
                            const WienerFilterSpec& filter) const;
 

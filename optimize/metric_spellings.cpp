@@ -7,12 +7,22 @@ namespace pinmask {
 
 WienerFilterSpec parse_wiener_filter(const std::string& text) {
     if (text == "optimal") return {WienerFilterKind::kOptimal, 0.0};
+    if (text == "tuned") return {WienerFilterKind::kTunedNsr, 0.0};
     if (text.rfind("nsr:", 0) == 0) {
         const double nsr = parse_number(text.substr(4), "--filter nsr");
         if (!(nsr > 0.0)) throw invalid_field("--filter", text, "NSR must be > 0");
         return {WienerFilterKind::kFixedNsr, nsr};
     }
-    throw invalid_field("--filter", text, "expected 'optimal' or 'nsr:VALUE' (e.g. nsr:0.01)");
+    throw invalid_field("--filter", text,
+                        "expected 'optimal', 'tuned' or 'nsr:VALUE' (e.g. nsr:0.01)");
+}
+
+WienerFilterSpec parse_search_filter(const std::string& text, const NoiseModel& noise) {
+    if (text == "auto") {
+        return noise.kind == NoiseKind::kPhoton ? WienerFilterSpec{WienerFilterKind::kTunedNsr, 0.0}
+                                                : WienerFilterSpec{WienerFilterKind::kOptimal, 0.0};
+    }
+    return parse_wiener_filter(text);
 }
 
 WeightChoice parse_weight_choice(const std::string& text, const std::string& flag) {

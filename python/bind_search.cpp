@@ -83,7 +83,7 @@ void bind_search(py::module_& m) {
             }
             p.noise = levels.front().model;
             p.prior = prior_arg(prior, prior_scenes);
-            p.filter = parse_wiener_filter(filter);
+            p.filter = parse_search_filter(filter, p.noise);
             p.weights = {w_analytic, w_max_sidelobe, w_sidelobe_energy, w_min_spectrum};
             p.allow_spectral_zeros = allow_spectral_zeros;
             for (const auto& name : rerank_scenes) p.rerank_scenes.push_back(scene_from_name(name));
@@ -154,7 +154,7 @@ void bind_search(py::module_& m) {
         py::arg("kernel_path") = "", py::arg("pixels_per_cell") = py::none(),
         py::arg("strategy") = "anneal", py::arg("time") = "20s", py::arg("evals") = 0,
         py::arg("threads") = 1, py::arg("seed") = 1, py::arg("top") = 5,
-        py::arg("snr_db") = py::none(), py::arg("filter") = "optimal", py::arg("w_analytic") = 1.0,
+        py::arg("snr_db") = py::none(), py::arg("filter") = "auto", py::arg("w_analytic") = 1.0,
         py::arg("w_max_sidelobe") = 0.0, py::arg("w_sidelobe_energy") = 0.0,
         py::arg("w_min_spectrum") = 0.0, py::arg("prior_scenes") = kDefaultPriorScenes,
         py::arg("keep_out") = "none",
@@ -170,7 +170,8 @@ void bind_search(py::module_& m) {
 time budget (time, '20s', '2min'; it covers the re-ranking too) or evals per chain (> 0:
 deterministic for the same seed and threads), threads independent chains, top candidates,
 keep_out 'none' | 'border'; objective: the weighted sum of analytic_wiener (-expected Wiener PSNR
-at the noise level, filter 'optimal' or 'nsr:VALUE', prior as in metrics()),
+at the noise level, filter 'auto' (tuned with photons, optimal with snr_db), 'optimal', 'tuned'
+or 'nsr:VALUE', prior as in metrics()),
 max_sidelobe, sidelobe_energy, min_spectrum; patterns with a spectral zero are rejected unless
 allow_spectral_zeros. The top candidates are re-ranked by simulated decodes of rerank_scenes
 (empty list: no re-ranking, as --no-rerank) ranked by rank_by 'wiener' | 'tv'.

@@ -34,15 +34,16 @@ TEST_CASE("search --photons: the photon model is the objective and is recorded")
     CHECK(config["noise"]["photons_per_pinhole"] == 3.0);
     CHECK(config["noise"]["read_noise_e"] == 3.0);
     // The objective's analytic PSNR is the one score computes for the same photon level,
-    // prior and optimal filter.
+    // prior and filter: under --photons the search's --filter auto is the tuned NSR.
     const auto j = nlohmann::json::parse(r.out);
     const double objective_psnr = j["ranked"][0]["analytic_wiener_psnr_db"].get<double>();
     const auto s =
         run_cli("score " + (dir.path / "run" / "rank-1.mask.json").string() +
-                " --metrics analytic --photons 3 --read-noise 3 --prior-scenes 2 --json");
+                " --metrics analytic --photons 3 --read-noise 3 --prior-scenes 2 --nsr tuned "
+                "--json");
     REQUIRE(s.exit_code == 0);
     const auto js = nlohmann::json::parse(s.out);
-    CHECK(js["masks"][0]["analytic_optimal_wiener_psnr_db_ph3"].get<double>() ==
+    CHECK(js["masks"][0]["analytic_wiener_psnr_db_ph3"].get<double>() ==
           doctest::Approx(objective_psnr).epsilon(1e-9));
     // Lists are for score and compare: search optimises one level.
     const auto bad =
