@@ -81,8 +81,10 @@ TEST_CASE("hostile --robust values exit 2 naming the key, in score, compare and 
                                                        {"jitter=2parsecs", "--robust jitter"},
                                                        {"missing=1e400", "--robust missing"},
                                                        {"size=1um,,jitter=1um", "--robust"}};
-    for (const auto& [value, key] : bad) {
-        const std::string spec = std::string(" --robust '") + value + "' ";
+    for (const auto& item : bad) {
+        // Named copies: clang-14 refuses structured bindings in INFO.
+        const std::string value = item.first, key = item.second;
+        const std::string spec = " --robust '" + value + "' ";
         INFO(value);
         auto r = run_cli("score " + m.a + " --metrics analytic" + spec);
         CHECK(r.exit_code == 2);
