@@ -64,9 +64,9 @@ double RobustWienerModel::robust_mse(const ComplexPlane& p, double sigma2,
         const ComplexPlane& cross = cross_[c];
         const Plane& var = variance_[c];
         double sum = 0.0;
-        for (Eigen::Index l = 0; l < m; ++l)
-            for (Eigen::Index k = 0; k < m; ++k) {
-                const double ppk = pp(k % n, l % n), h = ppk * kp(k, l), sk = s(k, l);
+        for (Eigen::Index l = 0, ln = 0; l < m; ++l, ln = ln + 1 == n ? 0 : ln + 1)
+            for (Eigen::Index k = 0, kn = 0; k < m; ++k, kn = kn + 1 == n ? 0 : kn + 1) {
+                const double ppk = pp(kn, ln), h = ppk * kp(k, l), sk = s(k, l);
                 double w;
                 if (f.kind == WienerFilterKind::kFixedNsr) {
                     w = 1.0 / (h + f.nsr);

@@ -13,7 +13,6 @@
 #include "design/psf.hpp"
 #include "design/random_sparse.hpp"
 #include "optimize/island_search.hpp"
-#include "optimize/robust_sample.hpp"
 #include "optimize/robust_wiener.hpp"
 #include "optimize/simulated_metrics.hpp"
 #include "optimize/spectrum_metrics.hpp"
