@@ -147,6 +147,8 @@ TEST_CASE("search --objective robust: recorded, repeatable byte for byte, and vi
     const auto config = nlohmann::json::parse(slurp(dir.path / "a" / "search.config.json"));
     CHECK(config["objective"] == "robust");
     CHECK(config["robust"] == "size=44um,jitter=20um,missing=0.05");
+    CHECK(slurp(dir.path / "a" / "summary.md").find("expected under the --robust") !=
+          std::string::npos);
     // Same seed, same bytes.
     REQUIRE(run_cli(args + "-o " + (dir / "b")).exit_code == 0);
     for (const char* f : {"rank-1.mask.json", "rank-2.mask.json", "summary.md", "run-log.csv"})
