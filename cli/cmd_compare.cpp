@@ -39,6 +39,7 @@ struct Options {
     std::string scenes = "letter-R,usaf";
     std::string nsr = "tuned";
     std::string tv_lambda = "1e-3";
+    std::string robust;
     int tv_iterations = 200;
     std::uint64_t seed = 1;
     bool allow_violations = false, json = false, quiet = false;
@@ -63,6 +64,7 @@ CompareRunOptions make_options(const Options& o, const CLI::App& cmd, std::strin
         throw invalid_field("--tv-iters", std::to_string(o.tv_iterations), "must be >= 1");
     }
     m.simulation.tv_iterations = o.tv_iterations;
+    if (!o.robust.empty()) m.robust = parse_fabrication_errors(o.robust);
     r.settings.seed = o.seed;
     r.baselines = o.baselines;
     r.baseline_count = o.baseline_count;
@@ -118,16 +120,25 @@ void run(const Options& o, const CLI::App& cmd) {
         "Simulation: " + noise + ", scenes " + o.scenes +
         " (the first is shown on each page), Wiener NSR " + o.nsr + ", TV-L2 lambda " +
         o.tv_lambda + " (" + std::to_string(o.tv_iterations) + " iterations max), noise seed " +
-        std::to_string(o.seed) + ". Analytic prior: " + mo.prior.description() + "."};
+        std::to_string(o.seed) + ". Analytic prior: " + mo.prior.description() + "." +
+        (mo.robust.any() ? " Robust W: analytic Wiener expected under fabrication errors (" +
+                               mo.robust.description() + "), decoded with the nominal PSF."
+                         : "")};
 
     nlohmann::ordered_json j;
     for (const auto& r : out.results) j["masks"].push_back(compare_row_json(r.row));
     nlohmann::ordered_json levels = nlohmann::ordered_json::array();
     for (const NoiseLevel& l : mo.noise) levels.push_back(noise_json(l.model));
-    j["settings"] = {
-        {"noise", levels},     {"scenes", o.scenes},       {"prior", mo.prior.description()},
-        {"wiener_nsr", o.nsr}, {"tv_lambda", o.tv_lambda}, {"tv_iterations", o.tv_iterations},
-        {"seed", o.seed},      {"baselines", o.baselines}, {"baseline_count", o.baseline_count}};
+    j["settings"] = {{"noise", levels},
+                     {"scenes", o.scenes},
+                     {"prior", mo.prior.description()},
+                     {"wiener_nsr", o.nsr},
+                     {"tv_lambda", o.tv_lambda},
+                     {"tv_iterations", o.tv_iterations},
+                     {"seed", o.seed},
+                     {"baselines", o.baselines},
+                     {"baseline_count", o.baseline_count},
+                     {"robust", mo.robust.description()}};
     if (o.baselines) {
         nlohmann::ordered_json b;
         if (out.random) {
@@ -184,7 +195,7 @@ void setup(CLI::App& app) {
         "Compare masks side by side: metrics table, optional baselines, and a multi-page report "
         "with each mask's pattern, PSF, log |OTF|, autocorrelation, a simulated capture and its "
         "Wiener and TV reconstructions.");
-    cmd->footer(kCompareFooter);
+    cmd->footer(std::string(kCompareFooter) + "\n" + kRobustFooter);
     cmd->add_option("masks", o->masks, "Mask files (*.mask.json); the first sets the camera")
         ->required();
     cmd->add_flag("--baselines", o->baselines,
@@ -201,6 +212,7 @@ void setup(CLI::App& app) {
     cmd->add_option("--nsr", o->nsr,
                     "Wiener NSR (> 0) of the simulated and analytic figures, or 'tuned' per mask")
         ->capture_default_str();
+    cmd->add_option("--robust", o->robust, kRobustFlagHelp);
     cmd->add_option("--tv-lambda", o->tv_lambda, "Simulated TV-L2 weight (> 0), or 'tuned' (slow)")
         ->capture_default_str();
     cmd->add_option("--tv-iters", o->tv_iterations, "TV-L2 maximum ADMM iterations (>= 1)")

@@ -29,6 +29,7 @@ struct ScoreOptions {
     std::string metrics = "sidelobes,spectrum,analytic,wiener";
     std::string nsr = "0.01";
     std::string tv_lambda = "1e-3";
+    std::string robust;
     int tv_iterations = 200;
     int seeds = 1;
     std::uint64_t seed = 0;
@@ -68,6 +69,7 @@ MaskMetricsOptions make_options(const ScoreOptions& o, const CLI::App& cmd, std:
         throw invalid_field("--tv-iters", std::to_string(o.tv_iterations), "must be >= 1");
     }
     m.simulation.tv_iterations = o.tv_iterations;
+    if (!o.robust.empty()) m.robust = parse_fabrication_errors(o.robust);
     m.validate();
     return m;
 }
@@ -91,6 +93,11 @@ std::vector<std::string> explain_lines(const ScoreOptions& o, const MaskMetricsO
              "simulated one period (cyclic model: capture = scene (*) PSF, " + noise + "), " +
                  std::to_string(m.scenes.size()) + " scene(s) x " + std::to_string(o.seeds) +
                  " noise seed(s)");
+    }
+    if (m.robust.any()) {
+        line(m.analytic, "robust",
+             "the analytic figure expected under fabrication errors (" + m.robust.description() +
+                 "), decoded with the nominal PSF: closed form, no sampling");
     }
     if (!m.tv) e.push_back("tv: add tv to --metrics to run TV-L2 decodes (slow)");
     if (!(m.wiener || m.tv)) e.push_back("scene rendering: skipped (no simulated metric)");
@@ -157,7 +164,8 @@ void run(const ScoreOptions& o, const CLI::App& cmd) {
                      {"tv_lambda", o.tv_lambda},
                      {"seeds", o.seeds},
                      {"seed", o.seed},
-                     {"tv_iterations", o.tv_iterations}};
+                     {"tv_iterations", o.tv_iterations},
+                     {"robust", m.robust.description()}};
     if (o.noise.photons.empty()) {
         std::vector<double> snrs;
         for (const NoiseLevel& level : m.noise) snrs.push_back(level.model.snr_db);
@@ -172,7 +180,7 @@ void setup(CLI::App& app) {
     auto* cmd = app.add_subcommand(
         "score",
         "Score masks: sidelobes, spectrum, analytic and simulated error; one row per mask.");
-    cmd->footer(kScoreFooter);
+    cmd->footer(std::string(kScoreFooter) + "\n" + kRobustFooter);
     cmd->add_option("masks", o->masks, "Mask files (*.mask.json)")->required();
     cmd->add_option("--scenes", o->scenes,
                     "Scenes for simulated metrics, comma-separated: letter-R, usaf, "
@@ -186,6 +194,7 @@ void setup(CLI::App& app) {
     cmd->add_option("--nsr", o->nsr,
                     "Wiener noise-to-signal ratio (> 0), or 'tuned' (per mask and noise level)")
         ->capture_default_str();
+    cmd->add_option("--robust", o->robust, kRobustFlagHelp);
     cmd->add_option("--tv-lambda", o->tv_lambda, "TV-L2 weight (> 0), or 'tuned'")
         ->capture_default_str();
     cmd->add_option("--tv-iters", o->tv_iterations, "TV-L2 maximum ADMM iterations (>= 1)")

@@ -168,6 +168,12 @@ void add_search_flags(CLI::App* cmd, const std::shared_ptr<SearchCliOptions>& o)
         ->capture_default_str();
     cmd->add_option("--w-min-spectrum", o->w_min_spectrum, "Weight of -min|P^(k)|/sqrt(K), k != 0")
         ->capture_default_str();
+    cmd->add_option("--objective", o->objective,
+                    "nominal: the design's analytic Wiener PSNR; robust: its expectation under "
+                    "the --robust fabrication errors, decoded with the nominal PSF (needs "
+                    "--robust)")
+        ->capture_default_str();
+    cmd->add_option("--robust", o->robust, kRobustFlagHelp);
     cmd->add_option("--keep-out", o->keep_out, "Cells no pinhole may use: none | border")
         ->capture_default_str();
     cmd->add_flag("--allow-spectral-zeros", o->allow_spectral_zeros,
@@ -208,7 +214,10 @@ void add_search(CLI::App& app) {
                     "subset of its keys); options given here override them")
         ->check(CLI::ExistingFile);
     add_cluster_flags(*cmd, *cf);
-    cmd->footer(kSearchFooter);
+    cmd->footer(std::string(kSearchFooter) + "\n" + kRobustFooter +
+                " With --objective robust the search optimises it (the re-ranking then reports "
+                "simulated figures without reordering); with --robust alone every candidate "
+                "reports robust_wiener_psnr_db beside the nominal figure.");
     cmd->callback([o, cf, cmd] {
         if (!o->config.empty()) apply_config(io::read_search_config(o->config), *cmd, *o);
         run_on_ranks(*o, *cf, *cmd);

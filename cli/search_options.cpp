@@ -90,6 +90,8 @@ void apply_config(const io::SearchConfig& c, const CLI::App& cmd, SearchCliOptio
     set("--no-rerank-tv", o.rerank_tv, c.rerank_tv);
     set("--allow-spectral-zeros", o.allow_spectral_zeros, c.allow_spectral_zeros);
     set("--rank-by", o.rank_by, c.rank_by);
+    set("--objective", o.objective, c.objective);
+    set("--robust", o.robust, c.robust);
     // The file's camera replaces the preset unless --preset is given.
     if (c.optics && !given("--preset")) o.camera.base = c.optics;
 }
@@ -133,6 +135,8 @@ nlohmann::ordered_json resolved_config(const SearchCliOptions& o, const SearchPi
             {"rerank_tv", p.rerank_tv},
             {"allow_spectral_zeros", p.allow_spectral_zeros},
             {"rank_by", o.rank_by},
+            {"objective", o.objective},
+            {"robust", o.robust},
             {"optics", io::optics_to_json<nlohmann::ordered_json>(p.tmpl.camera)}};
 }
 
@@ -186,6 +190,8 @@ SearchPipelineOptions search_pipeline_options(const SearchCliOptions& o, const C
         for (const auto& name : o.rerank_scenes) p.rerank_scenes.push_back(scene_from_name(name));
     p.rerank_tv = o.rerank_tv && !o.no_rerank;
     p.rank_by = parse_rank_by(o.rank_by);
+    p.objective = parse_objective_kind(o.objective);
+    if (!o.robust.empty()) p.robust = parse_fabrication_errors(o.robust);
     p.generator = kSearchGenerator;
     p.validate();
     return p;

@@ -35,6 +35,7 @@ struct SearchCliOptions {
     bool rerank_tv = true, no_rerank = false, allow_spectral_zeros = false, json = false,
          quiet = false, explain = false;
     std::string rank_by = "wiener", output, config;
+    std::string objective = "nominal", robust;  // --objective, --robust (issue 13 point 6)
     std::string holes = "20";  // --holes K or A..B (geometry.holes is unused by search)
 };
 

@@ -42,6 +42,21 @@ std::string search_summary_markdown(const SearchPipelineSummary& summary) {
           << fmt(score_or_nan(m, "max_sidelobe")) << " | " << fmt(-score_or_nan(m, "min_spectrum"))
           << " |\n";
     }
+    // --robust: the expected PSNR under fabrication errors beside the nominal figure.
+    bool robust = false;
+    for (const RankedMask& r : summary.ranked)
+        robust = robust || !std::isnan(score_or_nan(r.mask, "robust_wiener_psnr_db"));
+    if (robust) {
+        s << "\nAnalytic Wiener PSNR (dB), nominal -> expected under the --robust fabrication "
+             "errors (decoded with the nominal PSF):";
+        for (std::size_t i = 0; i < summary.ranked.size(); ++i) {
+            const Mask& m = summary.ranked[i].mask;
+            s << (i ? "," : "") << " rank " << i + 1 << " "
+              << fmt(score_or_nan(m, "analytic_wiener_psnr_db")) << " -> "
+              << fmt(score_or_nan(m, "robust_wiener_psnr_db"));
+        }
+        s << "\n";
+    }
     const SearchSummary& sr = summary.search;
     s << "\n"
       << sr.evaluations << " evaluations; stopped: " << search_termination_name(summary.termination)

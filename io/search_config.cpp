@@ -76,6 +76,8 @@ SearchConfig parse_search_config(const std::string& text) {
                     "rerank_tv",
                     "allow_spectral_zeros",
                     "rank_by",
+                    "objective",
+                    "robust",
                     "optics"});
     if (read_string(r.required("format"), "format") != kSearchConfigFormat)
         fail("format",
@@ -198,6 +200,10 @@ SearchConfig parse_search_config(const std::string& text) {
     read_into(r, "rank_by", c.rank_by, [](const Json& v, const std::string& p) {
         return one_of(v, p, {"wiener", "tv"});
     });
+    read_into(r, "objective", c.objective, [](const Json& v, const std::string& p) {
+        return one_of(v, p, {"nominal", "robust"});
+    });
+    read_into(r, "robust", c.robust, read_string);
     if (const Json* optics = r.optional("optics")) c.optics = optics_from_json(*optics);
     return c;
 }

@@ -136,6 +136,7 @@ CompareResult compare_mask(const CompareEntry& e, const CompareSettings& s,
     const LevelMetrics& first = mm.levels.front();
     row.analytic_wiener_psnr_db = first.analytic->psnr_db;
     row.analytic_optimal_wiener_psnr_db = first.analytic->optimal_psnr_db;
+    if (first.robust) row.robust_wiener_psnr_db = first.robust->psnr_db;
     row.wiener_psnr_db = first.wiener->mean_psnr_db;
     row.wiener_ssim = first.wiener->mean_ssim;
     row.wiener_nsr = first.wiener->weight;

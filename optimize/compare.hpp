@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -57,6 +58,8 @@ struct CompareRow {
     double otf_condition_number = 0.0;             // +inf with a spectral zero in the passband
     double analytic_wiener_psnr_db = 0.0;          // the Wiener NSR setting, first level
     double analytic_optimal_wiener_psnr_db = 0.0;  // per-frequency optimal filter, first level
+    // analytic W expected under the --robust fabrication errors, first level; NaN without errors
+    double robust_wiener_psnr_db = std::numeric_limits<double>::quiet_NaN();
     double wiener_psnr_db = 0.0, wiener_ssim = 0.0, wiener_nsr = 0.0;  // mean over scenes
     double tv_psnr_db = 0.0, tv_ssim = 0.0, tv_lambda = 0.0;
     MaskMetrics metrics;  // every level's figures, as score computes them

@@ -9,6 +9,7 @@
 #include "core/resource_limits.hpp"
 #include "design/kernel_model.hpp"
 #include "design/psf.hpp"
+#include "optimize/robust_wiener.hpp"
 
 namespace pinmask {
 namespace {
@@ -180,6 +181,7 @@ void MaskMetricsOptions::validate() const {
         throw invalid_field("--scenes", "''", "needs at least one scene for simulated metrics");
     }
     simulation.validate();
+    robust.validate();
     if (!(spectral_zero_threshold > 0.0 && spectral_zero_threshold < 1.0)) {
         throw invalid_field("spectral_zero_threshold", number_text(spectral_zero_threshold),
                             "must be in (0, 1) (a fraction of the flat level sqrt(K))");
@@ -249,6 +251,11 @@ MaskMetrics compute_mask_metrics(const Mask& mask, MetricsContext& context) {
                           : model.evaluate(spectrum, {WienerFilterKind::kFixedNsr, nsr.value});
             const AnalyticError best = model.evaluate(spectrum, {WienerFilterKind::kOptimal, 0.0});
             lm.analytic = AnalyticFigures{e.psnr_db, e.nsr, best.psnr_db};
+            if (o.robust.any()) {
+                const RobustWienerModel rm(mask, o.robust, context.prior(m), level.model);
+                const RobustError re = rm.evaluate(spectrum, {WienerFilterKind::kFixedNsr, e.nsr});
+                lm.robust = RobustFigures{re.psnr_db, e.psnr_db - re.psnr_db};
+            }
         }
         if (o.wiener) {
             lm.wiener = simulated_quality(psf, context.scenes(m), level.model, r.holes, n * n,

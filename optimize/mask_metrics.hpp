@@ -8,6 +8,8 @@
 //               (optimize/spectrum_metrics)
 //   analytic    closed-form expected Wiener PSNR for each noise level (optimize/analytic_error):
 //               the fixed-NSR filter (given or tuned) and the per-frequency optimal bound
+//   robust      with --robust errors: the analytic figure's expectation under fabrication
+//               errors, decoded with the nominal PSF (optimize/robust_wiener)
 //   wiener, tv  simulated one-period captures of the scenes, decoded (optimize/simulated_metrics)
 // The analytic prior is make_scene_prior(options.prior, m): by default 16 natural 1/f textures
 // of seeds 1000 .. 1015 (apart from the scored "natural" scene, seed 0).
@@ -25,6 +27,7 @@
 #include "optimize/analytic_error.hpp"
 #include "optimize/autocorrelation.hpp"
 #include "optimize/noise_model.hpp"
+#include "optimize/robust_errors.hpp"
 #include "optimize/scene_prior.hpp"
 #include "optimize/scenes.hpp"
 #include "optimize/simulated_metrics.hpp"
@@ -87,6 +90,9 @@ struct MaskMetricsOptions {
     std::vector<SceneSpec> scenes;       // simulated scenes (wiener, tv)
     SimulatedMetricsOptions simulation;  // its wiener_nsr is also the analytic fixed filter
     double spectral_zero_threshold = kSpectralZeroThreshold;
+    // Fabrication errors (--robust): with any, the analytic figures gain the expected PSNR under
+    // them, decoded with the nominal PSF (optimize/robust_wiener.hpp).
+    FabricationErrors robust;
 
     // InvalidInput naming the field (or flag), value and rule.
     void validate() const;
@@ -98,9 +104,17 @@ struct AnalyticFigures {
     double optimal_psnr_db = 0.0;  // the per-frequency optimal Wiener filter
 };
 
+// The analytic fixed-NSR figure under fabrication errors (same filter and NSR as
+// AnalyticFigures::psnr_db): expected PSNR and the loss against the nominal figure.
+struct RobustFigures {
+    double psnr_db = 0.0;
+    double loss_db = 0.0;
+};
+
 struct LevelMetrics {
     NoiseLevel level;
     std::optional<AnalyticFigures> analytic;
+    std::optional<RobustFigures> robust;  // analytic with options.robust errors
     std::optional<SimulatedQuality> wiener, tv;
 };
 

@@ -13,6 +13,7 @@
 #include "design/psf.hpp"
 #include "design/random_sparse.hpp"
 #include "optimize/island_search.hpp"
+#include "optimize/robust_wiener.hpp"
 #include "optimize/simulated_metrics.hpp"
 #include "optimize/spectrum_metrics.hpp"
 
@@ -38,7 +39,7 @@ constexpr double kTunedDecodesPerScene = 18.0;
 // (objective +inf: annealing never accepts them, the top list never keeps them).
 class PipelineObjective : public SearchObjective {
   public:
-    PipelineObjective(const MaskObjective& inner, std::vector<std::uint8_t> passed, bool reject)
+    PipelineObjective(const SearchObjective& inner, std::vector<std::uint8_t> passed, bool reject)
         : inner_(inner), passed_(std::move(passed)), reject_(reject) {}
     double evaluate(const PatternState& s) const override {
         if (reject_ && find_spectral_zero(s.spectrum(), passed_).found) return INFINITY;
@@ -49,7 +50,7 @@ class PipelineObjective : public SearchObjective {
     }
 
   private:
-    const MaskObjective& inner_;
+    const SearchObjective& inner_;
     std::vector<std::uint8_t> passed_;
     bool reject_;
 };
@@ -134,6 +135,16 @@ RankBy parse_rank_by(const std::string& text) {
     throw invalid_field("--rank-by", text, "must be wiener or tv");
 }
 
+ObjectiveKind parse_objective_kind(const std::string& text) {
+    if (text == "nominal") return ObjectiveKind::kNominal;
+    if (text == "robust") return ObjectiveKind::kRobust;
+    throw invalid_field("--objective", text, "must be nominal or robust");
+}
+
+std::string objective_kind_name(ObjectiveKind k) {
+    return k == ObjectiveKind::kRobust ? "robust" : "nominal";
+}
+
 std::pair<int, int> parse_holes_range(const std::string& text) {
     const auto whole_int = [&](const std::string& t, int& v) {
         if (t.empty() || t.size() > 9) return false;
@@ -203,6 +214,18 @@ void SearchPipelineOptions::validate() const {
                                 "use scenes the search did not see");
         }
     }
+    robust.validate(tmpl.camera.pinhole_m);
+    if (objective == ObjectiveKind::kRobust) {
+        if (!robust.any()) {
+            throw invalid_field("--objective", "robust",
+                                "needs --robust with at least one non-zero error (size, jitter "
+                                "or missing)");
+        }
+        if (!(weights.analytic_wiener > 0.0)) {
+            throw invalid_field("--objective", "robust",
+                                "needs the analytic Wiener term (--w-analytic > 0)");
+        }
+    }
     if (rank_by == RankBy::kTv && (rerank_scenes.empty() || !rerank_tv)) {
         throw invalid_field("--rank-by", "tv",
                             "needs the TV re-ranking (not with --no-rerank or --no-rerank-tv)");
@@ -224,14 +247,23 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
     out.kernel_resolved = kernel_model_name(kernel.model);
     const ComplexPlane kernel_otf = expand_half_spectrum(kernel_spectrum(kernel, n, ppc), m);
     std::shared_ptr<const AnalyticWienerModel> model;
+    std::shared_ptr<const RobustWienerModel> robust_model;
     out.prior_description = o.prior.description();
-    if (o.weights.analytic_wiener > 0.0) {
+    const bool robust_objective = o.objective == ObjectiveKind::kRobust;
+    if (o.weights.analytic_wiener > 0.0 || o.robust.any()) {
         ScenePrior prior = make_scene_prior(o.prior, m);
         out.prior_relevance = prior_relevance(prior);
-        model = std::make_shared<AnalyticWienerModel>(kernel_otf, std::move(prior), o.noise);
+        if (o.robust.any())
+            robust_model = std::make_shared<RobustWienerModel>(o.tmpl, o.robust, prior, o.noise);
+        if (o.weights.analytic_wiener > 0.0 && !robust_objective)
+            model = std::make_shared<AnalyticWienerModel>(kernel_otf, std::move(prior), o.noise);
     }
-    const MaskObjective inner(o.weights, model, o.filter);
-    const PipelineObjective objective(inner, pattern_frequencies_passed(kernel_otf, n),
+    std::unique_ptr<SearchObjective> inner;
+    if (robust_objective)
+        inner = std::make_unique<RobustObjective>(o.weights, robust_model, o.filter);
+    else
+        inner = std::make_unique<MaskObjective>(o.weights, model, o.filter);
+    const PipelineObjective objective(*inner, pattern_frequencies_passed(kernel_otf, n),
                                       !o.allow_spectral_zeros);
 
     SearchOptions so = o.search;
@@ -348,6 +380,10 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
             std::string("search:") +
             (o.search.strategy == SearchStrategy::kRandom ? "random" : "anneal");
         r.mask.provenance.scores = c.terms;
+        if (robust_model && !robust_objective) {
+            r.mask.provenance.scores["robust_wiener_psnr_db"] =
+                robust_model->evaluate(pattern_spectrum(c.pattern), o.filter).psnr_db;
+        }
         r.objective = c.objective;
         r.sim_wiener_psnr_db = r.sim_tv_psnr_db = NAN;
         const SpectralZero z = find_spectral_zero(pattern_spectrum(c.pattern), passed);
@@ -378,12 +414,14 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
             }
         }
         // Re-ranked candidates first, by the chosen decoder's simulated PSNR; the rest after,
-        // in search order.
-        std::stable_sort(out.ranked.begin(), out.ranked.end(),
-                         [&](const RankedMask& a, const RankedMask& b) {
-                             if (a.reranked != b.reranked) return a.reranked;
-                             return a.reranked && rr.key(a) > rr.key(b);
-                         });
+        // in search order. The robust objective keeps its own order (the simulations use the
+        // nominal PSF).
+        if (!robust_objective)
+            std::stable_sort(out.ranked.begin(), out.ranked.end(),
+                             [&](const RankedMask& a, const RankedMask& b) {
+                                 if (a.reranked != b.reranked) return a.reranked;
+                                 return a.reranked && rr.key(a) > rr.key(b);
+                             });
     }
     out.rerank_s = seconds_since(r0);
     out.used_s = seconds_since(t0);

@@ -21,6 +21,7 @@
 #include "optimize/mask_metrics.hpp"
 #include "optimize/mask_objective.hpp"
 #include "optimize/rank_comm.hpp"
+#include "optimize/robust_errors.hpp"
 #include "optimize/search.hpp"
 
 namespace pinmask {
@@ -29,6 +30,12 @@ enum class RankBy { kWiener, kTv };
 const std::vector<std::pair<RankBy, std::string>>& rank_by_names();  // wiener, tv
 std::string rank_by_name(RankBy r);
 RankBy parse_rank_by(const std::string& text);  // InvalidInput naming --rank-by
+
+// What the analytic Wiener term measures (issue 13 point 6): the design's PSNR, or its expected
+// PSNR under fabrication errors decoded with the nominal PSF (optimize/robust_wiener.hpp).
+enum class ObjectiveKind { kNominal, kRobust };
+ObjectiveKind parse_objective_kind(const std::string& text);  // InvalidInput naming --objective
+std::string objective_kind_name(ObjectiveKind k);             // nominal, robust
 
 struct SearchPipelineOptions {
     Mask tmpl;       // camera, PSF settings, pattern n, tiles, spacing (no pinholes)
@@ -42,6 +49,12 @@ struct SearchPipelineOptions {
     PriorSpec prior;                // the objective's scene prior
     WienerFilterSpec filter{WienerFilterKind::kOptimal, 0.0};
     ObjectiveWeights weights;
+    // kRobust: the analytic Wiener term is the expected PSNR under `robust` (which must have an
+    // error); the re-ranking then reports its simulated figures without reordering (they are
+    // nominal-PSF figures, which would undo the robust choice). With kNominal and errors given,
+    // every candidate's robust PSNR is reported beside the nominal one ("robust_wiener_psnr_db").
+    ObjectiveKind objective = ObjectiveKind::kNominal;
+    FabricationErrors robust;
     bool allow_spectral_zeros = false;     // else patterns with a spectral zero are rejected
     std::vector<SceneSpec> rerank_scenes;  // empty: no re-ranking
     bool rerank_tv = true;                 // also simulate TV when re-ranking

@@ -1,0 +1,69 @@
+// Fabricated masks drawn at random (the error model of optimize/robust_errors.hpp): one draw is
+// the PSF a fabricated copy of the mask really has, on the m x m torus in design/psf's frame
+// (same kernel placement, same 1/K weights up to the missing-pinhole scaling), so the nominal PSF
+// decodes its captures exactly as an uncalibrated camera would. This is the fixed-seed sample
+// the closed form (optimize/robust_wiener) is tested against, and the simulated robust figure.
+#pragma once
+
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "core/image.hpp"
+#include "design/kernel.hpp"
+#include "design/mask.hpp"
+#include "optimize/noise_model.hpp"
+#include "optimize/robust_errors.hpp"
+#include "optimize/simulated_metrics.hpp"
+
+namespace pinmask {
+
+// The kernels of a fabricated pinhole: {d + b, d - b} for a size bias b > 0, else {d}, each
+// design/psf's mask_kernel for the mask with that pinhole side. Validates the errors against the
+// mask (InvalidInput naming --robust and the key); a size bias with a kernel that does not depend
+// on the pinhole side (paper-fig3b, measured) is InvalidInput naming --robust size.
+std::vector<Kernel> fabricated_kernels(const Mask& mask, const FabricationErrors& errors,
+                                       const KernelOptions& options = {});
+
+// Jitter sigma in sensor pixels: sigma_m ppc / d (one cell is d on the mask, ppc pixels).
+double jitter_sigma_px(const Mask& mask, const FabricationErrors& errors);
+
+class FabricationSampler {
+  public:
+    // The mask needs at least one pinhole; errors validated against it (fabricated_kernels).
+    FabricationSampler(const Mask& mask, FabricationErrors errors,
+                       const KernelOptions& options = {});
+
+    int period() const { return m_; }
+
+    // One fabricated PSF, m x m. Draw order (fixed, so one seed gives one PSF): the bias sign
+    // (only when b > 0; + for u < 1/2), then per pinhole in pattern order: missing (uniform < q,
+    // only when q > 0), row shift, column shift (normal, only when sigma > 0). Each present
+    // pinhole adds its kernel with weight 1 / ((1 - q) K), area-resampled to its shifted place.
+    Plane draw(std::mt19937_64& rng) const;
+
+  private:
+    Mask mask_;
+    FabricationErrors errors_;
+    std::vector<Kernel> kernels_;
+    double sigma_px_ = 0.0;
+    int m_ = 0;
+};
+
+// Simulated Wiener decoding of fabricated masks: for draw i (std::mt19937_64 seeded with
+// (seed, i)), every scene channel is captured through the draw's PSF (optimize/simulate
+// cyclic_capture), noise added (optimize/noise_model, the pattern's K and n^2), and decoded by
+// the fixed-NSR Wiener filter of the NOMINAL PSF. PSNR per scene from the MSE averaged over
+// draws and channels; the figure is the mean over scenes. `nominal_psnr_db` is the same with the
+// nominal PSF in place of each draw (same noise draws), so nominal - fabricated is the loss.
+struct FabricatedQuality {
+    double nominal_psnr_db = 0.0;
+    double fabricated_psnr_db = 0.0;
+    int draws = 0;
+};
+FabricatedQuality fabricated_wiener_quality(const Mask& mask, const FabricationErrors& errors,
+                                            const std::vector<NamedScene>& scenes,
+                                            const NoiseModel& noise, double nsr, int draws,
+                                            std::uint64_t seed);
+
+}  // namespace pinmask

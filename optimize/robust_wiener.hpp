@@ -1,0 +1,95 @@
+// The expected Wiener error of a mask under fabrication errors, in closed form ("robust" score,
+// `--robust`, `search --objective robust`).
+//
+// What "expected score under errors" means: the camera's true PSF is a fabricated copy of the
+// mask (errors as optimize/robust_errors.hpp: a +-b side bias, independent Gaussian position
+// jitter, independently missing pinholes), while the decoder uses the nominal (design) PSF, as
+// when a mask is used uncalibrated. The robust MSE is the expectation of the analytic Wiener MSE
+// (optimize/analytic_error, same prior S, same noise variance sigma^2 as the nominal capture,
+// same filter G built from the nominal transfer function H) over the fabrication errors; the
+// robust PSNR is 10 log10(1 / robust MSE).
+//
+// Derivation (notation of optimize/analytic_error.hpp, N = m^2). The fabricated transfer
+// function T(k) replaces H in the capture; the error (G T - 1) X^ + G E^ gives per frequency
+//     E|G T - 1|^2 S + |G|^2 N sigma^2 = |G E[T] - 1|^2 S + |G|^2 (Var T S + N sigma^2).
+// With kappa = K^/K^(0) the nominal kernel, kappa_s that of side d + s b (s = +-1, both signs
+// averaged), J = a(k_r) a(k_c) and B = p(k_r) p(k_c) the jitter's mean and power per axis
+// (robust_errors jitter_transfer), q the missing probability and pp = |P^(k mod n)|^2 / K^2:
+//     E[T] = P^ kappa_s J / K      (a missing pinhole is compensated by 1/(1-q) on average)
+//     Var T = |kappa_s|^2 (B / (1 - q) - |J|^2) / K     (independent pinholes)
+// and for G = conj(H) w (w = 1 / (h + nsr) fixed-NSR, w = S / (h S + N sigma^2) optimal):
+//     term(k) = |w pp conj(kappa) kappa_s J - 1|^2 S + w^2 pp |kappa|^2 (Var_s S + N sigma^2)
+// with Var_s = |kappa_s|^2 (B / (1 - q) - |J|^2) / K. Everything depends on the pattern through
+// |P^|^2 and K only. Without errors (kappa_s = kappa, J = B = 1, q = 0) this is the nominal
+// term; evaluate() then returns the nominal figure itself, so zero errors give exactly the
+// nominal score. Cost per evaluation: O(m^2) per bias sign, plus the nominal evaluation.
+//
+// Not modelled: the changed light of a fabricated mask (brightness is the user's exposure; the
+// noise variance is the nominal capture's), and errors of the film's transmission or leak.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "design/mask.hpp"
+#include "optimize/analytic_error.hpp"
+#include "optimize/mask_objective.hpp"
+#include "optimize/robust_errors.hpp"
+#include "optimize/search.hpp"
+
+namespace pinmask {
+
+struct RobustError {
+    AnalyticError nominal;  // the analytic error of the design (its filter, noise variance)
+    double mse = 0.0;       // expected MSE over the fabrication errors, same filter
+    double psnr_db = 0.0;   // 10 log10(1 / mse)
+    double loss_db() const { return nominal.psnr_db - psnr_db; }
+};
+
+class RobustWienerModel {
+  public:
+    // The template's camera, PSF settings and n (pinholes ignored); errors validated against it
+    // (InvalidInput naming --robust and the key). The prior is at the period m = n ppc.
+    RobustWienerModel(const Mask& tmpl, FabricationErrors errors, ScenePrior prior,
+                      NoiseModel noise);
+
+    const FabricationErrors& errors() const { return errors_; }
+    const AnalyticWienerModel& nominal() const { return *nominal_; }
+    int cases() const { return static_cast<int>(cross_.size()); }
+
+    // The filter is the nominal decoder's (fixed NSR or per-frequency optimal).
+    RobustError evaluate(const ComplexPlane& pattern_spectrum, const WienerFilterSpec& f) const;
+    // The fixed-NSR filter with the NSR tuned for the nominal mask (what a user tuning the
+    // design would pick), then its robust error.
+    RobustError evaluate_tuned_nsr(const ComplexPlane& pattern_spectrum) const;
+
+  private:
+    double robust_mse(const ComplexPlane& p, double noise_variance,
+                      const WienerFilterSpec& f) const;
+
+    FabricationErrors errors_;
+    std::shared_ptr<AnalyticWienerModel> nominal_;
+    int n_ = 0;
+    std::vector<ComplexPlane> cross_;  // per bias sign: conj(kappa) kappa_s J, m x m
+    std::vector<Plane> variance_;      // per bias sign: |kappa_s|^2 (B / (1 - q) - |J|^2)
+};
+
+// The search objective of `--objective robust`: -weights.analytic_wiener x robust PSNR plus the
+// other weighted terms of MaskObjective (sidelobes, min spectrum). Terms add
+// "robust_wiener_psnr_db" beside the nominal "analytic_wiener_psnr_db".
+class RobustObjective : public SearchObjective {
+  public:
+    RobustObjective(ObjectiveWeights weights, std::shared_ptr<const RobustWienerModel> model,
+                    WienerFilterSpec filter);
+    double evaluate(const PatternState& state) const override;
+    std::map<std::string, double> terms(const PatternState& state) const override;
+
+  private:
+    ObjectiveWeights weights_;
+    std::shared_ptr<const RobustWienerModel> model_;
+    WienerFilterSpec filter_;
+    std::unique_ptr<MaskObjective> others_;  // the non-Wiener terms (null when all zero)
+};
+
+}  // namespace pinmask
