@@ -83,6 +83,7 @@ double RobustWienerModel::robust_mse(const ComplexPlane& p, double sigma2,
 }
 
 RobustError RobustWienerModel::evaluate(const ComplexPlane& p, const WienerFilterSpec& f) const {
+    if (f.kind == WienerFilterKind::kTunedNsr) return evaluate_tuned_nsr(p);
     RobustError r;
     r.nominal = nominal_->evaluate(p, f);
     if (cross_.empty()) {
