@@ -219,6 +219,14 @@ TEST_CASE("zero errors give exactly the nominal score; tiny errors approach it")
         CHECK(std::abs(t.mse - r.mse) <= kTiny * r.mse);
     }
     CHECK(zero.evaluate_tuned_nsr(p).psnr_db == nominal.evaluate_tuned_nsr(p).psnr_db);
+    // The tuned filter (search's default under --photons) through evaluate(): the tuned NSR's
+    // robust figure, not the optimal filter's.
+    const RobustWienerModel some(mask, FabricationErrors{0.0, 2e-6, 0.01}, prior, noise);
+    const WienerFilterSpec tuned{WienerFilterKind::kTunedNsr, 0.0};
+    CHECK(some.evaluate(p, tuned).mse == some.evaluate_tuned_nsr(p).mse);
+    CHECK(some.evaluate(p, tuned).mse !=
+          some.evaluate(p, {WienerFilterKind::kOptimal, 0.0}).mse);
+    CHECK(zero.evaluate(p, tuned).psnr_db == nominal.evaluate_tuned_nsr(p).psnr_db);
 }
 
 TEST_CASE("fabricated PSFs: deterministic for a seed, sum about 1, nominal without errors") {
