@@ -53,6 +53,13 @@ struct TvL2Options : IterativeOptions {
 DecodeResult solve_tv_l2(const ConvolutionOperator& op, const Plane& capture,
                          const TvL2Options& options, const Plane* warm_start = nullptr);
 
+// The fused pointwise pass also has an AVX2 build, used when the CPU has AVX2: the same IEEE
+// operations per pixel in the same order, so the same bits as the baseline (SSE2) build.
+// set_tv_l2_avx2(false) forces the baseline process-wide (tests compare the two); true selects
+// AVX2 again when available.
+bool tv_l2_avx2_available();
+void set_tv_l2_avx2(bool enabled);
+
 // 1/2 ||A x - p||_2^2 + lambda TV(x) for x on the working grid.
 double tv_l2_objective(const ConvolutionOperator& op, const Plane& capture, const Plane& x,
                        double lambda);
