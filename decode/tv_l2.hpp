@@ -26,11 +26,11 @@
 // for the row above (row 0's at the end), branch-free so the compiler vectorises the rows; the
 // residual sums are gathered only on the adaptation iterations (every 3rd), vectorised too (the
 // row's old z kept in a scratch row, the per-pixel squares summed in four fixed partial sums),
-// the TV sum only with records (scalar); the pass is also built for AVX2 and chosen at run time
-// (same bits, see set_tv_l2_avx2 below). The relative change by a vectorised reduction when
-// tolerance > 0 (a comparison for tolerance 0). When residual balancing changes rho, the
-// right-hand side is rebuilt in a separate pass. Every buffer is allocated before the first
-// iteration.
+// the TV sum only with records (scalar); the pass and the cyclic spectral solve are also built
+// for AVX2, chosen at run time (same bits, see set_tv_l2_avx2 below). The relative change by a
+// vectorised reduction when tolerance > 0 (a comparison for tolerance 0). When residual
+// balancing changes rho, the right-hand side is rebuilt in a separate pass. Every buffer is
+// allocated before the first iteration.
 // The estimate returned is x, or w (exactly >= 0) when nonnegative. Records: objective
 // 1/2 ||A x - p||_2^2 + lambda TV(x) and residual ||A x - p||_2 of the ADMM iterate x (no extra
 // FFT); without nonnegative that is the estimate returned, with it x -> w as ADMM converges.
