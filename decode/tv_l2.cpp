@@ -1,15 +1,55 @@
 #include "decode/tv_l2.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "core/error.hpp"
 #include "core/fft.hpp"
 #include "decode/gradient.hpp"
 
+#if defined(__GNUC__) && defined(__x86_64__)
+#define PM_TV_AVX2 1
+#define PM_TV_INLINE inline __attribute__((always_inline))
+#else
+#define PM_TV_AVX2 0
+#define PM_TV_INLINE inline
+#endif
+
 namespace pinmask {
+
+bool tv_l2_avx2_available() {
+#if PM_TV_AVX2
+    static const bool has = [] {
+        __builtin_cpu_init();  // may run before the library's own CPU-model constructor
+        return __builtin_cpu_supports("avx2") != 0;
+    }();
+    return has;
+#else
+    return false;
+#endif
+}
+
+namespace {
+// -1 until first use (then the CPU's answer), or what set_tv_l2_avx2 chose.
+std::atomic<int> tv_l2_avx2_mode{-1};
+bool tv_l2_avx2_enabled() {
+    int m = tv_l2_avx2_mode.load(std::memory_order_relaxed);
+    if (m < 0) {
+        m = tv_l2_avx2_available() ? 1 : 0;
+        tv_l2_avx2_mode.store(m, std::memory_order_relaxed);
+    }
+    return m == 1;
+}
+}  // namespace
+
+void set_tv_l2_avx2(bool enabled) {
+    tv_l2_avx2_mode.store(enabled && tv_l2_avx2_available() ? 1 : 0, std::memory_order_relaxed);
+}
+
 namespace {
 
 // Residual balancing (Boyd et al. 2011, sec. 3.4.1): adapt when one residual is kMu times the
@@ -76,15 +116,35 @@ struct ZState {
     T* zc;
     T* ur;
     T* uc;
+    double* ep;  // scratch rows of C for the residual sums (the vectorised stats path)
+    double* ed;
+    T* sr;  // scratch rows of C for the old z (the same path)
+    T* sc;
 };
+
+// Sum of n doubles in four interleaved partial sums (a fixed order: deterministic), so the adds
+// do not wait on one another.
+inline double sum4(const double* __restrict a, int n) {
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+    int i = 0;
+    for (; i + 3 < n; i += 4) {
+        s0 += a[i];
+        s1 += a[i + 1];
+        s2 += a[i + 2];
+        s3 += a[i + 3];
+    }
+    for (; i < n; ++i) s0 += a[i];
+    return (s0 + s1) + (s2 + s3);
+}
 
 // One pixel of the z-step: isotropic shrinkage by thr of the over-relaxed gradient
 // alpha g + (1 - alpha) z + u; z, u updated in place. Branch-free, on restrict pointers, in a TU
 // built with -fno-math-errno (decode/CMakeLists.txt), so the compiler vectorises the row loop:
 // f = max(0, 1 - thr / max(|a|, tiny)) is 1 - thr / |a| when |a| > thr, else 0.
 template <class T, bool kStats>
-inline void z_point(T gr, T gc, Eigen::Index i, T* __restrict zr, T* __restrict zc,
-                    T* __restrict ur, T* __restrict uc, T alpha, T thr, bool want_tv, ZSums& sums) {
+PM_TV_INLINE void z_point(T gr, T gc, Eigen::Index i, T* __restrict zr, T* __restrict zc,
+                          T* __restrict ur, T* __restrict uc, T alpha, T thr, bool want_tv,
+                          ZSums& sums) {
     const T zr0 = zr[i], zc0 = zc[i];
     const T ar = alpha * gr + (T(1) - alpha) * zr0 + ur[i];
     const T ac = alpha * gc + (T(1) - alpha) * zc0 + uc[i];
@@ -106,20 +166,31 @@ inline void z_point(T gr, T gc, Eigen::Index i, T* __restrict zr, T* __restrict 
 
 // z-step of row r (periodic forward differences of x: the row below, the pixel to the right).
 template <class T, bool kStats>
-void z_row(const T* __restrict x, int R, int C, int r, const ZState<T>& s, T alpha, T thr,
-           bool want_tv, ZSums& sums) {
+PM_TV_INLINE void z_row(const T* __restrict x, int R, int C, int r, const ZState<T>& s, T alpha,
+                        T thr, bool want_tv, ZSums& sums) {
     const T* __restrict xr = x + Eigen::Index(r) * C;
     const T* __restrict xd = x + Eigen::Index(r + 1 < R ? r + 1 : 0) * C;
     T* __restrict zr = s.zr + Eigen::Index(r) * C;
     T* __restrict zc = s.zc + Eigen::Index(r) * C;
     T* __restrict ur = s.ur + Eigen::Index(r) * C;
     T* __restrict uc = s.uc + Eigen::Index(r) * C;
-    if (kStats) {
+    if (kStats && want_tv) {  // records: TV too (scalar; not on the timed path)
         for (int c = 0; c + 1 < C; ++c) {
             z_point<T, kStats>(xd[c] - xr[c], xr[c + 1] - xr[c], c, zr, zc, ur, uc, alpha, thr,
                                want_tv, sums);
         }
-    } else {  // z_point's arithmetic written out: this form is the one GCC 12 vectorises
+    } else {
+        // Adaptation (kStats): z and the old z kept in scratch rows, then the same vectorised
+        // loop as below, then the squared residuals per pixel, summed by sum4.
+        T* __restrict z0r = kStats ? s.sr : nullptr;
+        T* __restrict z0c = kStats ? s.sc : nullptr;
+        if (kStats) {
+            for (int c = 0; c + 1 < C; ++c) {
+                z0r[c] = zr[c];
+                z0c[c] = zc[c];
+            }
+        }
+        // z_point's arithmetic written out: this form is the one GCC 12 vectorises
         const T beta = T(1) - alpha, tiny = std::numeric_limits<T>::min();
         for (int c = 0; c + 1 < C; ++c) {
             const T ar = alpha * (xd[c] - xr[c]) + beta * zr[c] + ur[c];
@@ -130,6 +201,20 @@ void z_row(const T* __restrict x, int R, int C, int r, const ZState<T>& s, T alp
             ur[c] = ar - f * ar;
             uc[c] = ac - f * ac;
         }
+        if (kStats) {
+            double* __restrict ep = s.ep;
+            double* __restrict ed = s.ed;
+            for (int c = 0; c + 1 < C; ++c) {
+                const double pr = double(xd[c] - xr[c]) - double(zr[c]);
+                const double pc = double(xr[c + 1] - xr[c]) - double(zc[c]);
+                const double dr = double(zr[c]) - double(z0r[c]);
+                const double dc = double(zc[c]) - double(z0c[c]);
+                ep[c] = pr * pr + pc * pc;
+                ed[c] = dr * dr + dc * dc;
+            }
+            sums.prim2 += sum4(ep, C - 1);
+            sums.dual2 += sum4(ed, C - 1);
+        }
     }
     const int c = C - 1;
     z_point<T, kStats>(xd[c] - xr[c], xr[0] - xr[c], c, zr, zc, ur, uc, alpha, thr, want_tv, sums);
@@ -138,7 +223,8 @@ void z_row(const T* __restrict x, int R, int C, int r, const ZState<T>& s, T alp
 // x-step right-hand side of row r: rho grad^T (z - u) [+ rho (w - v)], where grad^T d = -div d
 // = -(d_r(i) - d_r(i - row) + d_c(i) - d_c(i - 1)) (periodic). Reads rows r and r - 1 of z, u.
 template <class T>
-void rhs_row(int R, int C, int r, const ZState<T>& s, const T* w, const T* v, T rho, T* t) {
+PM_TV_INLINE void rhs_row(int R, int C, int r, const ZState<T>& s, const T* w, const T* v, T rho,
+                          T* t) {
     const Eigen::Index o = Eigen::Index(r) * C;
     const Eigen::Index ou = Eigen::Index(r > 0 ? r - 1 : R - 1) * C;
     const T *zr = s.zr, *zc = s.zc, *ur = s.ur, *uc = s.uc;
@@ -160,7 +246,7 @@ void rhs_row(int R, int C, int r, const ZState<T>& s, const T* w, const T* v, T 
 // w-step of row r: projection on x >= 0 of the over-relaxed alpha x + (1 - alpha) w + v.
 // Adds ||x - w||^2 and ||w - w_old||^2 to the sums when asked.
 template <class T, bool kStats>
-void w_row(const T* x, int C, int r, T* w, T* v, T alpha, ZSums& sums) {
+PM_TV_INLINE void w_row(const T* x, int C, int r, T* w, T* v, T alpha, ZSums& sums) {
     const Eigen::Index o = Eigen::Index(r) * C;
     for (Eigen::Index i = o; i < o + C; ++i) {
         const T xh = alpha * x[i] + (T(1) - alpha) * w[i];
@@ -178,8 +264,8 @@ void w_row(const T* x, int C, int r, T* w, T* v, T alpha, ZSums& sums) {
 // The fused pass after the x-step: per row the z-step, the w-step, and the right-hand side of
 // the next x-step for the row above (whose z, u, w, v are final); row 0's at the end.
 template <class T, bool kStats>
-ZSums fused_pass(const T* x, int R, int C, const ZState<T>& s, T* w, T* v, T alpha, T thr, T rho,
-                 bool want_tv, T* t) {
+PM_TV_INLINE ZSums fused_pass_body(const T* x, int R, int C, const ZState<T>& s, T* w, T* v,
+                                   T alpha, T thr, T rho, bool want_tv, T* t) {
     ZSums sums;
     for (int r = 0; r < R; ++r) {
         z_row<T, kStats>(x, R, C, r, s, alpha, thr, want_tv, sums);
@@ -188,6 +274,63 @@ ZSums fused_pass(const T* x, int R, int C, const ZState<T>& s, T* w, T* v, T alp
     }
     rhs_row(R, C, 0, s, w, v, rho, t);
     return sums;
+}
+
+// The fused pass, compiled twice: for the x86-64 baseline (SSE2) and, when the CPU has it, for
+// AVX2 (twice the vector width for the shrinkage's sqrt and division, which dominate the pass).
+// Both do the same IEEE operations on every pixel in the same order (no FMA: AVX2 does not
+// imply it, and this file is built with -ffp-contract=off), and the sums use fixed partial-sum
+// orders, so the two give identical bits (tests/decode/test_tv_l2.cpp checks it).
+#if PM_TV_AVX2
+template <class T, bool kStats>
+__attribute__((target("avx2"))) ZSums fused_pass_avx2(const T* x, int R, int C, const ZState<T>& s,
+                                                      T* w, T* v, T alpha, T thr, T rho,
+                                                      bool want_tv, T* t) {
+    return fused_pass_body<T, kStats>(x, R, C, s, w, v, alpha, thr, rho, want_tv, t);
+}
+#endif
+
+template <class T, bool kStats>
+ZSums fused_pass(const T* x, int R, int C, const ZState<T>& s, T* w, T* v, T alpha, T thr, T rho,
+                 bool want_tv, T* t) {
+#if PM_TV_AVX2
+    if (tv_l2_avx2_enabled()) {
+        return fused_pass_avx2<T, kStats>(x, R, C, s, w, v, alpha, thr, rho, want_tv, t);
+    }
+#endif
+    return fused_pass_body<T, kStats>(x, R, C, s, w, v, alpha, thr, rho, want_tv, t);
+}
+
+// The cyclic x-step without records, X = (F[rhs] + conj(H) P) / denominator, in place; built
+// for the baseline and for AVX2 like the fused pass (a complex add and a real scaling per
+// frequency: the same bits either way).
+template <class T>
+PM_TV_INLINE void spectral_solve_body(std::complex<T>* __restrict sp,
+                                      const std::complex<T>* __restrict htp, const T* __restrict id,
+                                      Eigen::Index nh) {
+    // On the interleaved real and imaginary parts (std::complex's array access): std::complex's
+    // own operators do not vectorise here; (a + b) r is the same per part.
+    T* __restrict s2 = reinterpret_cast<T*>(sp);
+    const T* __restrict h2 = reinterpret_cast<const T*>(htp);
+    for (Eigen::Index i = 0; i < nh; ++i) {
+        s2[2 * i] = (s2[2 * i] + h2[2 * i]) * id[i];
+        s2[2 * i + 1] = (s2[2 * i + 1] + h2[2 * i + 1]) * id[i];
+    }
+}
+#if PM_TV_AVX2
+template <class T>
+__attribute__((target("avx2"))) void spectral_solve_avx2(std::complex<T>* sp,
+                                                         const std::complex<T>* htp, const T* id,
+                                                         Eigen::Index nh) {
+    spectral_solve_body<T>(sp, htp, id, nh);
+}
+#endif
+template <class T>
+void spectral_solve(std::complex<T>* sp, const std::complex<T>* htp, const T* id, Eigen::Index nh) {
+#if PM_TV_AVX2
+    if (tv_l2_avx2_enabled()) return spectral_solve_avx2<T>(sp, htp, id, nh);
+#endif
+    spectral_solve_body<T>(sp, htp, id, nh);
 }
 
 // The ADMM iteration in precision T on the normalised problem (capture / scale, lambda / scale).
@@ -243,7 +386,12 @@ DecodeResult run_admm(const ConvolutionOperator& op, const Plane& capture_d, con
     P zr = P::Zero(R, Cc), zc = P::Zero(R, Cc), ur = P::Zero(R, Cc), uc = P::Zero(R, Cc),
       tmp(R, Cc), x_old(R, Cc);
     P w, v, s, eta, hx, tmp2;
-    const ZState<T> zs{zr.data(), zc.data(), ur.data(), uc.data()};
+    std::vector<double> stat_rows(2 * static_cast<std::size_t>(Cc));
+    std::vector<T> old_z_rows(2 * static_cast<std::size_t>(Cc));
+    const ZState<T> zs{zr.data(),         zc.data(),
+                       ur.data(),         uc.data(),
+                       stat_rows.data(),  stat_rows.data() + Cc,
+                       old_z_rows.data(), old_z_rows.data() + Cc};
 
     const bool init = !warm_start && !linear;
     if (init) {  // x0 = the quadratic (gradient-Tikhonov, weight rho) estimate: one inverse FFT
@@ -306,7 +454,7 @@ DecodeResult run_admm(const ConvolutionOperator& op, const Plane& capture_d, con
             }
         } else {
             const Cx* htpd = htp.data();
-            for (Eigen::Index i = 0; i < nh; ++i) sp[i] = (sp[i] + htpd[i]) * id[i];
+            spectral_solve<T>(sp, htpd, id, nh);
         }
         x_old.swap(x);
         fft.inverse_unscaled_destroy(spec, x);
@@ -432,8 +580,10 @@ DecodeResult solve_tv_l2(const ConvolutionOperator& op, const Plane& capture, co
     DecodeResult r = o.single_precision
                          ? run_admm<float>(op, capture, o, warm_start, scale, clock)
                          : run_admm<double>(op, capture, o, warm_start, scale, clock);
-    r.objective = tv_l2_objective(op, capture, r.image, o.lambda);
-    r.residual = std::sqrt((op.apply(r.image) - capture).square().sum());
+    // One model application for both (tv_l2_objective's expression, the same bits).
+    const double res2 = (op.apply(r.image) - capture).square().sum();
+    r.objective = 0.5 * res2 + o.lambda * total_variation(r.image);
+    r.residual = std::sqrt(res2);
     r.seconds = clock.seconds();
     return r;
 }

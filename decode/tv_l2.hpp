@@ -24,10 +24,13 @@
 // Loops (cyclic, per iteration): the spectral solve, and one fused pass over the rows that does
 // the z-step, the w-step and the next x-step's right-hand side rho grad^T (z - u) [+ rho (w - v)]
 // for the row above (row 0's at the end), branch-free so the compiler vectorises the rows; the
-// residual and TV sums are gathered only on the iterations that use them (adaptation every 3rd
-// iteration, records), the relative change by a vectorised reduction when tolerance > 0 (a
-// comparison for tolerance 0). When residual balancing changes rho, the right-hand side is
-// rebuilt in a separate pass. Every buffer is allocated before the first iteration.
+// residual sums are gathered only on the adaptation iterations (every 3rd), vectorised too (the
+// row's old z kept in a scratch row, the per-pixel squares summed in four fixed partial sums),
+// the TV sum only with records (scalar); the pass and the cyclic spectral solve are also built
+// for AVX2, chosen at run time (same bits, see set_tv_l2_avx2 below). The relative change by a
+// vectorised reduction when tolerance > 0 (a comparison for tolerance 0). When residual
+// balancing changes rho, the right-hand side is rebuilt in a separate pass. Every buffer is
+// allocated before the first iteration.
 // The estimate returned is x, or w (exactly >= 0) when nonnegative. Records: objective
 // 1/2 ||A x - p||_2^2 + lambda TV(x) and residual ||A x - p||_2 of the ADMM iterate x (no extra
 // FFT); without nonnegative that is the estimate returned, with it x -> w as ADMM converges.
@@ -52,6 +55,13 @@ struct TvL2Options : IterativeOptions {
 // Throws InvalidInput for a capture of the wrong size or options out of range.
 DecodeResult solve_tv_l2(const ConvolutionOperator& op, const Plane& capture,
                          const TvL2Options& options, const Plane* warm_start = nullptr);
+
+// The fused pointwise pass also has an AVX2 build, used when the CPU has AVX2: the same IEEE
+// operations per pixel in the same order, so the same bits as the baseline (SSE2) build.
+// set_tv_l2_avx2(false) forces the baseline process-wide (tests compare the two); true selects
+// AVX2 again when available.
+bool tv_l2_avx2_available();
+void set_tv_l2_avx2(bool enabled);
 
 // 1/2 ||A x - p||_2^2 + lambda TV(x) for x on the working grid.
 double tv_l2_objective(const ConvolutionOperator& op, const Plane& capture, const Plane& x,
