@@ -7,8 +7,9 @@
 // 530 nm, d = 345 um: 21 px per cell, a 336 px period) simulated over a rows x cols sensor
 // (default its 2048 x 2448) from a seeded 16 x 16, K = 20 pattern and the letter-R scene, 30 dB.
 // Figures (each the minimum over `repeat` runs):
-//   check_seconds         check_period of the whole frame against the 336 px PSF (it reads
-//                         strips of the frame, decode/period.hpp)
+//   check_seconds         check_period of the whole frame against the 336 px PSF (the
+//                         early exit at the PSF's period on strips of the frame,
+//                         decode/period.hpp; the full search only if it doubts)
 //   wiener_frame_seconds  decode_plane (Wiener, cyclic) of the whole frame, PSF zero-padded
 //   wiener_period_seconds decode_plane of the centred period only (what decode does by default)
 #pragma once

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "core/error.hpp"
 #include "core/fft.hpp"
@@ -25,36 +26,132 @@ int fft_size(int n) {
     return m;
 }
 
-// The samples the check reads along the lag axis (`axis`) of a rows x cols frame whose value at
-// (r, c) is at(r, c): every line across when there are at most kAcrossStrips * kStripWidth of
-// them, else kAcrossStrips strips of kStripWidth adjacent lines spread evenly across the frame,
-// each strip averaged into one line. A capture periodic along the lag axis gives strips exactly
-// periodic with the same period; reading a few strips instead of the frame keeps the check's
-// cost a small fraction of a one-period decode's.
+// Readers of the frame the check reads: add_row(j, lo, len, out) adds columns lo .. lo + len - 1
+// of frame row j (contiguous in the row-major Plane: one vectorised pass) to `out`, row_sum(i,
+// first, w) is the sum of the w adjacent values of row i from column first. An image reads its
+// luminance, the sum of its channels in channel order.
+struct PlaneReader {
+    const Plane& p;
+    double row_sum(Eigen::Index i, Eigen::Index first, Eigen::Index w) const {
+        double s = 0.0;
+        for (Eigen::Index j = first; j < first + w; ++j) s += p(i, j);
+        return s;
+    }
+    template <class Col>
+    void add_row(Eigen::Index j, Eigen::Index lo, Eigen::Index len, Col&& out) const {
+        out += p.row(j).segment(lo, len).transpose();
+    }
+};
+
+struct ImageReader {
+    const Image& img;
+    double row_sum(Eigen::Index i, Eigen::Index first, Eigen::Index w) const {
+        double s = 0.0;
+        for (Eigen::Index j = first; j < first + w; ++j) {
+            double v = 0.0;
+            for (const Plane& p : img.channels) v += p(i, j);
+            s += v;
+        }
+        return s;
+    }
+    template <class Col>
+    void add_row(Eigen::Index j, Eigen::Index lo, Eigen::Index len, Col&& out) const {
+        Eigen::ArrayXd sum = img.channels[0].row(j).segment(lo, len).transpose();
+        for (std::size_t ch = 1; ch < img.channels.size(); ++ch)
+            sum += img.channels[ch].row(j).segment(lo, len).transpose();
+        out += sum;
+    }
+};
+
+// The lines the check reads along the lag axis (`axis`) of a rows x cols frame read through the
+// reader `at`: every line across when there are at most kAcrossStrips * kStripWidth of them,
+// else `strips` (at most across / kStripWidth) strips of kStripWidth adjacent lines spread
+// evenly across the frame, each strip averaged into one line, over the samples lo .. lo + size
+// - 1 along the lag axis. A capture periodic along the lag axis gives strips exactly periodic
+// with the same period; the early exit reads kAcrossStrips strips over kConfirmPeriods periods
+// (a small fraction of a one-period decode's cost), the full search all of the frame in strips.
+// The result is size x lines whatever the axis (the lag down each column), its mean removed.
 template <class At>
-Plane strips_across(Eigen::Index rows, Eigen::Index cols, Axis axis, const At& at) {
-    const Eigen::Index size = axis == Axis::kRows ? rows : cols;
+Plane lines_across(Eigen::Index rows, Eigen::Index cols, Axis axis, const At& at,
+                   Eigen::Index strips, Eigen::Index lo, Eigen::Index size) {
     const Eigen::Index across = axis == Axis::kRows ? cols : rows;
     const bool all = across <= Eigen::Index{kAcrossStrips} * kStripWidth;
-    const Eigen::Index n = all ? across : kAcrossStrips;
+    const Eigen::Index n = all ? across : std::min(strips, across / kStripWidth);
     const Eigen::Index w = all ? 1 : kStripWidth;
-    Plane out = Plane::Zero(axis == Axis::kRows ? size : n, axis == Axis::kRows ? n : size);
+    Plane out = Plane::Zero(size, n);
+    // Strip k is centred on (k + 1/2) across / n.
+    std::vector<Eigen::Index> first(static_cast<std::size_t>(n));
     for (Eigen::Index k = 0; k < n; ++k) {
-        // Strip k is centred on (k + 1/2) across / n.
-        const Eigen::Index first =
+        first[std::size_t(k)] =
             all ? k
                 : std::clamp<Eigen::Index>((2 * k + 1) * across / (2 * n) - w / 2, 0, across - w);
-        for (Eigen::Index j = first; j < first + w; ++j) {
-            if (axis == Axis::kRows) {
-                for (Eigen::Index i = 0; i < size; ++i) out(i, k) += at(i, j);
-            } else {
-                for (Eigen::Index i = 0; i < size; ++i) out(k, i) += at(j, i);
-            }
+    }
+    if (axis == Axis::kRows) {
+        // Each frame row once, all its strips (w adjacent values each): one pass down the frame.
+        for (Eigen::Index i = 0; i < size; ++i)
+            for (Eigen::Index k = 0; k < n; ++k)
+                out(i, k) = at.row_sum(lo + i, first[std::size_t(k)], w);
+    } else {
+        // Frame rows first .. first + w - 1, each contiguous: summed a row at a time.
+        Eigen::ArrayXd sum(size);
+        for (Eigen::Index k = 0; k < n; ++k) {
+            sum.setZero();
+            for (Eigen::Index j = first[std::size_t(k)]; j < first[std::size_t(k)] + w; ++j)
+                at.add_row(j, lo, size, sum);
+            out.col(k) = sum;
         }
     }
     if (w > 1) out /= static_cast<double>(w);
+    out -= out.mean();
     return out;
 }
+
+// Pearson normalisation of the lag sums of lines x (size x n, lag down the columns): with
+// e(i) = sum_k x(i, k)^2 and E its running sum (E[j] = sum_{i < j} e(i)), the energies of the
+// two overlapping parts at lag d are head(d) = E[size - d] and tail(d) = E[size] - E[d].
+struct OverlapEnergy {
+    std::vector<double> cumulative;  // E, size + 1 entries
+    double head(int d) const { return cumulative[cumulative.size() - 1 - std::size_t(d)]; }
+    double tail(int d) const { return cumulative.back() - cumulative[std::size_t(d)]; }
+    // rho(d) from the lag sum a(d); 0 when either part has no energy (a constant part).
+    double rho(double a, int d) const {
+        const double h = head(d), t = tail(d);
+        return h > 0.0 && t > 0.0 ? a / std::sqrt(h * t) : 0.0;
+    }
+};
+
+OverlapEnergy overlap_energy(const Plane& x) {
+    OverlapEnergy e;
+    e.cumulative.assign(static_cast<std::size_t>(x.rows()) + 1, 0.0);
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+        e.cumulative[std::size_t(i) + 1] =
+            e.cumulative[std::size_t(i)] + x.row(i).matrix().squaredNorm();
+    return e;
+}
+
+// rho(d) of lines (mean removed) by direct sums over the overlapping pairs, each lag computed
+// once. The sums run in single precision (the lines copied once): twice the SIMD width, and the
+// values are only compared with each other at the 1e-2 level (a relative rounding of ~1e-6 over a
+// few thousand products cannot move a decision).
+class DirectLags {
+  public:
+    DirectLags(const Plane& x, const OverlapEnergy& e) : x_(x.cast<float>()), e_(e) {}
+    double operator()(int d) {
+        for (const auto& [lag, v] : done_)
+            if (lag == d) return v;
+        const Eigen::Index m = x_.rows() - d;
+        double a = 0.0;
+        for (Eigen::Index k = 0; k < x_.cols(); ++k)
+            a += double(x_.col(k).head(m).dot(x_.col(k).segment(d, m)));
+        done_.emplace_back(d, e_.rho(a, d));
+        return done_.back().second;
+    }
+
+  private:
+    Eigen::MatrixXf x_;
+    const OverlapEnergy& e_;
+    std::vector<std::pair<int, double>> done_;
+};
 
 // The parabola through the three samples around integer lag d (sub-pixel refinement).
 ProfilePeak refine(const std::vector<double>& p, int d, double rise) {
@@ -68,6 +165,24 @@ ProfilePeak refine(const std::vector<double>& p, int d, double rise) {
         pk.value = y0 - 0.25 * (ym - yp) * delta;
     }
     return pk;
+}
+
+// The first local maximum of the profile in 2 .. max_lag whose rise over the lowest value at
+// smaller lags (from lag 1) is at least min_rise, refined; empty when there is none.
+std::optional<ProfilePeak> first_repeat(const std::vector<double>& p, int max_lag,
+                                        double min_rise) {
+    const int n = static_cast<int>(p.size());
+    max_lag = std::min(max_lag, n - 2);
+    double left_min = n > 1 ? p[1] : 0.0;
+    for (int d = 2; d <= max_lag; ++d) {
+        left_min = std::min(left_min, p[static_cast<std::size_t>(d - 1)]);
+        const double here = p[static_cast<std::size_t>(d)];
+        if (here >= p[static_cast<std::size_t>(d - 1)] &&
+            here > p[static_cast<std::size_t>(d + 1)] && here - left_min >= min_rise) {
+            return refine(p, d, here - left_min);
+        }
+    }
+    return std::nullopt;
 }
 
 // The repeat nearest the expected lag: the highest local maximum of the profile within
@@ -91,8 +206,81 @@ std::optional<ProfilePeak> repeat_near(const std::vector<double>& p, int expecte
     return best;
 }
 
-AxisPeriodCheck check_axis(const Plane& strips, Axis axis, int size, int expected,
-                           const PeriodCheckOptions& o) {
+// rho(d), d = 0 .. last (max_lag < 0: size - 1), of lines x (size x n, mean removed): the lag
+// sums by FFTs zero-padded to size + last samples down the columns (no lag up to `last` wraps
+// around; at zero lag across the lines no pair wraps either), normalised by OverlapEnergy.
+std::vector<double> lag_profile(const Plane& x, int max_lag) {
+    const int size = static_cast<int>(x.rows()), n = static_cast<int>(x.cols());
+    const int last = max_lag < 0 ? size - 1 : std::min(max_lag, size - 1);
+    const int pr = fft_size(size + last);
+    check_memory(double(pr) * n * 8.0 * 3.0, "the autocorrelation of the capture");
+    Plane padded = Plane::Zero(pr, n);
+    padded.topRows(size) = x;
+    const Fft2 fft(pr, n);
+    ComplexPlane spectrum = fft.forward(padded);
+    spectrum = spectrum.abs2().cast<std::complex<double>>();
+    const Plane acf = fft.inverse(spectrum);
+    const OverlapEnergy e = overlap_energy(x);
+    std::vector<double> profile(static_cast<std::size_t>(last + 1), 0.0);
+    profile[0] = 1.0;
+    if (!(e.cumulative.back() > 0.0)) return profile;  // constant plane: nothing repeats
+    for (int d = 1; d <= last; ++d) profile[static_cast<std::size_t>(d)] = e.rho(acf(d, 0), d);
+    return profile;
+}
+
+// The early exit: the repeat tested at the expected lag P alone, by direct sums on a few lags
+// of the lines x (size x n, mean removed). Accepted (the peak returned) only when
+//   (a) the lags from P walking uphill reach a local maximum of rho within w = ceil(tolerance)
+//       + 1 of P, and the parabola through it and its neighbours is within the tolerance of P;
+//   (b) its rise over the lowest of the valley lags (P / 4, P / 3, P / 2, 3P / 4, rounded) is
+//       at least min_rise, as in the full search, and its value at least kConfirmMinValue (a
+//       noise bump near P, with the true repeat outside the window, has neither);
+//   (c) no fraction of P repeats as well: rho at P / 2 and P / 3 (rounded down and up) rises by
+//       less than kConfirmSubharmonic of the peak's rise (a capture repeating at P / k also
+//       repeats at P: that is the full search's to report, kFundamentalFraction);
+//   (d) P is not part of a longer repeat: the rise at 2P is at most the peak's over
+//       kConfirmMultiple (a capture repeating every 2P may half-repeat at P); 2P must be
+//       within max_lag.
+// Anything else returns nothing and the full search decides (it reports a mismatch with both
+// figures, so its cost then does not matter). The valley estimated from a few lags is never
+// lower than the profile's minimum, so the rise tested is a lower bound of the full search's.
+std::optional<ProfilePeak> confirm_expected(const Plane& x, const OverlapEnergy& energy,
+                                            int expected, double tolerance, double min_rise,
+                                            int max_lag) {
+    const int w = static_cast<int>(std::ceil(tolerance)) + 1;
+    if (expected - w < 2 || 2 * expected + 1 > max_lag || !(energy.cumulative.back() > 0.0))
+        return std::nullopt;
+    DirectLags rho(x, energy);
+    // (a) uphill from P to a local maximum, at most w lags away.
+    int d = expected;
+    const int step = rho(d + 1) > rho(d) ? 1 : (rho(d - 1) > rho(d) ? -1 : 0);
+    while (step != 0 && rho(d + step) > rho(d)) {
+        d += step;
+        if (std::abs(d - expected) >= w) return std::nullopt;  // rising past the window
+    }
+    ProfilePeak peak = refine({rho(d - 1), rho(d), rho(d + 1)}, 1, 0.0);
+    peak.lag += d - 1;
+    if (!(std::fabs(peak.lag - expected) <= tolerance)) return std::nullopt;
+    // (b) the valley.
+    double low = peak.value, sub = -std::numeric_limits<double>::infinity();
+    for (int j : {1, 3}) low = std::min(low, rho((j * expected + 2) / 4));
+    for (int k : {2, 3}) {
+        for (int lag : {expected / k, (expected + k - 1) / k}) {
+            low = std::min(low, rho(lag));
+            sub = std::max(sub, rho(lag));
+        }
+    }
+    peak.rise = peak.value - low;
+    if (!(peak.rise >= min_rise) || !(peak.value >= kConfirmMinValue)) return std::nullopt;
+    // (c) and (d).
+    if (!(sub - low < kConfirmSubharmonic * peak.rise)) return std::nullopt;
+    if (!(kConfirmMultiple * (rho(2 * expected) - low) <= peak.rise)) return std::nullopt;
+    return peak;
+}
+
+template <class ReadAll>
+AxisPeriodCheck check_axis(const Plane& lines, const ReadAll& read_all, Axis axis, int size,
+                           int expected, const PeriodCheckOptions& o) {
     AxisPeriodCheck a;
     a.size_px = size;
     a.expected_px = expected;
@@ -103,22 +291,49 @@ AxisPeriodCheck check_axis(const Plane& strips, Axis axis, int size, int expecte
                         std::to_string(expected) + " px); a repeat needs at least 2";
         return a;
     }
+    if (!is_all_finite(lines)) {
+        throw InvalidInput(std::string("period check: the capture holds NaN or Inf in the ") +
+                           name + " it reads");
+    }
     a.checked = true;
     a.tolerance_px = std::max(o.tolerance_px, o.relative_tolerance * expected);
     const int max_lag = std::min(size - 2, static_cast<int>(std::floor(size * o.max_lag_fraction)));
-    // Lags up to max_lag + 1: the searches compare each lag with its right neighbour.
-    const std::vector<double> profile = autocorrelation_profile(strips, axis, max_lag + 1);
-    const auto best = strongest_repeat(profile, max_lag, o.min_rise);
-    // A capture that repeats at P also repeats at every multiple, and a pattern may nearly repeat
-    // at a fraction of P: what the decoder needs is a repeat at P itself, so the peak near the
-    // expected lag is taken when it is as strong as a repeat (same rule as the subharmonics).
-    const int window = std::max(2, static_cast<int>(std::ceil(o.search_fraction * expected)));
-    auto near = repeat_near(profile, expected, window, max_lag);
-    if (near &&
-        (near->rise < o.min_rise || (best && near->rise < kSubharmonicFraction * best->rise))) {
-        near.reset();
+    const int span = static_cast<int>(lines.rows());
+    const int confirm_max_lag =
+        std::min(span - 2, static_cast<int>(std::floor(span * o.max_lag_fraction)));
+    std::optional<ProfilePeak> chosen = confirm_expected(
+        lines, overlap_energy(lines), expected, a.tolerance_px, o.min_rise, confirm_max_lag);
+    a.early_exit = chosen.has_value();
+    if (!chosen) {
+        // Lags up to max_lag + 1: the searches compare each lag with its right neighbour.
+        // The full search reads every line of the frame (in strips of kStripWidth): a weak
+        // repeat under noise needs all of them for its lag to the tolerance.
+        const Plane all = read_all();
+        if (!is_all_finite(all)) {
+            throw InvalidInput(std::string("period check: the capture holds NaN or Inf in the ") +
+                               name + " it reads");
+        }
+        const std::vector<double> profile = lag_profile(all, max_lag + 1);
+        const auto best = strongest_repeat(profile, max_lag, o.min_rise);
+        // A capture that repeats at P also repeats at every multiple, and a pattern may nearly
+        // repeat at a fraction of P: what the decoder needs is a repeat at P itself, so the peak
+        // near the expected lag is taken when it is as strong as a repeat (same rule as the
+        // subharmonics)...
+        const int window = std::max(2, static_cast<int>(std::ceil(o.search_fraction * expected)));
+        auto near = repeat_near(profile, expected, window, max_lag);
+        if (near &&
+            (near->rise < o.min_rise || (best && near->rise < kSubharmonicFraction * best->rise))) {
+            near.reset();
+        }
+        // ... unless a smaller lag repeats about as well (kFundamentalFraction): then the capture
+        // repeats with that shorter period (the PSF's is a multiple of it), which is reported.
+        if (near) {
+            const int below = static_cast<int>(std::floor(near->lag)) - window;
+            if (const auto f = first_repeat(profile, below, kFundamentalFraction * near->rise))
+                near = f;
+        }
+        chosen = near ? near : best;
     }
-    const std::optional<ProfilePeak> chosen = near ? near : best;
     if (!chosen) {
         // Nothing repeats measurably (one lit period, as an exact-geometry capture of a 2 x 2
         // mask gives, or a dark or flat scene): the pitch cannot be checked, which is not a
@@ -130,13 +345,11 @@ AxisPeriodCheck check_axis(const Plane& strips, Axis axis, int size, int expecte
                         "dark or flat scene), so its pitch cannot be checked";
         return a;
     }
-    {
-        a.found = true;
-        a.measured_px = chosen->lag;
-        a.peak_value = chosen->value;
-        a.peak_rise = chosen->rise;
-        a.matches = std::fabs(chosen->lag - expected) <= a.tolerance_px;
-    }
+    a.found = true;
+    a.measured_px = chosen->lag;
+    a.peak_value = chosen->value;
+    a.peak_rise = chosen->rise;
+    a.matches = std::fabs(chosen->lag - expected) <= a.tolerance_px;
     return a;
 }
 
@@ -145,33 +358,10 @@ AxisPeriodCheck check_axis(const Plane& strips, Axis axis, int size, int expecte
 std::vector<double> autocorrelation_profile(const Plane& x, Axis axis, int max_lag) {
     if (x.size() == 0) throw InvalidInput("autocorrelation: the plane is empty");
     if (!is_all_finite(x)) throw InvalidInput("autocorrelation: the plane holds NaN or Inf");
-    const int rows = static_cast<int>(x.rows()), cols = static_cast<int>(x.cols());
-    const bool along_rows = axis == Axis::kRows;
-    const int side = along_rows ? rows : cols;
-    const int last = max_lag < 0 ? side - 1 : std::min(max_lag, side - 1);
-    // Zero-pad along the lag axis only (at zero lag across the other axis no pair wraps around),
-    // to side + last samples: no lag up to `last` wraps around.
-    const int pr = along_rows ? fft_size(rows + last) : rows;
-    const int pc = along_rows ? cols : fft_size(cols + last);
-    check_memory(double(pr) * pc * 8.0 * 3.0, "the autocorrelation of the capture");
-    Plane padded = Plane::Zero(pr, pc);
-    padded.topLeftCorner(rows, cols) = x - x.mean();
-    const Fft2 fft(pr, pc);
-    ComplexPlane spectrum = fft.forward(padded);
-    spectrum = spectrum.abs2().cast<std::complex<double>>();
-    const Plane acf = fft.inverse(spectrum);
-
-    const int size = along_rows ? rows : cols;
-    const double other = along_rows ? cols : rows;
-    std::vector<double> profile(static_cast<std::size_t>(last + 1), 0.0);
-    const double mean_square = acf(0, 0) / (double(size) * other);
-    profile[0] = 1.0;
-    if (!(mean_square > 0.0)) return profile;  // constant plane: nothing repeats
-    for (int d = 1; d <= last; ++d) {
-        const double a = along_rows ? acf(d, 0) : acf(0, d);
-        profile[static_cast<std::size_t>(d)] = a / ((size - d) * other) / mean_square;
-    }
-    return profile;
+    // The lag down the columns of `lines` (size x lines), mean removed.
+    const Plane lines =
+        axis == Axis::kRows ? Plane(x - x.mean()) : Plane((x - x.mean()).transpose());
+    return lag_profile(lines, max_lag);
 }
 
 std::optional<ProfilePeak> strongest_repeat(const std::vector<double>& p, int max_lag,
@@ -220,8 +410,19 @@ PeriodCheck check_frame(Eigen::Index rows, Eigen::Index cols, const At& at, int 
     const int r = static_cast<int>(rows), c = static_cast<int>(cols);
     // An axis with fewer than two periods is skipped before anything is read.
     auto axis_check = [&](Axis axis, int size, int expected) {
-        if (size < 2 * expected) return check_axis(Plane(), axis, size, expected, o);
-        return check_axis(strips_across(rows, cols, axis, at), axis, size, expected, o);
+        const auto read_all = [&] {
+            const Eigen::Index across = axis == Axis::kRows ? cols : rows;
+            return lines_across(rows, cols, axis, at,
+                                std::min<Eigen::Index>(kFullSearchStrips, across / kStripWidth), 0,
+                                size);
+        };
+        if (size < 2 * expected) return check_axis(Plane(), read_all, axis, size, expected, o);
+        // The early exit's lines: the centred kConfirmPeriods periods (the whole side if fewer).
+        const int span = static_cast<int>(
+            std::min<long long>(size, static_cast<long long>(kConfirmPeriods) * expected));
+        return check_axis(
+            lines_across(rows, cols, axis, at, kAcrossStrips, (size - span) / 2, span), read_all,
+            axis, size, expected, o);
     };
     check.rows = axis_check(Axis::kRows, r, expected_rows);
     check.cols = axis_check(Axis::kCols, c, expected_cols);
@@ -236,22 +437,14 @@ PeriodCheck check_frame(Eigen::Index rows, Eigen::Index cols, const At& at, int 
 
 PeriodCheck check_period(const Plane& capture, int expected_rows, int expected_cols,
                          const PeriodCheckOptions& o) {
-    return check_frame(
-        capture.rows(), capture.cols(),
-        [&](Eigen::Index r, Eigen::Index c) { return capture(r, c); }, expected_rows, expected_cols,
-        o);
+    return check_frame(capture.rows(), capture.cols(), PlaneReader{capture}, expected_rows,
+                       expected_cols, o);
 }
 
 PeriodCheck check_period(const Image& capture, int expected_rows, int expected_cols,
                          const PeriodCheckOptions& o) {
-    return check_frame(
-        capture.rows(), capture.cols(),
-        [&](Eigen::Index r, Eigen::Index c) {
-            double v = 0.0;
-            for (const Plane& p : capture.channels) v += p(r, c);
-            return v;
-        },
-        expected_rows, expected_cols, o);
+    return check_frame(capture.rows(), capture.cols(), ImageReader{capture}, expected_rows,
+                       expected_cols, o);
 }
 
 }  // namespace pinmask

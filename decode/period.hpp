@@ -9,8 +9,12 @@
 // Notation: x the capture (mean removed), R x C its size. The linear (zero-padded)
 // autocorrelation along the rows is a(d) = sum_{r, c} x(r, c) x(r + d, c), d = 0 .. R - 1 (the
 // sum runs over the (R - d) C overlapping pairs), likewise along the columns. The normalised
-// profile is rho(d) = [a(d) / ((R - d) C)] / [a(0) / (R C)]: the mean product at lag d over the
-// mean square, 1 at d = 0 and 1 again at a lag where the capture repeats exactly.
+// profile is the correlation of the two overlapping parts, rho(d) = a(d) / sqrt(H(d) T(d)) with
+// H(d) = sum_{r < R - d, c} x(r, c)^2 and T(d) = sum_{r >= d, c} x(r, c)^2 their energies: 1 at
+// d = 0, 1 again at a lag where the capture repeats exactly, and below 1 at every other lag
+// (Cauchy-Schwarz). Normalising each lag by its own overlap's energies (not by the mean square
+// of the whole frame) keeps the repeat's peak at its lag on a window of a few periods, where the
+// energy of the overlap changes with the lag (a 1100 px window of a 336 px period measured 333).
 #pragma once
 
 #include <optional>
@@ -25,7 +29,8 @@ enum class Axis { kRows, kCols };
 
 // rho(d) for d = 0 .. size - 1 along `axis` (rows: vertical lag), computed with FFTs zero-padded
 // to size + the last lag; max_lag >= 0 stops at that lag (fewer samples to transform).
-// Throws InvalidInput for an empty or non-finite plane. A constant plane gives rho = 0 past d = 0.
+// Throws InvalidInput for an empty or non-finite plane. A constant plane (or an overlap without
+// energy) gives rho = 0 past d = 0.
 std::vector<double> autocorrelation_profile(const Plane& x, Axis axis, int max_lag = -1);
 
 // A peak of the profile: the lag refined to sub-pixel by a parabola through the three samples
@@ -48,15 +53,45 @@ std::optional<ProfilePeak> strongest_repeat(const std::vector<double>& profile, 
 // Lags whose rise is at least this fraction of the best are treated as the same repeat.
 inline constexpr double kSubharmonicFraction = 0.7;
 
-// What the check reads: along each axis, kAcrossStrips strips of kStripWidth adjacent lines
-// spread evenly across the frame (every line when the frame has at most kAcrossStrips *
-// kStripWidth across), each strip averaged into one line; the profile is the sum of the strips'
-// autocorrelations. A repeat along the lag axis is exact in every strip, and reading ~64 lines
-// instead of the frame keeps the cost a small fraction of a one-period decode's (`pinmask bench
-// period`; 8 strips of 8 cost about half of 16 of 4, whose 16-wide transforms plan badly). Values
-// outside the strips are not read (decode checks the frame for NaN/Inf first).
+// The peak at the expected lag P is reported only if no shorter lag repeats about as well: the
+// first lag whose rise reaches this fraction of P's is reported instead (a capture that repeats
+// every P / 2 also repeats every P, and a PSF of twice its period is still the wrong one).
+// Valid captures of coded masks rise at P / 2 by at most ~0.7 of P (issue 12's false "half the
+// period"); an exact repeat at P / 2 rises as much as P, noise making it ~0.95 .. 1.05.
+inline constexpr double kFundamentalFraction = 0.9;
+
+// The early exit (decode/period.cpp, confirm_expected): before any search, rho is summed
+// directly at the lags around the expected P, at P / 4, P / 3, P / 2, 3P / 4 and 2P. P is
+// accepted at once when its peak lies within the tolerance, reaches kConfirmMinValue and rises
+// by at least min_rise, P / 2
+// and P / 3 rise by less than kConfirmSubharmonic of it (well below kFundamentalFraction, so no
+// capture the full search would report as repeating at a fraction of P is accepted) and 2P
+// rises by at most 1 / kConfirmMultiple of it (a capture repeating every 2P rises at P by
+// about half as much). Anything doubtful falls through to the full search over every lag.
+inline constexpr double kConfirmSubharmonic = 0.7;
+inline constexpr double kConfirmMultiple = 0.8;
+// The early exit also needs rho at P of at least this: the repeat explains at least half the
+// variance of the lines read (a noise bump near P reaches ~0.2 on a short sharp tile; a capture
+// whose repeat is weaker than its noise goes to the full search, which reads every line).
+inline constexpr double kConfirmMinValue = 0.5;
+// The early exit reads its strips over the centred kConfirmPeriods periods of the lag axis (the
+// whole side when shorter): lags up to 2P keep 2P overlapping samples, and on a 6-period sensor
+// a third less is read and summed.
+inline constexpr int kConfirmPeriods = 4;
+
+// What the check reads, along each axis: strips of kStripWidth adjacent lines, each averaged
+// into one line (every line when the frame has at most kAcrossStrips * kStripWidth across). The
+// early exit reads kAcrossStrips strips spread evenly across the frame, over kConfirmPeriods
+// periods along the lag axis: ~64 lines, a small fraction of a one-period decode's cost
+// (`pinmask bench period`). The full search, taken only when the early exit doubts, reads the
+// whole frame in strips (a weak repeat under noise needs every line for its lag to 0.5 %). A
+// repeat along the lag axis is exact in every strip. Values outside what is read are not
+// checked (decode checks the frame for NaN/Inf first).
 inline constexpr int kAcrossStrips = 8;
 inline constexpr int kStripWidth = 8;
+// The full search reads at most this many strips spread across the frame (every line of a
+// 2048-line frame; a bound on its memory and time on larger frames).
+inline constexpr int kFullSearchStrips = 256;
 
 struct PeriodCheckOptions {
     // |measured - expected| allowed is the larger of these: half a pixel (beyond it the period
@@ -87,6 +122,7 @@ struct AxisPeriodCheck {
     double measured_px = 0.0;   // the repeat lag (found only)
     double peak_value = 0.0;    // rho at the repeat (found only)
     double peak_rise = 0.0;     // the peak's rise over its valley (found only)
+    bool early_exit = false;    // accepted at the expected lag by the direct test (no search)
     bool matches = false;       // found and |measured - expected| <= tolerance_px
     double tolerance_px = 0.0;  // max(options.tolerance_px, relative_tolerance * expected)
 };
@@ -102,12 +138,14 @@ struct PeriodCheck {
 };
 
 // Measures the capture's period along each axis and compares it with the expected (PSF) size:
-// the profile of the strips (kAcrossStrips, kStripWidth), the repeat near the expected
-// lag when it is as strong as the strongest repeat (kSubharmonicFraction), else the strongest.
+// first the early exit at the expected lag (kConfirmMinValue .. kConfirmPeriods); when it
+// doubts, the profile of the whole frame's strips, the repeat near the expected lag when it is as
+// strong as the strongest repeat (kSubharmonicFraction) and no shorter lag repeats about as well
+// (kFundamentalFraction), else the strongest.
 // An axis is skipped (with the reason) when the capture holds fewer than two periods along it
 // (a single period has no repeat to measure), or when no repeat rises above min_rise at all
 // (nothing to compare: not a contradiction of the PSF). Throws InvalidInput for an empty
-// capture, non-finite values in the strips read, an expected size < 1 or options out of range.
+// capture, non-finite values in the lines read, an expected size < 1 or options out of range.
 PeriodCheck check_period(const Plane& capture, int expected_rows, int expected_cols,
                          const PeriodCheckOptions& options = {});
 // The same on the luminance (sum of the channels) of an image, read only in the strips.

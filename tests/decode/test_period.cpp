@@ -25,28 +25,28 @@ Plane random_plane(int rows, int cols, unsigned seed, double lo = 0.0, double hi
     return test::uniform_plane(rows, cols, seed, lo, hi);
 }
 
-// rho(d) by the definition in period.hpp: direct sums over the overlapping pairs.
+// rho(d) by the definition in period.hpp: direct sums over the overlapping pairs, normalised by
+// the energies of the two overlapping parts.
 std::vector<double> direct_profile(const Plane& x0, Axis axis) {
     const Plane x = x0 - x0.mean();
     const int R = static_cast<int>(x.rows()), C = static_cast<int>(x.cols());
     const int size = axis == Axis::kRows ? R : C;
-    std::vector<double> mean_product(static_cast<std::size_t>(size));
+    std::vector<double> rho(static_cast<std::size_t>(size));
     for (int d = 0; d < size; ++d) {
-        double s = 0.0;
-        long count = 0;
+        double s = 0.0, head = 0.0, tail = 0.0;
         for (int r = 0; r < R; ++r)
             for (int c = 0; c < C; ++c) {
                 const int r2 = axis == Axis::kRows ? r + d : r,
                           c2 = axis == Axis::kCols ? c + d : c;
                 if (r2 >= R || c2 >= C) continue;
                 s += x(r, c) * x(r2, c2);
-                ++count;
+                head += x(r, c) * x(r, c);
+                tail += x(r2, c2) * x(r2, c2);
             }
-        mean_product[static_cast<std::size_t>(d)] = s / count;
+        rho[static_cast<std::size_t>(d)] =
+            head > 0.0 && tail > 0.0 ? s / std::sqrt(head * tail) : 0.0;
     }
-    for (int d = size - 1; d >= 0; --d)
-        mean_product[static_cast<std::size_t>(d)] /= mean_product[0];
-    return mean_product;
+    return rho;
 }
 
 // `tile` repeated over a rows x cols frame starting at phase (r0, c0) inside the tile.
@@ -220,4 +220,79 @@ TEST_CASE("check_period on an image equals the check of its luminance plane (str
     // A NaN in a line the check reads is an error (never a silent verdict).
     sum(150, 410 / (2 * kAcrossStrips)) = std::nan("");
     CHECK_THROWS_AS(check_period(sum, 40, 36), InvalidInput);
+}
+
+TEST_CASE("check_period on hostile frames: no crash, a sensible answer") {
+    // Constant and all-zero frames: nothing repeats measurably, both axes skipped, no warning.
+    for (double v : {0.0, 7.5}) {
+        const PeriodCheck flat = check_period(Plane::Constant(300, 400, v), 40, 50);
+        CHECK_FALSE(flat.checked());
+        CHECK(flat.matches());
+        CHECK(flat.rows.skip_reason.find("no repeat found") != std::string::npos);
+    }
+    // Noise only (no repeat): skipped, whatever period is asked, early exit never taken.
+    const Plane noise = random_plane(500, 600, 17);
+    for (int p : {3, 40, 128, 250}) {
+        const PeriodCheck n = check_period(noise, p, p);
+        CHECK_FALSE(n.rows.early_exit);
+        CHECK_FALSE(n.cols.early_exit);
+        CHECK_FALSE(n.rows.found);
+        CHECK_FALSE(n.cols.found);
+        CHECK(n.matches());
+    }
+    // One row, one column, 1 x 1, 2 x 2: the short axis holds fewer than two periods (skipped),
+    // the long one is checked as any other.
+    const Plane tile = random_plane(1, 16, 5);
+    Plane row(1, 160);
+    for (int c = 0; c < 160; ++c) row(0, c) = tile(0, c % 16);
+    const PeriodCheck r = check_period(row, 1, 16);
+    CHECK(r.rows.checked == false);
+    REQUIRE(r.cols.found);
+    CHECK(std::fabs(r.cols.measured_px - 16) <= kSubPixelTol);
+    CHECK(r.matches());
+    CHECK_FALSE(check_period(row, 1, 20).matches());
+    const PeriodCheck col = check_period(Plane(row.transpose()), 16, 1);
+    REQUIRE(col.rows.found);
+    CHECK(std::fabs(col.rows.measured_px - 16) <= kSubPixelTol);
+    for (int side : {1, 2, 3}) {
+        const PeriodCheck tiny = check_period(random_plane(side, side, 9), 1, 1);
+        CHECK(tiny.matches());  // lags 2 .. size - 2 do not exist: nothing found, nothing wrong
+    }
+    // Period 1 and 2 (the early exit needs lags below P - w: the full search decides).
+    const PeriodCheck p2 = check_period(tiled(random_plane(2, 2, 3), 64, 64, 0, 0), 2, 2);
+    CHECK(p2.matches());
+    // A NaN anywhere in the frame read by the full search is an error, never a verdict.
+    Plane nan = noise;
+    nan(250, 3) = std::nan("");
+    CHECK_THROWS_AS(check_period(nan, 40, 50), InvalidInput);
+}
+
+TEST_CASE("check_period's early exit agrees with the full search on a clean tiled capture") {
+    // A sharp random tile repeated: the early exit takes it; the profile of every lag (the full
+    // search's input) peaks at the same lag to within the parabola's bias.
+    const Plane tile = random_plane(37, 45, 23);
+    Plane x = tiled(tile, 400, 420, 5, 9);
+    std::mt19937_64 rng(3);
+    std::normal_distribution<double> noise(0.0, 0.1);
+    for (Eigen::Index i = 0; i < x.size(); ++i) x.data()[i] += noise(rng);
+    const PeriodCheck check = check_period(x, 37, 45);
+    CHECK(check.rows.early_exit);
+    CHECK(check.cols.early_exit);
+    CHECK(check.matches());
+    const auto rows = autocorrelation_profile(x, Axis::kRows, 300);
+    const auto full = strongest_repeat(rows, 260, 0.1);
+    REQUIRE(full.has_value());
+    CHECK(std::fabs(full->lag - check.rows.measured_px) <= kSubPixelTol);
+    // The same capture against a PSF one pixel off the tolerance (37 +- 2): the search reports 37.
+    for (int e : {35, 39}) {
+        const PeriodCheck off = check_period(x, e, 45);
+        CHECK_FALSE(off.rows.early_exit);
+        CHECK_FALSE(off.rows.matches);
+        CHECK(std::fabs(off.rows.measured_px - 37) <= kSubPixelTol);
+    }
+    // Repeating at half the PSF's period (74 = 2 x 37): reported as 37, not accepted at 74.
+    const PeriodCheck half = check_period(x, 74, 45);
+    CHECK_FALSE(half.rows.early_exit);
+    CHECK_FALSE(half.rows.matches);
+    CHECK(std::fabs(half.rows.measured_px - 37) <= kSubPixelTol);
 }

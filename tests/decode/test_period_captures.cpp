@@ -1,14 +1,17 @@
-// The period check on captures as pinmask simulate writes them (full sensor, tiled period, noise)
-// for three cameras, scenes and SNRs: no false warning; a pitch 1 % or more off is reported with
-// both figures (issue 12).
+// The period check on captures as pinmask simulate writes them, for three cameras, integer and
+// exact geometry, several scenes and SNRs (issue 12): no false warning, and every one accepted by
+// the early exit (decode/period.hpp, kConfirmMinRise) so the check stays cheap; a pitch 1 % or
+// 2 % off, or a capture repeating with half or twice the PSF's period, falls through to the full
+// search and is reported with both figures.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <string>
 
 #include "decode/period.hpp"
 #include "design/psf.hpp"
+#include "design/psf_exact.hpp"
 #include "design/working_distance.hpp"
 #include "optimize/scenes.hpp"
 #include "optimize/simulate.hpp"
@@ -18,17 +21,19 @@ using namespace pinmask;
 
 namespace {
 
+enum class Geometry { kInteger, kExact };
+
 struct Case {
     const char* name;
     Camera camera;
     int n;
     int holes;
-    const char* scene;
-    double snr_db;
+    int pixels_per_cell;
+    int window;  // exact geometry: the sensor window simulated (square), px
 };
 
 Camera camera(double pitch_m, int cols, int rows, double focal_m, double sensor_m, double u_m,
-              double lambda_m, double pinhole_m) {
+              double lambda_m) {
     Camera c;
     c.pixel_pitch_m = pitch_m;
     c.sensor_cols = cols;
@@ -37,79 +42,184 @@ Camera camera(double pitch_m, int cols, int rows, double focal_m, double sensor_
     c.sensor_distance_m = sensor_m;
     c.object_distance_m = u_m;
     c.wavelength_m = lambda_m;
-    c.pinhole_m = pinhole_m;
     return c;
 }
 
+// Three cameras, each with the pinhole that gives a whole number of pixels per cell at its u
+// (design --pixels-per-cell), so the exact-geometry pitch equals the integer model's.
+std::vector<Case> cases() {
+    Camera paper = paper_camera();
+    const int paper_ppc =
+        static_cast<int>(std::round(pixels_per_cell_at(paper, paper.object_distance_m)));
+    paper.pinhole_m = pinhole_for_pixels_per_cell(paper, paper_ppc);
+    Camera issue = camera(3.45e-6, 2448, 2048, 0.025, 0.020, 2.0, 530e-9);
+    issue.pinhole_m = pinhole_for_pixels_per_cell(issue, 21);
+    Camera cmount = camera(5.5e-6, 1280, 1024, 0.050, 0.035, 1.0, 600e-9);
+    cmount.pinhole_m = pinhole_for_pixels_per_cell(cmount, 13);
+    return {{"paper", paper, 16, 20, paper_ppc, 0},
+            {"issue", issue, 16, 20, 21, 0},
+            {"c-mount", cmount, 13, 17, 13, 0}};
+}
 
-// The full-sensor capture simulate writes for this case (luminance of channel 0), and its period.
-Plane simulated(const Case& k, int& period_px, Camera cam) {
+Mask mask_of(const Case& k, int tiles) {
     Mask m;
-    m.camera = cam;
+    m.camera = k.camera;
     m.pattern = test::random_pattern(k.n, k.holes, 5);
+    m.pattern.tiles_rows = m.pattern.tiles_cols = tiles;
     m.psf.kernel.model = "auto";
-    m.psf.pixels_per_cell =
-        static_cast<int>(std::round(pixels_per_cell_at(cam, cam.object_distance_m)));
+    m.psf.pixels_per_cell = k.pixels_per_cell;
+    return m;
+}
+
+// The capture simulate writes: integer geometry tiles the period over the full sensor; exact
+// geometry is the linear capture through the exact PSF of the whole sensor, the mask tiled
+// enough to cover it. Channel 0 of the noisy capture.
+Plane simulated(const Case& k, Geometry g, const char* scene_name, double snr_db, int& period) {
+    const Camera& cam = k.camera;
+    const int across = std::max(cam.sensor_rows, cam.sensor_cols);
+    const int p = k.n * k.pixels_per_cell;
+    const int tiles = g == Geometry::kInteger ? 2 : across / p + 2;
+    const Mask m = mask_of(k, tiles);
     const Plane psf = mask_psf(m);
-    period_px = static_cast<int>(psf.rows());
-    const Image scene = make_scene(scene_from_name(k.scene), period_px, period_px);
+    period = static_cast<int>(psf.rows());
+    const Image scene = make_scene(scene_from_name(scene_name), period, period);
     SimulationOptions o;
     o.noise.kind = NoiseKind::kGaussianSnr;
-    o.noise.snr_db = k.snr_db;
+    o.noise.snr_db = snr_db;
     o.full_sensor = true;
     o.sensor_rows = cam.sensor_rows;
     o.sensor_cols = cam.sensor_cols;
     o.seed = 7;
+    Plane exact;
+    if (g == Geometry::kExact) {
+        ExactPsfOptions eo;
+        eo.object_distance_m = cam.object_distance_m;
+        exact = exact_psf(m, eo);
+        o.exact_psf = &exact;
+    }
     return simulate_capture(scene, psf, k.holes, k.n * k.n, o).capture.channels[0];
 }
 
-std::vector<Case> cases() {
-    std::vector<Case> out = {
-        {"paper", paper_camera(), 16, 20, "letter-R", 30.0},
-        // The issue's camera at 21 px per cell (345 um at 2 m), its whole sensor in every build:
-        // the check reads strips, and a 1100 x 1100 window (3.3 periods) measured 333 px.
-        {"issue", camera(3.45e-6, 2448, 2048, 0.025, 0.020, 2.0, 530e-9, 345e-6), 16, 20, "natural",
-         20.0},
-        {"c-mount", camera(5.5e-6, 1280, 1024, 0.050, 0.035, 1.0, 600e-9, 240e-6), 13, 17, "usaf",
-         10.0},
-    };
-    return out;
+struct Capture {
+    Plane frame;
+    int period = 0;
+};
+
+Capture capture_of(const Case& k, Geometry g, const std::string& scene, double snr_db) {
+    Capture c;
+    c.frame = simulated(k, g, scene.c_str(), snr_db, c.period);
+    return c;
+}
+
+std::string label(const Case& k, Geometry g, const std::string& scene, double snr_db) {
+    return std::string(k.name) + (g == Geometry::kInteger ? " integer " : " exact ") + scene + " " +
+           std::to_string(static_cast<int>(snr_db)) + " dB";
 }
 
 }  // namespace
 
-TEST_CASE("period check: no false warning on simulated captures of three cameras") {
+TEST_CASE("period check: the early exit accepts simulated captures of three cameras") {
+    struct Run {
+        Geometry g;
+        const char* scene;
+        double snr_db;
+    };
+    // Integer geometry: two scenes at 30 and 20 dB and the low-contrast natural scene at 30 dB;
+    // exact geometry: the USAF chart at 30 and 20 dB (the lattice's repeat is sharp in it).
+    const Run runs[] = {
+        {Geometry::kInteger, "letter-R", 30.0}, {Geometry::kInteger, "letter-R", 20.0},
+        {Geometry::kInteger, "usaf", 30.0},     {Geometry::kInteger, "usaf", 20.0},
+        {Geometry::kInteger, "natural", 30.0},  {Geometry::kExact, "usaf", 30.0},
+        {Geometry::kExact, "usaf", 20.0}};
     for (const Case& k : cases()) {
-        int period = 0;
-        const Plane capture = simulated(k, period, k.camera);
-        const PeriodCheck check = check_period(capture, period, period);
-        INFO(std::string(k.name) << ": period " << period << ", measured " << check.rows.measured_px
-                                 << " x " << check.cols.measured_px);
-        CHECK(check.checked());
+        for (const Run& run : runs) {
+            const Capture c = capture_of(k, run.g, run.scene, run.snr_db);
+            const PeriodCheck check = check_period(c.frame, c.period, c.period);
+            const std::string what = label(k, run.g, run.scene, run.snr_db);
+            const double rows_px = check.rows.measured_px, cols_px = check.cols.measured_px;
+            INFO(what << ": period " << c.period << ", measured " << rows_px << " x " << cols_px);
+            CHECK(check.rows.early_exit);
+            CHECK(check.cols.early_exit);
+            CHECK(check.matches());
+        }
+    }
+    // The issue's camera in exact geometry, letter-R down to 10 dB.
+    for (double snr : {30.0, 20.0, 10.0}) {
+        const Case k = cases()[1];
+        const Capture c = capture_of(k, Geometry::kExact, "letter-R", snr);
+        const PeriodCheck check = check_period(c.frame, c.period, c.period);
+        INFO(label(k, Geometry::kExact, "letter-R", snr));
+        CHECK(check.rows.early_exit);
+        CHECK(check.cols.early_exit);
         CHECK(check.matches());
     }
 }
 
-TEST_CASE("period check: a pitch 1 % or more off is reported with both figures") {
+TEST_CASE("period check: no false warning where the early exit doubts (noisy integer captures)") {
+    // Every scene at 10 dB but the natural one, and the natural scene at 20 dB: the repeat is weak
+    // (the natural scene's capture has little contrast), the early exit may pass them to the full
+    // search, which reads all of the frame. (The natural scene at 10 dB is not held: its repeat
+    // is at the noise and the search found 130 px for 128 and 162 for 169, README "Not done".)
     for (const Case& k : cases()) {
-        int period = 0;
-        const Plane capture = simulated(k, period, k.camera);
-        // The decoder's PSF 1.5 % larger than the capture's true period, then 1.5 % smaller.
-        for (double factor : {1.015, 1 / 1.015}) {
-            const int expected = static_cast<int>(std::round(period * factor));
-            const PeriodCheck check = check_period(capture, expected, expected);
-            INFO(std::string(k.name) << ": true " << period << ", expected " << expected
-                                     << ", measured " << check.cols.measured_px);
-            CHECK_FALSE(check.matches());
-            for (const AxisPeriodCheck* a : {&check.rows, &check.cols}) {
-                if (!a->checked) continue;
-                CHECK(a->found);
-                CHECK(a->expected_px == expected);
-                // The figure reported is the capture's own pitch, within the check's tolerance
-                // (0.5 px or 0.5 %; over the ~3 periods of the sanitized window the estimate is
-                // 0.7 px off, over the full sensor's 6 periods within 0.5 px).
-                CHECK(std::fabs(a->measured_px - period) <= a->tolerance_px);
+        for (const auto& [scene, snr] :
+             {std::pair{"letter-R", 10.0}, std::pair{"usaf", 10.0}, std::pair{"natural", 20.0}}) {
+            const std::string sc = scene;
+            const double snr_db = snr;
+            const Capture c = capture_of(k, Geometry::kInteger, sc, snr_db);
+            const PeriodCheck check = check_period(c.frame, c.period, c.period);
+            INFO(label(k, Geometry::kInteger, sc, snr_db)
+                 << ": measured " << check.rows.measured_px << " x " << check.cols.measured_px);
+            CHECK(check.matches());
+            CHECK(check.checked());
+        }
+    }
+}
+
+TEST_CASE("period check: a pitch 1 % or 2 % off, half or twice the period, is reported") {
+    for (const Case& k : cases()) {
+        for (Geometry g : {Geometry::kInteger, Geometry::kExact}) {
+            const Capture c = capture_of(k, g, "usaf", 30.0);
+            const int p = c.period;
+            // The decoder's PSF at least 1 % and 2 % larger and smaller than the capture's period,
+            // then twice it (the capture repeats at half the PSF's period) and half of it (the
+            // capture repeats at twice the PSF's).
+            const int expected_sizes[] = {static_cast<int>(std::ceil(p * 1.01)),
+                                          static_cast<int>(std::floor(p / 1.01)),
+                                          static_cast<int>(std::ceil(p * 1.02)),
+                                          static_cast<int>(std::floor(p / 1.02)),
+                                          2 * p,
+                                          p / 2};
+            for (int expected : expected_sizes) {
+                const PeriodCheck check = check_period(c.frame, expected, expected);
+                INFO(label(k, g, "usaf", 30.0)
+                     << ": true " << p << ", expected " << expected << ", measured "
+                     << check.rows.measured_px << " x " << check.cols.measured_px);
+                CHECK(check.checked());
+                CHECK_FALSE(check.matches());
+                for (const AxisPeriodCheck* a : {&check.rows, &check.cols}) {
+                    if (!a->checked) continue;  // 2P: fewer than two periods along the rows
+                    CHECK_FALSE(a->early_exit);
+                    CHECK(a->found);
+                    CHECK(a->expected_px == expected);
+                    // The figure reported is the capture's own period, within the tolerance.
+                    CHECK(std::fabs(a->measured_px - p) <= std::max(a->tolerance_px, 0.005 * p));
+                }
             }
         }
+    }
+}
+
+TEST_CASE("period check: a 1100 x 1100 window of the issue camera's capture (3.3 periods)") {
+    // The overlap-energy normalisation (period.hpp) keeps the peak at 336 on a window of a few
+    // periods; the mean-square normalisation measured 333 here.
+    const Case k = cases()[1];
+    for (const std::string scene : {"letter-R", "usaf"}) {
+        const Capture c = capture_of(k, Geometry::kInteger, scene, 20.0);
+        const Plane window = c.frame.block(300, 500, 1100, 1100);
+        const PeriodCheck check = check_period(window, c.period, c.period);
+        INFO(scene << ": measured " << check.rows.measured_px << " x " << check.cols.measured_px);
+        CHECK(check.rows.checked);
+        CHECK(check.cols.checked);
+        CHECK(check.matches());
     }
 }
