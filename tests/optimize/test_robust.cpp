@@ -224,8 +224,7 @@ TEST_CASE("zero errors give exactly the nominal score; tiny errors approach it")
     const RobustWienerModel some(mask, FabricationErrors{0.0, 2e-6, 0.01}, prior, noise);
     const WienerFilterSpec tuned{WienerFilterKind::kTunedNsr, 0.0};
     CHECK(some.evaluate(p, tuned).mse == some.evaluate_tuned_nsr(p).mse);
-    CHECK(some.evaluate(p, tuned).mse !=
-          some.evaluate(p, {WienerFilterKind::kOptimal, 0.0}).mse);
+    CHECK(some.evaluate(p, tuned).mse != some.evaluate(p, {WienerFilterKind::kOptimal, 0.0}).mse);
     CHECK(zero.evaluate(p, tuned).psnr_db == nominal.evaluate_tuned_nsr(p).psnr_db);
 }
 
