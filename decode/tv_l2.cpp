@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/fft.hpp"
 #include "decode/gradient.hpp"
+#include "decode/precision.hpp"
 
 #if defined(__GNUC__) && defined(__x86_64__)
 #define PM_TV_AVX2 1
@@ -88,21 +89,6 @@ void check_capture(const Plane& capture, const ConvGeometry& g) {
                 std::to_string(g.capture_cols));
     }
 }
-
-template <class T>
-struct Prec;
-template <>
-struct Prec<double> {
-    using P = Plane;
-    using C = ComplexPlane;
-    using F = Fft2;
-};
-template <>
-struct Prec<float> {
-    using P = PlaneF;
-    using C = ComplexPlaneF;
-    using F = Fft2f;
-};
 
 // Sums the z-step gathers when asked (adaptation, records): residuals and TV, in double.
 struct ZSums {
@@ -338,8 +324,8 @@ void spectral_solve(std::complex<T>* sp, const std::complex<T>* htp, const T* id
 template <class T>
 DecodeResult run_admm(const ConvolutionOperator& op, const Plane& capture_d, const TvL2Options& o,
                       const Plane* warm_start, double scale, const SolverClock& clock) {
-    using P = typename Prec<T>::P;
-    using C = typename Prec<T>::C;
+    using P = typename PrecisionTypes<T>::Plane;
+    using C = typename PrecisionTypes<T>::Spectrum;
     using Cx = std::complex<T>;
     const ConvGeometry& g = op.geometry();
     const int R = g.work_rows, Cc = g.work_cols;
@@ -348,7 +334,7 @@ DecodeResult run_admm(const ConvolutionOperator& op, const Plane& capture_d, con
     const Eigen::Index nh = Eigen::Index(R) * hc;
     const bool linear = g.model == ConvModel::kLinear;
     const bool nn = o.nonnegative;
-    const typename Prec<T>::F fft(R, Cc);
+    const typename PrecisionTypes<T>::Fft fft(R, Cc);
     const double inv_n = 1.0 / static_cast<double>(n);
     const double lambda = o.lambda / scale;
     const double alpha = kRelaxation;

@@ -11,6 +11,16 @@
 namespace pinmask {
 namespace {
 
+// The cubic Hermite weights of the two table points (values h00, h01) and their slopes in u
+// (h10, h11, already times the step) at fraction f of the step.
+struct HermiteWeights {
+    double h00, h10, h01, h11;
+};
+inline HermiteWeights hermite_basis(double f, double step) {
+    const double g = 1.0 - f;
+    return {(1.0 + 2.0 * f) * g * g, f * g * g * step, f * f * (3.0 - 2.0 * f), -f * f * g * step};
+}
+
 // x below this (|P^| / K < 1e-3, next to a spectral zero) is summed exactly, never tabulated.
 constexpr double kSmallestTabulatedX = 1e-6;
 // Widest u range tabulated (e^48 ~ 7e20 in x / (N sigma^2)); beyond it the exact sum is used.
@@ -203,9 +213,7 @@ AnalyticError AliasedWiener::evaluate(const ComplexPlane& p) const {
             }
             const double t = (u - u0_) * inv_step;
             const int i = static_cast<int>(t);
-            const double f = t - i, g = 1.0 - f;
-            const double h00 = (1.0 + 2.0 * f) * g * g, h10 = f * g * g * step_;
-            const double h01 = f * f * (3.0 - 2.0 * f), h11 = -f * f * g * step_;
+            const auto [h00, h10, h01, h11] = hermite_basis(t - i, step_);
             const double* r = table_.data() + (static_cast<std::size_t>(a) * points_ + i) * width_;
             const double* q = r + width_;
             sum += h00 * r[0] + h10 * r[1] + h01 * q[0] + h11 * q[1];
@@ -234,9 +242,7 @@ double AliasedWiener::fixed_nsr_sum(int index, const std::vector<double>& x, dou
         }
         const double t = (u - u0_) * inv_step;
         const int i = static_cast<int>(t);
-        const double f = t - i, g = 1.0 - f;
-        const double h00 = (1.0 + 2.0 * f) * g * g, h10 = f * g * g * step_;
-        const double h01 = f * f * (3.0 - 2.0 * f), h11 = -f * f * g * step_;
+        const auto [h00, h10, h01, h11] = hermite_basis(t - i, step_);
         const double* r = slot.table.data() + (static_cast<std::size_t>(a) * points_ + i) * 4;
         const double* q = r + 4;
         sum += h00 * r[0] + h10 * r[1] + h01 * q[0] + h11 * q[1];
