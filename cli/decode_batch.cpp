@@ -139,6 +139,7 @@ void run_decode_batch(const DecodeRequest& r, const BatchRequest& b, BayerMode b
     out_paths.push_back({"-o (summary)", summary_path});
     plan_outputs(in_paths, out_paths);
     CaptureDecodeOptions options = capture_decode_options(r);
+    options.decode.iterative.record_history = b.stats;  // only STEM.stats.json shows them
     options.validate();
     json shared_stats;
     BatchDecoder decoder(

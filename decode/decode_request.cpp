@@ -115,7 +115,8 @@ DecodeOptions decode_options(const DecodeRequest& r) {
     d.method = parse_decode_method(r.method, "--method");
     d.model = parse_conv_model(r.model, "--model");
     for (MethodFlag f : kMethodFlags) write_method_flag(d, f, r);
-    d.iterative.record_history = true;
+    // Per-iteration records cost an objective each iteration; only --stats and --json show them.
+    d.iterative.record_history = !r.stats.empty() || r.json;
     return d;
 }
 

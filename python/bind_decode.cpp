@@ -189,6 +189,7 @@ void bind_decode(py::module_& m) {
             std::optional<Image> dark_img;
             if (!dark.is_none()) dark_img = image_arg(dark, "dark");
             CaptureDecodeOptions options = capture_decode_options(r);
+            options.decode.iterative.record_history = true;  // the result's history array
             options.validate();
             if (options.background == BackgroundMode::kCorner && psf.is_none()) {
                 throw invalid_field("--background", "corner",
