@@ -5,20 +5,15 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/number_format.hpp"
 #include "core/resource_limits.hpp"
 
 namespace pinmask::calibrate {
 
 namespace {
 
-std::string num(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
-
 void check_range(const char* field, double v, double lo, double hi, const char* rule) {
-    if (!(v >= lo && v <= hi)) throw invalid_field(field, num(v), rule);
+    if (!(v >= lo && v <= hi)) throw invalid_field(field, format_number(v), rule);
 }
 
 constexpr double kDeg = 180.0 / std::numbers::pi;
@@ -45,8 +40,8 @@ Pass register_spots(const Plane& frame, const Plane& raw, const Background& bg, 
     const int design_spots = static_cast<int>(mask.pattern.pinholes.size());
     if (p.spots.empty())
         throw InvalidInput("calibrate: no spots found in the capture (threshold " +
-                           num(o.threshold_sigmas) + " noise sigmas above the median " +
-                           num(bg.level) + "): is it a point-source capture?");
+                           format_number(o.threshold_sigmas) + " noise sigmas above the median " +
+                           format_number(bg.level) + "): is it a point-source capture?");
     if (p.spots.size() < std::max<std::size_t>(3, std::lround(o.min_spot_fraction * design_spots)))
         throw InvalidInput(
             "calibrate: far fewer spots than the design: " + std::to_string(p.spots.size()) +
@@ -57,8 +52,9 @@ Pass register_spots(const Plane& frame, const Plane& raw, const Background& bg, 
     if (frac > o.max_saturated_fraction)
         throw InvalidInput("calibrate: saturation over most spots: " + std::to_string(saturated) +
                            " of " + std::to_string(p.spots.size()) + " spots (" +
-                           num(std::round(1000 * frac) / 10) + " %) reach the saturation level " +
-                           num(o.saturation_level) + "; expose shorter");
+                           format_number(std::round(1000 * frac) / 10) +
+                           " %) reach the saturation level " + format_number(o.saturation_level) +
+                           "; expose shorter");
     std::vector<Eigen::Vector2d> pts;
     for (const Spot& s : p.spots) pts.emplace_back(s.x, s.y);
     RegistrationOptions ro;
@@ -69,9 +65,9 @@ Pass register_spots(const Plane& frame, const Plane& raw, const Background& bg, 
     p.fit = fit_lattice(pts, ro);
     const double rot = p.fit.rotation_rad * kDeg;
     if (std::abs(rot) > o.max_rotation_deg)
-        throw InvalidInput("calibrate: the rotation " + num(rot) +
+        throw InvalidInput("calibrate: the rotation " + format_number(rot) +
                            " deg is beyond what the search covers (--max-rotation " +
-                           num(o.max_rotation_deg) + " deg)");
+                           format_number(o.max_rotation_deg) + " deg)");
     p.match = match_pinholes(p.spots, p.fit, mask.pattern, static_cast<int>(frame.rows()),
                              static_cast<int>(frame.cols()), o.max_index_offset);
     int expected = 0, seen = 0;
@@ -94,7 +90,8 @@ void validate(const CalibrationOptions& o) {
     check_range("pitch_range", o.pitch_range, 0.0, 0.3, "must be in [0, 0.3]");
     check_range("threshold_sigmas", o.threshold_sigmas, 1.0, 1e6, "must be in [1, 1e6]");
     if (std::isnan(o.saturation_level) || o.saturation_level <= 0)
-        throw invalid_field("saturation_level", num(o.saturation_level), "must be > 0 (or inf)");
+        throw invalid_field("saturation_level", format_number(o.saturation_level),
+                            "must be > 0 (or inf)");
     check_range("max_saturated_fraction", o.max_saturated_fraction, 0.0, 1.0, "must be in [0, 1]");
     check_range("min_spot_fraction", o.min_spot_fraction, 0.0, 1.0, "must be in [0, 1]");
     check_range("period_tolerance_px", o.period_tolerance_px, 0.0, 1e3, "must be in [0, 1000]");
@@ -113,7 +110,7 @@ CalibrationSummary calibrate_point_source(const Plane& capture, const std::optio
     if (rows < period_px || cols < period_px)
         throw InvalidInput("calibrate: the capture (" + std::to_string(cols) + " x " +
                            std::to_string(rows) + " px) is smaller than one period (" +
-                           num(mask.pattern.n * design_pitch) + " px)");
+                           format_number(mask.pattern.n * design_pitch) + " px)");
     // Working copies: frame, smoothing, masks, a few PSF-sized planes.
     check_memory(8.0 * double(rows) * cols * sizeof(double), "calibrating the capture");
     CalibrationSummary s;

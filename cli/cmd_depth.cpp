@@ -16,6 +16,7 @@
 #include "cli/commands.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/number_format.hpp"
 #include "core/units.hpp"
 #include "io/mask_json.hpp"
 #include "optimize/depth_loss.hpp"
@@ -66,13 +67,6 @@ std::vector<double> resolve_distances(const DepthCommandOptions& o) {
     }
     return depth_range(parse_length_m(*o.from, "--from"),
                        parse_length_m(*o.to, "--to", AllowInfinity::kYes), o.steps);
-}
-
-std::string num(double v) {
-    if (std::isnan(v)) return "-";
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3f", v);
-    return buf;
 }
 
 nlohmann::ordered_json record_json(const DepthRecord& r) {
@@ -135,8 +129,8 @@ void run(const DepthCommandOptions& o) {
     for (const auto& r : records) {
         std::printf("%12s %10.4f %10.2f %13.3f %14s %11s\n",
                     format_length(r.object_distance_m).c_str(), r.pixels_per_cell, r.period_px,
-                    r.lsi_mismatch_px, num(r.wiener_psnr_loss_db).c_str(),
-                    num(r.tv_psnr_loss_db).c_str());
+                    r.lsi_mismatch_px, format_cell(r.wiener_psnr_loss_db).c_str(),
+                    format_cell(r.tv_psnr_loss_db).c_str());
     }
 }
 

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/atomic_file.hpp"
+#include "core/number_format.hpp"
 #include "io/json_strict.hpp"
 #include "io/mask_json.hpp"
 #include "optimize/holes_plot.hpp"
@@ -13,13 +14,6 @@ namespace pinmask::cli {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string fmt(double v, const char* spec = "%.3f") {
-    if (std::isnan(v)) return "-";
-    char buf[64];
-    std::snprintf(buf, sizeof buf, spec, v);
-    return buf;
-}
 
 double score_or_nan(const Mask& m, const char* key) {
     const auto it = m.provenance.scores.find(key);
@@ -36,11 +30,11 @@ std::string search_summary_markdown(const SearchPipelineSummary& summary) {
     for (std::size_t i = 0; i < summary.ranked.size(); ++i) {
         const RankedMask& r = summary.ranked[i];
         const Mask& m = r.mask;
-        s << "| " << i + 1 << " | " << geometry_hash(m) << " | " << fmt(r.objective, "%.4f")
-          << " | " << fmt(score_or_nan(m, "analytic_wiener_psnr_db")) << " | "
-          << fmt(r.sim_wiener_psnr_db) << " | " << fmt(r.sim_tv_psnr_db) << " | "
-          << fmt(score_or_nan(m, "max_sidelobe")) << " | " << fmt(-score_or_nan(m, "min_spectrum"))
-          << " |\n";
+        s << "| " << i + 1 << " | " << geometry_hash(m) << " | " << format_cell(r.objective, "%.4f")
+          << " | " << format_cell(score_or_nan(m, "analytic_wiener_psnr_db")) << " | "
+          << format_cell(r.sim_wiener_psnr_db) << " | " << format_cell(r.sim_tv_psnr_db) << " | "
+          << format_cell(score_or_nan(m, "max_sidelobe")) << " | "
+          << format_cell(-score_or_nan(m, "min_spectrum")) << " |\n";
     }
     // --robust: the expected PSNR under fabrication errors beside the nominal figure.
     bool robust = false;
@@ -52,8 +46,8 @@ std::string search_summary_markdown(const SearchPipelineSummary& summary) {
         for (std::size_t i = 0; i < summary.ranked.size(); ++i) {
             const Mask& m = summary.ranked[i].mask;
             s << (i ? "," : "") << " rank " << i + 1 << " "
-              << fmt(score_or_nan(m, "analytic_wiener_psnr_db")) << " -> "
-              << fmt(score_or_nan(m, "robust_wiener_psnr_db"));
+              << format_cell(score_or_nan(m, "analytic_wiener_psnr_db")) << " -> "
+              << format_cell(score_or_nan(m, "robust_wiener_psnr_db"));
         }
         s << "\n";
     }
@@ -77,16 +71,17 @@ std::string search_summary_markdown(const SearchPipelineSummary& summary) {
              "spectral zero |\n|---:|---:|---:|---:|---|---|\n";
         for (const RankedMask& r : summary.best_per_holes) {
             const std::size_t k = r.mask.pattern.pinholes.size();
-            s << "| " << k << " | " << k << "x | " << fmt(r.objective, "%.4f") << " | "
-              << fmt(score_or_nan(r.mask, "analytic_wiener_psnr_db")) << " | "
+            s << "| " << k << " | " << k << "x | " << format_cell(r.objective, "%.4f") << " | "
+              << format_cell(score_or_nan(r.mask, "analytic_wiener_psnr_db")) << " | "
               << geometry_hash(r.mask) << " | " << (r.spectral_zero ? "yes" : "no") << " |\n";
         }
     }
     if (summary.planned_s > 0.0) {  // timings only for time-budget runs (never reproducible)
-        s << "Time: planned " << fmt(summary.planned_s, "%.2f") << " s, used "
-          << fmt(summary.used_s, "%.2f") << " s (search " << fmt(summary.search_s, "%.2f")
-          << " s, re-ranking " << fmt(summary.rerank_s, "%.2f") << " s, "
-          << fmt(summary.rerank_reserved_s, "%.2f") << " s reserved for it).\n";
+        s << "Time: planned " << format_cell(summary.planned_s, "%.2f") << " s, used "
+          << format_cell(summary.used_s, "%.2f") << " s (search "
+          << format_cell(summary.search_s, "%.2f") << " s, re-ranking "
+          << format_cell(summary.rerank_s, "%.2f") << " s, "
+          << format_cell(summary.rerank_reserved_s, "%.2f") << " s reserved for it).\n";
     }
     return s.str();
 }
@@ -108,15 +103,15 @@ std::vector<fs::path> write_search_outputs(const fs::path& dir,
     for (const auto& row : summary.search.checkpoints) {
         if (!std::isfinite(row.best_objective)) continue;  // before the first accepted pattern
         log << row.evaluations_per_chain << "," << row.evaluations << ","
-            << fmt(row.best_objective, "%.9g") << "\n";
+            << format_cell(row.best_objective, "%.9g") << "\n";
     }
     files.stage_bytes(dir / "run-log.csv", log.str());
     std::ostringstream timing;
     timing << "seconds,evaluations,best_objective\n";
     for (const auto& row : summary.search.log) {
         if (!std::isfinite(row.best_objective)) continue;
-        timing << fmt(row.seconds, "%.3f") << "," << row.evaluations << ","
-               << fmt(row.best_objective, "%.9g") << "\n";
+        timing << format_cell(row.seconds, "%.3f") << "," << row.evaluations << ","
+               << format_cell(row.best_objective, "%.9g") << "\n";
     }
     files.stage_bytes(dir / "timing.csv", timing.str());
     if (!summary.best_per_holes.empty()) {
@@ -126,8 +121,9 @@ std::vector<fs::path> write_search_outputs(const fs::path& dir,
         for (const RankedMask& r : summary.best_per_holes) {
             const int k = static_cast<int>(r.mask.pattern.pinholes.size());
             const double psnr = score_or_nan(r.mask, "analytic_wiener_psnr_db");
-            csv << k << "," << k << "," << fmt(r.objective, "%.9g") << "," << fmt(psnr, "%.9g")
-                << "," << (r.spectral_zero ? 1 : 0) << "," << geometry_hash(r.mask) << "\n";
+            csv << k << "," << k << "," << format_cell(r.objective, "%.9g") << ","
+                << format_cell(psnr, "%.9g") << "," << (r.spectral_zero ? 1 : 0) << ","
+                << geometry_hash(r.mask) << "\n";
             points.push_back({k, psnr});
             const fs::path p = dir / ("best-K" + std::to_string(k) + ".mask.json");
             files.stage(p, [&](const fs::path& tmp) { io::write_mask_file(tmp, r.mask); });

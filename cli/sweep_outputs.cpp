@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/atomic_file.hpp"
+#include "core/number_format.hpp"
 #include "io/json_strict.hpp"
 #include "io/mask_json.hpp"
 #include "optimize/sweep_plot.hpp"
@@ -15,13 +16,6 @@ namespace pinmask::cli {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string fmt(double v, const char* spec = "%.3f") {
-    if (std::isnan(v)) return "-";
-    char buf[64];
-    std::snprintf(buf, sizeof buf, spec, v);
-    return buf;
-}
 
 double score(const SweepPointResult& r, const char* key) {
     const auto it = r.scores.find(key);
@@ -57,13 +51,14 @@ std::string sweep_csv(const io::SweepConfig& sweep, const std::vector<SweepRow>&
         s << i;
         for (const auto& v : r.point->values) s << "," << csv_field(v.text);
         const Mask m = sweep_best_mask(*r.options, r.result);
-        s << "," << r.options->holes << "," << fmt(r.options->tmpl.camera.pinhole_m, "%.9g") << ","
-          << (r.options->noise.kind == NoiseKind::kPhoton ? "photon" : "gaussian") << ","
-          << fmt(light_level(*r.options), "%.9g") << "," << fmt(r.result.objective, "%.9g") << ","
-          << fmt(score(r.result, "analytic_wiener_psnr_db"), "%.9g") << ","
-          << fmt(score(r.result, "sim_wiener_psnr_db"), "%.9g") << ","
-          << fmt(score(r.result, "sim_tv_psnr_db"), "%.9g") << "," << r.result.evaluations << ","
-          << geometry_hash(m) << ",points/" << point_name(i) << ".mask.json\n";
+        s << "," << r.options->holes << "," << format_cell(r.options->tmpl.camera.pinhole_m, "%.9g")
+          << "," << (r.options->noise.kind == NoiseKind::kPhoton ? "photon" : "gaussian") << ","
+          << format_cell(light_level(*r.options), "%.9g") << ","
+          << format_cell(r.result.objective, "%.9g") << ","
+          << format_cell(score(r.result, "analytic_wiener_psnr_db"), "%.9g") << ","
+          << format_cell(score(r.result, "sim_wiener_psnr_db"), "%.9g") << ","
+          << format_cell(score(r.result, "sim_tv_psnr_db"), "%.9g") << "," << r.result.evaluations
+          << "," << geometry_hash(m) << ",points/" << point_name(i) << ".mask.json\n";
     }
     return s.str();
 }
@@ -139,11 +134,11 @@ std::string sweep_markdown(const io::SweepConfig& sweep, const std::vector<Sweep
         const SweepRow& r = rows[i];
         s << "| " << i << " |";
         for (const auto& v : r.point->values) s << " " << v.text << " |";
-        s << " " << fmt(r.result.objective, "%.4f") << " | "
-          << fmt(score(r.result, "analytic_wiener_psnr_db")) << " | "
-          << fmt(score(r.result, "sim_wiener_psnr_db")) << " | "
-          << fmt(score(r.result, "sim_tv_psnr_db")) << " | " << r.result.evaluations << " | "
-          << geometry_hash(sweep_best_mask(*r.options, r.result)) << " |\n";
+        s << " " << format_cell(r.result.objective, "%.4f") << " | "
+          << format_cell(score(r.result, "analytic_wiener_psnr_db")) << " | "
+          << format_cell(score(r.result, "sim_wiener_psnr_db")) << " | "
+          << format_cell(score(r.result, "sim_tv_psnr_db")) << " | " << r.result.evaluations
+          << " | " << geometry_hash(sweep_best_mask(*r.options, r.result)) << " |\n";
     }
     return s.str();
 }

@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "core/fft.hpp"
+#include "core/number_format.hpp"
 #include "decode/convolution.hpp"
 #include "decode/decode_method.hpp"
 #include "decode/precision.hpp"
@@ -20,13 +21,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-std::string num(double v) {
-    std::ostringstream s;
-    s.precision(6);
-    s << v;
-    return s.str();
 }
 
 std::string size_text(const Image& img) {
@@ -42,7 +36,7 @@ void CaptureDecodeOptions::validate() const {
     if (threads < 0 || threads > 1024)
         throw invalid_field("threads", std::to_string(threads), "must be 1..1024 (0: all cores)");
     if (background == BackgroundMode::kValue && !std::isfinite(background_value))
-        throw invalid_field("background", num(background_value), "must be finite");
+        throw invalid_field("background", format_number(background_value), "must be finite");
     decode.validate();
     if (is_iterative(decode.method) && decode.iterative.max_iterations < 1)
         throw invalid_field("iterations", std::to_string(decode.iterative.max_iterations),
@@ -82,14 +76,14 @@ CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOp
             double peak = 0.0;
             for (const Plane& p : capture.channels) peak = std::max(peak, p.abs().maxCoeff());
             if (std::abs(b) > peak) {
-                throw invalid_field("background", num(b),
-                                    "must not exceed the capture's largest magnitude " + num(peak) +
-                                        " counts (it would leave no scene)");
+                throw invalid_field("background", format_number(b),
+                                    "must not exceed the capture's largest magnitude " +
+                                        format_number(peak) + " counts (it would leave no scene)");
             }
         }
         for (Plane& p : capture.channels) p -= b;
         s.background = b;
-        s.notes.push_back("background " + num(b) + " subtracted from the capture" +
+        s.notes.push_back("background " + format_number(b) + " subtracted from the capture" +
                           (o.background == BackgroundMode::kCorner
                                ? " and the PSF (mean of the PSF's rows/cols 5..14)"
                                : ""));

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/number_format.hpp"
 #include "decode/convolution.hpp"
 #include "decode/decode_method.hpp"
 #include "decode/plan_cache.hpp"
@@ -22,20 +23,13 @@
 namespace pinmask {
 namespace {
 
-std::string num(double v) {
-    std::ostringstream s;
-    s.precision(17);
-    s << v;
-    return s.str();
-}
-
 std::string size_text(Eigen::Index r, Eigen::Index c) {
     return std::to_string(r) + " x " + std::to_string(c);
 }
 
 void check_nonnegative(const char* field, double v) {
     if (!(v >= 0.0) || !std::isfinite(v))
-        throw invalid_field(field, num(v), "must be finite and >= 0");
+        throw invalid_field(field, format_number(v, 17), "must be finite and >= 0");
 }
 
 void validate_inputs(const Plane& capture, const Plane& psf) {
@@ -46,7 +40,8 @@ void validate_inputs(const Plane& capture, const Plane& psf) {
     if (psf.size() == 0) throw invalid_field("psf", "empty", "needs at least one pixel");
     if (!is_all_finite(psf))
         throw invalid_field("psf", "non-finite values", "every pixel must be finite");
-    if (!(psf.sum() > 0.0)) throw invalid_field("psf sum", num(psf.sum()), "must be > 0");
+    if (!(psf.sum() > 0.0))
+        throw invalid_field("psf sum", format_number(psf.sum(), 17), "must be > 0");
 }
 
 void check_work_plane(const char* field, const Plane& p, const ConvGeometry& g) {
@@ -227,9 +222,9 @@ void TvqcParams::validate() const {
                             "sqrt(1 + 2 sqrt(2 / N)))");
     }
     if (eps && noise_sigma) {
-        throw invalid_field(
-            "tvqc.noise_sigma", num(*noise_sigma),
-            "must not be set together with tvqc.eps (" + num(*eps) + "): give one of them");
+        throw invalid_field("tvqc.noise_sigma", format_number(*noise_sigma, 17),
+                            "must not be set together with tvqc.eps (" + format_number(*eps, 17) +
+                                "): give one of them");
     }
 }
 
@@ -311,8 +306,8 @@ DecodeResult decode_plane(const Plane& capture, const Plane& psf, const DecodeOp
     // range and is reported as +inf (a figure, not the result); image and residual must be finite.
     if (!is_all_finite(r.image) || !std::isfinite(r.residual) || std::isnan(r.objective)) {
         throw RuntimeFailure(std::string("decode (") + decode_method_name(o.method) +
-                             "): the estimate is not finite (largest capture value " + num(peak) +
-                             "); nothing is written");
+                             "): the estimate is not finite (largest capture value " +
+                             format_number(peak, 17) + "); nothing is written");
     }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return r;

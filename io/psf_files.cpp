@@ -10,6 +10,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
+#include "core/number_format.hpp"
 #include "core/output_set.hpp"
 #include "design/kernel.hpp"
 #include "design/kernel_model.hpp"
@@ -26,12 +27,6 @@ using json_strict::read_int;
 using json_strict::read_int_pair;
 using json_strict::read_number;
 using json_strict::read_string;
-
-std::string num(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.6g", v);
-    return buf;
-}
 
 // A sidecar must describe one PSF the way pinmask writes it; each rule names the field.
 void check_consistent(const PsfSidecar& s) {
@@ -59,19 +54,21 @@ void check_consistent(const PsfSidecar& s) {
     double weights = 0.0;
     for (const auto& [lambda, w] : s.wavelengths) {
         if (!(lambda > 0.0) || !std::isfinite(lambda)) {
-            fail("kernel.wavelengths", num(lambda) + " m: a wavelength must be finite and > 0");
+            fail("kernel.wavelengths",
+                 format_number(lambda) + " m: a wavelength must be finite and > 0");
         }
         if (!(w >= 0.0) || !std::isfinite(w)) {
-            fail("kernel.wavelengths", "weight " + num(w) + " must be finite and >= 0");
+            fail("kernel.wavelengths", "weight " + format_number(w) + " must be finite and >= 0");
         }
         weights += w;
     }
     // Weights are written normalised; 1e-6 allows the decimal round trip of a few of them.
     if (!s.wavelengths.empty() && std::fabs(weights - 1.0) > 1e-6) {
-        fail("kernel.wavelengths", "weights sum to " + num(weights) + ", must sum to 1");
+        fail("kernel.wavelengths", "weights sum to " + format_number(weights) + ", must sum to 1");
     }
     if (!(s.kernel_enclosed_energy >= 0.0 && s.kernel_enclosed_energy <= 1.0)) {
-        fail("kernel.enclosed_energy", num(s.kernel_enclosed_energy) + " must be in [0, 1]");
+        fail("kernel.enclosed_energy",
+             format_number(s.kernel_enclosed_energy) + " must be in [0, 1]");
     }
     if (s.kernel_rows < 1 || s.kernel_cols < 1 || s.kernel_rows > s.rows ||
         s.kernel_cols > s.cols) {

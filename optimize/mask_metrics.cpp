@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/fft.hpp"
+#include "core/number_format.hpp"
 #include "core/resource_limits.hpp"
 #include "design/kernel_model.hpp"
 #include "design/psf.hpp"
@@ -13,12 +14,6 @@
 
 namespace pinmask {
 namespace {
-
-std::string number_text(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
 
 ScenePrior sampled_prior(const PriorSpec& spec, int m) {
     std::vector<Plane> planes;
@@ -164,10 +159,10 @@ NoiseLevel noise_level(const NoiseModel& model) {
             l.key = "noiseless";
             break;
         case NoiseKind::kGaussianSnr:
-            l.key = "snr" + number_text(model.snr_db);
+            l.key = "snr" + format_number(model.snr_db);
             break;
         case NoiseKind::kPhoton:
-            l.key = "ph" + number_text(model.photons_per_pinhole);
+            l.key = "ph" + format_number(model.photons_per_pinhole);
             break;
     }
     return l;
@@ -183,7 +178,7 @@ void MaskMetricsOptions::validate() const {
     simulation.validate();
     robust.validate();
     if (!(spectral_zero_threshold > 0.0 && spectral_zero_threshold < 1.0)) {
-        throw invalid_field("spectral_zero_threshold", number_text(spectral_zero_threshold),
+        throw invalid_field("spectral_zero_threshold", format_number(spectral_zero_threshold),
                             "must be in (0, 1) (a fraction of the flat level sqrt(K))");
     }
 }

@@ -6,16 +6,10 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/number_format.hpp"
 
 namespace pinmask {
 namespace {
-
-std::string num(double v) {
-    std::ostringstream s;
-    s.precision(17);
-    s << v;
-    return s.str();
-}
 
 // Poisson draw of mean `mean_e` > 0. Above kPoissonNormalMean the normal approximation
 // N(mean, mean), rounded and clipped at 0: its skewness error 1/sqrt(mean) < 1e-3 is far below
@@ -53,7 +47,7 @@ void validate(const NoiseModel& m) {
             return;
         case NoiseKind::kGaussianSnr:
             if (!(m.snr_db >= -kMaxAbsSnrDb && m.snr_db <= kMaxAbsSnrDb)) {
-                throw invalid_field("snr_db", num(m.snr_db),
+                throw invalid_field("snr_db", format_number(m.snr_db, 17),
                                     "must be between -300 and 300 dB (10^(SNR/10) leaves the "
                                     "range of double precision beyond that)");
             }
@@ -62,22 +56,23 @@ void validate(const NoiseModel& m) {
             break;
     }
     if (!(m.photons_per_pinhole > 0.0 && m.photons_per_pinhole <= kMaxElectrons)) {
-        throw invalid_field("photons_per_pinhole", num(m.photons_per_pinhole),
+        throw invalid_field("photons_per_pinhole", format_number(m.photons_per_pinhole, 17),
                             "must be > 0 and at most 1e12 electrons (a million times the full "
                             "well of any sensor pixel; electron counts stay exact in double "
                             "precision below that)");
     }
     if (!(m.read_noise_e >= 0.0 && m.read_noise_e <= kMaxElectrons)) {
-        throw invalid_field("read_noise_e", num(m.read_noise_e),
+        throw invalid_field("read_noise_e", format_number(m.read_noise_e, 17),
                             "must be >= 0 and at most 1e12 electrons");
     }
     if (!(m.dark_current_e >= 0.0 && m.dark_current_e <= kMaxElectrons)) {
-        throw invalid_field("dark_current_e", num(m.dark_current_e),
+        throw invalid_field("dark_current_e", format_number(m.dark_current_e, 17),
                             "must be >= 0 and at most 1e12 electrons (a million times the full "
                             "well of any sensor pixel)");
     }
     if (!(m.full_well_e > 0.0)) {
-        throw invalid_field("full_well_e", num(m.full_well_e), "must be > 0 (inf: no saturation)");
+        throw invalid_field("full_well_e", format_number(m.full_well_e, 17),
+                            "must be > 0 (inf: no saturation)");
     }
     if (m.adc_bits < 0 || m.adc_bits > 24) {
         throw invalid_field("adc_bits", std::to_string(m.adc_bits), "must be in 0..24");
@@ -87,7 +82,7 @@ void validate(const NoiseModel& m) {
                             "quantisation needs a finite full_well_e (the ADC full scale)");
     }
     if (!(m.film_optical_density >= 0.0)) {
-        throw invalid_field("film_optical_density", num(m.film_optical_density),
+        throw invalid_field("film_optical_density", format_number(m.film_optical_density, 17),
                             "must be >= 0 (inf: perfectly opaque)");
     }
 }
@@ -99,7 +94,8 @@ double film_transmission(const NoiseModel& m) {
 
 double sigma_for_snr(double mean_square, double snr_db) {
     if (!(mean_square >= 0.0) || !std::isfinite(mean_square)) {
-        throw invalid_field("mean_square_capture", num(mean_square), "must be finite and >= 0");
+        throw invalid_field("mean_square_capture", format_number(mean_square, 17),
+                            "must be finite and >= 0");
     }
     return std::sqrt(mean_square / std::pow(10.0, snr_db / 10.0));
 }
@@ -147,7 +143,7 @@ Plane add_noise(const Plane& clean, const NoiseModel& m, int open_cells, int tot
     }
     if (clean.minCoeff() < 0.0) {
         throw InvalidInput("add_noise: photon noise needs a clean capture >= 0, found " +
-                           num(clean.minCoeff()));
+                           format_number(clean.minCoeff(), 17));
     }
     CaptureStats stats{clean.mean(), clean.square().mean(), open_cells, total_cells};
     const double scale = m.photons_per_pinhole * open_cells;

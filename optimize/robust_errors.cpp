@@ -6,19 +6,14 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/number_format.hpp"
 #include "core/units.hpp"
 #include "design/kernel_quadrature.hpp"
 
 namespace pinmask {
 namespace {
 
-std::string number_text(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
-
-std::string um_text(double metres) { return number_text(metres * 1e6) + " um"; }
+std::string um_text(double metres) { return format_number(metres * 1e6) + " um"; }
 
 // Quadrature of the jitter statistics: the Gaussian is integrated over +-kJitterRange sigma
 // (the tail beyond holds 2e-19 of the mass), on panels no wider than kPanelSigmas sigma and
@@ -37,12 +32,12 @@ void FabricationErrors::validate(double pinhole_m) const {
         {"size", size_bias_m}, {"jitter", jitter_m}, {"missing", missing}};
     for (const auto& [key, v] : all) {
         if (!std::isfinite(v) || v < 0.0) {
-            throw invalid_field(std::string("--robust ") + key, number_text(v),
+            throw invalid_field(std::string("--robust ") + key, format_number(v),
                                 "must be finite and >= 0");
         }
     }
     if (!(missing < 1.0)) {
-        throw invalid_field("--robust missing", number_text(missing),
+        throw invalid_field("--robust missing", format_number(missing),
                             "must be < 1 (the probability that a pinhole is missing; at 1 the "
                             "mask has no pinholes)");
     }
@@ -65,7 +60,7 @@ std::string FabricationErrors::description() const {
     if (!any()) return "none";
     std::ostringstream s;
     s << "size +-" << um_text(size_bias_m) << ", jitter " << um_text(jitter_m) << ", missing "
-      << number_text(missing);
+      << format_number(missing);
     return s.str();
 }
 
@@ -107,7 +102,7 @@ FabricationErrors parse_fabrication_errors(const std::string& text) {
 
 JitterTransfer jitter_transfer(double sigma_px, int m) {
     if (!std::isfinite(sigma_px) || sigma_px < 0.0) {
-        throw invalid_field("jitter sigma (pixels)", number_text(sigma_px),
+        throw invalid_field("jitter sigma (pixels)", format_number(sigma_px),
                             "must be finite and >= 0");
     }
     if (m < 1) throw invalid_field("jitter period", std::to_string(m), "must be >= 1");
