@@ -22,6 +22,10 @@ WienerFilterSpec parse_search_filter(const std::string& text, const NoiseModel& 
         return noise.kind == NoiseKind::kPhoton ? WienerFilterSpec{WienerFilterKind::kTunedNsr, 0.0}
                                                 : WienerFilterSpec{WienerFilterKind::kOptimal, 0.0};
     }
+    if (text != "optimal" && text != "tuned" && text.rfind("nsr:", 0) != 0) {
+        throw invalid_field("--filter", text,
+                            "expected 'auto', 'optimal', 'tuned' or 'nsr:VALUE' (e.g. nsr:0.01)");
+    }
     return parse_wiener_filter(text);
 }
 

@@ -153,6 +153,19 @@ TEST_CASE("search --holes 5..40 beats the best median random mask of any single 
     CHECK(found_expected >= best_expected_median + kRequiredExpectedGainDb);
 }
 
+TEST_CASE(
+    "parse_search_filter: auto by the noise model, else parse_wiener_filter; bad text names "
+    "every choice") {
+    NoiseModel gauss;
+    CHECK(parse_search_filter("auto", gauss).kind == WienerFilterKind::kOptimal);
+    CHECK(parse_search_filter("auto", dim_light()).kind == WienerFilterKind::kTunedNsr);
+    CHECK(parse_search_filter("nsr:0.5", gauss).nsr == 0.5);
+    CHECK_THROWS_WITH_AS(parse_search_filter("bogus", gauss), doctest::Contains("'auto'"),
+                         InvalidInput);
+    CHECK_THROWS_WITH_AS(parse_search_filter("nsr:-1", gauss), doctest::Contains("must be > 0"),
+                         InvalidInput);
+}
+
 TEST_CASE("parse_holes_range: K or A..B, anything else names --holes") {
     CHECK(parse_holes_range("20") == std::pair<int, int>{20, 0});
     CHECK(parse_holes_range("5..40") == std::pair<int, int>{5, 40});
