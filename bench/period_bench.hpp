@@ -12,6 +12,11 @@
 //                         decode/period.hpp; the full search only if it doubts)
 //   wiener_frame_seconds  decode_plane (Wiener, cyclic) of the whole frame, PSF zero-padded
 //   wiener_period_seconds decode_plane of the centred period only (what decode does by default)
+//   doubted_check_seconds check_period of a capture the early exit doubts: the same camera and
+//                         mask with the natural scene at 10 dB (a repeat at the noise), which
+//                         takes the full search over every line in both views (decode/period.hpp);
+//                         held beside the same two decodes of that capture's size
+// Each check also reports whether the early exit decided both axes.
 #pragma once
 
 namespace pinmask {
@@ -27,7 +32,11 @@ struct PeriodBenchResult {
     double check_seconds = 0;
     double wiener_frame_seconds = 0;
     double wiener_period_seconds = 0;
-    bool check_matches = false;  // the check agreed with the PSF (no false warning)
+    bool check_matches = false;     // the check agreed with the PSF (no false warning)
+    bool check_early_exit = false;  // both axes decided by the early exit
+    double doubted_check_seconds = 0;
+    bool doubted_matches = false;
+    bool doubted_early_exit = false;
 };
 
 // Throws InvalidInput for options out of range, naming the field.

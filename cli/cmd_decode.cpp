@@ -139,12 +139,8 @@ void run_decode(const DecodeRequest& r, BayerMode bayer) {
                   << (d.interrupted ? "  (interrupted)" : "")
                   << (d.constraint_met ? "" : "  (constraint NOT met)") << "\n";
     }
-    std::cout << "  period   "
-              << (sum.period.checked()
-                      ? (sum.period.matches() ? "matches the PSF" : "MISMATCH (see warning)")
-                      : "not checked (fewer than two periods)")
-              << "\n  wrote    " << r.output << ", " << r.output << ".config.json"
-              << (r.stats.empty() ? "" : ", " + r.stats) << "\n";
+    std::cout << "  period   " << period_summary(sum.period) << "\n  wrote    " << r.output << ", "
+              << r.output << ".config.json" << (r.stats.empty() ? "" : ", " + r.stats) << "\n";
 }
 
 // Under mpirun every rank runs the batch. Set-up errors are every rank's alike: rank 0 reports,

@@ -1,5 +1,6 @@
 #include "cli/decode_output.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 #include "core/error.hpp"
@@ -17,6 +18,11 @@ std::string fixed(double v, int digits) {
     return buf;
 }
 
+// JSON has no infinity: an unbounded figure is written as null.
+nlohmann::json finite_or_null(double v) {
+    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
 nlohmann::json axis_json(const AxisPeriodCheck& a) {
     nlohmann::json j = {
         {"size_px", a.size_px}, {"expected_px", a.expected_px}, {"checked", a.checked}};
@@ -29,6 +35,13 @@ nlohmann::json axis_json(const AxisPeriodCheck& a) {
         j["measured_px"] = a.measured_px;
         j["peak_value"] = a.peak_value;
         j["peak_rise"] = a.peak_rise;
+        j["early_exit"] = a.early_exit;
+        j["within_tolerance"] = a.within_tolerance;
+        if (!a.early_exit) {
+            j["high_pass_px"] = a.high_pass_px;
+            j["uncertainty_px"] = finite_or_null(a.uncertainty_px);
+            j["significance"] = finite_or_null(a.significance);
+        }
     }
     j["matches"] = a.matches;
     return j;
@@ -151,8 +164,11 @@ std::string period_warning(const PeriodCheck& check) {
         if (a->found) {
             out += "the capture repeats every " + fixed(a->measured_px, 2) + " px along the " +
                    name + " but the PSF period is " + std::to_string(a->expected_px) +
-                   " px (tolerance " + fixed(check.tolerance_px, 2) +
-                   " px): the PSF does not match this capture (object distance, pixel pitch or "
+                   " px (tolerance " + fixed(check.tolerance_px, 2) + " px" +
+                   (a->early_exit || !std::isfinite(a->significance)
+                        ? std::string()
+                        : ", significance t = " + fixed(a->significance, 1)) +
+                   "): the PSF does not match this capture (object distance, pixel pitch or "
                    "sensor distance differ from the mask file?)\n";
         } else {
             out += std::string("no repeat found along the ") + name + " (expected every " +
@@ -161,6 +177,22 @@ std::string period_warning(const PeriodCheck& check) {
         }
     }
     return out;
+}
+
+std::string period_summary(const PeriodCheck& check) {
+    if (!check.checked()) {
+        const bool none = !check.rows.found && !check.cols.found &&
+                          (check.rows.skip_reason.find("no repeat") != std::string::npos ||
+                           check.cols.skip_reason.find("no repeat") != std::string::npos);
+        return none ? "not checked (no measurable repeat)" : "not checked (fewer than two periods)";
+    }
+    if (!check.matches()) return "MISMATCH (see warning)";
+    for (const AxisPeriodCheck* a : {&check.rows, &check.cols}) {
+        if (a->checked && !a->within_tolerance)
+            return "consistent with the PSF within the measurement's uncertainty (a weak or broad "
+                   "repeat; --explain gives the figures)";
+    }
+    return "matches the PSF";
 }
 
 std::string period_skip_note(const PeriodCheck& check) {

@@ -61,5 +61,8 @@ std::string period_warning(const PeriodCheck& check);
 
 // Why the check was skipped, axis by axis; empty when both axes were checked.
 std::string period_skip_note(const PeriodCheck& check);
+// The summary's one-line verdict: matches, consistent within the uncertainty, MISMATCH, or not
+// checked (and why).
+std::string period_summary(const PeriodCheck& check);
 
 }  // namespace pinmask::cli

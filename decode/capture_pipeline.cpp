@@ -105,6 +105,16 @@ CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOp
         s.notes.push_back("period check skipped along the rows: " + s.period.rows.skip_reason);
     if (!s.period.cols.checked)
         s.notes.push_back("period check skipped along the columns: " + s.period.cols.skip_reason);
+    for (const auto& [a, name] : {std::pair{&s.period.rows, "rows"}, {&s.period.cols, "columns"}}) {
+        if (!a->found || a->within_tolerance || !a->matches) continue;
+        s.notes.push_back("period check along the " + std::string(name) +
+                          ": the repeat is weak or " + "broad, measured " +
+                          format_number(a->measured_px, 5) + " +- " +
+                          format_number(a->uncertainty_px, 2) + " px for the PSF's " +
+                          std::to_string(a->expected_px) + " px, not significantly different " +
+                          "(t = " + format_number(a->significance, 2) + " < " +
+                          format_number(kMismatchSignificance, 2) + "): consistent with the PSF");
+    }
 
     t0 = Clock::now();
     s.window = crop_window(capture.rows(), capture.cols(), psf.rows(), psf.cols(), o.crop);

@@ -206,27 +206,97 @@ std::optional<ProfilePeak> repeat_near(const std::vector<double>& p, int expecte
     return best;
 }
 
-// rho(d), d = 0 .. last (max_lag < 0: size - 1), of lines x (size x n, mean removed): the lag
-// sums by FFTs zero-padded to size + last samples down the columns (no lag up to `last` wraps
-// around; at zero lag across the lines no pair wraps either), normalised by OverlapEnergy.
-std::vector<double> lag_profile(const Plane& x, int max_lag) {
+// The lag sums a(d) = sum_k sum_i x(i, k) x(i + d, k), d = 0 .. last, of lines x (size x n, lag
+// down the columns), by FFTs zero-padded to size + last samples down the columns (no lag up to
+// `last` wraps around). The lines' power spectra are summed before the one inverse transform:
+// the 2-D transform X(f, l) of the padded lines gives sum_k |X_k(f)|^2 = (1 / n) sum_l |X(f,
+// l)|^2 (Parseval across the lines), the half-spectrum's missing l > n / 2 read as |X(-f, n -
+// l)|^2; a 1-D inverse of length pr then replaces the 2-D one (half the transform work).
+std::vector<double> lag_sums(const Plane& x, int last) {
     const int size = static_cast<int>(x.rows()), n = static_cast<int>(x.cols());
-    const int last = max_lag < 0 ? size - 1 : std::min(max_lag, size - 1);
     const int pr = fft_size(size + last);
     check_memory(double(pr) * n * 8.0 * 3.0, "the autocorrelation of the capture");
     Plane padded = Plane::Zero(pr, n);
     padded.topRows(size) = x;
     const Fft2 fft(pr, n);
-    ComplexPlane spectrum = fft.forward(padded);
-    spectrum = spectrum.abs2().cast<std::complex<double>>();
-    const Plane acf = fft.inverse(spectrum);
-    const OverlapEnergy e = overlap_energy(x);
-    std::vector<double> profile(static_cast<std::size_t>(last + 1), 0.0);
+    const ComplexPlane spectrum = fft.forward(padded);
+    // l = 0 and (n even) l = n / 2 are their own mirror; 1 .. (n - 1) / 2 stand for two.
+    const int paired = (n - 1) / 2;
+    Eigen::ArrayXd own = spectrum.col(0).abs2(), pairs = Eigen::ArrayXd::Zero(pr);
+    if (n % 2 == 0 && n > 1) own += spectrum.col(n / 2).abs2();
+    for (int l = 1; l <= paired; ++l) pairs += spectrum.col(l).abs2();
+    ComplexPlane power(pr, 1);
+    for (int f = 0; f < pr; ++f)
+        power(f, 0) = (own(f) + pairs(f) + pairs((pr - f) % pr)) / double(n);
+    const Plane acf = Fft2(pr, 1).inverse(power);
+    std::vector<double> a(static_cast<std::size_t>(last + 1));
+    for (int d = 0; d <= last; ++d) a[static_cast<std::size_t>(d)] = acf(d, 0);
+    return a;
+}
+
+// rho(d) from the lag sums and the overlap energies (OverlapEnergy); rho(0) = 1, and 0 past it
+// for lines without energy (constant: nothing repeats).
+std::vector<double> normalised(const std::vector<double>& a, const OverlapEnergy& e) {
+    std::vector<double> profile(a.size(), 0.0);
     profile[0] = 1.0;
-    if (!(e.cumulative.back() > 0.0)) return profile;  // constant plane: nothing repeats
-    for (int d = 1; d <= last; ++d) profile[static_cast<std::size_t>(d)] = e.rho(acf(d, 0), d);
+    if (!(e.cumulative.back() > 0.0)) return profile;
+    for (std::size_t d = 1; d < a.size(); ++d) profile[d] = e.rho(a[d], static_cast<int>(d));
     return profile;
 }
+
+// rho(d), d = 0 .. last (max_lag < 0: size - 1), of lines x (size x n, mean removed).
+std::vector<double> lag_profile(const Plane& x, int max_lag) {
+    const int size = static_cast<int>(x.rows());
+    const int last = max_lag < 0 ? size - 1 : std::min(max_lag, size - 1);
+    return normalised(lag_sums(x, last), overlap_energy(x));
+}
+
+// Lines x minus their centred moving average over `width` samples down each column (fewer at
+// the ends, where the window is cut), then the mean removed (kHighPassFraction).
+Plane high_passed(const Plane& x, int width) {
+    const Eigen::Index size = x.rows(), half = width / 2;
+    Plane out(size, x.cols());
+    std::vector<double> c(static_cast<std::size_t>(size) + 1);
+    for (Eigen::Index k = 0; k < x.cols(); ++k) {
+        c[0] = 0.0;
+        for (Eigen::Index i = 0; i < size; ++i) c[std::size_t(i) + 1] = c[std::size_t(i)] + x(i, k);
+        for (Eigen::Index i = 0; i < size; ++i) {
+            const Eigen::Index lo = std::max<Eigen::Index>(0, i - half),
+                               hi = std::min(size, i + half + 1);
+            out(i, k) = x(i, k) - (c[std::size_t(hi)] - c[std::size_t(lo)]) / double(hi - lo);
+        }
+    }
+    out -= out.mean();
+    return out;
+}
+
+// The full search's profile of lines x (size x n), kept per contiguous block of lines
+// (kUncertaintyGroups; fewer when there are fewer lines) so a lag can be measured in each block
+// alone; the whole profile is the blocks' sums normalised by their summed energies.
+struct BlockProfiles {
+    std::vector<std::vector<double>> sums;  // a_g(d) per block
+    std::vector<OverlapEnergy> energy;      // per block
+    std::vector<double> whole;              // rho(d) of all the lines
+
+    BlockProfiles(const Plane& x, int last) {
+        const Eigen::Index n = x.cols();
+        const Eigen::Index blocks = std::min<Eigen::Index>(kUncertaintyGroups, n);
+        std::vector<double> total(static_cast<std::size_t>(last + 1), 0.0);
+        OverlapEnergy all;
+        all.cumulative.assign(static_cast<std::size_t>(x.rows()) + 1, 0.0);
+        for (Eigen::Index g = 0; g < blocks; ++g) {
+            const Eigen::Index lo = g * n / blocks, hi = (g + 1) * n / blocks;
+            const Plane part = x.middleCols(lo, hi - lo);
+            sums.push_back(lag_sums(part, last));
+            energy.push_back(overlap_energy(part));
+            for (std::size_t d = 0; d < total.size(); ++d) total[d] += sums.back()[d];
+            for (std::size_t i = 0; i < all.cumulative.size(); ++i)
+                all.cumulative[i] += energy.back().cumulative[i];
+        }
+        whole = normalised(total, all);
+    }
+    std::vector<double> block(std::size_t g) const { return normalised(sums[g], energy[g]); }
+};
 
 // The early exit: the repeat tested at the expected lag P alone, by direct sums on a few lags
 // of the lines x (size x n, mean removed). Accepted (the peak returned) only when
@@ -278,6 +348,82 @@ std::optional<ProfilePeak> confirm_expected(const Plane& x, const OverlapEnergy&
     return peak;
 }
 
+// One view of the full search (kHighPassFraction): the repeat chosen, whether it came from the
+// fundamental rule, and its precision (kUncertaintyGroups, kMismatchSignificance).
+struct ViewResult {
+    std::optional<ProfilePeak> chosen;
+    bool fundamental = false;
+    double uncertainty = std::numeric_limits<double>::infinity();
+    double significance = std::numeric_limits<double>::infinity();
+    int high_pass = 0;
+};
+
+ViewResult search_view(const Plane& lines, int high_pass, int expected, int max_lag,
+                       const PeriodCheckOptions& o) {
+    ViewResult r;
+    r.high_pass = high_pass;
+    // Lags up to max_lag + 1: the searches compare each lag with its right neighbour.
+    const BlockProfiles blocks(high_pass > 0 ? high_passed(lines, high_pass) : lines, max_lag + 1);
+    // A high-passed profile dips below 0 at lags under the width even for noise (the filter's own
+    // negative lobe: -1/3 for a width of 3), and the rise out of that dip is no repeat: there the
+    // profile is read clipped at 0, so a rise is a repeat's correlation above none.
+    const auto view = [high_pass](std::vector<double> p) {
+        if (high_pass > 0)
+            for (double& v : p) v = std::max(v, 0.0);
+        return p;
+    };
+    const std::vector<double> profile = view(blocks.whole);
+    const auto best = strongest_repeat(profile, max_lag, o.min_rise);
+    // A capture that repeats at P also repeats at every multiple, and a pattern may nearly
+    // repeat at a fraction of P: what the decoder needs is a repeat at P itself, so the peak
+    // near the expected lag is taken when it is as strong as a repeat (same rule as the
+    // subharmonics)...
+    const int window = std::max(2, static_cast<int>(std::ceil(o.search_fraction * expected)));
+    auto near = repeat_near(profile, expected, window, max_lag);
+    if (near &&
+        (near->rise < o.min_rise || (best && near->rise < kSubharmonicFraction * best->rise))) {
+        near.reset();
+    }
+    // ... unless a smaller lag repeats about as well (kFundamentalFraction): then the capture
+    // repeats with that shorter period (the PSF's is a multiple of it), which is reported.
+    if (near) {
+        const int below = static_cast<int>(std::floor(near->lag)) - window;
+        if (const auto f = first_repeat(profile, below, kFundamentalFraction * near->rise)) {
+            near = f;
+            r.fundamental = true;
+        }
+    }
+    r.chosen = near ? near : best;
+    if (!r.chosen) return r;
+    // The lag in each block alone, searched as the whole's was (within the window around the
+    // expected lag, or around the lag chosen when that lies outside it: searching only next to
+    // the whole's peak would hide how far a broad peak's maximum wanders), and each block's
+    // rho(measured) - rho(expected).
+    const int lag = static_cast<int>(std::lround(r.chosen->lag));
+    const int centre = std::abs(lag - expected) <= window ? expected : lag;
+    std::vector<double> lags, diffs;
+    for (std::size_t g = 0; g < blocks.sums.size(); ++g) {
+        const std::vector<double> p = view(blocks.block(g));
+        if (const auto q = repeat_near(p, centre, window, max_lag)) lags.push_back(q->lag);
+        diffs.push_back(p[std::size_t(lag)] - p[std::size_t(expected)]);
+    }
+    const auto mean_sd = [](const std::vector<double>& v) {
+        double m = 0.0, ss = 0.0;
+        for (double x : v) m += x;
+        m /= double(v.size());
+        for (double x : v) ss += (x - m) * (x - m);
+        return std::pair{m, std::sqrt(ss / double(v.size() - 1))};
+    };
+    if (lags.size() >= 3) r.uncertainty = mean_sd(lags).second;
+    if (diffs.size() >= 2) {
+        const auto [m, sd] = mean_sd(diffs);
+        const double se = sd / std::sqrt(double(diffs.size()));
+        r.significance =
+            se > 0.0 ? m / se : (m > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+    }
+    return r;
+}
+
 template <class ReadAll>
 AxisPeriodCheck check_axis(const Plane& lines, const ReadAll& read_all, Axis axis, int size,
                            int expected, const PeriodCheckOptions& o) {
@@ -301,40 +447,26 @@ AxisPeriodCheck check_axis(const Plane& lines, const ReadAll& read_all, Axis axi
     const int span = static_cast<int>(lines.rows());
     const int confirm_max_lag =
         std::min(span - 2, static_cast<int>(std::floor(span * o.max_lag_fraction)));
-    std::optional<ProfilePeak> chosen = confirm_expected(
-        lines, overlap_energy(lines), expected, a.tolerance_px, o.min_rise, confirm_max_lag);
-    a.early_exit = chosen.has_value();
-    if (!chosen) {
-        // Lags up to max_lag + 1: the searches compare each lag with its right neighbour.
-        // The full search reads every line of the frame (in strips of kStripWidth): a weak
-        // repeat under noise needs all of them for its lag to the tolerance.
+    ViewResult kept;
+    kept.chosen = confirm_expected(lines, overlap_energy(lines), expected, a.tolerance_px,
+                                   o.min_rise, confirm_max_lag);
+    a.early_exit = kept.chosen.has_value();
+    if (!a.early_exit) {
+        // The full search reads strips over the whole frame (kFullSearchStrips), in both
+        // views; the more precise one is kept (the lines as read on a tie).
         const Plane all = read_all();
         if (!is_all_finite(all)) {
             throw InvalidInput(std::string("period check: the capture holds NaN or Inf in the ") +
                                name + " it reads");
         }
-        const std::vector<double> profile = lag_profile(all, max_lag + 1);
-        const auto best = strongest_repeat(profile, max_lag, o.min_rise);
-        // A capture that repeats at P also repeats at every multiple, and a pattern may nearly
-        // repeat at a fraction of P: what the decoder needs is a repeat at P itself, so the peak
-        // near the expected lag is taken when it is as strong as a repeat (same rule as the
-        // subharmonics)...
-        const int window = std::max(2, static_cast<int>(std::ceil(o.search_fraction * expected)));
-        auto near = repeat_near(profile, expected, window, max_lag);
-        if (near &&
-            (near->rise < o.min_rise || (best && near->rise < kSubharmonicFraction * best->rise))) {
-            near.reset();
+        const int width = static_cast<int>(kHighPassFraction * expected) | 1;
+        kept = search_view(all, 0, expected, max_lag, o);
+        if (width >= kMinHighPassWidth) {
+            ViewResult v = search_view(all, width, expected, max_lag, o);
+            if (v.chosen && (!kept.chosen || v.uncertainty < kept.uncertainty)) kept = v;
         }
-        // ... unless a smaller lag repeats about as well (kFundamentalFraction): then the capture
-        // repeats with that shorter period (the PSF's is a multiple of it), which is reported.
-        if (near) {
-            const int below = static_cast<int>(std::floor(near->lag)) - window;
-            if (const auto f = first_repeat(profile, below, kFundamentalFraction * near->rise))
-                near = f;
-        }
-        chosen = near ? near : best;
     }
-    if (!chosen) {
+    if (!kept.chosen) {
         // Nothing repeats measurably (one lit period, as an exact-geometry capture of a 2 x 2
         // mask gives, or a dark or flat scene): the pitch cannot be checked, which is not a
         // contradiction of the PSF. Said as a skip, with the reason.
@@ -346,10 +478,18 @@ AxisPeriodCheck check_axis(const Plane& lines, const ReadAll& read_all, Axis axi
         return a;
     }
     a.found = true;
-    a.measured_px = chosen->lag;
-    a.peak_value = chosen->value;
-    a.peak_rise = chosen->rise;
-    a.matches = std::fabs(chosen->lag - expected) <= a.tolerance_px;
+    a.measured_px = kept.chosen->lag;
+    a.peak_value = kept.chosen->value;
+    a.peak_rise = kept.chosen->rise;
+    a.within_tolerance = std::fabs(kept.chosen->lag - expected) <= a.tolerance_px;
+    if (!a.early_exit) {
+        a.high_pass_px = kept.high_pass;
+        a.uncertainty_px = kept.uncertainty;
+        a.significance = kept.significance;
+    }
+    a.matches =
+        a.within_tolerance ||
+        (a.early_exit ? false : !kept.fundamental && kept.significance < kMismatchSignificance);
     return a;
 }
 

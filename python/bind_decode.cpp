@@ -74,6 +74,11 @@ py::dict period_dict(const PeriodCheck& p) {
         d["measured_px"] = a.measured_px;
         d["peak_value"] = a.peak_value;
         d["peak_rise"] = a.peak_rise;
+        d["early_exit"] = a.early_exit;
+        d["within_tolerance"] = a.within_tolerance;
+        d["high_pass_px"] = a.high_pass_px;
+        d["uncertainty_px"] = a.uncertainty_px;
+        d["significance"] = a.significance;
         d["matches"] = a.matches;
         return d;
     };
