@@ -157,10 +157,15 @@ RobustError RobustWienerModel::evaluate_tuned_nsr(const ComplexPlane& p,
         r.psnr_db = r.nominal.psnr_db;
         return r;
     }
-    double nsr = tuned.nsr;
-    if (psf == RobustDecoderPsf::kExpectedPsf) {
-        nsr = tune_nsr(p, tuned.noise_variance, expected_power_, expected_nominal_cross_);
+    if (psf == RobustDecoderPsf::kNominalPsf) {
+        RobustError r;
+        r.nominal = tuned;
+        r.mse = mismatch_mse(p, tuned.noise_variance, {WienerFilterKind::kFixedNsr, tuned.nsr},
+                             nominal_->kernel_power(), cross_, variance_);
+        r.psnr_db = psnr_from_mse(r.mse);
+        return r;
     }
+    const double nsr = tune_nsr(p, tuned.noise_variance, expected_power_, expected_nominal_cross_);
     RobustError r = evaluate(p, {WienerFilterKind::kFixedNsr, nsr}, psf);
     r.nominal.nsr = nsr;
     return r;
