@@ -227,8 +227,16 @@ ComplexPlane RobustWienerModel::robust_filter_response(const ComplexPlane& p) co
     return g;
 }
 
-ComplexPlane RobustWienerModel::optimal_filter_response(const ComplexPlane& p) const {
+ComplexPlane RobustWienerModel::filter_response(const ComplexPlane& p, const WienerFilterSpec& f,
+                                                RobustDecoderPsf psf) const {
+    WienerFilterSpec spec = f;
+    if (f.kind == WienerFilterKind::kTunedNsr) {
+        spec = {WienerFilterKind::kFixedNsr, evaluate_tuned_nsr(p, psf).nominal.nsr};
+    }
     const AnalyticError nominal = nominal_->evaluate(p, {WienerFilterKind::kOptimal, 0.0});
+    if (spec.kind == WienerFilterKind::kFixedNsr && (!(spec.nsr > 0.0) || !std::isfinite(spec.nsr)))
+        throw invalid_field("nsr", std::to_string(spec.nsr), "must be finite and > 0");
+    const ComplexPlane& decoder = psf == RobustDecoderPsf::kExpectedPsf ? expected_ : kappa_;
     const Plane& s = nominal_->prior().power;
     const Eigen::Index m = s.rows(), n = p.rows();
     const double holes = p(0, 0).real();
@@ -236,9 +244,16 @@ ComplexPlane RobustWienerModel::optimal_filter_response(const ComplexPlane& p) c
     ComplexPlane g(m, m);
     for (Eigen::Index l = 0, ln = 0; l < m; ++l, ln = ln + 1 == n ? 0 : ln + 1)
         for (Eigen::Index k = 0, kn = 0; k < m; ++k, kn = kn + 1 == n ? 0 : kn + 1) {
-            const std::complex<double> h = p(kn, ln) / holes * kappa_(k, l);
-            const double sk = s(k, l), d = std::norm(h) * sk + n_sigma2;
-            g(k, l) = d > 0.0 ? std::conj(h) * (sk / d) : 0.0;
+            const std::complex<double> h = p(kn, ln) / holes * decoder(k, l);
+            const double h2 = std::norm(h), sk = s(k, l);
+            double w;
+            if (spec.kind == WienerFilterKind::kFixedNsr) {
+                w = 1.0 / (h2 + spec.nsr);
+            } else {
+                const double d = h2 * sk + n_sigma2;
+                w = d > 0.0 ? sk / d : 0.0;
+            }
+            g(k, l) = std::conj(h) * w;
         }
     return g;
 }

@@ -96,12 +96,15 @@ class RobustWienerModel {
     double pattern_independent_floor_mse() const;
 
     // Frequency responses G (m x m, applied as X~ = G C^ to the capture's unnormalised DFT, in
-    // design/psf's frame: H = P^(k mod n) kappa / K is the DFT of the sum-1 mask PSF) of the
-    // robust filter above and of the nominal per-frequency optimal Wiener filter
-    // G = conj(H) S / (h S + N sigma^2), for the simulation to decode with. The noise variance
-    // is the nominal capture's, as in the figures.
+    // design/psf's frame: H = P^(k mod n) kappa / K is the DFT of the sum-1 mask PSF), for the
+    // simulation to decode with (optimize/robust_sample fabricated_filter_quality): the robust
+    // filter above, and the filters of evaluate / evaluate_tuned_nsr, G = conj(H_D) w with
+    // H_D = P^ D / K for the decoder's PSF (D = kappa or E_s kappa_s J), w = 1 / (|H_D|^2 + nsr)
+    // (fixed or tuned NSR) or S / (|H_D|^2 S + N sigma^2) (optimal). The noise variance is the
+    // nominal capture's, as in the figures.
     ComplexPlane robust_filter_response(const ComplexPlane& pattern_spectrum) const;
-    ComplexPlane optimal_filter_response(const ComplexPlane& pattern_spectrum) const;
+    ComplexPlane filter_response(const ComplexPlane& pattern_spectrum, const WienerFilterSpec& f,
+                                 RobustDecoderPsf psf = RobustDecoderPsf::kNominalPsf) const;
 
   private:
     // (1/N^2) sum over the truth cases of the mismatch error of the filter built from the

@@ -195,6 +195,87 @@ TEST_CASE("the closed-form robust MSE matches a Monte Carlo of fabricated PSFs")
     }
 }
 
+TEST_CASE("decoder variants (expected PSF, robust filter): closed form against a Monte Carlo") {
+    // As above, with the filters of the decoder variants built by the model
+    // (filter_response, robust_filter_response) and checked twice: their expected fabricated
+    // MSE against the Monte Carlo of fabricated PSFs, and their nominal MSE against the same
+    // sum with the exact nominal transfer function (no sampling: kRelTolerance).
+    constexpr double kStandardErrors = 4.0;
+    constexpr double kRelTolerance = 1e-9;
+    constexpr int kDraws = 3000;
+    const Mask mask = test_mask(8, 6, 3);
+    const int m = 64;
+    const ScenePrior prior = natural_scene_prior(m, m, 4, 1000, 1.0);
+    NoiseModel noise;
+    noise.snr_db = 25.0;
+    const FabricationErrors e{60e-6, 30e-6, 0.05};
+    const ComplexPlane p = pattern_spectrum(mask.pattern);
+    const ComplexPlane h = full_fft(mask_psf(mask));
+    const RobustWienerModel model(mask, e, prior, noise);
+    const double big_n = static_cast<double>(m) * m;
+    const auto mse_given = [&](const ComplexPlane& g, const ComplexPlane& t, double sigma2) {
+        double sum = 0.0;
+        for (Eigen::Index i = 0; i < t.size(); ++i) {
+            sum += std::norm(g.data()[i] * t.data()[i] - 1.0) * prior.power.data()[i] +
+                   std::norm(g.data()[i]) * big_n * sigma2;
+        }
+        return sum / (big_n * big_n);
+    };
+    // The nominal-PSF fixed-NSR response is the test's own conj(H) / (|H|^2 + nsr) (frame check).
+    const ComplexPlane g0 = model.filter_response(p, {WienerFilterKind::kFixedNsr, 0.02});
+    double frame_error = 0.0;
+    for (Eigen::Index i = 0; i < h.size(); ++i) {
+        const std::complex<double> hk = h.data()[i];
+        frame_error =
+            std::max(frame_error, std::abs(g0.data()[i] - std::conj(hk) / (std::norm(hk) + 0.02)));
+    }
+    CHECK(frame_error <= 1e-9);
+
+    struct Variant {
+        const char* name;
+        RobustError closed;
+        ComplexPlane g;
+    };
+    const WienerFilterSpec fixed{WienerFilterKind::kFixedNsr, 0.02};
+    const WienerFilterSpec optimal{WienerFilterKind::kOptimal, 0.0};
+    const RobustDecoderPsf expected = RobustDecoderPsf::kExpectedPsf;
+    const std::vector<Variant> variants{
+        {"expected PSF, fixed NSR", model.evaluate(p, fixed, expected),
+         model.filter_response(p, fixed, expected)},
+        {"expected PSF, optimal", model.evaluate(p, optimal, expected),
+         model.filter_response(p, optimal, expected)},
+        {"expected PSF, tuned NSR", model.evaluate_tuned_nsr(p, expected),
+         model.filter_response(p, {WienerFilterKind::kTunedNsr, 0.0}, expected)},
+        {"robust filter", model.evaluate_robust_filter(p), model.robust_filter_response(p)},
+        {"nominal PSF, optimal", model.evaluate(p, optimal), model.filter_response(p, optimal)}};
+    const FabricationSampler sampler(mask, e);
+    for (const Variant& v : variants) {
+        const double sigma2 = v.closed.nominal.noise_variance;
+        double sum = 0.0, sum_sq = 0.0;
+        for (int d = 0; d < kDraws; ++d) {
+            std::mt19937_64 rng(static_cast<std::uint64_t>(d) + 17);
+            const double x = mse_given(v.g, full_fft(sampler.draw(rng)), sigma2);
+            sum += x;
+            sum_sq += x * x;
+        }
+        const double mean = sum / kDraws;
+        const double se = std::sqrt(std::max(0.0, sum_sq / kDraws - mean * mean) / kDraws);
+        const double nominal = mse_given(v.g, h, sigma2);
+        CAPTURE(v.name);
+        CAPTURE(v.closed.mse);
+        CAPTURE(mean);
+        CAPTURE(se);
+        CHECK(std::abs(v.closed.mse - mean) <= kStandardErrors * se + 1e-12 * mean);
+        CHECK(std::abs(v.closed.nominal.mse - nominal) <= kRelTolerance * nominal);
+    }
+    // The robust filter is the best of them on the fabricated masks (its defining property),
+    // and the floor is below all.
+    for (const Variant& v : variants) {
+        CHECK(variants[3].closed.mse <= v.closed.mse * (1.0 + kRelTolerance));
+        CHECK(model.pattern_independent_floor_mse() <= v.closed.mse);
+    }
+}
+
 TEST_CASE("zero errors give exactly the nominal score; tiny errors approach it") {
     const Mask mask = test_mask(11, 7, 5);
     const int m = 88;

@@ -95,7 +95,8 @@ TEST_CASE("robust design (pattern and decoder) under +-10 % size and 2 um jitter
     const RobustWienerModel nominal_model(nominal_mask, e, prior, o.noise);
     const ComplexPlane pn = pattern_spectrum(nominal_mask.pattern);
     const FabricatedQuality qn = fabricated_filter_quality(
-        nominal_mask, e, scenes, o.noise, nominal_model.optimal_filter_response(pn), kDraws, 11);
+        nominal_mask, e, scenes, o.noise,
+        nominal_model.filter_response(pn, {WienerFilterKind::kOptimal, 0.0}), kDraws, 11);
     const RobustError an = nominal_model.evaluate(pn, {WienerFilterKind::kOptimal, 0.0});
 
     // Robust design: the search over the same patterns with the robust filter's figure.
@@ -136,6 +137,15 @@ TEST_CASE("robust design (pattern and decoder) under +-10 % size and 2 um jitter
         fabricated_wiener_quality(ro_mask, e, scenes, o.noise, ao.nominal.nsr, kDraws, 11);
     const double loss_o = qo.nominal_psnr_db - qo.fabricated_psnr_db;
 
+    // The nominal mask decoded with the expected fabricated PSF (NSR tuned for it).
+    const RobustError ax = nominal_model.evaluate_tuned_nsr(pn, RobustDecoderPsf::kExpectedPsf);
+    const FabricatedQuality qx = fabricated_filter_quality(
+        nominal_mask, e, scenes, o.noise,
+        nominal_model.filter_response(pn, {WienerFilterKind::kTunedNsr, 0.0},
+                                      RobustDecoderPsf::kExpectedPsf),
+        kDraws, 11);
+    const double loss_x = qx.nominal_psnr_db - qx.fabricated_psnr_db;
+
     const double loss_n = qn.nominal_psnr_db - qn.fabricated_psnr_db;
     const double loss_r = qr.nominal_psnr_db - qr.fabricated_psnr_db;
     const double loss_t = qt.nominal_psnr_db - qt.fabricated_psnr_db;
@@ -152,6 +162,10 @@ TEST_CASE("robust design (pattern and decoder) under +-10 % size and 2 um jitter
             << qo.nominal_psnr_db << " dB nominal, " << qo.fabricated_psnr_db
             << " dB fabricated, loss " << loss_o << " dB (predicted " << ao.loss_db()
             << "); ratio to the line above " << loss_o / loss_t);
+    MESSAGE("nominal mask, expected fabricated PSF, tuned NSR: "
+            << qx.nominal_psnr_db << " dB nominal, " << qx.fabricated_psnr_db
+            << " dB fabricated, loss " << loss_x << " dB (predicted " << ax.loss_db()
+            << "); ratio to the tuned-NSR line " << loss_x / loss_t);
     MESSAGE("robust / nominal loss " << loss_r / loss_n << "; against the tuned-NSR decoder "
                                      << loss_r / loss_t);
     REQUIRE(loss_n > 0.0);
@@ -167,6 +181,7 @@ TEST_CASE("robust design (pattern and decoder) under +-10 % size and 2 um jitter
     CHECK(std::abs(ar.loss_db() - loss_r) <= kPredictedLossTolerance * loss_r);
     CHECK(std::abs(at.loss_db() - loss_t) <= kPredictedLossTolerance * loss_t);
     CHECK(std::abs(ao.loss_db() - loss_o) <= kPredictedLossTolerance * loss_o);
+    CHECK(std::abs(ax.loss_db() - loss_x) <= kPredictedLossTolerance * loss_x);
     // The nominal-PSF robust objective finds a mask at least as good under that objective.
     CHECK(robust_objective.ranked.front().mask.provenance.scores.at("robust_wiener_psnr_db") >=
           nominal_search.ranked.front().mask.provenance.scores.at("robust_wiener_psnr_db"));
