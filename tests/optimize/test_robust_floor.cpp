@@ -122,8 +122,9 @@ TEST_CASE("robust loss decomposition: size bias dominates; no decoder beats the 
     MESSAGE(
         "mask: tuned-NSR nominal / fabricated / loss (size alone, jitter alone) | expected-PSF "
         "decoder | nominal optimal filter | robust filter | floor (dB)");
-    for (const auto& [label, mask] : masks) {
-        const std::string name = label;  // not a structured binding inside MESSAGE/CHECK
+    for (const auto& entry : masks) {
+        const std::string name = entry.first;
+        const Mask& mask = entry.second;
         const int m = mask.pattern.n * mask.psf.pixels_per_cell;
         const ScenePrior prior = prior_for(m);
         const RobustWienerModel all(mask, e, prior, noise50());
