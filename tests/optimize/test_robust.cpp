@@ -16,6 +16,7 @@
 #include "optimize/robust_sample.hpp"
 #include "optimize/robust_wiener.hpp"
 #include "optimize/scene_prior.hpp"
+#include "optimize/scenes.hpp"
 #include "tests/support/random_pattern.hpp"
 
 namespace pinmask {
@@ -322,6 +323,34 @@ TEST_CASE("fabricated PSFs: deterministic for a seed, sum about 1, nominal witho
     CHECK((pa - pb).abs().maxCoeff() == 0.0);
     CHECK(pa.sum() == doctest::Approx(1.0).epsilon(1e-12));
     CHECK((pa - nominal).abs().maxCoeff() > 0.0);
+}
+
+TEST_CASE(
+    "simulated quality with a frequency response: bad inputs refused; the Wiener path equal") {
+    constexpr double kDbTolerance = 1e-9;  // two FFT paths of the same filter
+    const Mask mask = test_mask(8, 6, 9);
+    const int m = 64;
+    const FabricationErrors e{20e-6, 5e-6, 0.0};
+    NoiseModel noise;
+    noise.snr_db = 40.0;
+    SceneSpec spec;
+    spec.kind = SceneKind::kNatural;
+    spec.seed = 7001;
+    const std::vector<NamedScene> scenes{{"natural", make_scene(spec, m, m)}};
+    const RobustWienerModel model(mask, e, natural_scene_prior(m, m, 4, 1000, 1.0), noise);
+    const ComplexPlane p = pattern_spectrum(mask.pattern);
+    const ComplexPlane g = model.filter_response(p, {WienerFilterKind::kFixedNsr, 0.01});
+    // The fixed-NSR response decodes as decode's Wiener filter of the nominal PSF does.
+    const FabricatedQuality a = fabricated_filter_quality(mask, e, scenes, noise, g, 3, 5);
+    const FabricatedQuality b = fabricated_wiener_quality(mask, e, scenes, noise, 0.01, 3, 5);
+    CHECK(std::abs(a.nominal_psnr_db - b.nominal_psnr_db) <= kDbTolerance);
+    CHECK(std::abs(a.fabricated_psnr_db - b.fabricated_psnr_db) <= kDbTolerance);
+    CHECK_THROWS_AS(fabricated_filter_quality(mask, e, scenes, noise, ComplexPlane(m / 2, m), 3, 5),
+                    InvalidInput);
+    CHECK_THROWS_AS(fabricated_filter_quality(mask, e, scenes, noise, g, 0, 5), InvalidInput);
+    CHECK_THROWS_AS(fabricated_filter_quality(mask, e, {}, noise, g, 3, 5), InvalidInput);
+    CHECK_THROWS_AS(model.filter_response(p, {WienerFilterKind::kFixedNsr, -1.0}), InvalidInput);
+    CHECK_THROWS_AS(model.filter_response(p, {WienerFilterKind::kFixedNsr, NAN}), InvalidInput);
 }
 
 }  // namespace pinmask
