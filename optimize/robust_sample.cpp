@@ -1,9 +1,12 @@
 #include "optimize/robust_sample.hpp"
 
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "core/error.hpp"
+#include "core/fft.hpp"
+#include "decode/psf2otf.hpp"
 #include "decode/wiener.hpp"
 #include "design/psf.hpp"
 #include "optimize/image_quality.hpp"
@@ -79,18 +82,17 @@ Plane FabricationSampler::draw(std::mt19937_64& rng) const {
     return psf;
 }
 
-FabricatedQuality fabricated_wiener_quality(const Mask& mask, const FabricationErrors& errors,
-                                            const std::vector<NamedScene>& scenes,
-                                            const NoiseModel& noise, double nsr, int draws,
-                                            std::uint64_t seed) {
-    if (draws < 1) throw invalid_field("draws", std::to_string(draws), "must be >= 1");
-    if (scenes.empty()) throw InvalidInput("fabricated quality: no scenes");
-    validate(noise);
+namespace {
+
+using Decode = std::function<void(const Plane& capture, Plane& estimate)>;
+
+// The loop shared by the Wiener and frequency-response decoders (contract in the header).
+FabricatedQuality fabricated_quality(const Mask& mask, const FabricationErrors& errors,
+                                     const std::vector<NamedScene>& scenes, const NoiseModel& noise,
+                                     int draws, std::uint64_t seed, const Decode& decode) {
     const FabricationSampler sampler(mask, errors);
     const int m = sampler.period();
     const Plane nominal = mask_psf(mask);
-    const WienerFilter filter(nominal, m, m, nsr);
-    WienerFilter::Workspace ws;
     const int holes = static_cast<int>(mask.pattern.pinholes.size());
     const int cells = mask.pattern.n * mask.pattern.n;
     FabricatedQuality q;
@@ -122,7 +124,7 @@ FabricatedQuality fabricated_wiener_quality(const Mask& mask, const FabricationE
                         psf.sum() > 0.0 ? cyclic_capture(truth, psf) : Plane(Plane::Zero(m, m));
                     const Plane noisy = add_noise(clean, noise, holes, cells, noise_rng);
                     Plane x;
-                    filter.apply(noisy, x, ws);
+                    decode(noisy, x);
                     (nominal_psf ? sum_nominal : sum_fabricated) += mse(x, truth);
                 }
                 ++count;
@@ -132,6 +134,52 @@ FabricatedQuality fabricated_wiener_quality(const Mask& mask, const FabricationE
         q.fabricated_psnr_db += psnr_from_mse(sum_fabricated / count) / scenes.size();
     }
     return q;
+}
+
+void check_quality_args(const std::vector<NamedScene>& scenes, const NoiseModel& noise, int draws) {
+    if (draws < 1) throw invalid_field("draws", std::to_string(draws), "must be >= 1");
+    if (scenes.empty()) throw InvalidInput("fabricated quality: no scenes");
+    validate(noise);
+}
+
+}  // namespace
+
+FabricatedQuality fabricated_wiener_quality(const Mask& mask, const FabricationErrors& errors,
+                                            const std::vector<NamedScene>& scenes,
+                                            const NoiseModel& noise, double nsr, int draws,
+                                            std::uint64_t seed) {
+    check_quality_args(scenes, noise, draws);
+    const Plane nominal = mask_psf(mask);
+    const int m = static_cast<int>(nominal.rows());
+    const WienerFilter filter(nominal, m, m, nsr);
+    WienerFilter::Workspace ws;
+    return fabricated_quality(mask, errors, scenes, noise, draws, seed,
+                              [&](const Plane& c, Plane& x) { filter.apply(c, x, ws); });
+}
+
+FabricatedQuality fabricated_filter_quality(const Mask& mask, const FabricationErrors& errors,
+                                            const std::vector<NamedScene>& scenes,
+                                            const NoiseModel& noise, const ComplexPlane& response,
+                                            int draws, std::uint64_t seed) {
+    check_quality_args(scenes, noise, draws);
+    const int m = mask.pattern.n * mask.psf.pixels_per_cell;
+    if (response.rows() != m || response.cols() != m) {
+        throw InvalidInput("fabricated quality: the filter response is " +
+                           std::to_string(response.rows()) + " x " +
+                           std::to_string(response.cols()) + ", the period " + std::to_string(m));
+    }
+    const FftC2 fft(m, m);
+    // The captures are centred as the decoder's (psf2otf moves the PSF's central element to the
+    // origin): C^ = R X^ H with R that shift's transfer; G applies in design/psf's frame.
+    Plane delta = Plane::Zero(m, m);
+    delta(0, 0) = 1.0;
+    const ComplexPlane shift = fft.forward(psf_to_origin(delta, m, m).cast<std::complex<double>>());
+    const ComplexPlane g = response * shift.conjugate();
+    return fabricated_quality(
+        mask, errors, scenes, noise, draws, seed, [&](const Plane& c, Plane& x) {
+            const ComplexPlane spectrum = fft.forward(c.cast<std::complex<double>>());
+            x = fft.inverse(g * spectrum).real();
+        });
 }
 
 }  // namespace pinmask

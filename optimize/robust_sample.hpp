@@ -66,4 +66,13 @@ FabricatedQuality fabricated_wiener_quality(const Mask& mask, const FabricationE
                                             const NoiseModel& noise, double nsr, int draws,
                                             std::uint64_t seed);
 
+// The same (same draws, noise and scenes) decoded by a fixed linear filter given as its m x m
+// frequency response G (X~ = G C^ on the capture's unnormalised DFT, real part of the inverse
+// DFT kept), e.g. RobustWienerModel's robust_filter_response or optimal_filter_response.
+// InvalidInput when G is not m x m.
+FabricatedQuality fabricated_filter_quality(const Mask& mask, const FabricationErrors& errors,
+                                            const std::vector<NamedScene>& scenes,
+                                            const NoiseModel& noise, const ComplexPlane& response,
+                                            int draws, std::uint64_t seed);
+
 }  // namespace pinmask

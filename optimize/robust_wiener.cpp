@@ -6,6 +6,7 @@
 #include "core/fft.hpp"
 #include "design/psf.hpp"
 #include "optimize/image_quality.hpp"
+#include "optimize/nsr_tuning.hpp"
 #include "optimize/robust_sample.hpp"
 
 namespace pinmask {
@@ -28,41 +29,74 @@ RobustWienerModel::RobustWienerModel(const Mask& tmpl, FabricationErrors errors,
     check_psf_memory(n_, ppc, 8, 2);
     const ComplexPlane kappa = normalised_kernel_otf(mask_kernel(tmpl), n_, ppc);
     nominal_ = std::make_shared<AnalyticWienerModel>(kappa, std::move(prior), noise);
+    kappa_ = kappa;
+    // Without errors the expected PSF is the nominal one and nothing varies.
+    std::vector<ComplexPlane> truth{kappa};  // per bias sign: kappa_s J
+    std::vector<Plane> var{Plane::Zero(m, m)};
     if (!errors_.any()) {
         errors_.validate(tmpl.camera.pinhole_m);
-        return;
+    } else {
+        truth.clear();
+        var.clear();
+        const JitterTransfer jt = jitter_transfer(jitter_sigma_px(tmpl, errors_), m);
+        const double keep = 1.0 / (1.0 - errors_.missing);
+        for (const Kernel& k : fabricated_kernels(tmpl, errors_)) {
+            const ComplexPlane kappa_s = normalised_kernel_otf(k, n_, ppc);
+            ComplexPlane cross(m, m), t(m, m);
+            Plane v(m, m);
+            for (int r = 0; r < m; ++r)
+                for (int c = 0; c < m; ++c) {
+                    const std::complex<double> j = jt.mean[r] * jt.mean[c];
+                    const double b = jt.power[r] * jt.power[c];
+                    cross(r, c) = std::conj(kappa(r, c)) * kappa_s(r, c) * j;
+                    t(r, c) = kappa_s(r, c) * j;
+                    // B >= |J|^2 (Jensen); rounding may leave -1e-17: clip.
+                    v(r, c) = std::norm(kappa_s(r, c)) * std::max(0.0, b * keep - std::norm(j));
+                }
+            cross_.push_back(std::move(cross));
+            variance_.push_back(v);
+            truth.push_back(std::move(t));
+            var.push_back(std::move(v));
+        }
     }
-    const JitterTransfer jt = jitter_transfer(jitter_sigma_px(tmpl, errors_), m);
-    const double keep = 1.0 / (1.0 - errors_.missing);
-    for (const Kernel& k : fabricated_kernels(tmpl, errors_)) {
-        const ComplexPlane kappa_s = normalised_kernel_otf(k, n_, ppc);
-        ComplexPlane cross(m, m);
-        Plane var(m, m);
-        for (int r = 0; r < m; ++r)
-            for (int c = 0; c < m; ++c) {
-                const std::complex<double> j = jt.mean[r] * jt.mean[c];
-                const double b = jt.power[r] * jt.power[c];
-                cross(r, c) = std::conj(kappa(r, c)) * kappa_s(r, c) * j;
-                // B >= |J|^2 (Jensen); rounding may leave -1e-17: clip.
-                var(r, c) = std::norm(kappa_s(r, c)) * std::max(0.0, b * keep - std::norm(j));
-            }
-        cross_.push_back(std::move(cross));
-        variance_.push_back(std::move(var));
+    const double cases = static_cast<double>(truth.size());
+    expected_ = ComplexPlane::Zero(m, m);
+    fabricated_power_ = Plane::Zero(m, m);
+    mean_variance_ = Plane::Zero(m, m);
+    for (std::size_t c = 0; c < truth.size(); ++c) {
+        expected_ += truth[c] / cases;
+        fabricated_power_ += truth[c].abs2() / cases;
+        mean_variance_ += var[c] / cases;
     }
+    expected_power_ = expected_.abs2();
+    for (const ComplexPlane& t : truth) expected_cross_.push_back(expected_.conjugate() * t);
+    expected_nominal_cross_.push_back(expected_.conjugate() * kappa);
+    // The floor's ratio |E kappa_s|^2 / E|kappa_s|^2 equals |D|^2 / E|kappa_s J|^2 (J cancels).
+    const Plane& s = nominal_->prior().power;
+    double floor = 0.0;
+    for (int r = 0; r < m; ++r)
+        for (int c = 0; c < m; ++c) {
+            const double e2 = fabricated_power_(r, c);
+            const double ratio = e2 > 0.0 ? std::min(1.0, expected_power_(r, c) / e2) : 0.0;
+            floor += s(r, c) * (1.0 - ratio);
+        }
+    const double big_n = static_cast<double>(m) * m;
+    floor_mse_ = floor / (big_n * big_n);
 }
 
-double RobustWienerModel::robust_mse(const ComplexPlane& p, double sigma2,
-                                     const WienerFilterSpec& f) const {
-    const Plane& kp = nominal_->kernel_power();
+double RobustWienerModel::mismatch_mse(const ComplexPlane& p, double sigma2,
+                                       const WienerFilterSpec& f, const Plane& kp,
+                                       const std::vector<ComplexPlane>& crosses,
+                                       const std::vector<Plane>& variances) const {
     const Plane& s = nominal_->prior().power;
     const Eigen::Index m = kp.rows(), n = p.rows();
     const double holes = p(0, 0).real();
     const Plane pp = p.abs2() / (holes * holes);
     const double big_n = static_cast<double>(m * m), n_sigma2 = big_n * sigma2;
     double total = 0.0;
-    for (std::size_t c = 0; c < cross_.size(); ++c) {
-        const ComplexPlane& cross = cross_[c];
-        const Plane& var = variance_[c];
+    for (std::size_t c = 0; c < crosses.size(); ++c) {
+        const ComplexPlane& cross = crosses[c];
+        const Plane* var = variances.empty() ? nullptr : &variances[c];
         double sum = 0.0;
         for (Eigen::Index l = 0, ln = 0; l < m; ++l, ln = ln + 1 == n ? 0 : ln + 1)
             for (Eigen::Index k = 0, kn = 0; k < m; ++k, kn = kn + 1 == n ? 0 : kn + 1) {
@@ -75,15 +109,25 @@ double RobustWienerModel::robust_mse(const ComplexPlane& p, double sigma2,
                     w = d > 0.0 ? sk / d : 0.0;
                 }
                 const std::complex<double> bias = w * ppk * cross(k, l) - 1.0;
-                sum += std::norm(bias) * sk + w * w * h * (var(k, l) / holes * sk + n_sigma2);
+                const double v = var ? (*var)(k, l) / holes * sk : 0.0;
+                sum += std::norm(bias) * sk + w * w * h * (v + n_sigma2);
             }
         total += sum;
     }
-    return total / (static_cast<double>(cross_.size()) * big_n * big_n);
+    return total / (static_cast<double>(crosses.size()) * big_n * big_n);
 }
 
-RobustError RobustWienerModel::evaluate(const ComplexPlane& p, const WienerFilterSpec& f) const {
-    if (f.kind == WienerFilterKind::kTunedNsr) return evaluate_tuned_nsr(p);
+double RobustWienerModel::tune_nsr(const ComplexPlane& p, double sigma2, const Plane& kp,
+                                   const std::vector<ComplexPlane>& cross) const {
+    return tune_log_weight([&](double nsr) {
+               return mismatch_mse(p, sigma2, {WienerFilterKind::kFixedNsr, nsr}, kp, cross, {});
+           })
+        .x;
+}
+
+RobustError RobustWienerModel::evaluate(const ComplexPlane& p, const WienerFilterSpec& f,
+                                        RobustDecoderPsf psf) const {
+    if (f.kind == WienerFilterKind::kTunedNsr) return evaluate_tuned_nsr(p, psf);
     RobustError r;
     r.nominal = nominal_->evaluate(p, f);
     if (cross_.empty()) {
@@ -91,28 +135,133 @@ RobustError RobustWienerModel::evaluate(const ComplexPlane& p, const WienerFilte
         r.psnr_db = r.nominal.psnr_db;
         return r;
     }
-    r.mse = robust_mse(p, r.nominal.noise_variance, f);
+    const double sigma2 = r.nominal.noise_variance;
+    if (psf == RobustDecoderPsf::kExpectedPsf) {
+        r.nominal.mse = mismatch_mse(p, sigma2, f, expected_power_, expected_nominal_cross_, {});
+        r.nominal.psnr_db = psnr_from_mse(r.nominal.mse);
+        r.mse = mismatch_mse(p, sigma2, f, expected_power_, expected_cross_, variance_);
+    } else {
+        r.mse = mismatch_mse(p, sigma2, f, nominal_->kernel_power(), cross_, variance_);
+    }
     r.psnr_db = psnr_from_mse(r.mse);
     return r;
 }
 
-RobustError RobustWienerModel::evaluate_tuned_nsr(const ComplexPlane& p) const {
-    RobustError r;
-    r.nominal = nominal_->evaluate_tuned_nsr(p);
+RobustError RobustWienerModel::evaluate_tuned_nsr(const ComplexPlane& p,
+                                                  RobustDecoderPsf psf) const {
+    const AnalyticError tuned = nominal_->evaluate_tuned_nsr(p);
     if (cross_.empty()) {
+        RobustError r;
+        r.nominal = tuned;
         r.mse = r.nominal.mse;
         r.psnr_db = r.nominal.psnr_db;
         return r;
     }
-    r.mse = robust_mse(p, r.nominal.noise_variance, {WienerFilterKind::kFixedNsr, r.nominal.nsr});
+    if (psf == RobustDecoderPsf::kNominalPsf) {
+        RobustError r;
+        r.nominal = tuned;
+        r.mse = mismatch_mse(p, tuned.noise_variance, {WienerFilterKind::kFixedNsr, tuned.nsr},
+                             nominal_->kernel_power(), cross_, variance_);
+        r.psnr_db = psnr_from_mse(r.mse);
+        return r;
+    }
+    const double nsr = tune_nsr(p, tuned.noise_variance, expected_power_, expected_nominal_cross_);
+    RobustError r = evaluate(p, {WienerFilterKind::kFixedNsr, nsr}, psf);
+    r.nominal.nsr = nsr;
+    return r;
+}
+
+RobustError RobustWienerModel::evaluate_robust_filter(const ComplexPlane& p) const {
+    RobustError r;
+    r.nominal = nominal_->evaluate(p, {WienerFilterKind::kOptimal, 0.0});
+    const Plane& s = nominal_->prior().power;
+    const Plane& kp = nominal_->kernel_power();
+    const Eigen::Index m = kp.rows(), n = p.rows();
+    const double holes = p(0, 0).real();
+    const Plane pp = p.abs2() / (holes * holes);
+    const double big_n = static_cast<double>(m * m);
+    const double n_sigma2 = big_n * r.nominal.noise_variance;
+    const ComplexPlane& kappa_cross = expected_nominal_cross_.front();  // conj(D) kappa
+    double fab = 0.0, nom = 0.0;
+    for (Eigen::Index l = 0, ln = 0; l < m; ++l, ln = ln + 1 == n ? 0 : ln + 1)
+        for (Eigen::Index k = 0, kn = 0; k < m; ++k, kn = kn + 1 == n ? 0 : kn + 1) {
+            const double ppk = pp(kn, ln), sk = s(k, l);
+            const double et2 = ppk * fabricated_power_(k, l) + mean_variance_(k, l) / holes;
+            const double mean2 = ppk * expected_power_(k, l);  // |E T|^2
+            const double d = et2 * sk + n_sigma2;
+            if (!(d > 0.0)) {
+                fab += sk;
+                nom += sk;
+                continue;
+            }
+            fab += sk * ((et2 - mean2) * sk + n_sigma2) / d;
+            // Nominal capture: G H = pp conj(D) kappa S / d, |G|^2 = |E T|^2 S^2 / d^2.
+            const std::complex<double> gh = ppk * kappa_cross(k, l) * (sk / d);
+            nom += std::norm(gh - 1.0) * sk + mean2 * sk * sk / (d * d) * n_sigma2;
+        }
+    r.nominal.mse = nom / (big_n * big_n);
+    r.nominal.psnr_db = psnr_from_mse(r.nominal.mse);
+    r.nominal.nsr = 0.0;
+    r.mse = fab / (big_n * big_n);
     r.psnr_db = psnr_from_mse(r.mse);
     return r;
 }
 
+double RobustWienerModel::pattern_independent_floor_mse() const { return floor_mse_; }
+
+ComplexPlane RobustWienerModel::robust_filter_response(const ComplexPlane& p) const {
+    const AnalyticError nominal = nominal_->evaluate(p, {WienerFilterKind::kOptimal, 0.0});
+    const Plane& s = nominal_->prior().power;
+    const Eigen::Index m = s.rows(), n = p.rows();
+    const double holes = p(0, 0).real();
+    const double n_sigma2 = static_cast<double>(m * m) * nominal.noise_variance;
+    ComplexPlane g(m, m);
+    for (Eigen::Index l = 0, ln = 0; l < m; ++l, ln = ln + 1 == n ? 0 : ln + 1)
+        for (Eigen::Index k = 0, kn = 0; k < m; ++k, kn = kn + 1 == n ? 0 : kn + 1) {
+            const std::complex<double> et = p(kn, ln) / holes * expected_(k, l);
+            const double ppk = std::norm(p(kn, ln)) / (holes * holes), sk = s(k, l);
+            const double et2 = ppk * fabricated_power_(k, l) + mean_variance_(k, l) / holes;
+            const double d = et2 * sk + n_sigma2;
+            g(k, l) = d > 0.0 ? std::conj(et) * (sk / d) : 0.0;
+        }
+    return g;
+}
+
+ComplexPlane RobustWienerModel::filter_response(const ComplexPlane& p, const WienerFilterSpec& f,
+                                                RobustDecoderPsf psf) const {
+    WienerFilterSpec spec = f;
+    if (f.kind == WienerFilterKind::kTunedNsr) {
+        spec = {WienerFilterKind::kFixedNsr, evaluate_tuned_nsr(p, psf).nominal.nsr};
+    }
+    const AnalyticError nominal = nominal_->evaluate(p, {WienerFilterKind::kOptimal, 0.0});
+    if (spec.kind == WienerFilterKind::kFixedNsr && (!(spec.nsr > 0.0) || !std::isfinite(spec.nsr)))
+        throw invalid_field("nsr", std::to_string(spec.nsr), "must be finite and > 0");
+    const ComplexPlane& decoder = psf == RobustDecoderPsf::kExpectedPsf ? expected_ : kappa_;
+    const Plane& s = nominal_->prior().power;
+    const Eigen::Index m = s.rows(), n = p.rows();
+    const double holes = p(0, 0).real();
+    const double n_sigma2 = static_cast<double>(m * m) * nominal.noise_variance;
+    ComplexPlane g(m, m);
+    for (Eigen::Index l = 0, ln = 0; l < m; ++l, ln = ln + 1 == n ? 0 : ln + 1)
+        for (Eigen::Index k = 0, kn = 0; k < m; ++k, kn = kn + 1 == n ? 0 : kn + 1) {
+            const std::complex<double> h = p(kn, ln) / holes * decoder(k, l);
+            const double h2 = std::norm(h), sk = s(k, l);
+            double w;
+            if (spec.kind == WienerFilterKind::kFixedNsr) {
+                w = 1.0 / (h2 + spec.nsr);
+            } else {
+                const double d = h2 * sk + n_sigma2;
+                w = d > 0.0 ? sk / d : 0.0;
+            }
+            g(k, l) = std::conj(h) * w;
+        }
+    return g;
+}
+
 RobustObjective::RobustObjective(ObjectiveWeights weights,
                                  std::shared_ptr<const RobustWienerModel> model,
-                                 WienerFilterSpec filter)
-    : weights_(weights), model_(std::move(model)), filter_(filter) {
+                                 WienerFilterSpec filter, RobustObjectiveDecoder decoder)
+    : weights_(weights), model_(std::move(model)), filter_(filter), decoder_(decoder) {
     weights_.validate();
     if (!model_) throw InvalidInput("the robust objective needs a robust Wiener model");
     ObjectiveWeights others = weights_;
@@ -122,10 +271,16 @@ RobustObjective::RobustObjective(ObjectiveWeights weights,
     }
 }
 
+RobustError RobustObjective::figure(const PatternState& s) const {
+    return decoder_ == RobustObjectiveDecoder::kRobustFilter
+               ? model_->evaluate_robust_filter(s.spectrum())
+               : model_->evaluate(s.spectrum(), filter_);
+}
+
 double RobustObjective::evaluate(const PatternState& s) const {
     double total = others_ ? others_->evaluate(s) : 0.0;
     if (weights_.analytic_wiener > 0.0) {
-        total -= weights_.analytic_wiener * model_->evaluate(s.spectrum(), filter_).psnr_db;
+        total -= weights_.analytic_wiener * figure(s).psnr_db;
     }
     return total;
 }
@@ -133,7 +288,7 @@ double RobustObjective::evaluate(const PatternState& s) const {
 std::map<std::string, double> RobustObjective::terms(const PatternState& s) const {
     std::map<std::string, double> out;
     if (others_) out = others_->terms(s);
-    const RobustError e = model_->evaluate(s.spectrum(), filter_);
+    const RobustError e = figure(s);
     out["analytic_wiener_psnr_db"] = e.nominal.psnr_db;
     out["analytic_wiener"] = -e.nominal.psnr_db;
     out["robust_wiener_psnr_db"] = e.psnr_db;

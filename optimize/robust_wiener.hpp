@@ -47,6 +47,16 @@ struct RobustError {
     double loss_db() const { return nominal.psnr_db - psnr_db; }
 };
 
+// The PSF the decoder is built from (issue 13's robust-design variants; the figure of score,
+// compare and search is kNominalPsf).
+//   kNominalPsf   the design's PSF (an uncalibrated camera).
+//   kExpectedPsf  the expected fabricated PSF: kernel OTF averaged over the bias signs times the
+//                 jitter mean J, D = E[kappa_s] J (what a designer who knows the error statistics
+//                 but not the sign of one copy's bias would decode with).
+// With kExpectedPsf both figures change: `nominal` is then the NOMINAL capture decoded with D
+// (|G H - 1|^2 S + |G|^2 N sigma^2, G = conj(P^ D / K) w), and mse the fabricated ones.
+enum class RobustDecoderPsf { kNominalPsf, kExpectedPsf };
+
 class RobustWienerModel {
   public:
     // The template's camera, PSF settings and n (pinholes ignored); errors validated against it
@@ -58,37 +68,93 @@ class RobustWienerModel {
     const AnalyticWienerModel& nominal() const { return *nominal_; }
     int cases() const { return static_cast<int>(cross_.size()); }
 
-    // The filter is the nominal decoder's (fixed NSR or per-frequency optimal).
-    RobustError evaluate(const ComplexPlane& pattern_spectrum, const WienerFilterSpec& f) const;
+    // The filter is the nominal decoder's (fixed NSR or per-frequency optimal), built from the
+    // nominal PSF (default) or the expected fabricated PSF.
+    RobustError evaluate(const ComplexPlane& pattern_spectrum, const WienerFilterSpec& f,
+                         RobustDecoderPsf psf = RobustDecoderPsf::kNominalPsf) const;
     // The fixed-NSR filter with the NSR tuned for the nominal mask (what a user tuning the
-    // design would pick), then its robust error.
-    RobustError evaluate_tuned_nsr(const ComplexPlane& pattern_spectrum) const;
+    // design would pick), then its robust error. With kExpectedPsf the NSR is tuned for the
+    // nominal capture decoded with the expected PSF.
+    RobustError evaluate_tuned_nsr(const ComplexPlane& pattern_spectrum,
+                                   RobustDecoderPsf psf = RobustDecoderPsf::kNominalPsf) const;
+
+    // The decoder chosen for the errors (issue 13 variant "the decoder is part of the design"):
+    // per frequency the linear filter minimising the EXPECTED fabricated error,
+    //     G = conj(E T) S / (E|T|^2 S + N sigma^2),  E T = P^ D / K,
+    //     E|T|^2 = pp E_s|kappa_s J|^2 + E_s Var_s / K,
+    // whose expected fabricated term is S (E|T|^2 S - |E T|^2 S + N sigma^2) / (E|T|^2 S +
+    // N sigma^2). No fixed or tuned NSR, no per-frequency filter and no decoder PSF does better
+    // on the fabricated masks (it is the minimum of a quadratic per frequency). `nominal.mse` /
+    // `nominal.psnr_db` are the NOMINAL capture decoded with this same G (nominal.nsr = 0).
+    RobustError evaluate_robust_filter(const ComplexPlane& pattern_spectrum) const;
+
+    // A lower bound on the expected fabricated MSE of ANY pattern decoded by ANY linear
+    // shift-invariant filter at any noise level: per frequency min_u E|u T - 1|^2 S =
+    // S (1 - |E T|^2 / E|T|^2) >= S (1 - |E_s kappa_s|^2 / E_s |kappa_s|^2) (the pattern and the
+    // jitter mean cancel; jitter and missing variance, noise and spectral zeros only add). It
+    // is the size bias's share: 0 without a bias. Per pixel, same units as RobustError::mse.
+    double pattern_independent_floor_mse() const;
+
+    // Frequency responses G (m x m, applied as X~ = G C^ to the capture's unnormalised DFT, in
+    // design/psf's frame: H = P^(k mod n) kappa / K is the DFT of the sum-1 mask PSF), for the
+    // simulation to decode with (optimize/robust_sample fabricated_filter_quality): the robust
+    // filter above, and the filters of evaluate / evaluate_tuned_nsr, G = conj(H_D) w with
+    // H_D = P^ D / K for the decoder's PSF (D = kappa or E_s kappa_s J), w = 1 / (|H_D|^2 + nsr)
+    // (fixed or tuned NSR) or S / (|H_D|^2 S + N sigma^2) (optimal). The noise variance is the
+    // nominal capture's, as in the figures.
+    ComplexPlane robust_filter_response(const ComplexPlane& pattern_spectrum) const;
+    ComplexPlane filter_response(const ComplexPlane& pattern_spectrum, const WienerFilterSpec& f,
+                                 RobustDecoderPsf psf = RobustDecoderPsf::kNominalPsf) const;
 
   private:
-    double robust_mse(const ComplexPlane& p, double noise_variance,
-                      const WienerFilterSpec& f) const;
+    // (1/N^2) sum over the truth cases of the mismatch error of the filter built from the
+    // decoder's |D|^2 (`decoder_power`) against true transfer functions with conj(D) x mean
+    // `cross[c]` and variance `variance[c]` / K (empty: none).
+    double mismatch_mse(const ComplexPlane& p, double noise_variance, const WienerFilterSpec& f,
+                        const Plane& decoder_power, const std::vector<ComplexPlane>& cross,
+                        const std::vector<Plane>& variance) const;
+    double tune_nsr(const ComplexPlane& p, double noise_variance, const Plane& decoder_power,
+                    const std::vector<ComplexPlane>& cross) const;
 
     FabricationErrors errors_;
     std::shared_ptr<AnalyticWienerModel> nominal_;
     int n_ = 0;
     std::vector<ComplexPlane> cross_;  // per bias sign: conj(kappa) kappa_s J, m x m
     std::vector<Plane> variance_;      // per bias sign: |kappa_s|^2 (B / (1 - q) - |J|^2)
+    // The expected-PSF decoder: D = E_s kappa_s J, |D|^2, conj(D) kappa_s J per sign and
+    // conj(D) kappa (the nominal capture); E_s |kappa_s J|^2 and E_s Var_s for the robust filter.
+    ComplexPlane kappa_;  // the nominal kernel OTF K^ / K^(0)
+    ComplexPlane expected_;
+    Plane expected_power_;
+    std::vector<ComplexPlane> expected_cross_;
+    std::vector<ComplexPlane> expected_nominal_cross_;
+    Plane fabricated_power_, mean_variance_;
+    double floor_mse_ = 0.0;
 };
 
 // The search objective of `--objective robust`: -weights.analytic_wiener x robust PSNR plus the
 // other weighted terms of MaskObjective (sidelobes, min spectrum). Terms add
 // "robust_wiener_psnr_db" beside the nominal "analytic_wiener_psnr_db".
+// kDesignFilter: the figure is evaluate(spectrum, filter) (the nominal PSF's filter, what
+// `search --objective robust` optimises). kRobustFilter: evaluate_robust_filter (the decoder is
+// part of the design; `filter` is then unused by the robust term).
+enum class RobustObjectiveDecoder { kDesignFilter, kRobustFilter };
+
 class RobustObjective : public SearchObjective {
   public:
     RobustObjective(ObjectiveWeights weights, std::shared_ptr<const RobustWienerModel> model,
-                    WienerFilterSpec filter);
+                    WienerFilterSpec filter,
+                    RobustObjectiveDecoder decoder = RobustObjectiveDecoder::kDesignFilter);
     double evaluate(const PatternState& state) const override;
     std::map<std::string, double> terms(const PatternState& state) const override;
 
   private:
+    RobustError figure(const PatternState& state) const;
+
     ObjectiveWeights weights_;
     std::shared_ptr<const RobustWienerModel> model_;
     WienerFilterSpec filter_;
+    RobustObjectiveDecoder decoder_;
     std::unique_ptr<MaskObjective> others_;  // the non-Wiener terms (null when all zero)
 };
 

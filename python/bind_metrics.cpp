@@ -2,6 +2,8 @@
 // compare_mask over optimize/mask_metrics, the one metric set of score, compare and search).
 // The other functions bind the library metrics one by one (optimize/autocorrelation,
 // spectrum_metrics, analytic_error, simulated_metrics).
+#include <cmath>
+
 #include "core/error.hpp"
 #include "core/fft.hpp"
 #include "design/psf.hpp"
@@ -10,6 +12,7 @@
 #include "optimize/compare.hpp"
 #include "optimize/mask_metrics.hpp"
 #include "optimize/metric_spellings.hpp"
+#include "optimize/robust_errors.hpp"
 #include "optimize/scene_prior.hpp"
 #include "optimize/scenes.hpp"
 #include "optimize/simulated_metrics.hpp"
@@ -66,6 +69,7 @@ py::dict row_dict(const CompareRow& r) {
     d["otf_condition_number"] = r.otf_condition_number;
     d["analytic_wiener_psnr_db"] = r.analytic_wiener_psnr_db;
     d["analytic_optimal_wiener_psnr_db"] = r.analytic_optimal_wiener_psnr_db;
+    if (!std::isnan(r.robust_wiener_psnr_db)) d["robust_wiener_psnr_db"] = r.robust_wiener_psnr_db;
     d["wiener_psnr_db"] = r.wiener_psnr_db;
     d["wiener_ssim"] = r.wiener_ssim;
     d["wiener_nsr"] = r.wiener_nsr;
@@ -79,6 +83,10 @@ py::dict row_dict(const CompareRow& r) {
             d[py::str("analytic_wiener_psnr_db_" + k)] = l.analytic->psnr_db;
             d[py::str("analytic_wiener_nsr_" + k)] = l.analytic->nsr;
             d[py::str("analytic_optimal_wiener_psnr_db_" + k)] = l.analytic->optimal_psnr_db;
+        }
+        if (l.robust) {
+            d[py::str("robust_wiener_psnr_db_" + k)] = l.robust->psnr_db;
+            d[py::str("robust_loss_db_" + k)] = l.robust->loss_db;
         }
         const std::pair<const char*, const std::optional<SimulatedQuality>*> sims[] = {
             {"wiener", &l.wiener}, {"tv", &l.tv}};
@@ -107,12 +115,14 @@ void bind_metrics(py::module_& m) {
            const std::string& tv_lambda, int tv_iterations, std::uint64_t seed,
            const std::string& name, const py::object& photons, std::optional<double> read_noise,
            std::optional<double> dark_current, std::optional<double> full_well,
-           std::optional<int> bits, std::optional<double> optical_density,
-           const py::object& prior) {
+           std::optional<int> bits, std::optional<double> optical_density, const py::object& prior,
+           const std::optional<std::string>& robust) {
             const SensorSettings sensor{read_noise, dark_current, full_well, optical_density, bits};
-            const CompareSettings s = compare_settings(
-                noise_levels_arg(snr_db, photons, sensor, {30.0}), prior_arg(prior, prior_scenes),
-                scenes, nsr, tv_lambda, tv_iterations, seed);
+            CompareSettings s = compare_settings(noise_levels_arg(snr_db, photons, sensor, {30.0}),
+                                                 prior_arg(prior, prior_scenes), scenes, nsr,
+                                                 tv_lambda, tv_iterations, seed);
+            // --robust: score's parser (InvalidInput naming --robust and the key).
+            if (robust) s.metrics.robust = parse_fabrication_errors(*robust);
             const Mask mk = mask_arg(mask_obj, true);
             CompareEntry e{name, "input",
                            py::isinstance<py::str>(mask_obj) ? mask_obj.cast<std::string>()
@@ -134,6 +144,7 @@ void bind_metrics(py::module_& m) {
         py::arg("read_noise") = py::none(), py::arg("dark_current") = py::none(),
         py::arg("full_well") = py::none(), py::arg("bits") = py::none(),
         py::arg("optical_density") = py::none(), py::arg("prior") = "natural",
+        py::arg("robust") = py::none(),
         R"(The metric row of `pinmask compare` for one mask (optimize/compare over
 optimize/mask_metrics, the set score and search use; same settings, same numbers): sidelobes,
 spectrum, OTF condition, analytic Wiener PSNR (dB; the nsr filter and the per-frequency optimal
@@ -146,7 +157,11 @@ The unsuffixed keys are the first level's; every level is also under score's key
 (analytic_wiener_psnr_db_snr30, wiener_psnr_db_ph100, ...).
 Prior of the analytic error (as --prior / --prior-scenes): 'natural' | 'text' | 'stars' or image
 files (a list of paths or one comma-separated string), prior_scenes sample scenes (1..4096).
-nsr and tv_lambda: 'tuned' or a number > 0.)");
+nsr and tv_lambda: 'tuned' or a number > 0.
+robust (as --robust): 'size=44um,jitter=2um,missing=0.01' (any subset) adds the analytic Wiener
+PSNR expected under those fabrication errors, decoded with the nominal PSF, and its loss:
+robust_wiener_psnr_db (first level) and per level robust_wiener_psnr_db_<level>,
+robust_loss_db_<level>, score's keys and numbers.)");
 
     m.def(
         "sidelobes",

@@ -11,6 +11,7 @@
 #include "design/psf_settings.hpp"
 #include "io/search_config.hpp"
 #include "optimize/metric_spellings.hpp"
+#include "optimize/robust_errors.hpp"
 #include "optimize/search_pipeline.hpp"
 #include "python/common.hpp"
 #include "python/level_args.hpp"
@@ -43,8 +44,8 @@ void bind_search(py::module_& m) {
            bool rerank_tv, const std::string& rank_by, bool allow_spectral_zeros,
            const py::object& progress, const py::object& photons, std::optional<double> read_noise,
            std::optional<double> dark_current, std::optional<double> full_well,
-           std::optional<int> bits, std::optional<double> optical_density,
-           const py::object& prior) {
+           std::optional<int> bits, std::optional<double> optical_density, const py::object& prior,
+           const std::optional<std::string>& robust, const std::string& objective) {
             SearchPipelineOptions p;
             p.tmpl.camera = camera.value_or(paper_camera());
             validate(p.tmpl.camera);
@@ -90,6 +91,9 @@ void bind_search(py::module_& m) {
             p.rerank_tv = rerank_tv && !rerank_scenes.empty();
             p.rank_by = parse_rank_by(rank_by);
             p.generator = io::kSearchGenerator;
+            // --robust / --objective: the same parsers and the same pipeline as the CLI.
+            if (robust) p.robust = parse_fabrication_errors(*robust);
+            p.objective = parse_objective_kind(objective);
             p.validate();
 
             std::atomic<bool> cancel{false};
@@ -164,7 +168,8 @@ void bind_search(py::module_& m) {
         py::arg("photons") = py::none(), py::arg("read_noise") = py::none(),
         py::arg("dark_current") = py::none(), py::arg("full_well") = py::none(),
         py::arg("bits") = py::none(), py::arg("optical_density") = py::none(),
-        py::arg("prior") = "natural",
+        py::arg("prior") = "natural", py::arg("robust") = py::none(),
+        py::arg("objective") = "nominal",
         R"(Searches masks for a camera (grid n, holes K, tiles, spacing in cells) as
 `pinmask search` (the same pipeline, optimize/search_pipeline): strategy random | anneal, a
 time budget (time, '20s', '2min'; it covers the re-ranking too) or evals per chain (> 0:
@@ -180,6 +185,9 @@ stops the search. Ctrl-C (KeyboardInterrupt) stops it too: the best candidates s
 returned, termination 'interrupted'.
 Noise: ONE level, snr_db (Gaussian, dB; None: 30) or photons (electrons per pixel per pinhole)
 with read_noise, dark_current, full_well, bits, optical_density, as metrics().
+robust (as --robust, e.g. 'size=44um,jitter=2um'): every candidate's terms gain
+robust_wiener_psnr_db (expected under those fabrication errors, nominal-PSF decoder);
+objective 'robust' (needs robust) optimises it, 'nominal' (default) the design's figure.
 Returns {candidates: [{mask, objective, terms, reranked, sim_wiener_psnr_db, sim_tv_psnr_db,
 tv_lambda, spectral_zero}] best first, evaluations, evaluations_per_chain, seconds (all),
 search_seconds, rerank_seconds, reranked, termination, kernel, log: [{seconds, evaluations,

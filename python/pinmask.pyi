@@ -195,6 +195,7 @@ def metrics(
     bits: Optional[int] = None,  # ADC bits 1..24, needs full_well
     optical_density: Optional[float] = None,  # film OD (transmission 10^-OD)
     prior: Prior = "natural",
+    robust: Optional[str] = None,  # as --robust: "size=44um,jitter=2um,missing=0.01"
 ) -> dict[str, Any]: ...
 def sidelobes(pattern: Pattern) -> dict[str, Any]: ...
 def autocorrelation(pattern: Pattern) -> npt.NDArray[np.int32]: ...
@@ -263,6 +264,8 @@ def search(
     bits: Optional[int] = None,
     optical_density: Optional[float] = None,
     prior: Prior = "natural",
+    robust: Optional[str] = None,  # as --robust: "size=44um,jitter=2um,missing=0.01"
+    objective: Literal["nominal", "robust"] = "nominal",  # robust needs robust
 ) -> dict[str, Any]: ...
 def compare(
     masks: Sequence[MaskLike],

@@ -16,6 +16,7 @@
 #include "optimize/robust_sample.hpp"
 #include "optimize/robust_wiener.hpp"
 #include "optimize/scene_prior.hpp"
+#include "optimize/scenes.hpp"
 #include "tests/support/random_pattern.hpp"
 
 namespace pinmask {
@@ -195,6 +196,87 @@ TEST_CASE("the closed-form robust MSE matches a Monte Carlo of fabricated PSFs")
     }
 }
 
+TEST_CASE("decoder variants (expected PSF, robust filter): closed form against a Monte Carlo") {
+    // As above, with the filters of the decoder variants built by the model
+    // (filter_response, robust_filter_response) and checked twice: their expected fabricated
+    // MSE against the Monte Carlo of fabricated PSFs, and their nominal MSE against the same
+    // sum with the exact nominal transfer function (no sampling: kRelTolerance).
+    constexpr double kStandardErrors = 4.0;
+    constexpr double kRelTolerance = 1e-9;
+    constexpr int kDraws = 3000;
+    const Mask mask = test_mask(8, 6, 3);
+    const int m = 64;
+    const ScenePrior prior = natural_scene_prior(m, m, 4, 1000, 1.0);
+    NoiseModel noise;
+    noise.snr_db = 25.0;
+    const FabricationErrors e{60e-6, 30e-6, 0.05};
+    const ComplexPlane p = pattern_spectrum(mask.pattern);
+    const ComplexPlane h = full_fft(mask_psf(mask));
+    const RobustWienerModel model(mask, e, prior, noise);
+    const double big_n = static_cast<double>(m) * m;
+    const auto mse_given = [&](const ComplexPlane& g, const ComplexPlane& t, double sigma2) {
+        double sum = 0.0;
+        for (Eigen::Index i = 0; i < t.size(); ++i) {
+            sum += std::norm(g.data()[i] * t.data()[i] - 1.0) * prior.power.data()[i] +
+                   std::norm(g.data()[i]) * big_n * sigma2;
+        }
+        return sum / (big_n * big_n);
+    };
+    // The nominal-PSF fixed-NSR response is the test's own conj(H) / (|H|^2 + nsr) (frame check).
+    const ComplexPlane g0 = model.filter_response(p, {WienerFilterKind::kFixedNsr, 0.02});
+    double frame_error = 0.0;
+    for (Eigen::Index i = 0; i < h.size(); ++i) {
+        const std::complex<double> hk = h.data()[i];
+        frame_error =
+            std::max(frame_error, std::abs(g0.data()[i] - std::conj(hk) / (std::norm(hk) + 0.02)));
+    }
+    CHECK(frame_error <= 1e-9);
+
+    struct Variant {
+        const char* name;
+        RobustError closed;
+        ComplexPlane g;
+    };
+    const WienerFilterSpec fixed{WienerFilterKind::kFixedNsr, 0.02};
+    const WienerFilterSpec optimal{WienerFilterKind::kOptimal, 0.0};
+    const RobustDecoderPsf expected = RobustDecoderPsf::kExpectedPsf;
+    const std::vector<Variant> variants{
+        {"expected PSF, fixed NSR", model.evaluate(p, fixed, expected),
+         model.filter_response(p, fixed, expected)},
+        {"expected PSF, optimal", model.evaluate(p, optimal, expected),
+         model.filter_response(p, optimal, expected)},
+        {"expected PSF, tuned NSR", model.evaluate_tuned_nsr(p, expected),
+         model.filter_response(p, {WienerFilterKind::kTunedNsr, 0.0}, expected)},
+        {"robust filter", model.evaluate_robust_filter(p), model.robust_filter_response(p)},
+        {"nominal PSF, optimal", model.evaluate(p, optimal), model.filter_response(p, optimal)}};
+    const FabricationSampler sampler(mask, e);
+    for (const Variant& v : variants) {
+        const double sigma2 = v.closed.nominal.noise_variance;
+        double sum = 0.0, sum_sq = 0.0;
+        for (int d = 0; d < kDraws; ++d) {
+            std::mt19937_64 rng(static_cast<std::uint64_t>(d) + 17);
+            const double x = mse_given(v.g, full_fft(sampler.draw(rng)), sigma2);
+            sum += x;
+            sum_sq += x * x;
+        }
+        const double mean = sum / kDraws;
+        const double se = std::sqrt(std::max(0.0, sum_sq / kDraws - mean * mean) / kDraws);
+        const double nominal = mse_given(v.g, h, sigma2);
+        CAPTURE(v.name);
+        CAPTURE(v.closed.mse);
+        CAPTURE(mean);
+        CAPTURE(se);
+        CHECK(std::abs(v.closed.mse - mean) <= kStandardErrors * se + 1e-12 * mean);
+        CHECK(std::abs(v.closed.nominal.mse - nominal) <= kRelTolerance * nominal);
+    }
+    // The robust filter is the best of them on the fabricated masks (its defining property),
+    // and the floor is below all.
+    for (const Variant& v : variants) {
+        CHECK(variants[3].closed.mse <= v.closed.mse * (1.0 + kRelTolerance));
+        CHECK(model.pattern_independent_floor_mse() <= v.closed.mse);
+    }
+}
+
 TEST_CASE("zero errors give exactly the nominal score; tiny errors approach it") {
     const Mask mask = test_mask(11, 7, 5);
     const int m = 88;
@@ -241,6 +323,34 @@ TEST_CASE("fabricated PSFs: deterministic for a seed, sum about 1, nominal witho
     CHECK((pa - pb).abs().maxCoeff() == 0.0);
     CHECK(pa.sum() == doctest::Approx(1.0).epsilon(1e-12));
     CHECK((pa - nominal).abs().maxCoeff() > 0.0);
+}
+
+TEST_CASE(
+    "simulated quality with a frequency response: bad inputs refused; the Wiener path equal") {
+    constexpr double kDbTolerance = 1e-9;  // two FFT paths of the same filter
+    const Mask mask = test_mask(8, 6, 9);
+    const int m = 64;
+    const FabricationErrors e{20e-6, 5e-6, 0.0};
+    NoiseModel noise;
+    noise.snr_db = 40.0;
+    SceneSpec spec;
+    spec.kind = SceneKind::kNatural;
+    spec.seed = 7001;
+    const std::vector<NamedScene> scenes{{"natural", make_scene(spec, m, m)}};
+    const RobustWienerModel model(mask, e, natural_scene_prior(m, m, 4, 1000, 1.0), noise);
+    const ComplexPlane p = pattern_spectrum(mask.pattern);
+    const ComplexPlane g = model.filter_response(p, {WienerFilterKind::kFixedNsr, 0.01});
+    // The fixed-NSR response decodes as decode's Wiener filter of the nominal PSF does.
+    const FabricatedQuality a = fabricated_filter_quality(mask, e, scenes, noise, g, 3, 5);
+    const FabricatedQuality b = fabricated_wiener_quality(mask, e, scenes, noise, 0.01, 3, 5);
+    CHECK(std::abs(a.nominal_psnr_db - b.nominal_psnr_db) <= kDbTolerance);
+    CHECK(std::abs(a.fabricated_psnr_db - b.fabricated_psnr_db) <= kDbTolerance);
+    CHECK_THROWS_AS(fabricated_filter_quality(mask, e, scenes, noise, ComplexPlane(m / 2, m), 3, 5),
+                    InvalidInput);
+    CHECK_THROWS_AS(fabricated_filter_quality(mask, e, scenes, noise, g, 0, 5), InvalidInput);
+    CHECK_THROWS_AS(fabricated_filter_quality(mask, e, {}, noise, g, 3, 5), InvalidInput);
+    CHECK_THROWS_AS(model.filter_response(p, {WienerFilterKind::kFixedNsr, -1.0}), InvalidInput);
+    CHECK_THROWS_AS(model.filter_response(p, {WienerFilterKind::kFixedNsr, NAN}), InvalidInput);
 }
 
 }  // namespace pinmask

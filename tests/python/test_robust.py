@@ -1,0 +1,58 @@
+"""Fabrication robustness (--robust) in the module: metrics() and search() against the CLI."""
+import json
+
+import pytest
+
+import pinmask
+
+ERRORS = "size=44um,jitter=2um"
+
+
+def test_metrics_robust_equals_cli_score(cli, tmp_path, mask7):
+    mask7.save(str(tmp_path / "m.mask.json"))
+    s = json.loads(cli.run("score", "m.mask.json", "--snr", "40", "--nsr", "tuned", "--metrics",
+                           "analytic", "--robust", ERRORS, "--json").stdout)["masks"][0]
+    row = pinmask.metrics(str(tmp_path / "m.mask.json"), snr_db=40, tv_iterations=20,
+                          robust=ERRORS)
+    # The same closed form, prior and filter: the same numbers, to the last bit.
+    assert row["robust_wiener_psnr_db_snr40"] == s["robust_wiener_psnr_db_snr40"]
+    assert row["robust_loss_db_snr40"] == s["robust_loss_db_snr40"]
+    assert row["robust_wiener_psnr_db"] == s["robust_wiener_psnr_db_snr40"]
+    assert row["analytic_wiener_psnr_db_snr40"] == s["analytic_wiener_psnr_db_snr40"]
+    # The errors cost PSNR, and the loss is nominal minus robust.
+    assert 0 < row["robust_loss_db_snr40"] < 5
+    assert row["robust_loss_db_snr40"] == pytest.approx(
+        row["analytic_wiener_psnr_db_snr40"] - row["robust_wiener_psnr_db_snr40"], abs=1e-9)
+    # Without robust no robust key (as score without --robust).
+    plain = pinmask.metrics(mask7, snr_db=40, tv_iterations=20)
+    assert not any(k.startswith("robust") for k in plain)
+
+
+def test_metrics_robust_bad_values_same_message_as_cli(cli, tmp_path, mask7):
+    mask7.save(str(tmp_path / "m.mask.json"))
+    for bad in ["size=-1um", "jitter=nan", "missing=1", "size=5um,size=6um", "color=3",
+                "size"]:
+        msg = cli.error("score", "m.mask.json", "--metrics", "analytic", "--robust", bad)
+        with pytest.raises(ValueError) as e:
+            pinmask.metrics(mask7, tv_iterations=20, robust=bad)
+        assert str(e.value) == msg, bad
+        assert "--robust" in msg
+
+
+def test_search_robust_objective_same_masks_as_cli(cli, tmp_path):
+    cli.run("search", "--preset", "paper", "--grid", "16", "--holes", "20", "--evals", "300",
+            "--threads", "1", "--seed", "5", "--top", "2", "--no-rerank", "--robust", ERRORS,
+            "--objective", "robust", "-o", "runs")
+    r = pinmask.search(grid=16, holes=20, evals=300, threads=1, seed=5, top=2, rerank_scenes=[],
+                       robust=ERRORS, objective="robust")
+    assert len(r["candidates"]) == 2
+    for i, c in enumerate(r["candidates"]):
+        assert c["mask"].to_json() == (tmp_path / "runs" / f"rank-{i + 1}.mask.json").read_text()
+        t = c["terms"]
+        # The robust objective: -robust PSNR; the nominal figure beside it is higher.
+        assert c["objective"] == pytest.approx(-t["robust_wiener_psnr_db"], abs=1e-12)
+        assert t["analytic_wiener_psnr_db"] > t["robust_wiener_psnr_db"]
+    with pytest.raises(ValueError, match="--objective"):
+        pinmask.search(evals=10, objective="robust")  # needs robust errors
+    with pytest.raises(ValueError, match="--objective"):
+        pinmask.search(evals=10, objective="best", robust=ERRORS)
