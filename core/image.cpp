@@ -1,5 +1,7 @@
 #include "core/image.hpp"
 
+#include <cmath>
+
 namespace pinmask {
 
 std::shared_ptr<const MemoryReservation> charge_image_memory(double bytes, const char* what) {
@@ -7,7 +9,10 @@ std::shared_ptr<const MemoryReservation> charge_image_memory(double bytes, const
     return std::make_shared<const MemoryReservation>(bytes, what);
 }
 
-bool is_all_finite(const Plane& p) { return p.isFinite().all(); }
+// x * 0 is 0 (or -0) for a finite x and NaN for NaN or +-Inf, and a sum holding a NaN is NaN:
+// one vectorised reduction (Eigen's isFinite().all() tested each value apart, 7 % of a warm
+// 128 x 128 Wiener decode). IEEE arithmetic is required (the build never uses -ffast-math).
+bool is_all_finite(const Plane& p) { return !std::isnan((p * 0.0).sum()); }
 
 Plane circshift(const Plane& in, int dr, int dc) {
     const Eigen::Index rows = in.rows(), cols = in.cols();

@@ -1,5 +1,6 @@
 #include "decode/convolution.hpp"
 
+#include <cmath>
 #include <string>
 
 #include "core/error.hpp"
@@ -85,7 +86,9 @@ ConvolutionOperator::ConvolutionOperator(const Plane& psf, const ConvGeometry& g
     : geometry_(geometry),
       fft_(geometry.work_rows, geometry.work_cols),
       otf_(psf2otf(psf, geometry.work_rows, geometry.work_cols)),
-      otf_max_abs_(otf_.abs().maxCoeff()) {}
+      // max |H| as the root of max |H|^2 (|z| of a complex calls hypot per value: 10 % of a
+      // warm 128 x 128 Wiener decode).
+      otf_max_abs_(std::sqrt(otf_.abs2().maxCoeff())) {}
 
 Plane ConvolutionOperator::convolve(const Plane& x) const {
     return fft_.inverse(fft_.forward(x) * otf_);

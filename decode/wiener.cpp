@@ -203,6 +203,6 @@ Plane fold_full_spectrum_weight(const Plane& full) {
     return out;
 }
 
-double WienerFilter::gain() const { return g_.size() == 0 ? 0.0 : g_.abs().maxCoeff(); }
+double WienerFilter::gain() const { return g_.size() == 0 ? 0.0 : std::sqrt(g_.abs2().maxCoeff()); }
 
 }  // namespace pinmask
