@@ -10,8 +10,8 @@
 //   with |D|^2 = 4 sin^2(pi k / R) + 4 sin^2(pi l / C) and rho_w = rho when nonnegative, else 0.
 // z-step: isotropic shrinkage of grad x + u by lambda / rho; w-step: max(0, x + v);
 // s-step (pointwise): s = (C^T p + rho_s (H x + eta)) / (C^T C 1 + rho_s).
-// Over-relaxation alpha = 1.8: the z-, w- and s-steps see alpha (grad x, x, H x) + (1 - alpha)
-// (previous z, w, s) instead of the new values.
+// Over-relaxation alpha = 1.95 (cyclic model without nonnegative), else 1.8: the z-, w- and
+// s-steps see alpha (grad x, x, H x) + (1 - alpha) (previous z, w, s) instead of the new values.
 // Penalties: rho starts at the mean of |H|^2 over the spectrum (rho_s at 1) unless given, and
 // both follow residual balancing (x2 / /2 when one residual exceeds 2x the other) every 3
 // iterations up to iteration 100, then stay fixed (ADMM convergence holds for the tail).

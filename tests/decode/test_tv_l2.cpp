@@ -1,7 +1,9 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <utility>
 
+#include "bench/decode_bench.hpp"
 #include "core/error.hpp"
 #include "decode/gradient.hpp"
 #include "decode/tv_l2.hpp"
@@ -221,5 +223,24 @@ TEST_CASE("TV-L2: the AVX2 build of the fused pass gives the baseline build's bi
                 }
             }
         }
+    }
+}
+
+TEST_CASE("TV-L2 on the paper problem: iterations to 0.2 dB of converged (bench tv_l2_to_0.2dB)") {
+    // A regression guard on the bench's convergence figure (an iteration count, not a time): the
+    // counts measured when the cyclic over-relaxation became 1.95 (at 1.8: 6, 18, 34). The
+    // issue's target for lambda 1e-3 is 12 (not met; README "Not done").
+    constexpr int kSize = 128;
+    constexpr double kSnrDb = 30.0, kWithinDb = 0.2;
+    constexpr int kCap = 40;
+    const std::pair<double, int> cases[] = {{1e-4, 6}, {1e-3, 17}, {1e-2, 32}};
+    for (const auto& c : cases) {
+        const double lambda = c.first;
+        const int most = c.second;
+        const TvConvergence t =
+            tv_l2_iterations_to_converged(kSize, lambda, kSnrDb, kWithinDb, kCap, 1);
+        INFO("lambda " << lambda << " iterations " << t.iterations);
+        CHECK(t.reached);
+        CHECK(t.iterations <= most);
     }
 }
