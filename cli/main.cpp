@@ -5,6 +5,7 @@
 #include "cli/commands.hpp"
 #include "cli/fft_setup.hpp"
 #include "cli/option_checks.hpp"
+#include "core/allocator.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
 #include "core/resource_limits.hpp"
@@ -12,6 +13,7 @@
 
 int main(int argc, char** argv) {
     using namespace pinmask;
+    keep_freed_memory();  // core/allocator.hpp: no page faults re-taken per decode or evaluation
     CLI::App app{
         "pinmask: design, simulate, export and decode coded pinhole-array masks for a coded "
         "pinhole lens camera.\nUnits take suffixes (440um, 55mm, 6m, 550nm); plain numbers are "

@@ -16,14 +16,14 @@ Plane psf_to_origin(const Plane& psf, int rows, int cols) {
                             "must not be larger than the working size " + std::to_string(rows) +
                                 " x " + std::to_string(cols));
     }
-    const Eigen::Index cr = psf.rows() / 2, cc = psf.cols() / 2;
+    // psf(r, c) moves to ((r - cr) mod rows, (c - cc) mod cols): four block copies (the PSF's
+    // quadrants around its centre), which cannot overlap as the PSF fits the working size.
+    const Eigen::Index pr = psf.rows(), pc = psf.cols(), cr = pr / 2, cc = pc / 2;
     Plane out = Plane::Zero(rows, cols);
-    for (Eigen::Index r = 0; r < psf.rows(); ++r) {
-        const Eigen::Index rr = (r - cr + rows) % rows;
-        for (Eigen::Index c = 0; c < psf.cols(); ++c) {
-            out(rr, (c - cc + cols) % cols) = psf(r, c);
-        }
-    }
+    out.block(0, 0, pr - cr, pc - cc) = psf.block(cr, cc, pr - cr, pc - cc);
+    out.block(0, cols - cc, pr - cr, cc) = psf.block(cr, 0, pr - cr, cc);
+    out.block(rows - cr, 0, cr, pc - cc) = psf.block(0, cc, cr, pc - cc);
+    out.block(rows - cr, cols - cc, cr, cc) = psf.block(0, 0, cr, cc);
     return out;
 }
 

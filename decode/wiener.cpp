@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/fft.hpp"
+#include "decode/precision.hpp"
 #include "decode/psf2otf.hpp"
 
 namespace pinmask {
@@ -78,7 +79,11 @@ WienerFilter::WienerFilter(int rows, int cols, ComplexPlane g)
 void WienerFilter::finish() {
     const double inv_n = 1.0 / (static_cast<double>(rows_) * cols_);
     g_scaled_ = g_ * inv_n;
-    g_scaled_f_ = g_scaled_.cast<std::complex<float>>();
+    // The float copy only where --precision auto decodes in float (kSinglePrecisionMinPixels):
+    // below it apply_single converts into its workspace per call (a warm 128 x 128 Wiener
+    // decode spent 5 % making a copy it never used).
+    if (static_cast<long long>(rows_) * cols_ >= kSinglePrecisionMinPixels)
+        g_scaled_f_ = g_scaled_.cast<std::complex<float>>();
 }
 
 WienerFilter WienerFilter::from_otf(const ComplexPlane& otf, int rows, int cols, double nsr,
@@ -172,10 +177,12 @@ void WienerFilter::apply_single(const Plane& capture, Plane& out, WorkspaceF& ws
     const Fft2f fft(rows_, cols_);
     ws.in = capture.cast<float>();
     fft.forward(ws.in, ws.spectrum);
+    if (g_scaled_f_.size() == 0) ws.filter = g_scaled_.cast<std::complex<float>>();
+    const ComplexPlaneF& g = g_scaled_f_.size() == 0 ? ws.filter : g_scaled_f_;
     if (sums) {
-        filter_with_sums(ws.spectrum, g_scaled_f_, rows_, cols_, *sums);
+        filter_with_sums(ws.spectrum, g, rows_, cols_, *sums);
     } else {
-        ws.spectrum *= g_scaled_f_;
+        ws.spectrum *= g;
     }
     fft.inverse_unscaled_destroy(ws.spectrum, ws.out);
     out = ws.out.cast<double>();

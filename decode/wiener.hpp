@@ -58,6 +58,7 @@ class WienerFilter {
     struct WorkspaceF {
         PlaneF in, out;
         ComplexPlaneF spectrum;
+        ComplexPlaneF filter;  // the float filter, for sizes without a stored copy
     };
 
     // Scalar NSR >= 0 (field "nsr"), capture size rows x cols, denominator floor >= 0.
@@ -106,7 +107,7 @@ class WienerFilter {
     Fft2 fft_;
     ComplexPlane g_;
     ComplexPlane g_scaled_;     // g_ / (rows cols): the inverse FFT's 1/N folded in
-    ComplexPlaneF g_scaled_f_;  // the same in float
+    ComplexPlaneF g_scaled_f_;  // the same in float (from kSinglePrecisionMinPixels up)
 };
 
 }  // namespace pinmask

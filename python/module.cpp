@@ -1,4 +1,6 @@
 // The pinmask Python module: entry point. Each bind_*.cpp adds one concept (python/common.hpp).
+#include "core/allocator.hpp"
+#include "core/fft_environment.hpp"
 #include "python/common.hpp"
 
 PYBIND11_MODULE(pinmask, m) {
@@ -19,6 +21,16 @@ the input copies made.
 Errors: ValueError for invalid input (the message is the command line's: it names the flag or
 field, the value and the rule), RuntimeError for failures while doing valid work.)";
     m.attr("__version__") = "0.1.0";
+    // core/allocator.hpp: freed planes stay on the heap (up to 32 MiB), so repeated decodes do
+    // not page-fault their memory in again; PINMASK_ALLOCATOR=default before import skips it.
+    pinmask::keep_freed_memory();
+    // The command's FFT planning (core/fft_environment): measured plans from the same wisdom
+    // file ($PINMASK_WISDOM, $XDG_CACHE_HOME/pinmask/wisdom, ~/.cache/pinmask/wisdom), so the
+    // module's transforms are the command's (same plans, same bits) and as fast. Its warnings
+    // (a corrupt or foreign file, ignored and replaced) go to Python's warnings.
+    for (const std::string& w : pinmask::configure_fft_from_environment())
+        if (PyErr_WarnEx(PyExc_RuntimeWarning, ("pinmask: " + w).c_str(), 1) < 0)
+            throw pybind11::error_already_set();
     bind_errors(m);
     bind_arrays(m);
     bind_design(m);

@@ -1,5 +1,6 @@
 #include <doctest/doctest.h>
 
+#include <array>
 #include <complex>
 #include <numbers>
 
@@ -57,6 +58,24 @@ TEST_CASE("psf_to_origin puts the central element (floor(size/2)) at the origin"
     Plane psf = Plane::Zero(4, 3);
     psf(0, 0) = 1.0;
     CHECK(psf_to_origin(psf, 9, 8)(9 - 2, 8 - 1) == 1.0);
+}
+
+TEST_CASE("psf_to_origin equals the element-by-element modular shift (block copies)") {
+    // The reference: psf(r, c) -> ((r - floor(pr/2)) mod rows, (c - floor(pc/2)) mod cols), one
+    // value at a time, for PSFs from 1 x 1 to the working size itself, odd and even.
+    for (const std::array<int, 4>& k :
+         {std::array{1, 1, 5, 4}, std::array{3, 2, 5, 4}, std::array{5, 4, 5, 4},
+          std::array{4, 5, 9, 8}, std::array{9, 8, 9, 8}, std::array{2, 7, 3, 8}}) {
+        const int pr = k[0], pc = k[1], rows = k[2], cols = k[3];
+        Plane psf(pr, pc);
+        for (Eigen::Index i = 0; i < psf.size(); ++i) psf.data()[i] = 1.0 + double(i);
+        Plane ref = Plane::Zero(rows, cols);
+        for (int r = 0; r < pr; ++r)
+            for (int c = 0; c < pc; ++c)
+                ref((r - pr / 2 + rows) % rows, (c - pc / 2 + cols) % cols) = psf(r, c);
+        INFO(pr << " x " << pc << " into " << rows << " x " << cols);
+        CHECK((psf_to_origin(psf, rows, cols) == ref).all());
+    }
 }
 
 TEST_CASE("psf2otf equals the direct DFT of the explicitly shifted PSF, odd and even sizes") {

@@ -10,7 +10,12 @@ import subprocess
 
 import pytest
 
-import pinmask
+# FFTW_ESTIMATE plans, no wisdom file, for the module (read at import, core/fft_environment) and
+# for every command the suite runs: the same plans, so the same rounding, whatever the user's
+# wisdom cache holds.
+os.environ["PINMASK_WISDOM"] = "off"
+
+import pinmask  # noqa: E402 (after the environment it reads at import)
 
 SOURCE_DIR = pathlib.Path(__file__).resolve().parents[2]
 
@@ -31,7 +36,7 @@ class Cli:
         self.cwd = cwd
 
     def run(self, *args, expect=0):
-        # FFTW_ESTIMATE plans (no wisdom file), as the module plans: the same rounding.
+        # FFTW_ESTIMATE plans (no wisdom file), as the module plans (above): the same rounding.
         env = dict(os.environ, PINMASK_WISDOM="off")
         p = subprocess.run([self.exe, *map(str, args)], cwd=self.cwd, capture_output=True,
                            text=True, timeout=300, env=env)
