@@ -132,6 +132,7 @@ void bind_search(py::module_& m) {
                 d["sim_tv_psnr_db"] = c.sim_tv_psnr_db;
                 d["tv_lambda"] = c.tv_lambda;
                 d["spectral_zero"] = c.spectral_zero;
+                d["upper_bound_psnr_db"] = c.upper_bound_psnr_db;  // NaN without the objective
                 candidates.append(d);
             }
             py::list log;
@@ -181,7 +182,8 @@ returned, termination 'interrupted'.
 Noise: ONE level, snr_db (Gaussian, dB; None: 30) or photons (electrons per pixel per pinhole)
 with read_noise, dark_current, full_well, bits, optical_density, as metrics().
 Returns {candidates: [{mask, objective, terms, reranked, sim_wiener_psnr_db, sim_tv_psnr_db,
-tv_lambda, spectral_zero}] best first, evaluations, evaluations_per_chain, seconds (all),
+tv_lambda, spectral_zero, upper_bound_psnr_db (the analytic PSNR no pattern with the
+candidate's K can exceed)}] best first, evaluations, evaluations_per_chain, seconds (all),
 search_seconds, rerank_seconds, reranked, termination, kernel, log: [{seconds, evaluations,
 best_objective}]}.)");
 }
