@@ -20,6 +20,14 @@ constexpr int kMaxCellSplits = 1000;
 // Dual ascent: multiplier bracket by factors of 4 (at most kMaxExpansions), then bisection.
 constexpr int kMaxExpansions = 200, kBisections = 24;
 
+// The fixed-NSR term (rho^2 S + nu h) / (h + rho)^2 with h = h_num in the numerator and h_den
+// in the denominator (equal for a value; a cell's ends for its bound), written so that a huge or
+// infinite rho (an interval reaching +inf) gives S, never inf / inf.
+inline double scalar_term(double s, double rho, double nu, double h_num, double h_den) {
+    const double q = 1.0 + h_den / rho;
+    return (s + nu * h_num / (rho * rho)) / (q * q);
+}
+
 struct CellBound {
     double lo, hi, bound;
     bool operator>(const CellBound& o) const { return bound > o.bound; }
@@ -75,16 +83,15 @@ double NsrBoundModel::group_minimum(int a, const std::vector<double>& rho, doubl
     const auto value = [&](double x) {
         double v = blind_[a] + mu * x;
         for (std::size_t j = j0; j < j1; ++j) {
-            const double h = kp_[j] * x, d = h + rho[j];
-            v += (rho[j] * rho[j] * s_[j] + nu * h) / (d * d);
+            const double h = kp_[j] * x;
+            v += scalar_term(s_[j], rho[j], nu, h, h);
         }
         return v;
     };
     const auto cell = [&](double lo, double hi) {
         double v = blind_[a] + mu * lo;
         for (std::size_t j = j0; j < j1; ++j) {
-            const double d = kp_[j] * hi + rho[j];
-            v += (rho[j] * rho[j] * s_[j] + nu * kp_[j] * lo) / (d * d);
+            v += scalar_term(s_[j], rho[j], nu, kp_[j] * lo, kp_[j] * hi);
         }
         return CellBound{lo, hi, v};
     };
@@ -119,8 +126,7 @@ NsrBoundModel::Dual NsrBoundModel::make_dual(double r1, double r2, double nu, do
     Dual d{std::vector<double>(s_.size()), blind_[0], nu, target, tolerance};
     for (std::size_t j = 0; j < s_.size(); ++j) d.rho[j] = std::clamp(nu / s_[j], r1, r2);
     for (std::size_t j = start_[0]; j < start_[1]; ++j) {
-        const double h = kp_[j], e = h + d.rho[j];
-        d.dc += (d.rho[j] * d.rho[j] * s_[j] + nu * h) / (e * e);
+        d.dc += scalar_term(s_[j], d.rho[j], nu, kp_[j], kp_[j]);
     }
     return d;
 }

@@ -351,6 +351,20 @@ TEST_CASE("objective bound: options are validated, naming the field") {
     CHECK_THROWS_WITH_AS(bm.bound(o), doctest::Contains("max_iterations"), InvalidInput);
     CHECK_THROWS_AS(ObjectiveBoundModel(model, 7), InvalidInput);  // 7 does not divide 40
     CHECK_THROWS_AS(ObjectiveBoundModel(nullptr, 8), InvalidInput);
+    const NsrBoundModel nb(model, 8);
+    NsrBoundOptions no;
+    no.holes = 65;
+    CHECK_THROWS_WITH_AS(nb.bound(no), doctest::Contains("holes"), InvalidInput);
+    no.holes = 5;
+    no.nsr_ratio = 1.0;
+    CHECK_THROWS_WITH_AS(nb.bound(no), doctest::Contains("nsr_ratio"), InvalidInput);
+    no.nsr_ratio = 1.05;
+    no.max_intervals = 10;
+    CHECK_THROWS_WITH_AS(nb.bound(no), doctest::Contains("max_intervals"), InvalidInput);
+    no.max_intervals = 400;
+    no.group_tolerance = NAN;
+    CHECK_THROWS_WITH_AS(nb.bound(no), doctest::Contains("group_tolerance"), InvalidInput);
+    CHECK_THROWS_AS(NsrBoundModel(model, 7), InvalidInput);
 }
 
 TEST_CASE("search reports the bound per K, above every best mask") {
