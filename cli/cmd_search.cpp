@@ -1,5 +1,6 @@
 // `pinmask search`: find masks for a camera that decode better than random draws. Parses flags
 // (and --config), calls optimize/search_pipeline, writes the outputs (cli/search_outputs).
+#include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <memory>
@@ -101,6 +102,8 @@ void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd,
                                  {"objective", s.ranked[i].objective},
                                  {"reranked", s.ranked[i].reranked}};
         for (const auto& [k, v] : s.ranked[i].mask.provenance.scores) r[k] = v;
+        if (std::isfinite(s.ranked[i].upper_bound_psnr_db))
+            r["upper_bound_psnr_db"] = s.ranked[i].upper_bound_psnr_db;
         j["ranked"].push_back(r);
     }
     for (const RankedMask& r : s.best_per_holes) {
@@ -108,6 +111,8 @@ void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd,
                                    {"objective", r.objective},
                                    {"spectral_zero", r.spectral_zero}};
         for (const auto& [k, v] : r.mask.provenance.scores) row[k] = v;  // analytic PSNR, terms
+        if (std::isfinite(r.upper_bound_psnr_db))
+            row["upper_bound_psnr_db"] = r.upper_bound_psnr_db;
         j["best_per_holes"].push_back(row);
     }
     std::cout << j.dump(2) << "\n";

@@ -20,6 +20,30 @@ double score_or_nan(const Mask& m, const char* key) {
     return it == m.provenance.scores.end() ? NAN : it->second;
 }
 
+// "Best possible for K holes <= X dB" (optimize/objective_bound): for rank 1's K, and with a
+// pinhole-count range the largest bound over the range's K.
+std::string bound_summary(const SearchPipelineSummary& summary) {
+    if (summary.ranked.empty() || !std::isfinite(summary.ranked.front().upper_bound_psnr_db))
+        return "";
+    const RankedMask& top = summary.ranked.front();
+    std::ostringstream s;
+    s << "\nBest possible for " << top.mask.pattern.pinholes.size()
+      << " holes <= " << format_cell(top.upper_bound_psnr_db)
+      << " dB (analytic Wiener PSNR of any pattern with "
+      << "that K, optimal linear decoder, this kernel, prior and noise); rank 1: "
+      << format_cell(score_or_nan(top.mask, "analytic_wiener_psnr_db")) << " dB.\n";
+    const RankedMask* best = nullptr;
+    for (const RankedMask& r : summary.best_per_holes)
+        if (std::isfinite(r.upper_bound_psnr_db) &&
+            (!best || r.upper_bound_psnr_db > best->upper_bound_psnr_db))
+            best = &r;
+    if (best) {
+        s << "Best possible for any K searched <= " << format_cell(best->upper_bound_psnr_db)
+          << " dB (K = " << best->mask.pattern.pinholes.size() << ").\n";
+    }
+    return s.str();
+}
+
 }  // namespace
 
 std::string search_summary_markdown(const SearchPipelineSummary& summary) {
@@ -67,15 +91,17 @@ std::string search_summary_markdown(const SearchPipelineSummary& summary) {
     if (!summary.best_per_holes.empty()) {
         s << "\nBest mask per pinhole count (predicted by the analytic objective; light gain = K "
              "times one pinhole's light):\n\n"
-          << "| K | light gain | objective | analytic Wiener PSNR (dB) | geometry hash | "
-             "spectral zero |\n|---:|---:|---:|---:|---|---|\n";
+          << "| K | light gain | objective | analytic Wiener PSNR (dB) | bound (dB) | geometry "
+             "hash | spectral zero |\n|---:|---:|---:|---:|---:|---|---|\n";
         for (const RankedMask& r : summary.best_per_holes) {
             const std::size_t k = r.mask.pattern.pinholes.size();
             s << "| " << k << " | " << k << "x | " << format_cell(r.objective, "%.4f") << " | "
               << format_cell(score_or_nan(r.mask, "analytic_wiener_psnr_db")) << " | "
-              << geometry_hash(r.mask) << " | " << (r.spectral_zero ? "yes" : "no") << " |\n";
+              << format_cell(r.upper_bound_psnr_db) << " | " << geometry_hash(r.mask) << " | "
+              << (r.spectral_zero ? "yes" : "no") << " |\n";
         }
     }
+    s << bound_summary(summary);
     if (summary.planned_s > 0.0) {  // timings only for time-budget runs (never reproducible)
         s << "Time: planned " << format_cell(summary.planned_s, "%.2f") << " s, used "
           << format_cell(summary.used_s, "%.2f") << " s (search "
@@ -116,14 +142,16 @@ std::vector<fs::path> write_search_outputs(const fs::path& dir,
     files.stage_bytes(dir / "timing.csv", timing.str());
     if (!summary.best_per_holes.empty()) {
         std::ostringstream csv;
-        csv << "holes,light_gain,objective,analytic_wiener_psnr_db,spectral_zero,geometry_hash\n";
+        csv << "holes,light_gain,objective,analytic_wiener_psnr_db,spectral_zero,geometry_hash,"
+               "upper_bound_psnr_db\n";
         std::vector<HolesPoint> points;
         for (const RankedMask& r : summary.best_per_holes) {
             const int k = static_cast<int>(r.mask.pattern.pinholes.size());
             const double psnr = score_or_nan(r.mask, "analytic_wiener_psnr_db");
             csv << k << "," << k << "," << format_cell(r.objective, "%.9g") << ","
                 << format_cell(psnr, "%.9g") << "," << (r.spectral_zero ? 1 : 0) << ","
-                << geometry_hash(r.mask) << "\n";
+                << geometry_hash(r.mask) << "," << format_cell(r.upper_bound_psnr_db, "%.9g")
+                << "\n";
             points.push_back({k, psnr});
             const fs::path p = dir / ("best-K" + std::to_string(k) + ".mask.json");
             files.stage(p, [&](const fs::path& tmp) { io::write_mask_file(tmp, r.mask); });

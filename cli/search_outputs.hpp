@@ -8,7 +8,9 @@
 //   search.config.json                      the resolved configuration of the run
 // With --holes A..B also (issue 13):
 //   holes.csv      K, light gain, objective, predicted (analytic) Wiener PSNR, spectral zero,
-//                  geometry hash of the best mask at each K (summary.md holds the same table)
+//                  geometry hash of the best mask at each K, and the upper bound on the analytic
+//                  PSNR of any pattern with that K (optimize/objective_bound; summary.md holds
+//                  the same table and "best possible for K holes <= X dB")
 //   holes.svg, holes.png   predicted PSNR against K, light gain K beside it (optimize/holes_plot)
 //   best-K<K>.mask.json    the best mask at each K
 #pragma once

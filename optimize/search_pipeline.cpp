@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -13,6 +14,7 @@
 #include "design/psf.hpp"
 #include "design/random_sparse.hpp"
 #include "optimize/island_search.hpp"
+#include "optimize/objective_bound.hpp"
 #include "optimize/robust_wiener.hpp"
 #include "optimize/simulated_metrics.hpp"
 #include "optimize/spectrum_metrics.hpp"
@@ -395,6 +397,18 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
     for (const Candidate& c : out.search.ranked) out.ranked.push_back(ranked_mask(c));
     for (const Candidate& c : out.search.best_per_holes)
         out.best_per_holes.push_back(ranked_mask(c));
+    if (model) {  // the best any pattern with each K could reach (one bound per distinct K)
+        const ObjectiveBoundModel bounds(model, n);
+        std::map<int, double> by_k;
+        for (auto* list : {&out.ranked, &out.best_per_holes})
+            for (RankedMask& r : *list) {
+                ObjectiveBoundOptions bo;
+                bo.holes = static_cast<int>(r.mask.pattern.pinholes.size());
+                auto it = by_k.find(bo.holes);
+                if (it == by_k.end()) it = by_k.emplace(bo.holes, bounds.bound(bo).psnr_db).first;
+                r.upper_bound_psnr_db = it->second;
+            }
+    }
 
     const auto r0 = Clock::now();
     const bool interrupted = cancel && cancel->load();

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <atomic>
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -79,6 +80,10 @@ struct RankedMask {
     bool reranked = false;
     bool spectral_zero = false;  // only with allow_spectral_zeros
     std::string spectral_zero_message;
+    // Upper bound on the analytic Wiener PSNR of ANY pattern with this mask's K under the
+    // objective's kernel, prior and noise (optimize/objective_bound); NaN without the nominal
+    // analytic objective (--objective robust, or no Wiener weight).
+    double upper_bound_psnr_db = NAN;
 };
 
 struct SearchPipelineSummary {

@@ -136,6 +136,7 @@ void bind_search(py::module_& m) {
                 d["sim_tv_psnr_db"] = c.sim_tv_psnr_db;
                 d["tv_lambda"] = c.tv_lambda;
                 d["spectral_zero"] = c.spectral_zero;
+                d["upper_bound_psnr_db"] = c.upper_bound_psnr_db;  // NaN without the objective
                 candidates.append(d);
             }
             py::list log;
@@ -189,7 +190,8 @@ robust (as --robust, e.g. 'size=44um,jitter=2um'): every candidate's terms gain
 robust_wiener_psnr_db (expected under those fabrication errors, nominal-PSF decoder);
 objective 'robust' (needs robust) optimises it, 'nominal' (default) the design's figure.
 Returns {candidates: [{mask, objective, terms, reranked, sim_wiener_psnr_db, sim_tv_psnr_db,
-tv_lambda, spectral_zero}] best first, evaluations, evaluations_per_chain, seconds (all),
+tv_lambda, spectral_zero, upper_bound_psnr_db (the analytic PSNR no pattern with the
+candidate's K can exceed)}] best first, evaluations, evaluations_per_chain, seconds (all),
 search_seconds, rerank_seconds, reranked, termination, kernel, log: [{seconds, evaluations,
 best_objective}]}.)");
 }

@@ -18,6 +18,9 @@ def test_search_same_masks_as_cli(cli, tmp_path):
         assert c["mask"].to_json() == (tmp_path / "runs" / f"rank-{i + 1}.mask.json").read_text()
     objectives = [c["objective"] for c in r["candidates"]]
     assert objectives == sorted(objectives)
+    # The bound on any 20-pinhole pattern is above every candidate's analytic PSNR.
+    for c in r["candidates"]:
+        assert c["upper_bound_psnr_db"] >= c["terms"]["analytic_wiener_psnr_db"]
 
 
 def test_search_keep_out_and_rerank_same_masks_as_cli(cli, tmp_path):
