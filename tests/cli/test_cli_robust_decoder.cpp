@@ -22,6 +22,7 @@
 #include "optimize/robust_sample.hpp"
 #include "optimize/robust_wiener.hpp"
 #include "optimize/scenes.hpp"
+#include "optimize/search_pipeline.hpp"
 #include "optimize/simulate.hpp"
 #include "tests/support/cli_run.hpp"
 #include "tests/support/random_pattern.hpp"
@@ -37,6 +38,8 @@ namespace {
 constexpr double kFloat32Output = 1.0 / (1 << 23);
 // The loop's PSNR against the library's figure (float32 output rounding only: ~1e-8 dB).
 constexpr double kLoopPsnrToleranceDb = 1e-6;
+// The same closed form computed in another run (relative to the largest value).
+constexpr double kRoundingTolerance = 1e-12;
 
 Mask paper_mask(int n, int holes, unsigned seed) {
     Mask m;
@@ -252,6 +255,49 @@ TEST_CASE("the robust decoder loop at 50 dB on the paper camera: CLI PSNR = libr
     MESSAGE("with robust-psf.tiff: " << tiff_psnr << " dB, difference "
                                      << std::abs(tiff_psnr - q.fabricated_psnr_db) << " dB");
     CHECK(std::abs(tiff_psnr - q.fabricated_psnr_db) <= kLoopPsnrToleranceDb);
+}
+
+TEST_CASE("search --objective robust-filter: optimises the robust design, writes its decoder") {
+    TempDir dir{"robustfilter"};
+    const std::string args =
+        "search --grid 8 --holes 5 --pixels-per-cell 4 --tiles 1 --prior-scenes 2 --threads 1 "
+        "--top 2 --seed 4 --evals 300 --rerank-scenes letter-R --no-rerank-tv --quiet --snr 30 "
+        "--robust size=44um,jitter=20um,missing=0.05 --objective robust-filter ";
+    auto r = run_cli(args + "--json -o " + (dir / "a"));
+    CAPTURE(r.err);
+    REQUIRE(r.exit_code == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    const double figure = j["ranked"][0]["robust_wiener_psnr_db"].get<double>();
+    CHECK(j["ranked"][0]["objective"].get<double>() == doctest::Approx(-figure));
+    CHECK(j["robust_decoder"]["nsr_map"] ==
+          (dir.path / "a" / "rank-1.robust-decoder" / "robust-nsr.npy").string());
+    const auto config = nlohmann::json::parse(test::slurp(dir.path / "a" / "search.config.json"));
+    CHECK(config["objective"] == "robust-filter");
+
+    // The figure is the library's robust-filter figure of the written mask, and its decoder
+    // files are that model's inputs, exactly.
+    const Mask mask = io::read_mask_file(dir.path / "a" / "rank-1.mask.json");
+    NoiseModel noise;
+    noise.snr_db = 30.0;
+    const FabricationErrors e{44e-6, 20e-6, 0.05};
+    const RobustWienerModel model(mask, e, make_scene_prior(parse_prior_spec("natural", 2), 32),
+                                  noise);
+    const ComplexPlane p = pattern_spectrum(mask.pattern);
+    CHECK(model.evaluate_robust_filter(p).psnr_db == doctest::Approx(figure).epsilon(1e-12));
+    // The filter chosen for the errors beats the nominal PSF's filter on the same mask.
+    CHECK(figure > model.evaluate(p, {WienerFilterKind::kOptimal, 0.0}).psnr_db);
+    const RobustDecoderInputs in = model.robust_decoder_inputs(p);
+    const fs::path d = dir.path / "a" / "rank-1.robust-decoder";
+    // Rounding only: the search's pattern sums its pinholes in its own order.
+    CHECK((read_plane(d / "robust-nsr.npy") - in.nsr).abs().maxCoeff() <=
+          kRoundingTolerance * in.nsr.maxCoeff());
+    CHECK((read_plane(d / "robust-psf.npy") - in.psf).abs().maxCoeff() <=
+          kRoundingTolerance * in.psf.maxCoeff());
+    // Same seed, same bytes.
+    REQUIRE(run_cli(args + "-o " + (dir / "b")).exit_code == 0);
+    for (const char* f : {"rank-1.mask.json", "rank-1.robust-decoder/robust-nsr.npy",
+                          "rank-1.robust-decoder/robust-psf.tiff"})
+        CHECK(test::slurp(dir.path / "a" / f) == test::slurp(dir.path / "b" / f));
 }
 
 }  // namespace pinmask
