@@ -98,6 +98,11 @@ void load_nsr_map(const DecodeRequest& r, DecodeOptions& d, json& stats) {
     } catch (const InvalidInput& e) {
         throw InvalidInput(std::string("--nsr-map: ") + e.what());
     }
+    if (map.format != SampleFormat::kFloat32 && map.format != SampleFormat::kFloat64) {
+        throw invalid_field("--nsr-map", r.nsr_map,
+                            "must hold floating-point values (.npy or float TIFF); an 8/16-bit "
+                            "image's values are not NSRs");
+    }
     if (map.image.n_channels() != 1) {
         throw invalid_field(
             "--nsr-map", r.nsr_map,

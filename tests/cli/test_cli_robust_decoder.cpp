@@ -113,6 +113,7 @@ TEST_CASE("hostile --nsr-map inputs exit 2 naming the flag, with no output") {
     rgb.channels.push_back(rgb.channels.front());
     rgb.channels.push_back(rgb.channels.front());
     write_npy(dir / "rgb.npy", rgb, SampleFormat::kFloat64);
+    write_png(dir / "int.png", Image(Plane::Constant(m, m, 0.5)), 8);
     const std::string base = "decode " + (dir / "c.npy") + " --mask " + mask_path + " -o " +
                              (dir / "x.npy") + " --nsr-map " + (dir.path.string() + "/");
     const std::pair<std::string, std::string> bad[] = {
@@ -121,6 +122,7 @@ TEST_CASE("hostile --nsr-map inputs exit 2 naming the flag, with no output") {
         {"nan.npy", "finite"},
         {"rgb.npy", "one channel"},
         {"missing.npy", "missing.npy"},
+        {"int.png", "floating-point"},
         {"ok.npy --nsr 0.1", "conflicts with --nsr-map"},
         {"ok.npy --method tv", "only by wiener"},
         {"ok.npy --downsample 1", "working size 32 x 32"},
@@ -293,6 +295,14 @@ TEST_CASE("search --objective robust-filter: optimises the robust design, writes
           kRoundingTolerance * in.nsr.maxCoeff());
     CHECK((read_plane(d / "robust-psf.npy") - in.psf).abs().maxCoeff() <=
           kRoundingTolerance * in.psf.maxCoeff());
+    // Without errors there is nothing to be robust to: refused, nothing written.
+    const auto bare = run_cli(
+        "search --grid 8 --holes 5 --pixels-per-cell 4 --evals 10 --quiet "
+        "--objective robust-filter -o " +
+        (dir / "none"));
+    CHECK(bare.exit_code == 2);
+    CHECK(bare.err.find("--objective = robust-filter") != std::string::npos);
+    CHECK(!fs::exists(dir.path / "none" / "rank-1.robust-decoder"));
     // Same seed, same bytes.
     REQUIRE(run_cli(args + "-o " + (dir / "b")).exit_code == 0);
     for (const char* f : {"rank-1.mask.json", "rank-1.robust-decoder/robust-nsr.npy",
