@@ -43,6 +43,7 @@ void run_decode(const DecodeRequest& r, BayerMode bayer) {
          {"--mask", r.mask},
          {"--psf", r.psf},
          {"--dark", r.dark},
+         {"--nsr-map", r.nsr_map},
          {"--psf (sidecar)", r.psf.empty() ? "" : io::psf_sidecar_path(r.psf)}},
         {{"-o", r.output}, {"-o (config)", r.output + ".config.json"}, {"--stats", r.stats}});
     // Everything that can be checked without reading pixels, first.
@@ -62,6 +63,7 @@ void run_decode(const DecodeRequest& r, BayerMode bayer) {
     auto t0 = Clock::now();
     CaptureDecodeInputs inputs =
         load_inputs(r, bayer, options.background == BackgroundMode::kCorner, stats);
+    load_nsr_map(r, options.decode, stats);
     timings["load"] = seconds_since(t0);
 
     // Iterative methods stop on SIGINT/SIGTERM after their current iteration; the estimate so
@@ -73,7 +75,8 @@ void run_decode(const DecodeRequest& r, BayerMode bayer) {
                       << options.decode.iterative.max_iterations
                       << " iterations; Ctrl-C stops and writes the estimate so far\n";
     }
-    const CaptureDecodeResult result = decode_capture(std::move(inputs), options);
+    const CaptureDecodeResult result =
+        naming_nsr_map(r, [&] { return decode_capture(std::move(inputs), options); });
     const CaptureDecodeSummary& sum = result.summary;
     for (const std::string& note : sum.notes) explain(note);
     explain("FFT planning " + std::to_string(sum.seconds.fft_planning) + " s during the decode");

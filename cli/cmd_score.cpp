@@ -12,6 +12,7 @@
 #include "cli/command_footers.hpp"
 #include "cli/commands.hpp"
 #include "cli/noise_options.hpp"
+#include "cli/robust_decoder_files.hpp"
 #include "core/error.hpp"
 #include "io/mask_json.hpp"
 #include "optimize/mask_metrics.hpp"
@@ -29,7 +30,7 @@ struct ScoreOptions {
     std::string metrics = "sidelobes,spectrum,analytic,wiener";
     std::string nsr = "0.01";
     std::string tv_lambda = "1e-3";
-    std::string robust;
+    std::string robust, robust_decoder;
     int tv_iterations = 200;
     int seeds = 1;
     std::uint64_t seed = 0;
@@ -109,8 +110,11 @@ void run(const ScoreOptions& o, const CLI::App& cmd) {
     std::string noise;
     MetricsContext context(make_options(o, cmd, noise));
     const MaskMetricsOptions& m = context.options();
+    if (!o.robust_decoder.empty() || cmd.get_option("--robust-decoder")->count() > 0)
+        check_robust_decoder_request(o.robust_decoder, o.masks, m.noise.size());
     std::vector<std::string> explain = explain_lines(o, m, noise);
     std::vector<nlohmann::ordered_json> rows;
+    std::string usage;  // --robust-decoder: how to decode with it
     io::MaskReadOptions ro;
     ro.allow_spacing_violations = o.allow_violations;
     for (std::size_t i = 0; i < o.masks.size(); ++i) {
@@ -142,12 +146,22 @@ void run(const ScoreOptions& o, const CLI::App& cmd) {
                 "still summed, nothing skipped); relevant up to radius " +
                 std::to_string(pr.highest_relevant_radius) + " cycles per period");
         }
+        if (!o.robust_decoder.empty()) {
+            const RobustDecoderFiles f =
+                write_robust_decoder_files(o.robust_decoder, mask, path, m.robust,
+                                           context.prior(mm.period_px), m.noise.front().model);
+            row["robust_decoder"] = {{"psf", f.psf_tiff},
+                                     {"psf_npy", f.psf_npy},
+                                     {"nsr_map", f.nsr_npy},
+                                     {"floored", f.floored}};
+            if (!o.json) usage = robust_decoder_usage(f, path);
+        }
         rows.push_back(std::move(row));
     }
     if (o.explain) {
         for (const auto& line : explain) std::cerr << "explain: " << line << "\n";
     }
-    if (!o.json) return void(std::cout << metrics_table_text(rows, m));
+    if (!o.json) return void(std::cout << metrics_table_text(rows, m) << usage);
     nlohmann::ordered_json j;
     j["masks"] = rows;
     nlohmann::ordered_json levels = nlohmann::ordered_json::array();
@@ -194,7 +208,12 @@ void setup(CLI::App& app) {
     cmd->add_option("--nsr", o->nsr,
                     "Wiener noise-to-signal ratio (> 0), or 'tuned' (per mask and noise level)")
         ->capture_default_str();
-    cmd->add_option("--robust", o->robust, kRobustFlagHelp);
+    auto* robust = cmd->add_option("--robust", o->robust, kRobustFlagHelp);
+    cmd->add_option("--robust-decoder", o->robust_decoder,
+                    "With --robust, one mask and one noise level: write DIR/robust-psf.tiff "
+                    "(+ .npy, .json) and DIR/robust-nsr.npy, the decoder minimising the expected "
+                    "fabricated error, for decode --psf ... --nsr-map ...")
+        ->needs(robust);
     cmd->add_option("--tv-lambda", o->tv_lambda, "TV-L2 weight (> 0), or 'tuned'")
         ->capture_default_str();
     cmd->add_option("--tv-iters", o->tv_iterations, "TV-L2 maximum ADMM iterations (>= 1)")

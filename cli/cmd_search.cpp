@@ -16,6 +16,7 @@
 #include "cli/noise_options.hpp"
 #include "cli/progress.hpp"
 #include "cli/psf_options.hpp"
+#include "cli/robust_decoder_files.hpp"
 #include "cli/search_cluster.hpp"
 #include "cli/search_options.hpp"
 #include "cli/search_outputs.hpp"
@@ -24,6 +25,7 @@
 #include "core/units.hpp"
 #include "io/optics_json.hpp"
 #include "io/search_config.hpp"
+#include "optimize/mask_metrics.hpp"
 #include "optimize/mpi/mpi_comm.hpp"
 #include "optimize/search_pipeline.hpp"
 
@@ -79,11 +81,19 @@ void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd,
                   << (p.allow_spectral_zeros ? "were kept, flagged" : "were rejected") << ")\n";
     }
     const auto paths = write_search_outputs(o.output, s, resolved_config(o, p, s));
+    std::optional<RobustDecoderFiles> decoder;  // robust-filter: rank 1's decoder beside it
+    if (p.objective == ObjectiveKind::kRobustFilter && !paths.empty()) {
+        const int m = p.tmpl.pattern.n * p.tmpl.psf.pixels_per_cell;
+        decoder = write_robust_decoder_files(o.output + "/rank-1.robust-decoder",
+                                             s.ranked.front().mask, paths.front().string(),
+                                             p.robust, make_scene_prior(p.prior, m), p.noise);
+    }
     if (!o.json) {
         std::cout << search_summary_markdown(s) << "wrote " << paths.size()
                   << " masks, run-log.csv, timing.csv, summary.md and search.config.json"
                   << (s.best_per_holes.empty() ? "" : ", holes.csv/.svg/.png, best-K*.mask.json")
-                  << " to " << o.output << "\n";
+                  << " to " << o.output << "\n"
+                  << (decoder ? robust_decoder_usage(*decoder, paths.front().string()) : "");
         return;
     }
     nlohmann::ordered_json j{{"output", o.output},
@@ -115,6 +125,7 @@ void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd,
             row["upper_bound_psnr_db"] = r.upper_bound_psnr_db;
         j["best_per_holes"].push_back(row);
     }
+    if (decoder) j["robust_decoder"] = {{"psf", decoder->psf_npy}, {"nsr_map", decoder->nsr_npy}};
     std::cout << j.dump(2) << "\n";
 }
 
@@ -176,7 +187,8 @@ void add_search_flags(CLI::App* cmd, const std::shared_ptr<SearchCliOptions>& o)
     cmd->add_option("--objective", o->objective,
                     "nominal: the design's analytic Wiener PSNR; robust: its expectation under "
                     "the --robust fabrication errors, decoded with the nominal PSF (needs "
-                    "--robust)")
+                    "--robust); robust-filter: the same decoded with the filter chosen for the "
+                    "errors, written to rank-1.robust-decoder/ (decode --psf, --nsr-map)")
         ->capture_default_str();
     cmd->add_option("--robust", o->robust, kRobustFlagHelp);
     cmd->add_option("--keep-out", o->keep_out, "Cells no pinhole may use: none | border")

@@ -137,11 +137,13 @@ void run_decode_batch(const DecodeRequest& r, const BatchRequest& b, BayerMode b
     }
     const std::string summary_path = (dir / "batch-summary.json").string();
     out_paths.push_back({"-o (summary)", summary_path});
+    in_paths.push_back({"--nsr-map", r.nsr_map});
     plan_outputs(in_paths, out_paths);
     CaptureDecodeOptions options = capture_decode_options(r);
     options.decode.iterative.record_history = b.stats;  // only STEM.stats.json shows them
     options.validate();
     json shared_stats;
+    load_nsr_map(r, options.decode, shared_stats);
     BatchDecoder decoder(
         load_shared_inputs(r, bayer, options.background == BackgroundMode::kCorner, shared_stats),
         options);

@@ -13,9 +13,14 @@ parallel threads) -> write.
 Period: the PSF's size. The capture's own period is measured from its autocorrelation and a
 mismatch is reported on stderr and in the stats (skipped, with the reason, when the capture
 holds fewer than two periods along an axis).
-Flags of one method only (--nsr: wiener; --lambda: tikhonov, tv; --regulariser: tikhonov;
---eps, --noise-sigma: tvqc; --nonneg: tv, tvqc; --iters, --tol: tv, tvqc, richardson-lucy) are
-refused with another method.
+Flags of one method only (--nsr, --nsr-map: wiener; --lambda: tikhonov, tv; --regulariser:
+tikhonov; --eps, --noise-sigma: tvqc; --nonneg: tv, tvqc; --iters, --tol: tv, tvqc,
+richardson-lucy) are refused with another method; --nsr and --nsr-map exclude each other.
+NSR map (--nsr-map FILE): one NSR per frequency of the decoded working grid (the period, or the
+padded frame with --model linear; after --downsample), full spectrum in fft2 order, read as
+deconvwnr's array NSR. The robust design's decoder is this: `score MASK --robust SPEC
+--robust-decoder DIR` writes DIR/robust-psf.tiff and DIR/robust-nsr.npy, then
+`decode CAPTURE --psf DIR/robust-psf.npy --nsr-map DIR/robust-nsr.npy -o OUT`.
 Precision: auto uses float32 (FFTW float) for every method from 256 x 256 decoded pixels on,
 double below; a PSF whose values cancel beyond float32's range runs in double (auto, with a
 note in --explain) or is refused (single).
@@ -79,6 +84,11 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeRequest& o) {
                                "relative to |H|^2 of the PSF as normalised (sum 1: |H(0)| = 1)")
                     ->capture_default_str(),
                 MethodFlag::kNsr);
+    cmd.add_option("--nsr-map", o.nsr_map,
+                   "wiener: per-frequency NSR instead of --nsr: a .npy or float TIFF of the "
+                   "working grid's full spectrum (fft2 layout: row k, column l is frequency "
+                   "(k/R, l/C)), finite, >= 0, same units as --nsr (e.g. score --robust-decoder's "
+                   "robust-nsr.npy)");
     method_flag(cmd.add_option("--lambda", o.lambda,
                                "tikhonov (> 0, dimensionless) / tv (>= 0, capture units) "
                                "regularisation weight")
@@ -152,8 +162,20 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeRequest& o) {
 
 void refuse_unused_flags(const DecodeRequest& r, const DecodeFlags& flags) {
     std::vector<GivenFlag> given;
-    for (const auto& [opt, flag] : flags.method_flags)
-        if (opt->count() > 0) given.push_back({flag, opt->as<std::string>()});
+    for (const auto& [opt, flag] : flags.method_flags) {
+        if (opt->count() == 0) continue;
+        given.push_back({flag, opt->as<std::string>()});
+        if (flag == MethodFlag::kNsr && !r.nsr_map.empty()) {
+            throw invalid_field("--nsr", opt->as<std::string>(),
+                                "conflicts with --nsr-map " + r.nsr_map +
+                                    " (the map replaces the scalar NSR); give one of them");
+        }
+    }
+    if (!r.nsr_map.empty() && parse_decode_method(r.method, "--method") != DecodeMethod::kWiener) {
+        throw invalid_field("--nsr-map", r.nsr_map,
+                            "is not used by --method " + r.method +
+                                " (only by wiener); remove it or choose that method");
+    }
     refuse_unused_flags(r, given);
 }
 

@@ -90,4 +90,35 @@ CaptureDecodeInputs load_shared_inputs(const DecodeRequest& r, BayerMode bayer, 
     return in;
 }
 
+void load_nsr_map(const DecodeRequest& r, DecodeOptions& d, json& stats) {
+    if (r.nsr_map.empty()) return;
+    LoadedImage map;
+    try {
+        map = read_image(r.nsr_map);
+    } catch (const InvalidInput& e) {
+        throw InvalidInput(std::string("--nsr-map: ") + e.what());
+    }
+    if (map.format != SampleFormat::kFloat32 && map.format != SampleFormat::kFloat64) {
+        throw invalid_field("--nsr-map", r.nsr_map,
+                            "must hold floating-point values (.npy or float TIFF); an 8/16-bit "
+                            "image's values are not NSRs");
+    }
+    if (map.image.n_channels() != 1) {
+        throw invalid_field(
+            "--nsr-map", r.nsr_map,
+            "must have one channel, it has " + std::to_string(map.image.n_channels()));
+    }
+    const Plane& nsr = map.image.channels.front();
+    if (!is_all_finite(nsr)) {
+        throw invalid_field("--nsr-map", r.nsr_map, "holds NaN or Inf; every NSR must be finite");
+    }
+    if (nsr.size() > 0 && nsr.minCoeff() < 0.0) {
+        throw invalid_field("--nsr-map", r.nsr_map,
+                            "holds a negative NSR (" + std::to_string(nsr.minCoeff()) +
+                                "); every NSR must be >= 0");
+    }
+    d.wiener.nsr_per_frequency = nsr;
+    stats["nsr_map"] = {{"path", r.nsr_map}, {"rows", nsr.rows()}, {"cols", nsr.cols()}};
+}
+
 }  // namespace pinmask::cli

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cli/decode_output.hpp"
+#include "core/error.hpp"
 #include "core/raw_io.hpp"
 #include "decode/capture_pipeline.hpp"
 
@@ -23,5 +24,26 @@ CaptureDecodeInputs load_shared_inputs(const DecodeRequest& r, BayerMode bayer, 
 // Both, capture first (as `pinmask decode` reads them).
 CaptureDecodeInputs load_inputs(const DecodeRequest& r, BayerMode bayer, bool need_counts,
                                 nlohmann::json& stats);
+
+// --nsr-map: reads the per-frequency NSR (.npy or float TIFF, one channel, every value finite and
+// >= 0; InvalidInput naming --nsr-map and the file otherwise) into d.wiener.nsr_per_frequency;
+// stats["nsr_map"] describes it. Nothing when the request has no map.
+void load_nsr_map(const DecodeRequest& r, DecodeOptions& d, nlohmann::json& stats);
+
+// Runs `decode` (the pipeline call); an InvalidInput of the decoder about the map (its size is
+// checked against the working grid there) is rethrown naming --nsr-map and the file.
+template <class F>
+auto naming_nsr_map(const DecodeRequest& r, F&& decode) -> decltype(decode()) {
+    try {
+        return decode();
+    } catch (const InvalidInput& e) {
+        const std::string what = e.what();
+        const std::string field = "wiener.nsr_per_frequency";
+        const auto at = what.find(field);
+        if (r.nsr_map.empty() || at == std::string::npos) throw;
+        throw InvalidInput("--nsr-map " + r.nsr_map + ": " + what.substr(0, at) + "the map" +
+                           what.substr(at + field.size()));
+    }
+}
 
 }  // namespace pinmask::cli

@@ -128,6 +128,7 @@ nlohmann::json config_json(const DecodeRequest& r) {
             {"method", r.method},
             {"model", r.model},
             {"nsr", r.nsr},
+            {"nsr_map", path(r.nsr_map)},
             {"lambda", r.lambda},
             {"regulariser", r.regulariser},
             {"eps", opt(r.eps)},

@@ -24,6 +24,9 @@ struct DecodeRequest {
     std::string method = "wiener";  // decode/decode_method.hpp names
     std::string model = "cyclic";
     double nsr = 0.01;
+    // --nsr-map: a file of per-frequency NSRs (wiener only; replaces nsr). The CLI reads it into
+    // DecodeOptions::wiener.nsr_per_frequency (cli/decode_inputs load_nsr_map).
+    std::string nsr_map;
     double lambda = 1e-3;
     std::string regulariser = "identity";
     std::optional<double> eps, noise_sigma;

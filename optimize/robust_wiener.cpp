@@ -1,9 +1,11 @@
 #include "optimize/robust_wiener.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.hpp"
 #include "core/fft.hpp"
+#include "decode/wiener.hpp"
 #include "design/psf.hpp"
 #include "optimize/image_quality.hpp"
 #include "optimize/nsr_tuning.hpp"
@@ -225,6 +227,31 @@ ComplexPlane RobustWienerModel::robust_filter_response(const ComplexPlane& p) co
             g(k, l) = d > 0.0 ? std::conj(et) * (sk / d) : 0.0;
         }
     return g;
+}
+
+RobustDecoderInputs RobustWienerModel::robust_decoder_inputs(const ComplexPlane& p) const {
+    const AnalyticError nominal = nominal_->evaluate(p, {WienerFilterKind::kOptimal, 0.0});
+    const Plane& s = nominal_->prior().power;
+    const Eigen::Index m = s.rows(), n = p.rows();
+    const double holes = p(0, 0).real();
+    const double n_sigma2 = static_cast<double>(m * m) * nominal.noise_variance;
+    ComplexPlane et(m, m);
+    RobustDecoderInputs out;
+    out.nsr.resize(m, m);
+    for (Eigen::Index l = 0, ln = 0; l < m; ++l, ln = ln + 1 == n ? 0 : ln + 1)
+        for (Eigen::Index k = 0, kn = 0; k < m; ++k, kn = kn + 1 == n ? 0 : kn + 1) {
+            et(k, l) = p(kn, ln) / holes * expected_(k, l);
+            const double ppk = std::norm(p(kn, ln)) / (holes * holes), sk = s(k, l);
+            const double et2 = ppk * fabricated_power_(k, l) + mean_variance_(k, l) / holes;
+            const double mean2 = std::norm(et(k, l));
+            // E|T|^2 >= |E T|^2 (Jensen); rounding may leave -1e-17: clip.
+            const double variance = std::max(0.0, et2 - mean2);
+            out.nsr(k, l) = sk > 0.0 ? variance + n_sigma2 / sk : kRobustNsrNoSignal;
+            if (mean2 + out.nsr(k, l) < kDeconvwnrDenominatorFloor) ++out.floored;
+        }
+    const FftC2 fft(static_cast<int>(m), static_cast<int>(m));
+    out.psf = fft.inverse(et).real();
+    return out;
 }
 
 ComplexPlane RobustWienerModel::filter_response(const ComplexPlane& p, const WienerFilterSpec& f,

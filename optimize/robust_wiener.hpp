@@ -57,6 +57,27 @@ struct RobustError {
 // (|G H - 1|^2 S + |G|^2 N sigma^2, G = conj(P^ D / K) w), and mse the fabricated ones.
 enum class RobustDecoderPsf { kNominalPsf, kExpectedPsf };
 
+// The robust filter (RobustWienerModel::evaluate_robust_filter) as the inputs of an ordinary
+// Wiener decode (`score --robust-decoder`, `decode --psf robust-psf --nsr-map robust-nsr`):
+//     G = conj(E T) S / (E|T|^2 S + N sigma^2) = conj(E T) / (|E T|^2 + NSR),
+//     NSR = (E|T|^2 - |E T|^2) + N sigma^2 / S,
+// i.e. the Wiener filter of the EXPECTED fabricated PSF (transfer E T) with a per-frequency NSR:
+// the fabrication variance plus the noise-to-signal ratio.
+//   psf  the expected fabricated PSF, m x m in design/psf's frame (as mask_psf: DFT(psf) = E T),
+//        sum 1, real part of the inverse DFT of E T (E T is Hermitian: the mean of real PSFs);
+//        values within rounding of 0 may be -1e-17.
+//   nsr  the NSR per frequency, m x m, indexed like fft2 output (row k, column l is frequency
+//        (k / m, l / m)), as decode's WienerParams::nsr_per_frequency. Where the prior has no
+//        power (S = 0, the robust filter is 0) the NSR is kRobustNsrNoSignal.
+// decode's deconvwnr floor (max(|H|^2 + NSR, 1.49e-8)) is the only difference from G: it acts
+// where E|T|^2 + N sigma^2 / S < 1.49e-8 (`floored` counts those frequencies).
+inline constexpr double kRobustNsrNoSignal = 1e30;
+struct RobustDecoderInputs {
+    Plane psf;
+    Plane nsr;
+    int floored = 0;
+};
+
 class RobustWienerModel {
   public:
     // The template's camera, PSF settings and n (pinholes ignored); errors validated against it
@@ -103,6 +124,8 @@ class RobustWienerModel {
     // (fixed or tuned NSR) or S / (|H_D|^2 S + N sigma^2) (optimal). The noise variance is the
     // nominal capture's, as in the figures.
     ComplexPlane robust_filter_response(const ComplexPlane& pattern_spectrum) const;
+    // The robust filter as a Wiener decoder's PSF and per-frequency NSR (RobustDecoderInputs).
+    RobustDecoderInputs robust_decoder_inputs(const ComplexPlane& pattern_spectrum) const;
     ComplexPlane filter_response(const ComplexPlane& pattern_spectrum, const WienerFilterSpec& f,
                                  RobustDecoderPsf psf = RobustDecoderPsf::kNominalPsf) const;
 

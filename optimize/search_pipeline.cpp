@@ -140,10 +140,12 @@ RankBy parse_rank_by(const std::string& text) {
 ObjectiveKind parse_objective_kind(const std::string& text) {
     if (text == "nominal") return ObjectiveKind::kNominal;
     if (text == "robust") return ObjectiveKind::kRobust;
-    throw invalid_field("--objective", text, "must be nominal or robust");
+    if (text == "robust-filter") return ObjectiveKind::kRobustFilter;
+    throw invalid_field("--objective", text, "must be nominal, robust or robust-filter");
 }
 
 std::string objective_kind_name(ObjectiveKind k) {
+    if (k == ObjectiveKind::kRobustFilter) return "robust-filter";
     return k == ObjectiveKind::kRobust ? "robust" : "nominal";
 }
 
@@ -217,14 +219,14 @@ void SearchPipelineOptions::validate() const {
         }
     }
     robust.validate(tmpl.camera.pinhole_m);
-    if (objective == ObjectiveKind::kRobust) {
+    if (objective != ObjectiveKind::kNominal) {
         if (!robust.any()) {
-            throw invalid_field("--objective", "robust",
+            throw invalid_field("--objective", objective_kind_name(objective),
                                 "needs --robust with at least one non-zero error (size, jitter "
                                 "or missing)");
         }
         if (!(weights.analytic_wiener > 0.0)) {
-            throw invalid_field("--objective", "robust",
+            throw invalid_field("--objective", objective_kind_name(objective),
                                 "needs the analytic Wiener term (--w-analytic > 0)");
         }
     }
@@ -251,7 +253,7 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
     std::shared_ptr<const AnalyticWienerModel> model;
     std::shared_ptr<const RobustWienerModel> robust_model;
     out.prior_description = o.prior.description();
-    const bool robust_objective = o.objective == ObjectiveKind::kRobust;
+    const bool robust_objective = o.objective != ObjectiveKind::kNominal;
     if (o.weights.analytic_wiener > 0.0 || o.robust.any()) {
         ScenePrior prior = make_scene_prior(o.prior, m);
         out.prior_relevance = prior_relevance(prior);
@@ -262,7 +264,10 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
     }
     std::unique_ptr<SearchObjective> inner;
     if (robust_objective)
-        inner = std::make_unique<RobustObjective>(o.weights, robust_model, o.filter);
+        inner = std::make_unique<RobustObjective>(o.weights, robust_model, o.filter,
+                                                  o.objective == ObjectiveKind::kRobustFilter
+                                                      ? RobustObjectiveDecoder::kRobustFilter
+                                                      : RobustObjectiveDecoder::kDesignFilter);
     else
         inner = std::make_unique<MaskObjective>(o.weights, model, o.filter);
     const PipelineObjective objective(*inner, pattern_frequencies_passed(kernel_otf, n),

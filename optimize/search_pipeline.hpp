@@ -32,11 +32,13 @@ const std::vector<std::pair<RankBy, std::string>>& rank_by_names();  // wiener, 
 std::string rank_by_name(RankBy r);
 RankBy parse_rank_by(const std::string& text);  // InvalidInput naming --rank-by
 
-// What the analytic Wiener term measures (issue 13 point 6): the design's PSNR, or its expected
-// PSNR under fabrication errors decoded with the nominal PSF (optimize/robust_wiener.hpp).
-enum class ObjectiveKind { kNominal, kRobust };
+// What the analytic Wiener term measures (issue 13 point 6): the design's PSNR, its expected
+// PSNR under fabrication errors decoded with the nominal PSF (kRobust), or that expectation with
+// the decoder chosen for the errors (kRobustFilter: RobustObjectiveDecoder::kRobustFilter, the
+// per-frequency robust filter; optimize/robust_wiener.hpp).
+enum class ObjectiveKind { kNominal, kRobust, kRobustFilter };
 ObjectiveKind parse_objective_kind(const std::string& text);  // InvalidInput naming --objective
-std::string objective_kind_name(ObjectiveKind k);             // nominal, robust
+std::string objective_kind_name(ObjectiveKind k);             // nominal, robust, robust-filter
 
 struct SearchPipelineOptions {
     Mask tmpl;       // camera, PSF settings, pattern n, tiles, spacing (no pinholes)
@@ -50,7 +52,8 @@ struct SearchPipelineOptions {
     PriorSpec prior;                // the objective's scene prior
     WienerFilterSpec filter{WienerFilterKind::kOptimal, 0.0};
     ObjectiveWeights weights;
-    // kRobust: the analytic Wiener term is the expected PSNR under `robust` (which must have an
+    // kRobust, kRobustFilter: the analytic Wiener term is the expected PSNR under `robust` (which
+    // must have an
     // error); the re-ranking then reports its simulated figures without reordering (they are
     // nominal-PSF figures, which would undo the robust choice). With kNominal and errors given,
     // every candidate's robust PSNR is reported beside the nominal one ("robust_wiener_psnr_db").
