@@ -121,7 +121,7 @@ void bind_decode(py::module_& m) {
            std::optional<int> iters, std::optional<double> tol, const py::handle& crop,
            const py::handle& dark, const py::handle& background, int downsample,
            const std::string& normalize, const std::string& precision, int threads,
-           const py::object& progress, double poll_s) {
+           const py::object& progress, double poll_s, const py::handle& nsr_map) {
             DecodeRequest r;
             r.method = method;
             r.model = model;
@@ -198,6 +198,16 @@ void bind_decode(py::module_& m) {
             std::optional<Image> dark_img;
             if (!dark.is_none()) dark_img = image_arg(dark, "dark");
             CaptureDecodeOptions options = capture_decode_options(r);
+            if (!nsr_map.is_none()) {
+                // `decode --nsr-map`: a per-frequency NSR on the working grid (Wiener only, in
+                // place of the scalar nsr); its size and values are checked by the decoder
+                // (wiener.nsr_per_frequency).
+                if (r.method != "wiener")
+                    throw invalid_field("nsr_map", r.method,
+                                        "is read by method wiener only (--nsr-map)");
+                if (nsr) throw InvalidInput("nsr_map excludes nsr (--nsr-map replaces --nsr)");
+                options.decode.wiener.nsr_per_frequency = plane_arg(nsr_map, "nsr_map").get();
+            }
             options.decode.iterative.record_history = true;  // the result's history array
             options.validate();
             if (options.background == BackgroundMode::kCorner && psf.is_none()) {
@@ -276,6 +286,7 @@ void bind_decode(py::module_& m) {
         py::arg("crop") = "center", py::arg("dark") = py::none(), py::arg("background") = "none",
         py::arg("downsample") = 0, py::arg("normalize") = "none", py::arg("precision") = "auto",
         py::arg("threads") = 0, py::arg("progress") = py::none(), py::arg("poll_s") = 0.05,
+        py::arg("nsr_map") = py::none(),
         R"(Decodes a capture as `pinmask decode` does: dark frame subtracted, background,
 downsampling, period check, crop, normalisation, each channel decoded (colour channels in
 parallel). Same names, defaults, refusals and numbers as the CLI's flags.
@@ -297,6 +308,9 @@ averaging of capture and PSF (0..12). normalize: 'none' (PSF to unit sum, estima
 counts) | 'l2' (capture window and PSF each divided by its L2 norm). precision: 'auto' (float32
 for every method from 256 x 256 decoded pixels) | 'single' | 'double'. threads: FFTW
 threads for transforms of >= 512 x 512 (0: all cores; results do not depend on it).
+nsr_map: wiener only, in place of nsr: a per-frequency NSR on the working grid (the decoded
+window's size for the cyclic model), as `decode --nsr-map` reads it, e.g. the robust-nsr.npy
+that `score --robust-decoder` writes beside robust-psf.npy.
 progress: called every poll_s seconds with the elapsed seconds while the decode runs; return
 False to stop. Ctrl-C (KeyboardInterrupt) or False ends an iterative method after its current
 iteration and returns the estimate so far with interrupted = True (as the CLI writes it); a

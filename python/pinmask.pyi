@@ -177,6 +177,7 @@ def decode(
     threads: int = 0,
     progress: Optional[Callable[[float], Optional[bool]]] = None,
     poll_s: float = 0.05,
+    nsr_map: Optional[ArrayLike] = None,
 ) -> dict[str, Any]: ...
 def metrics(
     mask: MaskLike,

@@ -56,3 +56,33 @@ def test_search_robust_objective_same_masks_as_cli(cli, tmp_path):
         pinmask.search(evals=10, objective="robust")  # needs robust errors
     with pytest.raises(ValueError, match="--objective"):
         pinmask.search(evals=10, objective="best", robust=ERRORS)
+
+
+def test_decode_nsr_map_equals_cli(cli, tmp_path):
+    """decode(nsr_map=) is `decode --nsr-map`: the robust decoder's files from score, the same
+    estimate as the command's (its .npy output is float32: compared after the same rounding),
+    and not the scalar-NSR estimate; misuse raises the CLI's refusals as ValueError."""
+    np = pytest.importorskip("numpy")
+    mask = pinmask.generate(family="random", holes=20, seed=3)
+    mask.save(str(tmp_path / "m.mask.json"))
+    cli.run("score", "m.mask.json", "--snr", "50", "--metrics", "analytic", "--robust", ERRORS,
+            "--robust-decoder", "dec")
+    sim = pinmask.simulate(mask, snr_db=50, seed=4)
+    capture = np.asarray(sim["capture"], dtype=np.float64)
+    np.save(tmp_path / "c.npy", capture)
+    cli.run("decode", "c.npy", "--psf", "dec/robust-psf.npy", "--nsr-map", "dec/robust-nsr.npy",
+            "--crop", "none", "-o", "x.npy")
+    psf = np.load(tmp_path / "dec" / "robust-psf.npy")
+    nsr = np.load(tmp_path / "dec" / "robust-nsr.npy")
+    out = pinmask.decode(capture, psf=psf, nsr_map=nsr, crop="none")
+    assert np.array_equal(out["image"].astype(np.float32), np.load(tmp_path / "x.npy"))
+    scalar = pinmask.decode(capture, psf=psf, crop="none")
+    assert not np.allclose(scalar["image"], out["image"])
+    with pytest.raises(ValueError, match="nsr_map"):
+        pinmask.decode(capture, psf=psf, nsr_map=nsr, nsr=0.01, crop="none")
+    with pytest.raises(ValueError, match="wiener"):
+        pinmask.decode(capture, psf=psf, nsr_map=nsr, method="tv", crop="none")
+    with pytest.raises(ValueError, match="nsr_per_frequency"):
+        pinmask.decode(capture, psf=psf, nsr_map=nsr[:-1], crop="none")
+    with pytest.raises(ValueError):
+        pinmask.decode(capture, psf=psf, nsr_map=-nsr, crop="none")
