@@ -1,27 +1,17 @@
 #include "cli/decode_output.hpp"
 
 #include <cmath>
-#include <cstdio>
 
 #include "core/error.hpp"
 #include "core/image_io.hpp"
+#include "core/number_format.hpp"
 #include "core/units.hpp"
 #include "decode/decode_method.hpp"
 #include "decode/decode_modes.hpp"
+#include "io/json_strict.hpp"
 
 namespace pinmask::cli {
 namespace {
-
-std::string fixed(double v, int digits) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-    return buf;
-}
-
-// JSON has no infinity: an unbounded figure is written as null.
-nlohmann::json finite_or_null(double v) {
-    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
 
 nlohmann::json axis_json(const AxisPeriodCheck& a) {
     nlohmann::json j = {
@@ -39,8 +29,8 @@ nlohmann::json axis_json(const AxisPeriodCheck& a) {
         j["within_tolerance"] = a.within_tolerance;
         if (!a.early_exit) {
             j["high_pass_px"] = a.high_pass_px;
-            j["uncertainty_px"] = finite_or_null(a.uncertainty_px);
-            j["significance"] = finite_or_null(a.significance);
+            j["uncertainty_px"] = nlohmann::json(io::json_strict::finite_or_null(a.uncertainty_px));
+            j["significance"] = nlohmann::json(io::json_strict::finite_or_null(a.significance));
         }
     }
     j["matches"] = a.matches;
@@ -163,12 +153,13 @@ std::string period_warning(const PeriodCheck& check) {
     for (const auto& [a, name] : axes) {
         if (!a->checked || a->matches) continue;
         if (a->found) {
-            out += "the capture repeats every " + fixed(a->measured_px, 2) + " px along the " +
-                   name + " but the PSF period is " + std::to_string(a->expected_px) +
-                   " px (tolerance " + fixed(check.tolerance_px, 2) + " px" +
+            out += "the capture repeats every " + format_cell(a->measured_px, "%.2f") +
+                   " px along the " + name + " but the PSF period is " +
+                   std::to_string(a->expected_px) + " px (tolerance " +
+                   format_cell(check.tolerance_px, "%.2f") + " px" +
                    (a->early_exit || !std::isfinite(a->significance)
                         ? std::string()
-                        : ", significance t = " + fixed(a->significance, 1)) +
+                        : ", significance t = " + format_cell(a->significance, "%.1f")) +
                    "): the PSF does not match this capture (object distance, pixel pitch or "
                    "sensor distance differ from the mask file?)\n";
         } else {

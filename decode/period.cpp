@@ -2,21 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 #include "core/error.hpp"
 #include "core/fft.hpp"
+#include "core/number_format.hpp"
 #include "core/resource_limits.hpp"
 
 namespace pinmask {
 namespace {
-
-std::string fixed(double v, int digits) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-    return buf;
-}
 
 // The smallest power of two >= n: the transform sizes FFTW does fastest (measured on the
 // bench capture: 4096 points cost about half of 3456 or 5000).
@@ -432,7 +426,7 @@ AxisPeriodCheck check_axis(const Plane& lines, const ReadAll& read_all, Axis axi
     a.expected_px = expected;
     const char* name = axis == Axis::kRows ? "rows" : "columns";
     if (size < 2 * expected) {
-        a.skip_reason = "the capture holds " + fixed(double(size) / expected, 2) +
+        a.skip_reason = "the capture holds " + format_cell(double(size) / expected, "%.2f") +
                         " periods along the " + name + " (" + std::to_string(size) + " / " +
                         std::to_string(expected) + " px); a repeat needs at least 2";
         return a;

@@ -211,46 +211,52 @@ RobustError RobustWienerModel::evaluate_robust_filter(const ComplexPlane& p) con
 
 double RobustWienerModel::pattern_independent_floor_mse() const { return floor_mse_; }
 
-ComplexPlane RobustWienerModel::robust_filter_response(const ComplexPlane& p) const {
+RobustWienerModel::RobustTerms RobustWienerModel::robust_terms(const ComplexPlane& p) const {
     const AnalyticError nominal = nominal_->evaluate(p, {WienerFilterKind::kOptimal, 0.0});
-    const Plane& s = nominal_->prior().power;
-    const Eigen::Index m = s.rows(), n = p.rows();
+    const Eigen::Index m = nominal_->prior().power.rows(), n = p.rows();
     const double holes = p(0, 0).real();
-    const double n_sigma2 = static_cast<double>(m * m) * nominal.noise_variance;
-    ComplexPlane g(m, m);
+    RobustTerms t;
+    t.n_sigma2 = static_cast<double>(m * m) * nominal.noise_variance;
+    t.mean.resize(m, m);
+    t.power.resize(m, m);
     for (Eigen::Index l = 0, ln = 0; l < m; ++l, ln = ln + 1 == n ? 0 : ln + 1)
         for (Eigen::Index k = 0, kn = 0; k < m; ++k, kn = kn + 1 == n ? 0 : kn + 1) {
-            const std::complex<double> et = p(kn, ln) / holes * expected_(k, l);
-            const double ppk = std::norm(p(kn, ln)) / (holes * holes), sk = s(k, l);
-            const double et2 = ppk * fabricated_power_(k, l) + mean_variance_(k, l) / holes;
-            const double d = et2 * sk + n_sigma2;
-            g(k, l) = d > 0.0 ? std::conj(et) * (sk / d) : 0.0;
+            t.mean(k, l) = p(kn, ln) / holes * expected_(k, l);
+            const double ppk = std::norm(p(kn, ln)) / (holes * holes);
+            t.power(k, l) = ppk * fabricated_power_(k, l) + mean_variance_(k, l) / holes;
+        }
+    return t;
+}
+
+ComplexPlane RobustWienerModel::robust_filter_response(const ComplexPlane& p) const {
+    const RobustTerms t = robust_terms(p);
+    const Plane& s = nominal_->prior().power;
+    const Eigen::Index m = s.rows();
+    ComplexPlane g(m, m);
+    for (Eigen::Index l = 0; l < m; ++l)
+        for (Eigen::Index k = 0; k < m; ++k) {
+            const double sk = s(k, l), d = t.power(k, l) * sk + t.n_sigma2;
+            g(k, l) = d > 0.0 ? std::conj(t.mean(k, l)) * (sk / d) : 0.0;
         }
     return g;
 }
 
 RobustDecoderInputs RobustWienerModel::robust_decoder_inputs(const ComplexPlane& p) const {
-    const AnalyticError nominal = nominal_->evaluate(p, {WienerFilterKind::kOptimal, 0.0});
+    const RobustTerms t = robust_terms(p);
     const Plane& s = nominal_->prior().power;
-    const Eigen::Index m = s.rows(), n = p.rows();
-    const double holes = p(0, 0).real();
-    const double n_sigma2 = static_cast<double>(m * m) * nominal.noise_variance;
-    ComplexPlane et(m, m);
+    const Eigen::Index m = s.rows();
     RobustDecoderInputs out;
     out.nsr.resize(m, m);
-    for (Eigen::Index l = 0, ln = 0; l < m; ++l, ln = ln + 1 == n ? 0 : ln + 1)
-        for (Eigen::Index k = 0, kn = 0; k < m; ++k, kn = kn + 1 == n ? 0 : kn + 1) {
-            et(k, l) = p(kn, ln) / holes * expected_(k, l);
-            const double ppk = std::norm(p(kn, ln)) / (holes * holes), sk = s(k, l);
-            const double et2 = ppk * fabricated_power_(k, l) + mean_variance_(k, l) / holes;
-            const double mean2 = std::norm(et(k, l));
+    for (Eigen::Index l = 0; l < m; ++l)
+        for (Eigen::Index k = 0; k < m; ++k) {
+            const double sk = s(k, l), mean2 = std::norm(t.mean(k, l));
             // E|T|^2 >= |E T|^2 (Jensen); rounding may leave -1e-17: clip.
-            const double variance = std::max(0.0, et2 - mean2);
-            out.nsr(k, l) = sk > 0.0 ? variance + n_sigma2 / sk : kRobustNsrNoSignal;
+            const double variance = std::max(0.0, t.power(k, l) - mean2);
+            out.nsr(k, l) = sk > 0.0 ? variance + t.n_sigma2 / sk : kRobustNsrNoSignal;
             if (mean2 + out.nsr(k, l) < kDeconvwnrDenominatorFloor) ++out.floored;
         }
     const FftC2 fft(static_cast<int>(m), static_cast<int>(m));
-    out.psf = fft.inverse(et).real();
+    out.psf = fft.inverse(t.mean).real();
     return out;
 }
 

@@ -130,6 +130,16 @@ class RobustWienerModel {
                                  RobustDecoderPsf psf = RobustDecoderPsf::kNominalPsf) const;
 
   private:
+    // The per-frequency quantities of the robust filter for a pattern spectrum, on the m x m
+    // grid: E T = P^ D / K (the expected fabricated transfer), E|T|^2, and N sigma^2 of the
+    // nominal capture. robust_filter_response and robust_decoder_inputs are built from them.
+    struct RobustTerms {
+        ComplexPlane mean;  // E T
+        Plane power;        // E|T|^2
+        double n_sigma2 = 0.0;
+    };
+    RobustTerms robust_terms(const ComplexPlane& p) const;
+
     // (1/N^2) sum over the truth cases of the mismatch error of the filter built from the
     // decoder's |D|^2 (`decoder_power`) against true transfer functions with conj(D) x mean
     // `cross[c]` and variance `variance[c]` / K (empty: none).
