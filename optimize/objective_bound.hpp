@@ -81,11 +81,10 @@ class ObjectiveBoundModel {
     double group_slope(int a, double x, double nu) const;
     // nu = N sigma^2 used for K pinholes (see the noise paragraph above).
     double bound_noise(int holes) const;
-
-  private:
-    // Solves -g_a'(x) = mu on [0, 1] (clipped).
+    // Solves -g_a'(x) = mu on [0, 1] (clipped): the minimiser of g_a(x) + mu x, any sign of mu.
     double solve_group(int a, double mu, double nu) const;
 
+  private:
     std::shared_ptr<const AnalyticWienerModel> model_;
     int n_ = 0, p_ = 0;
     // Per group a: the terms with kp S > 0 as (S, c = kp S) at [start_[a], start_[a + 1]);

@@ -19,6 +19,9 @@ constexpr double kSmallestX = 1e-12, kInitialCellRatio = 4.0;
 constexpr int kMaxCellSplits = 1000;
 // Dual ascent: multiplier bracket by factors of 4 (at most kMaxExpansions), then bisection.
 constexpr int kMaxExpansions = 200, kBisections = 24;
+// Lag ascent per interval (NsrBoundOptions::lag_steps): first step as a fraction of |mu| per
+// unit of the supergradient, and the relative gain below which it stops early.
+constexpr double kLagFirstStepFraction = 1e-2, kLagStallTolerance = 1e-6;
 
 // The fixed-NSR term (rho^2 S + nu h) / (h + rho)^2 with h = h_num in the numerator and h_den
 // in the denominator (equal for a value; a cell's ends for its bound), written so that a huge or
@@ -46,9 +49,23 @@ void NsrBoundOptions::validate(int cells) const {
         throw invalid_field("max_intervals", std::to_string(max_intervals),
                             "must be in 30..100000 (the initial intervals need 28)");
     }
+    if (lag_steps < 0 || lag_steps > 100000)
+        throw invalid_field("lag_steps", std::to_string(lag_steps), "must be in 0..100000");
     if (!(group_tolerance > 0.0) || !(group_tolerance < 1.0)) {
         throw invalid_field("group_tolerance", std::to_string(group_tolerance),
                             "must be in (0, 1)");
+    }
+    if (!(min_spacing_cells >= 0.0) || !std::isfinite(min_spacing_cells)) {
+        throw invalid_field("min_spacing_cells", std::to_string(min_spacing_cells),
+                            "must be finite and >= 0");
+    }
+    if (!multipliers.lag.empty()) {
+        const int n = static_cast<int>(std::lround(std::sqrt(static_cast<double>(cells))));
+        validate_lag_multipliers(multipliers.lag, n, min_spacing_cells, "multipliers.lag");
+        if (!std::isfinite(multipliers.parseval)) {
+            throw invalid_field("multipliers.parseval", std::to_string(multipliers.parseval),
+                                "must be finite");
+        }
     }
 }
 
@@ -89,7 +106,7 @@ double NsrBoundModel::group_minimum(int a, const std::vector<double>& rho, doubl
         return v;
     };
     const auto cell = [&](double lo, double hi) {
-        double v = blind_[a] + mu * lo;
+        double v = blind_[a] + std::min(mu * lo, mu * hi);  // mu may be negative
         for (std::size_t j = j0; j < j1; ++j) {
             v += scalar_term(s_[j], rho[j], nu, kp_[j] * lo, kp_[j] * hi);
         }
@@ -131,11 +148,15 @@ NsrBoundModel::Dual NsrBoundModel::make_dual(double r1, double r2, double nu, do
     return d;
 }
 
-double NsrBoundModel::dual_value(const Dual& d, double mu, double& excess) const {
+double NsrBoundModel::dual_value(const Dual& d, double mu, double& excess,
+                                 std::vector<double>* xs) const {
     const int cells = n_ * n_;
-    double v = d.dc - mu * d.target, sum = 0.0, x = 0.0;
+    double v = d.dc - mu * d.target - d.lag_sum, sum = 0.0, x = 0.0;
+    if (xs) xs->assign(static_cast<std::size_t>(cells), 1.0);
     for (int a = 1; a < cells; ++a) {
-        v += group_minimum(a, d.rho, d.nu, mu, d.tolerance, x);
+        const double w = d.offset ? mu + (*d.offset)[a] : mu;
+        v += group_minimum(a, d.rho, d.nu, w, d.tolerance, x);
+        if (xs) (*xs)[a] = x;
         sum += x;
     }
     excess = sum - d.target;
@@ -196,18 +217,47 @@ NsrBound NsrBoundModel::bound(const NsrBoundOptions& o) const {
     oo.holes = o.holes;
     const ObjectiveBound optimal = optimal_.bound(oo);
     const double target = static_cast<double>(cells) / o.holes - 1.0;
+    // Lag multipliers (per interval: the given ones, then the ascent's), or none.
+    const bool lags = !o.multipliers.lag.empty() || o.lag_steps > 0;
+    AutocorrMultipliers start;
+    start.parseval = o.multipliers.lag.empty() ? optimal.multiplier : o.multipliers.parseval;
+    if (lags) {
+        start.lag = o.multipliers.lag;
+        start.lag.resize(static_cast<std::size_t>(cells), 0.0);
+    }
+    const std::vector<char> forbidden = forbidden_lags(n_, o.min_spacing_cells);
+    // The interval's dual with m's lag part (`offset` holds its weights).
+    const auto lagged_dual = [&](double r1, double r2, const AutocorrMultipliers& m,
+                                 std::vector<double>& offset) {
+        Dual d = make_dual(r1, r2, nu, target, o.group_tolerance);
+        if (lags) {
+            offset = lag_weights(n_, m.lag);
+            d.offset = &offset;
+            for (int i = 1; i < cells; ++i) d.lag_sum += m.lag[i];
+        }
+        return d;
+    };
+    // D at multipliers m over [r1, r2] (N^2 MSE units); xs (if not null) gets the minimisers.
+    const auto dual_at = [&](double r1, double r2, const AutocorrMultipliers& m,
+                             std::vector<double>* xs) {
+        std::vector<double> offset;
+        const Dual d = lagged_dual(r1, r2, m, offset);
+        double excess = 0.0;
+        return dual_value(d, m.parseval, excess, xs);
+    };
     // Branch and bound on the NSR axis. An interval's bound starts as one dual value (at its
-    // parent's best multiplier, or the optimal filter's) and is maximised over mu only when it
-    // is the lowest; a child's bound is at least its parent's (its lower functions are larger).
+    // parent's best multipliers, or the start ones) and is maximised over mu (and, with
+    // lag_steps, the lag multipliers) only when it is the lowest; a child's bound is at least
+    // its parent's (its lower functions are larger at the same multipliers).
     struct Interval {
-        double r1, r2, bound, mu;
+        double r1, r2, bound;
+        AutocorrMultipliers m;
         bool maximised;
     };
     std::vector<Interval> iv;
-    double excess = 0.0;
-    const auto cheap = [&](double r1, double r2, double mu, double floor) {
-        const double v = dual_value(make_dual(r1, r2, nu, target, o.group_tolerance), mu, excess);
-        return Interval{r1, r2, std::max(v, floor), mu, false};
+    const auto cheap = [&](double r1, double r2, const AutocorrMultipliers& m, double floor) {
+        const double v = dual_at(r1, r2, m, nullptr);
+        return Interval{r1, r2, std::max(v, floor), m, false};
     };
     const auto lowest = [&] {
         return std::min_element(iv.begin(), iv.end(), [](const Interval& x, const Interval& y) {
@@ -220,15 +270,27 @@ NsrBound NsrBoundModel::bound(const NsrBoundOptions& o) const {
             edges.push_back(std::pow(10.0, e));
         edges.push_back(INFINITY);
         for (std::size_t i = 0; i + 1 < edges.size(); ++i)
-            iv.push_back(cheap(edges[i], edges[i + 1], optimal.multiplier, -INFINITY));
+            iv.push_back(cheap(edges[i], edges[i + 1], start, -INFINITY));
         while (static_cast<int>(iv.size()) < o.max_intervals) {
             const auto low = lowest();
             if (!low->maximised) {
-                double mu = low->mu;
-                const double v = maximise_dual(
-                    make_dual(low->r1, low->r2, nu, target, o.group_tolerance), low->mu, mu);
-                low->bound = std::max(low->bound, v);
-                low->mu = mu;
+                std::vector<double> offset;
+                const Dual d = lagged_dual(low->r1, low->r2, low->m, offset);
+                double mu = low->m.parseval;
+                low->bound = std::max(low->bound, maximise_dual(d, low->m.parseval, mu));
+                low->m.parseval = mu;
+                if (o.lag_steps > 0) {
+                    const double r1 = low->r1, r2 = low->r2;
+                    const AutocorrDualOracle oracle = [&](const AutocorrMultipliers& m,
+                                                          std::vector<double>& x) {
+                        return dual_at(r1, r2, m, &x);
+                    };
+                    const AutocorrAscent up =
+                        ascend_autocorr_dual(oracle, low->m, n_, o.holes, forbidden, true,
+                                             kLagFirstStepFraction * std::fabs(mu), o.lag_steps,
+                                             o.lag_steps, kLagStallTolerance);
+                    if (up.value > low->bound) low->bound = up.value, low->m = up.best;
+                }
                 low->maximised = true;
                 continue;
             }
@@ -237,8 +299,8 @@ NsrBound NsrBoundModel::bound(const NsrBoundOptions& o) const {
             const double mid = w.r1 == 0.0            ? w.r2 / 10.0
                                : !std::isfinite(w.r2) ? w.r1 * 10.0
                                                       : std::sqrt(w.r1 * w.r2);
-            *low = cheap(w.r1, mid, w.mu, w.bound);
-            iv.push_back(cheap(mid, w.r2, w.mu, w.bound));
+            *low = cheap(w.r1, mid, w.m, w.bound);
+            iv.push_back(cheap(mid, w.r2, w.m, w.bound));
         }
     }
     double lowest_bound = 0.0;

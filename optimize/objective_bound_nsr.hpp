@@ -23,6 +23,7 @@
 #include <memory>
 
 #include "optimize/objective_bound.hpp"
+#include "optimize/objective_bound_autocorr.hpp"
 
 namespace pinmask {
 
@@ -35,6 +36,18 @@ struct NsrBoundOptions {
     // group's total prior power of the best value found (so it adds at most this to the MSE
     // relative to the prior's non-DC power).
     double group_tolerance = 1e-3;
+    // Autocorrelation multipliers (optimize/objective_bound_autocorr.hpp; typically the optimal
+    // filter's, AutocorrBound::multipliers) added to every interval's dual: the lag part is kept
+    // fixed, the Parseval multiplier is maximised per interval as without them (their
+    // `parseval` is its start). Empty `lag`: Parseval only. Valid for the patterns that keep
+    // the spacing rule min_spacing_cells (which allows negative lag multipliers at the lags it
+    // forbids).
+    AutocorrMultipliers multipliers;
+    double min_spacing_cells = 0.0;
+    // > 0: when an NSR interval is maximised, its lag multipliers (and mu) are also raised by
+    // at most this many steps of ascend_autocorr_dual (from `multipliers`, or from zero lags);
+    // each step costs one or more dual evaluations (a branch and bound per group).
+    int lag_steps = 0;
 
     void validate(int cells) const;  // InvalidInput naming field, value and rule
 };
@@ -60,13 +73,19 @@ class NsrBoundModel {
 
   private:
     // One NSR interval's lower functions: per-term NSR rho, the DC group's error, noise, X.
+    // offset: the lag multipliers' per-group weight (lag_weights; empty: none), lag_sum their
+    // sum (the dual's constant -sum l).
     struct Dual {
         std::vector<double> rho;
         double dc, nu, target, tolerance;
+        const std::vector<double>* offset = nullptr;
+        double lag_sum = 0.0;
     };
     Dual make_dual(double r1, double r2, double nu, double target, double tolerance) const;
     // D(mu) (N^2 MSE units); `excess` gets sum x_a(mu) - X at the inner minimisers.
-    double dual_value(const Dual& d, double mu, double& excess) const;
+    // xs (if not null) gets the inner minimisers (n^2 entries, xs[0] = 1).
+    double dual_value(const Dual& d, double mu, double& excess,
+                      std::vector<double>* xs = nullptr) const;
     double maximise_dual(const Dual& d, double scale, double& best_mu) const;
     // Rigorous lower bound on min_{0<=x<=1} G_a(x) + mu x; `argmin` gets the best point seen.
     double group_minimum(int a, const std::vector<double>& rho, double nu, double mu,
