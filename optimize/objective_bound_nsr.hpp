@@ -18,6 +18,10 @@
 // bound is split until it is narrow); the result is the smallest interval bound, never
 // above the optimal filter's bound's PSNR (their maximum MSE is kept). Noise as in
 // objective_bound (Gaussian SNR: the smallest variance of the relaxed set; f increases with B).
+// With autocorrelation multipliers (objective_bound_autocorr.hpp) each interval's dual gains
+// their terms: w_a = mu + lag_weights(l)[a] in place of mu and the constant -sum l; valid for the
+// patterns that keep the spacing rule the multipliers' signs assume. A cell's bound on the
+// linear term is min(w xl, w xh), since w may be negative.
 #pragma once
 
 #include <memory>
