@@ -37,10 +37,15 @@ void check_image_finite(const Image& image, const std::string& what) {
 
 void check_psf(const Plane& psf, const std::string& what) {
     if (psf.size() == 0) throw InvalidInput(what + ": the image is empty (no pixels)");
-    // A finite sum proves every value finite; otherwise the scan names the pixel (or, for finite
-    // values whose sum overflows, passes and the sum's test below reports it).
+    // A finite sum proves every value finite; otherwise the scan names the pixel, or the values
+    // are finite and their sum overflows (unit-sum normalisation would zero the PSF).
     const double sum = psf.sum();
-    if (!std::isfinite(sum)) check_plane_finite(psf, what, 0);
+    if (!std::isfinite(sum)) {
+        check_plane_finite(psf, what, 0);
+        throw InvalidInput(what + ": the PSF's values (largest " +
+                           std::to_string(psf.abs().maxCoeff()) +
+                           ") sum beyond the double range: scale the PSF down");
+    }
     if (!(sum > 0.0)) {
         throw InvalidInput(what + ": the PSF sums to " + std::to_string(sum) +
                            (psf.abs().maxCoeff() == 0.0 ? " (all zeros)" : "") +
