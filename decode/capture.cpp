@@ -13,27 +13,39 @@ std::string size_text(int rows, int cols) {
     return std::to_string(cols) + " x " + std::to_string(rows) + " (W x H)";
 }
 
+
+// The first non-finite pixel of a plane, named (the full scan runs only once a fast test failed).
+void check_plane_finite(const Plane& p, const std::string& what, int ch) {
+    if (is_all_finite(p)) return;
+    for (Eigen::Index r = 0; r < p.rows(); ++r)
+        for (Eigen::Index c = 0; c < p.cols(); ++c)
+            if (!std::isfinite(p(r, c))) {
+                throw InvalidInput(what + ": pixel (row " + std::to_string(r) + ", col " +
+                                   std::to_string(c) + ", channel " + std::to_string(ch) +
+                                   ") is " + (std::isnan(p(r, c)) ? "NaN" : "infinite") +
+                                   ": every pixel must be finite");
+            }
+}
+
 }  // namespace
 
 void check_image_finite(const Image& image, const std::string& what) {
     if (image.empty()) throw InvalidInput(what + ": the image is empty (no pixels)");
-    for (int ch = 0; ch < image.n_channels(); ++ch) {
-        const Plane& p = image.channels[static_cast<std::size_t>(ch)];
-        if (is_all_finite(p)) continue;
-        for (Eigen::Index r = 0; r < p.rows(); ++r)
-            for (Eigen::Index c = 0; c < p.cols(); ++c)
-                if (!std::isfinite(p(r, c))) {
-                    throw InvalidInput(what + ": pixel (row " + std::to_string(r) + ", col " +
-                                       std::to_string(c) + ", channel " + std::to_string(ch) +
-                                       ") is " + (std::isnan(p(r, c)) ? "NaN" : "infinite") +
-                                       ": every pixel must be finite");
-                }
-    }
+    for (int ch = 0; ch < image.n_channels(); ++ch)
+        check_plane_finite(image.channels[static_cast<std::size_t>(ch)], what, ch);
 }
 
 void check_psf(const Plane& psf, const std::string& what) {
-    check_image_finite(Image(psf), what);
+    if (psf.size() == 0) throw InvalidInput(what + ": the image is empty (no pixels)");
+    // A finite sum proves every value finite; otherwise the scan names the pixel, or the values
+    // are finite and their sum overflows (unit-sum normalisation would zero the PSF).
     const double sum = psf.sum();
+    if (!std::isfinite(sum)) {
+        check_plane_finite(psf, what, 0);
+        throw InvalidInput(what + ": the PSF's values (largest " +
+                           std::to_string(psf.abs().maxCoeff()) +
+                           ") sum beyond the double range: scale the PSF down");
+    }
     if (!(sum > 0.0)) {
         throw InvalidInput(what + ": the PSF sums to " + std::to_string(sum) +
                            (psf.abs().maxCoeff() == 0.0 ? " (all zeros)" : "") +

@@ -88,9 +88,13 @@ CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOp
                                ? " and the PSF (mean of the PSF's rows/cols 5..14)"
                                : ""));
     }
-    for (Plane& p : capture.channels) p = box_downsample(p, o.downsample);
-    for (Plane& p : psf.channels) p = box_downsample(p, o.downsample);
-    for (const Plane& p : psf.channels) check_psf(p, "PSF after preprocessing");
+    if (o.downsample > 0) {  // box_downsample copies even for 0 rounds
+        for (Plane& p : capture.channels) p = box_downsample(p, o.downsample);
+        for (Plane& p : psf.channels) p = box_downsample(p, o.downsample);
+    }
+    if (o.downsample > 0 || o.background == BackgroundMode::kCorner) {
+        for (const Plane& p : psf.channels) check_psf(p, "PSF after preprocessing");
+    }
     s.seconds.preprocess = seconds_since(t0);
     if (o.downsample > 0)
         s.notes.push_back("downsampled " + std::to_string(o.downsample) +
@@ -139,7 +143,7 @@ CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOp
     } else {
         for (Plane& p : psf.channels) {
             s.psf_sums.push_back(p.sum());
-            p /= p.sum();
+            p /= s.psf_sums.back();
         }
     }
     s.decoded_rows = capture.rows();
@@ -191,7 +195,7 @@ CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOp
         s.interrupted = s.interrupted || r.interrupted;
         s.constraint_met = s.constraint_met && r.constraint_met;
     }
-    check_image_finite(out.estimate, "decoded estimate");
+    // decode_plane refuses a non-finite estimate (RuntimeFailure), so every channel is finite.
     return out;
 }
 

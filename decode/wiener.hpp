@@ -13,6 +13,8 @@
 // symmetric NSR.
 #pragma once
 
+#include <optional>
+
 #include "core/fft.hpp"
 #include "core/image.hpp"
 
@@ -28,10 +30,12 @@ inline constexpr double kDeconvwnrDenominatorFloor = 1.4901161193847656e-08;
 //   penalty   = (1/N) sum_half weight |X|^2
 // `weight` is a half spectrum that already counts each coefficient's Hermitian partner (see
 // half_spectrum_multiplicity and fold_full_spectrum_weight), e.g. nsr * multiplicity gives
-// nsr ||x||_2^2. Set otf and/or weight to ask for the sum; the other stays 0.
+// nsr ||x||_2^2; `uniform_weight` w stands for the weight w * multiplicity without a plane. Set
+// otf and/or a weight to ask for the sum; the other stays 0.
 struct SpectralSums {
     const ComplexPlane* otf = nullptr;
     const Plane* weight = nullptr;
+    std::optional<double> uniform_weight;  // excludes `weight`
     double residual2 = 0.0;
     double penalty = 0.0;
 };
@@ -53,6 +57,7 @@ class WienerFilter {
     struct Workspace {
         ComplexPlane spectrum;
         ComplexPlane scratch;
+        Plane scaled;  // capture / scale, when scale != 1
     };
     // Buffers of apply_single().
     struct WorkspaceF {
@@ -85,13 +90,18 @@ class WienerFilter {
     Plane apply(const Plane& capture) const;
     // Allocation-free form (after the first call with a given workspace).
     // With `sums`, its requested sums are gathered in the pass that applies the filter.
-    void apply(const Plane& capture, Plane& out, Workspace& ws, SpectralSums* sums = nullptr) const;
+    // `scale` (a power of two, so exact): the filter sees capture / scale and out is scale times
+    // its result, i.e. the same x, computed in a range that cannot overflow; the sums are those
+    // of the scaled problem (times scale^2 for the capture's units).
+    void apply(const Plane& capture, Plane& out, Workspace& ws, SpectralSums* sums = nullptr,
+               double scale = 1.0) const;
     // The same filter in single precision (FFTW float; the filter rounded to float once): the
     // result differs from apply() by float rounding, a relative l2 error of a few 1e-7 times
     // log2(N) for a filter of modest gain (tests/decode/test_wiener.cpp states the bound).
     // `sums` as in apply(), from the float spectrum that is inverse-transformed (summed in double).
+    // `scale` as in apply(), folded into the conversions to and from float (no extra pass).
     void apply_single(const Plane& capture, Plane& out, WorkspaceF& ws,
-                      SpectralSums* sums = nullptr) const;
+                      SpectralSums* sums = nullptr, double scale = 1.0) const;
 
     // max_k |G(k)|: the l2 gain of the filter (an error e in the capture moves x by at most
     // gain() * ||e||_2 in the l2 norm, by Parseval).

@@ -41,17 +41,18 @@ struct CaptureArg {
 // `pinmask decode`'s library pipeline (decode/capture_pipeline decode_capture: dark frame,
 // period check, crop, PSF to unit sum, precision, each channel decoded) with the CLI's own
 // options (capture_decode_options). The pipeline owns its inputs: a borrowed capture or PSF
-// is copied into it (a C++ copy, not a numpy conversion: input_copies() does not count it).
-DecodeOutput decode_pipeline(CaptureArg& cap, const PlaneArg& psf_in, bool measured_psf,
+// is copied into it (a C++ copy, not a numpy conversion: input_copies() does not count it), a
+// plane already converted from numpy is moved in.
+DecodeOutput decode_pipeline(CaptureArg& cap, PlaneArg& psf_in, bool measured_psf,
                              const std::optional<Image>& dark, const CaptureDecodeOptions& o,
                              const std::atomic<bool>* stop) {
     CaptureDecodeOptions options = o;
     options.decode.iterative.stop = stop;
     CaptureDecodeInputs in;
     in.capture = cap.plane ? Image(*cap.plane) : std::move(cap.image);
-    in.psf = Image(psf_in.get());
     // background="corner" reads the PSF's own values (a measured PSF, as the CLI's --psf file).
     if (measured_psf && options.background == BackgroundMode::kCorner) in.psf_counts = psf_in.get();
+    in.psf = Image(psf_in.take());
     in.dark = dark;
     CaptureDecodeResult res = decode_capture(std::move(in), options);
     DecodeOutput out;
@@ -269,7 +270,7 @@ void bind_decode(py::module_& m) {
             }
             // Ctrl-C that cut nothing short (closed form, or already finished) is not swallowed.
             if (poll == Poll::kKeyboardInterrupt && !any_interrupted) raise_keyboard_interrupt();
-            check_image_finite(estimate, "decoded estimate");
+            // Finite: decode_plane refuses a non-finite estimate (RuntimeFailure).
             d["image"] = image_to_array(std::move(estimate));
             d["channels"] = channels;
             d["interrupted"] = any_interrupted;

@@ -43,6 +43,9 @@ class PlaneArg {
   public:
     const Plane& get() const { return borrowed_ != nullptr ? *borrowed_ : owned_; }
     bool borrowed() const { return borrowed_ != nullptr; }
+    // The plane for a consumer that keeps it: the owned copy moved out (get() is then empty),
+    // or a copy of a borrowed plane.
+    Plane take() { return borrowed_ != nullptr ? Plane(*borrowed_) : std::move(owned_); }
 
   private:
     friend PlaneArg plane_arg(const py::handle& obj, const std::string& what);

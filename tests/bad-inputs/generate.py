@@ -133,6 +133,9 @@ nan_plane[100] = math.nan
 write("capture-nan.npy", npy((28, 28), data=struct.pack("<784f", *nan_plane)))
 write("scene-nan.npy", npy((28, 28), data=struct.pack("<784f", *nan_plane)))
 write("psf-zero.npy", npy((28, 28), data=b"\0" * (28 * 28 * 4)))
+overflow_plane = [0.0] * (28 * 28)
+overflow_plane[10] = overflow_plane[400] = 1e308  # finite values whose sum overflows
+write("psf-overflow.npy", npy((28, 28), descr="<f8", data=struct.pack("<784d", *overflow_plane)))
 huge_plane = [0.5] * (28 * 28)
 huge_plane[300] = 1e300  # float64: a finite capture whose estimate leaves float32's range
 write("capture-1e300.npy", npy((28, 28), descr="<f8", data=struct.pack("<784d", *huge_plane)))

@@ -127,6 +127,36 @@ TEST_CASE("scale invariance: every method, captures scaled by 2^-900 .. 2^900") 
     }
 }
 
+TEST_CASE("closed forms: a 2^k-scaled capture gives exactly 2^k times the estimate, both precisions") {
+    // The closed forms scale by a power of two inside the filter's conversions (float32 always,
+    // double outside 2^-100..2^100), so scaling is exact: bit for bit, not within a tolerance.
+    // k = +-1000 puts the capture's peak near 1e301 / 1e-301 (the squared sums would overflow
+    // or underflow unscaled).
+    const Problem P = make(32, 21);
+    for (DecodeMethod m : {DecodeMethod::kWiener, DecodeMethod::kTikhonov}) {
+        for (ConvModel model : {ConvModel::kCyclic, ConvModel::kLinear}) {
+            for (bool single : {false, true}) {
+                DecodeOptions o;
+                o.method = m;
+                o.model = model;
+                o.single_precision = single;
+                o.wiener.nsr = 1e-3;
+                o.tikhonov.lambda = 1e-3;
+                const DecodeResult ref = decode_plane(P.p, P.psf, o);
+                for (int k : {-1000, -120, 120, 1000}) {
+                    const double s = std::ldexp(1.0, k);
+                    const DecodeResult r = decode_plane(P.p * s, P.psf, o);
+                    INFO("method " << int(m) << " model " << int(model) << " single " << single
+                                   << " scale 2^" << k);
+                    CHECK((r.image == ref.image * s).all());
+                    CHECK(r.residual == ref.residual * s);
+                    if (std::abs(k) <= 120) CHECK(r.objective == ref.objective * s * s);
+                }
+            }
+        }
+    }
+}
+
 TEST_CASE("a capture with one pixel at 1e300 decodes to a finite estimate (no Inf image)") {
     Problem P = make(32, 13);
     P.p(5, 7) = 1e300;

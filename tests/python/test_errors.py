@@ -13,6 +13,8 @@ import pinmask
     (lambda: pinmask.decode(np.ones((8, 8), dtype=complex), psf=np.ones((3, 3))), "real"),
     (lambda: pinmask.decode("abc", psf=np.ones((3, 3))), "capture"),
     (lambda: pinmask.decode(np.full((8, 8), np.inf), psf=np.ones((3, 3))), "capture"),
+    (lambda: pinmask.decode(np.ones((8, 8)), psf=np.full((3, 3), 1e308)),
+     "beyond the double range"),
     (lambda: pinmask.decode(np.ones((8, 8)), psf=np.ones((3, 3)), method="tv", iters=-1),
      "--iters"),
     (lambda: pinmask.search(threads=0, evals=5), "threads"),
@@ -49,7 +51,7 @@ def test_runtime_failure_is_runtime_error(tmp_path):
 
 def test_bad_psf_files_same_message_as_cli(cli, bad_inputs, tmp_path):
     pinmask.write_image(str(tmp_path / "cap.npy"), np.ones((64, 64)))
-    for name in ["psf-nan.tiff", "psf-zero.npy", "psf-sidecar-version.tiff",
+    for name in ["psf-nan.tiff", "psf-zero.npy", "psf-overflow.npy", "psf-sidecar-version.tiff",
                  "psf-sidecar-size.tiff"]:
         path = str(bad_inputs / name)
         msg = cli.error("decode", "cap.npy", "--psf", path, "-o", "x.npy")
