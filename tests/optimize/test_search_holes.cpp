@@ -31,7 +31,10 @@ namespace {
 // gain is 0.40 dB (0.15 dB for the optimal-filter objective's mask). At 3 e- per pinhole the
 // capture is shot-noise limited, |H|^2 / sigma^2 ~ (|P^|^2 / K^2) (3 K mean) hardly grows
 // with K, and the pattern only shapes the spectrum's dips: ~0.4 dB is what the pattern can
-// give, and 3 scenes measure it within ~+-0.15 dB. The test holds both with margin.
+// give, and 3 scenes measure it within ~+-0.15 dB. The test holds both with margin. Fixed-K
+// searches (K = 10..40, 20000 evaluations, 3 seeds, a steepest-descent polish; K = 23 with
+// 100000 evaluations or a 256-scene prior) all end at 18.87-18.90 dB expected against the
+// 18.96 dB a 0.5 dB gain needs (README "Choosing K at dim light"), so the bar stays here.
 constexpr double kRequiredGainDb = 0.1;
 constexpr double kRequiredExpectedGainDb = 0.3;
 constexpr std::uint64_t kHeldOutFirstSeed = 7000;  // far from the prior's 1000..1015
