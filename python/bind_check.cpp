@@ -67,8 +67,16 @@ io::CheckLayoutSettings layout_settings(const CheckArgs& o) {
         if (v.is_none()) return std::nullopt;
         return py::str(v).cast<std::string>();
     };
-    return io::check_layout_settings(o.shape, o.sides, text(o.hole_side), text(o.frame),
-                                     text(o.chord_tol), o.tone, o.units, o.mirror);
+    io::CheckLayoutText given;
+    given.shape = o.shape;
+    given.sides = o.sides;
+    given.hole_side = text(o.hole_side);
+    given.frame = text(o.frame);
+    given.chord_tol = text(o.chord_tol);
+    given.tone = o.tone;
+    given.units = o.units;
+    given.mirror = o.mirror;
+    return io::check_layout_settings(given);
 }
 
 bool is_mask_file(const fs::path& path) {
