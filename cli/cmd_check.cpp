@@ -6,7 +6,6 @@
 // Exit codes: 0 clean, 1 violations (or an XOR mismatch), 2 bad input.
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -35,16 +34,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A mask file is JSON: a .json name or a first non-blank byte '{'.
-bool is_mask_file(const fs::path& path) {
-    if (path.extension() == ".json") return true;
-    std::ifstream in(path, std::ios::binary);
-    char c = 0;
-    while (in.get(c) && std::isspace(static_cast<unsigned char>(c))) {
-    }
-    return in && c == '{';
-}
-
 // Returns the exit code: 0 clean, 1 violations found.
 int run(const CheckOptions& o) {
     if (!fs::is_regular_file(o.input))
@@ -56,10 +45,10 @@ int run(const CheckOptions& o) {
     const VendorRules vendor = vendor_rules(o.vendor);
     CheckReport rep{.input = o.input, .vendor = o.vendor, .mask = o.mask, .list = o.list};
     FileCheck c;
-    if (const auto picture = picture_format_of(o.input); picture && !is_mask_file(o.input)) {
+    if (const auto picture = picture_format_of(o.input); picture && !io::is_mask_file(o.input)) {
         rep.kind = fab_format_name(*picture);
         c = check_picture(o, vendor, rep);
-    } else if (is_mask_file(o.input)) {
+    } else if (io::is_mask_file(o.input)) {
         if (!o.mask.empty())
             throw invalid_field("--mask", o.mask, "only used with a fabrication file");
         rep.kind = "mask";

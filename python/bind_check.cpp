@@ -5,7 +5,6 @@
 // io/sidecar_layout), else from the arguments.
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 
 #include "core/error.hpp"
 #include "core/units.hpp"
@@ -79,15 +78,6 @@ io::CheckLayoutSettings layout_settings(const CheckArgs& o) {
     return io::check_layout_settings(given);
 }
 
-bool is_mask_file(const fs::path& path) {
-    if (path.extension() == ".json") return true;
-    std::ifstream in(path, std::ios::binary);
-    char c = 0;
-    while (in.get(c) && std::isspace(static_cast<unsigned char>(c))) {
-    }
-    return in && c == '{';
-}
-
 py::object um_or_none(double nm) {
     return std::isfinite(nm) ? py::object(py::float_(nm * 1e-3)) : py::object(py::none());
 }
@@ -128,7 +118,7 @@ void bind_check(py::module_& m) {
             bool comparison_ok = true;
             std::string settings;
             DrcReport r;
-            if (input_is_mask || is_mask_file(input_text)) {
+            if (input_is_mask || io::is_mask_file(input_text)) {
                 if (!mask.is_none())
                     throw invalid_field("--mask", py::str(mask).cast<std::string>(),
                                         "only used with a fabrication file");
