@@ -26,6 +26,15 @@ struct PriorFlags {
 void add_prior_flags(CLI::App& cmd, PriorFlags& flags);
 PriorSpec prior_spec(const PriorFlags& flags);
 
+// --scenes (comma-separated names or image files) as scene specs; the natural scene is pinned to
+// texture seed 0, so every noise seed and every mask sees the same picture.
+std::vector<SceneSpec> scene_specs(const std::string& scenes);
+
+// --nsr, --tv-lambda and --tv-iters of the simulated decoders into sim (InvalidInput naming the
+// flag).
+void set_decoder_flags(SimulatedMetricsOptions& sim, const std::string& nsr,
+                       const std::string& tv_lambda, int tv_iterations);
+
 // The metrics as JSON keys (score's names: max_sidelobe, analytic_wiener_psnr_db_snr30, ...);
 // per-scene figures go to `per_scene` when given.
 void metrics_json(const MaskMetrics& m, nlohmann::ordered_json& row,

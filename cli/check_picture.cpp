@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "io/export_sidecar.hpp"
 #include "io/mask_json.hpp"
+#include "io/sidecar_layout.hpp"
 
 namespace pinmask::cli {
 
@@ -16,7 +17,7 @@ FileCheck check_picture(const CheckOptions& o, const VendorRules& vendor, CheckR
     if (!o.no_sidecar && fs::is_regular_file(side_path)) side = io::read_export_sidecar(side_path);
     if (side) {
         rep.settings = "from " + side_path.string();
-        if (rep.mask.empty()) rep.mask = sidecar_mask(*side, side_path);
+        if (rep.mask.empty()) rep.mask = io::sidecar_mask(*side, side_path);
     } else {
         rep.settings = "from the flags (no sidecar " + side_path.filename().string() + ")";
     }

@@ -9,6 +9,7 @@
 #include "export/drc.hpp"
 #include "export/geometry.hpp"
 #include "io/export_sidecar.hpp"
+#include "io/sidecar_layout.hpp"
 
 namespace pinmask::cli {
 
@@ -21,10 +22,7 @@ struct CheckOptions {
     std::size_t list = 20;
     double max_xor_um2 = 0.0;
     // Layout options of the design the file is compared with (as given to `pinmask export`).
-    std::optional<std::string> shape;
-    std::optional<int> sides;
-    std::optional<std::string> hole_side, frame, chord_tol, tone, units;
-    bool mirror = false;
+    io::CheckLayoutText layout;
     bool no_sidecar = false;
     bool json = false;
 };
@@ -35,9 +33,5 @@ LayoutOptions design_options(const CheckOptions& o, const io::ExportSidecar* sid
 
 // The rules: `rules` (the vendor's or the mask's) with every explicit flag applied.
 DrcRules resolve_rules(const CheckOptions& o, DrcRules rules);
-
-// The mask a sidecar names: its recorded path, else relative to the sidecar's folder; "" when
-// none exists.
-std::string sidecar_mask(const io::ExportSidecar& side, const std::filesystem::path& sidecar);
 
 }  // namespace pinmask::cli

@@ -6,7 +6,6 @@
 // Exit codes: 0 clean, 1 violations (or an XOR mismatch), 2 bad input.
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -35,16 +34,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A mask file is JSON: a .json name or a first non-blank byte '{'.
-bool is_mask_file(const fs::path& path) {
-    if (path.extension() == ".json") return true;
-    std::ifstream in(path, std::ios::binary);
-    char c = 0;
-    while (in.get(c) && std::isspace(static_cast<unsigned char>(c))) {
-    }
-    return in && c == '{';
-}
-
 // Returns the exit code: 0 clean, 1 violations found.
 int run(const CheckOptions& o) {
     if (!fs::is_regular_file(o.input))
@@ -56,10 +45,10 @@ int run(const CheckOptions& o) {
     const VendorRules vendor = vendor_rules(o.vendor);
     CheckReport rep{.input = o.input, .vendor = o.vendor, .mask = o.mask, .list = o.list};
     FileCheck c;
-    if (const auto picture = picture_format_of(o.input); picture && !is_mask_file(o.input)) {
+    if (const auto picture = picture_format_of(o.input); picture && !io::is_mask_file(o.input)) {
         rep.kind = fab_format_name(*picture);
         c = check_picture(o, vendor, rep);
-    } else if (is_mask_file(o.input)) {
+    } else if (io::is_mask_file(o.input)) {
         if (!o.mask.empty())
             throw invalid_field("--mask", o.mask, "only used with a fabrication file");
         rep.kind = "mask";
@@ -168,18 +157,20 @@ void setup(CLI::App& app, int& exit_code) {
     cmd->add_option("--max-xor-um2", o->max_xor_um2,
                     "Largest XOR area (um^2) between the file's pinholes and the design's")
         ->capture_default_str();
-    cmd->add_option("--shape", o->shape,
+    cmd->add_option("--shape", o->layout.shape,
                     "Design pinhole shape: square | circle | polygon (default square)");
-    cmd->add_option("--sides", o->sides, "Design polygon sides (--shape polygon; default 8)");
-    cmd->add_option("--tone", o->tone, "Design tone: clear | dark (aliases negative | positive)");
-    cmd->add_flag("--mirror", o->mirror, "Design mirrored (emulsion down)");
-    cmd->add_option("--units", o->units, "Unit the file was exported in: um | mm | in");
+    cmd->add_option("--sides", o->layout.sides,
+                    "Design polygon sides (--shape polygon; default 8)");
+    cmd->add_option("--tone", o->layout.tone,
+                    "Design tone: clear | dark (aliases negative | positive)");
+    cmd->add_flag("--mirror", o->layout.mirror, "Design mirrored (emulsion down)");
+    cmd->add_option("--units", o->layout.units, "Unit the file was exported in: um | mm | in");
     cmd->add_flag("--no-sidecar", o->no_sidecar,
                   "Ignore <stem>.export.json beside the file (settings from the flags only)");
-    cmd->add_option("--hole-side", o->hole_side,
+    cmd->add_option("--hole-side", o->layout.hole_side,
                     "Design pinhole side / diameter (length; default: the cell pitch)");
-    cmd->add_option("--frame", o->frame, "Design opaque frame width (length; default 0)");
-    cmd->add_option("--chord-tol", o->chord_tol,
+    cmd->add_option("--frame", o->layout.frame, "Design opaque frame width (length; default 0)");
+    cmd->add_option("--chord-tol", o->layout.chord_tol,
                     "Design circle chord tolerance (length; default 10nm, as export)");
     cmd->add_option("--list", o->list, "Violations listed per rule (all are counted)")
         ->capture_default_str();

@@ -52,18 +52,9 @@ CompareRunOptions make_options(const Options& o, const CLI::App& cmd, std::strin
     m.tv = true;
     m.noise = noise_levels(o.noise, cmd, &noise);
     m.prior = prior_spec(o.prior);
-    for (const std::string& item : split_list(o.scenes, "--scenes")) {
-        SceneSpec spec = scene_from_name(item);
-        if (spec.kind == SceneKind::kNatural) spec.seed = 0;
-        m.scenes.push_back(spec);
-    }
+    m.scenes = scene_specs(o.scenes);
     m.simulation.seed = o.seed;
-    m.simulation.wiener_nsr = parse_weight_choice(o.nsr, "--nsr");
-    m.simulation.tv_lambda = parse_weight_choice(o.tv_lambda, "--tv-lambda");
-    if (o.tv_iterations < 1) {
-        throw invalid_field("--tv-iters", std::to_string(o.tv_iterations), "must be >= 1");
-    }
-    m.simulation.tv_iterations = o.tv_iterations;
+    set_decoder_flags(m.simulation, o.nsr, o.tv_lambda, o.tv_iterations);
     if (!o.robust.empty()) m.robust = parse_fabrication_errors(o.robust);
     r.settings.seed = o.seed;
     r.baselines = o.baselines;

@@ -53,23 +53,14 @@ MaskMetricsOptions make_options(const ScoreOptions& o, const CLI::App& cmd, std:
     m.tv = wanted.count("tv") > 0;
     m.noise = noise_levels(o.noise, cmd, &noise);
     m.prior = prior_spec(o.prior);
-    for (const std::string& s : split_list(o.scenes, "--scenes")) {
-        SceneSpec spec = scene_from_name(s);
-        if (spec.kind == SceneKind::kNatural) spec.seed = 0;  // the scored natural scene
-        m.scenes.push_back(spec);
-    }
+    m.scenes = scene_specs(o.scenes);
     if (o.seeds < 1 || o.seeds > kMaxSeeds) {
         throw invalid_field("--seeds", std::to_string(o.seeds),
                             "must be between 1 and 1000 (noise realisations per scene)");
     }
     m.simulation.noise_seeds = o.seeds;
     m.simulation.seed = o.seed;
-    m.simulation.wiener_nsr = parse_weight_choice(o.nsr, "--nsr");
-    m.simulation.tv_lambda = parse_weight_choice(o.tv_lambda, "--tv-lambda");
-    if (o.tv_iterations < 1) {
-        throw invalid_field("--tv-iters", std::to_string(o.tv_iterations), "must be >= 1");
-    }
-    m.simulation.tv_iterations = o.tv_iterations;
+    set_decoder_flags(m.simulation, o.nsr, o.tv_lambda, o.tv_iterations);
     if (!o.robust.empty()) m.robust = parse_fabrication_errors(o.robust);
     m.validate();
     return m;

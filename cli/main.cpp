@@ -1,5 +1,6 @@
 // pinmask: the command-line tool. Wires the subcommands (cli/commands.hpp) and maps errors to exit
 // codes.
+#include <functional>
 #include <iostream>
 
 #include "cli/commands.hpp"
@@ -10,6 +11,33 @@
 #include "core/output_set.hpp"
 #include "core/resource_limits.hpp"
 #include "core/units.hpp"
+#include "optimize/mpi/mpi_comm.hpp"
+
+namespace {
+
+// Prints an input error (exit 2). Under mpirun, before any command started MPI, every rank parsed
+// the same flags and read the same files, so the error is every rank's alike: rank 0 alone prints
+// it, and the others leave only once it has (mpirun ends the job at the first rank that exits
+// non-zero, which could otherwise cut rank 0 short). Once a command has started MPI, it routes
+// its set-up errors to rank 0 itself (search, sweep, decode --batch): every rank that gets here
+// prints.
+int report_input_error(const std::function<void()>& print) {
+    using namespace pinmask;
+    if (!launched_by_mpi() || mpi_active()) {
+        print();
+        return 2;
+    }
+    try {
+        RankComm& comm = world_comm();
+        if (comm.rank() == 0) print();
+        comm.barrier();
+    } catch (const std::exception&) {
+        print();  // MPI did not start: say it here rather than not at all
+    }
+    return 2;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     using namespace pinmask;
@@ -50,11 +78,11 @@ int main(int argc, char** argv) {
         app.parse(argc, argv);
         cli::print_fft_warnings();
     } catch (const CLI::ParseError& e) {
-        const int rc = app.exit(e);
-        return rc == 0 ? 0 : 2;
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        return report_input_error([&] { app.exit(e); });
     } catch (const InvalidInput& e) {
-        std::cerr << "pinmask: error: " << readable_numbers(e.what()) << "\n";
-        return 2;
+        return report_input_error(
+            [&] { std::cerr << "pinmask: error: " << readable_numbers(e.what()) << "\n"; });
     } catch (const std::exception& e) {
         std::cerr << "pinmask: failed: " << readable_numbers(e.what()) << "\n";
         return 1;

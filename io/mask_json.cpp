@@ -15,6 +15,7 @@
 #include "io/mask_json.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -285,6 +286,15 @@ std::string mask_file_text(const Mask& mask) {
     return pretty(build_json<OrderedJson>(mask, /*with_pinholes=*/false), kPinholesPath,
                   write_pinholes) +
            "\n";
+}
+
+bool is_mask_file(const std::filesystem::path& path) {
+    if (path.extension() == ".json") return true;
+    std::ifstream in(path, std::ios::binary);
+    char c = 0;
+    while (in.get(c) && std::isspace(static_cast<unsigned char>(c))) {
+    }
+    return in && c == '{';
 }
 
 Mask read_mask_file(const std::filesystem::path& path, const MaskReadOptions& options) {

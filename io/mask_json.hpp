@@ -25,6 +25,11 @@ nlohmann::json mask_to_json(const Mask& mask);
 std::string mask_file_text(const Mask& mask);
 
 Mask read_mask_file(const std::filesystem::path& path, const MaskReadOptions& options = {});
+
+// True when `path` names a mask file rather than a fabrication file: a .json name, or JSON by its
+// first non-blank byte '{' (pinmask check and the Python check() tell their input kinds apart so).
+bool is_mask_file(const std::filesystem::path& path);
+
 // Atomic write, pretty-printed with 2-space indent, keys in a fixed order; byte-identical for
 // identical masks.
 void write_mask_file(const std::filesystem::path& path, const Mask& mask);

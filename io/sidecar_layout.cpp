@@ -10,27 +10,21 @@ namespace pinmask::io {
 
 namespace fs = std::filesystem;
 
-CheckLayoutSettings check_layout_settings(const std::optional<std::string>& shape,
-                                          const std::optional<int>& sides,
-                                          const std::optional<std::string>& hole_side,
-                                          const std::optional<std::string>& frame,
-                                          const std::optional<std::string>& chord_tol,
-                                          const std::optional<std::string>& tone,
-                                          const std::optional<std::string>& units, bool mirror) {
+CheckLayoutSettings check_layout_settings(const CheckLayoutText& given) {
     const auto length = [](const std::optional<std::string>& v,
                            const char* flag) -> std::optional<GivenLength> {
         if (!v) return std::nullopt;
         return GivenLength{parse_length_m(*v, flag), *v};
     };
     CheckLayoutSettings g;
-    g.shape = shape;
-    g.sides = sides;
-    g.hole_side = length(hole_side, "--hole-side");
-    g.frame = length(frame, "--frame");
-    g.chord_tol = length(chord_tol, "--chord-tol");
-    g.tone = tone;
-    g.units = units;
-    g.mirror = mirror;
+    g.shape = given.shape;
+    g.sides = given.sides;
+    g.hole_side = length(given.hole_side, "--hole-side");
+    g.frame = length(given.frame, "--frame");
+    g.chord_tol = length(given.chord_tol, "--chord-tol");
+    g.tone = given.tone;
+    g.units = given.units;
+    g.mirror = given.mirror;
     return g;
 }
 

@@ -31,15 +31,18 @@ struct CheckLayoutSettings {
     bool mirror = false;
 };
 
-// The settings from their text as given (lengths with a unit or plain metres, parsed here;
-// InvalidInput naming the flag).
-CheckLayoutSettings check_layout_settings(const std::optional<std::string>& shape,
-                                          const std::optional<int>& sides,
-                                          const std::optional<std::string>& hole_side,
-                                          const std::optional<std::string>& frame,
-                                          const std::optional<std::string>& chord_tol,
-                                          const std::optional<std::string>& tone,
-                                          const std::optional<std::string>& units, bool mirror);
+// The layout settings as a user gives them (`pinmask check` flags, the Python check()
+// arguments): text as typed; an empty field is not given.
+struct CheckLayoutText {
+    std::optional<std::string> shape;
+    std::optional<int> sides;
+    std::optional<std::string> hole_side, frame, chord_tol;  // lengths: with a unit, or metres
+    std::optional<std::string> tone, units;
+    bool mirror = false;
+};
+
+// The settings from their text (lengths parsed here; InvalidInput naming the flag).
+CheckLayoutSettings check_layout_settings(const CheckLayoutText& given);
 
 // The sidecar's layout settings, every given setting required to agree with it (InvalidInput
 // naming the flag otherwise); without a sidecar, the given settings over the defaults.

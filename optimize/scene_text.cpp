@@ -11,17 +11,12 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "optimize/scene_cairo.hpp"
 #include "optimize/scenes.hpp"
 
 namespace pinmask {
 namespace {
 
-struct SurfaceDeleter {
-    void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
-};
-struct ContextDeleter {
-    void operator()(cairo_t* c) const { cairo_destroy(c); }
-};
 struct FontOptionsDeleter {
     void operator()(cairo_font_options_t* o) const { cairo_font_options_destroy(o); }
 };
@@ -40,53 +35,38 @@ void check_size(int rows, int cols, const char* what) {
 
 Plane text_scene(int rows, int cols, std::uint64_t seed) {
     check_size(rows, cols, "text");
-    std::unique_ptr<cairo_surface_t, SurfaceDeleter> surface(
-        cairo_image_surface_create(CAIRO_FORMAT_A8, cols, rows));
-    if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
-        throw RuntimeFailure("text scene: Cairo could not create a " + std::to_string(cols) +
-                             " x " + std::to_string(rows) + " surface");
-    }
-    std::unique_ptr<cairo_t, ContextDeleter> cr(cairo_create(surface.get()));
-    const double line = static_cast<double>(rows) / kTextLines;
-    cairo_select_font_face(cr.get(), "sans-serif", CAIRO_FONT_SLANT_NORMAL,
-                           CAIRO_FONT_WEIGHT_NORMAL);
-    // Every font option set explicitly: left at their defaults, hinting and metrics are resolved
-    // from whatever Cairo drew first in the process (a PDF report turns metric hinting off), so
-    // the same seed drew other pages after a report.
-    std::unique_ptr<cairo_font_options_t, FontOptionsDeleter> options(cairo_font_options_create());
-    cairo_font_options_set_antialias(options.get(), CAIRO_ANTIALIAS_GRAY);
-    cairo_font_options_set_hint_style(options.get(), CAIRO_HINT_STYLE_NONE);
-    cairo_font_options_set_hint_metrics(options.get(), CAIRO_HINT_METRICS_OFF);
-    cairo_font_options_set_subpixel_order(options.get(), CAIRO_SUBPIXEL_ORDER_DEFAULT);
-    cairo_set_font_options(cr.get(), options.get());
-    cairo_set_font_size(cr.get(), 0.8 * line);
-    cairo_set_source_rgba(cr.get(), 0, 0, 0, 1);
-    std::mt19937_64 rng(seed);
-    std::uniform_int_distribution<int> letter(0, 51), word_length(1, 8);
-    for (int l = 0; l < kTextLines; ++l) {
-        std::string text;
-        while (static_cast<int>(text.size()) < cols / 4 + 8) {
-            const int len = word_length(rng);
-            for (int i = 0; i < len; ++i) {
-                const int c = letter(rng);
-                text.push_back(static_cast<char>(c < 26 ? 'A' + c : 'a' + (c - 26)));
+    const Plane ink = render_ink_coverage(rows, cols, "text scene", [&](cairo_t* cr) {
+        const double line = static_cast<double>(rows) / kTextLines;
+        cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+        // Every font option set explicitly: left at their defaults, hinting and metrics are
+        // resolved from whatever Cairo drew first in the process (a PDF report turns metric hinting
+        // off), so the same seed drew other pages after a report.
+        std::unique_ptr<cairo_font_options_t, FontOptionsDeleter> options(
+            cairo_font_options_create());
+        cairo_font_options_set_antialias(options.get(), CAIRO_ANTIALIAS_GRAY);
+        cairo_font_options_set_hint_style(options.get(), CAIRO_HINT_STYLE_NONE);
+        cairo_font_options_set_hint_metrics(options.get(), CAIRO_HINT_METRICS_OFF);
+        cairo_font_options_set_subpixel_order(options.get(), CAIRO_SUBPIXEL_ORDER_DEFAULT);
+        cairo_set_font_options(cr, options.get());
+        cairo_set_font_size(cr, 0.8 * line);
+        cairo_set_source_rgba(cr, 0, 0, 0, 1);
+        std::mt19937_64 rng(seed);
+        std::uniform_int_distribution<int> letter(0, 51), word_length(1, 8);
+        for (int l = 0; l < kTextLines; ++l) {
+            std::string text;
+            while (static_cast<int>(text.size()) < cols / 4 + 8) {
+                const int len = word_length(rng);
+                for (int i = 0; i < len; ++i) {
+                    const int c = letter(rng);
+                    text.push_back(static_cast<char>(c < 26 ? 'A' + c : 'a' + (c - 26)));
+                }
+                text.push_back(' ');
             }
-            text.push_back(' ');
+            cairo_move_to(cr, 0.02 * cols, (l + 0.8) * line);
+            cairo_show_text(cr, text.c_str());
         }
-        cairo_move_to(cr.get(), 0.02 * cols, (l + 0.8) * line);
-        cairo_show_text(cr.get(), text.c_str());
-    }
-    cairo_surface_flush(surface.get());
-    if (cairo_status(cr.get()) != CAIRO_STATUS_SUCCESS) {
-        throw RuntimeFailure(std::string("text scene: Cairo failed: ") +
-                             cairo_status_to_string(cairo_status(cr.get())));
-    }
-    const unsigned char* data = cairo_image_surface_get_data(surface.get());
-    const int stride = cairo_image_surface_get_stride(surface.get());
-    Plane p(rows, cols);
-    for (int r = 0; r < rows; ++r)
-        for (int c = 0; c < cols; ++c) p(r, c) = 1.0 - data[r * stride + c] / 255.0;
-    return p;
+    });
+    return 1.0 - ink;  // paper 1, ink 0
 }
 
 Plane stars_scene(int rows, int cols, std::uint64_t seed) {

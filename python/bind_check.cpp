@@ -5,7 +5,6 @@
 // io/sidecar_layout), else from the arguments.
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 
 #include "core/error.hpp"
 #include "core/units.hpp"
@@ -67,17 +66,16 @@ io::CheckLayoutSettings layout_settings(const CheckArgs& o) {
         if (v.is_none()) return std::nullopt;
         return py::str(v).cast<std::string>();
     };
-    return io::check_layout_settings(o.shape, o.sides, text(o.hole_side), text(o.frame),
-                                     text(o.chord_tol), o.tone, o.units, o.mirror);
-}
-
-bool is_mask_file(const fs::path& path) {
-    if (path.extension() == ".json") return true;
-    std::ifstream in(path, std::ios::binary);
-    char c = 0;
-    while (in.get(c) && std::isspace(static_cast<unsigned char>(c))) {
-    }
-    return in && c == '{';
+    io::CheckLayoutText given;
+    given.shape = o.shape;
+    given.sides = o.sides;
+    given.hole_side = text(o.hole_side);
+    given.frame = text(o.frame);
+    given.chord_tol = text(o.chord_tol);
+    given.tone = o.tone;
+    given.units = o.units;
+    given.mirror = o.mirror;
+    return io::check_layout_settings(given);
 }
 
 py::object um_or_none(double nm) {
@@ -120,7 +118,7 @@ void bind_check(py::module_& m) {
             bool comparison_ok = true;
             std::string settings;
             DrcReport r;
-            if (input_is_mask || is_mask_file(input_text)) {
+            if (input_is_mask || io::is_mask_file(input_text)) {
                 if (!mask.is_none())
                     throw invalid_field("--mask", py::str(mask).cast<std::string>(),
                                         "only used with a fabrication file");

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "tests/cli/generated_masks.hpp"
 #include "tests/support/cli_run.hpp"
 
 using pinmask::test::run_cli;
@@ -21,16 +22,8 @@ constexpr const char* kSearch =
     " --grid 8 --holes 5 --pixels-per-cell 4 --tiles 1 --prior-scenes 2 --threads 1 --top 2 "
     "--seed 4 --evals 300 --rerank-scenes letter-R --no-rerank-tv --quiet ";
 
-struct RobustMasks {
-    TempDir dir{"robust"};
-    std::string a, b;
-    RobustMasks() {
-        a = dir / "a.mask.json";
-        b = dir / "b.mask.json";
-        const std::string common = " --family random --grid 8 --holes 5 --pixels-per-cell 4 ";
-        REQUIRE(run_cli("generate" + common + "--seed 1 -o " + a).exit_code == 0);
-        REQUIRE(run_cli("generate" + common + "--seed 2 -o " + b).exit_code == 0);
-    }
+struct RobustMasks : pinmask::test::GeneratedMasks {
+    RobustMasks() : GeneratedMasks("robust") {}
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "tests/cli/generated_masks.hpp"
 #include "tests/support/cli_run.hpp"
 
 using pinmask::test::run_cli;
@@ -12,16 +13,8 @@ using pinmask::test::TempDir;
 
 namespace {
 
-struct Masks {
-    TempDir dir{"score"};
-    std::string a, b;
-    Masks() {
-        a = dir / "a.mask.json";
-        b = dir / "b.mask.json";
-        const std::string common = " --family random --grid 8 --holes 5 --pixels-per-cell 4 ";
-        REQUIRE(run_cli("generate" + common + "--seed 1 -o " + a).exit_code == 0);
-        REQUIRE(run_cli("generate" + common + "--seed 2 -o " + b).exit_code == 0);
-    }
+struct Masks : pinmask::test::GeneratedMasks {
+    Masks() : GeneratedMasks("score") {}
 };
 
 }  // namespace

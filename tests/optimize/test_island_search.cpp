@@ -12,45 +12,15 @@
 #include "optimize/chain_codec.hpp"
 #include "optimize/island_search.hpp"
 #include "optimize/search.hpp"
+#include "tests/optimize/sidelobe_fixture.hpp"
 
 using namespace pinmask;
+using pinmask::test::SidelobeObjective;
 
 namespace {
 
-class SidelobeObjective : public SearchObjective {
-  public:
-    double evaluate(const PatternState& s) const override {
-        const auto t = terms(s);
-        return t.at("max_sidelobe") + 1e-3 * t.at("integrated_sidelobe");
-    }
-    std::map<std::string, double> terms(const PatternState& s) const override {
-        const auto& r = s.autocorrelation();
-        int max_side = 0;
-        double isl = 0.0;
-        for (std::size_t i = 1; i < r.size(); ++i) {
-            max_side = std::max(max_side, r[i]);
-            isl += static_cast<double>(r[i]) * r[i];
-        }
-        return {{"max_sidelobe", max_side}, {"integrated_sidelobe", isl}};
-    }
-};
-
-Pattern sample(std::mt19937_64& rng) {
-    const int n = 13, holes = 12;  // no perfect difference set: chains end apart
-    const double spacing = 1.5;
-    std::uniform_int_distribution<int> cell(0, n - 1);
-    Pattern p;
-    p.n = n;
-    p.min_spacing_cells = spacing;
-    while (static_cast<int>(p.pinholes.size()) < holes) {
-        const Cell c{cell(rng), cell(rng)};
-        bool ok = true;
-        for (const Cell& q : p.pinholes)
-            ok = ok && torus_distance_cells(c, q, n) >= spacing - kSpacingTolerance;
-        if (ok) p.pinholes.push_back(c);
-    }
-    return p;
-}
+// n = 13 with 12 holes has no perfect difference set: chains end apart.
+Pattern sample(std::mt19937_64& rng) { return test::sample_pattern(rng, 13, 12, 1.5); }
 
 SearchOptions options(SearchStrategy strategy = SearchStrategy::kAnneal) {
     SearchOptions o;
