@@ -13,7 +13,6 @@ std::string size_text(int rows, int cols) {
     return std::to_string(cols) + " x " + std::to_string(rows) + " (W x H)";
 }
 
-
 // The first non-finite pixel of a plane, named (the full scan runs only once a fast test failed).
 void check_plane_finite(const Plane& p, const std::string& what, int ch) {
     if (is_all_finite(p)) return;
@@ -21,8 +20,8 @@ void check_plane_finite(const Plane& p, const std::string& what, int ch) {
         for (Eigen::Index c = 0; c < p.cols(); ++c)
             if (!std::isfinite(p(r, c))) {
                 throw InvalidInput(what + ": pixel (row " + std::to_string(r) + ", col " +
-                                   std::to_string(c) + ", channel " + std::to_string(ch) +
-                                   ") is " + (std::isnan(p(r, c)) ? "NaN" : "infinite") +
+                                   std::to_string(c) + ", channel " + std::to_string(ch) + ") is " +
+                                   (std::isnan(p(r, c)) ? "NaN" : "infinite") +
                                    ": every pixel must be finite");
             }
 }

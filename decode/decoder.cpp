@@ -130,13 +130,12 @@ DecodeResult decode_closed_form(const Plane& capture, const Plane& psf, const De
     }
     if (cyclic) sums.otf = &op.otf();
     const double pow2 = power_of_two_above(peak);
-    const double scale =
-        o.single_precision || pow2 > 0x1p100 || pow2 < 0x1p-100 ? pow2 : 1.0;
-    Plane x = apply_filter(*filter, cyclic ? capture : pad_to_work(g, capture),
-                           o.single_precision, sums, scale);
+    const double scale = o.single_precision || pow2 > 0x1p100 || pow2 < 0x1p-100 ? pow2 : 1.0;
+    Plane x = apply_filter(*filter, cyclic ? capture : pad_to_work(g, capture), o.single_precision,
+                           sums, scale);
     // The sums are those of capture / scale; the linear model's residual is taken the same way.
-    const double res2 = cyclic ? sums.residual2
-                               : ((op.apply(x) - capture) * (1.0 / scale)).square().sum();
+    const double res2 =
+        cyclic ? sums.residual2 : ((op.apply(x) - capture) * (1.0 / scale)).square().sum();
     DecodeResult r;
     r.residual = std::sqrt(res2) * scale;
     r.objective = (res2 + sums.penalty) * scale * scale;

@@ -90,13 +90,15 @@ void filter_rows(std::complex<T>* spectrum, const std::complex<T>* g_scaled,
         const Eigen::Index b = k * hc;
         add(once, filter_range<T, kOtf, kWeight>(spectrum, g_scaled, H, w, b, b + 1, n));
         if (last > 1)
-            add(twice, filter_range<T, kOtf, kWeight>(spectrum, g_scaled, H, w, b + 1, b + last, n));
+            add(twice,
+                filter_range<T, kOtf, kWeight>(spectrum, g_scaled, H, w, b + 1, b + last, n));
         if (last < hc)
-            add(once, filter_range<T, kOtf, kWeight>(spectrum, g_scaled, H, w, b + last, b + hc, n));
+            add(once,
+                filter_range<T, kOtf, kWeight>(spectrum, g_scaled, H, w, b + last, b + hc, n));
     }
     sums.residual2 = kOtf ? (once.res2 + 2.0 * twice.res2) / n : 0.0;
     // A weight plane already counts the partners (half_spectrum_multiplicity); a uniform one not.
-    sums.penalty = kWeight                 ? (once.weighted + twice.weighted) / n
+    sums.penalty = kWeight               ? (once.weighted + twice.weighted) / n
                    : sums.uniform_weight ? *sums.uniform_weight * (once.x2 + 2.0 * twice.x2) / n
                                          : 0.0;
 }
@@ -121,10 +123,14 @@ void filter_with_sums(
     const std::complex<T>* g = g_scaled.data();
     const std::complex<double>* h = H ? H->data() : nullptr;
     const double* wd = w ? w->data() : nullptr;
-    if (H && w) filter_rows<T, true, true>(sp, g, h, wd, rows, cols, sums);
-    else if (H) filter_rows<T, true, false>(sp, g, h, wd, rows, cols, sums);
-    else if (w) filter_rows<T, false, true>(sp, g, h, wd, rows, cols, sums);
-    else filter_rows<T, false, false>(sp, g, h, wd, rows, cols, sums);
+    if (H && w)
+        filter_rows<T, true, true>(sp, g, h, wd, rows, cols, sums);
+    else if (H)
+        filter_rows<T, true, false>(sp, g, h, wd, rows, cols, sums);
+    else if (w)
+        filter_rows<T, false, true>(sp, g, h, wd, rows, cols, sums);
+    else
+        filter_rows<T, false, false>(sp, g, h, wd, rows, cols, sums);
 }
 
 void check_scale(double scale) {

@@ -237,8 +237,9 @@ PsfFile read_psf_file(const fs::path& image_path) {
     if (!is_all_finite(out.psf)) throw InvalidInput(where + ": the PSF holds NaN or Inf");
     const double sum = out.psf.sum();
     if (std::isinf(sum)) {  // finite values whose sum overflows: dividing would zero the PSF
-        throw InvalidInput(where + ": the PSF's values sum beyond the double range; scale them "
-                                   "down");
+        throw InvalidInput(where +
+                           ": the PSF's values sum beyond the double range; scale them "
+                           "down");
     }
     if (!(sum > 0)) {
         throw InvalidInput(where + ": the PSF sums to " + std::to_string(sum) +

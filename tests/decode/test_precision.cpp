@@ -127,7 +127,8 @@ TEST_CASE("scale invariance: every method, captures scaled by 2^-900 .. 2^900") 
     }
 }
 
-TEST_CASE("closed forms: a 2^k-scaled capture gives exactly 2^k times the estimate, both precisions") {
+TEST_CASE(
+    "closed forms: a 2^k-scaled capture gives exactly 2^k times the estimate, both precisions") {
     // The closed forms scale by a power of two inside the filter's conversions (float32 always,
     // double outside 2^-100..2^100), so scaling is exact: bit for bit, not within a tolerance.
     // k = +-1000 puts the capture's peak near 1e301 / 1e-301 (the squared sums would overflow
