@@ -80,6 +80,27 @@ Exhaustive enumerate(const AnalyticWienerModel& model, int n, int k, double s) {
     return e;
 }
 
+// The issue-13 dim-light setup of the two measurements below: paper camera, 16 x 16, 8 px per
+// cell, spacing rule 2 cells, 1024-scene natural prior (seeds 20000..), photon model 3 e- per
+// pinhole per pixel and read noise 3 e-.
+constexpr int kDimLightN = 16;
+constexpr double kDimLightSpacing = 2.0;
+
+std::shared_ptr<const AnalyticWienerModel> dim_light_model() {
+    const int ppc = 8, m = kDimLightN * ppc;
+    Mask tmpl;
+    tmpl.camera = paper_camera();
+    tmpl.pattern.n = kDimLightN;
+    tmpl.pattern.min_spacing_cells = kDimLightSpacing;
+    tmpl.psf.pixels_per_cell = ppc;
+    PriorSpec family;
+    family.count = 1024;
+    family.first_seed = 20000;
+    return std::make_shared<AnalyticWienerModel>(
+        expand_half_spectrum(kernel_spectrum(mask_kernel(tmpl), kDimLightN, ppc), m),
+        make_scene_prior(family, m), photons(3.0, 3.0));
+}
+
 }  // namespace
 
 TEST_CASE("autocorrelation bound: forbidden lags are the pairs the spacing rule refuses") {
@@ -300,19 +321,9 @@ TEST_CASE("autocorrelation bound: options and multipliers are validated, naming 
 // bounds (optimal filter), the scalar-NSR bound without and with the autocorrelation
 // multipliers, the random medians; then the maxima over K = 5..40 against 18.46 + 0.5 dB.
 TEST_CASE("dim light: autocorrelation bounds over K = 5..40 (issue 13 table)" * doctest::skip()) {
-    const int n = 16, ppc = 8, m = n * ppc, draws = 7;
-    const double spacing = 2.0;
-    Mask tmpl;
-    tmpl.camera = paper_camera();
-    tmpl.pattern.n = n;
-    tmpl.pattern.min_spacing_cells = spacing;
-    tmpl.psf.pixels_per_cell = ppc;
-    PriorSpec family;
-    family.count = 1024;
-    family.first_seed = 20000;
-    const auto model = std::make_shared<AnalyticWienerModel>(
-        expand_half_spectrum(kernel_spectrum(mask_kernel(tmpl), n, ppc), m),
-        make_scene_prior(family, m), photons(3.0, 3.0));
+    const int n = kDimLightN, draws = 7;
+    const double spacing = kDimLightSpacing;
+    const auto model = dim_light_model();
     const AutocorrBoundModel am(model, n);
     const NsrBoundModel nm(model, n);
     double max_opt = -INFINITY, max_nsr = -INFINITY, best_tuned = -INFINITY;
@@ -365,19 +376,9 @@ TEST_CASE("dim light: autocorrelation bounds over K = 5..40 (issue 13 table)" * 
 // largest (K = 22), how much the lag multipliers gain when they are also raised per NSR
 // interval (NsrBoundOptions::lag_steps) instead of taken from the optimal filter's dual.
 TEST_CASE("dim light: scalar-NSR bound with lag ascent at K = 22" * doctest::skip()) {
-    const int n = 16, ppc = 8, m = n * ppc, k = 22;
-    const double spacing = 2.0;
-    Mask tmpl;
-    tmpl.camera = paper_camera();
-    tmpl.pattern.n = n;
-    tmpl.pattern.min_spacing_cells = spacing;
-    tmpl.psf.pixels_per_cell = ppc;
-    PriorSpec family;
-    family.count = 1024;
-    family.first_seed = 20000;
-    const auto model = std::make_shared<AnalyticWienerModel>(
-        expand_half_spectrum(kernel_spectrum(mask_kernel(tmpl), n, ppc), m),
-        make_scene_prior(family, m), photons(3.0, 3.0));
+    const int n = kDimLightN, k = 22;
+    const double spacing = kDimLightSpacing;
+    const auto model = dim_light_model();
     AutocorrBoundOptions o;
     o.holes = k;
     o.min_spacing_cells = spacing;
