@@ -9,8 +9,11 @@
 #include <vector>
 
 #include "core/fft.hpp"
+#include "design/camera.hpp"
 #include "design/pattern.hpp"
+#include "design/psf.hpp"
 #include "optimize/analytic_error.hpp"
+#include "optimize/mask_metrics.hpp"
 #include "optimize/scene_prior.hpp"
 
 namespace pinmask::test {
@@ -59,6 +62,34 @@ inline Pattern random_pattern(int n, int k, std::mt19937_64& rng) {
     p.n = n;
     for (int i = 0; i < k; ++i) p.pinholes.push_back({cells[i] / n, cells[i] % n});
     return p;
+}
+
+// The dim-light setup of issue 13 (tests/optimize/test_search_holes.cpp): paper camera, 16 x 16,
+// 8 px per cell, spacing rule 2 cells; the expected PSNR over the natural-scene family (1024
+// scenes of seeds 20000..) under the photon model, 3 e- per pinhole per pixel, read noise 3 e-.
+inline constexpr int kDimLightN = 16;
+inline constexpr int kDimLightPixelsPerCell = 8;
+inline constexpr double kDimLightSpacing = 2.0;
+
+inline Mask dim_light_template() {
+    Mask tmpl;
+    tmpl.camera = paper_camera();
+    tmpl.pattern.n = kDimLightN;
+    tmpl.pattern.min_spacing_cells = kDimLightSpacing;
+    tmpl.psf.pixels_per_cell = kDimLightPixelsPerCell;
+    return tmpl;
+}
+
+inline std::shared_ptr<const AnalyticWienerModel> dim_light_model() {
+    const int m = kDimLightN * kDimLightPixelsPerCell;
+    PriorSpec family;
+    family.count = 1024;
+    family.first_seed = 20000;
+    return std::make_shared<AnalyticWienerModel>(
+        expand_half_spectrum(
+            kernel_spectrum(mask_kernel(dim_light_template()), kDimLightN, kDimLightPixelsPerCell),
+            m),
+        make_scene_prior(family, m), photons(3.0, 3.0));
 }
 
 }  // namespace pinmask::test

@@ -340,18 +340,9 @@ TEST_CASE(
     // light)" (tests/optimize/test_search_holes.cpp): paper camera, 16 x 16, 8 px per cell, photon
     // model 3 e- per pinhole per pixel, read noise 3 e-, the expected PSNR over the natural-scene
     // family (1024 scenes of seeds 20000..), the same random masks (7 per K, seeds 1000 K + d).
-    const int n = 16, ppc = 8, m = n * ppc, draws = 7;
-    Mask tmpl;
-    tmpl.camera = paper_camera();
-    tmpl.pattern.n = n;
-    tmpl.pattern.min_spacing_cells = 2.0;
-    tmpl.psf.pixels_per_cell = ppc;
-    PriorSpec family;
-    family.count = 1024;
-    family.first_seed = 20000;
-    const auto model = std::make_shared<AnalyticWienerModel>(
-        expand_half_spectrum(kernel_spectrum(mask_kernel(tmpl), n, ppc), m),
-        make_scene_prior(family, m), photons(3.0, 3.0));
+    const int n = kDimLightN, draws = 7;
+    const Mask tmpl = dim_light_template();
+    const auto model = dim_light_model();
     const ObjectiveBoundModel bounds(model, n);
     double best_bound = -INFINITY, best_tuned = -INFINITY, best_optimal = -INFINITY;
     int bound_k = 0, tuned_k = 0, optimal_k = 0;

@@ -80,27 +80,6 @@ Exhaustive enumerate(const AnalyticWienerModel& model, int n, int k, double s) {
     return e;
 }
 
-// The issue-13 dim-light setup of the two measurements below: paper camera, 16 x 16, 8 px per
-// cell, spacing rule 2 cells, 1024-scene natural prior (seeds 20000..), photon model 3 e- per
-// pinhole per pixel and read noise 3 e-.
-constexpr int kDimLightN = 16;
-constexpr double kDimLightSpacing = 2.0;
-
-std::shared_ptr<const AnalyticWienerModel> dim_light_model() {
-    const int ppc = 8, m = kDimLightN * ppc;
-    Mask tmpl;
-    tmpl.camera = paper_camera();
-    tmpl.pattern.n = kDimLightN;
-    tmpl.pattern.min_spacing_cells = kDimLightSpacing;
-    tmpl.psf.pixels_per_cell = ppc;
-    PriorSpec family;
-    family.count = 1024;
-    family.first_seed = 20000;
-    return std::make_shared<AnalyticWienerModel>(
-        expand_half_spectrum(kernel_spectrum(mask_kernel(tmpl), kDimLightN, ppc), m),
-        make_scene_prior(family, m), photons(3.0, 3.0));
-}
-
 }  // namespace
 
 TEST_CASE("autocorrelation bound: forbidden lags are the pairs the spacing rule refuses") {

@@ -115,18 +115,8 @@ TEST_CASE(
 // random mask's tuned-NSR PSNR.
 TEST_CASE("dim light: scalar-NSR bound over K = 5..40 against the best per-K random median" *
           doctest::skip()) {
-    const int n = 16, ppc = 8, m = n * ppc, draws = 7;
-    Mask tmpl;
-    tmpl.camera = paper_camera();
-    tmpl.pattern.n = n;
-    tmpl.pattern.min_spacing_cells = 2.0;
-    tmpl.psf.pixels_per_cell = ppc;
-    PriorSpec family;
-    family.count = 1024;
-    family.first_seed = 20000;
-    const auto model = std::make_shared<AnalyticWienerModel>(
-        expand_half_spectrum(kernel_spectrum(mask_kernel(tmpl), n, ppc), m),
-        make_scene_prior(family, m), photons(3.0, 3.0));
+    const int n = kDimLightN, draws = 7;
+    const auto model = dim_light_model();
     const NsrBoundModel bounds(model, n);
     double best_bound = -INFINITY, best_tuned = -INFINITY;
     int bound_k = 0, tuned_k = 0;
