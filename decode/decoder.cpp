@@ -88,17 +88,25 @@ std::shared_ptr<const ConvolutionOperator> operator_for(const Plane& psf, const 
     return std::make_shared<const ConvolutionOperator>(psf, g);
 }
 
-// The penalty of a closed-form method as a half-spectrum weight (SpectralSums): nsr ||x||^2, the
-// per-frequency (1/N) sum_k NSR(k) |X(k)|^2, or lambda ||L x||^2.
-Plane closed_form_weight(const ConvGeometry& g, const DecodeOptions& o) {
+// The penalty of a closed-form method in `sums`: nsr ||x||^2 as a uniform weight (no plane),
+// else a half-spectrum weight plane kept in `storage`: the per-frequency (1/N) sum_k NSR(k)
+// |X(k)|^2, or lambda ||L x||^2.
+void set_closed_form_penalty(const ConvGeometry& g, const DecodeOptions& o, SpectralSums& sums,
+                             Plane& storage) {
     const int R = g.work_rows, C = g.work_cols;
     if (o.method == DecodeMethod::kWiener) {
         const WienerParams& w = o.wiener;
-        if (w.nsr_per_frequency) return fold_full_spectrum_weight(*w.nsr_per_frequency);
-        return w.nsr * half_spectrum_multiplicity(R, C);
+        if (!w.nsr_per_frequency) {
+            sums.uniform_weight = w.nsr;
+            return;
+        }
+        storage = fold_full_spectrum_weight(*w.nsr_per_frequency);
+    } else {
+        const TikhonovParams& t = o.tikhonov;
+        storage =
+            t.lambda * tikhonov_symbol(R, C, t.regulariser) * half_spectrum_multiplicity(R, C);
     }
-    const TikhonovParams& t = o.tikhonov;
-    return t.lambda * tikhonov_symbol(R, C, t.regulariser) * half_spectrum_multiplicity(R, C);
+    sums.weight = &storage;
 }
 
 // Closed-form methods: x = G p on the working grid (capture zero-padded for the linear model).
@@ -122,12 +130,7 @@ DecodeResult decode_closed_form(const Plane& capture, const Plane& psf, const De
                              : std::make_shared<const WienerFilter>(closed_form_filter(op, o));
     SpectralSums sums;
     Plane weight;
-    if (o.method == DecodeMethod::kWiener && !o.wiener.nsr_per_frequency) {
-        sums.uniform_weight = o.wiener.nsr;  // nsr ||x||^2 without a constant plane
-    } else {
-        weight = closed_form_weight(g, o);
-        sums.weight = &weight;
-    }
+    set_closed_form_penalty(g, o, sums, weight);
     if (cyclic) sums.otf = &op.otf();
     const double pow2 = power_of_two_above(peak);
     const double scale = o.single_precision || pow2 > 0x1p100 || pow2 < 0x1p-100 ? pow2 : 1.0;

@@ -18,10 +18,13 @@ void check_floor(double floor) {
     }
 }
 
-// conj(h) / max(|h|^2 + nsr, floor), 0 where that denominator is 0.
+// conj(h) / max(|h|^2 + nsr, floor), 0 where that denominator is 0. Written in real parts (the
+// operations of std::norm and complex / real, so the same bits) so that its loops vectorise.
 std::complex<double> wiener_gain(std::complex<double> h, double nsr, double floor) {
-    const double denom = std::max(std::norm(h) + nsr, floor);
-    return denom > 0.0 ? std::conj(h) / denom : std::complex<double>(0.0, 0.0);
+    const double re = h.real(), im = h.imag();
+    const double denom = std::max(re * re + im * im + nsr, floor);
+    return denom > 0.0 ? std::complex<double>(re / denom, -im / denom)
+                       : std::complex<double>(0.0, 0.0);
 }
 
 void check_otf(const ComplexPlane& otf, int rows, int cols) {
@@ -170,15 +173,9 @@ WienerFilter WienerFilter::from_otf(const ComplexPlane& otf, int rows, int cols,
     check_floor(denominator_floor);
     check_otf(otf, rows, cols);
     ComplexPlane g(otf.rows(), otf.cols());
-    // wiener_gain written out (the same operations, so the same bits), so that it vectorises.
     const std::complex<double>* h = otf.data();
     std::complex<double>* gd = g.data();
-    for (Eigen::Index i = 0; i < otf.size(); ++i) {
-        const double re = h[i].real(), im = h[i].imag();
-        const double denom = std::max(re * re + im * im + nsr, denominator_floor);
-        gd[i] = denom > 0.0 ? std::complex<double>(re / denom, -im / denom)
-                            : std::complex<double>(0.0, 0.0);
-    }
+    for (Eigen::Index i = 0; i < otf.size(); ++i) gd[i] = wiener_gain(h[i], nsr, denominator_floor);
     return WienerFilter(rows, cols, std::move(g));
 }
 
