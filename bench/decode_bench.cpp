@@ -14,6 +14,7 @@
 
 #include "core/error.hpp"
 #include "core/fft.hpp"
+#include "core/fftw_api.hpp"
 #include "decode/convolution.hpp"
 #include "decode/richardson_lucy.hpp"
 #include "decode/tikhonov.hpp"
@@ -79,54 +80,30 @@ Plane make_scene(int n, std::mt19937_64& rng) {
     return x;
 }
 
-// The double and the float FFTW interfaces side by side, so that one timing routine serves both.
-struct FftwDouble {
-    using Real = double;
-    static constexpr auto alloc_real = fftw_alloc_real;
-    static constexpr auto alloc_complex = fftw_alloc_complex;
-    static constexpr auto plan_with_nthreads = fftw_plan_with_nthreads;
-    static constexpr auto plan_r2c = fftw_plan_dft_r2c_2d;
-    static constexpr auto plan_c2r = fftw_plan_dft_c2r_2d;
-    static constexpr auto execute = fftw_execute;
-    static constexpr auto destroy_plan = fftw_destroy_plan;
-    static constexpr auto free = fftw_free;
-};
-struct FftwFloat {
-    using Real = float;
-    static constexpr auto alloc_real = fftwf_alloc_real;
-    static constexpr auto alloc_complex = fftwf_alloc_complex;
-    static constexpr auto plan_with_nthreads = fftwf_plan_with_nthreads;
-    static constexpr auto plan_r2c = fftwf_plan_dft_r2c_2d;
-    static constexpr auto plan_c2r = fftwf_plan_dft_c2r_2d;
-    static constexpr auto execute = fftwf_execute;
-    static constexpr auto destroy_plan = fftwf_destroy_plan;
-    static constexpr auto free = fftwf_free;
-};
-
 // The bare FFTW r2c + c2r pair on FFTW-allocated buffers, planned with FFTW_MEASURE (the
 // planner times candidates: the fastest pair FFTW offers on this machine) with `threads`.
-template <class Fftw>
+template <class Real>
 double time_fft_pair(int rows, int cols, int repeat, double min_batch, int threads,
                      const BenchClock& clock) {
-    using Real = typename Fftw::Real;
+    using F = Fftw<Real>;
     const std::size_t real = static_cast<std::size_t>(rows) * cols;
     const std::size_t half = static_cast<std::size_t>(rows) * (cols / 2 + 1);
-    Real* x = Fftw::alloc_real(real);
-    auto* spec = Fftw::alloc_complex(half);
-    Fftw::plan_with_nthreads(threads);
-    auto r2c = Fftw::plan_r2c(rows, cols, x, spec, FFTW_MEASURE);
-    auto c2r = Fftw::plan_c2r(rows, cols, spec, x, FFTW_MEASURE);
+    Real* x = F::alloc_real(real);
+    auto* spec = F::alloc_complex(half);
+    F::plan_with_nthreads(threads);
+    auto r2c = F::r2c(rows, cols, x, spec, FFTW_MEASURE);
+    auto c2r = F::c2r(rows, cols, spec, x, FFTW_MEASURE);
     for (std::size_t i = 0; i < real; ++i) x[i] = static_cast<Real>(i % 97) / Real(97);
     const double t = time_per_call(
         [&] {
-            Fftw::execute(r2c);
-            Fftw::execute(c2r);
+            F::execute(r2c);
+            F::execute(c2r);
         },
         repeat, min_batch, clock);
-    Fftw::destroy_plan(r2c);
-    Fftw::destroy_plan(c2r);
-    Fftw::free(spec);
-    Fftw::free(x);
+    F::destroy(r2c);
+    F::destroy(c2r);
+    F::free(spec);
+    F::free(x);
     return t;
 }
 
@@ -248,9 +225,9 @@ std::vector<DecodeBenchRecord> bench_decode(const DecodeBenchOptions& o) {
 
         const int threads = fft_threads_for(rows, cols);  // what the library's plans use
         const double pair =
-            time_fft_pair<FftwDouble>(rows, cols, o.repeat, o.min_batch_seconds, threads, clock);
+            time_fft_pair<double>(rows, cols, o.repeat, o.min_batch_seconds, threads, clock);
         const double pair_f =
-            time_fft_pair<FftwFloat>(rows, cols, o.repeat, o.min_batch_seconds, threads, clock);
+            time_fft_pair<float>(rows, cols, o.repeat, o.min_batch_seconds, threads, clock);
         auto add = [&](const char* method, double t, int iterations = 1, bool converged = true) {
             DecodeBenchRecord rec;
             rec.method = method;

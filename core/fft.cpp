@@ -16,6 +16,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/fftw_api.hpp"
 
 namespace pinmask {
 namespace {
@@ -160,51 +161,6 @@ bool threaded_size(int rows, int cols) {
 }
 
 bool is_float(Kind k) { return k == Kind::kR2CF || k == Kind::kC2RF; }
-
-// FFTW's double and single precision APIs behind one name, so the real-transform code below is
-// written once for both precisions.
-template <class T>
-struct Fftw;
-template <>
-struct Fftw<double> {
-    using Complex = fftw_complex;
-    using PlanT = fftw_plan;
-    static double* alloc_real(std::size_t n) { return fftw_alloc_real(n); }
-    static Complex* alloc_complex(std::size_t n) { return fftw_alloc_complex(n); }
-    static void free(void* p) { fftw_free(p); }
-    static PlanT r2c(int r, int c, double* in, Complex* out, unsigned f) {
-        return fftw_plan_dft_r2c_2d(r, c, in, out, f);
-    }
-    static PlanT c2r(int r, int c, Complex* in, double* out, unsigned f) {
-        return fftw_plan_dft_c2r_2d(r, c, in, out, f);
-    }
-    static void execute_r2c(void* p, double* in, Complex* out) {
-        fftw_execute_dft_r2c(static_cast<PlanT>(p), in, out);
-    }
-    static void execute_c2r(void* p, Complex* in, double* out) {
-        fftw_execute_dft_c2r(static_cast<PlanT>(p), in, out);
-    }
-};
-template <>
-struct Fftw<float> {
-    using Complex = fftwf_complex;
-    using PlanT = fftwf_plan;
-    static float* alloc_real(std::size_t n) { return fftwf_alloc_real(n); }
-    static Complex* alloc_complex(std::size_t n) { return fftwf_alloc_complex(n); }
-    static void free(void* p) { fftwf_free(p); }
-    static PlanT r2c(int r, int c, float* in, Complex* out, unsigned f) {
-        return fftwf_plan_dft_r2c_2d(r, c, in, out, f);
-    }
-    static PlanT c2r(int r, int c, Complex* in, float* out, unsigned f) {
-        return fftwf_plan_dft_c2r_2d(r, c, in, out, f);
-    }
-    static void execute_r2c(void* p, float* in, Complex* out) {
-        fftwf_execute_dft_r2c(static_cast<PlanT>(p), in, out);
-    }
-    static void execute_c2r(void* p, Complex* in, float* out) {
-        fftwf_execute_dft_c2r(static_cast<PlanT>(p), in, out);
-    }
-};
 
 // One real-transform plan (r2c when forward, else c2r) in precision T on scratch buffers.
 template <class T>
