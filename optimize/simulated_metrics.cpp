@@ -27,12 +27,25 @@ void check_weight(const char* field, const WeightChoice& w) {
     }
 }
 
-// One noisy capture of one channel of one scene.
+// One noisy capture of one channel of one scene; for Wiener also both half spectra, so tuning
+// the NSR needs no transform (wiener_mse).
 struct Trial {
     int scene = 0;
     const Plane* truth = nullptr;
     Plane capture;
+    const ComplexPlane* truth_spectrum = nullptr;
+    ComplexPlane capture_spectrum;
 };
+
+// The MSE of the Wiener estimate real(ifft2(G .* fft2(capture))) against the truth, by Parseval
+// from the half spectra: (1 / N^2) sum_full |G Y - X|^2 with N = rows cols. G is Hermitian (a
+// real PSF, a scalar NSR), so G Y is the estimate's spectrum exactly; the decoded MSE is the
+// same number up to rounding (tests/optimize/test_simulated_metrics.cpp).
+double wiener_mse(const ComplexPlane& g, const Plane& multiplicity, const Trial& t) {
+    const double n = static_cast<double>(t.truth->size());
+    const double sum = (multiplicity * (g * t.capture_spectrum - *t.truth_spectrum).abs2()).sum();
+    return sum / (n * n);
+}
 
 }  // namespace
 
@@ -77,8 +90,13 @@ SimulatedQuality simulated_quality(const Plane& psf, const std::vector<NamedScen
                            std::to_string(open_cells) + ") <= total cells (" +
                            std::to_string(total_cells) + ")");
 
+    const bool wiener = decoder == SimulatedDecoder::kWiener;
     std::vector<Trial> trials;
+    std::vector<ComplexPlane> truth_spectra;  // one per scene channel, for Wiener
     std::vector<int> per_scene(scenes.size(), 0);
+    std::size_t channels = 0;
+    for (const NamedScene& s : scenes) channels += static_cast<std::size_t>(s.image.n_channels());
+    truth_spectra.reserve(channels);  // the trials point into it
     for (std::size_t s = 0; s < scenes.size(); ++s) {
         const Image& img = scenes[s].image;
         if (img.rows() != rows || img.cols() != cols || img.n_channels() < 1) {
@@ -87,15 +105,25 @@ SimulatedQuality simulated_quality(const Plane& psf, const std::vector<NamedScen
                                size_text(rows, cols));
         }
         for (int ch = 0; ch < img.n_channels(); ++ch) {
-            const Plane clean = fft.inverse(fft.forward(img.channels[ch]) * otf);
+            ComplexPlane truth_spectrum = fft.forward(img.channels[ch]);
+            const Plane clean = fft.inverse(truth_spectrum * otf);
+            if (wiener) truth_spectra.push_back(std::move(truth_spectrum));
             for (int k = 0; k < options.noise_seeds; ++k) {
                 std::seed_seq seq{static_cast<std::uint32_t>(options.seed),
                                   static_cast<std::uint32_t>(options.seed >> 32),
                                   static_cast<std::uint32_t>(s), static_cast<std::uint32_t>(ch),
                                   static_cast<std::uint32_t>(k)};
                 std::mt19937_64 rng(seq);
-                trials.push_back({static_cast<int>(s), &img.channels[ch],
-                                  add_noise(clean, noise, open_cells, total_cells, rng)});
+                Trial t{static_cast<int>(s),
+                        &img.channels[ch],
+                        add_noise(clean, noise, open_cells, total_cells, rng),
+                        nullptr,
+                        {}};
+                if (wiener) {
+                    t.truth_spectrum = &truth_spectra.back();
+                    t.capture_spectrum = fft.forward(t.capture);
+                }
+                trials.push_back(std::move(t));
                 ++per_scene[s];
             }
         }
@@ -106,7 +134,7 @@ SimulatedQuality simulated_quality(const Plane& psf, const std::vector<NamedScen
     auto decode_all = [&](double w) {
         std::vector<Plane> out;
         out.reserve(trials.size());
-        if (decoder == SimulatedDecoder::kWiener) {
+        if (wiener) {
             const WienerFilter filter(psf, rows, cols, w);
             WienerFilter::Workspace ws;
             for (const Trial& t : trials) {
@@ -127,14 +155,20 @@ SimulatedQuality simulated_quality(const Plane& psf, const std::vector<NamedScen
         q.decodes += static_cast<long long>(trials.size());
         return out;
     };
+    const Plane multiplicity = wiener ? half_spectrum_multiplicity(rows, cols) : Plane();
     auto mean_mse = [&](double w) {
-        const std::vector<Plane> est = decode_all(w);
         double sum = 0.0;
+        if (wiener) {  // no transform per weight: Parseval on the stored spectra
+            const WienerFilter filter = WienerFilter::from_otf(otf, rows, cols, w);
+            for (const Trial& t : trials)
+                sum += wiener_mse(filter.half_spectrum(), multiplicity, t);
+            return sum / static_cast<double>(trials.size());
+        }
+        const std::vector<Plane> est = decode_all(w);
         for (std::size_t i = 0; i < trials.size(); ++i) sum += mse(est[i], *trials[i].truth);
         return sum / static_cast<double>(trials.size());
     };
-    const WeightChoice& choice =
-        decoder == SimulatedDecoder::kWiener ? options.wiener_nsr : options.tv_lambda;
+    const WeightChoice& choice = wiener ? options.wiener_nsr : options.tv_lambda;
     q.weight = choice.tuned ? tune_log_weight(mean_mse).x : choice.value;
 
     const std::vector<Plane> est = decode_all(q.weight);

@@ -58,7 +58,7 @@ struct SimulatedQuality {
     double mean_psnr_db = 0.0;  // mean over scenes
     double mean_ssim = 0.0;     // mean over scenes (NaN as above)
     std::vector<SceneQuality> scenes;
-    long long decodes = 0;  // decoder runs, tuning included
+    long long decodes = 0;  // decoder runs, tuning included (a tuned Wiener NSR needs none)
 };
 
 // Simulates every scene at `snr_db` and decodes with `decoder`. psf: m x m, sum > 0; every scene
