@@ -101,8 +101,12 @@ void draw(cairo_t* cr, const std::vector<HolesPoint>& pts, const std::string& ti
         return va < vb;
     });
     if (std::isfinite(best->psnr_db)) {
+        // Centred over the point, but kept inside the plot near either side (the right axis's
+        // ticks sit just outside it).
+        const double at = (px(best->holes) - kLeft) / pw;
+        const double anchor = at > 0.85 ? 1.0 : at < 0.15 ? 0.0 : 0.5;
         label(cr, px(best->holes), py(best->psnr_db) - 10,
-              "best K = " + std::to_string(best->holes), 11, 0.5);
+              "best K = " + std::to_string(best->holes), 11, anchor);
     }
     // Legend under the axis title row, outside the data area.
     const double ly = kHeight - 18;
