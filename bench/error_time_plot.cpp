@@ -6,22 +6,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <memory>
 #include <sstream>
 
+#include "core/cairo_handles.hpp"
 #include "core/error.hpp"
 
 namespace pinmask {
 namespace {
 
-struct SurfaceDeleter {
-    void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
-};
-struct ContextDeleter {
-    void operator()(cairo_t* c) const { cairo_destroy(c); }
-};
-using SurfacePtr = std::unique_ptr<cairo_surface_t, SurfaceDeleter>;
-using ContextPtr = std::unique_ptr<cairo_t, ContextDeleter>;
+using cairo::ContextPtr;
+using cairo::SurfacePtr;
 
 // Plot frame inside the canvas (pixels): room for axis labels left/bottom, legend right.
 constexpr double kLeft = 80, kRight = 220, kTop = 70, kBottom = 70;

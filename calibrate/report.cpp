@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <memory>
 #include <vector>
 
+#include "core/cairo_handles.hpp"
 #include "core/error.hpp"
 
 namespace pinmask::calibrate {
@@ -41,8 +41,7 @@ void text(cairo_t* cr, double x, double y, const std::string& s, double size = 9
 double draw_plane(cairo_t* cr, const Plane& p, double lo, double hi, double x, double y, double w,
                   double h) {
     const int rows = static_cast<int>(p.rows()), cols = static_cast<int>(p.cols());
-    std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> img(
-        cairo_image_surface_create(CAIRO_FORMAT_RGB24, cols, rows), cairo_surface_destroy);
+    cairo::SurfacePtr img(cairo_image_surface_create(CAIRO_FORMAT_RGB24, cols, rows));
     cairo_surface_flush(img.get());
     unsigned char* data = cairo_image_surface_get_data(img.get());
     const int stride = cairo_image_surface_get_stride(img.get());
@@ -82,15 +81,13 @@ std::string calibration_report_pdf(const Plane& capture, const CalibrationSummar
                                    const std::string& title) {
     std::string out;
     {
-        std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
-            cairo_pdf_surface_create_for_stream(append, &out, kPageW, kPageH),
-            cairo_surface_destroy);
+        cairo::SurfacePtr surface(
+            cairo_pdf_surface_create_for_stream(append, &out, kPageW, kPageH));
         cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_TITLE, title.c_str());
         cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATOR, "pinmask 0.1.0");
         cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATE_DATE, kPinnedDate);
         cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_MOD_DATE, kPinnedDate);
-        std::unique_ptr<cairo_t, decltype(&cairo_destroy)> ctx(cairo_create(surface.get()),
-                                                               cairo_destroy);
+        cairo::ContextPtr ctx(cairo_create(surface.get()));
         cairo_t* cr = ctx.get();
         cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
         const double box = kPageW - 2 * kMargin;

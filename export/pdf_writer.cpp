@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 
+#include "core/cairo_handles.hpp"
 #include "core/error.hpp"
 #include "export/decimal.hpp"
 #include "export/film_paint.hpp"
@@ -101,8 +101,7 @@ std::string pdf_document(const Layout& layout, const PdfOptions& o) {
 
     std::string out;
     {
-        std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
-            cairo_pdf_surface_create_for_stream(append, &out, w_pt, h_pt), cairo_surface_destroy);
+        cairo::SurfacePtr surface(cairo_pdf_surface_create_for_stream(append, &out, w_pt, h_pt));
         check_cairo_surface(surface.get(), "PDF surface");
         cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_TITLE,
                                        ("pinmask mask " + layout.mask_hash).c_str());
@@ -111,8 +110,7 @@ std::string pdf_document(const Layout& layout, const PdfOptions& o) {
         cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_MOD_DATE, kPinnedDate);
         cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_SUBJECT,
                                        ("pinmask " + layout_info(layout, "mm")).c_str());
-        std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()),
-                                                              cairo_destroy);
+        cairo::ContextPtr cr(cairo_create(surface.get()));
         cairo_set_source_rgb(cr.get(), 1, 1, 1);
         cairo_paint(cr.get());
         cairo_translate(cr.get(), double(margin) * kPointsPerNm, double(margin) * kPointsPerNm);

@@ -3,8 +3,8 @@
 #include <cairo.h>
 
 #include <cmath>
-#include <memory>
 
+#include "core/cairo_handles.hpp"
 #include "core/error.hpp"
 #include "core/resource_limits.hpp"
 #include "export/film_paint.hpp"
@@ -38,12 +38,9 @@ PreviewSize preview_size(const Layout& layout, double dpi) {
 
 std::string png_preview(const Layout& layout, double dpi, DrawMode draw) {
     const PreviewSize size = preview_size(layout, dpi);
-    std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
-        cairo_image_surface_create(CAIRO_FORMAT_RGB24, size.cols, size.rows),
-        cairo_surface_destroy);
+    cairo::SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, size.cols, size.rows));
     check_cairo_surface(surface.get(), "PNG preview surface");
-    std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()),
-                                                          cairo_destroy);
+    cairo::ContextPtr cr(cairo_create(surface.get()));
     cairo_set_source_rgb(cr.get(), 1, 1, 1);
     cairo_paint(cr.get());
     // Pixels per nm; y flipped so the layout's y axis points up in the picture.

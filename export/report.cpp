@@ -11,6 +11,7 @@
 #include <map>
 #include <memory>
 
+#include "core/cairo_handles.hpp"
 #include "core/error.hpp"
 #include "export/film_paint.hpp"
 #include "export/report_draw.hpp"
@@ -24,14 +25,8 @@ constexpr double kMaxPixelsPerPoint = 8.0;              // 576 dpi: 6736 x 4762 
 const report_draw::Font kFooterFont{7.5, false, false};
 constexpr double kFooterBaselineFromBottom = 24.0;
 
-struct SurfaceDeleter {
-    void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
-};
-struct ContextDeleter {
-    void operator()(cairo_t* c) const { cairo_destroy(c); }
-};
-using SurfacePtr = std::unique_ptr<cairo_surface_t, SurfaceDeleter>;
-using ContextPtr = std::unique_ptr<cairo_t, ContextDeleter>;
+using cairo::ContextPtr;
+using cairo::SurfacePtr;
 
 cairo_status_t append(void* closure, const unsigned char* data, unsigned int length) {
     static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <memory>
 #include <sstream>
 
+#include "core/cairo_handles.hpp"
 #include "core/error.hpp"
 
 namespace pinmask::report_draw {
@@ -30,10 +30,6 @@ void frame(cairo_t* cr, const Box& b) {
     cairo_stroke(cr);
     cairo_restore(cr);
 }
-
-struct SurfaceDeleter {
-    void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
-};
 
 }  // namespace
 
@@ -114,8 +110,7 @@ std::uint8_t grey_level(double v, double lo, double hi) {
 
 Box draw_plane(cairo_t* cr, const Plane& values, double lo, double hi, const Box& area) {
     const int rows = static_cast<int>(values.rows()), cols = static_cast<int>(values.cols());
-    std::unique_ptr<cairo_surface_t, SurfaceDeleter> img(
-        cairo_image_surface_create(CAIRO_FORMAT_RGB24, cols, rows));
+    cairo::SurfacePtr img(cairo_image_surface_create(CAIRO_FORMAT_RGB24, cols, rows));
     if (cairo_surface_status(img.get()) != CAIRO_STATUS_SUCCESS) {
         throw RuntimeFailure("report panel of " + std::to_string(rows) + " x " +
                              std::to_string(cols) + " pixels: cairo could not allocate it");
@@ -150,8 +145,7 @@ Box draw_plane(cairo_t* cr, const Plane& values, double lo, double hi, const Box
 
 void draw_colorbar(cairo_t* cr, const Box& bar, double lo, double hi, const std::string& unit,
                    const Font& font) {
-    std::unique_ptr<cairo_surface_t, SurfaceDeleter> ramp(
-        cairo_image_surface_create(CAIRO_FORMAT_RGB24, kRampSteps, 1));
+    cairo::SurfacePtr ramp(cairo_image_surface_create(CAIRO_FORMAT_RGB24, kRampSteps, 1));
     cairo_surface_flush(ramp.get());
     auto* px = reinterpret_cast<std::uint32_t*>(cairo_image_surface_get_data(ramp.get()));
     for (std::uint32_t g = 0; g < kRampSteps; ++g) px[g] = (g << 16) | (g << 8) | g;

@@ -2,21 +2,14 @@
 
 #include <cairo-svg.h>
 
-#include <memory>
-
+#include "core/cairo_handles.hpp"
 #include "core/error.hpp"
 
 namespace pinmask {
 namespace {
 
-struct SurfaceDel {
-    void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
-};
-struct ContextDel {
-    void operator()(cairo_t* c) const { cairo_destroy(c); }
-};
-using Surface = std::unique_ptr<cairo_surface_t, SurfaceDel>;
-using Context = std::unique_ptr<cairo_t, ContextDel>;
+using Surface = cairo::SurfacePtr;
+using Context = cairo::ContextPtr;
 
 void check(cairo_t* cr, cairo_surface_t* s, const std::string& what,
            const std::filesystem::path& path) {

@@ -1,30 +1,18 @@
 #include "optimize/scene_cairo.hpp"
 
-#include <memory>
-
+#include "core/cairo_handles.hpp"
 #include "core/error.hpp"
 
 namespace pinmask {
-namespace {
-
-struct SurfaceDeleter {
-    void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
-};
-struct ContextDeleter {
-    void operator()(cairo_t* c) const { cairo_destroy(c); }
-};
-
-}  // namespace
 
 Plane render_ink_coverage(int rows, int cols, const std::string& what,
                           const std::function<void(cairo_t*)>& draw) {
-    std::unique_ptr<cairo_surface_t, SurfaceDeleter> surface(
-        cairo_image_surface_create(CAIRO_FORMAT_A8, cols, rows));
+    cairo::SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_A8, cols, rows));
     if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
         throw RuntimeFailure(what + ": Cairo could not create a " + std::to_string(cols) + " x " +
                              std::to_string(rows) + " surface");
     }
-    std::unique_ptr<cairo_t, ContextDeleter> cr(cairo_create(surface.get()));
+    cairo::ContextPtr cr(cairo_create(surface.get()));
     draw(cr.get());
     cairo_surface_flush(surface.get());
     if (cairo_status(cr.get()) != CAIRO_STATUS_SUCCESS) {

@@ -2,18 +2,13 @@
 // surface; the ink box is stretched to the frame minus kLetterMargin on each side.
 #include <cairo.h>
 
-#include <memory>
-
+#include "core/cairo_handles.hpp"
 #include "core/error.hpp"
 #include "optimize/scene_cairo.hpp"
 #include "optimize/scenes.hpp"
 
 namespace pinmask {
 namespace {
-
-struct OptionsDeleter {
-    void operator()(cairo_font_options_t* o) const { cairo_font_options_destroy(o); }
-};
 
 constexpr double kReferenceFontSize = 100.0;  // user units; only the ratio to the ink box matters
 
@@ -25,7 +20,7 @@ Plane letter_r_scene(int rows, int cols) {
                            ": both dimensions must be >= 1");
     }
     return render_ink_coverage(rows, cols, "letter-R scene", [&](cairo_t* cr) {
-        std::unique_ptr<cairo_font_options_t, OptionsDeleter> options(cairo_font_options_create());
+        cairo::FontOptionsPtr options(cairo_font_options_create());
         // Unhinted outlines: the glyph shape does not snap to the pixel grid, so it scales
         // smoothly.
         cairo_font_options_set_hint_style(options.get(), CAIRO_HINT_STYLE_NONE);

@@ -6,20 +6,16 @@
 //          positions, brightness 1 / (1 + 9 u^2) for u uniform (a few bright, many faint).
 #include <cairo.h>
 
-#include <memory>
 #include <random>
 #include <string>
 
+#include "core/cairo_handles.hpp"
 #include "core/error.hpp"
 #include "optimize/scene_cairo.hpp"
 #include "optimize/scenes.hpp"
 
 namespace pinmask {
 namespace {
-
-struct FontOptionsDeleter {
-    void operator()(cairo_font_options_t* o) const { cairo_font_options_destroy(o); }
-};
 
 constexpr int kTextLines = 8;  // lines per frame height
 constexpr double kStarPixelsPerStar = 200.0;
@@ -41,8 +37,7 @@ Plane text_scene(int rows, int cols, std::uint64_t seed) {
         // Every font option set explicitly: left at their defaults, hinting and metrics are
         // resolved from whatever Cairo drew first in the process (a PDF report turns metric hinting
         // off), so the same seed drew other pages after a report.
-        std::unique_ptr<cairo_font_options_t, FontOptionsDeleter> options(
-            cairo_font_options_create());
+        cairo::FontOptionsPtr options(cairo_font_options_create());
         cairo_font_options_set_antialias(options.get(), CAIRO_ANTIALIAS_GRAY);
         cairo_font_options_set_hint_style(options.get(), CAIRO_HINT_STYLE_NONE);
         cairo_font_options_set_hint_metrics(options.get(), CAIRO_HINT_METRICS_OFF);
