@@ -108,8 +108,12 @@ ExportSizeRecord sizes_of(const std::string& name, const Mask& mask, const Layou
     ExportSizeRecord r;
     r.mask = name;
     r.pinholes = l.polygons.size();
+    // Named fields assigned on a default WriteOptions: a designated initializer that skips the
+    // nested gds/dxf/pdf members draws gcc's -Wmissing-field-initializers.
+    WriteOptions hierarchy;
+    hierarchy.gds_hierarchy = true;
     const std::string flat = write_fabrication_bytes(l, FabFormat::kGds, {});
-    const std::string cells = write_fabrication_bytes(l, FabFormat::kGds, {.gds_hierarchy = true});
+    const std::string cells = write_fabrication_bytes(l, FabFormat::kGds, hierarchy);
     const std::string oas = write_fabrication_bytes(l, FabFormat::kOasis, {});
     for (const auto& [bytes, f] :
          {std::pair{&flat, FabFormat::kGds}, {&cells, FabFormat::kGds}, {&oas, FabFormat::kOasis}})
@@ -155,8 +159,10 @@ ExportBenchResult bench_export(const ExportBenchOptions& o) {
         const fs::path path = o.scratch_dir / ("bench" + fab_extension(f));
         const fs::path ref = o.scratch_dir / ("reference" + fab_extension(f));
         std::string bytes;
+        WriteOptions wo;
+        wo.png_dpi = o.dpi;
         const Timing t = time_min(o.repeat, [&] {
-            bytes = write_fabrication_bytes(layout, f, {.png_dpi = o.dpi});
+            bytes = write_fabrication_bytes(layout, f, wo);
             fwrite_file(path, bytes);
         });
         const Timing t_ref = time_min(o.repeat, [&] { fwrite_file(ref, bytes); });
@@ -180,9 +186,10 @@ ExportBenchResult bench_export(const ExportBenchOptions& o) {
     // Data volume: the bench mask as one tile, and the same cell count as a quarter-size
     // pattern tiled 4 x 4 (the cyclic tiling every coded mask has).
     res.sizes.push_back(sizes_of(std::to_string(o.n) + "^2 cells, 1 tile", mask));
+    LayoutOptions apart;
+    apart.hole_side_m = 0.5 * o.pinhole_m;  // neighbours apart
     res.sizes.push_back(sizes_of(std::to_string(o.n) + "^2 uniform random",
-                                 uniform_mask(o, mask.pattern.pinholes.size()),
-                                 {.hole_side_m = 0.5 * o.pinhole_m}));  // neighbours apart
+                                 uniform_mask(o, mask.pattern.pinholes.size()), apart));
     if (o.n % 4 == 0 && o.n >= 64)
         res.sizes.push_back(sizes_of(std::to_string(o.n / 4) + "^2 cells x 4 x 4 tiles",
                                      bench_mask(o, o.n / 4, 4)));

@@ -43,7 +43,11 @@ int run(const CheckOptions& o) {
                             "must be finite and >= 0");
     if (o.list < 1) throw invalid_field("--list", std::to_string(o.list), "must be >= 1");
     const VendorRules vendor = vendor_rules(o.vendor);
-    CheckReport rep{.input = o.input, .vendor = o.vendor, .mask = o.mask, .list = o.list};
+    CheckReport rep;  // fields assigned: a partial designated initializer warns (-Wextra)
+    rep.input = o.input;
+    rep.vendor = o.vendor;
+    rep.mask = o.mask;
+    rep.list = o.list;
     FileCheck c;
     if (const auto picture = picture_format_of(o.input); picture && !io::is_mask_file(o.input)) {
         rep.kind = fab_format_name(*picture);
