@@ -4,7 +4,6 @@
 #include <sstream>
 
 #include "cli/noise_options.hpp"
-#include "core/error.hpp"
 #include "io/json_strict.hpp"
 
 namespace pinmask::cli {
@@ -25,23 +24,7 @@ void add_prior_flags(CLI::App& cmd, PriorFlags& f) {
 PriorSpec prior_spec(const PriorFlags& f) { return parse_prior_spec(f.prior, f.count); }
 
 std::vector<SceneSpec> scene_specs(const std::string& scenes) {
-    std::vector<SceneSpec> specs;
-    for (const std::string& item : split_list(scenes, "--scenes")) {
-        SceneSpec spec = scene_from_name(item);
-        if (spec.kind == SceneKind::kNatural) spec.seed = 0;
-        specs.push_back(spec);
-    }
-    return specs;
-}
-
-void set_decoder_flags(SimulatedMetricsOptions& sim, const std::string& nsr,
-                       const std::string& tv_lambda, int tv_iterations) {
-    sim.wiener_nsr = parse_weight_choice(nsr, "--nsr");
-    sim.tv_lambda = parse_weight_choice(tv_lambda, "--tv-lambda");
-    if (tv_iterations < 1) {
-        throw invalid_field("--tv-iters", std::to_string(tv_iterations), "must be >= 1");
-    }
-    sim.tv_iterations = tv_iterations;
+    return scene_specs_from_names(split_list(scenes, "--scenes"));
 }
 
 void metrics_json(const MaskMetrics& m, nlohmann::ordered_json& row,

@@ -14,9 +14,11 @@
 
 namespace pinmask::cli {
 
-// The filter and weight spellings (optimize/metric_spellings.hpp), under their old names.
+// The filter, weight and decoder spellings (optimize/metric_spellings.hpp), under their old
+// names.
 using pinmask::parse_weight_choice;
 using pinmask::parse_wiener_filter;
+using pinmask::set_decoder_flags;
 
 // --prior and --prior-scenes.
 struct PriorFlags {
@@ -26,14 +28,9 @@ struct PriorFlags {
 void add_prior_flags(CLI::App& cmd, PriorFlags& flags);
 PriorSpec prior_spec(const PriorFlags& flags);
 
-// --scenes (comma-separated names or image files) as scene specs; the natural scene is pinned to
-// texture seed 0, so every noise seed and every mask sees the same picture.
+// --scenes (comma-separated names or image files) as scene specs (scene_specs_from_names: the
+// natural scene pinned to texture seed 0).
 std::vector<SceneSpec> scene_specs(const std::string& scenes);
-
-// --nsr, --tv-lambda and --tv-iters of the simulated decoders into sim (InvalidInput naming the
-// flag).
-void set_decoder_flags(SimulatedMetricsOptions& sim, const std::string& nsr,
-                       const std::string& tv_lambda, int tv_iterations);
 
 // The metrics as JSON keys (score's names: max_sidelobe, analytic_wiener_psnr_db_snr30, ...);
 // per-scene figures go to `per_scene` when given.

@@ -36,4 +36,24 @@ WeightChoice parse_weight_choice(const std::string& text, const std::string& fla
     return {false, v};
 }
 
+std::vector<SceneSpec> scene_specs_from_names(const std::vector<std::string>& names) {
+    std::vector<SceneSpec> specs;
+    for (const std::string& item : names) {
+        SceneSpec spec = scene_from_name(item);
+        if (spec.kind == SceneKind::kNatural) spec.seed = 0;
+        specs.push_back(spec);
+    }
+    return specs;
+}
+
+void set_decoder_flags(SimulatedMetricsOptions& sim, const std::string& nsr,
+                       const std::string& tv_lambda, int tv_iterations) {
+    sim.wiener_nsr = parse_weight_choice(nsr, "--nsr");
+    sim.tv_lambda = parse_weight_choice(tv_lambda, "--tv-lambda");
+    if (tv_iterations < 1) {
+        throw invalid_field("--tv-iters", std::to_string(tv_iterations), "must be >= 1");
+    }
+    sim.tv_iterations = tv_iterations;
+}
+
 }  // namespace pinmask

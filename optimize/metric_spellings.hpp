@@ -1,11 +1,14 @@
 // The text spellings of the metric settings that score, compare, search and the Python module
-// share: the Wiener filter of the analytic error and a simulated decoder's weight. Errors name
-// the command-line flag (the Python module raises the same message).
+// share: the Wiener filter of the analytic error, a simulated decoder's weight, the scenes and
+// the decoder flags of score and compare. Errors name the command-line flag (the Python module
+// raises the same message).
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "optimize/analytic_error.hpp"
+#include "optimize/scenes.hpp"
 #include "optimize/simulated_metrics.hpp"
 
 namespace pinmask {
@@ -23,5 +26,14 @@ WienerFilterSpec parse_search_filter(const std::string& text, const NoiseModel& 
 // A simulated decoder's weight (Wiener NSR, TV lambda): "tuned" or a number > 0; InvalidInput
 // naming `flag` otherwise.
 WeightChoice parse_weight_choice(const std::string& text, const std::string& flag);
+
+// The --scenes names (built-in names or image files, scene_from_name) as scene specs; the natural
+// scene is pinned to texture seed 0, so every noise seed and every mask sees the same picture.
+std::vector<SceneSpec> scene_specs_from_names(const std::vector<std::string>& names);
+
+// --nsr, --tv-lambda and --tv-iters of the simulated decoders into sim (InvalidInput naming the
+// flag).
+void set_decoder_flags(SimulatedMetricsOptions& sim, const std::string& nsr,
+                       const std::string& tv_lambda, int tv_iterations);
 
 }  // namespace pinmask

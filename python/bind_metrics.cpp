@@ -33,17 +33,10 @@ CompareSettings compare_settings(std::vector<NoiseLevel> levels, PriorSpec prior
     m.tv = true;
     m.noise = std::move(levels);
     m.prior = std::move(prior);
-    for (const std::string& item : scenes) {
-        SceneSpec spec = scene_from_name(item);
-        if (spec.kind == SceneKind::kNatural) spec.seed = 0;
-        m.scenes.push_back(spec);
-    }
+    // The scene and decoder spellings of score and compare (optimize/metric_spellings).
+    m.scenes = scene_specs_from_names(scenes);
     m.simulation.seed = seed;
-    m.simulation.wiener_nsr = parse_weight_choice(nsr, "--nsr");
-    m.simulation.tv_lambda = parse_weight_choice(tv_lambda, "--tv-lambda");
-    if (tv_iterations < 1)
-        throw invalid_field("--tv-iters", std::to_string(tv_iterations), "must be >= 1");
-    m.simulation.tv_iterations = tv_iterations;
+    set_decoder_flags(m.simulation, nsr, tv_lambda, tv_iterations);
     s.seed = seed;
     validate(s);
     return s;
