@@ -54,6 +54,7 @@ class Chain {
               1,
               {},
               TopCandidates(o.top),
+              {},
               {}} {
         for (const Cell& c : o.keep_out) keep_out_.push_back(c);
     }
