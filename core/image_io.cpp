@@ -197,10 +197,11 @@ LoadedImage read_image(const fs::path& path) {
     }
     if (starts_with(head, n, "\x89PNG\r\n\x1a\n", 8)) return detail::read_png(path);
     if (starts_with(head, n, "\x93NUMPY", 6)) return detail::read_npy(path);
+    if (starts_with(head, n, "\xff\xd8\xff", 3)) return detail::read_jpeg(path);
     throw detail::bad_image_file(
         path, "unrecognised magic bytes [" + hex_bytes(head, n) + "] (" + std::to_string(n) +
-                  " bytes read): expected a TIFF (II*/MM*), PNG (\\x89PNG) or npy (\\x93NUMPY) "
-                  "signature");
+                  " bytes read): expected a TIFF (II*/MM*), PNG (\\x89PNG), npy (\\x93NUMPY) "
+                  "or JPEG (\\xff\\xd8\\xff) signature");
 }
 
 void write_image(const fs::path& path, const Image& image) {

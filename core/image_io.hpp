@@ -1,17 +1,24 @@
 // Image file I/O: TIFF (8/16-bit unsigned, 32-bit float; 1 or 3 channels), PNG (8/16-bit grey or
-// RGB), .npy (float32/float64, little-endian, C order, shape (rows, cols) or (rows, cols, 3)).
+// RGB), .npy (float32/float64, little-endian, C order, shape (rows, cols) or (rows, cols, 3)),
+// and JPEG (read only: lossy, so never written).
 // Integer files are read as raw counts (a 16-bit pixel of 40000 reads as 40000.0); `full_scale`
 // tells the caller the largest representable count (255, 65535; 1.0 for float files) so it can
 // normalise. Writers take values in the target's own units for float formats and values in
 // [0, 1] (clamped, rounded to nearest) for integer formats. Every write is atomic.
 //
-// What the readers accept beyond that (details at the top of tiff_io.cpp, png_io.cpp, npy_io.cpp):
+// What the readers accept beyond that (details at the top of tiff_io.cpp, png_io.cpp, npy_io.cpp,
+// jpeg_io.cpp):
 // - TIFF: the first page only; 64-bit float too; strips or tiles, contiguous or separate planes,
 //   any compression the installed libtiff decodes; extra samples (alpha) are dropped.
 // - PNG: palette images expand to 8-bit RGB, 1/2/4-bit grey to 8-bit grey (full scale 255);
 //   alpha (grey+alpha, RGBA, palette transparency) is dropped; no gamma is applied.
 // - npy: versions 1.0/2.0/3.0; also dtypes '|u1' and '<u2' (integer counts) and shape
 //   (rows, cols, 1).
+// - JPEG (libjpeg-turbo, 8-bit, full scale 255): baseline, progressive and arithmetic-coded;
+//   greyscale -> 1 channel, YCbCr/RGB -> 3 channels RGB, decoded with the exact integer IDCT
+//   (JDCT_ISLOW), so values equal other libjpeg readers'; no ICC or EXIF orientation applied.
+//   Refused by name: CMYK/YCCK (Adobe), 12-bit and lossless JPEG, and any file libjpeg warns on
+//   (a truncated or corrupt scan is refused, never padded with grey).
 #pragma once
 
 #include <filesystem>

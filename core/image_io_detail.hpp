@@ -1,5 +1,6 @@
 // Internals shared by the image file codecs (core/image_io.cpp, tiff_io.cpp, png_io.cpp,
-// npy_io.cpp). Not part of the public API; include only from those files and their tests.
+// npy_io.cpp, jpeg_io.cpp). Not part of the public API; include only from those files and their
+// tests.
 #pragma once
 
 #include <cstdint>
@@ -50,5 +51,6 @@ void store_host_sample(unsigned char* p, SampleFormat format, double v);
 LoadedImage read_tiff(const std::filesystem::path& path);
 LoadedImage read_png(const std::filesystem::path& path);
 LoadedImage read_npy(const std::filesystem::path& path);
+LoadedImage read_jpeg(const std::filesystem::path& path);
 
 }  // namespace pinmask::detail
