@@ -5,9 +5,10 @@
 // other libjpeg-based readers (PIL, skimage) bit for bit. No colour management (ICC profiles are
 // ignored) and no EXIF orientation: values are the stored pixels in stored order.
 // Refused by name: CMYK and YCCK (Adobe) files, other component counts, 12-bit and lossless
-// JPEG (which this libjpeg build cannot decode), and any file on which libjpeg warns (truncated
-// scan, corrupt entropy data, missing EOI): a warning means libjpeg filled the rest with grey,
-// and a capture with invented pixels must not be decoded as if it were real.
+// JPEG (which this libjpeg build cannot decode), progressive files of more than kMaxJpegScans
+// scans (a decoding-time bound), and any file on which libjpeg warns (truncated scan, corrupt
+// entropy data, missing EOI): a warning means libjpeg filled the rest with grey, and a capture
+// with invented pixels must not be decoded as if it were real.
 // No writer: JPEG is lossy, and pinmask's outputs are measurements.
 //
 // Error handling: libjpeg reports errors (and here warnings) through the error manager; ours
@@ -38,6 +39,7 @@ struct JpegState {
     char message[JMSG_LENGTH_MAX] = {};
     bool warning = false;  // the longjmp came from a warning (corrupt or truncated data)
     bool multiple_scans = false;
+    jpeg_progress_mgr progress;
     jpeg_decompress_struct cinfo;
     bool created = false;
     std::FILE* fp = nullptr;
@@ -62,6 +64,22 @@ void on_jpeg_message(j_common_ptr cinfo, int level) {
 
 void on_jpeg_output(j_common_ptr) {}
 
+// A progressive file of a few hundred bytes can declare a large frame and then hundreds of
+// valid (tiny) scans, each a pass over the whole image: minutes of decoding from a small file
+// (libjpeg-turbo's own advice is a scan limit). Real progressive files have about 10 scans
+// (jpeg_simple_progression), optimised scan scripts a few dozen.
+constexpr int kMaxJpegScans = 500;
+
+void on_jpeg_progress(j_common_ptr cinfo) {
+    const auto* d = reinterpret_cast<j_decompress_ptr>(cinfo);
+    if (d->input_scan_number <= kMaxJpegScans) return;
+    auto* st = reinterpret_cast<JpegState*>(cinfo->err);
+    std::snprintf(st->message, sizeof st->message,
+                  "more than %d scans (kMaxJpegScans; a progressive file has about ten)",
+                  kMaxJpegScans);
+    std::longjmp(st->jump, 1);
+}
+
 [[gnu::noinline]] bool jpeg_create_c(JpegState* st) {
     st->cinfo.err = jpeg_std_error(&st->err);
     st->err.error_exit = on_jpeg_error;
@@ -70,6 +88,8 @@ void on_jpeg_output(j_common_ptr) {}
     if (setjmp(st->jump)) return false;
     jpeg_create_decompress(&st->cinfo);
     st->created = true;
+    st->progress.progress_monitor = on_jpeg_progress;
+    st->cinfo.progress = &st->progress;
     return true;
 }
 

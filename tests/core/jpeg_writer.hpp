@@ -21,9 +21,29 @@ struct JpegSpec {
     bool progressive = false;
     bool arithmetic = false;  // arithmetic instead of Huffman entropy coding
     bool subsample = false;   // libjpeg's default 2 x 2 chroma subsampling (4:2:0), else 4:4:4
-    J_COLOR_SPACE input = JCS_RGB;     // JCS_GRAYSCALE, JCS_RGB or JCS_CMYK samples
-    J_COLOR_SPACE file = JCS_UNKNOWN;  // colour space in the file; UNKNOWN: libjpeg's default
+    J_COLOR_SPACE input = JCS_RGB;      // JCS_GRAYSCALE, JCS_RGB or JCS_CMYK samples
+    J_COLOR_SPACE file = JCS_UNKNOWN;   // colour space in the file; UNKNOWN: libjpeg's default
+    std::vector<jpeg_scan_info> scans;  // a progressive scan script (overrides progressive)
 };
+
+// A valid progressive script for one component with 1 + 63 spectral bands and `refinements`
+// successive-approximation steps each (Al from `refinements` down to 0): 64 (refinements + 1)
+// scans.
+inline std::vector<jpeg_scan_info> single_band_script(int refinements) {
+    std::vector<jpeg_scan_info> scans;
+    for (int band = 0; band < 64; ++band) {
+        for (int ah = 0, al = refinements; al >= 0; ah = al, --al) {
+            jpeg_scan_info s{};
+            s.comps_in_scan = 1;
+            s.component_index[0] = 0;
+            s.Ss = s.Se = band;
+            s.Ah = ah;
+            s.Al = al;
+            scans.push_back(s);
+        }
+    }
+    return scans;
+}
 
 // `samples`: rows x cols x components, interleaved, row-major (components from spec.input).
 inline std::string encode_jpeg(const std::vector<unsigned char>& samples, int rows, int cols,
@@ -51,6 +71,10 @@ inline std::string encode_jpeg(const std::vector<unsigned char>& samples, int ro
         }
     }
     if (spec.progressive) jpeg_simple_progression(&c);
+    if (!spec.scans.empty()) {
+        c.scan_info = spec.scans.data();
+        c.num_scans = int(spec.scans.size());
+    }
     jpeg_start_compress(&c, TRUE);
     const std::size_t stride = std::size_t(cols) * c.input_components;
     while (c.next_scanline < c.image_height) {

@@ -217,6 +217,25 @@ TEST_CASE("oversized and unsupported JPEG files are refused by name") {
     expect_refused(dir, "ycck.jpg", encode_jpeg(cmyk, 16, 16, c), {"YCCK", "RGB"});
 }
 
+TEST_CASE("a progressive JPEG with more than kMaxJpegScans scans is refused") {
+    // Each scan is a pass over the whole frame: a small file of many tiny scans with a large
+    // declared frame would take minutes. 64 scans (one per DCT band) decode like the baseline;
+    // 64 x 11 = 704 (ten successive-approximation refinements per band, a valid script) do not.
+    ScratchDir dir("jpeg-scans");
+    const auto grey = random_samples(16, 16, 1, 61);
+    JpegSpec g;
+    g.input = JCS_GRAYSCALE;
+    const Image ref = read_written(dir, "base.jpg", encode_jpeg(grey, 16, 16, g)).image;
+    JpegSpec bands = g;
+    bands.scans = single_band_script(0);
+    CHECK(identical(read_written(dir, "bands.jpg", encode_jpeg(grey, 16, 16, bands)).image, ref));
+    JpegSpec many = g;
+    many.scans = single_band_script(10);
+    REQUIRE(many.scans.size() == 704);
+    expect_refused(dir, "many-scans.jpg", encode_jpeg(grey, 16, 16, many),
+                   {"more than 500 scans", "kMaxJpegScans"});
+}
+
 TEST_CASE("a JPEG named like another format is read by its content") {
     ScratchDir dir("jpeg-by-content");
     const auto grey = random_samples(9, 7, 1, 51);
