@@ -1,6 +1,6 @@
-// Fuzzes the image readers (core/image_io read_image: TIFF via libtiff, PNG via libpng, npy),
-// chosen by magic bytes, through a scratch file. An accepted image must be consistent: 1 or 3
-// channels, every channel of the declared size, within kMaxImageSamples.
+// Fuzzes the image readers (core/image_io read_image: TIFF via libtiff, PNG via libpng, JPEG via
+// libjpeg-turbo, npy), chosen by magic bytes, through a scratch file. An accepted image must be
+// consistent: 1 or 3 channels, every channel of the declared size, within kMaxImageSamples.
 #include <cstddef>
 #include <cstdint>
 

@@ -164,7 +164,7 @@ void bind_psf(py::module_& m) {
             return py::make_tuple(image_to_array(std::move(li.image)), li.full_scale);
         },
         py::arg("path"),
-        "(image, full_scale) of a TIFF, PNG or .npy file (by content): raw values (integer "
+        "(image, full_scale) of a TIFF, PNG, JPEG or .npy file (by content): raw values (integer "
         "files as counts, full_scale = 255 or 65535; float files 1.0). Grey: (rows, cols), no "
         "copy; colour: (rows, cols, 3).");
     m.def(
