@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <iterator>
 #include <random>
 #include <string>
@@ -77,6 +78,18 @@ inline std::string read_error(const std::filesystem::path& path) {
         FAIL_CHECK("read_image threw a non-InvalidInput error: " << e.what());
     }
     return "";
+}
+
+// Writes `bytes` to dir/name, checks read_image refuses it with a message naming the file and
+// containing every `needles` entry.
+inline void expect_refused(const ScratchDir& dir, const std::string& name, const std::string& bytes,
+                           std::initializer_list<const char*> needles) {
+    const std::filesystem::path p = dir / name;
+    write_bytes(p, bytes);
+    const std::string msg = read_error(p);
+    INFO(name << ": " << msg);
+    CHECK(contains(msg, name));
+    for (const char* n : needles) CHECK(contains(msg, n));
 }
 
 // An npy file of format version major.0 from a hand-written header dict (padded to 64 like

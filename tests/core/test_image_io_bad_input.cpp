@@ -63,18 +63,6 @@ std::string npy(const std::string& dict, const std::string& data = "") {
     return npy_bytes(1, dict, data);
 }
 
-// Writes `bytes` to dir/name, checks read_image refuses it with a message naming the file and
-// containing every `needles` entry.
-void expect_refused(const ScratchDir& dir, const std::string& name, const std::string& bytes,
-                    std::initializer_list<const char*> needles) {
-    const fs::path p = dir / name;
-    write_bytes(p, bytes);
-    const std::string msg = read_error(p);
-    INFO(name << ": " << msg);
-    CHECK(contains(msg, name));
-    for (const char* n : needles) CHECK(contains(msg, n));
-}
-
 }  // namespace
 
 TEST_CASE("missing, empty and unrecognised files are refused by name") {

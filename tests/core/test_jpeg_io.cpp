@@ -68,16 +68,6 @@ LoadedImage read_written(const ScratchDir& dir, const std::string& name, const s
     return read_image(dir / name);
 }
 
-void expect_refused(const ScratchDir& dir, const std::string& name, const std::string& bytes,
-                    std::initializer_list<const char*> needles) {
-    const fs::path p = dir / name;
-    write_bytes(p, bytes);
-    const std::string msg = read_error(p);
-    INFO(name << ": " << msg);
-    CHECK(contains(msg, name));
-    for (const char* n : needles) CHECK(contains(msg, n));
-}
-
 }  // namespace
 
 TEST_CASE("JPEG round trip: quality 100 grey and RGB read back within the rounding bound") {
