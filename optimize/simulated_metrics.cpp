@@ -27,8 +27,8 @@ void check_weight(const char* field, const WeightChoice& w) {
     }
 }
 
-// One noisy capture of one channel of one scene; for Wiener also both half spectra, so tuning
-// the NSR needs no transform (wiener_mse).
+// One noisy capture of one channel of one scene; when the Wiener NSR is tuned also both half
+// spectra, so tuning needs no transform (wiener_mse).
 struct Trial {
     int scene = 0;
     const Plane* truth = nullptr;
@@ -91,8 +91,10 @@ SimulatedQuality simulated_quality(const Plane& psf, const std::vector<NamedScen
                            std::to_string(total_cells) + ")");
 
     const bool wiener = decoder == SimulatedDecoder::kWiener;
+    // Tuning the Wiener NSR works on spectra (wiener_mse); a given NSR needs none of them.
+    const bool parseval_tuning = wiener && options.wiener_nsr.tuned;
     std::vector<Trial> trials;
-    std::vector<ComplexPlane> truth_spectra;  // one per scene channel, for Wiener
+    std::vector<ComplexPlane> truth_spectra;  // one per scene channel, for parseval_tuning
     std::vector<int> per_scene(scenes.size(), 0);
     std::size_t channels = 0;
     for (const NamedScene& s : scenes) channels += static_cast<std::size_t>(s.image.n_channels());
@@ -107,7 +109,7 @@ SimulatedQuality simulated_quality(const Plane& psf, const std::vector<NamedScen
         for (int ch = 0; ch < img.n_channels(); ++ch) {
             ComplexPlane truth_spectrum = fft.forward(img.channels[ch]);
             const Plane clean = fft.inverse(truth_spectrum * otf);
-            if (wiener) truth_spectra.push_back(std::move(truth_spectrum));
+            if (parseval_tuning) truth_spectra.push_back(std::move(truth_spectrum));
             for (int k = 0; k < options.noise_seeds; ++k) {
                 std::seed_seq seq{static_cast<std::uint32_t>(options.seed),
                                   static_cast<std::uint32_t>(options.seed >> 32),
@@ -119,7 +121,7 @@ SimulatedQuality simulated_quality(const Plane& psf, const std::vector<NamedScen
                         add_noise(clean, noise, open_cells, total_cells, rng),
                         nullptr,
                         {}};
-                if (wiener) {
+                if (parseval_tuning) {
                     t.truth_spectrum = &truth_spectra.back();
                     t.capture_spectrum = fft.forward(t.capture);
                 }
@@ -135,7 +137,7 @@ SimulatedQuality simulated_quality(const Plane& psf, const std::vector<NamedScen
         std::vector<Plane> out;
         out.reserve(trials.size());
         if (wiener) {
-            const WienerFilter filter(psf, rows, cols, w);
+            const WienerFilter filter = WienerFilter::from_otf(otf, rows, cols, w);
             WienerFilter::Workspace ws;
             for (const Trial& t : trials) {
                 Plane x;
@@ -155,10 +157,10 @@ SimulatedQuality simulated_quality(const Plane& psf, const std::vector<NamedScen
         q.decodes += static_cast<long long>(trials.size());
         return out;
     };
-    const Plane multiplicity = wiener ? half_spectrum_multiplicity(rows, cols) : Plane();
+    const Plane multiplicity = parseval_tuning ? half_spectrum_multiplicity(rows, cols) : Plane();
     auto mean_mse = [&](double w) {
         double sum = 0.0;
-        if (wiener) {  // no transform per weight: Parseval on the stored spectra
+        if (parseval_tuning) {  // no transform per weight: Parseval on the stored spectra
             const WienerFilter filter = WienerFilter::from_otf(otf, rows, cols, w);
             for (const Trial& t : trials)
                 sum += wiener_mse(filter.half_spectrum(), multiplicity, t);
