@@ -15,6 +15,10 @@
 //   r, b    its red or blue sample.
 // Monochrome RAW (no CFA) is returned at full resolution, whatever `bayer` says. Other layouts
 // (X-Trans, Foveon, linear DNG) are refused: they need interpolation.
+// LibRaw runs in a child process (core/isolated_call), which sends back the visible area's raw
+// counts and LibRaw's metadata; the interpretation above happens in the caller's process. A file
+// that crashes LibRaw (Debian 12's 0.20.2 aborts on some malformed files) is refused with
+// InvalidInput naming the file and how LibRaw died; the caller goes on. Costs one fork per file.
 #pragma once
 
 #include <filesystem>
@@ -44,8 +48,9 @@ struct RawInfo {
 bool is_raw_extension(const std::filesystem::path& path);
 
 // Reads a RAW file as described above. Throws InvalidInput ("camera RAW file '<path>': <LibRaw's
-// reason>") for files LibRaw cannot open or unpack, unsupported layouts, and ResourceLimit for a
-// declared size beyond kMaxImageSamples or the memory bound (checked before unpacking).
+// reason>") for files LibRaw cannot open or unpack or that crash it, unsupported layouts, and
+// ResourceLimit for a declared size beyond kMaxImageSamples or the memory bound (checked before
+// unpacking); RuntimeFailure if no child process can be started.
 LoadedImage read_raw(const std::filesystem::path& path, BayerMode mode = BayerMode::kSum2x2,
                      RawInfo* info = nullptr);
 

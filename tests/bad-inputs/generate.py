@@ -365,7 +365,8 @@ SHORT, LONG, ASCII, BYTE, SRATIONAL = 3, 4, 2, 1, 10
 
 
 def raw_dng(width=32, height=24, bps=16, compression=1, photometric=32803, cfa=(0, 1, 1, 2),
-        magic=b"II*\x00", ifd_offset=None, data_fraction=1.0, black=64, white=4095):
+        magic=b"II*\x00", ifd_offset=None, data_fraction=1.0, black=64, white=4095,
+        make="pinmask", model="test sensor"):
     pixels = bytearray()
     for r in range(height if width * height < 10_000_000 else 1):
         for c in range(width):
@@ -388,8 +389,8 @@ def raw_dng(width=32, height=24, bps=16, compression=1, photometric=32803, cfa=(
     add(258, SHORT, [bps])
     add(259, SHORT, [compression])
     add(262, SHORT, [photometric])
-    add(271, ASCII, "pinmask")
-    add(272, ASCII, "test sensor")
+    add(271, ASCII, make)
+    add(272, ASCII, model)
     add(273, LONG, [0])  # patched below
     add(277, SHORT, [1])
     add(278, LONG, [height])
@@ -429,6 +430,9 @@ def raw_dng(width=32, height=24, bps=16, compression=1, photometric=32803, cfa=(
 
 RAW_SEEDS.mkdir(parents=True, exist_ok=True)
 (RAW_SEEDS / "small.dng").write_bytes(raw_dng())
+# Crashes Debian 12's LibRaw 0.20.2 (an abort in its Hasselblad model parsing; core/raw_io runs
+# LibRaw in a child process, so the file is refused): a seed, so every fuzz run takes that path.
+(RAW_SEEDS / "hasselblad-long-model.dng").write_bytes(raw_dng(make="Hasselblad", model="M" * 63))
 write("raw-empty.dng", b"")
 write("raw-text.nef", "this is a text file named like a Nikon RAW file\n" * 4)
 write("raw-wrong-magic.dng", raw_dng(magic=b"XX*\x00"))

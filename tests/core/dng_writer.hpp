@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace pinmask::test {
@@ -19,6 +20,7 @@ struct DngSpec {
     std::array<std::uint8_t, 4> cfa{0, 1, 1, 2};  // 2 x 2 pattern, 0 R, 1 G, 2 B: RGGB
     std::array<float, 4> black{64, 64, 64, 64};   // per position of the 2 x 2 repeat
     std::uint32_t white = 4095;
+    std::string make = "pinmask", model = "test sensor";
 };
 
 inline void write_dng(const std::filesystem::path& path, const DngSpec& s) {
@@ -33,8 +35,8 @@ inline void write_dng(const std::filesystem::path& path, const DngSpec& s) {
     TIFFSetField(t, TIFFTAG_PHOTOMETRIC, 32803);  // CFA
     TIFFSetField(t, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
     TIFFSetField(t, TIFFTAG_ROWSPERSTRIP, s.rows);
-    TIFFSetField(t, TIFFTAG_MAKE, "pinmask");
-    TIFFSetField(t, TIFFTAG_MODEL, "test sensor");
+    TIFFSetField(t, TIFFTAG_MAKE, s.make.c_str());
+    TIFFSetField(t, TIFFTAG_MODEL, s.model.c_str());
     TIFFSetField(t, TIFFTAG_UNIQUECAMERAMODEL, "pinmask test sensor");
     const std::uint8_t version[4] = {1, 4, 0, 0};
     TIFFSetField(t, TIFFTAG_DNGVERSION, version);

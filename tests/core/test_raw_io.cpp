@@ -94,3 +94,28 @@ TEST_CASE("raw_io: malformed files are InvalidInput with LibRaw's reason") {
     CHECK_THROWS_AS(parse_bayer_mode("rggb"), InvalidInput);
     CHECK(parse_bayer_mode("g") == BayerMode::kGreen);
 }
+
+// Debian 12's LibRaw (0.20.2) aborts (glibc's buffer-overflow check in parseHassyModel) on a DNG
+// whose make is Hasselblad and whose model fills its 64-byte field: the file is refused by name
+// and this process goes on. A LibRaw without the bug may read it (then the values must be right).
+TEST_CASE("raw_io: a file that crashes LibRaw is refused, and the caller survives") {
+    TempDir t;
+    auto spec = known_dng({64, 64, 64, 64});
+    spec.make = "Hasselblad";
+    spec.model = std::string(63, 'M');
+    const fs::path p = t.dir / "hassy.dng";
+    test::write_dng(p, spec);
+    try {
+        const LoadedImage im = read_raw(p, BayerMode::kRed);
+        MESSAGE("this LibRaw reads the long Hasselblad model without crashing");
+        CHECK(im.image.channels[0](1, 2) == signal(2, 4));
+    } catch (const InvalidInput& e) {
+        const std::string m = e.what();
+        CHECK(m.find("camera RAW file '" + p.string() + "': LibRaw crashed reading this file") !=
+              std::string::npos);
+        CHECK(m.find("signal 6 (Aborted)") != std::string::npos);
+    }
+    // The same reader still works afterwards.
+    test::write_dng(t.dir / "fine.dng", known_dng({64, 64, 64, 64}));
+    CHECK(read_raw(t.dir / "fine.dng", BayerMode::kRed).image.channels[0](1, 2) == signal(2, 4));
+}

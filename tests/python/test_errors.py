@@ -58,3 +58,21 @@ def test_bad_psf_files_same_message_as_cli(cli, bad_inputs, tmp_path):
         with pytest.raises(ValueError) as e:
             pinmask.read_psf(path)
         assert str(e.value) == msg, name
+
+
+def test_a_raw_file_that_crashes_libraw_is_a_value_error(cli, source_dir, tmp_path):
+    # Debian 12's LibRaw 0.20.2 aborts on this DNG (make "Hasselblad", a 63-character model):
+    # core/raw_io runs LibRaw in a child process, so the interpreter survives and gets the same
+    # message as the command line. A LibRaw without the bug reads it like any DNG.
+    path = source_dir / "fuzz" / "corpus" / "raw" / "hasselblad-long-model.dng"
+    try:
+        image, _ = pinmask.read_image(str(path))
+    except ValueError as e:
+        assert "LibRaw crashed reading this file" in str(e)
+        pinmask.write_image(str(tmp_path / "psf.npy"), np.ones((8, 8)))
+        assert cli.error("decode", str(path), "--psf", "psf.npy", "-o", "x.npy") == str(e)
+    else:
+        assert image.shape == (12, 16)
+    # The module still works afterwards.
+    image, _ = pinmask.read_image(str(source_dir / "fuzz" / "corpus" / "raw" / "small.dng"))
+    assert image.shape == (12, 16)
