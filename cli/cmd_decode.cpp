@@ -177,7 +177,8 @@ void setup(CLI::App& app) {
     auto batch = std::make_shared<BatchRequest>();
     cmd->add_option("--batch", batch->list,
                     "Decode many captures with one PSF and these flags: a directory (its .tif, "
-                    ".tiff, .png, .npy files) or a text file of paths, one a line; -o is then a "
+                    ".tiff, .png, .npy, .jpg, .jpeg and camera RAW files) or a text file of paths, "
+                    "one a line; -o is then a "
                     "directory (STEM.EXT per capture, batch-summary.json). Under mpirun the "
                     "captures are shared among the ranks");
     cmd->add_option("--batch-format", batch->format, "--batch outputs: tiff | png | npy")

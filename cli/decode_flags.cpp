@@ -52,8 +52,9 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeRequest& o) {
         return opt;
     };
     cmd.add_option("capture", o.capture,
-                   "Capture image: TIFF (8/16-bit, float32), PNG (8/16-bit), .npy; grey or RGB "
-                   "(required unless --batch)");
+                   "Capture image: TIFF (8/16-bit, float32), PNG (8/16-bit), .npy, JPEG, or camera "
+                   "RAW by extension (.dng, .cr2, .nef, ...: see --bayer); grey or RGB (required "
+                   "unless --batch)");
     auto* mask =
         cmd.add_option("--mask", o.mask, "Mask file (*.mask.json); its PSF is synthesised");
     auto* psf = cmd.add_option("--psf", o.psf,

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "core/error.hpp"
+#include "core/raw_io.hpp"
 
 namespace pinmask::io {
 namespace {
@@ -15,7 +16,8 @@ namespace fs = std::filesystem;
 bool capture_extension(const fs::path& p) {
     std::string e = p.extension().string();
     for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return e == ".tif" || e == ".tiff" || e == ".png" || e == ".npy";
+    return e == ".tif" || e == ".tiff" || e == ".png" || e == ".npy" || e == ".jpg" ||
+           e == ".jpeg" || is_raw_extension(p);
 }
 
 std::string trimmed(const std::string& line) {
@@ -39,7 +41,8 @@ std::vector<std::string> capture_list(const std::string& list_or_dir) {
         std::sort(paths.begin(), paths.end());
         if (paths.empty())
             throw invalid_field("--batch", list_or_dir,
-                                "the directory holds no capture (.tif, .tiff, .png, .npy)");
+                                "the directory holds no capture (.tif, .tiff, .png, .npy, .jpg, "
+                                ".jpeg or a camera RAW file such as .dng)");
         return paths;
     }
     std::ifstream in(list_or_dir);

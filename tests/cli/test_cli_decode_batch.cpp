@@ -3,11 +3,16 @@
 // for a directory and a list file; bad inputs exit 2 naming the flag and write nothing.
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/image_io.hpp"
+#include "tests/core/dng_writer.hpp"
+#include "tests/core/jpeg_writer.hpp"
 #include "tests/support/cli_run.hpp"
 
 using pinmask::test::run_cli;
@@ -93,6 +98,55 @@ TEST_CASE("decode --batch: each output has the bytes of decoding that capture al
         const auto summary = nlohmann::json::parse(slurp(dir.path / "listed/batch-summary.json"));
         CHECK(summary["captures"][0]["input"] == "caps/c3.tiff");
         CHECK(summary["captures"][1]["input"] == "caps/c1.tiff");
+    }
+}
+
+TEST_CASE("decode --batch: a folder's JPEG and camera RAW captures are decoded too") {
+    TempDir dir("cli-decode-batch-formats");
+    make_captures(dir);
+    // c1's counts as an 8-bit grey JPEG and as a DNG whose 2 x 2 Bayer blocks each hold them.
+    const pinmask::Image cap = pinmask::read_image(dir.path / "caps/c1.tiff").image;
+    const int rows = cap.rows(), cols = cap.cols();
+    const double peak = cap.channels[0].maxCoeff();
+    REQUIRE(peak > 0);
+    std::vector<unsigned char> counts(static_cast<std::size_t>(rows) * cols);
+    pinmask::test::DngSpec dng;
+    dng.rows = 2 * rows;
+    dng.cols = 2 * cols;
+    dng.values.resize(static_cast<std::size_t>(dng.rows) * dng.cols);
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c) {
+            const long q = std::lround(cap.channels[0](r, c) / peak * 255.0);
+            counts[static_cast<std::size_t>(r) * cols + c] = static_cast<unsigned char>(q);
+            for (int a = 0; a < 2; ++a)
+                for (int b = 0; b < 2; ++b)
+                    dng.values[static_cast<std::size_t>(2 * r + a) * dng.cols + 2 * c + b] =
+                        static_cast<std::uint16_t>(64 + 10 * q);
+        }
+    fs::create_directory(dir.path / "mixed");
+    pinmask::test::JpegSpec grey;
+    grey.input = JCS_GRAYSCALE;
+    std::ofstream(dir.path / "mixed/a.jpg", std::ios::binary)
+        << pinmask::test::encode_jpeg(counts, rows, cols, grey);
+    pinmask::test::write_dng(dir.path / "mixed/b.dng", dng);
+    std::ofstream(dir.path / "mixed/notes.txt") << "not a capture\n";
+    fs::create_directory(dir.path / "out");
+    const auto r = run_cli("decode --batch mixed --mask m.mask.json" + kFlags + "-o out", dir.path);
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const auto summary = nlohmann::json::parse(slurp(dir.path / "out/batch-summary.json"));
+    REQUIRE(summary["captures"].size() == 2);
+    CHECK(summary["captures"][0]["input"] == "mixed/a.jpg");
+    CHECK(summary["captures"][1]["input"] == "mixed/b.dng");
+    fs::create_directory(dir.path / "single");
+    for (const std::string name : {"a.jpg", "b.dng"}) {
+        const std::string stem = name.substr(0, 1);
+        REQUIRE(run_cli("decode mixed/" + name + " --mask m.mask.json" + kFlags + "-o single/" +
+                            stem + ".tiff",
+                        dir.path)
+                    .exit_code == 0);
+        CHECK(slurp(dir.path / ("out/" + stem + ".tiff")) ==
+              slurp(dir.path / ("single/" + stem + ".tiff")));
     }
 }
 
