@@ -209,6 +209,26 @@ bad_crc[29] ^= 0xFF  # inside IHDR's CRC (8 signature + 8 chunk header + 13 data
 write("capture-bad-crc.png", bytes(bad_crc))
 write("capture-zero-width.png", png(0, 28, zlib.compress(b"\0" * 64)))
 
+
+def jpeg_segment(marker, payload):
+    return b"\xff" + bytes([marker]) + struct.pack(">H", len(payload) + 2) + payload
+
+
+def jpeg_header(width, height):
+    """A baseline grey JPEG up to and including its scan header (no scan data, no EOI): one
+    quantisation table, SOF0 with the declared size, two one-code Huffman tables, SOS."""
+    one_code = bytes([1] + [0] * 15) + b"\x00"  # a single code of length 1, for symbol 0
+    return (b"\xff\xd8" + jpeg_segment(0xDB, b"\x00" + bytes([1]) * 64) +
+            jpeg_segment(0xC0, struct.pack(">BHHB", 8, height, width, 1) + b"\x01\x11\x00") +
+            jpeg_segment(0xC4, b"\x00" + one_code) + jpeg_segment(0xC4, b"\x10" + one_code) +
+            jpeg_segment(0xDA, b"\x01\x01\x00\x00\x3f\x00"))
+
+
+CAP_JPG = seed("image/dec8.jpg")
+write("capture-truncated.jpg", CAP_JPG[: len(CAP_JPG) // 2])
+write("capture-giga.jpg", jpeg_header(GIGA_SIDE, GIGA_SIDE))
+write("capture-zero-height.jpg", jpeg_header(24, 0))
+
 # ---------------------------------------------------------------- GDSII
 
 
