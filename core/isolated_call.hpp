@@ -15,9 +15,10 @@
 // or fuzzer's crash handler inherited from the parent does not report the child's crash as the
 // caller's.
 //
-// POSIX only. Safe in a multithreaded caller as far as `work` uses only async-signal-safe
-// functions or those glibc makes fork-safe (malloc, stdio); it should not use thread pools the
-// parent started (FFTW's, OpenMP's).
+// A caller that ignores SIGCHLD (SIG_IGN) gets its answers too, but a child that dies after its
+// whole answer cannot be told from one that exited normally then. POSIX only. Safe in a
+// multithreaded caller as far as `work` uses only async-signal-safe functions or those glibc makes
+// fork-safe (malloc, stdio); it should not use thread pools the parent started (FFTW's, OpenMP's).
 #pragma once
 
 #include <cstddef>

@@ -190,3 +190,19 @@ TEST_CASE("isolated_call: a receiver's refusal ends the child and propagates") {
                          "a child process sent more than was read", RuntimeFailure);
     CHECK(no_children_left());
 }
+
+TEST_CASE("isolated_call: a caller that ignores SIGCHLD still gets answers and crashes") {
+    // With SIGCHLD ignored the system reaps children itself and waitpid ends with ECHILD.
+    struct sigaction ignore {
+    }, old{};
+    ignore.sa_handler = SIG_IGN;
+    sigemptyset(&ignore.sa_mask);
+    REQUIRE(::sigaction(SIGCHLD, &ignore, &old) == 0);
+    std::uint64_t v = 0;
+    run_isolated([](IsolatedWriter& w) { w.u64(5); }, [&](IsolatedReader& r) { v = r.u64(); });
+    CHECK(v == 5);
+    CHECK(crash_message([](IsolatedWriter&) { std::abort(); }) ==
+          "the child process ended with an unknown status (SIGCHLD ignored) before it had sent "
+          "its whole answer");
+    REQUIRE(::sigaction(SIGCHLD, &old, nullptr) == 0);
+}
