@@ -78,16 +78,34 @@ std::string describe(int status) {
                ")";
     }
     if (WIFEXITED(status)) return "exited with status " + std::to_string(WEXITSTATUS(status));
-    return "ended with wait status " + std::to_string(status) + ")";
+    return "ended with wait status " + std::to_string(status);
 }
 
-void send_error(int fd, char cls, const char* what) {
-    const std::size_t n = std::min(std::strlen(what), kMaxMessage);
+// Sends the exception being handled, by class (the parent throws the same class).
+void send_current_error(int fd) {
+    char cls = kRuntime;
+    std::string what = "unknown exception in a child process";
+    try {
+        throw;
+    } catch (const ResourceLimit& e) {
+        cls = kResource;
+        what = e.what();
+    } catch (const InvalidInput& e) {
+        cls = kInvalid;
+        what = e.what();
+    } catch (const std::bad_alloc& e) {
+        cls = kNoMemory;
+        what = e.what();
+    } catch (const std::exception& e) {
+        what = e.what();
+    } catch (...) {
+    }
+    if (what.size() > kMaxMessage) what.resize(kMaxMessage);
     const char head[2] = {kError, cls};
     write_all(fd, head, 2);
-    const std::uint64_t len = n;
+    const std::uint64_t len = what.size();
     write_all(fd, &len, sizeof len);
-    write_all(fd, what, n);
+    write_all(fd, what.data(), what.size());
 }
 
 [[noreturn]] void run_child(int fd, const std::function<void(IsolatedWriter&)>& work) {
@@ -99,21 +117,10 @@ void send_error(int fd, char cls, const char* what) {
     try {
         work(writer);
         if (!writer.started()) writer.bytes(nullptr, 0);  // an empty answer
-    } catch (const ResourceLimit& e) {
-        if (writer.started()) ::_exit(kFailedAfterAnswerStarted);
-        send_error(fd, kResource, e.what());
-    } catch (const InvalidInput& e) {
-        if (writer.started()) ::_exit(kFailedAfterAnswerStarted);
-        send_error(fd, kInvalid, e.what());
-    } catch (const std::bad_alloc& e) {
-        if (writer.started()) ::_exit(kFailedAfterAnswerStarted);
-        send_error(fd, kNoMemory, e.what());
-    } catch (const std::exception& e) {
-        if (writer.started()) ::_exit(kFailedAfterAnswerStarted);
-        send_error(fd, kRuntime, e.what());
     } catch (...) {
+        // Once values have gone out, an error frame would be read as values: die instead.
         if (writer.started()) ::_exit(kFailedAfterAnswerStarted);
-        send_error(fd, kRuntime, "unknown exception in a child process");
+        send_current_error(fd);
     }
     ::_exit(0);
 }
@@ -133,9 +140,9 @@ std::string stderr_tail(int fd) {
 std::string last_line(const std::string& text) {
     std::size_t end = text.find_last_not_of(" \t\r\n");
     if (end == std::string::npos) return "";
-    const std::size_t begin = text.rfind('\n', end);
-    std::string line = text.substr(begin == std::string::npos ? 0 : begin + 1,
-                                   end - (begin == std::string::npos ? 0 : begin + 1) + 1);
+    const std::size_t newline = text.rfind('\n', end);
+    const std::size_t begin = newline == std::string::npos ? 0 : newline + 1;
+    std::string line = text.substr(begin, end - begin + 1);
     if (line.size() > kMaxQuotedLine) line = line.substr(0, kMaxQuotedLine) + "...";
     return line;
 }

@@ -6,7 +6,6 @@
 #include <array>
 #include <cstdint>
 #include <memory>
-#include <optional>
 #include <set>
 #include <vector>
 
@@ -78,6 +77,7 @@ struct RawFrame {
     std::array<unsigned, LIBRAW_CBLACK_SIZE> cblack{};                 // color.cblack
     std::string camera;                                                // make and model
     std::vector<std::uint16_t> samples;  // rows x cols raw counts, row-major
+    MemoryReservation samples_charge;    // the samples' bytes, against the memory budget
     int colour_at(int r, int c) const {
         return colour[static_cast<std::size_t>((r % kColourPeriod) * kColourPeriod +
                                                c % kColourPeriod)];
@@ -94,7 +94,8 @@ void send_frame(const fs::path& path, IsolatedWriter& w) {
     if (ret != LIBRAW_SUCCESS) throw bad_raw(path, std::string("LibRaw: ") + libraw_strerror(ret));
     const auto& S = raw->imgdata.sizes;
     const long long rows = S.height, cols = S.width;
-    // Before unpacking: the raw buffer (2 bytes a sample) plus our doubles.
+    // Before unpacking: LibRaw's buffer (2 bytes a sample) beside the doubles the caller will
+    // make (the caller checks its own budget again when the frame arrives).
     detail::check_image_size(path, rows, cols, 1, 2.0 * double(S.raw_height) * S.raw_width);
     ret = raw->unpack();
     if (ret != LIBRAW_SUCCESS) throw bad_raw(path, std::string("LibRaw: ") + libraw_strerror(ret));
@@ -137,17 +138,16 @@ void send_frame(const fs::path& path, IsolatedWriter& w) {
 }
 
 // In the caller: reads the frame, checking every size before allocating.
-RawFrame receive_frame(const fs::path& path, IsolatedReader& in,
-                       std::optional<MemoryReservation>& hold) {
+RawFrame receive_frame(const fs::path& path, IsolatedReader& in) {
     RawFrame f;
     const std::uint64_t rows = in.u64(), cols = in.u64();
     if (rows < 1 || cols < 1 || rows > std::uint64_t(kMaxImageSamples) ||
         cols > std::uint64_t(kMaxImageSamples))
         throw bad_raw(path, "the RAW reader's process sent an impossible size");
     // The samples (2 bytes each) beside the doubles extract() makes.
-    hold.emplace(detail::check_image_size(path, static_cast<long long>(rows),
-                                          static_cast<long long>(cols), 1,
-                                          2.0 * double(rows) * double(cols)));
+    f.samples_charge =
+        detail::check_image_size(path, static_cast<long long>(rows), static_cast<long long>(cols),
+                                 1, 2.0 * double(rows) * double(cols));
     f.rows = static_cast<int>(rows);
     f.cols = static_cast<int>(cols);
     f.filters = static_cast<unsigned>(in.u64());
@@ -241,10 +241,9 @@ LoadedImage read_raw(const fs::path& path, BayerMode mode, RawInfo* info_out) {
     if (!fs::is_regular_file(path, ec)) throw bad_raw(path, "file does not exist");
     if (fs::file_size(path, ec) == 0) throw bad_raw(path, "file is empty");
     RawFrame frame;
-    std::optional<MemoryReservation> hold;
     try {
         run_isolated([&](IsolatedWriter& w) { send_frame(path, w); },
-                     [&](IsolatedReader& r) { frame = receive_frame(path, r, hold); });
+                     [&](IsolatedReader& r) { frame = receive_frame(path, r); });
     } catch (const IsolatedCrash& e) {
         throw bad_raw(path, std::string("LibRaw crashed reading this file (") + e.what() +
                                 "); the file is refused. LibRaw runs in a separate process, so "

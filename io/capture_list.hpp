@@ -1,7 +1,7 @@
 // The captures of `decode --batch LIST_OR_DIR` (issue 17): a directory (its .tif/.tiff/.png/.npy/
-// .jpg/.jpeg files and camera RAW files by core/raw_io's extensions, sorted by name) or a text file of paths, one a line (blank lines and lines starting
-// with '#' skipped; surrounding spaces trimmed; relative paths are relative to the current
-// directory).
+// .jpg/.jpeg files and camera RAW files by core/raw_io's extensions, sorted by name) or a text file
+// of paths, one a line (blank lines and lines starting with '#' skipped; surrounding spaces
+// trimmed; relative paths are relative to the current directory).
 #pragma once
 
 #include <string>
