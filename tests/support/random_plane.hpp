@@ -1,5 +1,5 @@
-// Seeded planes of independent uniform values in [lo, hi): the random inputs of the tests (each
-// test file names its range once, in a one-line random_plane of its own).
+// Seeded planes of independent uniform values in [lo, hi) (default [0, 1)): the random inputs of
+// the tests, one definition for every folder.
 #pragma once
 
 #include <cstdint>
@@ -9,7 +9,8 @@
 
 namespace pinmask::test {
 
-inline Plane uniform_plane(int rows, int cols, std::uint64_t seed, double lo, double hi) {
+inline Plane random_plane(int rows, int cols, std::uint64_t seed, double lo = 0.0,
+                          double hi = 1.0) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(lo, hi);
     Plane p(rows, cols);
