@@ -9,25 +9,20 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/number_format.hpp"
 #include "decode/decoder.hpp"
 #include "decode/tvqc.hpp"
-#include "optimize/image_quality.hpp"
-#include "optimize/noise_model.hpp"
-#include "optimize/simulate.hpp"
+#include "simulate/image_quality.hpp"
+#include "simulate/noise_model.hpp"
+#include "simulate/simulate.hpp"
 
 namespace pinmask {
 namespace {
 
-std::string num(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
-
 void check_list_nonnegative(const std::vector<double>& v, const char* field) {
     for (double x : v) {
         if (!(x >= 0.0) || !std::isfinite(x)) {
-            throw invalid_field(field, num(x), "every value must be finite and >= 0");
+            throw invalid_field(field, format_number(x), "every value must be finite and >= 0");
         }
     }
 }
@@ -112,7 +107,7 @@ std::vector<Setting> settings(const ErrorTimeOptions& o) {
 void ErrorTimeOptions::validate() const {
     if (snr_db.empty()) throw invalid_field("snr_db", "[]", "needs at least one SNR");
     for (double s : snr_db) {
-        if (!std::isfinite(s)) throw invalid_field("snr_db", num(s), "must be finite");
+        if (!std::isfinite(s)) throw invalid_field("snr_db", format_number(s), "must be finite");
     }
     for (int k : iterations) {
         if (k < 1) throw invalid_field("iterations", std::to_string(k), "every count must be >= 1");
@@ -120,11 +115,11 @@ void ErrorTimeOptions::validate() const {
     check_list_nonnegative(wiener_nsr, "wiener_nsr");
     check_list_nonnegative(tikhonov_lambda, "tikhonov_lambda");
     if (!(tv_lambda > 0.0) || !std::isfinite(tv_lambda)) {
-        throw invalid_field("tv_lambda", num(tv_lambda), "must be finite and > 0");
+        throw invalid_field("tv_lambda", format_number(tv_lambda), "must be finite and > 0");
     }
     if (repeats < 1) throw invalid_field("repeats", std::to_string(repeats), "must be >= 1");
     if (!(repeat_below_seconds >= 0.0)) {
-        throw invalid_field("repeat_below_seconds", num(repeat_below_seconds), "must be >= 0");
+        throw invalid_field("repeat_below_seconds", format_number(repeat_below_seconds), "must be >= 0");
     }
 }
 

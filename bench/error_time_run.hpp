@@ -1,4 +1,4 @@
-// `pinmask bench error-time` as library calls (issue 11): the paper preset mask, the set-up (the
+// `pinmask bench error-time` as library calls: the paper preset mask, the set-up (the
 // mask's PSF of one period and the scenes rendered at it), and the sweep with its means, best
 // points per decoder, Markdown table and one plot per SNR. Never prints.
 #pragma once
@@ -10,7 +10,7 @@
 #include "bench/error_time_plot.hpp"
 #include "design/kernel.hpp"
 #include "design/mask.hpp"
-#include "optimize/scenes.hpp"
+#include "simulate/scenes.hpp"
 
 namespace pinmask {
 

@@ -10,16 +10,16 @@
 
 #include "core/error.hpp"
 #include "design/mask.hpp"
-#include "export/dxf_writer.hpp"
-#include "export/gds_writer.hpp"
-#include "export/geometry.hpp"
-#include "export/gerber_writer.hpp"
-#include "export/pdf_writer.hpp"
-#include "export/png_preview.hpp"
-#include "export/read_any.hpp"
+#include "formats/dxf_writer.hpp"
+#include "formats/gds_writer.hpp"
+#include "layout/geometry.hpp"
+#include "formats/gerber_writer.hpp"
+#include "formats/pdf_writer.hpp"
+#include "formats/png_preview.hpp"
+#include "formats/read_any.hpp"
 #include "export/read_back.hpp"
-#include "export/svg_writer.hpp"
-#include "export/write_any.hpp"
+#include "formats/svg_writer.hpp"
+#include "formats/write_any.hpp"
 
 namespace pinmask {
 namespace {

@@ -10,8 +10,8 @@
 #include "decode/decoder.hpp"
 #include "decode/period.hpp"
 #include "design/psf.hpp"
-#include "optimize/scenes.hpp"
-#include "optimize/simulate.hpp"
+#include "simulate/scenes.hpp"
+#include "simulate/simulate.hpp"
 
 namespace pinmask {
 namespace {
@@ -29,7 +29,7 @@ double best_of(int repeat, F&& fn) {
     return best;
 }
 
-Mask issue_mask() {
+Mask period_bench_mask() {
     Mask m;
     m.camera.pixel_pitch_m = 3.45e-6;
     m.camera.sensor_cols = 2448;
@@ -66,7 +66,7 @@ PeriodBenchResult bench_period(const PeriodBenchOptions& o) {
         }
     }
     if (o.repeat < 1) throw invalid_field("repeat", std::to_string(o.repeat), "must be >= 1");
-    const Mask m = issue_mask();
+    const Mask m = period_bench_mask();
     const Plane psf = mask_psf(m);
     const int p = static_cast<int>(psf.rows());
     SimulationOptions so;

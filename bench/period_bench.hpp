@@ -1,9 +1,9 @@
 // Cost of the decoder's period check (decode/period.hpp) beside a Wiener decode of the same
-// capture, timed in the same run (issue 12: the check must cost at most 10 % of the decode).
+// capture, timed in the same run (the check is meant to cost at most 10 % of the decode).
 // "A Wiener decode of the same capture" is reported both ways: the whole frame (crop none) and
 // the centred period (decode's default); the second is the bar the check is held to.
 //
-// The capture: the issue's camera (3.45 um pixels, 25 mm lens, sensor 20 mm behind, u = 2 m,
+// The capture: a machine-vision camera (3.45 um pixels, 25 mm lens, sensor 20 mm behind, u = 2 m,
 // 530 nm, d = 345 um: 21 px per cell, a 336 px period) simulated over a rows x cols sensor
 // (default its 2048 x 2448) from a seeded 16 x 16, K = 20 pattern and the letter-R scene, 30 dB.
 // Figures (each the minimum over `repeat` runs):

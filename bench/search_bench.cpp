@@ -8,9 +8,9 @@
 #include "core/fft.hpp"
 #include "design/camera.hpp"
 #include "design/psf.hpp"
-#include "optimize/mask_metrics.hpp"
-#include "optimize/mask_objective.hpp"
-#include "optimize/pattern_state.hpp"
+#include "metrics/mask_metrics.hpp"
+#include "search/mask_objective.hpp"
+#include "search/pattern_state.hpp"
 
 namespace pinmask {
 namespace {

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "core/number_format.hpp"
 #include "core/resource_limits.hpp"
 
@@ -66,7 +67,8 @@ Pass register_spots(const Plane& frame, const Plane& raw, const Background& bg, 
     const double rot = p.fit.rotation_rad * kDeg;
     if (std::abs(rot) > o.max_rotation_deg)
         throw InvalidInput("calibrate: the rotation " + format_number(rot) +
-                           " deg is beyond what the search covers (--max-rotation " +
+                           " deg is beyond what the search covers (" +
+                           field_ref("max_rotation_deg") + " " +
                            format_number(o.max_rotation_deg) + " deg)");
     p.match = match_pinholes(p.spots, p.fit, mask.pattern, static_cast<int>(frame.rows()),
                              static_cast<int>(frame.cols()), o.max_index_offset);
@@ -78,8 +80,9 @@ Pass register_spots(const Plane& frame, const Plane& raw, const Background& bg, 
     if (expected == 0 || seen < o.min_spot_fraction * expected)
         throw InvalidInput("calibrate: far fewer spots than the design: " + std::to_string(seen) +
                            " spots on the " + std::to_string(expected) +
-                           " design pinholes inside the frame (the rotation may exceed "
-                           "--max-rotation, or the capture is not of this mask)");
+                           " design pinholes inside the frame (the rotation may exceed " +
+                           field_ref("max_rotation_deg") +
+                           ", or the capture is not of this mask)");
     return p;
 }
 
@@ -162,7 +165,8 @@ CalibrationSummary calibrate_point_source(const Plane& capture, const std::optio
             s.dark_source = "outside the mask's footprint";
         }
     } else if (!dark) {
-        s.dark_source = "not measured (the mask's footprint fills the frame; give --dark)";
+        s.dark_source =
+            "not measured (the mask's footprint fills the frame; give " + field_ref("dark") + ")";
     }
     const double inside_level = between.empty() ? bg0.level : median_of(between);
     s.background = inside_level - floor_level;

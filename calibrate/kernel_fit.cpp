@@ -11,7 +11,8 @@ std::vector<ModelResidual> compare_kernel_models(const Plane& measured, const Ca
     const int size = static_cast<int>(measured.rows());
     const int half = size / 2;
     std::vector<ModelResidual> out;
-    for (const char* name : kCompared) {
+    for (const KernelModel model : kCompared) {
+        const std::string name = kernel_model_name(model);
         ModelResidual m;
         m.model = name;
         try {

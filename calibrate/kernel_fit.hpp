@@ -13,10 +13,12 @@
 
 #include "core/image.hpp"
 #include "design/camera.hpp"
+#include "design/kernel_model.hpp"
 
 namespace pinmask::calibrate {
 
-inline constexpr const char* kCompared[] = {"box", "fraunhofer", "fresnel", "paper-fig3b"};
+inline constexpr KernelModel kCompared[] = {KernelModel::kBox, KernelModel::kFraunhofer,
+                                            KernelModel::kFresnel, KernelModel::kPaperFig3b};
 
 struct ModelResidual {
     std::string model;

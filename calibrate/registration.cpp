@@ -8,6 +8,7 @@
 
 #include "calibrate/spots.hpp"
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 
 namespace pinmask::calibrate {
 
@@ -90,7 +91,8 @@ LatticeFit least_squares(LatticeFit f, const std::vector<Site>& sites) {
 LatticeFit fit_lattice(const std::vector<Eigen::Vector2d>& pts, const RegistrationOptions& o) {
     const double p0 = o.nominal_pitch_px;
     const std::string searched = "rotation within +-" + std::to_string(o.max_rotation_deg) +
-                                 " deg (--max-rotation), pitch " + std::to_string(p0) + " px +-" +
+                                 " deg (" + field_ref("max_rotation_deg") + "), pitch " +
+                                 std::to_string(p0) + " px +-" +
                                  std::to_string(100.0 * o.pitch_range) + " %";
     if (pts.size() < 3) {
         throw InvalidInput("calibrate: " + std::to_string(pts.size()) +
@@ -145,7 +147,7 @@ LatticeFit fit_lattice(const std::vector<Eigen::Vector2d>& pts, const Registrati
         if (sites.size() < 3) {
             throw InvalidInput(
                 "calibrate: the spots do not form a lattice in the range searched (" + searched +
-                "); the rotation may exceed --max-rotation");
+                "); the rotation may exceed " + field_ref("max_rotation_deg"));
         }
         fit = least_squares(fit, sites);
         // Drop outliers and refit.

@@ -15,13 +15,13 @@
 #include "bench/error_time_report.hpp"
 #include "bench/error_time_run.hpp"
 #include "cli/commands.hpp"
-#include "cli/error_time_json.hpp"
+#include "cli/outputs/error_time_json.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "design/kernel_model.hpp"
 #include "io/mask_json.hpp"
-#include "optimize/scenes.hpp"
+#include "simulate/scenes.hpp"
 
 namespace pinmask::cli {
 namespace {

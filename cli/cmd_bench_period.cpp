@@ -66,7 +66,7 @@ void add_bench_period(CLI::App& bench) {
     auto* cmd = bench.add_subcommand(
         "period",
         "Cost of decode's period check beside a Wiener decode of the same capture (the "
-        "issue-12 camera: 3.45 um pixels, 21 px per cell, 336 px period, 30 dB), timed in "
+        "machine-vision camera: 3.45 um pixels, 21 px per cell, 336 px period, 30 dB), timed in "
         "the same run; each figure the minimum over --repeat runs.");
     cmd->footer("Example: pinmask bench period --rows 2048 --cols 2448");
     cmd->add_option("--rows", opts->bench.rows, "Sensor rows (672..8192)")->capture_default_str();

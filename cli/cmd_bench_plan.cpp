@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
-#include "cli/fft_setup.hpp"
+#include "cli/options/fft_setup.hpp"
 #include "core/error.hpp"
 #include "core/fft.hpp"
 #include "core/units.hpp"

@@ -9,8 +9,9 @@
 
 #include "calibrate/calibrate.hpp"
 #include "calibrate/report.hpp"
-#include "cli/calibrate_json.hpp"
-#include "cli/camera_options.hpp"
+#include "cli/outputs/calibrate_json.hpp"
+#include "cli/options/camera_options.hpp"
+#include "cli/options/flag_names.hpp"
 #include "cli/commands.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -37,7 +38,8 @@ struct CalibrateCommandOptions {
 Plane read_grey(const std::string& path, const std::string& what, BayerMode bayer,
                 double* full_scale, RawInfo& raw) {
     LoadedImage img = read_capture(path, bayer, &raw);
-    if (!raw.note.empty()) std::cerr << "calibrate: " << path << ": " << raw.note << "\n";
+    if (!raw.note.empty())
+        std::cerr << "calibrate: " << path << ": " << spell_flags(raw.note) << "\n";
     if (full_scale) *full_scale = img.full_scale;
     Plane p = img.image.channels.at(0);
     for (std::size_t c = 1; c < img.image.channels.size(); ++c) p += img.image.channels[c];
@@ -77,7 +79,8 @@ void run(CalibrateCommandOptions& o) {
     std::cerr << "calibrate: registering " << capture.cols() << " x " << capture.rows()
               << " px against " << mask.pattern.pinholes.size() << " pinholes x "
               << mask.pattern.tiles_rows * mask.pattern.tiles_cols << " tiles\n";
-    const auto s = calibrate::calibrate_point_source(capture, dark, mask, o.cal);
+    auto s = calibrate::calibrate_point_source(capture, dark, mask, o.cal);
+    s.dark_source = spell_flags(s.dark_source);
 
     // The calibrated mask: the measured kernel and the measured geometry in its provenance.
     Mask cal = mask;

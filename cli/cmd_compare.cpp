@@ -1,8 +1,8 @@
 // `pinmask compare`: masks side by side (metrics table on stdout or as JSON) and, with --report,
 // a multi-page report (PDF, or SVG/PNG pages) with each mask's pictures. --baselines adds the
 // median of random valid masks, the paper-like geometry and a MURA. The figures come from
-// optimize/compare (the metric set of optimize/mask_metrics, as score prints it), the document
-// from cli/compare_report, the drawing from export/report.
+// metrics/compare (the metric set of metrics/mask_metrics, as score prints it), the document
+// from cli/outputs/compare_report, the drawing from report/report.
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -11,18 +11,19 @@
 #include <string>
 #include <vector>
 
-#include "cli/analytic_setup.hpp"
+#include "cli/options/analytic_setup.hpp"
+#include "cli/options/flag_names.hpp"
 #include "cli/command_footers.hpp"
 #include "cli/commands.hpp"
-#include "cli/compare_report.hpp"
-#include "cli/noise_options.hpp"
+#include "cli/outputs/compare_report.hpp"
+#include "cli/options/noise_options.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
-#include "export/report.hpp"
+#include "report/report.hpp"
 #include "io/json_strict.hpp"
 #include "io/mask_json.hpp"
-#include "optimize/compare.hpp"
+#include "metrics/compare.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -54,7 +55,7 @@ CompareRunOptions make_options(const Options& o, const CLI::App& cmd, std::strin
     m.prior = prior_spec(o.prior);
     m.scenes = scene_specs(o.scenes);
     m.simulation.seed = o.seed;
-    set_decoder_flags(m.simulation, o.nsr, o.tv_lambda, o.tv_iterations);
+    set_decoder_settings(m.simulation, o.nsr, o.tv_lambda, o.tv_iterations);
     if (!o.robust.empty()) m.robust = parse_fabrication_errors(o.robust);
     r.settings.seed = o.seed;
     r.baselines = o.baselines;
@@ -91,7 +92,7 @@ void run(const Options& o, const CLI::App& cmd) {
     CompareSummary summary;
     summary.camera = entries.front().mask.camera;
     summary.noise_text = noise;
-    const CompareOutcome out =
+    CompareOutcome out =
         run_compare(entries, options, [&](const std::string& phase, int done, int total) {
             if (o.quiet) return;
             if (phase == "mask") {
@@ -103,6 +104,13 @@ void run(const Options& o, const CLI::App& cmd) {
                 std::cerr << "compare: " << phase << " " << done << "/" << total << "\n";
             }
         });
+    // The library's words name settings by field: spelled as flags (a given mask's source is
+    // its path, left as typed).
+    for (CompareResult& r : out.results)
+        if (r.row.kind != "input") r.row.source = spell_flags(r.row.source);
+    for (std::string& l : out.baseline_lines) l = spell_flags(l);
+    out.random_skipped = spell_flags(out.random_skipped);
+    out.mura_skipped = spell_flags(out.mura_skipped);
     summary.baseline_lines = out.baseline_lines;
     for (const auto& w : {out.random_skipped, out.mura_skipped})
         if (!w.empty()) std::cerr << "compare: warning: " << w << "\n";

@@ -13,17 +13,18 @@
 
 #include "cli/commands.hpp"
 #include "cli/decode_batch.hpp"
-#include "cli/decode_flags.hpp"
-#include "cli/decode_inputs.hpp"
-#include "cli/decode_output.hpp"
-#include "cli/interrupt.hpp"
+#include "cli/options/flag_names.hpp"
+#include "cli/options/decode_flags.hpp"
+#include "cli/options/decode_inputs.hpp"
+#include "cli/outputs/decode_output.hpp"
+#include "cli/outputs/interrupt.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
 #include "decode/capture_pipeline.hpp"
 #include "decode/decode_method.hpp"
 #include "io/psf_files.hpp"
-#include "optimize/mpi/mpi_comm.hpp"
+#include "search/mpi/mpi_comm.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -36,7 +37,7 @@ double seconds_since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-void run_decode(const DecodeRequest& r, BayerMode bayer) {
+void run_decode(DecodeCommand& r, BayerMode bayer) {
     const auto t_start = Clock::now();
     plan_outputs(
         {{"capture", r.capture},
@@ -52,7 +53,10 @@ void run_decode(const DecodeRequest& r, BayerMode bayer) {
     if (!out_dir.empty() && !fs::is_directory(out_dir))
         throw invalid_field("-o", r.output, "the output directory does not exist");
     const std::optional<double> scale = parse_scale(r.scale);
-    CaptureDecodeOptions options = capture_decode_options(r);
+    resolve_request(r);
+    CaptureDecodeOptions options = capture_decode_options(r.request);
+    // Per-iteration records cost an objective each iteration; only --stats and --json show them.
+    options.decode.iterative.record_history = !r.stats.empty() || r.json;
     options.validate();
     auto explain = [&](const std::string& line) {
         if (r.explain) std::cerr << "decode: " << line << "\n";
@@ -78,7 +82,7 @@ void run_decode(const DecodeRequest& r, BayerMode bayer) {
     const CaptureDecodeResult result =
         naming_nsr_map(r, [&] { return decode_capture(std::move(inputs), options); });
     const CaptureDecodeSummary& sum = result.summary;
-    for (const std::string& note : sum.notes) explain(note);
+    for (const std::string& note : sum.notes) explain(spell_flags(note));
     explain("FFT planning " + std::to_string(sum.seconds.fft_planning) + " s during the decode");
     std::istringstream warnings(period_warning(sum.period));
     for (std::string line; std::getline(warnings, line);)
@@ -149,7 +153,7 @@ void run_decode(const DecodeRequest& r, BayerMode bayer) {
 // Under mpirun every rank runs the batch. Set-up errors are every rank's alike: rank 0 reports,
 // the others leave with the same code; a decode error on any rank is reported by rank 0 after
 // every rank discarded its staged files (cli/decode_batch.hpp).
-void run_batch_on_ranks(const DecodeRequest& r, const BatchRequest& b, BayerMode bayer) {
+void run_batch_on_ranks(const DecodeCommand& r, const BatchRequest& b, BayerMode bayer) {
     RankComm& comm = world_comm();  // MPI starts here, and only under a launcher
     try {
         run_decode_batch(r, b, bayer, comm);
@@ -162,7 +166,7 @@ void run_batch_on_ranks(const DecodeRequest& r, const BatchRequest& b, BayerMode
 }
 
 void setup(CLI::App& app) {
-    auto o = std::make_shared<DecodeRequest>();
+    auto o = std::make_shared<DecodeCommand>();
     auto* cmd = app.add_subcommand(
         "decode",
         "Decode a capture with a mask (PSF synthesised from it) or a measured PSF file; writes "
@@ -185,7 +189,7 @@ void setup(CLI::App& app) {
         ->capture_default_str();
     cmd->add_flag("--batch-stats", batch->stats, "--batch: also write STEM.stats.json per capture");
     cmd->callback([o, flags, bayer, batch] {
-        refuse_unused_flags(*o, *flags);
+        resolve_method(*o, *flags);
         if (!batch->list.empty()) return run_batch_on_ranks(*o, *batch, parse_bayer_mode(*bayer));
         if (o->capture.empty())
             throw InvalidInput("decode needs a capture file (or --batch LIST_OR_DIR)");

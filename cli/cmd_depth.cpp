@@ -1,6 +1,6 @@
 // `pinmask depth MASK`: pitch, period, shift-invariance mismatch and the PSNR lost by decoding
 // the exact-geometry capture with the mask's integer cyclic PSF, against object distance
-// (optimize/depth_loss.hpp). Table on stdout, --json (one record per distance), -o DIR for the
+// (metrics/depth_loss.hpp). Table on stdout, --json (one record per distance), -o DIR for the
 // plot (depth.svg + depth.png, written together) and the resolved configuration.
 #include <cmath>
 #include <cstdio>
@@ -19,8 +19,8 @@
 #include "core/number_format.hpp"
 #include "core/units.hpp"
 #include "io/mask_json.hpp"
-#include "optimize/depth_loss.hpp"
-#include "optimize/depth_plot.hpp"
+#include "metrics/depth_loss.hpp"
+#include "report/depth_plot.hpp"
 
 namespace pinmask::cli {
 namespace {

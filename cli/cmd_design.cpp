@@ -13,9 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "cli/camera_options.hpp"
+#include "cli/options/camera_options.hpp"
 #include "cli/commands.hpp"
-#include "cli/design_report.hpp"
+#include "cli/options/flag_names.hpp"
+#include "cli/outputs/design_report.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "design/kernel.hpp"
@@ -103,7 +104,8 @@ void run(const DesignOptions& o) {
         solved = "solved: the pinhole d above is set to give exactly N at u";
     }
     OpticsReport r = compute_optics(camera, geometry, kernel, {o.lsi_tolerance_px});
-    const KernelValidity validity = kernel_validity(camera, r.kernel_model);  // never "accurate"
+    KernelValidity validity = kernel_validity(camera, r.kernel_model);  // never "accurate"
+    for (auto& w : validity.warnings) w = spell_flags(w);
     if (!validity.model_accurate) r.kernel_reason = "NOT accurate: " + validity.warnings.front();
     for (const auto& w : validity.warnings) std::cerr << "pinmask: warning: " << w << "\n";
     const WorkingDistance wd = compute_working_distance(camera, geometry, wo);
@@ -144,8 +146,8 @@ void setup(CLI::App& app) {
     add_camera_options(*cmd, o->camera);
     add_geometry_options(*cmd, o->geometry);
     cmd->add_option("--kernel", o->kernel,
-                    "Kernel model to report: auto (chosen from the Fresnel number with the lens "
-                    "at u) | box | fraunhofer | fresnel | paper-fig3b | measured")
+                    "Kernel model to report: " + kernel_model_names() +
+                        " (auto: chosen from the Fresnel number with the lens at u)")
         ->capture_default_str();
     cmd->add_option("--lsi-tolerance", o->lsi_tolerance_px,
                     "Shift-invariance tolerance in pixels across the widest pinhole separation "

@@ -11,7 +11,8 @@
 #include <string>
 
 #include "cli/commands.hpp"
-#include "cli/export_options.hpp"
+#include "cli/options/flag_names.hpp"
+#include "cli/options/export_options.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
@@ -57,7 +58,7 @@ string file_bytes(const fs::path& p) {
 
 void run_export(const ExportFlags& f) {
     if (f.vendor == "list") {
-        std::cout << vendor_list_text();
+        std::cout << spell_flags(vendor_list_text());
         return;
     }
     if (f.output.empty()) throw invalid_field("-o", "''", "an output directory is required");
@@ -145,7 +146,7 @@ void run_export(const ExportFlags& f) {
         std::cout << "  " << e.name << "  " << e.bytes << " bytes  " << e.verification << "\n";
     for (const fs::path& p : psf_written) std::cout << "  " << p.filename().string() << "  PSF\n";
     std::cout << "  " << stem << ".export.json  sidecar\n";
-    for (const string& n : s.notes) std::cout << "note: " << n << "\n";
+    for (const string& n : s.notes) std::cout << "note: " << spell_flags(n) << "\n";
     std::cout << "design-rule check (" << o.drc.name
               << "): " << (s.drc.clean() ? "clean" : "violations") << "\n";
     for (const auto& [rule, n] : s.drc.counts) std::cout << "  " << rule << ": " << n << "\n";

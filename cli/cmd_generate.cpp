@@ -10,9 +10,9 @@
 #include <sstream>
 #include <string>
 
-#include "cli/camera_options.hpp"
+#include "cli/options/camera_options.hpp"
 #include "cli/commands.hpp"
-#include "cli/psf_options.hpp"
+#include "cli/options/psf_options.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
 #include "core/units.hpp"

@@ -10,12 +10,14 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/options/flag_names.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
 #include "core/units.hpp"
 #include "design/kernel_validity.hpp"
 #include "design/psf.hpp"
 #include "design/psf_exact.hpp"
+#include "design/psf_settings.hpp"
 #include "design/working_distance.hpp"
 #include "io/mask_json.hpp"
 #include "io/psf_files.hpp"
@@ -60,12 +62,7 @@ void run(const PsfCommandOptions& o) {
             "must be in (0, 1]: the fraction of the kernel's energy its support keeps");
     }
     if (!o.kernel.empty()) parse_kernel_model(o.kernel, "--kernel");
-    if (o.kernel == "measured" && o.kernel_path.empty()) {
-        throw invalid_field("--kernel", "measured", "needs --kernel-path FILE");
-    }
-    if (!o.kernel_path.empty() && o.kernel != "measured") {
-        throw invalid_field("--kernel-path", o.kernel_path, "only used with --kernel measured");
-    }
+    check_kernel_settings(o.kernel, o.kernel_path);
     {
         const std::string ext = std::filesystem::path(o.output).extension().string();
         if (ext != ".tif" && ext != ".tiff") {
@@ -98,8 +95,8 @@ void run(const PsfCommandOptions& o) {
     if (!exact) check_psf_memory(mask.pattern.n, ppc, 2, 0);  // the PSF and its float copy
     const Kernel kernel = mask_kernel(mask, ko);
     const Plane psf = exact ? exact_for(o, mask, ko, u) : synthesize_psf(mask.pattern, kernel, ppc);
-    const KernelValidity validity =
-        kernel_validity(mask.camera, kernel.model, kernel.enclosed_energy);
+    KernelValidity validity = kernel_validity(mask.camera, kernel.model, kernel.enclosed_energy);
+    for (auto& w : validity.warnings) w = spell_flags(w);
     for (const auto& w : validity.warnings) std::cerr << "pinmask: warning: " << w << "\n";
 
     io::PsfSidecar s = io::psf_sidecar_for(mask, kernel, o.mask);
@@ -171,8 +168,8 @@ void setup(CLI::App& app) {
     cmd->add_option("-o,--output", o->output, "Output PSF image, .tif or .tiff")->required();
     cmd->add_flag("--npy", o->npy, "Also write the PSF as float32 .npy next to the TIFF");
     cmd->add_option("--kernel", o->kernel,
-                    "Override the mask's kernel model: auto | box | fraunhofer | fresnel | "
-                    "paper-fig3b | measured (default: the mask's)");
+                    "Override the mask's kernel model: " + kernel_model_names() +
+                        " (default: the mask's)");
     cmd->add_option("--kernel-path", o->kernel_path, "Kernel image for --kernel measured");
     cmd->add_option("--energy", o->energy_fraction,
                     "Fraction of the continuous 1-D kernel energy the support must keep per "

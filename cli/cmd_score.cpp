@@ -1,5 +1,5 @@
 // `pinmask score`: metrics of one or more masks, one row per mask. Only what --metrics asks for
-// is computed; the numerics are optimize/mask_metrics (the same set compare and search use);
+// is computed; the numerics are metrics/mask_metrics (the same set compare and search use);
 // this file parses flags, calls it per mask, and prints.
 #include <iomanip>
 #include <iostream>
@@ -8,14 +8,14 @@
 #include <string>
 #include <vector>
 
-#include "cli/analytic_setup.hpp"
+#include "cli/options/analytic_setup.hpp"
 #include "cli/command_footers.hpp"
 #include "cli/commands.hpp"
-#include "cli/noise_options.hpp"
-#include "cli/robust_decoder_files.hpp"
+#include "cli/options/noise_options.hpp"
+#include "cli/outputs/robust_decoder_files.hpp"
 #include "core/error.hpp"
 #include "io/mask_json.hpp"
-#include "optimize/mask_metrics.hpp"
+#include "metrics/mask_metrics.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -60,7 +60,7 @@ MaskMetricsOptions make_options(const ScoreOptions& o, const CLI::App& cmd, std:
     }
     m.simulation.noise_seeds = o.seeds;
     m.simulation.seed = o.seed;
-    set_decoder_flags(m.simulation, o.nsr, o.tv_lambda, o.tv_iterations);
+    set_decoder_settings(m.simulation, o.nsr, o.tv_lambda, o.tv_iterations);
     if (!o.robust.empty()) m.robust = parse_fabrication_errors(o.robust);
     m.validate();
     return m;

@@ -1,5 +1,5 @@
 // `pinmask search`: find masks for a camera that decode better than random draws. Parses flags
-// (and --config), calls optimize/search_pipeline, writes the outputs (cli/search_outputs).
+// (and --config), calls search/search_pipeline, writes the outputs (cli/outputs/search_outputs).
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -8,26 +8,27 @@
 #include <optional>
 #include <thread>
 
-#include "cli/analytic_setup.hpp"
-#include "cli/camera_options.hpp"
+#include "cli/options/analytic_setup.hpp"
+#include "cli/options/camera_options.hpp"
+#include "cli/options/flag_names.hpp"
 #include "cli/command_footers.hpp"
 #include "cli/commands.hpp"
-#include "cli/interrupt.hpp"
-#include "cli/noise_options.hpp"
-#include "cli/progress.hpp"
-#include "cli/psf_options.hpp"
-#include "cli/robust_decoder_files.hpp"
+#include "cli/outputs/interrupt.hpp"
+#include "cli/options/noise_options.hpp"
+#include "cli/outputs/progress.hpp"
+#include "cli/options/psf_options.hpp"
+#include "cli/outputs/robust_decoder_files.hpp"
 #include "cli/search_cluster.hpp"
-#include "cli/search_options.hpp"
-#include "cli/search_outputs.hpp"
+#include "cli/options/search_options.hpp"
+#include "cli/outputs/search_outputs.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
 #include "core/units.hpp"
 #include "io/optics_json.hpp"
 #include "io/search_config.hpp"
-#include "optimize/mask_metrics.hpp"
-#include "optimize/mpi/mpi_comm.hpp"
-#include "optimize/search_pipeline.hpp"
+#include "metrics/mask_metrics.hpp"
+#include "search/mpi/mpi_comm.hpp"
+#include "search/search_pipeline.hpp"
 
 namespace pinmask::cli {
 
@@ -141,7 +142,8 @@ void run_on_ranks(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::
         const int code = dynamic_cast<const InvalidInput*>(&e) ? 2 : 1;
         if (!started && comm.rank() == 0) throw;
         if (!started) std::exit(code);
-        std::cerr << "pinmask search: rank " << comm.rank() << ": " << e.what() << "\n";
+        std::cerr << "pinmask search: rank " << comm.rank() << ": " << spell_flags(e.what())
+                  << "\n";
         abort_job_if_distributed(code);
         throw;
     }

@@ -1,4 +1,4 @@
-// `pinmask simulate`: mask + scene -> a simulated capture (optimize/simulate_pipeline.hpp),
+// `pinmask simulate`: mask + scene -> a simulated capture (simulate/simulate_pipeline.hpp),
 // optionally the whole sensor and a matching dark frame, with the resolved configuration written
 // next to the capture as OUT.config.json. All files are staged and appear together or not at all.
 #include <cstdint>
@@ -11,9 +11,10 @@
 #include <vector>
 
 #include "cli/commands.hpp"
-#include "cli/image_output.hpp"
-#include "cli/noise_options.hpp"
-#include "cli/simulate_config.hpp"
+#include "cli/options/flag_names.hpp"
+#include "cli/outputs/image_output.hpp"
+#include "cli/options/noise_options.hpp"
+#include "cli/options/simulate_config.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/fft.hpp"
@@ -21,8 +22,8 @@
 #include "core/units.hpp"
 #include "design/working_distance.hpp"
 #include "io/mask_json.hpp"
-#include "optimize/scenes.hpp"
-#include "optimize/simulate_pipeline.hpp"
+#include "simulate/scenes.hpp"
+#include "simulate/simulate_pipeline.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -127,7 +128,8 @@ void run(const SimulateOptions& o, const CLI::App& cmd) {
     const SimulatedCapture& s = r.capture;
     const SimulatePipelineSummary& sum = r.summary;
     const int m = sum.period_px;
-    const std::vector<std::string>& explain = sum.explain;
+    std::vector<std::string> explain;  // the library's lines, fields spelled as flags
+    for (const std::string& line : sum.explain) explain.push_back(spell_flags(line));
     if (o.full_sensor && !s.whole_period_on_sensor) {
         std::cerr << "pinmask simulate: warning: the sensor is smaller than one " << m << " x " << m
                   << " period: no full period to decode\n";

@@ -1,22 +1,22 @@
-// `pinmask sweep SWEEP.json -o DIR`: one search per design point (issue 17). Parses the sweep
+// `pinmask sweep SWEEP.json -o DIR`: one search per design point. Parses the sweep
 // file (io/sweep_config), turns every point into search pipeline options the way `pinmask search
-// --config` does (cli/search_options), runs optimize/sweep (over MPI ranks when under mpirun)
-// and writes the outputs on rank 0 (cli/sweep_outputs).
+// --config` does (cli/options/search_options), runs search/sweep (over MPI ranks when under mpirun)
+// and writes the outputs on rank 0 (cli/outputs/sweep_outputs).
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
-#include "cli/progress.hpp"
-#include "cli/search_options.hpp"
+#include "cli/outputs/progress.hpp"
+#include "cli/options/search_options.hpp"
 #include "cli/sweep_help.hpp"
-#include "cli/sweep_outputs.hpp"
+#include "cli/outputs/sweep_outputs.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
 #include "design/packing_bound.hpp"
 #include "io/sweep_config.hpp"
-#include "optimize/mpi/mpi_comm.hpp"
-#include "optimize/sweep.hpp"
+#include "search/mpi/mpi_comm.hpp"
+#include "search/sweep.hpp"
 
 namespace pinmask::cli {
 namespace {

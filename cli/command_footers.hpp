@@ -67,12 +67,12 @@ inline constexpr const char* kSearchFooter =
     "-o runs/a/\n"
     "Dim light, the pinhole count chosen: pinmask search --grid 32 --photons 3 --read-noise 3 "
     "--holes 5..40 --time 30s -o runs/dim/ (at this light the search beats random masks by "
-    "0.9 dB on real photographs with a 32 x 32 grid, 0.5 dB with 16 x 16: README, Choosing K at "
+    "0.9 dB on real photographs with a 32 x 32 grid, 0.5 dB with 16 x 16: docs/benchmarks.md, Choosing K at "
     "dim light; pinmask sweep varies \"grid\" to compare grids)\n"
     "Repeat a run (byte-identical masks with --evals) or vary it: pinmask search --config "
     "runs/a/search.config.json --seed 2 -o runs/b/";
 
-// --robust (score, compare, search) and what its figures mean (optimize/robust_wiener.hpp).
+// --robust (score, compare, search) and what its figures mean (metrics/robust_wiener.hpp).
 inline constexpr const char* kRobustFlagHelp =
     "Fabrication errors, e.g. size=5um,jitter=2um,missing=0.01 (any subset): pinhole side bias "
     "+-size (both signs), position jitter sigma on the mask, probability a pinhole is missing; "

@@ -9,7 +9,7 @@
 #include <optional>
 #include <sstream>
 
-#include "cli/decode_inputs.hpp"
+#include "cli/options/decode_inputs.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
@@ -32,7 +32,7 @@ Bytes to_bytes(const std::string& s) { return Bytes(s.begin(), s.end()); }
 std::string from_bytes(const Bytes& b) { return std::string(b.begin(), b.end()); }
 
 // The deterministic record of one capture for the summary.
-json capture_entry(const DecodeRequest& rc, const CaptureDecodeSummary& sum) {
+json capture_entry(const DecodeCommand& rc, const CaptureDecodeSummary& sum) {
     json channels = json::array();
     for (const DecodeResult& d : sum.channels) {
         channels.push_back({{"iterations", d.iterations},
@@ -54,7 +54,7 @@ json capture_entry(const DecodeRequest& rc, const CaptureDecodeSummary& sum) {
 }
 
 // Decodes one capture and stages its files exactly as `pinmask decode` writes them.
-json decode_one(BatchDecoder& decoder, const DecodeRequest& rc, BayerMode bayer,
+json decode_one(BatchDecoder& decoder, const DecodeCommand& rc, BayerMode bayer,
                 StagedFiles& files) {
     const OutputKind kind = output_kind(rc.output);
     const std::optional<double> scale = parse_scale(rc.scale);
@@ -99,8 +99,9 @@ json decode_one(BatchDecoder& decoder, const DecodeRequest& rc, BayerMode bayer,
 
 }  // namespace
 
-void run_decode_batch(const DecodeRequest& r, const BatchRequest& b, BayerMode bayer,
+void run_decode_batch(const DecodeCommand& given, const BatchRequest& b, BayerMode bayer,
                       RankComm& comm) {
+    DecodeCommand r = given;
     // Set-up: the same on every rank (same files, same flags), before any work.
     if (!r.capture.empty())
         throw invalid_field("--batch", b.list, "give either a capture or --batch, not both");
@@ -112,7 +113,7 @@ void run_decode_batch(const DecodeRequest& r, const BatchRequest& b, BayerMode b
     if (ext != "tiff" && ext != "png" && ext != "npy")
         throw invalid_field("--batch-format", b.format, "must be tiff, png or npy");
     const std::vector<std::string> inputs = io::capture_list(b.list);
-    std::vector<DecodeRequest> requests;
+    std::vector<DecodeCommand> requests;
     std::map<std::string, std::string> by_stem;
     std::vector<NamedPath> in_paths = {
         {"--mask", r.mask}, {"--psf", r.psf}, {"--dark", r.dark}, {"--batch", b.list}};
@@ -125,7 +126,7 @@ void run_decode_batch(const DecodeRequest& r, const BatchRequest& b, BayerMode b
             throw invalid_field(
                 "--batch", path,
                 "has the same output name " + stem + "." + ext + " as " + it->second);
-        DecodeRequest rc = r;
+        DecodeCommand rc = r;
         rc.capture = path;
         rc.output = (dir / (stem + "." + ext)).string();
         rc.stats = b.stats ? (dir / (stem + ".stats.json")).string() : "";
@@ -139,7 +140,9 @@ void run_decode_batch(const DecodeRequest& r, const BatchRequest& b, BayerMode b
     out_paths.push_back({"-o (summary)", summary_path});
     in_paths.push_back({"--nsr-map", r.nsr_map});
     plan_outputs(in_paths, out_paths);
-    CaptureDecodeOptions options = capture_decode_options(r);
+    resolve_request(r);
+    for (DecodeCommand& rc : requests) rc.request = r.request;
+    CaptureDecodeOptions options = capture_decode_options(r.request);
     options.decode.iterative.record_history = b.stats;  // only STEM.stats.json shows them
     options.validate();
     json shared_stats;
@@ -181,7 +184,7 @@ void run_decode_batch(const DecodeRequest& r, const BatchRequest& b, BayerMode b
                    {"version", 1},
                    {"method", r.method},
                    {"psf", shared_stats["psf"]},
-                   {"config", config_json(DecodeRequest(r))},
+                   {"config", config_json(r)},
                    {"captures", entries}};
         summary["config"].erase("capture");
         summary["config"].erase("output");
@@ -207,7 +210,7 @@ void run_decode_batch(const DecodeRequest& r, const BatchRequest& b, BayerMode b
         std::cout << summary.dump(2) << "\n";
         return;
     }
-    for (const DecodeRequest& rc : requests)
+    for (const DecodeCommand& rc : requests)
         std::cout << "decode " << rc.capture << " -> " << rc.output << "\n";
     std::cout << "batch    " << requests.size() << " captures on " << comm.size() << " rank(s), "
               << decoder.plans().filters_built() << " filter(s) and "

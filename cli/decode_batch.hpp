@@ -1,4 +1,4 @@
-// `pinmask decode --batch LIST_OR_DIR -o DIR` (issue 17): many captures, one PSF, the same
+// `pinmask decode --batch LIST_OR_DIR -o DIR`: many captures, one PSF, the same
 // flags. The inputs: io/capture_list (a directory or a list file). For each capture
 // DIR/STEM.EXT (EXT from --batch-format), DIR/STEM.EXT.config.json and with --batch-stats
 // DIR/STEM.stats.json, the same files `pinmask decode CAPTURE -o DIR/STEM.EXT` writes;
@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "cli/decode_output.hpp"
+#include "cli/outputs/decode_output.hpp"
 #include "core/raw_io.hpp"
-#include "optimize/rank_comm.hpp"
+#include "search/rank_comm.hpp"
 
 namespace pinmask::cli {
 
@@ -33,7 +33,7 @@ struct BatchQuietExit {
 
 // Runs the batch on every rank of `comm` (r: the decode flags, r.output the directory). Prints
 // (rank 0 only) one line per capture and the summary path, or the summary JSON with --json.
-void run_decode_batch(const DecodeRequest& r, const BatchRequest& b, BayerMode bayer,
+void run_decode_batch(const DecodeCommand& r, const BatchRequest& b, BayerMode bayer,
                       RankComm& comm);
 
 }  // namespace pinmask::cli

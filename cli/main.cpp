@@ -4,14 +4,15 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
-#include "cli/fft_setup.hpp"
-#include "cli/option_checks.hpp"
+#include "cli/options/flag_names.hpp"
+#include "cli/options/fft_setup.hpp"
+#include "cli/options/option_checks.hpp"
 #include "core/allocator.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
 #include "core/resource_limits.hpp"
 #include "core/units.hpp"
-#include "optimize/mpi/mpi_comm.hpp"
+#include "search/mpi/mpi_comm.hpp"
 
 namespace {
 
@@ -82,9 +83,9 @@ int main(int argc, char** argv) {
         return report_input_error([&] { app.exit(e); });
     } catch (const InvalidInput& e) {
         return report_input_error(
-            [&] { std::cerr << "pinmask: error: " << readable_numbers(e.what()) << "\n"; });
+            [&] { std::cerr << "pinmask: error: " << cli::spell_flags(readable_numbers(e.what())) << "\n"; });
     } catch (const std::exception& e) {
-        std::cerr << "pinmask: failed: " << readable_numbers(e.what()) << "\n";
+        std::cerr << "pinmask: failed: " << cli::spell_flags(readable_numbers(e.what())) << "\n";
         return 1;
     }
     return exit_code;

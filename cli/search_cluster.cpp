@@ -4,8 +4,8 @@
 
 #include "core/error.hpp"
 #include "io/checkpoint.hpp"
-#include "optimize/byte_codec.hpp"
-#include "optimize/chain_codec.hpp"
+#include "search/byte_codec.hpp"
+#include "search/chain_codec.hpp"
 
 namespace pinmask::cli {
 

@@ -1,6 +1,6 @@
 // Owning handles for Cairo objects: one home for the deleters every drawing file needs.
 // Header-only and nothing in core/ includes it, so core/ neither compiles against nor links
-// Cairo; include it only from a library that links PkgConfig::CAIRO (export/, optimize/,
+// Cairo; include it only from a library that links PkgConfig::CAIRO (layout/, formats/, report/, simulate/,
 // calibrate/, bench/ through export/). It lives here because core/ is the one folder all four
 // depend on (calibrate/ does not depend on export/, DESIGN.md sec. 2).
 #pragma once

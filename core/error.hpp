@@ -32,8 +32,11 @@ class RuntimeFailure : public Error {
     using Error::Error;
 };
 
-// Builds "field: value ...: rule" messages uniformly. Example:
-//   invalid_field("lens_focal_m", "-0.12", "must be > 0")
+// Builds "field = value: rule" messages uniformly. A settings field is named as a reference
+// that each face spells its own way (core/field_names.hpp):
+//   invalid_field(field_ref("iterations"), "0", "must be >= 1")
+// prints "iters = 0: ..." from Python, and the command line prints its flag for `iterations`
+// (cli/options/flag_names) in the same place.
 InvalidInput invalid_field(const std::string& field, const std::string& value,
                            const std::string& rule);
 

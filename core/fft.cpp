@@ -28,9 +28,13 @@ std::mutex& planner_mutex() {
     return m;
 }
 
-constexpr const char* kWisdomMagic = "pinmask-fftw-wisdom 1";
-constexpr const char* kDoubleMark = "--- double\n";
-constexpr const char* kFloatMark = "--- float\n";
+// Format 2: the header, then each precision's FFTW text after its section mark. A file of
+// another format (format 1 marked its sections differently) is ignored and replaced, like a file
+// of another FFTW version.
+constexpr const char* kWisdomFamily = "pinmask-fftw-wisdom ";
+constexpr const char* kWisdomMagic = "pinmask-fftw-wisdom 2";
+constexpr const char* kDoubleMark = "[double]\n";
+constexpr const char* kFloatMark = "[float]\n";
 
 // The process-wide planner state and plan cache. Plans live until exit, when they are destroyed
 // (and FFTW's own planner memory released) so leak checkers see a clean process.
@@ -101,7 +105,10 @@ std::string wisdom_text_locked() {
 // Splits trusted text into its two wisdom strings; returns the problem, or "" when trusted.
 std::string split_wisdom(const std::string& text, std::string& dbl, std::string& flt) {
     const std::string header = header_text();
-    if (text.rfind(kWisdomMagic, 0) != 0) return "not a pinmask wisdom file";
+    if (text.rfind(kWisdomMagic, 0) != 0) {
+        return text.rfind(kWisdomFamily, 0) == 0 ? "written in another pinmask wisdom format"
+                                                 : "not a pinmask wisdom file";
+    }
     if (text.rfind(header, 0) != 0) {
         return "written by another FFTW version or CPU (this process: " +
                std::string(fftw_version) + ", " + cpu_model() + ")";

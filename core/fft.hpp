@@ -22,7 +22,7 @@
 //   differently, so a measured plan is only made deterministic by WISDOM: with a wisdom file
 //   (set_fft_wisdom_file) the first run's choice is recorded and every later run rebuilds exactly
 //   that plan. `pinmask` measures only when a wisdom file is in use (PINMASK_WISDOM=off selects
-//   kEstimate), see cli/fft_setup.
+//   kEstimate), see cli/options/fft_setup.
 // - Threads: transforms of at least kFftThreadMinPixels use fft_threads() FFTW threads.
 #pragma once
 

@@ -20,7 +20,8 @@
 
 namespace pinmask {
 
-// One file of a command and the flag or argument that named it ("-o", "--stats", "mask").
+// One file of a command and the name the caller gave it in its messages (the command line's
+// option or argument that named it: -o, the stats option, mask).
 struct NamedPath {
     std::string flag;
     std::filesystem::path path;

@@ -193,7 +193,7 @@ LoadedImage extract(const fs::path& path, const RawFrame& f, BayerMode mode, Raw
         for (int r = 0; r < rows; ++r)
             for (int c = 0; c < cols; ++c) p(r, c) = value(r, c);
         out.full_scale = span;
-        info.note = "monochrome RAW: full resolution, --bayer does not apply";
+        info.note = "monochrome RAW: full resolution, " + field_ref("bayer") + " does not apply";
         return out;
     }
     // The 2 x 2 CFA of the first block must hold R, B and two G (colours 1 and 3 are green).

@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <string>
 
+#include "core/field_names.hpp"
 #include "core/image_io.hpp"
 
 namespace pinmask {
@@ -31,7 +32,7 @@ namespace pinmask {
 enum class BayerMode { kSum2x2, kGreen, kRed, kBlue };
 
 // "sum2x2", "green", "g", "r", "b"; InvalidInput naming `field` otherwise.
-BayerMode parse_bayer_mode(const std::string& name, const std::string& field = "--bayer");
+BayerMode parse_bayer_mode(const std::string& name, const std::string& field = field_ref("bayer"));
 std::string bayer_mode_name(BayerMode mode);
 
 struct RawInfo {
@@ -40,7 +41,8 @@ struct RawInfo {
     std::string bayer;   // the mode used ("" for monochrome)
     double black = 0.0;  // color.black (the common part)
     double white = 0.0;  // color.maximum
-    std::string note;    // one sentence for stderr / stats, e.g. the doubled pixel pitch
+    // One sentence for stderr / stats, e.g. the doubled pixel pitch; settings as field_ref.
+    std::string note;
 };
 
 // True for the extensions read as camera RAW (case-insensitive): .dng .cr2 .cr3 .crw .nef .nrw

@@ -1,4 +1,4 @@
-// Batch decode (issue 17): many captures with one PSF and one set of options. The PSF, the dark
+// Batch decode: many captures with one PSF and one set of options. The PSF, the dark
 // frame and the options are given once; each decode() runs decode_capture (the pipeline of
 // `pinmask decode`) with a plan cache (decode/plan_cache.hpp), so the OTF, the closed-form filter
 // and their FFT plans are made once per working grid and reused by every capture of that size.

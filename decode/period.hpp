@@ -56,8 +56,9 @@ inline constexpr double kSubharmonicFraction = 0.7;
 // The peak at the expected lag P is reported only if no shorter lag repeats about as well: the
 // first lag whose rise reaches this fraction of P's is reported instead (a capture that repeats
 // every P / 2 also repeats every P, and a PSF of twice its period is still the wrong one).
-// Valid captures of coded masks rise at P / 2 by at most ~0.7 of P (issue 12's false "half the
-// period"); an exact repeat at P / 2 rises as much as P, noise making it ~0.95 .. 1.05.
+// Valid captures of coded masks rise at P / 2 by at most ~0.7 of P (so they are not reported
+// as "half the period"); an exact repeat at P / 2 rises as much as P, noise making it ~0.95 ..
+// 1.05.
 inline constexpr double kFundamentalFraction = 0.9;
 
 // The early exit (decode/period.cpp, confirm_expected): before any search, rho is summed

@@ -1,4 +1,4 @@
-// Decode plans made once and reused across captures (issue 17, batch decode): the convolution
+// Decode plans made once and reused across captures (batch decode): the convolution
 // operator (the PSF's OTF on the working grid, with its FFT plans) and the closed-form filters
 // (Wiener with a scalar NSR, Tikhonov). decode_plane looks them up here when
 // DecodeOptions::plans is set; a miss builds the object exactly as an uncached decode does, so a

@@ -1,9 +1,9 @@
 // The types of one floating-point precision for the solvers of decode/ (and the forward
-// simulation of optimize/): the real plane, its half spectrum and the FFT pair of core/fft
+// simulation of simulate/): the real plane, its half spectrum and the FFT pair of core/fft
 // (Fft2 for double, Fft2f for float32), so a solver written once as a template over T runs in
 // either precision with the same FFT conventions.
 //
-// Float range (issue 16 point 2): a float32 run is safe when every quantity it holds stays far
+// Float range: a float32 run is safe when every quantity it holds stays far
 // from FLT_MAX (3.4e38) and the FFTs' sums (at most N times the largest input) do too. The
 // solvers work on normalised problems (capture / max|p|, see decode/decoder.hpp), so the only
 // inputs that can leave the range are PSFs whose values cancel: |H| <= sum|a| while the decoder

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "core/image_io.hpp"
 #include "design/exclusion_grid.hpp"
 #include "design/mura.hpp"
@@ -14,14 +15,14 @@
 namespace pinmask {
 namespace {
 
-// The paper and mura families fix some of the geometry: a flag given with another value is an
+// The paper and mura families fix some of the geometry: a field given with another value is an
 // error rather than silently ignored.
-void require_unset_or(bool was_given, const char* flag, double given, double fixed,
+void require_unset_or(bool was_given, const char* field, double given, double fixed,
                       const std::string& why) {
     if (was_given && given != fixed) {
         std::ostringstream v;
         v << given;
-        throw invalid_field(flag, v.str(), why);
+        throw invalid_field(field_ref(field), v.str(), why);
     }
 }
 
@@ -37,11 +38,11 @@ GeneratedPattern generate_pattern(const GeneratePatternOptions& o) {
     if (family == Family::kPaper) {
         const std::string why =
             "the paper family fixes n = 16, K = 20, 2 x 2 tiles, spacing 2 "
-            "(use --family random for other geometries)";
-        require_unset_or(g.grid_given, "--grid", g.grid, kPaperGrid, why);
-        require_unset_or(g.holes_given, "--holes", g.holes, kPaperHoles, why);
-        require_unset_or(g.tiles_given, "--tiles", g.tiles, kPaperTiles, why);
-        require_unset_or(g.spacing_given, "--spacing", g.spacing, kPaperSpacingCells, why);
+            "(use " + field_ref("family") + " random for other geometries)";
+        require_unset_or(g.grid_given, "grid", g.grid, kPaperGrid, why);
+        require_unset_or(g.holes_given, "holes", g.holes, kPaperHoles, why);
+        require_unset_or(g.tiles_given, "tiles", g.tiles, kPaperTiles, why);
+        require_unset_or(g.spacing_given, "spacing", g.spacing, kPaperSpacingCells, why);
         p = paper_pattern(rng);
     } else if (family == Family::kRandom) {
         RandomSparseOptions r;
@@ -53,10 +54,11 @@ GeneratedPattern generate_pattern(const GeneratePatternOptions& o) {
         r.max_attempts = o.attempts;
         p = random_sparse_pattern(r, rng);
     } else {
-        if (g.tiles < 1) throw invalid_field("--tiles", std::to_string(g.tiles), "must be >= 1");
+        if (g.tiles < 1)
+            throw invalid_field(field_ref("tiles"), std::to_string(g.tiles), "must be >= 1");
         p = mura_pattern(g.grid, g.spacing, g.tiles, g.tiles);
         const int open = static_cast<int>(p.pinholes.size());
-        require_unset_or(g.holes_given, "--holes", g.holes, open,
+        require_unset_or(g.holes_given, "holes", g.holes, open,
                          "a MURA of order " + std::to_string(g.grid) +
                              " has (p^2 - 1) / 2 = " + std::to_string(open) + " pinholes");
     }
@@ -64,27 +66,30 @@ GeneratedPattern generate_pattern(const GeneratePatternOptions& o) {
     if (violations > 0 && !o.allow_violations) {
         std::ostringstream v;
         v << p.min_spacing_cells;
-        throw invalid_field("--spacing", v.str(),
+        throw invalid_field(field_ref("spacing"), v.str(),
                             "the " + family_name(family) + " pattern of order " +
                                 std::to_string(p.n) + " has " + std::to_string(violations) +
-                                " pinhole pair(s) closer than that on the torus; pass "
-                                "--allow-violations to write it anyway (the file records "
-                                "spacing_violations_allowed), or lower --spacing");
+                                " pinhole pair(s) closer than that on the torus; pass " +
+                                field_ref("allow_violations") +
+                                " to write it anyway (the file records "
+                                "spacing_violations_allowed), or lower " +
+                                field_ref("spacing"));
     }
     return {p, violations};
 }
 
 // Bounds that later commands enforce, checked here so generate never writes a mask they refuse.
 void GeneratePatternOptions::validate() const {
-    if (attempts < 1) throw invalid_field("--attempts", std::to_string(attempts), "must be >= 1");
+    if (attempts < 1)
+        throw invalid_field(field_ref("attempts"), std::to_string(attempts), "must be >= 1");
     const GeneratePatternOptions& g = *this;
     if (g.tiles < 1 || g.tiles > kMaxTiles) {
-        throw invalid_field("--tiles", std::to_string(g.tiles),
+        throw invalid_field(field_ref("tiles"), std::to_string(g.tiles),
                             "must be between 1 and " + std::to_string(kMaxTiles) +
                                 " (the largest tiling the mask reader and export accept)");
     }
     if (g.grid < 1 || g.grid > kMaxGrid) {
-        throw invalid_field("--grid", std::to_string(g.grid),
+        throw invalid_field(field_ref("grid"), std::to_string(g.grid),
                             "must be between 1 and " + std::to_string(kMaxGrid));
     }
 }
@@ -96,7 +101,7 @@ void check_period_psf_size(int ppc, int grid, bool given) {
     if (side * side <= double(kMaxImageSamples)) return;
     const auto max_side = static_cast<long long>(std::sqrt(double(kMaxImageSamples)));
     throw invalid_field(
-        given ? "--pixels-per-cell" : "pixels per cell (design value from the camera)",
+        given ? field_ref("pixels_per_cell") : "pixels per cell (design value from the camera)",
         std::to_string(ppc),
         "the PSF of one period would be " + std::to_string(static_cast<long long>(side)) +
             " px wide (grid " + std::to_string(grid) +

@@ -1,4 +1,4 @@
-// `pinmask generate`'s pattern as one library call (issue 11): a family (random | paper | mura)
+// `pinmask generate`'s pattern as one library call: a family (random | paper | mura)
 // with its geometry rules (paper and mura fix some of the geometry: a field given with another
 // value is refused rather than silently ignored), the spacing-rule check, and the bound on the
 // PSF size every later command must hold.
@@ -24,8 +24,8 @@ struct GeneratePatternOptions {
     int attempts = 20;              // random, paper: restarts of random sequential placement, >= 1
     bool allow_violations = false;  // else a pattern that breaks the spacing rule is refused
 
-    // InvalidInput naming the flag, value and rule: --attempts >= 1, --tiles in 1..kMaxTiles,
-    // --grid in 1..kMaxGrid (the bounds the mask reader and export accept).
+    // InvalidInput naming the field, value and rule: attempts >= 1, tiles in 1..kMaxTiles,
+    // grid in 1..kMaxGrid (the bounds the mask reader and export accept).
     void validate() const;
 };
 
@@ -37,7 +37,8 @@ struct GeneratedPattern {
 GeneratedPattern generate_pattern(const GeneratePatternOptions& options);
 
 // InvalidInput unless the PSF of one period, (grid x ppc)^2 samples, fits kMaxImageSamples (what
-// psf, simulate and decode hold). `given`: ppc came from --pixels-per-cell (else the design value).
+// psf, simulate and decode hold). `given`: ppc was the user's pixels_per_cell (else the design
+// value).
 void check_period_psf_size(int pixels_per_cell, int grid, bool given);
 
 }  // namespace pinmask

@@ -10,15 +10,6 @@
 namespace pinmask {
 namespace {
 
-constexpr std::array<std::pair<KernelModel, const char*>, 6> kNames = {{
-    {KernelModel::kAuto, "auto"},
-    {KernelModel::kBox, "box"},
-    {KernelModel::kFraunhofer, "fraunhofer"},
-    {KernelModel::kFresnel, "fresnel"},
-    {KernelModel::kPaperFig3b, "paper-fig3b"},
-    {KernelModel::kMeasured, "measured"},
-}};
-
 std::string number(double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.4g", v);
@@ -29,7 +20,7 @@ std::string number(double v) {
 
 KernelModel parse_kernel_model(std::string_view name, std::string_view field) {
     std::string list;
-    for (const auto& [model, text] : kNames) {
+    for (const auto& [model, text] : kKernelModelNames) {
         if (name == text) return model;
         list += (list.empty() ? "" : ", ") + std::string(text);
     }
@@ -38,11 +29,13 @@ KernelModel parse_kernel_model(std::string_view name, std::string_view field) {
 }
 
 std::string kernel_model_name(KernelModel model) {
-    for (const auto& [m, text] : kNames) {
+    for (const auto& [m, text] : kKernelModelNames) {
         if (m == model) return text;
     }
     return "unknown";
 }
+
+std::string kernel_model_names() { return names_of(kKernelModelNames); }
 
 KernelChoice choose_kernel_model(double fresnel_number) {
     if (std::isnan(fresnel_number)) {

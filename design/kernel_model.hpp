@@ -5,6 +5,8 @@
 #include <string>
 #include <string_view>
 
+#include "core/name_table.hpp"
+
 namespace pinmask {
 
 enum class KernelModel {
@@ -16,10 +18,23 @@ enum class KernelModel {
     kMeasured,    // a kernel image file
 };
 
-// "auto", "box", "fraunhofer", "fresnel", "paper-fig3b", "measured". Throws InvalidInput naming
-// `field`, the value and the list otherwise.
+// The one table of the models' names: the flags' and keywords' values, the help texts, the mask
+// file's "kernel.model" and the reports all read it (core/name_table.hpp: names_of, name_list).
+inline constexpr NameTable<KernelModel, 6> kKernelModelNames{{
+    {KernelModel::kAuto, "auto"},
+    {KernelModel::kBox, "box"},
+    {KernelModel::kFraunhofer, "fraunhofer"},
+    {KernelModel::kFresnel, "fresnel"},
+    {KernelModel::kPaperFig3b, "paper-fig3b"},
+    {KernelModel::kMeasured, "measured"},
+}};
+
+// A name of kKernelModelNames. Throws InvalidInput naming `field`, the value and the list
+// otherwise.
 KernelModel parse_kernel_model(std::string_view name, std::string_view field = "kernel model");
 std::string kernel_model_name(KernelModel model);
+// The names joined by " | " ("auto | box | ..."), for help texts.
+std::string kernel_model_names();
 
 // "auto" aims at an L1 distance of at most kAutoL1Target between the chosen model's continuous
 // 1-D profile and the Fresnel profile (int |h_model - h_fresnel| dv; both integrate to 1):

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/field_names.hpp"
 #include "design/optics.hpp"
 
 namespace pinmask {
@@ -59,7 +60,9 @@ KernelValidity kernel_validity(const Camera& camera, KernelModel model, double e
                              " % of its energy (loses more than " +
                              g(100.0 * kMaxKernelEnergyLoss) +
                              " %); the kept part is renormalised, so the PSF misstates the "
-                             "spread: raise --energy, or the period (grid x pixels per cell)");
+                             "spread: raise " +
+                             field_ref("energy_fraction") +
+                             ", or the period (grid x pixels per cell)");
     }
     return v;
 }

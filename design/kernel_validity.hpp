@@ -29,7 +29,8 @@ struct KernelValidity {
     KernelModel model = KernelModel::kFresnel;  // as asked (kAuto resolved)
     bool model_accurate = true;         // the model is accurate at this N and the optics are scalar
     bool energy_ok = true;              // 1 - energy_kept <= kMaxKernelEnergyLoss
-    std::vector<std::string> warnings;  // one sentence each, naming the figure and the rule
+    // One sentence each, naming the figure and the rule; settings as field_ref (the faces spell).
+    std::vector<std::string> warnings;
     bool ok() const { return warnings.empty(); }
 };
 

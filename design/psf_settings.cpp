@@ -4,24 +4,31 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "core/units.hpp"
 #include "design/working_distance.hpp"
 
 namespace pinmask {
 
+void check_kernel_settings(const std::string& kernel, const std::string& kernel_path) {
+    if (kernel == "measured" && kernel_path.empty()) {
+        throw invalid_field(field_ref("kernel"), "measured",
+                            "needs " + field_ref("kernel_path") + " FILE");
+    }
+    if (kernel != "measured" && !kernel_path.empty()) {
+        throw invalid_field(field_ref("kernel_path"), kernel_path,
+                            "only used with " + field_ref("kernel") + " measured");
+    }
+}
+
 PsfSpec resolve_psf_spec(const PsfSettings& o, const Camera& c) {
-    if (o.kernel == "measured" && o.kernel_path.empty()) {
-        throw invalid_field("--kernel", "measured", "needs --kernel-path FILE");
-    }
-    if (o.kernel != "measured" && !o.kernel_path.empty()) {
-        throw invalid_field("--kernel-path", o.kernel_path, "only used with --kernel measured");
-    }
+    check_kernel_settings(o.kernel, o.kernel_path);
     PsfSpec spec;
     spec.kernel.model = o.kernel;
     spec.kernel.measured_path = o.kernel_path;
     if (o.pixels_per_cell) {
         if (*o.pixels_per_cell < 1) {
-            throw invalid_field("--pixels-per-cell", std::to_string(*o.pixels_per_cell),
+            throw invalid_field(field_ref("pixels_per_cell"), std::to_string(*o.pixels_per_cell),
                                 "must be >= 1");
         }
         spec.pixels_per_cell = *o.pixels_per_cell;
@@ -35,7 +42,8 @@ PsfSpec resolve_psf_spec(const PsfSettings& o, const Camera& c) {
         throw invalid_field(
             "pixels per cell at u (d |1 - f/f' + f/u| / w)", v.str(),
             "rounds to less than 1 pixel (f = " + format_length(c.sensor_distance_m) +
-                ", f' = " + format_length(c.lens_focal_m) + "): give --pixels-per-cell explicitly");
+                ", f' = " + format_length(c.lens_focal_m) + "): give " +
+                field_ref("pixels_per_cell") + " explicitly");
     }
     spec.pixels_per_cell = static_cast<int>(rounded);
     return spec;

@@ -1,6 +1,6 @@
 // The PSF settings a user gives (kernel model, measured kernel file, image-plane cell pitch in
 // pixels) and the PsfSpec they resolve to for a camera. Shared by generate, search, simulate and
-// the Python module; errors name the command-line flag.
+// the Python module; errors name the fields below (field_ref), which each face spells.
 #pragma once
 
 #include <optional>
@@ -19,8 +19,13 @@ struct PsfSettings {
 
 // The PsfSpec for these settings: pixels per cell as given, else the nearest integer to the pitch
 // d |1 - f/f' + f/u| / w at the camera's object distance u (InvalidInput when that is below 1,
-// naming --pixels-per-cell); kernel settings checked for consistency (measured needs
-// --kernel-path and only it takes one).
+// naming pixels_per_cell); kernel settings checked for consistency (measured needs
+// kernel_path and only it takes one).
 PsfSpec resolve_psf_spec(const PsfSettings& o, const Camera& c);
+
+// The kernel settings' consistency: kernel "measured" needs a kernel_path and only it takes one
+// (InvalidInput naming the field otherwise). An empty kernel means "not given" (the mask's own
+// model): then no path may be given either. The model name itself is the caller's to check.
+void check_kernel_settings(const std::string& kernel, const std::string& kernel_path);
 
 }  // namespace pinmask

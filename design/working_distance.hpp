@@ -34,7 +34,7 @@ struct WorkingDistanceOptions {
 void validate(const WorkingDistanceOptions& options);
 
 // Spots spreading wider than this many cells overlap their neighbours' cells: the design table
-// warns (the "more than about one cell").
+// warns ("more than about one cell").
 inline constexpr double kSpotSpreadWarnCells = 1.0;
 
 struct WorkingDistance {
@@ -56,7 +56,8 @@ struct WorkingDistance {
 };
 
 // Throws InvalidInput when the object sits inside the lens' focal length (finite f', u <= f'),
-// naming `field` (e.g. "--object-distance") and both values.
+// naming `field` (the caller's name for it: a face passes its own spelling, a library a
+// field_ref) and both values.
 void check_object_distance(const Camera& camera, double object_distance_m,
                            const char* field = "object_distance_m");
 

@@ -11,8 +11,8 @@
 #include <functional>
 
 #include "core/error.hpp"
-#include "export/segment_predicates.hpp"
-#include "export/xor_area.hpp"
+#include "layout/segment_predicates.hpp"
+#include "layout/xor_area.hpp"
 
 namespace pinmask {
 namespace {

@@ -1,10 +1,9 @@
-// Design-rule check of exported mask geometry (rings in integer nanometres, export/layout.hpp).
+// Design-rule check of exported mask geometry (rings in integer nanometres, layout/layout.hpp).
 // Every verdict is exact: vertices are integers, and distances are compared squared in 128-bit
-// integer arithmetic (coordinates within +-kMaxCoordNm, export/xor_area.hpp); only the reported
-// measurements are rounded to double. Rules (DrcRule, named by
-// the one table drc_rule_name):
+// integer arithmetic (coordinates within +-kMaxCoordNm, layout/xor_area.hpp); only the reported
+// measurements are rounded to double. Rules (DrcRule, named by the one table drc_rule_name):
 //   ring              fewer than 3 vertices
-//   vertices          more than max_vertices vertices (GDSII record limits, export/vendor_rules)
+//   vertices          more than max_vertices vertices (GDSII record limits, layout/vendor_rules)
 //   self_intersection not a simple polygon (CGAL::is_simple_2): crossing or touching edges,
 //                     repeated vertices (e.g. the closing vertex repeated), zero area
 //   orientation       clockwise ring (every ring must be counter-clockwise)
@@ -16,6 +15,7 @@
 //                     narrowest bar. Not measured: triangles (all edges adjacent), acute tips.
 //   gap               distinct polygons closer than min_gap_nm (edge-to-edge, Euclidean), or a
 //                     notch of one ring (facing edges with the exterior between them) narrower
+//                     than min_gap_nm (reported with polygon_a = polygon_b = that ring)
 //   touching          distinct polygons whose boundaries meet without overlapping interiors
 //   overlap           distinct polygons whose interiors overlap (incl. one inside the other)
 //   spacing           polygon centroids closer than min_center_spacing_nm (the mask's spacing
@@ -33,9 +33,9 @@
 #include <vector>
 
 #include "design/mask.hpp"
-#include "export/layout.hpp"
-#include "export/vendor_rules.hpp"
-#include "export/xor_area.hpp"
+#include "layout/layout.hpp"
+#include "layout/vendor_rules.hpp"
+#include "layout/xor_area.hpp"
 
 namespace pinmask {
 
@@ -109,7 +109,7 @@ DrcReport run_drc(const std::vector<Ring>& polygons, const DrcRules& rules);
 // violations counting polygons first, then annotations (index - polygons.size()). The spacing
 // rule applies to clear-tone polygons only. Dark tone: the polygons are opaque pieces that may
 // share edges (pairs of pieces are not checked, nor their widths); the clear regions they
-// leave (the holes of their union, export/xor_area union_holes) are checked as pinholes
+// leave (the holes of their union, layout/xor_area union_holes) are checked as pinholes
 // (spacing, width, gaps between them; no vertex limit: they are not drawn) and reported after
 // the annotations. Without an allowed_area, clear-tone polygons and the clear regions must lie
 // in active_area, dark-tone pieces (which include the frame) and annotations in extent.

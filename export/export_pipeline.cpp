@@ -3,14 +3,15 @@
 #include <cmath>
 
 #include "core/error.hpp"
-#include "export/png_preview.hpp"
-#include "export/rings.hpp"
-#include "export/shapes.hpp"
+#include "core/field_names.hpp"
+#include "formats/png_preview.hpp"
+#include "layout/rings.hpp"
+#include "layout/shapes.hpp"
 
 namespace pinmask {
 namespace {
 
-void check_length(double v_m, const char* field, bool zero_ok) {
+void check_length(double v_m, const std::string& field, bool zero_ok) {
     if (!std::isfinite(v_m) || v_m < 0 || (!zero_ok && v_m == 0) || v_m > 1.0)
         throw invalid_field(field, nm_text(v_m * 1e9),
                             zero_ok ? "must be finite, >= 0 and at most 1 m"
@@ -20,36 +21,41 @@ void check_length(double v_m, const char* field, bool zero_ok) {
 }  // namespace
 
 void ExportOptions::validate() const {
-    if (formats.empty()) throw invalid_field("--format", "''", "names no format");
+    if (formats.empty()) throw invalid_field(field_ref("formats"), "''", "names no format");
     const LayoutOptions& l = layout;
-    if (l.hole_side_m != 0.0) check_length(l.hole_side_m, "--hole-side", false);
-    check_length(l.frame_m, "--frame", true);
-    check_length(kerf_m, "--kerf", true);
-    check_length(plate_m, "--plate", true);
-    check_length(write.pdf.margin_m, "--margin", true);
+    if (l.hole_side_m != 0.0) check_length(l.hole_side_m, field_ref("hole_side_m"), false);
+    check_length(l.frame_m, field_ref("frame_m"), true);
+    check_length(kerf_m, field_ref("kerf_m"), true);
+    check_length(plate_m, field_ref("plate_m"), true);
+    check_length(write.pdf.margin_m, field_ref("margin_m"), true);
     if (!(l.grid_m > 0) || !std::isfinite(l.grid_m) || l.grid_m > 1e-3)
-        throw invalid_field("--grid", nm_text(l.grid_m * 1e9), "must be > 0 and at most 1 mm");
+        throw invalid_field(field_ref("grid_m"), nm_text(l.grid_m * 1e9),
+                            "must be > 0 and at most 1 mm");
     if (!std::isfinite(l.chord_tolerance_m) || l.chord_tolerance_m < 0 ||
         l.chord_tolerance_m > 1e-3)
-        throw invalid_field("--chord-tol", nm_text(l.chord_tolerance_m * 1e9),
+        throw invalid_field(field_ref("chord_tolerance_m"), nm_text(l.chord_tolerance_m * 1e9),
                             "must be > 0 and at most 1 mm (or auto)");
     if (l.shape == HoleShape::kPolygon && (l.polygon_sides < 3 || l.polygon_sides > 8000))
-        throw invalid_field("--sides", std::to_string(l.polygon_sides), "must be in 3..8000");
+        throw invalid_field(field_ref("polygon_sides"), std::to_string(l.polygon_sides),
+                            "must be in 3..8000");
     if (l.max_vertices < 8 || l.max_vertices > kGdsHardMaxVertices)
-        throw invalid_field("--max-vertices", std::to_string(l.max_vertices),
+        throw invalid_field(field_ref("max_vertices"), std::to_string(l.max_vertices),
                             "must be in 8..8190 (the GDSII record limit)");
     if (write.gds.layer < 0 || write.gds.layer > 32767)
-        throw invalid_field("--layer", std::to_string(write.gds.layer), "must be in 0..32767");
+        throw invalid_field(field_ref("layer"), std::to_string(write.gds.layer),
+                            "must be in 0..32767");
     if (write.gds.datatype < 0 || write.gds.datatype > 32767)
-        throw invalid_field("--datatype", std::to_string(write.gds.datatype),
+        throw invalid_field(field_ref("datatype"), std::to_string(write.gds.datatype),
                             "must be in 0..32767");
     if (!std::isfinite(write.max_snap_error_nm) || write.max_snap_error_nm < 0)
-        throw invalid_field("--max-snap-error", nm_text(write.max_snap_error_nm),
+        throw invalid_field(field_ref("max_snap_error_nm"), nm_text(write.max_snap_error_nm),
                             "must be finite and > 0");
     if (!(write.tiff_dpi >= 1 && write.tiff_dpi <= 1e6))
-        throw invalid_field("--dpi", std::to_string(write.tiff_dpi), "must be in 1..1000000");
+        throw invalid_field(field_ref("tiff_dpi"), std::to_string(write.tiff_dpi),
+                            "must be in 1..1000000");
     if (!(write.png_dpi >= 1 && write.png_dpi <= 1e6))
-        throw invalid_field("--dpi", std::to_string(write.png_dpi), "must be in 1..1000000");
+        throw invalid_field(field_ref("png_dpi"), std::to_string(write.png_dpi),
+                            "must be in 1..1000000");
 }
 
 ExportSummary export_mask(const Mask& mask, const ExportOptions& o) {
@@ -59,7 +65,7 @@ ExportSummary export_mask(const Mask& mask, const ExportOptions& o) {
     if (o.kerf_m > 0) {
         const double side = lo.hole_side_m > 0 ? lo.hole_side_m : mask.camera.pinhole_m;
         if (!(o.kerf_m < side))
-            throw invalid_field("--kerf", nm_text(o.kerf_m * 1e9),
+            throw invalid_field(field_ref("kerf_m"), nm_text(o.kerf_m * 1e9),
                                 "must be smaller than the hole side " + nm_text(side * 1e9));
         lo.hole_side_m = side - o.kerf_m;
         s.notes.push_back("kerf " + nm_text(o.kerf_m * 1e9) + ": holes drawn " +
@@ -72,13 +78,14 @@ ExportSummary export_mask(const Mask& mask, const ExportOptions& o) {
         const double w = double(e.x1 - e.x0), h = double(e.y1 - e.y0);
         if (std::max(w, h) > o.plate_m * 1e9)
             throw invalid_field(
-                "--plate", nm_text(o.plate_m * 1e9),
+                field_ref("plate_m"), nm_text(o.plate_m * 1e9),
                 "the layout extent " + nm_text(w) + " x " + nm_text(h) + " does not fit the plate");
     }
     if (o.write.native_circles && s.layout.circles.empty())
         s.notes.push_back(
-            "--circles native: no round pinholes to draw natively (square or polygon shape, or "
-            "dark tone, where pinholes are holes in opaque pieces): polygons written");
+            field_ref("circles") +
+            " native: no round pinholes to draw natively (square or polygon shape, or dark tone, "
+            "where pinholes are holes in opaque pieces): polygons written");
     s.drc = run_drc(s.layout, rules_for_mask(mask, o.drc));
     if (o.require_drc_clean && !s.drc.clean()) {
         std::string what;

@@ -9,10 +9,10 @@
 
 #include "design/mask.hpp"
 #include "export/drc.hpp"
-#include "export/geometry.hpp"
-#include "export/read_any.hpp"
-#include "export/vendor_rules.hpp"
-#include "export/write_any.hpp"
+#include "layout/geometry.hpp"
+#include "formats/read_any.hpp"
+#include "layout/vendor_rules.hpp"
+#include "formats/write_any.hpp"
 
 namespace pinmask {
 
@@ -45,7 +45,7 @@ struct ExportedFile {
     FabFormat format;
     std::string extension;  // ".gds", ...
     std::string bytes;
-    std::string units;  // what the file's numbers mean (export/write_any units_of)
+    std::string units;  // what the file's numbers mean (formats/write_any units_of)
 };
 
 struct ExportSummary {

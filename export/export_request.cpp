@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "core/units.hpp"
 #include "export/vendor_presets.hpp"
 
@@ -17,7 +18,7 @@ std::vector<FabFormat> parse_formats(const string& list) {
     std::stringstream ss(list);
     for (string item; std::getline(ss, item, ',');)
         if (!item.empty()) {
-            const FabFormat f = parse_fab_format(item, "--format");
+            const FabFormat f = parse_fab_format(item, field_ref("formats"));
             if (std::find(out.begin(), out.end(), f) == out.end()) out.push_back(f);
         }
     return out;
@@ -44,49 +45,53 @@ ExportOptions export_options_from(const ExportRequest& f, const Mask& mask, cons
     }
     o.drc = vendor_rules(v ? v->drc : f.vendor);
     if (f.formats) o.formats = parse_formats(*f.formats);
-    if (f.units) o.write.unit = parse_fab_unit(*f.units, "--units");
-    if (f.tone) l.tone = parse_tone(*f.tone, "--tone");
+    if (f.units) o.write.unit = parse_fab_unit(*f.units, field_ref("units"));
+    if (f.tone) l.tone = parse_tone(*f.tone, field_ref("tone"));
     if (f.emulsion && *f.emulsion != "up" && *f.emulsion != "down")
-        throw invalid_field("--emulsion", *f.emulsion, "must be up or down");
+        throw invalid_field(field_ref("emulsion"), *f.emulsion, "must be up or down");
     if (f.emulsion && f.mirror && *f.emulsion == "up")
-        throw invalid_field("--emulsion", "up", "contradicts --mirror (mirrored = emulsion down)");
+        throw invalid_field(field_ref("emulsion"), "up",
+                            "contradicts " + field_ref("mirror") + " (mirrored = emulsion down)");
     if (f.emulsion) l.mirror = *f.emulsion == "down";
     if (f.mirror) l.mirror = true;
-    if (f.frame) l.frame_m = parse_length_m(*f.frame, "--frame");
-    if (f.grid) l.grid_m = parse_length_m(*f.grid, "--grid");
+    if (f.frame) l.frame_m = parse_length_m(*f.frame, field_ref("frame"));
+    if (f.grid) l.grid_m = parse_length_m(*f.grid, field_ref("grid"));
     if (f.max_vertices) l.max_vertices = *f.max_vertices;
-    if (f.kerf) o.kerf_m = parse_length_m(*f.kerf, "--kerf");
+    if (f.kerf) o.kerf_m = parse_length_m(*f.kerf, field_ref("kerf"));
     if (f.circles && *f.circles != "native" && *f.circles != "polygon")
-        throw invalid_field("--circles", *f.circles, "must be native or polygon");
+        throw invalid_field(field_ref("circles"), *f.circles, "must be native or polygon");
     if (f.circles) o.write.native_circles = *f.circles == "native";
     if (f.dpi) o.write.png_dpi = o.write.tiff_dpi = *f.dpi;
     if (f.max_snap_error)
-        o.write.max_snap_error_nm = parse_length_m(*f.max_snap_error, "--max-snap-error") * 1e9;
-    l.shape = parse_hole_shape(f.shape, "--shape");
+        o.write.max_snap_error_nm =
+            parse_length_m(*f.max_snap_error, field_ref("max_snap_error")) * 1e9;
+    l.shape = parse_hole_shape(f.shape, field_ref("shape"));
     l.polygon_sides = f.sides;
     l.marks = f.marks;
-    if (f.chord_tol != "auto") l.chord_tolerance_m = parse_length_m(f.chord_tol, "--chord-tol");
+    if (f.chord_tol != "auto")
+        l.chord_tolerance_m = parse_length_m(f.chord_tol, field_ref("chord_tol"));
     if (f.chord_tol != "auto" && !(l.chord_tolerance_m > 0))
-        throw invalid_field("--chord-tol", f.chord_tol, "must be > 0 (or auto)");
+        throw invalid_field(field_ref("chord_tol"), f.chord_tol, "must be > 0 (or auto)");
     if (f.hole_side) {
-        l.hole_side_m = parse_length_m(*f.hole_side, "--hole-side");
+        l.hole_side_m = parse_length_m(*f.hole_side, field_ref("hole_side"));
         if (!(l.hole_side_m > 0))
-            throw invalid_field("--hole-side", *f.hole_side, "must be > 0 (omit it for the cell)");
+            throw invalid_field(field_ref("hole_side"), *f.hole_side,
+                                "must be > 0 (omit it for the cell)");
     }
     if (f.label) {
         l.label_lines = default_label_lines(mask, f.label_id.empty() ? stem : f.label_id);
         l.label_lines.push_back(tone_label_line(l.tone, l.mirror, fab_unit_name(o.write.unit)));
     }
-    if (f.draw) o.write.draw = o.write.svg_draw = parse_draw_mode(*f.draw, "--draw");
+    if (f.draw) o.write.draw = o.write.svg_draw = parse_draw_mode(*f.draw, field_ref("draw"));
     if (f.hierarchy != "auto" && f.hierarchy != "flat" && f.hierarchy != "cells")
-        throw invalid_field("--hierarchy", f.hierarchy, "must be auto, flat or cells");
+        throw invalid_field(field_ref("hierarchy"), f.hierarchy, "must be auto, flat or cells");
     const std::size_t holes = mask.pattern.pinholes.size() *
                               std::size_t(mask.pattern.tiles_rows * mask.pattern.tiles_cols);
     o.write.gds_hierarchy =
         f.hierarchy == "cells" || (f.hierarchy == "auto" && holes > kHierarchyAutoPinholes);
     o.write.gds = {.layer = f.layer, .datatype = f.datatype};
     o.write.dxf = {.layer = f.dxf_layer};
-    o.write.pdf.margin_m = parse_length_m(f.margin, "--margin");
+    o.write.pdf.margin_m = parse_length_m(f.margin, field_ref("margin"));
     o.require_drc_clean = f.require_drc_clean;
     return o;
 }

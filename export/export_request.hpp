@@ -1,6 +1,7 @@
 // An export as a user asks for it (the settings of `pinmask export`, text as given, units
 // parsed here) and the ExportOptions it becomes: a --vendor preset under the explicit settings.
-// Shared by export, check and the Python module; errors name the command-line flag.
+// Shared by export, check and the Python module; errors name the request's fields
+// (core/field_names.hpp).
 #pragma once
 
 #include <cstddef>
@@ -25,7 +26,7 @@ struct ExportRequest {
          allow_spacing_violations = false, json = false, no_psf = false, psf_npy = false;
 };
 
-// Settings over the --vendor preset over the defaults; InvalidInput names the flag.
+// Settings over the `vendor` preset over the defaults; InvalidInput names the field.
 ExportOptions export_options_from(const ExportRequest& f, const Mask& mask,
                                   const std::string& stem);
 

@@ -7,10 +7,10 @@
 #include "core/error.hpp"
 #include "core/output_set.hpp"
 #include "core/resource_limits.hpp"
-#include "export/geometry.hpp"
-#include "export/pdf_reader.hpp"
+#include "layout/geometry.hpp"
+#include "formats/pdf_reader.hpp"
 #include "export/raster_check.hpp"
-#include "export/shapes.hpp"
+#include "layout/shapes.hpp"
 
 namespace pinmask {
 namespace {

@@ -1,4 +1,4 @@
-// `pinmask check` of a fabrication file as a library call: the file's geometry (export/read_any)
+// `pinmask check` of a fabrication file as a library call: the file's geometry (formats/read_any)
 // split into pinhole polygons and annotations, compared with its design (export/read_back) when
 // the design is known, and checked against design rules (export/drc).
 //   with a design and whole_layout (the export sidecar gave every layout setting): every ring
@@ -8,7 +8,7 @@
 //     polygons are the pinholes, compared with the design's polygons;
 //   without a design: rings inside `outline` (if given) are the pinholes, all rings otherwise.
 //   pictures (PDF, PNG, 1-bit TIFF): no polygons to read; the picture is compared with its
-//     design drawn the same way (export/pdf_reader, export/raster_check), and the design itself
+//     design drawn the same way (formats/pdf_reader, export/raster_check), and the design itself
 //     is design-rule checked (check_picture_file).
 #pragma once
 
@@ -17,12 +17,12 @@
 #include <string>
 
 #include "export/drc.hpp"
-#include "export/film_paint.hpp"
-#include "export/layout.hpp"
-#include "export/pdf_writer.hpp"
+#include "layout/film_paint.hpp"
+#include "layout/layout.hpp"
+#include "formats/pdf_writer.hpp"
 #include "export/read_back.hpp"
-#include "export/rings.hpp"
-#include "export/write_any.hpp"
+#include "layout/rings.hpp"
+#include "formats/write_any.hpp"
 
 namespace pinmask {
 

@@ -11,9 +11,9 @@
 
 #include "core/error.hpp"
 #include "core/resource_limits.hpp"
-#include "export/geometry.hpp"
-#include "export/plotter_raster.hpp"
-#include "export/rings.hpp"
+#include "layout/geometry.hpp"
+#include "formats/plotter_raster.hpp"
+#include "layout/rings.hpp"
 
 namespace pinmask {
 namespace {

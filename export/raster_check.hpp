@@ -1,6 +1,6 @@
 // Reading back the raster pictures export writes (the 1-bit plotter TIFF, the PNG preview) and
 // comparing them with their design, for `pinmask check`.
-// The reference is the design rasterised at the file's resolution by export/plotter_raster
+// The reference is the design rasterised at the file's resolution by formats/plotter_raster
 // (a pixel is opaque or clear by its centre), in the picture's draw mode (film: the film as it
 // looks; polygons: the drawn rings black on white, i.e. the layout rasterised as dark tone).
 //   1-bit TIFF: written by that same rasteriser, so every pixel must agree (tolerance 0 pixels):
@@ -22,8 +22,8 @@
 #include <string_view>
 #include <vector>
 
-#include "export/film_paint.hpp"
-#include "export/layout.hpp"
+#include "layout/film_paint.hpp"
+#include "layout/layout.hpp"
 
 namespace pinmask {
 
@@ -33,7 +33,7 @@ inline constexpr int kRasterEdgePixels = 1;
 // Half grey: PNG pixels darker than this are opaque (black).
 inline constexpr int kPngBlackBelow = 128;
 
-// Pixels packed as export/plotter_raster's: rows of ceil(cols / 8) bytes, MSB first, 1 = black
+// Pixels packed as formats/plotter_raster's: rows of ceil(cols / 8) bytes, MSB first, 1 = black
 // (opaque), padding bits 0, row 0 at the top.
 struct RasterPicture {
     std::int64_t cols = 0, rows = 0;

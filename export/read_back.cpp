@@ -4,8 +4,8 @@
 #include <iterator>
 
 #include "core/error.hpp"
-#include "export/geometry.hpp"
-#include "export/xor_area.hpp"
+#include "layout/geometry.hpp"
+#include "layout/xor_area.hpp"
 
 namespace pinmask {
 namespace {

@@ -1,8 +1,8 @@
 // The one comparison of a fabrication file with its design, used by `pinmask export` (every
 // file it writes is read back from disk before it is committed) and by `pinmask check` (a file
 // given by a user, compared with the mask named by its sidecar or by --mask).
-// Two ring sets are equal when their canonical forms are (export/rings canonical_rings); else the
-// rings found in only one of them are compared by exact XOR area (export/xor_area: the common
+// Two ring sets are equal when their canonical forms are (layout/rings canonical_rings); else the
+// rings found in only one of them are compared by exact XOR area (layout/xor_area: the common
 // rings cancel, because rings of one set never overlap). The file's geometry hash (info "hash")
 // must be the design's.
 #pragma once
@@ -12,9 +12,9 @@
 #include <string_view>
 #include <vector>
 
-#include "export/layout.hpp"
-#include "export/read_any.hpp"
-#include "export/rings.hpp"
+#include "layout/layout.hpp"
+#include "formats/read_any.hpp"
+#include "layout/rings.hpp"
 
 namespace pinmask {
 
@@ -40,7 +40,7 @@ ReadBack compare_rings(const std::vector<Ring>& file_rings, const std::vector<Ri
                        std::string file_hash, std::string design_hash);
 
 // A file's geometry against a layout: every ring (pinholes or opaque pieces, marks, label) with
-// the layout's (export/geometry all_rings); native circles in the file with the layout's
+// the layout's (layout/geometry all_rings); native circles in the file with the layout's
 // circles (exactly: same centre and diameter), its rings then with the annotations.
 ReadBack compare_with_layout(const FileGeometry& file, const Layout& design);
 

@@ -3,8 +3,9 @@
 #include <cstdio>
 
 #include "core/error.hpp"
-#include "export/geometry.hpp"
-#include "export/vendor_rules.hpp"
+#include "core/field_names.hpp"
+#include "layout/geometry.hpp"
+#include "layout/vendor_rules.hpp"
 
 namespace pinmask {
 namespace {
@@ -51,8 +52,9 @@ std::vector<VendorPreset> make_presets() {
                  .drc = "film"});
     v.push_back({.name = "laser-cutter",
                  .description = "laser cutter (metal foil): DXF in mm, cut outlines are the holes, "
-                                "kerf 20 um compensated (--kerf), round holes as CIRCLE entities, "
-                                "1 um grid",
+                                "kerf 20 um compensated (" +
+                                field_ref("kerf_m") +
+                                "), round holes as CIRCLE entities, 1 um grid",
                  .formats = {F::kDxf},
                  .unit = FabUnit::kMillimetre,
                  .tone = Tone::kClear,
@@ -78,7 +80,7 @@ const VendorPreset* find_vendor_preset(std::string_view name) {
     std::string known;
     for (const VendorPreset& p : vendor_presets()) known += p.name + ", ";
     for (const std::string& n : vendor_names()) known += n + ", ";
-    throw invalid_field("--vendor", std::string(name),
+    throw invalid_field(field_ref("vendor"), std::string(name),
                         "must be list or one of: " + known.substr(0, known.size() - 2));
 }
 

@@ -1,7 +1,7 @@
 // Vendor presets for `pinmask export --vendor NAME` (listed by `--vendor list`): what a kind of
 // shop asks for, as one small table. A preset sets formats, unit, tone, emulsion side, frame,
 // vertex limit, grid, native circles, kerf and plate size, plus the design-rule preset
-// (export/vendor_rules) checked on the layout; explicit flags win over it. The design-rule
+// (layout/vendor_rules) checked on the layout; explicit flags win over it. The design-rule
 // names film, chrome and none remain valid --vendor values that set only the rules.
 #pragma once
 
@@ -10,9 +10,9 @@
 #include <string_view>
 #include <vector>
 
-#include "export/fab_units.hpp"
-#include "export/layout.hpp"
-#include "export/read_any.hpp"
+#include "formats/fab_units.hpp"
+#include "layout/layout.hpp"
+#include "formats/read_any.hpp"
 
 namespace pinmask {
 
@@ -30,7 +30,7 @@ struct VendorPreset {
     double kerf_m = 0.0;    // laser cutting: holes drawn this much smaller
     double plate_m = 0.0;   // the extent must fit a square of this side (0: no limit)
     double tiff_dpi = 0.0;  // plotter raster resolution (0: the default)
-    std::string drc;        // design-rule preset (export/vendor_rules)
+    std::string drc;        // design-rule preset (layout/vendor_rules)
 };
 
 // Every full preset, in listing order.

@@ -12,7 +12,7 @@
 
 #include "core/error.hpp"
 #include "export/drc.hpp"
-#include "export/rings.hpp"
+#include "layout/rings.hpp"
 #include "fuzz/fuzz_support.hpp"
 
 namespace pinmask::fuzz {

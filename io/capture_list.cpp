@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "core/raw_io.hpp"
 
 namespace pinmask::io {
@@ -32,7 +33,7 @@ std::string trimmed(const std::string& line) {
 std::vector<std::string> capture_list(const std::string& list_or_dir) {
     std::error_code ec;
     if (list_or_dir.empty() || !fs::exists(list_or_dir, ec))
-        throw invalid_field("--batch", list_or_dir, "no such directory or list file");
+        throw invalid_field(field_ref("batch"), list_or_dir, "no such directory or list file");
     std::vector<std::string> paths;
     if (fs::is_directory(list_or_dir, ec)) {
         for (const auto& e : fs::directory_iterator(list_or_dir))
@@ -40,21 +41,23 @@ std::vector<std::string> capture_list(const std::string& list_or_dir) {
                 paths.push_back(e.path().string());
         std::sort(paths.begin(), paths.end());
         if (paths.empty())
-            throw invalid_field("--batch", list_or_dir,
+            throw invalid_field(field_ref("batch"), list_or_dir,
                                 "the directory holds no capture (.tif, .tiff, .png, .npy, .jpg, "
                                 ".jpeg or a camera RAW file such as .dng)");
         return paths;
     }
     std::ifstream in(list_or_dir);
-    if (!in) throw invalid_field("--batch", list_or_dir, "cannot be read");
+    if (!in) throw invalid_field(field_ref("batch"), list_or_dir, "cannot be read");
     for (std::string raw; std::getline(in, raw);) {
         const std::string line = trimmed(raw);
         if (line.empty() || line[0] == '#') continue;
         if (!fs::is_regular_file(line, ec))
-            throw invalid_field("--batch", line, "listed in " + list_or_dir + ": no such file");
+            throw invalid_field(field_ref("batch"), line,
+                                "listed in " + list_or_dir + ": no such file");
         paths.push_back(line);
     }
-    if (paths.empty()) throw invalid_field("--batch", list_or_dir, "the list names no capture");
+    if (paths.empty())
+        throw invalid_field(field_ref("batch"), list_or_dir, "the list names no capture");
     return paths;
 }
 

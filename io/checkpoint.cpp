@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <set>
 #include <sstream>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "io/json_strict.hpp"
 
 namespace pinmask::io {
@@ -196,21 +196,8 @@ void write_checkpoint(const std::filesystem::path& path, const SearchCheckpointF
 }
 
 SearchCheckpointFile read_checkpoint(const std::filesystem::path& path) {
-    std::error_code ec;
-    const auto size = std::filesystem::file_size(path, ec);
-    if (ec) throw InvalidInput("--resume " + path.string() + ": cannot read: " + ec.message());
-    if (size > kMaxCheckpointBytes)
-        throw InvalidInput("--resume " + path.string() + ": " + std::to_string(size) +
-                           " bytes is not a search checkpoint (at most 1 GiB)");
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    if (!in) throw InvalidInput("--resume " + path.string() + ": cannot read");
-    try {
-        return parse_checkpoint(ss.str());
-    } catch (const InvalidInput& e) {
-        throw InvalidInput("--resume " + path.string() + ": " + e.what());
-    }
+    return parse_bounded_file(path, field_ref("resume"), kMaxCheckpointBytes,
+                              "a search checkpoint", parse_checkpoint);
 }
 
 std::vector<std::string> differing_keys(const nlohmann::ordered_json& a,

@@ -1,4 +1,4 @@
-// The search checkpoint file (issue 17), written by `pinmask search --checkpoint FILE` every
+// The search checkpoint file, written by `pinmask search --checkpoint FILE` every
 // --checkpoint-every evaluations per chain and read by --resume FILE:
 //   {"format": "pinmask-search-checkpoint", "version": 1,
 //    "config": {the settings that decide the chains' work: compared key by key on resume},
@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "optimize/search.hpp"
+#include "search/search.hpp"
 
 namespace pinmask::io {
 
@@ -37,7 +37,7 @@ SearchCheckpointFile parse_checkpoint(const std::string& text);
 
 // Atomic write (core/atomic_file): a crash leaves the previous checkpoint in place.
 void write_checkpoint(const std::filesystem::path& path, const SearchCheckpointFile& c);
-// InvalidInput naming --resume and the file when it cannot be read or parsed.
+// InvalidInput naming `resume` and the file when it cannot be read or parsed.
 SearchCheckpointFile read_checkpoint(const std::filesystem::path& path);
 
 // The top-level keys of two configurations whose values differ (or that only one has), sorted.

@@ -126,7 +126,7 @@ std::string export_sidecar_text(const ExportSidecar& s) {
           {"annotations", s.annotations}}},
         {"drc", {{"vendor", s.vendor}, {"clean", s.drc_clean}, {"counts", s.drc_counts}}},
         {"files", files},
-        {"psf", "not written (--no-psf)"},
+        {"psf", s.psf_absent},
         {"notes", s.notes}};
     if (!s.psf_files.empty())
         side["psf"] = {{"files", s.psf_files},

@@ -56,8 +56,9 @@ struct ExportSidecar {
     bool drc_clean = true;
     std::map<std::string, std::size_t> drc_counts;
     std::vector<ExportSidecarFile> files;
-    // PSF files (empty: not written)
+    // PSF files (empty: not written; then "psf" records `psf_absent`, why, in the writer's words)
     std::vector<std::string> psf_files;
+    std::string psf_absent = "not written";
     std::string psf_kernel;
     int psf_pixels_per_cell = 0, psf_rows = 0, psf_cols = 0;
     std::vector<std::string> notes;

@@ -4,7 +4,9 @@
 #include <climits>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <set>
+#include <sstream>
 
 #include "core/error.hpp"
 
@@ -17,6 +19,34 @@ void fail(const std::string& key_path, const std::string& rule) {
 OrderedJson finite_or_null(double v) {
     if (!std::isfinite(v)) return nullptr;
     return v;
+}
+
+namespace {
+
+// "1 MiB", "1 GiB", "3 KiB" or "100 bytes": a byte limit as messages state it.
+std::string byte_limit_text(std::uintmax_t bytes) {
+    constexpr std::uintmax_t kKiB = 1024, kMiB = kKiB * 1024, kGiB = kMiB * 1024;
+    if (bytes > 0 && bytes % kGiB == 0) return std::to_string(bytes / kGiB) + " GiB";
+    if (bytes > 0 && bytes % kMiB == 0) return std::to_string(bytes / kMiB) + " MiB";
+    if (bytes > 0 && bytes % kKiB == 0) return std::to_string(bytes / kKiB) + " KiB";
+    return std::to_string(bytes) + " bytes";
+}
+
+}  // namespace
+
+std::string read_bounded_file(const std::filesystem::path& path, const std::string& where,
+                              std::uintmax_t max_bytes, const std::string& kind) {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec) throw InvalidInput(where + ": cannot read: " + ec.message());
+    if (size > max_bytes)
+        throw InvalidInput(where + ": " + std::to_string(size) + " bytes is not " + kind +
+                           " (at most " + byte_limit_text(max_bytes) + ")");
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    if (!in) throw InvalidInput(where + ": cannot read");
+    return ss.str();
 }
 
 std::string join_path(const std::string& parent, const std::string& key) {

@@ -7,12 +7,16 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "core/error.hpp"
 
 namespace pinmask::io::json_strict {
 
@@ -72,5 +76,26 @@ OrderedJson finite_or_null(double v);
 // No trailing newline.
 std::string pretty(const OrderedJson& j, const std::string& raw_path = "",
                    const RawWriter& raw = {});
+
+// The whole text of a file that must hold at most max_bytes (a configuration, a checkpoint),
+// checked by size before it is read. `where` ("<setting> <path>") begins every message:
+// "<where>: cannot read: <reason>", "<where>: cannot read", and for a larger file
+// "<where>: N bytes is not <kind> (at most <max_bytes as MiB or GiB>)"; all InvalidInput.
+std::string read_bounded_file(const std::filesystem::path& path, const std::string& where,
+                              std::uintmax_t max_bytes, const std::string& kind);
+
+// parse(read_bounded_file(path, where, ...)) with where = "<setting> <path>", where also
+// prefixed to any InvalidInput that parse throws ("<setting> <path>: <key path>: <rule>").
+template <class Parse>
+auto parse_bounded_file(const std::filesystem::path& path, const std::string& setting,
+                        std::uintmax_t max_bytes, const std::string& kind, Parse parse) {
+    const std::string where = setting + " " + path.string();
+    const std::string text = read_bounded_file(path, where, max_bytes, kind);
+    try {
+        return parse(text);
+    } catch (const InvalidInput& e) {
+        throw InvalidInput(where + ": " + e.what());
+    }
+}
 
 }  // namespace pinmask::io::json_strict

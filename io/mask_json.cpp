@@ -27,6 +27,7 @@
 #include "core/error.hpp"
 #include "core/output_set.hpp"
 #include "core/resource_limits.hpp"
+#include "design/kernel_model.hpp"
 #include "io/json_strict.hpp"
 #include "io/optics_json.hpp"
 
@@ -37,9 +38,8 @@ using namespace json_strict;
 
 constexpr const char* kFormat = "pinmask-mask";
 constexpr int kVersion = 1;
-// Kernel models named by design/mask.hpp's KernelSpec.
-const std::vector<std::string> kKernelModels = {"auto",    "box",         "fraunhofer",
-                                                "fresnel", "paper-fig3b", "measured"};
+// Kernel models named by design/mask.hpp's KernelSpec (design/kernel_model.hpp's table).
+const std::vector<std::string> kKernelModels = name_list(kKernelModelNames);
 // Reading holds the text twice (stream buffer and string), the pinholes (8 bytes per ~10 bytes
 // of text, streamed out of the parser) and their sorted copy: about this many bytes per byte of
 // text. Used to refuse files that cannot be held.

@@ -1,10 +1,9 @@
 #include "io/search_config.hpp"
 
-#include <fstream>
 #include <limits>
-#include <sstream>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "core/units.hpp"
 #include "design/kernel_model.hpp"
 #include "io/json_strict.hpp"
@@ -32,6 +31,15 @@ int int_at_least(const Json& j, const std::string& path, int lo) {
     const int v = read_int(j, path);
     if (v < lo) fail(path, std::to_string(v) + " must be >= " + std::to_string(lo));
     return v;
+}
+
+// An array of strings; `what` names the elements in the message ("paths", "scene names").
+std::vector<std::string> read_strings(const Json& v, const std::string& p, const char* what) {
+    if (!v.is_array())
+        fail(p, std::string("must be an array of ") + what + ", got " + v.type_name());
+    std::vector<std::string> out;
+    for (std::size_t i = 0; i < v.size(); ++i) out.push_back(read_string(v[i], indexed(p, i)));
+    return out;
 }
 
 template <class T, class Read>
@@ -168,12 +176,7 @@ SearchConfig parse_search_config(const std::string& text) {
             return one_of(v, p, {"natural", "text", "stars", "files"});
         });
         read_into(n, "files", c.prior_files, [](const Json& v, const std::string& p) {
-            if (!v.is_array())
-                fail(p, std::string("must be an array of paths, got ") + v.type_name());
-            std::vector<std::string> files;
-            for (std::size_t i = 0; i < v.size(); ++i)
-                files.push_back(read_string(v[i], indexed(p, i)));
-            return files;
+            return read_strings(v, p, "paths");
         });
         read_into(n, "scenes", c.prior_scenes,
                   [](const Json& v, const std::string& p) { return int_at_least(v, p, 1); });
@@ -188,12 +191,7 @@ SearchConfig parse_search_config(const std::string& text) {
         read_into(w, "min_spectrum", c.w_min_spectrum, read_number);
     }
     read_into(r, "rerank_scenes", c.rerank_scenes, [](const Json& v, const std::string& p) {
-        if (!v.is_array())
-            fail(p, std::string("must be an array of scene names, got ") + v.type_name());
-        std::vector<std::string> names;
-        for (std::size_t i = 0; i < v.size(); ++i)
-            names.push_back(read_string(v[i], indexed(p, i)));
-        return names;
+        return read_strings(v, p, "scene names");
     });
     read_into(r, "rerank_tv", c.rerank_tv, read_bool);
     read_into(r, "allow_spectral_zeros", c.allow_spectral_zeros, read_bool);
@@ -209,21 +207,8 @@ SearchConfig parse_search_config(const std::string& text) {
 }
 
 SearchConfig read_search_config(const std::filesystem::path& path) {
-    std::error_code ec;
-    const auto size = std::filesystem::file_size(path, ec);
-    if (ec) throw InvalidInput("--config " + path.string() + ": cannot read: " + ec.message());
-    if (size > kMaxConfigBytes)
-        throw InvalidInput("--config " + path.string() + ": " + std::to_string(size) +
-                           " bytes is not a search configuration (at most 1 MiB)");
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    if (!in) throw InvalidInput("--config " + path.string() + ": cannot read");
-    try {
-        return parse_search_config(ss.str());
-    } catch (const InvalidInput& e) {
-        throw InvalidInput("--config " + path.string() + ": " + e.what());
-    }
+    return parse_bounded_file(path, field_ref("config"), kMaxConfigBytes, "a search configuration",
+                              parse_search_config);
 }
 
 }  // namespace pinmask::io

@@ -53,7 +53,8 @@ struct SearchConfig {
     std::optional<double> photons, read_noise, dark_current, full_well, optical_density;
     std::optional<int> bits;
     std::optional<std::string> prior_family, rank_by;
-    // Issue 13 point 6: "objective": "nominal" | "robust", "robust": the --robust text.
+    // The design objective: "objective": "nominal" | "robust", "robust": the fabrication
+    // errors in the text form of metrics/robust_errors (size=5um,jitter=2um,missing=0.01).
     std::optional<std::string> objective, robust;
     std::optional<std::vector<std::string>> prior_files;
     std::optional<bool> allow_spectral_zeros;

@@ -3,8 +3,9 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "core/units.hpp"
-#include "export/fab_units.hpp"
+#include "formats/fab_units.hpp"
 
 namespace pinmask::io {
 
@@ -12,16 +13,16 @@ namespace fs = std::filesystem;
 
 CheckLayoutSettings check_layout_settings(const CheckLayoutText& given) {
     const auto length = [](const std::optional<std::string>& v,
-                           const char* flag) -> std::optional<GivenLength> {
+                           const std::string& field) -> std::optional<GivenLength> {
         if (!v) return std::nullopt;
-        return GivenLength{parse_length_m(*v, flag), *v};
+        return GivenLength{parse_length_m(*v, field), *v};
     };
     CheckLayoutSettings g;
     g.shape = given.shape;
     g.sides = given.sides;
-    g.hole_side = length(given.hole_side, "--hole-side");
-    g.frame = length(given.frame, "--frame");
-    g.chord_tol = length(given.chord_tol, "--chord-tol");
+    g.hole_side = length(given.hole_side, field_ref("hole_side"));
+    g.frame = length(given.frame, field_ref("frame"));
+    g.chord_tol = length(given.chord_tol, field_ref("chord_tol"));
     g.tone = given.tone;
     g.units = given.units;
     g.mirror = given.mirror;
@@ -30,12 +31,13 @@ CheckLayoutSettings check_layout_settings(const CheckLayoutText& given) {
 
 LayoutOptions check_layout(const CheckLayoutSettings& o, const ExportSidecar* side) {
     LayoutOptions lo;
-    auto agree = [&](const char* flag, const std::string& given, const std::string& recorded,
-                     bool same) {
+    auto agree = [&](const std::string& field, const std::string& given,
+                     const std::string& recorded, bool same) {
         if (!same)
-            throw invalid_field(flag, given,
+            throw invalid_field(field, given,
                                 "disagrees with the export sidecar, which records " + recorded +
-                                    " (omit the flag to use the sidecar, or --no-sidecar)");
+                                    " (omit the flag to use the sidecar, or " +
+                                    field_ref("no_sidecar") + ")");
     };
     if (side) {
         lo.tone = parse_tone(side->tone, "sidecar geometry.tone");
@@ -50,36 +52,36 @@ LayoutOptions check_layout(const CheckLayoutSettings& o, const ExportSidecar* si
         lo.max_vertices = side->max_vertices;
         lo.grid_m = double(side->grid_nm) * 1e-9;
     }
-    auto length = [&](const std::optional<GivenLength>& v, const char* flag, double& field) {
+    auto length = [&](const std::optional<GivenLength>& v, const std::string& name, double& field) {
         if (!v) return;
         if (side)
-            agree(flag, v->text, std::to_string(field) + " m", std::fabs(v->m - field) <= 1e-12);
+            agree(name, v->text, std::to_string(field) + " m", std::fabs(v->m - field) <= 1e-12);
         field = v->m;
     };
-    length(o.hole_side, "--hole-side", lo.hole_side_m);
-    length(o.frame, "--frame", lo.frame_m);
-    length(o.chord_tol, "--chord-tol", lo.chord_tolerance_m);
+    length(o.hole_side, field_ref("hole_side"), lo.hole_side_m);
+    length(o.frame, field_ref("frame"), lo.frame_m);
+    length(o.chord_tol, field_ref("chord_tol"), lo.chord_tolerance_m);
     if (o.shape) {
-        const HoleShape s = parse_hole_shape(*o.shape, "--shape");
-        if (side) agree("--shape", *o.shape, side->shape, s == lo.shape);
+        const HoleShape s = parse_hole_shape(*o.shape, field_ref("shape"));
+        if (side) agree(field_ref("shape"), *o.shape, side->shape, s == lo.shape);
         lo.shape = s;
     }
     if (o.sides) {
         if (side && lo.shape == HoleShape::kPolygon)
-            agree("--sides", std::to_string(*o.sides), std::to_string(side->drawn_sides),
+            agree(field_ref("sides"), std::to_string(*o.sides), std::to_string(side->drawn_sides),
                   *o.sides == side->drawn_sides);
         lo.polygon_sides = *o.sides;
     }
     if (o.tone) {
-        const Tone t = parse_tone(*o.tone, "--tone");
-        if (side) agree("--tone", *o.tone, side->tone, t == lo.tone);
+        const Tone t = parse_tone(*o.tone, field_ref("tone"));
+        if (side) agree(field_ref("tone"), *o.tone, side->tone, t == lo.tone);
         lo.tone = t;
     }
     if (o.mirror) {
-        if (side) agree("--mirror", "given", "not mirrored", side->mirrored);
+        if (side) agree(field_ref("mirror"), "given", "not mirrored", side->mirrored);
         lo.mirror = true;
     }
-    if (o.units && side) agree("--units", *o.units, side->unit, *o.units == side->unit);
+    if (o.units && side) agree(field_ref("units"), *o.units, side->unit, *o.units == side->unit);
     return lo;
 }
 

@@ -2,15 +2,16 @@
 // sidecar beside the file (NAME.export.json, io/export_sidecar.hpp) and the settings a user
 // gives (as `pinmask check` flags: each must agree with the sidecar), or from the given settings
 // and what the file declares when there is no sidecar. Used by `pinmask check` (its flags) and
-// the Python module's check() (its arguments); errors name the command-line flag.
+// the Python module's check() (its arguments); errors name the settings' fields
+// (core/field_names.hpp).
 #pragma once
 
 #include <filesystem>
 #include <optional>
 #include <string>
 
-#include "export/geometry.hpp"
-#include "export/rings.hpp"
+#include "layout/geometry.hpp"
+#include "layout/rings.hpp"
 #include "io/export_sidecar.hpp"
 
 namespace pinmask::io {
@@ -41,11 +42,11 @@ struct CheckLayoutText {
     bool mirror = false;
 };
 
-// The settings from their text (lengths parsed here; InvalidInput naming the flag).
+// The settings from their text (lengths parsed here; InvalidInput naming the field).
 CheckLayoutSettings check_layout_settings(const CheckLayoutText& given);
 
 // The sidecar's layout settings, every given setting required to agree with it (InvalidInput
-// naming the flag otherwise); without a sidecar, the given settings over the defaults.
+// naming the field otherwise); without a sidecar, the given settings over the defaults.
 LayoutOptions check_layout(const CheckLayoutSettings& given, const ExportSidecar* side);
 
 // Tone, mirroring and grid as a fabrication file declares them (its info), over `lo`: the

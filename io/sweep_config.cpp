@@ -1,8 +1,6 @@
 #include "io/sweep_config.hpp"
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
 
 #include "core/error.hpp"
 #include "io/json_strict.hpp"
@@ -212,21 +210,7 @@ SweepConfig parse_sweep_config(const std::string& text) {
 }
 
 SweepConfig read_sweep_config(const std::filesystem::path& path) {
-    std::error_code ec;
-    const auto size = std::filesystem::file_size(path, ec);
-    if (ec) throw InvalidInput("SWEEP " + path.string() + ": cannot read: " + ec.message());
-    if (size > kMaxSweepBytes)
-        throw InvalidInput("SWEEP " + path.string() + ": " + std::to_string(size) +
-                           " bytes is not a sweep file (at most 1 MiB)");
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    if (!in) throw InvalidInput("SWEEP " + path.string() + ": cannot read");
-    try {
-        return parse_sweep_config(ss.str());
-    } catch (const InvalidInput& e) {
-        throw InvalidInput("SWEEP " + path.string() + ": " + e.what());
-    }
+    return parse_bounded_file(path, "SWEEP", kMaxSweepBytes, "a sweep file", parse_sweep_config);
 }
 
 }  // namespace pinmask::io

@@ -7,14 +7,15 @@
 #include <filesystem>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "core/units.hpp"
 #include "export/drc.hpp"
 #include "export/file_check.hpp"
-#include "export/geometry.hpp"
-#include "export/read_any.hpp"
-#include "export/rings.hpp"
-#include "export/vendor_rules.hpp"
-#include "export/xor_area.hpp"
+#include "layout/geometry.hpp"
+#include "formats/read_any.hpp"
+#include "layout/rings.hpp"
+#include "layout/vendor_rules.hpp"
+#include "layout/xor_area.hpp"
 #include "io/export_sidecar.hpp"
 #include "io/mask_json.hpp"
 #include "io/sidecar_layout.hpp"
@@ -27,10 +28,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::int64_t length_nm(const py::object& v, const char* flag, std::int64_t min_nm) {
-    const double nm = std::round(length_value(v, flag, false) * 1e9);
+std::int64_t length_nm(const py::object& v, const std::string& field, std::int64_t min_nm) {
+    const double nm = std::round(length_value(v, field, false) * 1e9);
     if (!(nm >= double(min_nm)) || nm > 1e12) {
-        throw invalid_field(flag, py::str(v).cast<std::string>(),
+        throw invalid_field(field, py::str(v).cast<std::string>(),
                             "must be at least " + std::to_string(min_nm) + " nm");
     }
     return static_cast<std::int64_t>(nm);
@@ -48,13 +49,13 @@ struct CheckArgs {
 };
 
 DrcRules resolve_rules(const CheckArgs& o, DrcRules rules) {
-    if (!o.min_gap.is_none()) rules.min_gap_nm = length_nm(o.min_gap, "--min-gap", 1);
+    if (!o.min_gap.is_none()) rules.min_gap_nm = length_nm(o.min_gap, field_ref("min_gap"), 1);
     if (!o.min_feature.is_none())
-        rules.min_feature_nm = length_nm(o.min_feature, "--min-feature", 0);
+        rules.min_feature_nm = length_nm(o.min_feature, field_ref("min_feature"), 0);
     if (!o.min_spacing.is_none())
-        rules.min_center_spacing_nm = double(length_nm(o.min_spacing, "--min-spacing", 0));
+        rules.min_center_spacing_nm = double(length_nm(o.min_spacing, field_ref("min_spacing"), 0));
     if (o.max_vertices) rules.max_vertices = *o.max_vertices;
-    if (o.list < 1) throw invalid_field("--list", std::to_string(o.list), "must be >= 1");
+    if (o.list < 1) throw invalid_field(field_ref("list"), std::to_string(o.list), "must be >= 1");
     rules.max_reported_per_rule = o.list;
     return rules;
 }
@@ -102,7 +103,7 @@ void bind_check(py::module_& m) {
                         hole_side, frame,       chord_tol,   tone,         units, mirror};
             const io::CheckLayoutSettings given = layout_settings(o);
             if (!std::isfinite(max_xor_um2) || max_xor_um2 < 0)
-                throw invalid_field("--max-xor-um2", std::to_string(max_xor_um2),
+                throw invalid_field(field_ref("max_xor_um2"), std::to_string(max_xor_um2),
                                     "must be finite and >= 0");
             const VendorRules vendor = vendor_rules(vendor_name);
             const bool input_is_mask = py::isinstance<Mask>(input);
@@ -120,7 +121,7 @@ void bind_check(py::module_& m) {
             DrcReport r;
             if (input_is_mask || io::is_mask_file(input_text)) {
                 if (!mask.is_none())
-                    throw invalid_field("--mask", py::str(mask).cast<std::string>(),
+                    throw invalid_field(field_ref("mask"), py::str(mask).cast<std::string>(),
                                         "only used with a fabrication file");
                 kind = "mask";
                 const Mask mk = input_is_mask ? input.cast<Mask>()

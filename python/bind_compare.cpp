@@ -1,6 +1,6 @@
 // Comparison of masks and its report: compare() is `pinmask compare`'s library pipeline
-// (optimize/compare run_compare: baselines, metric rows) and its report pages
-// (optimize/compare_report, export/report); the CLI's report.config.json and its table text are not
+// (metrics/compare run_compare: baselines, metric rows) and its report pages
+// (report/compare_report, report/report); the CLI's report.config.json and its table text are not
 // written here (the rows are returned instead).
 #include <filesystem>
 #include <iomanip>
@@ -8,10 +8,12 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
-#include "export/report.hpp"
+#include "core/field_names.hpp"
+#include "report/report.hpp"
 #include "io/mask_json.hpp"
-#include "optimize/compare_report.hpp"
+#include "report/compare_report.hpp"
 #include "python/common.hpp"
+#include "python/keyword_names.hpp"
 #include "python/level_args.hpp"
 #include "python/metrics_common.hpp"
 #include "python/values.hpp"
@@ -44,10 +46,11 @@ void bind_compare(py::module_& m) {
             options.baseline_count = baseline_count;
             options.validate();
             if (report) {
-                report_format(*report, "--report");
+                report_format(*report, field_ref("report"));
                 const fs::path dir = fs::path(*report).parent_path();
                 if (!dir.empty() && !fs::is_directory(dir))
-                    throw invalid_field("--report", *report, "the output directory does not exist");
+                    throw invalid_field(field_ref("report"), *report,
+                                        "the output directory does not exist");
             }
             if (masks.empty()) throw InvalidInput("masks: give at least one mask");
             std::vector<CompareEntry> entries;
@@ -67,6 +70,14 @@ void bind_compare(py::module_& m) {
             {
                 py::gil_scoped_release release;
                 outcome = run_compare(entries, options);
+                // The library's words name settings by field: spelled as keywords (a given
+                // mask's source is its path, left as typed).
+                for (CompareResult& r : outcome.results)
+                    if (r.row.kind != "input")
+                        r.row.source = py_names::spell_keywords(r.row.source);
+                for (std::string& l : outcome.baseline_lines) l = py_names::spell_keywords(l);
+                outcome.random_skipped = py_names::spell_keywords(outcome.random_skipped);
+                outcome.mura_skipped = py_names::spell_keywords(outcome.mura_skipped);
                 if (report) {
                     CompareSummary summary;
                     summary.camera = entries.front().mask.camera;
@@ -117,7 +128,7 @@ valid masks, the paper-like geometry and a MURA; report: a .pdf, .svg or .png pa
 multi-page report (written atomically; SVG/PNG: one file per page). Returns {rows, report:
 [paths written], warnings: [baselines left out and why], baselines: [what each baseline is]}.
 Noise (snr_db or photons with the sensor stages) and prior as in metrics().
-The run is optimize/compare's run_compare (one camera rule, baselines, metric rows).)");
+The run is metrics/compare's run_compare (one camera rule, baselines, metric rows).)");
 }
 
 }  // namespace pinmask::python

@@ -1,17 +1,19 @@
 // Decoding: decode() is `pinmask decode` on arrays, one call of decode/capture_pipeline
-// (decode_capture) with the options the CLI maps from the same flags (decode_options,
-// capture_decode_options, parse_crop): names, defaults, messages and numbers are the
-// CLI's.
+// (decode_capture) with the options of the library's DecodeRequest (decode/decode_request.hpp),
+// filled from the keyword arguments: names, defaults, refusals and numbers are the CLI's; the
+// messages name the keywords (python/keyword_names).
 #include <atomic>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
+#include "core/units.hpp"
 #include "decode/capture.hpp"
 #include "decode/capture_pipeline.hpp"
 #include "decode/decode_modes.hpp"
 #include "decode/decode_request.hpp"
+#include "decode/decode_method.hpp"
 #include "decode/decoder.hpp"
 #include "decode/period.hpp"
 #include "design/psf.hpp"
@@ -96,18 +98,72 @@ py::dict period_dict(const PeriodCheck& p) {
     return d;
 }
 
-// background=: None or "none" | "corner" | a number of counts (the CLI's --background text).
-std::string background_text(const py::handle& b) {
-    if (b.is_none()) return "none";
-    if (py::isinstance<py::str>(b)) return b.cast<std::string>();
+// The method's own arguments as given: None means "not given" (the request's default).
+struct MethodArgs {
+    std::optional<double> nsr, lambda, eps, noise_sigma, tol;
+    std::optional<std::string> regulariser;
+    std::optional<bool> nonneg;
+    std::optional<int> iters;
+};
+
+// A given argument's value as Python writes it (for the refusal's message).
+std::string python_text(const py::object& value) { return py::repr(value).cast<std::string>(); }
+
+// Writes the given method arguments into `r` (the others keep the request's defaults) and lists
+// them, so that refuse_unused_parameters refuses one the method does not read, as the CLI
+// refuses its flags.
+std::vector<GivenParameter> set_method_args(DecodeRequest& r, const MethodArgs& a) {
+    std::vector<GivenParameter> given;
+    const auto give = [&](MethodParameter p, const py::object& v) {
+        given.push_back({p, python_text(v)});
+    };
+    if (a.nsr) give(MethodParameter::kNsr, py::float_(r.nsr = *a.nsr));
+    if (a.lambda) give(MethodParameter::kLambda, py::float_(r.lambda = *a.lambda));
+    if (a.regulariser) {
+        r.regulariser = parse_regulariser(*a.regulariser, field_ref("regulariser"));
+        give(MethodParameter::kRegulariser, py::str(*a.regulariser));
+    }
+    if (a.eps) give(MethodParameter::kEps, py::float_(*a.eps));
+    if (a.noise_sigma) give(MethodParameter::kNoiseSigma, py::float_(*a.noise_sigma));
+    r.eps = a.eps;
+    r.noise_sigma = a.noise_sigma;
+    if (a.nonneg) give(MethodParameter::kNonnegative, py::bool_(r.nonnegative = *a.nonneg));
+    if (a.iters) give(MethodParameter::kIterations, py::int_(r.iterations = *a.iters));
+    if (a.tol) give(MethodParameter::kTolerance, py::float_(r.tolerance = *a.tol));
+    if (r.iterations < 1)
+        throw invalid_field(field_ref("iterations"), std::to_string(r.iterations), "must be >= 1");
+    if (a.eps && a.noise_sigma)
+        throw InvalidInput(field_ref("eps") + " excludes " + field_ref("noise_sigma") +
+                           " (give one of them)");
+    return given;
+}
+
+// background=: None or "none" | "corner" | a number of counts (or its text).
+DecodeBackground background_arg(const py::handle& b) {
+    if (b.is_none()) return {};
+    if (py::isinstance<py::str>(b)) {
+        const std::string s = b.cast<std::string>();
+        for (const auto& [mode, name] : kBackgroundModeNames)
+            if (mode != BackgroundMode::kValue && s == name) return {mode, 0.0};
+        return {BackgroundMode::kValue, parse_number(s, field_ref("background"))};
+    }
     if (py::isinstance<py::bool_>(b))
-        throw invalid_field("--background", py::str(b).cast<std::string>(),
+        throw invalid_field(field_ref("background"), py::str(b).cast<std::string>(),
                             "must be none, corner or a number of counts");
-    const double v = b.cast<double>();
-    std::ostringstream t;
-    t.precision(17);
-    t << v;
-    return t.str();
+    return {BackgroundMode::kValue, b.cast<double>()};
+}
+
+// crop=: "center" (or "centre") | "none" | (row, col) of the period's top-left pixel.
+CropSpec crop_arg(const py::handle& crop) {
+    if (py::isinstance<py::str>(crop)) {
+        const std::string s = crop.cast<std::string>();
+        if (s == "center" || s == "centre") return {CropMode::kCenter};
+        if (s == "none") return {CropMode::kNone};
+        throw invalid_field(field_ref("crop"), s,
+                            "must be center, none or (row, col) (integer pixel corner)");
+    }
+    const auto [row, col] = crop.cast<std::pair<int, int>>();
+    return {CropMode::kCorner, row, col};
 }
 
 }  // namespace
@@ -124,58 +180,24 @@ void bind_decode(py::module_& m) {
            const std::string& normalize, const std::string& precision, int threads,
            const py::object& progress, double poll_s, const py::handle& nsr_map) {
             DecodeRequest r;
-            r.method = method;
-            r.model = model;
-            // The method's own arguments: given (not None) ones are refused when the method does
-            // not read them, as the CLI refuses its flags (refuse_unused_flags).
-            std::vector<GivenFlag> given;
-            auto num = [](double v) {
-                std::ostringstream t;
-                t.precision(17);
-                t << v;
-                return t.str();
-            };
-            if (nsr) given.push_back({MethodFlag::kNsr, num(r.nsr = *nsr)});
-            if (lambda_) given.push_back({MethodFlag::kLambda, num(r.lambda = *lambda_)});
-            if (regulariser)
-                given.push_back({MethodFlag::kRegulariser, r.regulariser = *regulariser});
-            if (eps) given.push_back({MethodFlag::kEps, num(*eps)});
-            if (noise_sigma) given.push_back({MethodFlag::kNoiseSigma, num(*noise_sigma)});
-            r.eps = eps;
-            r.noise_sigma = noise_sigma;
-            if (nonneg) {
-                r.nonnegative = *nonneg;
-                given.push_back({MethodFlag::kNonnegative, *nonneg ? "true" : "false"});
-            }
-            if (iters)
-                given.push_back({MethodFlag::kIterations, std::to_string(r.iterations = *iters)});
-            if (tol) given.push_back({MethodFlag::kTolerance, num(r.tolerance = *tol)});
-            parse_conv_model(model, "--model");
-            parse_regulariser(r.regulariser, "--regulariser");
-            if (r.iterations < 1)
-                throw invalid_field("--iters", std::to_string(r.iterations), "must be >= 1");
-            if (eps && noise_sigma)
-                throw InvalidInput("--eps excludes --noise-sigma (eps= or noise_sigma=, not both)");
-            parse_normalize_mode(normalize, "--normalize");
+            r.model = parse_conv_model(model, field_ref("model"));
+            const std::vector<GivenParameter> given = set_method_args(
+                r, {nsr, lambda_, eps, noise_sigma, tol, regulariser, nonneg, iters});
+            r.normalize = parse_normalize_mode(normalize, field_ref("normalize"));
             if (threads < 0 || threads > 1024)
-                throw invalid_field("--threads", std::to_string(threads),
+                throw invalid_field(field_ref("threads"), std::to_string(threads),
                                     "must be 1..1024 (0: all cores)");
-            r.background = background_text(background);
-            r.downsample = downsample;
-            r.normalize = normalize;
-            r.precision = precision;
             r.threads = threads;
-            refuse_unused_flags(r, given);
-            if (py::isinstance<py::str>(crop)) {
-                r.crop = crop.cast<std::string>();
-            } else {  // (row, col) of the top-left pixel: the CLI's X,Y is col,row
-                const auto rc = crop.cast<std::pair<int, int>>();
-                r.crop = std::to_string(rc.second) + "," + std::to_string(rc.first);
-            }
+            r.background = background_arg(background);
+            r.downsample = downsample;
+            r.method = parse_decode_method(method, field_ref("method"));
+            refuse_unused_parameters(r, given);
+            r.crop = crop_arg(crop);
+            r.precision = parse_precision(precision, field_ref("precision"));
             if (psf.is_none() == mask.is_none())
                 throw InvalidInput(
-                    "decode needs the PSF: give --mask FILE.mask.json or --psf FILE (psf= an "
-                    "array or mask= a Mask or path, not both)");
+                    "decode needs the PSF: give psf= an array or mask= a Mask or path, not "
+                    "both");
             std::optional<PlaneArg> psf_arg;
             if (!psf.is_none()) {
                 psf_arg = plane_arg(psf, "psf");
@@ -203,16 +225,18 @@ void bind_decode(py::module_& m) {
                 // `decode --nsr-map`: a per-frequency NSR on the working grid (Wiener only, in
                 // place of the scalar nsr); its size and values are checked by the decoder
                 // (wiener.nsr_per_frequency).
-                if (r.method != "wiener")
-                    throw invalid_field("nsr_map", r.method,
-                                        "is read by method wiener only (--nsr-map)");
-                if (nsr) throw InvalidInput("nsr_map excludes nsr (--nsr-map replaces --nsr)");
+                if (r.method != DecodeMethod::kWiener)
+                    throw invalid_field(field_ref("nsr_map"), method,
+                                        "is read by method wiener only");
+                if (nsr)
+                    throw InvalidInput(field_ref("nsr_map") + " excludes " + field_ref("nsr") +
+                                       " (the map replaces the scalar NSR)");
                 options.decode.wiener.nsr_per_frequency = plane_arg(nsr_map, "nsr_map").get();
             }
             options.decode.iterative.record_history = true;  // the result's history array
             options.validate();
             if (options.background == BackgroundMode::kCorner && psf.is_none()) {
-                throw invalid_field("--background", "corner",
+                throw invalid_field(field_ref("background"), "corner",
                                     "needs a measured PSF (psf=): a PSF synthesised from a mask "
                                     "has no camera background");
             }

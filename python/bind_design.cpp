@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "core/units.hpp"
 #include "design/camera.hpp"
 #include "design/kernel_model.hpp"
@@ -10,6 +11,7 @@
 #include "design/optics.hpp"
 #include "design/working_distance.hpp"
 #include "python/common.hpp"
+#include "python/keyword_names.hpp"
 #include "python/values.hpp"
 
 namespace pinmask::python {
@@ -146,16 +148,17 @@ void bind_design(py::module_& m) {
             OpticsOptions o;
             o.lsi_tolerance_px = lsi_tolerance_px;
             const Camera c = camera.value_or(paper_camera());
-            const KernelModel model = parse_kernel_model(kernel, "--kernel");
+            const KernelModel model = parse_kernel_model(kernel, field_ref("kernel"));
             if (!(lsi_tolerance_px > 0) || !std::isfinite(lsi_tolerance_px)) {
-                throw invalid_field("--lsi-tolerance", std::to_string(lsi_tolerance_px),
+                throw invalid_field(field_ref("lsi_tolerance_px"), std::to_string(lsi_tolerance_px),
                                     "must be finite and > 0 (0 or less gives an empty "
                                     "object-distance range)");
             }
-            check_object_distance(c, c.object_distance_m, "--object-distance");
+            check_object_distance(c, c.object_distance_m, "object_distance_m");
             OpticsReport r = compute_optics(c, g, model, o);
             // As `pinmask design`: a kernel model outside its validity says so in the reason.
-            const KernelValidity validity = kernel_validity(c, r.kernel_model);
+            KernelValidity validity = kernel_validity(c, r.kernel_model);
+            for (auto& w : validity.warnings) w = py_names::spell_keywords(w);
             if (!validity.model_accurate)
                 r.kernel_reason = "NOT accurate: " + validity.warnings.front();
             const WorkingDistance wd = compute_working_distance(c, g, {lsi_tolerance_px, 0});
@@ -170,14 +173,12 @@ void bind_design(py::module_& m) {
         "object_distance_range_m (near, far; far inf when shift invariant to infinity), "
         "optimum_pinhole_lensless_m, optimum_pinhole_with_lens_m, spot_spread_cells (cells), "
         "spot_spreads_beyond_cell, kernel_warnings. grid n (cells per side), holes K, tiles per "
-        "side, kernel auto|box|fraunhofer|fresnel|paper-fig3b|measured, lsi_tolerance_px in "
-        "pixels.");
+        "side, kernel (kernel_models()), lsi_tolerance_px in pixels.");
 
     m.def(
         "kernel_models",
         [] {
-            return std::vector<std::string>{"auto",    "box",         "fraunhofer",
-                                            "fresnel", "paper-fig3b", "measured"};
+            return name_list(kKernelModelNames);
         },
         "Names of the single-pinhole kernel models.");
     m.def(

@@ -1,5 +1,5 @@
 // Fabrication export. export_mask() is `pinmask export`'s library pipeline for the fabrication
-// files (cli/export_options turns the same flags into ExportOptions; export/export_pipeline
+// files (cli/options/export_options turns the same flags into ExportOptions; export/export_pipeline
 // export_mask; each file read back from disk with export/read_back verify_written before it is
 // committed): same bytes. The export sidecar and the PSF files are the CLI's (write_psf() writes
 // the PSF). layout() builds the same layout (make_layout with the pipeline's LayoutOptions).
@@ -12,17 +12,18 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "core/units.hpp"
 #include "export/drc.hpp"
 #include "export/export_pipeline.hpp"
 #include "export/export_request.hpp"
-#include "export/geometry.hpp"
-#include "export/read_any.hpp"
+#include "layout/geometry.hpp"
+#include "formats/read_any.hpp"
 #include "export/read_back.hpp"
-#include "export/rings.hpp"
-#include "export/vendor_rules.hpp"
-#include "export/write_any.hpp"
-#include "export/xor_area.hpp"
+#include "layout/rings.hpp"
+#include "layout/vendor_rules.hpp"
+#include "formats/write_any.hpp"
+#include "layout/xor_area.hpp"
 #include "io/mask_json.hpp"
 #include "python/common.hpp"
 #include "python/values.hpp"
@@ -51,7 +52,7 @@ py::list rings_list(const std::vector<Ring>& rings) {
 
 py::tuple box_tuple(const BoxNm& b) { return py::make_tuple(b.x0, b.y0, b.x1, b.y1); }
 
-// `pinmask export`'s layout flags (cli/export_options: the same checks and defaults).
+// `pinmask export`'s layout flags (cli/options/export_options: the same checks and defaults).
 ExportRequest layout_flags(const std::string& tone, const std::string& shape, int sides,
                            bool mirror, bool marks, const std::optional<std::string>& label,
                            const py::object& frame, const py::object& chord_tol,
@@ -77,10 +78,10 @@ ExportRequest layout_flags(const std::string& tone, const std::string& shape, in
 std::vector<FabFormat> parse_formats(const std::vector<std::string>& list) {
     std::vector<FabFormat> out;
     for (const std::string& item : list) {
-        const FabFormat f = parse_fab_format(item, "--format");
+        const FabFormat f = parse_fab_format(item, field_ref("formats"));
         if (std::find(out.begin(), out.end(), f) == out.end()) out.push_back(f);
     }
-    if (out.empty()) throw invalid_field("--format", "[]", "names no format");
+    if (out.empty()) throw invalid_field(field_ref("formats"), "[]", "names no format");
     return out;
 }
 
@@ -134,9 +135,9 @@ void bind_export(py::module_& m) {
             WriteOptions w;
             w.gds = {.layer = layer, .datatype = datatype};
             w.dxf = {.layer = dxf_layer};
-            w.pdf.margin_m = length_value(margin, "--margin", false);
+            w.pdf.margin_m = length_value(margin, field_ref("margin"), false);
             w.png_dpi = dpi;
-            const FabFormat f = parse_fab_format(format, "--format");
+            const FabFormat f = parse_fab_format(format, field_ref("format"));
             std::string bytes;
             {
                 py::gil_scoped_release release;
@@ -160,9 +161,10 @@ void bind_export(py::module_& m) {
            std::optional<double> dpi, const py::object& margin, const std::string& vendor,
            bool require_drc_clean, bool allow_spacing_violations) {
             const std::vector<FabFormat> fmts = parse_formats(formats);
-            if (out_dir.empty()) throw invalid_field("-o", "''", "an output directory is required");
+            if (out_dir.empty())
+                throw invalid_field(field_ref("out_dir"), "''", "an output directory is required");
             if (fs::exists(out_dir) && !fs::is_directory(out_dir))
-                throw invalid_field("-o", out_dir, "exists and is not a directory");
+                throw invalid_field(field_ref("out_dir"), out_dir, "exists and is not a directory");
             const Mask mk = mask_arg(mask_obj, allow_spacing_violations);
             std::string stem = stem_opt.value_or("");
             if (stem.empty()) {
@@ -180,7 +182,7 @@ void bind_export(py::module_& m) {
                 }
             }
             if (stem.empty() || stem.find('/') != std::string::npos)
-                throw invalid_field("--stem", stem, "must be a plain file name");
+                throw invalid_field(field_ref("stem"), stem, "must be a plain file name");
             // `pinmask export`'s flags -> the library pipeline (export/export_pipeline).
             ExportRequest f =
                 layout_flags(tone, shape, sides, mirror, marks,

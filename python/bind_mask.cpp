@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "design/exclusion_grid.hpp"
 #include "design/families.hpp"
 #include "design/generate_pattern.hpp"
@@ -110,7 +111,7 @@ void bind_mask(py::module_& m) {
         .def_property(
             "kernel", [](const Mask& k) { return k.psf.kernel.model; },
             [](Mask& k, const std::string& v) { k.psf.kernel.model = v; },
-            "kernel model: auto | box | fraunhofer | fresnel | paper-fig3b | measured")
+            "kernel model: one of kernel_models()")
         .def_property(
             "kernel_path", [](const Mask& k) { return k.psf.kernel.measured_path; },
             [](Mask& k, const std::string& v) { k.psf.kernel.measured_path = v; },
@@ -216,7 +217,7 @@ void bind_mask(py::module_& m) {
             po.kernel = kernel;
             po.kernel_path = kernel_path;
             po.pixels_per_cell = pixels_per_cell;
-            parse_kernel_model(kernel, "--kernel");
+            parse_kernel_model(kernel, field_ref("kernel"));
             mk.psf = resolve_psf_spec(po, mk.camera);
             check_period_psf_size(mk.psf.pixels_per_cell, go.grid, pixels_per_cell.has_value());
             const GeneratedPattern gen = generate_pattern(go);

@@ -1,22 +1,23 @@
-// Mask metrics. metrics() is the metric row `pinmask compare` prints (optimize/compare
-// compare_mask over optimize/mask_metrics, the one metric set of score, compare and search).
-// The other functions bind the library metrics one by one (optimize/autocorrelation,
+// Mask metrics. metrics() is the metric row `pinmask compare` prints (metrics/compare
+// compare_mask over metrics/mask_metrics, the one metric set of score, compare and search).
+// The other functions bind the library metrics one by one (metrics/autocorrelation,
 // spectrum_metrics, analytic_error, simulated_metrics).
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "core/fft.hpp"
 #include "design/psf.hpp"
-#include "optimize/analytic_error.hpp"
-#include "optimize/autocorrelation.hpp"
-#include "optimize/compare.hpp"
-#include "optimize/mask_metrics.hpp"
-#include "optimize/metric_spellings.hpp"
-#include "optimize/robust_errors.hpp"
-#include "optimize/scene_prior.hpp"
-#include "optimize/scenes.hpp"
-#include "optimize/simulated_metrics.hpp"
-#include "optimize/spectrum_metrics.hpp"
+#include "metrics/analytic_error.hpp"
+#include "metrics/autocorrelation.hpp"
+#include "metrics/compare.hpp"
+#include "metrics/mask_metrics.hpp"
+#include "metrics/metric_spellings.hpp"
+#include "metrics/robust_errors.hpp"
+#include "simulate/scene_prior.hpp"
+#include "simulate/scenes.hpp"
+#include "metrics/simulated_metrics.hpp"
+#include "metrics/spectrum_metrics.hpp"
 #include "python/common.hpp"
 #include "python/level_args.hpp"
 #include "python/metrics_common.hpp"
@@ -33,10 +34,10 @@ CompareSettings compare_settings(std::vector<NoiseLevel> levels, PriorSpec prior
     m.tv = true;
     m.noise = std::move(levels);
     m.prior = std::move(prior);
-    // The scene and decoder spellings of score and compare (optimize/metric_spellings).
+    // The scene and decoder spellings of score and compare (metrics/metric_spellings).
     m.scenes = scene_specs_from_names(scenes);
     m.simulation.seed = seed;
-    set_decoder_flags(m.simulation, nsr, tv_lambda, tv_iterations);
+    set_decoder_settings(m.simulation, nsr, tv_lambda, tv_iterations);
     s.seed = seed;
     validate(s);
     return s;
@@ -69,7 +70,7 @@ py::dict row_dict(const CompareRow& r) {
     d["tv_psnr_db"] = r.tv_psnr_db;
     d["tv_ssim"] = r.tv_ssim;
     d["tv_lambda"] = r.tv_lambda;
-    // Every level under score's keys (cli/analytic_setup metrics_json names them the same way).
+    // Every level under score's keys (cli/options/analytic_setup metrics_json names them the same way).
     for (const LevelMetrics& l : r.metrics.levels) {
         const std::string& k = l.level.key;
         if (l.analytic) {
@@ -114,7 +115,7 @@ void bind_metrics(py::module_& m) {
             CompareSettings s = compare_settings(noise_levels_arg(snr_db, photons, sensor, {30.0}),
                                                  prior_arg(prior, prior_scenes), scenes, nsr,
                                                  tv_lambda, tv_iterations, seed);
-            // --robust: score's parser (InvalidInput naming --robust and the key).
+            // robust: score's parser (InvalidInput naming `robust` and the key).
             if (robust) s.metrics.robust = parse_fabrication_errors(*robust);
             const Mask mk = mask_arg(mask_obj, true);
             CompareEntry e{name, "input",
@@ -138,8 +139,8 @@ void bind_metrics(py::module_& m) {
         py::arg("full_well") = py::none(), py::arg("bits") = py::none(),
         py::arg("optical_density") = py::none(), py::arg("prior") = "natural",
         py::arg("robust") = py::none(),
-        R"(The metric row of `pinmask compare` for one mask (optimize/compare over
-optimize/mask_metrics, the set score and search use; same settings, same numbers): sidelobes,
+        R"(The metric row of `pinmask compare` for one mask (metrics/compare over
+metrics/mask_metrics, the set score and search use; same settings, same numbers): sidelobes,
 spectrum, OTF condition, analytic Wiener PSNR (dB; the nsr filter and the per-frequency optimal
 bound), simulated Wiener and TV-L2 PSNR (dB) and SSIM over `scenes`.
 Noise (as --snr / --photons and the sensor flags): snr_db, Gaussian SNR in dB, a number or a
@@ -211,7 +212,7 @@ robust_loss_db_<level>, score's keys and numbers.)");
                 throw invalid_field("snr_db", "inf", "the analytic error needs noise");
             const Mask mk = mask_arg(mask_obj, true);
             if (prior_scenes < 1)
-                throw invalid_field("--prior-scenes", std::to_string(prior_scenes), "must be >= 1");
+                throw invalid_field(field_ref("prior.count"), std::to_string(prior_scenes), "must be >= 1");
             const bool tuned = filter == "tuned";
             const WienerFilterSpec f = tuned ? WienerFilterSpec{} : filter_spec(filter);
             AnalyticError e;
@@ -239,7 +240,7 @@ robust_loss_db_<level>, score's keys and numbers.)");
         py::arg("optical_density") = py::none(), py::arg("filter") = "optimal",
         py::arg("prior_scenes") = kDefaultPriorScenes,
         py::arg("prior_first_seed") = kPriorFirstSeed,
-        "Expected Wiener error in closed form (optimize/analytic_error): filter 'optimal' "
+        "Expected Wiener error in closed form (metrics/analytic_error): filter 'optimal' "
         "(per-frequency), 'nsr:VALUE' (deconvwnr's fixed NSR) or 'tuned' (the NSR minimising "
         "the expected MSE); prior: the mean |X^|^2 of prior_scenes natural 1/f textures (seeds "
         "prior_first_seed..); noise as simulate() (Gaussian snr_db, default 30, or photons ...). "
@@ -299,7 +300,7 @@ robust_loss_db_<level>, score's keys and numbers.)");
         py::arg("bits") = py::none(), py::arg("optical_density") = py::none(),
         py::arg("weight") = "tuned", py::arg("noise_seeds") = 1, py::arg("seed") = 0,
         py::arg("tv_iterations") = 200,
-        "Simulated reconstruction quality over one period (optimize/simulated_metrics): each "
+        "Simulated reconstruction quality over one period (metrics/simulated_metrics): each "
         "scene through the mask's PSF with noise (as simulate()), decoded by wiener or tv with "
         "weight (NSR or lambda) 'tuned' or a number > 0, noise_seeds draws from seed. Returns "
         "{weight, mean_psnr_db, mean_ssim, scenes: {name: (psnr_db, ssim)}, decodes}.");

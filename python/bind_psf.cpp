@@ -3,9 +3,11 @@
 #include <filesystem>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "core/image_io.hpp"
 #include "design/kernel.hpp"
 #include "design/psf.hpp"
+#include "design/psf_settings.hpp"
 #include "io/psf_files.hpp"
 #include "python/common.hpp"
 
@@ -13,15 +15,13 @@ namespace pinmask::python {
 
 namespace {
 
-// The mask with `pinmask psf --kernel/--kernel-path` applied (same checks and messages).
+// The mask with `pinmask psf --kernel/--kernel-path` applied (the same checks and messages,
+// naming the keywords).
 Mask with_kernel(Mask mask, const std::optional<std::string>& kernel,
                  const std::string& kernel_path) {
     const std::string k = kernel.value_or("");
-    if (!k.empty()) parse_kernel_model(k, "--kernel");
-    if (k == "measured" && kernel_path.empty())
-        throw invalid_field("--kernel", "measured", "needs --kernel-path FILE");
-    if (!kernel_path.empty() && k != "measured")
-        throw invalid_field("--kernel-path", kernel_path, "only used with --kernel measured");
+    if (!k.empty()) parse_kernel_model(k, field_ref("kernel"));
+    check_kernel_settings(k, kernel_path);
     if (!k.empty()) {
         mask.psf.kernel.model = k;
         mask.psf.kernel.measured_path = kernel_path;

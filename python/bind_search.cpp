@@ -1,18 +1,19 @@
 // Mask search: search() is `pinmask search` up to its ranked masks, one call of the library
-// pipeline optimize/search_pipeline (run_search_pipeline: sampling with keep-out cells, the
+// pipeline search/search_pipeline (run_search_pipeline: sampling with keep-out cells, the
 // search on the analytic objective, the spectral-zero rule, the simulated re-ranking, top-k).
 #include <atomic>
 #include <memory>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "core/units.hpp"
 #include "design/optics.hpp"
 #include "design/psf.hpp"
 #include "design/psf_settings.hpp"
 #include "io/search_config.hpp"
-#include "optimize/metric_spellings.hpp"
-#include "optimize/robust_errors.hpp"
-#include "optimize/search_pipeline.hpp"
+#include "metrics/metric_spellings.hpp"
+#include "metrics/robust_errors.hpp"
+#include "search/search_pipeline.hpp"
 #include "python/common.hpp"
 #include "python/level_args.hpp"
 #include "python/values.hpp"
@@ -49,7 +50,7 @@ void bind_search(py::module_& m) {
             SearchPipelineOptions p;
             p.tmpl.camera = camera.value_or(paper_camera());
             validate(p.tmpl.camera);
-            parse_kernel_model(kernel, "--kernel");
+            parse_kernel_model(kernel, field_ref("kernel"));
             PsfSettings po;
             po.kernel = kernel;
             po.kernel_path = kernel_path;
@@ -60,27 +61,27 @@ void bind_search(py::module_& m) {
             p.tmpl.pattern.min_spacing_cells = spacing;
             p.holes = holes;
             if (strategy != "random" && strategy != "anneal")
-                throw invalid_field("--strategy", strategy, "must be random or anneal");
+                throw invalid_field(field_ref("strategy"), strategy, "must be random or anneal");
             if (evals < 0)
-                throw invalid_field("--evals", std::to_string(evals),
+                throw invalid_field(field_ref("evals"), std::to_string(evals),
                                     "must be >= 1 evaluations per chain (0: search for time)");
             SearchOptions& so = p.search;
             so.strategy = strategy == "random" ? SearchStrategy::kRandom : SearchStrategy::kAnneal;
             so.threads = threads;
-            so.time_budget_s = evals > 0 ? 0.0 : parse_duration_s(time, "--time");
+            so.time_budget_s = evals > 0 ? 0.0 : parse_duration_s(time, field_ref("time"));
             so.max_evaluations = evals;
             so.seed = seed;
             so.top = top;
             if (top < 1 || top > 1000)
-                throw invalid_field("--top", std::to_string(top), "must be between 1 and 1000");
+                throw invalid_field(field_ref("top"), std::to_string(top), "must be between 1 and 1000");
             p.keep_out = keep_out;
             const SensorSettings sensor{read_noise, dark_current, full_well, optical_density, bits};
             const std::vector<NoiseLevel> levels =
                 noise_levels_arg(snr_db, photons, sensor, {30.0});
             if (levels.size() != 1) {
-                throw InvalidInput(
-                    "--snr/--photons: search optimises one noise level; give one value "
-                    "(score and compare take lists)");
+                throw InvalidInput(field_ref("snr_db") + "/" + field_ref("photons") +
+                                   ": search optimises one noise level; give one value "
+                                   "(score and compare take lists)");
             }
             p.noise = levels.front().model;
             p.prior = prior_arg(prior, prior_scenes);
@@ -91,7 +92,7 @@ void bind_search(py::module_& m) {
             p.rerank_tv = rerank_tv && !rerank_scenes.empty();
             p.rank_by = parse_rank_by(rank_by);
             p.generator = io::kSearchGenerator;
-            // --robust / --objective: the same parsers and the same pipeline as the CLI.
+            // robust / objective: the same parsers and the same pipeline as the CLI.
             if (robust) p.robust = parse_fabrication_errors(*robust);
             p.objective = parse_objective_kind(objective);
             p.validate();
@@ -172,7 +173,7 @@ void bind_search(py::module_& m) {
         py::arg("prior") = "natural", py::arg("robust") = py::none(),
         py::arg("objective") = "nominal",
         R"(Searches masks for a camera (grid n, holes K, tiles, spacing in cells) as
-`pinmask search` (the same pipeline, optimize/search_pipeline): strategy random | anneal, a
+`pinmask search` (the same pipeline, search/search_pipeline): strategy random | anneal, a
 time budget (time, '20s', '2min'; it covers the re-ranking too) or evals per chain (> 0:
 deterministic for the same seed and threads), threads independent chains, top candidates,
 keep_out 'none' | 'border'; objective: the weighted sum of analytic_wiener (-expected Wiener PSNR

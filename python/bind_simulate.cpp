@@ -1,16 +1,17 @@
-// Scenes and forward simulation (optimize/scenes.hpp, optimize/simulate.hpp): simulate() follows
+// Scenes and forward simulation (simulate/scenes.hpp, simulate/simulate.hpp): simulate() follows
 // `pinmask simulate` (cli/cmd_simulate.cpp) minus the file writing.
 #include <cmath>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "core/resource_limits.hpp"
 #include "core/units.hpp"
 #include "design/psf.hpp"
 #include "io/mask_json.hpp"
-#include "optimize/noise_levels.hpp"
-#include "optimize/scenes.hpp"
-#include "optimize/simulate.hpp"
+#include "metrics/noise_levels.hpp"
+#include "simulate/scenes.hpp"
+#include "simulate/simulate.hpp"
 #include "python/common.hpp"
 #include "python/values.hpp"
 
@@ -32,7 +33,8 @@ NoiseModel noise_model(const NoiseArgs& a) {
         if (a.snr_db) {
             std::ostringstream v;
             v << *a.snr_db;
-            throw invalid_field("--snr", v.str(), "cannot be combined with --photons");
+            throw invalid_field(field_ref("snr_db"), v.str(),
+                                "cannot be combined with " + field_ref("photons"));
         }
         return photon_model(*a.photons, sensor, nullptr);
     }
@@ -99,17 +101,19 @@ void bind_simulate(py::module_& m) {
                 {snr_db, photons, read_noise, dark_current, full_well, optical_density, bits});
             sim.seed = seed;
             sim.dark_frame = dark_frame;
-            sim.precision = parse_precision(precision, "--precision");
+            sim.precision = parse_precision(precision, field_ref("precision"));
             if (sensor && !full_sensor) {
                 throw invalid_field(
-                    "--sensor",
+                    field_ref("sensor"),
                     std::to_string(sensor->first) + "x" + std::to_string(sensor->second),
-                    "only applies with --full-sensor");
+                    "only applies with " + field_ref("full_sensor"));
             }
             if (dark_frame && sim.noise.kind != NoiseKind::kPhoton) {
-                throw invalid_field("--dark-frame", "True",
-                                    "needs the photon model (--photons N): the --snr model has "
-                                    "no leak, dark current or read noise to record");
+                throw invalid_field(field_ref("dark_frame"), "True",
+                                    "needs the photon model (" + field_ref("photons") +
+                                        " N): the " + field_ref("snr_db") +
+                                        " model has no leak, dark current or read noise to "
+                                        "record");
             }
             const Mask mask = mask_arg(mask_obj, allow_violations);
             py::dict out;

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "core/error.hpp"
+#include "python/keyword_names.hpp"
 
 namespace pinmask::python {
 
@@ -244,9 +245,9 @@ void bind_errors(py::module_& m) {
         } catch (const std::bad_alloc&) {
             throw;
         } catch (const InvalidInput& e) {  // ResourceLimit too: the request is at fault
-            PyErr_SetString(PyExc_ValueError, e.what());
+            PyErr_SetString(PyExc_ValueError, py_names::spell_keywords(e.what()).c_str());
         } catch (const std::exception& e) {
-            PyErr_SetString(PyExc_RuntimeError, e.what());
+            PyErr_SetString(PyExc_RuntimeError, py_names::spell_keywords(e.what()).c_str());
         }
     });
 }

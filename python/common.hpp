@@ -2,7 +2,7 @@
 // running long library calls with Ctrl-C and progress callbacks, and the bind_* entry points
 // (one binding file per concept; python/module.cpp calls them in order).
 //
-// Copies (documented in the module docstring and README):
+// Copies (documented in the module docstring and docs/python.md):
 //   - out: every array the module returns wraps the library's own buffer (a Plane moved into a
 //     capsule that owns it): no copy. Grey images are 2-D (rows, cols); a colour image is
 //     (rows, cols, channels) and is interleaved once (the library keeps one plane per channel).

@@ -3,14 +3,15 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 
 namespace pinmask::python {
 namespace {
 
-// A number or a sequence of numbers; InvalidInput naming `flag` otherwise.
-std::vector<double> number_list(const py::object& v, const std::string& flag) {
+// A number or a sequence of numbers; InvalidInput naming `field` otherwise.
+std::vector<double> number_list(const py::object& v, const std::string& field) {
     const auto bad = [&] {
-        return invalid_field(flag, py::repr(v).cast<std::string>(),
+        return invalid_field(field, py::repr(v).cast<std::string>(),
                              "expected a number or a list of numbers");
     };
     if (py::isinstance<py::bool_>(v) || py::isinstance<py::str>(v)) throw bad();
@@ -42,13 +43,15 @@ std::vector<NoiseLevel> noise_levels_arg(const py::object& snr_db, const py::obj
     s.sensor = sensor;
     if (!photons.is_none()) {
         if (!snr_db.is_none()) {
-            throw invalid_field("--snr", number_text(number_list(snr_db, "--snr")),
-                                "cannot be combined with --photons");
+            throw invalid_field(field_ref("snr_db"),
+                                number_text(number_list(snr_db, field_ref("snr_db"))),
+                                "cannot be combined with " + field_ref("photons"));
         }
-        s.photons = number_list(photons, "--photons");
-        if (s.photons.empty()) throw invalid_field("--photons", "''", "needs at least one item");
+        s.photons = number_list(photons, field_ref("photons"));
+        if (s.photons.empty())
+            throw invalid_field(field_ref("photons"), "''", "needs at least one item");
     } else {
-        s.snr_db = snr_db.is_none() ? default_snr_db : number_list(snr_db, "--snr");
+        s.snr_db = snr_db.is_none() ? default_snr_db : number_list(snr_db, field_ref("snr_db"));
     }
     return noise_levels(s, text);
 }
@@ -57,7 +60,7 @@ PriorSpec prior_arg(const py::object& prior, int prior_scenes) {
     if (py::isinstance<py::str>(prior) || py::hasattr(prior, "__fspath__"))
         return parse_prior_spec(py::str(prior).cast<std::string>(), prior_scenes);
     if (!py::isinstance<py::sequence>(prior)) {
-        throw invalid_field("--prior", py::repr(prior).cast<std::string>(),
+        throw invalid_field(field_ref("prior"), py::repr(prior).cast<std::string>(),
                             "expected natural, text, stars or image files");
     }
     std::string files;

@@ -3,20 +3,20 @@
 // electrons per pixel per pinhole) with the sensor stages, each a number or a list of numbers;
 // prior 'natural' | 'text' | 'stars' or image files (a list of paths or one comma-separated
 // string) with prior_scenes sample scenes. Checks and messages are the library's
-// (optimize/noise_levels, optimize/mask_metrics parse_prior_spec), naming the CLI's flags.
+// (metrics/noise_levels, metrics/mask_metrics parse_prior_spec), naming the CLI's flags.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "optimize/mask_metrics.hpp"
-#include "optimize/noise_levels.hpp"
+#include "metrics/mask_metrics.hpp"
+#include "metrics/noise_levels.hpp"
 #include "python/common.hpp"
 
 namespace pinmask::python {
 
-// The levels: photons when not None (snr_db must then be None: "--snr ... cannot be combined
-// with --photons"), else snr_db (None: `default_snr_db`). `text` gets the levels in words.
+// The levels: photons when not None (snr_db must then be None: "`snr_db` ... cannot be combined
+// with `photons`"), else snr_db (None: `default_snr_db`). `text` gets the levels in words.
 std::vector<NoiseLevel> noise_levels_arg(const py::object& snr_db, const py::object& photons,
                                          const SensorSettings& sensor,
                                          const std::vector<double>& default_snr_db,

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "optimize/compare.hpp"
+#include "metrics/compare.hpp"
 #include "python/common.hpp"
 
 namespace pinmask::python {

@@ -25,8 +25,8 @@
 #include "core/image_io.hpp"
 #include "design/psf.hpp"
 #include "io/mask_json.hpp"
-#include "optimize/image_quality.hpp"
-#include "optimize/scenes.hpp"
+#include "simulate/image_quality.hpp"
+#include "simulate/scenes.hpp"
 
 using namespace pinmask;
 

@@ -14,8 +14,17 @@ sanitized_build() {
     command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
     # Paths relative to the checkout, so a clone elsewhere reuses what an earlier tree compiled.
     export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD}
+    # Ninja for a new tree when it is installed (as scripts/build): it compiles a library's
+    # sources while the libraries it depends on still link.
+    local generator=()
+    if command -v ninja >/dev/null; then
+        if [[ ! -f $san_build_dir/CMakeCache.txt ]] ||
+            grep -qx 'CMAKE_GENERATOR:INTERNAL=Ninja' "$san_build_dir/CMakeCache.txt"; then
+            generator=(-G Ninja)
+        fi
+    fi
     CC=clang CXX=clang++ cmake -S . -B "$san_build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-        -DPINMASK_SANITIZE=ON -DPINMASK_FUZZ=ON "${launcher[@]}" >/dev/null
+        -DPINMASK_SANITIZE=ON -DPINMASK_FUZZ=ON "${generator[@]}" "${launcher[@]}" >/dev/null
     local targets=()
     (($#)) && targets=(--target "$@")
     cmake --build "$san_build_dir" -j "$(nproc)" "${targets[@]}"

@@ -289,8 +289,8 @@ write("layout-zero-area.svg",
 write("layout-huge-coordinate.svg",
       SVG.replace(first_path, 'd="M-1540,-660L1e300,-660L-1100,-1100L-1540,-1100Z"'))
 
-# ---------------------------------------------------------------- issue 18 (reliability, round two)
-# Class 2, memory: valid all-zero PNGs whose pixels decompress to far more than their bytes.
+# ---------------------------------------------------------------- resource bounds
+# Memory: valid all-zero PNGs whose pixels decompress to far more than their bytes.
 
 
 def zero_png(side):
@@ -303,7 +303,7 @@ def zero_png(side):
 write("capture-zeros-16000.png", zero_png(16000))  # 249 KB -> 256 M samples (2 GB as double)
 write("capture-zeros-4000.png", zero_png(4000))  # 16 KB -> 16 M samples (128 MB as double)
 
-# Class 7: PSF sidecars that parse but contradict their image or themselves.
+# Nonsense values: PSF sidecars that parse but contradict their image or themselves.
 
 
 def kernel_edit(key, value):
@@ -331,14 +331,14 @@ for stem, edit in [
     text = json.dumps(s, indent=2) + "\n"
     write(stem + ".json", text.replace("Infinity", "1e309"))
 
-# Class 7 and 10: masks with values beyond what later commands accept.
+# Physical quantities: masks with values beyond what later commands accept.
 mask_variant("mask-giga-tiles.mask.json", set_path("pattern", "tiles", [1000000000, 1000000000]))
 mask_variant("mask-tiles-1025.mask.json", set_path("pattern", "tiles", [1025, 1]))
 mask_variant("mask-huge-wavelength.mask.json", set_path("optics", "wavelength_m", 1e300))
 mask_variant("mask-tiny-pitch.mask.json", set_path("optics", "pixel_pitch_m", 1e-300))
 mask_variant("mask-huge-pinhole.mask.json", set_path("optics", "pinhole_m", 1e300))
 mask_variant("mask-huge-sensor-distance.mask.json", set_path("optics", "sensor_distance_m", 1e10))
-# ---- readers that must implement or refuse (issue 18 class 6): SVG constructs that change
+# ---- readers that must implement or refuse: SVG constructs that change
 # geometry, DXF units, OASIS records pinmask does not read.
 SVG_HEAD = ('<svg xmlns="http://www.w3.org/2000/svg" width="1mm" height="1mm" '
             'viewBox="0 0 1000 1000">\n')

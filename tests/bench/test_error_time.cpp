@@ -13,7 +13,7 @@
 #include "core/image_io.hpp"
 #include "design/psf.hpp"
 #include "design/random_sparse.hpp"
-#include "optimize/scenes.hpp"
+#include "simulate/scenes.hpp"
 #include "tests/support/cli_run.hpp"
 #include "tests/support/close.hpp"
 

@@ -1,5 +1,6 @@
-// bench_objective (issue 13's bench figure): the records are complete and consistent. Speed
-// itself is never asserted (no wall-clock limits in tests); the figure is in the README.
+// bench_objective (the search-objective figure of `pinmask bench search`): the records are
+// complete and consistent. Speed itself is never asserted (no wall-clock limits in tests); the
+// figure is in docs/benchmarks.md.
 #include <doctest/doctest.h>
 
 #include "bench/search_bench.hpp"

@@ -19,7 +19,7 @@ using pinmask::test::PointSourceScene;
 
 namespace {
 
-// Tolerances of the issue ("Must show"): the registration must beat them at SNR 20 dB.
+// Required tolerances: the registration must beat them at SNR 20 dB.
 constexpr double kRotationTolDeg = 0.03;
 constexpr double kPitchTolRel = 0.001;
 constexpr double kPsfCorrelationMin = 0.98;
@@ -219,14 +219,14 @@ TEST_CASE("calibrate: bad captures are refused with a reason") {
         CHECK(message(Plane::Constant(100, 300, 1.0)).find("smaller than one period") !=
               std::string::npos);
     }
-    SUBCASE("rotation beyond --max-rotation") {
+    SUBCASE("rotation beyond max_rotation_deg") {
         PointSourceScene r = s;
         r.rotation_deg = 8.0;
         r.x0 = 60;
         r.rows = r.cols = 340;
         const std::string m = message(test::point_source_capture(r));
         CAPTURE(m);
-        CHECK(m.find("max-rotation") != std::string::npos);
+        CHECK(m.find("`max_rotation_deg`") != std::string::npos);
     }
 }
 

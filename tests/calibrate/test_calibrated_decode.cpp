@@ -10,14 +10,14 @@
 #include "decode/decoder.hpp"
 #include "design/camera.hpp"
 #include "design/families.hpp"
-#include "optimize/image_quality.hpp"
+#include "simulate/image_quality.hpp"
 #include "tests/calibrate/point_source_model.hpp"
 
 using namespace pinmask;
 
 namespace {
 
-// The bar: the calibrated PSF beats the design PSF by at least this (Wiener PSNR).
+// The required gain: the calibrated PSF beats the design PSF by at least this (Wiener PSNR).
 constexpr double kMinGainDb = 2.0;
 
 // Circular convolution of x with a PSF of x's size whose central element is the origin

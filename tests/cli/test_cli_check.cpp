@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "export/gds_writer.hpp"
-#include "export/geometry.hpp"
+#include "formats/gds_writer.hpp"
+#include "layout/geometry.hpp"
 #include "io/mask_json.hpp"
 #include "tests/support/cli_run.hpp"
 

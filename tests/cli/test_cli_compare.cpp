@@ -227,9 +227,9 @@ TEST_CASE("compare: bad input is exit 2 with a message, and no report files") {
     CHECK(m.others() == 0);
 }
 
-// Issue 11: one metric set. The same masks and settings give the same analytic and simulated
-// numbers in score and compare (exact equality: both call optimize/mask_metrics), under the
-// Gaussian and the photon model; so compare ranks masks as score does (issue 13).
+// One metric set: the same masks and settings give the same analytic and simulated
+// numbers in score and compare (exact equality: both call metrics/mask_metrics), under the
+// Gaussian and the photon model; so compare ranks masks as score does.
 TEST_CASE("compare and score print the same analytic and simulated numbers, in the same order") {
     Masks m;
     const std::string c = m.dir / "c.mask.json";

@@ -12,8 +12,10 @@
 #include <numbers>
 #include <random>
 
+#include "cli/options/flag_names.hpp"
 #include "core/fft.hpp"
 #include "core/image_io.hpp"
+#include "decode/decode_request.hpp"
 #include "decode/decoder.hpp"
 #include "tests/support/cli_run.hpp"
 #include "tests/support/close.hpp"
@@ -259,7 +261,8 @@ TEST_CASE("bad input exits 2 naming the problem and leaves no output") {
         {dir / "cap.tiff" + psf_arg + " --method tikhonov --nonneg", "(only by tv, tvqc)"},
         {dir / "cap.tiff" + psf_arg + " --iters 3", "(only by tv, tvqc, richardson-lucy)"},
         {dir / "cap.tiff" + psf_arg + " --method tikhonov --tol 0.1", "--tol"},
-        {dir / "cap.tiff" + psf_arg + " --method tikhonov --lambda 0", "must be > 0 for tikhonov"},
+        {dir / "cap.tiff" + psf_arg + " --method tikhonov --lambda 0",
+         "(use --method wiener --nsr 0 for the floored inverse)"},
         {dir / "cap.tiff" + psf_arg + " --dark " + dir / "dark_other.tiff", "dark frame"},
         {dir / "cap.tiff" + psf_arg + " --crop 1,0", "crop"},
         {dir / "cap.tiff" + psf_arg + " --crop middle", "--crop"},
@@ -362,5 +365,34 @@ TEST_CASE("--precision single applies to tvqc and richardson-lucy (no longer dou
             REQUIRE(r.exit_code == 0);
             CHECK(read_json(dir / "s.json")["precision"] == precision);
         }
+    }
+}
+
+TEST_CASE("decode's library fields are spelled as the flags that set them") {
+    // The decode library names its request's fields (decode/decode_request.hpp); the command
+    // line spells each one as its flag, so its messages name the flags as before.
+    const std::pair<MethodParameter, const char*> flags[] = {
+        {MethodParameter::kNsr, "--nsr"},
+        {MethodParameter::kLambda, "--lambda"},
+        {MethodParameter::kRegulariser, "--regulariser"},
+        {MethodParameter::kEps, "--eps"},
+        {MethodParameter::kNoiseSigma, "--noise-sigma"},
+        {MethodParameter::kNonnegative, "--nonneg"},
+        {MethodParameter::kIterations, "--iters"},
+        {MethodParameter::kTolerance, "--tol"},
+    };
+    for (const auto& [parameter, flag] : flags) {
+        INFO(flag);
+        CHECK(cli::flag_spelling(method_parameter_field(parameter)) == std::string(flag));
+    }
+    DecodeRequest r;
+    r.method = DecodeMethod::kTv;
+    try {
+        refuse_unused_parameters(r, {{MethodParameter::kNsr, "0.1"}});
+        FAIL("accepted");
+    } catch (const InvalidInput& e) {
+        CHECK(cli::spell_flags(e.what()) ==
+              "--nsr = 0.1: is not used by --method tv (only by wiener); remove it or choose "
+              "that method");
     }
 }

@@ -1,4 +1,4 @@
-// `pinmask decode --batch` (issue 17) end to end: three simulated captures (generate, simulate
+// `pinmask decode --batch` end to end: three simulated captures (generate, simulate
 // with three seeds) decoded as a batch give the same bytes as `pinmask decode` on each alone,
 // for a directory and a list file; bad inputs exit 2 naming the flag and write nothing.
 #include <doctest/doctest.h>

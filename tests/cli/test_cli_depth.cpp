@@ -11,8 +11,8 @@
 #include "design/psf.hpp"
 #include "design/psf_exact.hpp"
 #include "io/mask_json.hpp"
-#include "optimize/scenes.hpp"
-#include "optimize/simulate.hpp"
+#include "simulate/scenes.hpp"
+#include "simulate/simulate.hpp"
 #include "tests/support/cli_run.hpp"
 
 using namespace pinmask;

@@ -112,21 +112,22 @@ TEST_CASE("more invalid input: units, models, geometry") {
 
 namespace {
 
-const std::string kIssueCamera =
+// A machine-vision camera: 3.45 um pixels, 25 mm lens, sensor 20 mm behind, object at 2 m.
+const std::string kFinePixelCamera =
     "--pixel-pitch 3.45um --sensor 2448x2048 --lens-focal 25mm --sensor-distance 20mm "
     "--object-distance 2m --wavelength 530nm";
 
-// The issue quotes d = 345.0 um: +-0.1 %.
-constexpr double kIssueRel = 1e-3;
+// d = 345.0 um is the reference value to four digits: +-0.1 %.
+constexpr double kQuotedRel = 1e-3;
 // JSON round trip of doubles (17 significant digits) and two evaluations of one closed form.
 constexpr double kRoundTripRel = 1e-9;
 
 }  // namespace
 
-TEST_CASE("design --pixels-per-cell 21 for the issue's camera: d = 345.0 um, range by the rule") {
-    const auto j = design_json(kIssueCamera + " --pixels-per-cell 21");
+TEST_CASE("design --pixels-per-cell 21 for the 3.45 um camera: d = 345.0 um, range by the rule") {
+    const auto j = design_json(kFinePixelCamera + " --pixels-per-cell 21");
     const double d = j["pinhole_for_pixels_per_cell_m"].get<double>();
-    CHECK(std::fabs(d / 345.0e-6 - 1.0) <= kIssueRel);
+    CHECK(std::fabs(d / 345.0e-6 - 1.0) <= kQuotedRel);
     CHECK(std::fabs(j["camera"]["pinhole_m"].get<double>() - d) <= kRoundTripRel * d);
     CHECK(j["whole_pixels_per_cell_at_u"] == 21);
     CHECK(std::fabs(j["pixels_per_cell_at_u"].get<double>() - 21.0) <= 1e-9);
@@ -146,24 +147,24 @@ TEST_CASE("design --pixels-per-cell 21 for the issue's camera: d = 345.0 um, ran
     CHECK(j["optimum_pinhole_with_lens_m"].get<double>() > 340e-6);
     CHECK(j.contains("optimum_pinhole_m"));  // the existing key stays
     // --solve pinhole from a pinhole near 21 px gives the same design.
-    const auto solved = design_json(kIssueCamera + " --pinhole 340um --solve pinhole");
+    const auto solved = design_json(kFinePixelCamera + " --pinhole 340um --solve pinhole");
     CHECK(solved["whole_pixels_per_cell_at_u"] == 21);
     CHECK(std::fabs(solved["camera"]["pinhole_m"].get<double>() - d) <= kRoundTripRel * d);
     // A large tolerance reaches infinity: null with a note.
-    const auto loose = design_json(kIssueCamera + " --pixels-per-cell 21 --lsi-tolerance 100");
+    const auto loose = design_json(kFinePixelCamera + " --pixels-per-cell 21 --lsi-tolerance 100");
     CHECK(loose["object_distance_range_m"][1].is_null());
     CHECK(loose["notes"].contains("object_distance_range_m"));
 }
 
 TEST_CASE("design table: both optima with formulas, the regime line and the spread warning") {
-    const auto r = run_cli("design " + kIssueCamera + " --pinhole 160.6um");
+    const auto r = run_cli("design " + kFinePixelCamera + " --pinhole 160.6um");
     REQUIRE(r.exit_code == 0);
     CHECK(contains(r.out, "1.56 sqrt(lambda f)"));
     CHECK(contains(r.out, "1.56 sqrt(lambda |z_eff(u)|)"));
     CHECK(contains(r.out, "regime"));
     CHECK(contains(r.out, "WARNING: spots spread over more than one cell"));
     CHECK(contains(r.out, "usable object distances"));
-    const auto ok = run_cli("design " + kIssueCamera + " --pixels-per-cell 21");
+    const auto ok = run_cli("design " + kFinePixelCamera + " --pixels-per-cell 21");
     CHECK_FALSE(contains(ok.out, "WARNING"));
 }
 
@@ -190,14 +191,14 @@ TEST_CASE("design --save-camera writes a camera file; --camera reads it; flags o
     pinmask::test::TempDir dir("camera-file");
     const std::string file = dir / "my.camera.json";
     const auto saved =
-        run_cli("design " + kIssueCamera + " --pixels-per-cell 21 --save-camera " + file);
+        run_cli("design " + kFinePixelCamera + " --pixels-per-cell 21 --save-camera " + file);
     INFO(saved.err);
     REQUIRE(saved.exit_code == 0);
     CHECK(contains(saved.out, "solved for N px per cell at u"));
     CHECK(contains(saved.out, "flag"));
     // Read back: the solved pinhole, the file as the source, a flag overriding u.
     const auto j = design_json("--camera " + file + " --object-distance 3m");
-    CHECK(std::fabs(j["camera"]["pinhole_m"].get<double>() / 345.0e-6 - 1.0) <= kIssueRel);
+    CHECK(std::fabs(j["camera"]["pinhole_m"].get<double>() / 345.0e-6 - 1.0) <= kQuotedRel);
     CHECK(j["camera"]["object_distance_m"] == 3.0);
     CHECK(j["input_sources"]["d (pinhole)"] == "camera file");
     CHECK(j["input_sources"]["u (object distance)"] == "flag");

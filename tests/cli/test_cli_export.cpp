@@ -170,7 +170,7 @@ TEST_CASE("bench export runs and reports ratios (small mask)") {
     CHECK(j["records"].size() == 13);  // layout, 7 writes, 5 reads
     for (const auto& rec : j["records"]) CHECK(rec["ratio"].get<double>() > 0);
     // Data volume: the 16^2 x 4 x 4 tiled mask as hierarchical GDSII and as OASIS is several
-    // times smaller than flat GDSII (the 1024^2-cell figure is in the README). Records: one
+    // times smaller than flat GDSII (the 1024^2-cell figure is in docs/benchmarks.md). Records: one
     // tile, uniform random, tiled.
     REQUIRE(j["sizes"].size() == 3);
     CHECK(j["sizes"][1]["mask"].get<std::string>().find("uniform") != std::string::npos);

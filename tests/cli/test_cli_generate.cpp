@@ -1,4 +1,4 @@
-// `pinmask generate` end to end: the command, byte-identical reruns, refusals with exit
+// `pinmask generate` end to end: the documented command, byte-identical reruns, refusals with exit
 // code 2 and no file, the families and the recorded configuration.
 #include <doctest/doctest.h>
 
@@ -24,7 +24,7 @@ bool has(const std::string& text, const std::string& part) {
 
 }  // namespace
 
-TEST_CASE("generate: the issue's command writes a mask that reads back") {
+TEST_CASE("generate: the documented command writes a mask that reads back") {
     TempDir dir("gen");
     const std::string out = dir / "m.mask.json";
     const auto r = run_cli(

@@ -174,7 +174,7 @@ TEST_CASE("read_psf_file validates the image and the sidecar") {
 }
 
 TEST_CASE("psf --geometry exact --object-distance 6m: spot centroids within 0.05 px of Eq. (3)") {
-    // The bound on a spot centroid against its Eq. (3) position.
+    // The required bound on a spot centroid against its Eq. (3) position.
     constexpr double kCentroidTolPx = 0.05;
     TempDir dir("psf-exact");
     const Mask m = sample_mask();

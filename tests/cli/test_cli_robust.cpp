@@ -1,4 +1,4 @@
-// Fabrication robustness end to end (issue 13 point 6): `--robust` in score, compare and search,
+// Fabrication robustness end to end: `--robust` in score, compare and search,
 // `search --objective robust`, hostile values exit 2 naming the key, and deterministic outputs.
 // Small geometries (8 x 8 cells of 4 pixels) keep every run short.
 #include <doctest/doctest.h>

@@ -1,4 +1,4 @@
-// The robust design's decoder from the command line (issue 13): `decode --nsr-map`, `score
+// The robust design's decoder from the command line: `decode --nsr-map`, `score
 // --robust-decoder DIR`, and the whole loop at 50 dB on the paper camera: score writes the
 // expected fabricated PSF and the per-frequency NSR, decode applies them to a fabricated capture,
 // and the PSNR is the library's fabricated_filter_quality figure for that same capture (the
@@ -17,13 +17,13 @@
 #include "design/camera.hpp"
 #include "design/psf.hpp"
 #include "io/mask_json.hpp"
-#include "optimize/image_quality.hpp"
-#include "optimize/mask_metrics.hpp"
-#include "optimize/robust_sample.hpp"
-#include "optimize/robust_wiener.hpp"
-#include "optimize/scenes.hpp"
-#include "optimize/search_pipeline.hpp"
-#include "optimize/simulate.hpp"
+#include "simulate/image_quality.hpp"
+#include "metrics/mask_metrics.hpp"
+#include "metrics/robust_wiener.hpp"
+#include "simulate/scenes.hpp"
+#include "search/search_pipeline.hpp"
+#include "simulate/simulate.hpp"
+#include "tests/research/fabricated_sample.hpp"
 #include "tests/support/cli_run.hpp"
 #include "tests/support/random_pattern.hpp"
 
@@ -41,15 +41,6 @@ constexpr double kLoopPsnrToleranceDb = 1e-6;
 // The same closed form computed in another run (relative to the largest value).
 constexpr double kRoundingTolerance = 1e-12;
 
-Mask paper_mask(int n, int holes, unsigned seed) {
-    Mask m;
-    m.camera = paper_camera();
-    m.pattern = test::random_pattern(n, holes, seed);
-    m.psf.pixels_per_cell = 8;
-    m.psf.kernel.model = "box";
-    return m;
-}
-
 Plane read_plane(const fs::path& p) { return read_image(p).image.channels.at(0); }
 
 void write_plane(const fs::path& p, const Plane& x) {
@@ -60,7 +51,7 @@ void write_plane(const fs::path& p, const Plane& x) {
 
 TEST_CASE("decode --nsr-map decodes as the library with the same map") {
     TempDir dir{"nsrmap"};
-    const Mask mask = paper_mask(8, 6, 3);
+    const Mask mask = test::random_paper_mask(8, 6, 3);
     const std::string mask_path = dir / "m.mask.json";
     io::write_mask_file(mask_path, mask);
     const int m = 64;
@@ -98,7 +89,7 @@ TEST_CASE("decode --nsr-map decodes as the library with the same map") {
 TEST_CASE("hostile --nsr-map inputs exit 2 naming the flag, with no output") {
     TempDir dir{"nsrmapbad"};
     const std::string mask_path = dir / "m.mask.json";
-    io::write_mask_file(mask_path, paper_mask(8, 6, 3));
+    io::write_mask_file(mask_path, test::random_paper_mask(8, 6, 3));
     const int m = 64;
     write_plane(dir / "c.npy", Plane::Constant(m, m, 0.5));
     write_plane(dir / "ok.npy", Plane::Constant(m, m, 0.01));
@@ -141,7 +132,7 @@ TEST_CASE("hostile --nsr-map inputs exit 2 naming the flag, with no output") {
 
 TEST_CASE("score --robust-decoder: refusals and the files it writes") {
     TempDir dir{"robustdec"};
-    const Mask mask = paper_mask(8, 6, 3);
+    const Mask mask = test::random_paper_mask(8, 6, 3);
     const std::string a = dir / "a.mask.json";
     io::write_mask_file(a, mask);
     const std::string base = "score " + a + " --metrics analytic --robust size=44um,jitter=2um ";
@@ -194,10 +185,10 @@ TEST_CASE("score --robust-decoder: refusals and the files it writes") {
 }
 
 TEST_CASE("the robust decoder loop at 50 dB on the paper camera: CLI PSNR = library figure") {
-    // The library test's setting (tests/optimize/test_robust_search.cpp): paper camera, 16 x 16
+    // The library test's setting (tests/search/test_robust_search.cpp): paper camera, 16 x 16
     // cells of 8 px, 20 pinholes, +-10 % side and 2 um jitter, 50 dB, held-out natural scene.
     TempDir dir{"robustloop"};
-    const Mask mask = paper_mask(16, 20, 5);
+    const Mask mask = test::random_paper_mask(16, 20, 5);
     const std::string mask_path = dir / "r.mask.json";
     io::write_mask_file(mask_path, mask);
     const int m = 128;

@@ -1,4 +1,4 @@
-// `pinmask search` end to end (issue 13, 18): the photon objective, spectral zeros, the time
+// `pinmask search` end to end: the photon objective, spectral zeros, the time
 // budget with re-ranking, --rank-by, and --evals 0. Small geometries keep each run under a few
 // seconds.
 #include <doctest/doctest.h>
@@ -87,7 +87,7 @@ TEST_CASE("search never returns an unflagged spectral zero") {
 }
 
 // The budget covers the whole run, re-ranking included; the summary reports planned vs used.
-// The bound is the issue's T + 10 % plus a generous allowance for a loaded or sanitized machine
+// The bound is the required T + 10 % plus a generous allowance for a loaded or sanitized machine
 // (the test checks the accounting, not the machine's speed).
 TEST_CASE("search --time: planned vs used in the summary, re-ranking inside the budget") {
     TempDir dir("search-time");
@@ -166,7 +166,7 @@ TEST_CASE("search --holes A..B: best mask per K, table and plot; bad ranges name
         const auto mask =
             nlohmann::json::parse(slurp(run / ("best-K" + std::to_string(k) + ".mask.json")));
         CHECK(mask.dump().find("analytic_wiener_psnr_db") != std::string::npos);
-        // The bound on any K-pinhole pattern (optimize/objective_bound) is above the best found.
+        // The bound on any K-pinhole pattern (search/objective_bound) is above the best found.
         CHECK(row["upper_bound_psnr_db"].template get<double>() >=
               row["analytic_wiener_psnr_db"].template get<double>());
     }

@@ -174,7 +174,7 @@ TEST_CASE("simulate --precision: double = the default bytes (128 px < 256), sing
     CHECK(nlohmann::json::parse(slurp(sgl + ".config.json"))["precision"] == "single");
     CHECK(nlohmann::json::parse(slurp(dbl + ".config.json"))["precision"] == "double");
     // The float32 convolution moves each value by float rounding of the capture's scale
-    // (tests/optimize/test_simulate_precision.cpp); the file stores float32 either way.
+    // (tests/simulate/test_simulate_precision.cpp); the file stores float32 either way.
     const pinmask::Plane a = read_plane(sgl), b = read_plane(dbl);
     CHECK(std::sqrt((a - b).square().sum() / b.square().sum()) <= 5e-6);
     const auto bad = run_cli(args + "--precision half -o " + (m.dir / "bad.tiff"));

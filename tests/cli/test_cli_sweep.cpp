@@ -1,4 +1,4 @@
-// `pinmask sweep` end to end (issue 17): the outputs of a small grid, byte-identical on a rerun,
+// `pinmask sweep` end to end: the outputs of a small grid, byte-identical on a rerun,
 // under `mpirun -n 2` and `mpirun -n 3 --oversubscribe` (dynamic work queue; files independent
 // of the rank count and of scheduling), and bad sweep files refused with exit 2 naming the key
 // before any search runs (no output folder created).

@@ -141,7 +141,7 @@ TEST_CASE("search --evals twice with the same --threads: identical masks, config
         "--top 3 --seed 11 --rerank-scenes letter-R --no-rerank-tv";
     t.run(common + " --threads 2 -o run2");
     t.run(common + " --threads 1 -o run1");
-    // Issue 18: run-log.csv (by evaluation count) and summary.md are byte-identical; only
+    // run-log.csv (by evaluation count) and summary.md are byte-identical; only
     // timing.csv (wall clock) is excluded from the claim.
     check_identical(t.a, t.b, {{"timing.csv", final_totals}});
     // By design a different thread count runs a different number of chains (150 evaluations

@@ -154,7 +154,7 @@ TEST_CASE("search stops cleanly on SIGINT and SIGTERM with the best so far writt
     }
 }
 
-// Issue 18: `timeout 3 pinmask search ...` sends SIGTERM to the process and again to its
+// `timeout 3 pinmask search ...` sends SIGTERM to the process and again to its
 // group. Two signals back to back must still end with the best so far written: the second only
 // hurries the run.
 TEST_CASE("search: two SIGTERMs back to back still write the best so far") {

@@ -9,18 +9,15 @@
 #include "core/error.hpp"
 #include "core/fft.hpp"
 #include "tests/support/close.hpp"
-#include "tests/support/uniform_plane.hpp"
+#include "tests/support/random_plane.hpp"
 
 using namespace pinmask;
+using pinmask::test::random_plane;
 
 namespace {
 
 // Round-off of an O(N log N) FFT against an O(N^2) sum in double: a few ulps times log N.
 constexpr double kFftVsDirectTol = 1e-11;
-
-Plane random_plane(int rows, int cols, unsigned seed) {
-    return test::uniform_plane(rows, cols, seed, -1.0, 1.0);
-}
 
 // Direct separable DFT (rows then columns), O(R C (R + C)), sign -1, unnormalised.
 ComplexPlane direct_dft(const ComplexPlane& x, int sign) {
@@ -48,7 +45,7 @@ ComplexPlane direct_dft(const ComplexPlane& x, int sign) {
 double max_abs(const ComplexPlane& a) { return a.abs().maxCoeff(); }
 
 void check_real_pair(int rows, int cols) {
-    const Plane x = random_plane(rows, cols, 1000u * rows + cols);
+    const Plane x = random_plane(rows, cols, 1000u * rows + cols, -1.0, 1.0);
     const Fft2 fft(rows, cols);
     const ComplexPlane half = fft.forward(x);
     const ComplexPlane ref = direct_dft(x.cast<std::complex<double>>(), -1);
@@ -76,7 +73,8 @@ TEST_CASE("large primes") {
 
 TEST_CASE("complex transform matches the direct DFT and round-trips") {
     for (int n : {1, 2, 3, 5, 8, 16, 17, 31}) {
-        const Plane re = random_plane(n, n + 1, 7u * n), im = random_plane(n, n + 1, 9u * n);
+        const Plane re = random_plane(n, n + 1, 7u * n, -1.0, 1.0),
+                    im = random_plane(n, n + 1, 9u * n, -1.0, 1.0);
         ComplexPlane x(n, n + 1);
         x.real() = re;
         x.imag() = im;
@@ -88,7 +86,7 @@ TEST_CASE("complex transform matches the direct DFT and round-trips") {
 }
 
 TEST_CASE("plans are created safely from many threads and give identical results") {
-    const Plane x = random_plane(48, 40, 3);
+    const Plane x = random_plane(48, 40, 3, -1.0, 1.0);
     const ComplexPlane ref = Fft2(48, 40).forward(x);
     std::vector<std::thread> threads;
     std::vector<double> err(8, 1.0);

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "core/fft.hpp"
-#include "tests/support/uniform_plane.hpp"
+#include "tests/support/random_plane.hpp"
 
 using namespace pinmask;
 namespace fs = std::filesystem;
@@ -42,7 +42,7 @@ fs::path temp_file(const std::string& name) {
 
 TEST_CASE("Fft2f agrees with Fft2 to float rounding (forward spectrum and round trip)") {
     for (auto [R, C] : {std::pair{48, 64}, std::pair{37, 50}}) {
-        const Plane x = test::uniform_plane(R, C, 7, -1.0, 1.0);
+        const Plane x = test::random_plane(R, C, 7, -1.0, 1.0);
         const ComplexPlane ref = Fft2(R, C).forward(x);
         const Fft2f f(R, C);
         ComplexPlaneF spec;
@@ -70,7 +70,7 @@ TEST_CASE("wisdom: measured plans are written, trusted on re-read, and refused w
     CHECK(after.planning_seconds >= before.planning_seconds);
     REQUIRE(fs::exists(path));
     const std::string text = slurp(path);
-    CHECK(text.rfind("pinmask-fftw-wisdom 1\n", 0) == 0);
+    CHECK(text.rfind("pinmask-fftw-wisdom 2\n", 0) == 0);
     CHECK(fft_wisdom_problem(text).empty());
     CHECK(set_fft_wisdom_file(path.string()).empty());  // re-read: trusted
 
@@ -86,20 +86,34 @@ TEST_CASE("wisdom: measured plans are written, trusted on re-read, and refused w
     // Not ours / corrupt FFTW text: refused.
     { std::ofstream(path, std::ios::binary) << "(fftw-3.3.10 fftw_wisdom #x1 garbage"; }
     CHECK(set_fft_wisdom_file(path.string()).size() == 1);
-    const std::string header = text.substr(0, text.find("--- double\n"));
+    const std::string header = text.substr(0, text.find("[double]\n"));
     {
-        std::ofstream(path, std::ios::binary)
-            << header << "--- double\n(fftw-3.3 ((((\n--- float\n";
+        std::ofstream(path, std::ios::binary) << header << "[double]\n(fftw-3.3 ((((\n[float]\n";
     }
     w = set_fft_wisdom_file(path.string());
     REQUIRE(w.size() == 1);
     CHECK(w[0].find("corrupt") != std::string::npos);
+
+    // A file of wisdom format 1 (other section marks): ignored like a stale file, then replaced
+    // by the current format when plans are saved.
+    std::string format1 = text;
+    format1.replace(format1.find("wisdom 2\n"), 9, "wisdom 1\n");
+    format1.replace(format1.find("[double]\n"), 9, "--- double\n");
+    format1.replace(format1.find("[float]\n"), 8, "--- float\n");
+    CHECK(fft_wisdom_problem(format1).find("another pinmask wisdom format") != std::string::npos);
+    { std::ofstream(path, std::ios::binary) << format1; }
+    w = set_fft_wisdom_file(path.string());
+    REQUIRE(w.size() == 1);
+    CHECK(w[0].find("ignored") != std::string::npos);
+    CHECK(w[0].find("replaced") != std::string::npos);
+    const Fft2 g(44, 30);  // a new measured plan: the wisdom is written again
+    CHECK(slurp(path).rfind("pinmask-fftw-wisdom 2\n", 0) == 0);
     fs::remove(path);
 }
 
 TEST_CASE("threads: a threaded 512 x 512 transform gives the same bytes as a serial one") {
     PlannerGuard guard;
-    const Plane x = test::uniform_plane(512, 512, 11, -1.0, 1.0);
+    const Plane x = test::random_plane(512, 512, 11, -1.0, 1.0);
     set_fft_threads(1);
     CHECK(fft_threads_for(512, 512) == 1);
     const Fft2 serial(512, 512);

@@ -19,8 +19,8 @@
 #include "design/mask.hpp"
 #include "design/psf.hpp"
 #include "design/random_sparse.hpp"
-#include "export/geometry.hpp"
-#include "optimize/simulate.hpp"
+#include "layout/geometry.hpp"
+#include "simulate/simulate.hpp"
 
 using namespace pinmask;
 

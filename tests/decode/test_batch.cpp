@@ -1,4 +1,4 @@
-// decode/batch and decode/plan_cache (issue 17, batch decode): a BatchDecoder makes the operator
+// decode/batch and decode/plan_cache (batch decode): a BatchDecoder makes the operator
 // and the closed-form filter once per PSF and grid and reuses them, and every capture decodes to
 // exactly the bytes of a fresh decode_capture on it alone (the second code path: no cache).
 // Round-robin shares of the captures among ranks cover every index once.

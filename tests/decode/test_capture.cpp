@@ -7,17 +7,11 @@
 
 #include "core/error.hpp"
 #include "decode/capture.hpp"
-#include "tests/support/uniform_plane.hpp"
+#include "tests/support/random_plane.hpp"
 
 using namespace pinmask;
 
-namespace {
-
-Plane random_plane(int rows, int cols, unsigned seed) {
-    return test::uniform_plane(rows, cols, seed, 0.0, 1.0);
-}
-
-}  // namespace
+using pinmask::test::random_plane;
 
 TEST_CASE("check_image_finite names the first bad pixel") {
     Image img(random_plane(5, 7, 1));

@@ -6,17 +6,11 @@
 
 #include "core/error.hpp"
 #include "decode/capture.hpp"
-#include "tests/support/uniform_plane.hpp"
+#include "tests/support/random_plane.hpp"
 
 using namespace pinmask;
 
-namespace {
-
-Plane random_plane(int rows, int cols, unsigned seed) {
-    return test::uniform_plane(rows, cols, seed, 0.0, 1.0);
-}
-
-}  // namespace
+using pinmask::test::random_plane;
 
 TEST_CASE("RGB channels decoded on threads equal one decode_plane call per channel") {
     Image cap(17, 20, 3);

@@ -7,37 +7,34 @@
 #include "core/error.hpp"
 #include "decode/preprocess.hpp"
 #include "tests/support/close.hpp"
-#include "tests/support/uniform_plane.hpp"
+#include "tests/support/random_plane.hpp"
 
 using namespace pinmask;
+using pinmask::test::random_plane;
 
 namespace {
 
 // Sums of a few hundred doubles of order 1: round-off is a few ulps times the count.
 constexpr double kSumRoundoffTol = 1e-13;
 
-Plane random_plane(int rows, int cols, unsigned seed) {
-    return test::uniform_plane(rows, cols, seed, -1.0, 2.0);
-}
-
 }  // namespace
 
 TEST_CASE("corner_background is the mean of rows and cols 5..14") {
-    const Plane p = random_plane(20, 23, 1);
+    const Plane p = random_plane(20, 23, 1, -1.0, 2.0);
     double sum = 0.0;
     for (int r = 5; r <= 14; ++r)
         for (int c = 5; c <= 14; ++c) sum += p(r, c);
     CHECK_CLOSE(corner_background(p), sum / 100.0, kSumRoundoffTol);
     // The patch needs 15 x 15 pixels.
-    CHECK_NOTHROW(corner_background(random_plane(15, 15, 2)));
-    CHECK_THROWS_AS(corner_background(random_plane(14, 40, 2)), InvalidInput);
+    CHECK_NOTHROW(corner_background(random_plane(15, 15, 2, -1.0, 2.0)));
+    CHECK_THROWS_AS(corner_background(random_plane(14, 40, 2, -1.0, 2.0)), InvalidInput);
     CHECK_THROWS_AS(patch_mean(p, -1, 0, 3), InvalidInput);
 }
 
 TEST_CASE("box_downsample_2x averages 2x2 blocks and drops an odd last row/column") {
     for (const auto& size :
          {std::pair{8, 8}, std::pair{7, 11}, std::pair{13, 2}, std::pair{2, 3}}) {
-        const Plane p = random_plane(size.first, size.second, 3);
+        const Plane p = random_plane(size.first, size.second, 3, -1.0, 2.0);
         const Plane d = box_downsample_2x(p);
         INFO("size " << size.first << " x " << size.second);
         REQUIRE(d.rows() == size.first / 2);
@@ -50,11 +47,11 @@ TEST_CASE("box_downsample_2x averages 2x2 blocks and drops an odd last row/colum
                 CHECK_CLOSE(d(r, c), ref, kSumRoundoffTol);
             }
     }
-    CHECK_THROWS_AS(box_downsample_2x(random_plane(1, 5, 4)), InvalidInput);
+    CHECK_THROWS_AS(box_downsample_2x(random_plane(1, 5, 4, -1.0, 2.0)), InvalidInput);
 }
 
 TEST_CASE("box_downsample by k rounds equals a 2^k block mean") {
-    const Plane p = random_plane(48, 40, 5);
+    const Plane p = random_plane(48, 40, 5, -1.0, 2.0);
     const Plane d = box_downsample(p, 3);
     REQUIRE(d.rows() == 6);
     REQUIRE(d.cols() == 5);
@@ -67,7 +64,7 @@ TEST_CASE("box_downsample by k rounds equals a 2^k block mean") {
 }
 
 TEST_CASE("l2_normalized gives unit norm and refuses a zero image") {
-    const Plane p = random_plane(9, 17, 6);
+    const Plane p = random_plane(9, 17, 6, -1.0, 2.0);
     const Plane n = l2_normalized(p, "capture");
     double sq = 0.0;
     for (Eigen::Index i = 0; i < n.size(); ++i) sq += n.data()[i] * n.data()[i];

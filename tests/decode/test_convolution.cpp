@@ -68,9 +68,9 @@ TEST_CASE("geometry: cyclic is the capture grid; linear is padded and centred") 
 
 TEST_CASE("pad/crop round trip is exact and crop is the adjoint of pad") {
     const ConvGeometry g = make_conv_geometry(ConvModel::kLinear, 9, 7, 4, 5);
-    const Plane p = random_plane(9, 7, 1);
+    const Plane p = random_plane(9, 7, 1, -1.0, 1.0);
     CHECK((crop_to_capture(g, pad_to_work(g, p)) == p).all());
-    const Plane w = random_plane(g.work_rows, g.work_cols, 2);
+    const Plane w = random_plane(g.work_rows, g.work_cols, 2, -1.0, 1.0);
     CHECK_CLOSE(dot(pad_to_work(g, p), w), dot(p, crop_to_capture(g, w)), kAdjointTol);
     CHECK(pad_to_work(g, p).sum() == doctest::Approx(p.sum()).epsilon(1e-14));
 }
@@ -86,20 +86,20 @@ TEST_CASE("adjoint identity <y, A x> = <A^T y, x> for both models") {
     unsigned seed = 40;
     for (const Case& k : cases) {
         const ConvGeometry g = make_conv_geometry(k.m, k.R, k.C, k.pr, k.pc);
-        const ConvolutionOperator op(random_plane(k.pr, k.pc, seed++), g);
-        const Plane x = random_plane(g.work_rows, g.work_cols, seed++);
-        const Plane y = random_plane(k.R, k.C, seed++);
+        const ConvolutionOperator op(random_plane(k.pr, k.pc, seed++, -1.0, 1.0), g);
+        const Plane x = random_plane(g.work_rows, g.work_cols, seed++, -1.0, 1.0);
+        const Plane y = random_plane(k.R, k.C, seed++, -1.0, 1.0);
         INFO("model " << int(k.m) << " " << k.R << " x " << k.C);
         CHECK_CLOSE(dot(y, op.apply(x)), dot(op.adjoint(y), x), kAdjointTol);
-        const Plane v = random_plane(g.work_rows, g.work_cols, seed++);
+        const Plane v = random_plane(g.work_rows, g.work_cols, seed++, -1.0, 1.0);
         CHECK_CLOSE(dot(v, op.convolve(x)), dot(op.correlate(v), x), kAdjointTol);
     }
 }
 
 TEST_CASE("cyclic operator equals the dense circulant matrix") {
-    const Plane psf = random_plane(4, 5, 50);
+    const Plane psf = random_plane(4, 5, 50, -1.0, 1.0);
     const ConvolutionOperator op(psf, make_conv_geometry(ConvModel::kCyclic, 9, 10, 4, 5));
-    const Plane x = random_plane(9, 10, 51);
+    const Plane x = random_plane(9, 10, 51, -1.0, 1.0);
     const Plane ref = as_plane(dense_circulant(psf, 9, 10) * as_vector(x), 9, 10);
     CHECK(max_rel_error(op.apply(x), ref) <= kConvVsDirectTol);
 }
@@ -112,8 +112,8 @@ TEST_CASE("linear operator equals the direct zero-padded convolution of the wind
         for (const auto& psf_size : psfs) {
             const int R = size.first, C = size.second, pr = psf_size.first, pc = psf_size.second;
             const ConvGeometry g = make_conv_geometry(ConvModel::kLinear, R, C, pr, pc);
-            const Plane psf = random_plane(pr, pc, seed++);
-            const Plane x = random_plane(g.work_rows, g.work_cols, seed++);
+            const Plane psf = random_plane(pr, pc, seed++, -1.0, 1.0);
+            const Plane x = random_plane(g.work_rows, g.work_cols, seed++, -1.0, 1.0);
             INFO(R << " x " << C << ", psf " << pr << " x " << pc);
             int outside = 0;
             const Plane ref = direct_linear(psf, x, g, outside);

@@ -9,13 +9,9 @@
 
 #include "core/image.hpp"
 #include "decode/convolution.hpp"
-#include "tests/support/uniform_plane.hpp"
+#include "tests/support/random_plane.hpp"
 
 namespace pinmask::test {
-
-inline Plane random_plane(int rows, int cols, unsigned seed, double lo = -1.0, double hi = 1.0) {
-    return uniform_plane(rows, cols, seed, lo, hi);
-}
 
 // A positive PSF normalised to sum 1, with a dominant centre so its OTF stays away from zero.
 inline Plane random_psf(int rows, int cols, unsigned seed) {

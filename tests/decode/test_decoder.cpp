@@ -119,7 +119,7 @@ TEST_CASE("decode_plane rejects bad inputs, naming the option") {
 }
 
 TEST_CASE("decode_plane Wiener equals WienerFilter, scalar and per-frequency NSR") {
-    const Plane p = random_plane(12, 9, 83);
+    const Plane p = random_plane(12, 9, 83, -1.0, 1.0);
     const Plane psf = random_psf(4, 3, 84);
     DecodeOptions o;
     o.wiener.nsr = 0.03;
@@ -139,7 +139,7 @@ TEST_CASE("decode_plane Wiener equals WienerFilter, scalar and per-frequency NSR
 TEST_CASE("closed form: residual and objective from the spectrum equal the spatial ones") {
     for (const auto& sz : {std::pair{12, 9}, std::pair{16, 16}, std::pair{7, 13}}) {
         const int R = sz.first, C = sz.second;
-        const Plane p = random_plane(R, C, 91);
+        const Plane p = random_plane(R, C, 91, -1.0, 1.0);
         const Plane psf = random_psf(3, 4, 92);
         const Eigen::MatrixXd A = dense_circulant(psf, R, C);
         Plane nsr_pf = random_plane(R, C, 93, 0.01, 0.2);  // asymmetric on purpose
@@ -183,7 +183,7 @@ TEST_CASE("closed form: residual and objective from the spectrum equal the spati
 TEST_CASE("spectrum weights: multiplicity and folding reproduce full-spectrum sums") {
     for (const auto& sz : {std::pair{6, 8}, std::pair{5, 7}}) {
         const int R = sz.first, C = sz.second;
-        const Plane x = random_plane(R, C, 94);
+        const Plane x = random_plane(R, C, 94, -1.0, 1.0);
         const Plane w = random_plane(R, C, 95, 0.0, 1.0);
         const ComplexPlane half = Fft2(R, C).forward(x);
         const ComplexPlane full = expand_half_spectrum(half, C);
@@ -195,7 +195,7 @@ TEST_CASE("spectrum weights: multiplicity and folding reproduce full-spectrum su
 }
 
 TEST_CASE("linear model: Wiener on the padded grid, image cropped to the capture size") {
-    const Plane p = random_plane(10, 12, 85);
+    const Plane p = random_plane(10, 12, 85, -1.0, 1.0);
     const Plane psf = random_psf(10, 12, 86);  // DiffuserCam-like: PSF as large as the capture
     DecodeOptions o;
     o.model = ConvModel::kLinear;

@@ -23,7 +23,7 @@ constexpr double kSymbolTol = 1e-12;
 TEST_CASE("gradient equals the dense periodic difference matrices; div = -grad^T") {
     for (const auto& size : {std::pair{1, 5}, {4, 4}, {7, 5}, {8, 13}}) {
         const int R = size.first, C = size.second;
-        const Plane x = random_plane(R, C, 100 + R);
+        const Plane x = random_plane(R, C, 100 + R, -1.0, 1.0);
         Plane d_r, d_c;
         gradient(x, d_r, d_c);
         const Eigen::MatrixXd Dr = dense_difference(R, C, true);
@@ -32,7 +32,8 @@ TEST_CASE("gradient equals the dense periodic difference matrices; div = -grad^T
         // Each entry is one subtraction of the same two doubles: bit-identical.
         CHECK((as_vector(d_r) - Dr * as_vector(x)).cwiseAbs().maxCoeff() == 0.0);
         CHECK((as_vector(d_c) - Dc * as_vector(x)).cwiseAbs().maxCoeff() == 0.0);
-        const Plane a = random_plane(R, C, 200 + R), b = random_plane(R, C, 300 + R);
+        const Plane a = random_plane(R, C, 200 + R, -1.0, 1.0),
+                    b = random_plane(R, C, 300 + R, -1.0, 1.0);
         const Eigen::VectorXd ref =
             -(Dr.transpose() * as_vector(a) + Dc.transpose() * as_vector(b));
         CHECK((as_vector(divergence(a, b)) - ref).cwiseAbs().maxCoeff() <= kAdjointTol);

@@ -8,9 +8,10 @@
 #include "core/error.hpp"
 #include "decode/period.hpp"
 #include "tests/support/close.hpp"
-#include "tests/support/uniform_plane.hpp"
+#include "tests/support/random_plane.hpp"
 
 using namespace pinmask;
+using pinmask::test::random_plane;
 
 namespace {
 
@@ -20,10 +21,6 @@ constexpr double kProfileVsDirectTol = 1e-10;
 // A parabola through three samples of a peak whose true top lies between samples: its bias is a
 // fraction of the sample spacing for the triangular-ish peaks of sums of cosines.
 constexpr double kSubPixelTol = 0.25;
-
-Plane random_plane(int rows, int cols, unsigned seed, double lo = 0.0, double hi = 1.0) {
-    return test::uniform_plane(rows, cols, seed, lo, hi);
-}
 
 // rho(d) by the definition in period.hpp: direct sums over the overlapping pairs, normalised by
 // the energies of the two overlapping parts.

@@ -1,5 +1,5 @@
 // The period check on captures as pinmask simulate writes them, for three cameras, integer and
-// exact geometry, several scenes and SNRs (issue 12): no false warning, and every one accepted by
+// exact geometry, several scenes and SNRs: no false warning, and every one accepted by
 // the early exit (decode/period.hpp, kConfirmMinRise) so the check stays cheap; a pitch 1 % or
 // 2 % off, or a capture repeating with half or twice the PSF's period, falls through to the full
 // search and is reported with both figures.
@@ -13,8 +13,8 @@
 #include "design/psf.hpp"
 #include "design/psf_exact.hpp"
 #include "design/working_distance.hpp"
-#include "optimize/scenes.hpp"
-#include "optimize/simulate.hpp"
+#include "simulate/scenes.hpp"
+#include "simulate/simulate.hpp"
 #include "tests/support/random_pattern.hpp"
 
 using namespace pinmask;
@@ -52,12 +52,12 @@ std::vector<Case> cases() {
     const int paper_ppc =
         static_cast<int>(std::round(pixels_per_cell_at(paper, paper.object_distance_m)));
     paper.pinhole_m = pinhole_for_pixels_per_cell(paper, paper_ppc);
-    Camera issue = camera(3.45e-6, 2448, 2048, 0.025, 0.020, 2.0, 530e-9);
-    issue.pinhole_m = pinhole_for_pixels_per_cell(issue, 21);
+    Camera fine = camera(3.45e-6, 2448, 2048, 0.025, 0.020, 2.0, 530e-9);
+    fine.pinhole_m = pinhole_for_pixels_per_cell(fine, 21);
     Camera cmount = camera(5.5e-6, 1280, 1024, 0.050, 0.035, 1.0, 600e-9);
     cmount.pinhole_m = pinhole_for_pixels_per_cell(cmount, 13);
     return {{"paper", paper, 16, 20, paper_ppc, 0},
-            {"issue", issue, 16, 20, 21, 0},
+            {"3.45um", fine, 16, 20, 21, 0},
             {"c-mount", cmount, 13, 17, 13, 0}};
 }
 
@@ -143,7 +143,7 @@ TEST_CASE("period check: the early exit accepts simulated captures of three came
             CHECK(check.matches());
         }
     }
-    // The issue's camera in exact geometry, letter-R down to 10 dB.
+    // The 3.45 um camera in exact geometry, letter-R down to 10 dB.
     for (double snr : {30.0, 20.0, 10.0}) {
         const Case k = cases()[1];
         const Capture c = capture_of(k, Geometry::kExact, "letter-R", snr);
@@ -196,7 +196,7 @@ TEST_CASE("period check: no false warning on any capture of three cameras, scene
 
 TEST_CASE(
     "period check: the uncertainty of a weak repeat covers its error; a strong one is exact") {
-    // The issue camera's natural scene at 10 dB (a repeat at the noise) and the USAF chart at 30
+    // The 3.45 um camera's natural scene at 10 dB (a repeat at the noise) and the USAF chart at 30
     // dB (a sharp one), integer geometry: the true period is the PSF's, so the error of the
     // measured lag is known. The weak repeat's error stays within 4 times its uncertainty
     // (decode/period.hpp, kUncertaintyGroups); the sharp repeat lies within the tolerance.
@@ -251,7 +251,7 @@ TEST_CASE("period check: a pitch 1 % or 2 % off, half or twice the period, is re
     }
 }
 
-TEST_CASE("period check: a 1100 x 1100 window of the issue camera's capture (3.3 periods)") {
+TEST_CASE("period check: a 1100 x 1100 window of the 3.45 um camera's capture (3.3 periods)") {
     // The overlap-energy normalisation (period.hpp) keeps the peak at 336 on a window of a few
     // periods; the mean-square normalisation measured 333 here.
     const Case k = cases()[1];

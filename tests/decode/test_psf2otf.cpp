@@ -86,7 +86,7 @@ TEST_CASE("psf2otf equals the direct DFT of the explicitly shifted PSF, odd and 
         for (const auto& psf_size : psfs) {
             const int R = grid.first, C = grid.second, pr = psf_size.first, pc = psf_size.second;
             if (pr > R || pc > C) continue;
-            const Plane psf = random_plane(pr, pc, seed++);
+            const Plane psf = random_plane(pr, pc, seed++, -1.0, 1.0);
             const ComplexPlane otf = psf2otf(psf, R, C);
             const ComplexPlane ref = direct_half_dft(shifted_by_hand(psf, R, C));
             INFO("grid " << R << " x " << C << ", psf " << pr << " x " << pc);

@@ -68,7 +68,7 @@ TEST_CASE("RL does not increase the I-divergence (EM), cyclic and linear") {
         const Plane psf = random_plane(5, 5, 40, 0.0, 1.0) / 12.5;
         const ConvolutionOperator op(psf, g);
         Plane x = random_plane(g.work_rows, g.work_cols, 41, 0.0, 1.0);
-        const Plane p = (op.apply(x) + 0.05 * random_plane(16, 13, 42)).max(0.0);
+        const Plane p = (op.apply(x) + 0.05 * random_plane(16, 13, 42, -1.0, 1.0)).max(0.0);
         const DecodeResult r = solve_richardson_lucy(op, psf, p, iterations(200));
         REQUIRE(r.history.size() == 200);
         for (std::size_t i = 1; i < r.history.size(); ++i) {

@@ -31,7 +31,7 @@ TEST_CASE("Tikhonov equals the dense normal-equation solve, identity and gradien
     unsigned seed = 500;
     for (const Case& k : cases) {
         const Plane psf = random_psf(k.pr, k.pc, seed++);
-        const Plane p = random_plane(k.R, k.C, seed++);
+        const Plane p = random_plane(k.R, k.C, seed++, -1.0, 1.0);
         const Eigen::MatrixXd A = dense_circulant(psf, k.R, k.C);
         const Eigen::MatrixXd Dr = dense_difference(k.R, k.C, true);
         const Eigen::MatrixXd Dc = dense_difference(k.R, k.C, false);
@@ -51,7 +51,7 @@ TEST_CASE("Tikhonov equals the dense normal-equation solve, identity and gradien
 }
 
 TEST_CASE("Tikhonov penalty values and validation") {
-    const Plane x = random_plane(5, 6, 7);
+    const Plane x = random_plane(5, 6, 7, -1.0, 1.0);
     CHECK_CLOSE(tikhonov_penalty(x, 2.0, TikhonovRegulariser::kIdentity), 2.0 * x.square().sum(),
                 1e-15);
     CHECK(tikhonov_penalty(Plane::Constant(5, 6, 4.0), 2.0, TikhonovRegulariser::kGradient) == 0.0);
@@ -63,7 +63,7 @@ TEST_CASE("Tikhonov penalty values and validation") {
 TEST_CASE("Tikhonov with lambda = 0 and a gradient regulariser is the pseudo-inverse") {
     // |H| >= 1/3 everywhere, so lambda = 0 gives the exact inverse: A x = p.
     const Plane psf = random_psf(3, 4, 9);
-    const Plane p = random_plane(9, 10, 10);
+    const Plane p = random_plane(9, 10, 10, -1.0, 1.0);
     const Plane x = make_tikhonov_filter(psf, 9, 10, 0.0, TikhonovRegulariser::kGradient).apply(p);
     const Plane ax = as_plane(dense_circulant(psf, 9, 10) * as_vector(x), 9, 10);
     constexpr double kInverseTol = 1e-12;  // condition number <= 3 times rounding

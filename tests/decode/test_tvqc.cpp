@@ -17,9 +17,9 @@ using namespace pinmask::test;
 
 namespace {
 
-// TV at exit against the reference optimum: the bound.
+// TV at exit against the reference optimum: the required bound.
 constexpr double kTvObjectiveTol = 1e-4;
-// ||A x - p|| <= eps (1 + this) at exit: the bound (kTvqcFeasibilityTol in tvqc.hpp).
+// ||A x - p|| <= eps (1 + this) at exit: the required bound (kTvqcFeasibilityTol in tvqc.hpp).
 constexpr double kConstraintTol = 1e-6;
 
 struct Problem {
@@ -36,7 +36,7 @@ Problem make_problem(ConvModel model, int R, int C, int pr, int pc, unsigned see
     x.block(P.g.crop_row + R / 4, P.g.crop_col + C / 3, R / 2, C / 2) = 1.0;
     x.block(P.g.crop_row + 1, P.g.crop_col + 1, 3, 3) = 0.5;
     P.p = as_plane(dense_model(P.psf, P.g) * as_vector(x), R, C) +
-          0.02 * random_plane(R, C, seed + 1);
+          0.02 * random_plane(R, C, seed + 1, -1.0, 1.0);
     return P;
 }
 

@@ -44,7 +44,7 @@ TEST_CASE("Wiener equals the dense circulant solve (odd, even, prime sizes)") {
     unsigned seed = 10;
     for (const Case& k : cases) {
         const Plane psf = random_psf(k.pr, k.pc, seed++);
-        const Plane p = random_plane(k.R, k.C, seed++);
+        const Plane p = random_plane(k.R, k.C, seed++, -1.0, 1.0);
         const WienerFilter w(psf, k.R, k.C, k.nsr);
         const Plane x = w.apply(p);
         const Plane ref = as_plane(dense_wiener(psf, p, k.nsr), k.R, k.C);
@@ -56,7 +56,7 @@ TEST_CASE("Wiener equals the dense circulant solve (odd, even, prime sizes)") {
 TEST_CASE("Wiener with tiny NSR on a well-conditioned PSF is the inverse filter") {
     // |H| >= 1/3 for random_psf, so 1e-12 is far above the deconvwnr floor's reach.
     const Plane psf = random_psf(5, 4, 3);
-    const Plane x_true = random_plane(13, 11, 4);
+    const Plane x_true = random_plane(13, 11, 4, -1.0, 1.0);
     const Eigen::MatrixXd A = dense_circulant(psf, 13, 11);
     const Plane p = as_plane(A * as_vector(x_true), 13, 11);
     const Plane x = WienerFilter(psf, 13, 11, 1e-12).apply(p);
@@ -67,7 +67,7 @@ TEST_CASE("Wiener with tiny NSR on a well-conditioned PSF is the inverse filter"
 TEST_CASE("per-frequency NSR: constant array equals scalar; asymmetric array takes real part") {
     const int R = 9, C = 8;
     const Plane psf = random_psf(3, 4, 21);
-    const Plane p = random_plane(R, C, 22);
+    const Plane p = random_plane(R, C, 22, -1.0, 1.0);
     const Plane x_scalar = WienerFilter(psf, R, C, 0.05).apply(p);
     const Plane x_array = WienerFilter(psf, R, C, Plane::Constant(R, C, 0.05)).apply(p);
     CHECK(max_rel_error(x_array, x_scalar) <= kSpectralPathTol);

@@ -59,35 +59,35 @@ TEST_CASE("generate_pattern: each family equals its generator with the same seed
     CHECK(mura.spacing_violations > 0);
 }
 
-TEST_CASE("generate_pattern: refusals name the flag, the value and the rule") {
+TEST_CASE("generate_pattern: refusals name the field, the value and the rule") {
     GeneratePatternOptions o;
     o.family = Family::kPaper;
     o.grid = 20;
     CHECK(message_of(o) == "no error");  // not given: the family's own geometry
     o.grid_given = true;
-    CHECK(message_of(o).find("--grid = 20: the paper family fixes n = 16") != std::string::npos);
+    CHECK(message_of(o).find("`grid` = 20: the paper family fixes n = 16") != std::string::npos);
 
     o = {};
     o.family = Family::kMura;
     o.grid = 13;
-    CHECK(message_of(o).find("--spacing") != std::string::npos);
-    CHECK(message_of(o).find("--allow-violations") != std::string::npos);
+    CHECK(message_of(o).find("`spacing` = 2: ") != std::string::npos);
+    CHECK(message_of(o).find("pass `allow_violations` to write it anyway") != std::string::npos);
     o.spacing = 1.0;
     o.holes = 5;
     o.holes_given = true;
-    CHECK(message_of(o).find("--holes = 5: a MURA of order 13 has") != std::string::npos);
+    CHECK(message_of(o).find("`holes` = 5: a MURA of order 13 has") != std::string::npos);
 
     o = {};
     o.attempts = 0;
-    CHECK(message_of(o).find("--attempts = 0: must be >= 1") != std::string::npos);
+    CHECK(message_of(o).find("`attempts` = 0: must be >= 1") != std::string::npos);
     o = {};
     o.tiles = 0;
-    CHECK(message_of(o).find("--tiles = 0") != std::string::npos);
+    CHECK(message_of(o).find("`tiles` = 0") != std::string::npos);
     o = {};
     o.grid = kMaxGrid + 1;
-    CHECK(message_of(o).find("--grid") != std::string::npos);
+    CHECK(message_of(o).find("`grid` = ") != std::string::npos);
 
     CHECK_NOTHROW(check_period_psf_size(724, 16, true));
     CHECK_THROWS_WITH_AS(check_period_psf_size(725, 16, true),
-                         doctest::Contains("--pixels-per-cell = 725"), InvalidInput);
+                         doctest::Contains("`pixels_per_cell` = 725"), InvalidInput);
 }

@@ -39,11 +39,14 @@ TEST_CASE("names round-trip; unknown names are InvalidInput listing the models")
                    KernelModel::kFresnel, KernelModel::kPaperFig3b, KernelModel::kMeasured}) {
         CHECK(parse_kernel_model(kernel_model_name(m)) == m);
     }
+    // The one table: every enumerator once, in the order help texts list them.
+    CHECK(kernel_model_names() == "auto | box | fraunhofer | fresnel | paper-fig3b | measured");
+    CHECK(name_list(kKernelModelNames).size() == 6);
     try {
-        parse_kernel_model("gauss", "--kernel");
+        parse_kernel_model("gauss", "`kernel`");
         FAIL("accepted");
     } catch (const InvalidInput& e) {
-        CHECK(contains(std::string(e.what()), "--kernel"));
+        CHECK(contains(std::string(e.what()), "`kernel` = 'gauss'"));
         CHECK(contains(std::string(e.what()), "gauss"));
         CHECK(contains(std::string(e.what()), "fresnel"));
     }

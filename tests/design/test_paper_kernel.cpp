@@ -23,8 +23,8 @@ namespace {
 // The CSV and the source table both hold the printed four-decimal values: equal to rounding of
 // the decimal-to-binary conversion.
 constexpr double kTableTol = 1e-12;
-// The PSF and the reference are sums of at most K = 20 products of normalised values; the issue
-// asks for agreement to 1e-6 (both ways of summing agree far better, ~1e-17).
+// The PSF and the reference are sums of at most K = 20 products of normalised values; the
+// requirement is agreement to 1e-6 (both ways of summing agree far better, ~1e-17).
 constexpr double kPsfTol = 1e-6;
 
 const fs::path kCsv = fs::path(PINMASK_SHARED_DIR) / "data" / "paper" / "fig3b-kernel.csv";

@@ -16,7 +16,7 @@ using namespace pinmask;
 
 namespace {
 
-// The bound on a spot centroid against its Eq. (3) position.
+// The required bound on a spot centroid against its Eq. (3) position.
 constexpr double kCentroidTolPx = 0.05;
 // Sums of a few thousand products of normalised values.
 constexpr double kSumTol = 1e-12;

@@ -15,14 +15,14 @@ using namespace pinmask;
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-// The issue quotes d = 345.0 um to four digits: +-0.1 %.
-constexpr double kIssueRel = 1e-3;
+// d = 345.0 um is the reference value to four digits: +-0.1 %.
+constexpr double kQuotedRel = 1e-3;
 // Closed forms evaluated two ways in double: a few ulps of ~1e-16 each.
 constexpr double kExactRel = 1e-12;
 
-// The issue's camera: 3.45 um pixels, 2448 x 2048, 25 mm lens, sensor 20 mm behind, u = 2 m, 530
-// nm.
-Camera issue_camera() {
+// A machine-vision camera: 3.45 um pixels, 2448 x 2048, 25 mm lens, sensor 20 mm behind,
+// u = 2 m, 530 nm.
+Camera fine_pixel_camera() {
     Camera c;
     c.pixel_pitch_m = 3.45e-6;
     c.sensor_cols = 2448;
@@ -52,10 +52,10 @@ double pitch_error_px(const Camera& c, int n, double u_prime) {
 
 }  // namespace
 
-TEST_CASE("issue camera: 21 px per cell at 2 m needs d = 345.0 um; the range matches the rule") {
-    Camera c = issue_camera();
+TEST_CASE("3.45 um camera: 21 px per cell at 2 m needs d = 345.0 um; the range matches the rule") {
+    Camera c = fine_pixel_camera();
     c.pinhole_m = pinhole_for_pixels_per_cell(c, 21);
-    CHECK(std::fabs(c.pinhole_m / 345.0e-6 - 1.0) <= kIssueRel);
+    CHECK(std::fabs(c.pinhole_m / 345.0e-6 - 1.0) <= kQuotedRel);
     const PatternGeometry g{16, 20, 2, 2};
     const WorkingDistance wd = compute_working_distance(c, g, {1.0, 21});
     CHECK_CLOSE(wd.pixels_per_cell_at_u, 21.0, kExactRel);
@@ -77,12 +77,12 @@ TEST_CASE("issue camera: 21 px per cell at 2 m needs d = 345.0 um; the range mat
 }
 
 TEST_CASE("both pinhole optima, the with-lens one at z_eff(u)") {
-    Camera c = issue_camera();
+    Camera c = fine_pixel_camera();
     const WorkingDistance wd = compute_working_distance(c, {16, 20, 2, 2});
-    CHECK(std::fabs(wd.optimum_pinhole_lensless_m - 160.6e-6) <= 0.05e-6);  // the issue's 160.6 um
+    CHECK(std::fabs(wd.optimum_pinhole_lensless_m - 160.6e-6) <= 0.05e-6);  // reference: 160.6 um
     const double z_u = 1.0 / (1.0 / 0.020 - 1.0 / 0.025 + 1.0 / 2.0);
     CHECK_CLOSE(wd.optimum_pinhole_with_lens_m, 1.56 * std::sqrt(530e-9 * z_u), kExactRel);
-    c.object_distance_m = kInf;  // the issue's "about 359 um" is the distant-object value
+    c.object_distance_m = kInf;  // the reference "about 359 um" is the distant-object value
     const WorkingDistance far = compute_working_distance(c, {16, 20, 2, 2});
     CHECK(std::fabs(far.optimum_pinhole_with_lens_m - 359e-6) <= 0.5e-6);
     // At the lensless optimum, the with-lens Fresnel number is ~0.12 and spots cover ~4 cells.

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "design/mask.hpp"
-#include "export/layout.hpp"
+#include "layout/layout.hpp"
 
 namespace pinmask::test {
 

@@ -3,9 +3,9 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "export/cell_union.hpp"
-#include "export/geometry.hpp"
-#include "export/rings.hpp"
+#include "layout/cell_union.hpp"
+#include "layout/geometry.hpp"
+#include "layout/rings.hpp"
 #include "tests/export/export_fixtures.hpp"
 
 using namespace pinmask;

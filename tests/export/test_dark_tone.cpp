@@ -3,10 +3,10 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "export/dark_tone.hpp"
-#include "export/geometry.hpp"
-#include "export/rings.hpp"
-#include "export/shapes.hpp"
+#include "layout/dark_tone.hpp"
+#include "layout/geometry.hpp"
+#include "layout/rings.hpp"
+#include "layout/shapes.hpp"
 #include "tests/export/export_fixtures.hpp"
 
 using namespace pinmask;

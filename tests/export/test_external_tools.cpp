@@ -15,18 +15,22 @@
 #include <vector>
 
 #include "core/image_io.hpp"
-#include "export/dxf_writer.hpp"
-#include "export/gds_writer.hpp"
-#include "export/geometry.hpp"
-#include "export/gerber_writer.hpp"
-#include "export/pdf_writer.hpp"
-#include "export/rings.hpp"
-#include "export/svg_writer.hpp"
+#include "formats/dxf_writer.hpp"
+#include "formats/gds_writer.hpp"
+#include "layout/geometry.hpp"
+#include "formats/gerber_writer.hpp"
+#include "formats/pdf_writer.hpp"
+#include "layout/rings.hpp"
+#include "formats/svg_writer.hpp"
 #include "tests/support/cli_run.hpp"
+#include "tests/support/external_tool.hpp"
 
 using namespace pinmask;
 using pinmask::test::slurp;
+using pinmask::test::have_tool;
+using pinmask::test::run_tool;
 using pinmask::test::TempDir;
+using pinmask::test::write_bytes;
 
 namespace {
 
@@ -50,21 +54,6 @@ Layout test_layout() {
 }
 
 std::size_t ring_count(const Layout& l) { return l.polygons.size() + l.annotations.size(); }
-
-bool have(const std::string& probe) {
-    return std::system((probe + " >/dev/null 2>&1").c_str()) == 0;
-}
-
-// Runs a shell command, returns its exit status and stdout.
-std::pair<int, std::string> run(const std::string& cmd, const TempDir& dir) {
-    const std::string out = dir / "tool.out";
-    const int status = std::system((cmd + " >" + out + " 2>" + (dir / "tool.err")).c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out)};
-}
-
-void write(const std::string& path, const std::string& bytes) {
-    std::ofstream(path, std::ios::binary) << bytes;
-}
 
 // Connected components (4-neighbour) of pixels on one side of half grey.
 struct Component {
@@ -144,25 +133,25 @@ void check_render_of_rings(const std::string& png, const Layout& l) {
 }  // namespace
 
 TEST_CASE("ezdxf reads our DXF: one closed POLYLINE per ring, the extent as bounding box") {
-    if (!have("/usr/bin/python3 -c 'import ezdxf'")) {
+    if (!have_tool("/usr/bin/python3 -c 'import ezdxf'")) {
         MESSAGE("skipped: python3-ezdxf is not installed (/usr/bin/python3 -c 'import ezdxf')");
         return;
     }
     TempDir dir("ext-dxf");
     const Layout l = test_layout();
-    write(dir / "m.dxf", dxf_document(l));
-    write(dir / "probe.py",
-          "import sys, ezdxf\n"
-          "from ezdxf import bbox\n"
-          "doc = ezdxf.readfile(sys.argv[1])\n"
-          "msp = doc.modelspace()\n"
-          "polys = [e for e in msp if e.dxftype() == 'POLYLINE']\n"
-          "closed = sum(1 for e in polys if e.is_closed)\n"
-          "ext = bbox.extents(msp)\n"
-          "print(len(msp), len(polys), closed, ext.extmin.x, ext.extmin.y, ext.extmax.x, "
-          "ext.extmax.y)\n");
+    write_bytes(dir / "m.dxf", dxf_document(l));
+    write_bytes(dir / "probe.py",
+                "import sys, ezdxf\n"
+                "from ezdxf import bbox\n"
+                "doc = ezdxf.readfile(sys.argv[1])\n"
+                "msp = doc.modelspace()\n"
+                "polys = [e for e in msp if e.dxftype() == 'POLYLINE']\n"
+                "closed = sum(1 for e in polys if e.is_closed)\n"
+                "ext = bbox.extents(msp)\n"
+                "print(len(msp), len(polys), closed, ext.extmin.x, ext.extmin.y, ext.extmax.x, "
+                "ext.extmax.y)\n");
     const auto [rc, out] =
-        run("/usr/bin/python3 " + (dir / "probe.py") + " " + (dir / "m.dxf"), dir);
+        run_tool("/usr/bin/python3 " + (dir / "probe.py") + " " + (dir / "m.dxf"), dir);
     REQUIRE(rc == 0);
     std::istringstream s(out);
     std::size_t entities = 0, polylines = 0, closed = 0;
@@ -180,29 +169,30 @@ TEST_CASE("ezdxf reads our DXF: one closed POLYLINE per ring, the extent as boun
 }
 
 TEST_CASE("KLayout reads our GDSII: dbu 1 nm, one polygon per ring, one text, the extent") {
-    if (!have("command -v klayout")) {
+    if (!have_tool("command -v klayout")) {
         MESSAGE("skipped: klayout is not installed");
         return;
     }
     TempDir dir("ext-gds");
     const Layout l = test_layout();
-    write(dir / "m.gds", gds_stream(l));
-    write(dir / "probe.py",
-          "import pya\n"
-          "ly = pya.Layout()\n"
-          "ly.read(path)\n"
-          "top = ly.top_cell()\n"
-          "polys = texts = 0\n"
-          "for li in ly.layer_indexes():\n"
-          "    for sh in top.shapes(li).each():\n"
-          "        if sh.is_text(): texts += 1\n"
-          "        elif sh.is_polygon() or sh.is_box(): polys += 1\n"
-          "b = top.bbox()\n"
-          "print(round(ly.dbu * 1e6), len(ly.top_cells()), polys, texts, b.left, b.bottom, "
-          "b.right, b.top)\n");
-    const auto [rc, out] = run("QT_QPA_PLATFORM=offscreen klayout -b -rd path=" + (dir / "m.gds") +
-                                   " -r " + (dir / "probe.py"),
-                               dir);
+    write_bytes(dir / "m.gds", gds_stream(l));
+    write_bytes(dir / "probe.py",
+                "import pya\n"
+                "ly = pya.Layout()\n"
+                "ly.read(path)\n"
+                "top = ly.top_cell()\n"
+                "polys = texts = 0\n"
+                "for li in ly.layer_indexes():\n"
+                "    for sh in top.shapes(li).each():\n"
+                "        if sh.is_text(): texts += 1\n"
+                "        elif sh.is_polygon() or sh.is_box(): polys += 1\n"
+                "b = top.bbox()\n"
+                "print(round(ly.dbu * 1e6), len(ly.top_cells()), polys, texts, b.left, b.bottom, "
+                "b.right, b.top)\n");
+    const auto [rc, out] =
+        run_tool("QT_QPA_PLATFORM=offscreen klayout -b -rd path=" + (dir / "m.gds") + " -r " +
+                     (dir / "probe.py"),
+                 dir);
     REQUIRE(rc == 0);
     std::istringstream s(out);
     long dbu_pm = 0, tops = 0, polys = 0, texts = 0, x0, y0, x1, y1;
@@ -219,55 +209,57 @@ TEST_CASE("KLayout reads our GDSII: dbu 1 nm, one polygon per ring, one text, th
 }
 
 TEST_CASE("gerbv reads our Gerber: one region per ring, rendered over the extent") {
-    if (!have("command -v gerbv")) {
+    if (!have_tool("command -v gerbv")) {
         MESSAGE("skipped: gerbv is not installed");
         return;
     }
     TempDir dir("ext-gbr");
     const Layout l = test_layout();
-    write(dir / "m.gbr", gerber_document(l));
+    write_bytes(dir / "m.gbr", gerber_document(l));
     // gerbv's own RS-274X export of what it parsed: count its regions.
-    auto [rc, out] = run("gerbv -x rs274x -o " + (dir / "again.gbr") + " " + (dir / "m.gbr"), dir);
+    auto [rc, out] =
+        run_tool("gerbv -x rs274x -o " + (dir / "again.gbr") + " " + (dir / "m.gbr"), dir);
     REQUIRE(rc == 0);
     const std::string again = slurp(dir / "again.gbr");
     std::size_t regions = 0;
     for (auto p = again.find("G36"); p != std::string::npos; p = again.find("G36", p + 1))
         ++regions;
     CHECK(regions == ring_count(l));
-    std::tie(rc, out) =
-        run("gerbv -x png -D " + std::to_string(int(kDpi)) +
-                " -B 0 -b '#FFFFFF' -f '#000000FF' -o " + (dir / "m.png") + " " + (dir / "m.gbr"),
-            dir);
+    std::tie(rc, out) = run_tool("gerbv -x png -D " + std::to_string(int(kDpi)) +
+                                     " -B 0 -b '#FFFFFF' -f '#000000FF' -o " + (dir / "m.png") +
+                                     " " + (dir / "m.gbr"),
+                                 dir);
     REQUIRE(rc == 0);
     check_render_of_rings(dir / "m.png", l);
 }
 
 TEST_CASE("rsvg-convert renders our SVG 1:1: one dark shape per ring over the extent") {
-    if (!have("command -v rsvg-convert")) {
+    if (!have_tool("command -v rsvg-convert")) {
         MESSAGE("skipped: rsvg-convert (librsvg2-bin) is not installed");
         return;
     }
     TempDir dir("ext-svg");
     const Layout l = test_layout();
-    write(dir / "m.svg", svg_document(l));
+    write_bytes(dir / "m.svg", svg_document(l));
     const std::string dpi = std::to_string(int(kDpi));
-    const auto [rc, out] = run("rsvg-convert -d " + dpi + " -p " + dpi + " -b white -f png -o " +
-                                   (dir / "m.png") + " " + (dir / "m.svg"),
-                               dir);
+    const auto [rc, out] =
+        run_tool("rsvg-convert -d " + dpi + " -p " + dpi + " -b white -f png -o " +
+                     (dir / "m.png") + " " + (dir / "m.svg"),
+                 dir);
     REQUIRE(rc == 0);
     check_render_of_rings(dir / "m.png", l);
 }
 
 TEST_CASE("poppler reads our PDF: one page, the film 1:1 at the margin with every pinhole") {
-    if (!have("command -v pdfinfo") || !have("command -v pdftoppm")) {
+    if (!have_tool("command -v pdfinfo") || !have_tool("command -v pdftoppm")) {
         MESSAGE("skipped: poppler-utils (pdfinfo, pdftoppm) is not installed");
         return;
     }
     TempDir dir("ext-pdf");
     const Layout l = test_layout();
     const PdfOptions options;
-    write(dir / "m.pdf", pdf_document(l, options));
-    auto [rc, info] = run("pdfinfo " + (dir / "m.pdf"), dir);
+    write_bytes(dir / "m.pdf", pdf_document(l, options));
+    auto [rc, info] = run_tool("pdfinfo " + (dir / "m.pdf"), dir);
     REQUIRE(rc == 0);
     std::smatch m;
     REQUIRE(std::regex_search(info, m, std::regex(R"(Pages:\s+(\d+))")));
@@ -278,9 +270,10 @@ TEST_CASE("poppler reads our PDF: one page, the film 1:1 at the margin with ever
     CHECK(std::stod(m[1]) * nm_per_pt >= double(l.extent.x1 - l.extent.x0) + 2 * margin_nm - 1e3);
     CHECK(std::stod(m[2]) * nm_per_pt >= double(l.extent.y1 - l.extent.y0) + 2 * margin_nm - 1e3);
     std::string out;
-    std::tie(rc, out) = run("pdftoppm -r " + std::to_string(int(kDpi)) +
-                                " -gray -png -singlefile " + (dir / "m.pdf") + " " + (dir / "page"),
-                            dir);
+    std::tie(rc, out) =
+        run_tool("pdftoppm -r " + std::to_string(int(kDpi)) + " -gray -png -singlefile " +
+                     (dir / "m.pdf") + " " + (dir / "page"),
+                 dir);
     REQUIRE(rc == 0);
     const Raster r = load_raster(dir / "page.png");
     // Clear tone: the extent is painted black (the film) with the rings cut out in white.

@@ -6,10 +6,10 @@
 
 #include "core/error.hpp"
 #include "export/drc.hpp"
-#include "export/geometry.hpp"
-#include "export/marks.hpp"
-#include "export/rings.hpp"
-#include "export/shapes.hpp"
+#include "layout/geometry.hpp"
+#include "layout/marks.hpp"
+#include "layout/rings.hpp"
+#include "layout/shapes.hpp"
 #include "tests/export/export_fixtures.hpp"
 
 using namespace pinmask;

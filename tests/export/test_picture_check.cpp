@@ -1,4 +1,4 @@
-// Issue 15's remaining pieces inside the library: the SVG's two drawings (--draw film|polygons)
+// Picture checks inside the library: the SVG's two drawings (--draw film|polygons)
 // read back, the pictures check reads (1-bit TIFF, PNG, PDF) compared with their design and
 // caught when they differ, and the window dictionary of hierarchical GDSII: exact (expands to
 // the same placements, flattens to the same rings as flat GDSII) and at least 5x smaller than
@@ -15,18 +15,18 @@
 
 #include "core/error.hpp"
 #include "export/file_check.hpp"
-#include "export/gds_reader.hpp"
-#include "export/gds_writer.hpp"
-#include "export/geometry.hpp"
-#include "export/pdf_reader.hpp"
-#include "export/pdf_writer.hpp"
-#include "export/plotter_raster.hpp"
-#include "export/png_preview.hpp"
+#include "formats/gds_reader.hpp"
+#include "formats/gds_writer.hpp"
+#include "layout/geometry.hpp"
+#include "formats/pdf_reader.hpp"
+#include "formats/pdf_writer.hpp"
+#include "formats/plotter_raster.hpp"
+#include "formats/png_preview.hpp"
 #include "export/raster_check.hpp"
 #include "export/read_back.hpp"
-#include "export/svg_reader.hpp"
-#include "export/svg_writer.hpp"
-#include "export/window_cells.hpp"
+#include "formats/svg_reader.hpp"
+#include "formats/svg_writer.hpp"
+#include "layout/window_cells.hpp"
 #include "tests/export/export_fixtures.hpp"
 
 using namespace pinmask;

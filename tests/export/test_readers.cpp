@@ -3,15 +3,15 @@
 #include <random>
 
 #include "core/error.hpp"
-#include "export/decimal.hpp"
-#include "export/dxf_writer.hpp"
-#include "export/gds_writer.hpp"
-#include "export/geometry.hpp"
-#include "export/gerber_writer.hpp"
-#include "export/read_any.hpp"
-#include "export/rings.hpp"
-#include "export/svg_writer.hpp"
-#include "export/write_any.hpp"
+#include "formats/decimal.hpp"
+#include "formats/dxf_writer.hpp"
+#include "formats/gds_writer.hpp"
+#include "layout/geometry.hpp"
+#include "formats/gerber_writer.hpp"
+#include "formats/read_any.hpp"
+#include "layout/rings.hpp"
+#include "formats/svg_writer.hpp"
+#include "formats/write_any.hpp"
 #include "tests/export/export_fixtures.hpp"
 
 using namespace pinmask;

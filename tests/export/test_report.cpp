@@ -1,4 +1,4 @@
-// The comparison report library (export/report.hpp) on tiny synthetic documents: page count and
+// The comparison report library (report/report.hpp) on tiny synthetic documents: page count and
 // pagination, file naming, PDF/SVG/PNG structure, byte-identical output, grey mapping, and
 // validation naming the problem.
 #include <doctest/doctest.h>
@@ -12,11 +12,13 @@
 
 #include "core/error.hpp"
 #include "core/image_io.hpp"
-#include "export/report.hpp"
-#include "export/report_draw.hpp"
-#include "export/report_pages.hpp"
+#include "report/report.hpp"
+#include "report/report_draw.hpp"
+#include "report/report_pages.hpp"
+#include "tests/support/external_tool.hpp"
 
 using namespace pinmask;
+using pinmask::test::have_tool;
 
 namespace {
 
@@ -68,10 +70,6 @@ std::size_t count(const std::string& hay, const std::string& needle) {
 // Pages of a PDF counted from its page objects ("/Type /Page" but not "/Type /Pages").
 std::size_t pdf_pages(const std::string& pdf) {
     return count(pdf, "/Type /Page") - count(pdf, "/Type /Pages");
-}
-
-bool have_tool(const std::string& probe) {
-    return std::system((probe + " >/dev/null 2>&1").c_str()) == 0;
 }
 
 // Pure black pixels of an RGB PNG page (text and rules are dark grey, never pure black).

@@ -9,7 +9,7 @@
 #include <numbers>
 #include <random>
 
-#include "export/segment_predicates.hpp"
+#include "layout/segment_predicates.hpp"
 
 using namespace pinmask;
 

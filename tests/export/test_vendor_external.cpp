@@ -1,4 +1,4 @@
-// Issue 15's files read by independent tools, when installed (a missing tool skips its case
+// Fabrication files read by independent tools, when installed (a missing tool skips its case
 // with a MESSAGE): ezdxf reads a --units mm DXF ($INSUNITS 4, 0.440-unit pinholes, CIRCLE
 // entities for round ones), KLayout reads OASIS and hierarchical GDSII as the same polygons as
 // the flat GDSII (XOR area zero), gerbv renders circular flashes at their diameter (+-1 pixel).
@@ -13,33 +13,23 @@
 #include <vector>
 
 #include "core/image_io.hpp"
-#include "export/dxf_writer.hpp"
-#include "export/gds_writer.hpp"
-#include "export/geometry.hpp"
-#include "export/gerber_writer.hpp"
-#include "export/oasis_writer.hpp"
+#include "formats/dxf_writer.hpp"
+#include "formats/gds_writer.hpp"
+#include "layout/geometry.hpp"
+#include "formats/gerber_writer.hpp"
+#include "formats/oasis_writer.hpp"
 #include "tests/export/export_fixtures.hpp"
 #include "tests/support/cli_run.hpp"
+#include "tests/support/external_tool.hpp"
 
 using namespace pinmask;
 using pinmask::test::slurp;
+using pinmask::test::have_tool;
+using pinmask::test::run_tool;
 using pinmask::test::TempDir;
+using pinmask::test::write_bytes;
 
 namespace {
-
-bool have(const std::string& probe) {
-    return std::system((probe + " >/dev/null 2>&1").c_str()) == 0;
-}
-
-std::pair<int, std::string> run(const std::string& cmd, const TempDir& dir) {
-    const std::string out = dir / "tool.out";
-    const int status = std::system((cmd + " >" + out + " 2>" + (dir / "tool.err")).c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out)};
-}
-
-void write(const std::string& path, const std::string& bytes) {
-    std::ofstream(path, std::ios::binary) << bytes;
-}
 
 // The paper's pitch (440 um) on an 8 x 8 pattern tiled 2 x 3, four pinholes.
 Mask tiled_mask() {
@@ -54,32 +44,34 @@ Mask tiled_mask() {
 }  // namespace
 
 TEST_CASE("ezdxf reads a --units mm DXF: $INSUNITS 4, pinholes 0.440 units, CIRCLE entities") {
-    if (!have("/usr/bin/python3 -c 'import ezdxf'")) {
+    if (!have_tool("/usr/bin/python3 -c 'import ezdxf'")) {
         MESSAGE("skipped: python3-ezdxf is not installed");
         return;
     }
     TempDir dir("ext-dxf-mm");
     const Layout sq = make_layout(tiled_mask(), {});
-    write(dir / "sq.dxf", dxf_document(sq, {.unit = FabUnit::kMillimetre}));
+    write_bytes(dir / "sq.dxf", dxf_document(sq, {.unit = FabUnit::kMillimetre}));
     LayoutOptions round;
     round.shape = HoleShape::kCircle;
     round.hole_side_m = 300e-6;
     const Layout rd = make_layout(tiled_mask(), round);
-    write(dir / "rd.dxf", dxf_document(rd, {.unit = FabUnit::kMillimetre, .native_circles = true}));
-    write(dir / "probe.py",
-          "import sys, ezdxf\n"
-          "for path in sys.argv[1:]:\n"
-          "    doc = ezdxf.readfile(path)\n"
-          "    msp = doc.modelspace()\n"
-          "    sides = set()\n"
-          "    for e in msp.query('POLYLINE'):\n"
-          "        xs = [v.dxf.location.x for v in e.vertices]\n"
-          "        sides.add(round(max(xs) - min(xs), 9))\n"
-          "    circles = msp.query('CIRCLE')\n"
-          "    radii = set(round(c.dxf.radius, 9) for c in circles)\n"
-          "    print(doc.header.get('$INSUNITS'), len(msp.query('POLYLINE')), len(circles), "
-          "min(sides) if sides else 0, max(sides) if sides else 0, min(radii) if radii else 0)\n");
-    const auto [rc, out] = run(
+    write_bytes(dir / "rd.dxf",
+                dxf_document(rd, {.unit = FabUnit::kMillimetre, .native_circles = true}));
+    write_bytes(
+        dir / "probe.py",
+        "import sys, ezdxf\n"
+        "for path in sys.argv[1:]:\n"
+        "    doc = ezdxf.readfile(path)\n"
+        "    msp = doc.modelspace()\n"
+        "    sides = set()\n"
+        "    for e in msp.query('POLYLINE'):\n"
+        "        xs = [v.dxf.location.x for v in e.vertices]\n"
+        "        sides.add(round(max(xs) - min(xs), 9))\n"
+        "    circles = msp.query('CIRCLE')\n"
+        "    radii = set(round(c.dxf.radius, 9) for c in circles)\n"
+        "    print(doc.header.get('$INSUNITS'), len(msp.query('POLYLINE')), len(circles), "
+        "min(sides) if sides else 0, max(sides) if sides else 0, min(radii) if radii else 0)\n");
+    const auto [rc, out] = run_tool(
         "/usr/bin/python3 " + (dir / "probe.py") + " " + (dir / "sq.dxf") + " " + (dir / "rd.dxf"),
         dir);
     REQUIRE(rc == 0);
@@ -103,7 +95,7 @@ TEST_CASE("ezdxf reads a --units mm DXF: $INSUNITS 4, pinholes 0.440 units, CIRC
 }
 
 TEST_CASE("KLayout reads OASIS and hierarchical GDSII as the flat GDSII's polygons (XOR 0)") {
-    if (!have("command -v klayout")) {
+    if (!have_tool("command -v klayout")) {
         MESSAGE("skipped: klayout is not installed");
         return;
     }
@@ -114,24 +106,26 @@ TEST_CASE("KLayout reads OASIS and hierarchical GDSII as the flat GDSII's polygo
         o.marks = true;
         o.hole_side_m = 301.3e-6;
         const Layout l = make_layout(tiled_mask(), o);
-        write(dir / "flat.gds", gds_stream(l));
-        write(dir / "cells.gds", gds_stream(l, {.hierarchy = true}));
-        write(dir / "m.oas", oasis_file(l));
-        write(dir / "xor.py",
-              "import pya\n"
-              "keep = []\n"
-              "def region(path):\n"
-              "    ly = pya.Layout(); ly.read(path); keep.append(ly)\n"
-              "    return pya.Region(ly.top_cell().begin_shapes_rec(ly.layer(1, 0))), ly.dbu\n"
-              "a, da = region(A)\n"
-              "for p in (B, C):\n"
-              "    b, db = region(p)\n"
-              "    print(a.count(), b.count(), round(da * 1e6), round(db * 1e6), (a ^ b).area(), "
-              "a.area())\n");
+        write_bytes(dir / "flat.gds", gds_stream(l));
+        write_bytes(dir / "cells.gds", gds_stream(l, {.hierarchy = true}));
+        write_bytes(dir / "m.oas", oasis_file(l));
+        write_bytes(
+            dir / "xor.py",
+            "import pya\n"
+            "keep = []\n"
+            "def region(path):\n"
+            "    ly = pya.Layout(); ly.read(path); keep.append(ly)\n"
+            "    return pya.Region(ly.top_cell().begin_shapes_rec(ly.layer(1, 0))), ly.dbu\n"
+            "a, da = region(A)\n"
+            "for p in (B, C):\n"
+            "    b, db = region(p)\n"
+            "    print(a.count(), b.count(), round(da * 1e6), round(db * 1e6), (a ^ b).area(), "
+            "a.area())\n");
         const auto [rc, out] =
-            run("QT_QPA_PLATFORM=offscreen klayout -b -rd A=" + (dir / "flat.gds") + " -rd B=" +
-                    (dir / "m.oas") + " -rd C=" + (dir / "cells.gds") + " -r " + (dir / "xor.py"),
-                dir);
+            run_tool("QT_QPA_PLATFORM=offscreen klayout -b -rd A=" + (dir / "flat.gds") +
+                         " -rd B=" + (dir / "m.oas") + " -rd C=" + (dir / "cells.gds") + " -r " +
+                         (dir / "xor.py"),
+                     dir);
         REQUIRE(rc == 0);
         std::istringstream s(out);
         for (int k = 0; k < 2; ++k) {
@@ -150,7 +144,7 @@ TEST_CASE("KLayout reads OASIS and hierarchical GDSII as the flat GDSII's polygo
 }
 
 TEST_CASE("gerbv renders circular flashes at their diameter (+-1 pixel)") {
-    if (!have("command -v gerbv")) {
+    if (!have_tool("command -v gerbv")) {
         MESSAGE("skipped: gerbv is not installed");
         return;
     }
@@ -159,16 +153,16 @@ TEST_CASE("gerbv renders circular flashes at their diameter (+-1 pixel)") {
     o.shape = HoleShape::kCircle;
     o.hole_side_m = 301.3e-6;
     const Layout l = make_layout(tiled_mask(), o);
-    write(dir / "m.gbr", gerber_document(l, true));
+    write_bytes(dir / "m.gbr", gerber_document(l, true));
     constexpr double kDpi = 2540.0;  // 10 um pixels: a pinhole is 30.13 pixels across
     constexpr double kNmPerPixel = 25.4e6 / kDpi;
     // An anti-aliased edge thresholded at half grey lands within half a pixel of the true edge
     // on each side: the measured width is within one pixel of the diameter.
     constexpr double kEdgePx = 1.0;
-    const auto [rc, out] =
-        run("gerbv -x png -D " + std::to_string(int(kDpi)) +
-                " -B 0 -b '#FFFFFF' -f '#000000FF' -o " + (dir / "m.png") + " " + (dir / "m.gbr"),
-            dir);
+    const auto [rc, out] = run_tool("gerbv -x png -D " + std::to_string(int(kDpi)) +
+                                        " -B 0 -b '#FFFFFF' -f '#000000FF' -o " + (dir / "m.png") +
+                                        " " + (dir / "m.gbr"),
+                                    dir);
     REQUIRE(rc == 0);
     const LoadedImage img = read_image(dir / "m.png");
     const int rows = img.image.rows(), cols = img.image.cols();

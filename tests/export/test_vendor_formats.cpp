@@ -1,4 +1,4 @@
-// Issue 15's formats and options inside the library: units (DXF drawing units and $INSUNITS,
+// Fabrication formats and options inside the library: units (DXF drawing units and $INSUNITS,
 // GDSII user unit), native circles, OASIS and GDSII hierarchy read back equal to the flat
 // design, the 1-bit plotter raster against a direct pixel count, vendor presets, tone aliases.
 // Answers are known by construction (the layout's own integer rings).
@@ -16,20 +16,20 @@
 
 #include "core/error.hpp"
 #include "core/image_io.hpp"
-#include "export/dxf_reader.hpp"
-#include "export/dxf_writer.hpp"
+#include "formats/dxf_reader.hpp"
+#include "formats/dxf_writer.hpp"
 #include "export/export_pipeline.hpp"
-#include "export/gds_reader.hpp"
-#include "export/gds_writer.hpp"
-#include "export/geometry.hpp"
-#include "export/gerber_reader.hpp"
-#include "export/gerber_writer.hpp"
-#include "export/oasis_reader.hpp"
-#include "export/oasis_writer.hpp"
-#include "export/plotter_raster.hpp"
-#include "export/png_preview.hpp"
+#include "formats/gds_reader.hpp"
+#include "formats/gds_writer.hpp"
+#include "layout/geometry.hpp"
+#include "formats/gerber_reader.hpp"
+#include "formats/gerber_writer.hpp"
+#include "formats/oasis_reader.hpp"
+#include "formats/oasis_writer.hpp"
+#include "formats/plotter_raster.hpp"
+#include "formats/png_preview.hpp"
 #include "export/read_back.hpp"
-#include "export/repetition.hpp"
+#include "layout/repetition.hpp"
 #include "export/vendor_presets.hpp"
 #include "tests/export/export_fixtures.hpp"
 

@@ -6,13 +6,13 @@
 #include <sstream>
 
 #include "core/error.hpp"
-#include "export/dxf_writer.hpp"
-#include "export/gds_writer.hpp"
-#include "export/geometry.hpp"
-#include "export/gerber_writer.hpp"
-#include "export/pdf_writer.hpp"
-#include "export/png_preview.hpp"
-#include "export/svg_writer.hpp"
+#include "formats/dxf_writer.hpp"
+#include "formats/gds_writer.hpp"
+#include "layout/geometry.hpp"
+#include "formats/gerber_writer.hpp"
+#include "formats/pdf_writer.hpp"
+#include "formats/png_preview.hpp"
+#include "formats/svg_writer.hpp"
 #include "tests/export/export_fixtures.hpp"
 
 using namespace pinmask;

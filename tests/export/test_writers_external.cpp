@@ -9,12 +9,12 @@
 #include <sstream>
 
 #include "core/image_io.hpp"
-#include "export/dxf_writer.hpp"
-#include "export/gds_writer.hpp"
-#include "export/geometry.hpp"
-#include "export/gerber_writer.hpp"
-#include "export/rings.hpp"
-#include "export/svg_writer.hpp"
+#include "formats/dxf_writer.hpp"
+#include "formats/gds_writer.hpp"
+#include "layout/geometry.hpp"
+#include "formats/gerber_writer.hpp"
+#include "layout/rings.hpp"
+#include "formats/svg_writer.hpp"
 #include "tests/export/export_fixtures.hpp"
 #include "tests/support/cli_run.hpp"
 

@@ -10,9 +10,9 @@
 
 #include "core/error.hpp"
 #include "core/image_io.hpp"
-#include "export/geometry.hpp"
-#include "export/pdf_writer.hpp"
-#include "export/png_preview.hpp"
+#include "layout/geometry.hpp"
+#include "formats/pdf_writer.hpp"
+#include "formats/png_preview.hpp"
 #include "tests/export/export_fixtures.hpp"
 #include "tests/support/cli_run.hpp"
 

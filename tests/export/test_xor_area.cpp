@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "export/xor_area.hpp"
+#include "layout/xor_area.hpp"
 #include "tests/support/close.hpp"
 
 using namespace pinmask;

@@ -68,13 +68,13 @@ TEST_CASE("sidecar layout: a disagreeing setting names its flag; without a sidec
     const io::ExportSidecar s = sidecar();
     io::CheckLayoutSettings g;
     g.tone = "clear";
-    CHECK(message_of(g, &s).rfind("--tone", 0) == 0);
+    CHECK(message_of(g, &s).rfind("`tone`", 0) == 0);
     g = {};
     g.frame = io::GivenLength{1e-3, "1mm"};
-    CHECK(message_of(g, &s).rfind("--frame", 0) == 0);
+    CHECK(message_of(g, &s).rfind("`frame`", 0) == 0);
     g = {};
     g.units = "um";
-    CHECK(message_of(g, &s).rfind("--units", 0) == 0);
+    CHECK(message_of(g, &s).rfind("`units`", 0) == 0);
     g = {};
     g.shape = "square";
     CHECK(message_of(g, &s).find("disagrees with the export sidecar") != std::string::npos);

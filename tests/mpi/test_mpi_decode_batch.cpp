@@ -1,4 +1,4 @@
-// `pinmask decode --batch` under mpirun (issue 17) on localhost: 1, 2 and 3 ranks (3
+// `pinmask decode --batch` under mpirun on localhost: 1, 2 and 3 ranks (3
 // oversubscribed) write the same bytes as the plain run, every file including the summary (each
 // run in its own folder with the same relative paths); a bad capture on one rank leaves no file
 // on any rank and exits 2.

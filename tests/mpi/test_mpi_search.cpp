@@ -1,4 +1,4 @@
-// `pinmask search` under mpirun (issue 17), end to end on localhost: the same --evals command
+// `pinmask search` under mpirun, end to end on localhost: the same --evals command
 // twice gives identical files on 2 and 3 ranks (3 oversubscribed on CI's 2 cores), one rank
 // under mpirun equals the plain run, checkpointing changes nothing, a 2-rank run killed with
 // SIGKILL after a checkpoint and resumed ends with the uninterrupted run's files, and a

@@ -1,4 +1,4 @@
-// The MPI collectives (optimize/mpi/mpi_comm) checked against what each rank can compute on its
+// The MPI collectives (search/mpi/mpi_comm) checked against what each rank can compute on its
 // own: run by CTest under `mpirun -n 3` (test "mpi") and as a plain process (test "mpi-plain",
 // where world_comm() is the single-rank LocalComm). Every rank runs the same cases in the same
 // order (CHECK, never REQUIRE, so no rank skips a collective).
@@ -8,8 +8,8 @@
 #include <cmath>
 #include <numeric>
 
-#include "optimize/byte_codec.hpp"
-#include "optimize/mpi/mpi_comm.hpp"
+#include "search/byte_codec.hpp"
+#include "search/mpi/mpi_comm.hpp"
 
 using namespace pinmask;
 

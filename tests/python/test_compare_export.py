@@ -71,11 +71,11 @@ def test_check_equals_cli_json(cli, tmp_path, mask7):
 
 
 def test_check_and_export_errors(tmp_path, mask7):
-    with pytest.raises(ValueError, match="--format"):
+    with pytest.raises(ValueError, match="^formats = oasis2"):
         pinmask.export_mask(mask7, str(tmp_path / "x"), formats=["oasis2"])
     with pytest.raises(ValueError, match="input"):
         pinmask.check(str(tmp_path / "none.gds"))
-    with pytest.raises(ValueError, match="--vendor|vendor"):
+    with pytest.raises(ValueError, match="vendor"):
         pinmask.check(mask7, vendor="moon")
 
 

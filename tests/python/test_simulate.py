@@ -53,11 +53,11 @@ def test_simulate_array_scene_and_bad_inputs(mask7):
     scene[60:68, 60:68] = 1
     s = pinmask.simulate(mask7, scene, snr_db=float("inf"))
     assert s["capture"].sum() == pytest.approx(64.0, rel=1e-9)
-    with pytest.raises(ValueError, match="--snr"):
+    with pytest.raises(ValueError, match="^snr_db = 30: cannot be combined with photons"):
         pinmask.simulate(mask7, "letter-R", snr_db=30, photons=100)
-    with pytest.raises(ValueError, match="--dark-frame"):
+    with pytest.raises(ValueError, match="^dark_frame = True: needs the photon model"):
         pinmask.simulate(mask7, "letter-R", dark_frame=True)
-    with pytest.raises(ValueError, match="--read-noise"):
+    with pytest.raises(ValueError, match="^read_noise: a sensor parameter"):
         pinmask.simulate(mask7, "letter-R", read_noise=2)
 
 
@@ -72,7 +72,7 @@ def test_unknown_scene_same_message_as_cli(cli, tmp_path, mask7):
 def test_simulate_precision_matches_cli_and_double(cli, tmp_path, mask7):
     """precision: double is the default's bytes below 256 x 256; single equals the CLI's
     --precision single and stays within float rounding of double (the 5e-6 relative l2 bound
-    of tests/optimize/test_simulate_precision.cpp); a bad name names the flag."""
+    of tests/simulate/test_simulate_precision.cpp); a bad name names the keyword."""
     mask7.save(str(tmp_path / "m.mask.json"))
     d = pinmask.simulate(mask7, "usaf", snr_db=30, seed=2)["capture"]
     assert np.array_equal(d, pinmask.simulate(mask7, "usaf", snr_db=30, seed=2,
@@ -83,5 +83,5 @@ def test_simulate_precision_matches_cli_and_double(cli, tmp_path, mask7):
     cli.run("simulate", "m.mask.json", "--scene", "usaf", "--snr", "30", "--seed", "2",
             "--precision", "single", "-o", "cap.npy")
     assert np.array_equal(s.astype(np.float32), np.load(tmp_path / "cap.npy"))
-    with pytest.raises(ValueError, match="--precision"):
+    with pytest.raises(ValueError, match="^precision = half"):
         pinmask.simulate(mask7, precision="half")

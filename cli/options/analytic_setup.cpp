@@ -1,0 +1,144 @@
+#include "cli/options/analytic_setup.hpp"
+
+#include <iomanip>
+#include <sstream>
+
+#include "cli/options/noise_options.hpp"
+#include "io/json_strict.hpp"
+
+namespace pinmask::cli {
+
+using io::json_strict::finite_or_null;
+
+void add_prior_flags(CLI::App& cmd, PriorFlags& f) {
+    cmd.add_option("--prior", f.prior,
+                   "Scene prior of the analytic error: natural (1/f textures), text (pages of "
+                   "words), stars (sparse points on dark), or image files (comma-separated; "
+                   "their power spectrum). The same prior in score, compare and search")
+        ->capture_default_str();
+    cmd.add_option("--prior-scenes", f.count,
+                   "Sample scenes averaged for the natural, text or stars prior (1..4096)")
+        ->capture_default_str();
+}
+
+PriorSpec prior_spec(const PriorFlags& f) { return parse_prior_spec(f.prior, f.count); }
+
+std::vector<SceneSpec> scene_specs(const std::string& scenes) {
+    return scene_specs_from_names(split_list(scenes, "--scenes"));
+}
+
+void metrics_json(const MaskMetrics& m, nlohmann::ordered_json& row,
+                  nlohmann::ordered_json* per_scene) {
+    if (m.sidelobes) {
+        const SidelobeMetrics& s = *m.sidelobes;
+        row["peak_autocorrelation"] = s.peak;
+        row["max_sidelobe"] = s.max_sidelobe;
+        row["mean_sidelobe"] = s.mean_sidelobe;
+        row["integrated_sidelobe_level"] = s.integrated_sidelobe_level;
+        row["peak_to_sidelobe_ratio"] = finite_or_null(s.peak_to_sidelobe_ratio);
+    }
+    if (m.spectrum) {
+        const PatternSpectrumMetrics& s = *m.spectrum;
+        row["min_abs_pattern_spectrum"] = s.min_abs_pattern_spectrum;
+        row["spectral_flatness"] = s.spectral_flatness;
+        row["open_fraction"] = s.open_fraction;
+        row["light_gain"] = s.light_gain;
+        row["otf_condition_number"] = finite_or_null(m.otf->condition_number);
+        row["otf_passband_frequencies"] = m.otf->passband_frequencies;
+        const SpectralZero& z = *m.spectral_zero;
+        if (z.found) {
+            row["spectral_zero"] = {{"frequency", {z.row, z.col}},
+                                    {"abs_pattern_spectrum", z.abs_value},
+                                    {"threshold", z.threshold_abs},
+                                    {"count", z.count},
+                                    {"message", z.message()}};
+        } else {
+            row["spectral_zero"] = nullptr;
+        }
+    }
+    for (const LevelMetrics& l : m.levels) {
+        const std::string& k = l.level.key;
+        if (l.analytic) {
+            row["analytic_wiener_psnr_db_" + k] = finite_or_null(l.analytic->psnr_db);
+            row["analytic_wiener_nsr_" + k] = l.analytic->nsr;
+            row["analytic_optimal_wiener_psnr_db_" + k] =
+                finite_or_null(l.analytic->optimal_psnr_db);
+        }
+        if (l.robust) {
+            row["robust_wiener_psnr_db_" + k] = finite_or_null(l.robust->psnr_db);
+            row["robust_loss_db_" + k] = finite_or_null(l.robust->loss_db);
+        }
+        for (const auto& [metric, q] :
+             {std::pair{std::string("wiener"), &l.wiener}, std::pair{std::string("tv"), &l.tv}}) {
+            if (!*q) continue;
+            const std::string weight = metric == "wiener" ? "nsr" : "lambda";
+            row[metric + "_psnr_db_" + k] = finite_or_null((*q)->mean_psnr_db);
+            row[metric + "_ssim_" + k] = finite_or_null((*q)->mean_ssim);
+            row[metric + "_" + weight + "_" + k] = (*q)->weight;
+            if (!per_scene) continue;
+            for (const SceneQuality& s : (*q)->scenes) {
+                (*per_scene)[s.scene][metric + "_psnr_db_" + k] = finite_or_null(s.psnr_db);
+                (*per_scene)[s.scene][metric + "_ssim_" + k] = finite_or_null(s.ssim);
+            }
+        }
+    }
+}
+
+std::string metrics_table_text(const std::vector<nlohmann::ordered_json>& rows,
+                               const MaskMetricsOptions& m) {
+    std::vector<std::pair<std::string, std::string>> cols{{"holes", "K"}};
+    if (m.sidelobes) {
+        cols.push_back({"max_sidelobe", "max_sl"});
+        cols.push_back({"peak_to_sidelobe_ratio", "PSR"});
+    }
+    if (m.spectrum) {
+        cols.push_back({"min_abs_pattern_spectrum", "min|P|"});
+        cols.push_back({"spectral_flatness", "flat"});
+        cols.push_back({"otf_condition_number", "cond"});
+    }
+    for (const NoiseLevel& level : m.noise) {
+        const std::string& k = level.key;
+        if (m.analytic) cols.push_back({"analytic_wiener_psnr_db_" + k, "A" + k});
+        if (m.analytic && m.robust.any()) cols.push_back({"robust_wiener_psnr_db_" + k, "R" + k});
+        if (m.wiener) cols.push_back({"wiener_psnr_db_" + k, "W" + k});
+        if (m.tv) cols.push_back({"tv_psnr_db_" + k, "TV" + k});
+    }
+    std::ostringstream s;
+    s << std::left << std::setw(28) << "mask";
+    for (const auto& c : cols) s << std::right << std::setw(11) << c.second;
+    s << "\n";
+    for (const auto& r : rows) {
+        std::string name = r["mask"].get<std::string>();
+        if (name.size() > 27) name = "..." + name.substr(name.size() - 24);
+        s << std::left << std::setw(28) << name;
+        for (const auto& c : cols) {
+            const auto& v = r[c.first];
+            std::ostringstream cell;
+            if (v.is_null()) {
+                cell << "inf";
+            } else if (v.is_number_integer() || v.is_number_unsigned()) {
+                cell << v.get<long long>();
+            } else {
+                cell << std::setprecision(4) << v.get<double>();
+            }
+            s << std::right << std::setw(11) << cell.str();
+        }
+        s << "\n";
+    }
+    for (const auto& r : rows) {
+        if (r.contains("spectral_zero") && !r["spectral_zero"].is_null()) {
+            s << "warning: " << r["mask"].get<std::string>() << ": "
+              << r["spectral_zero"]["message"].get<std::string>() << "\n";
+        }
+    }
+    s << "PSNR columns in dB over one period: A = analytic Wiener, W = simulated Wiener, TV = "
+         "simulated TV-L2; suffix snrS = Gaussian noise at S dB, phP = the photon model at P "
+         "electrons per pinhole. --json for every key.\n";
+    if (m.analytic && m.robust.any()) {
+        s << "R = analytic Wiener expected under fabrication errors (" << m.robust.description()
+          << "), decoded with the nominal PSF, same NSR as A.\n";
+    }
+    return s.str();
+}
+
+}  // namespace pinmask::cli

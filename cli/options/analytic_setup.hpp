@@ -1,0 +1,44 @@
+// Shared by score, compare and search: the flags of the one metric set (metrics/mask_metrics)
+// and its JSON rendering, so every command names and prints the same numbers the same way.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "metrics/analytic_error.hpp"
+#include "metrics/mask_metrics.hpp"
+#include "metrics/metric_spellings.hpp"
+#include "metrics/simulated_metrics.hpp"
+
+namespace pinmask::cli {
+
+// The filter, weight and decoder spellings (metrics/metric_spellings.hpp), under their old
+// names.
+using pinmask::parse_weight_choice;
+using pinmask::parse_wiener_filter;
+using pinmask::set_decoder_settings;
+
+// --prior and --prior-scenes.
+struct PriorFlags {
+    std::string prior = "natural";
+    int count = kDefaultPriorScenes;
+};
+void add_prior_flags(CLI::App& cmd, PriorFlags& flags);
+PriorSpec prior_spec(const PriorFlags& flags);
+
+// --scenes (comma-separated names or image files) as scene specs (scene_specs_from_names: the
+// natural scene pinned to texture seed 0).
+std::vector<SceneSpec> scene_specs(const std::string& scenes);
+
+// The metrics as JSON keys (score's names: max_sidelobe, analytic_wiener_psnr_db_snr30, ...);
+// per-scene figures go to `per_scene` when given.
+void metrics_json(const MaskMetrics& m, nlohmann::ordered_json& row,
+                  nlohmann::ordered_json* per_scene = nullptr);
+
+// score's text table of JSON rows (one per mask), with spectral-zero warnings and a legend.
+std::string metrics_table_text(const std::vector<nlohmann::ordered_json>& rows,
+                               const MaskMetricsOptions& m);
+
+}  // namespace pinmask::cli

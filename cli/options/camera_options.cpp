@@ -1,0 +1,107 @@
+#include "cli/options/camera_options.hpp"
+
+#include <string>
+#include <utility>
+
+#include "core/error.hpp"
+#include "core/units.hpp"
+#include "io/camera_json.hpp"
+
+namespace pinmask::cli {
+
+void add_camera_options(CLI::App& cmd, CameraOptions& o) {
+    cmd.add_option("--camera", o.camera_file,
+                   "Camera file (*.camera.json, e.g. from design --save-camera) used instead of "
+                   "the preset; camera flags given beside it override its values");
+    cmd.add_option("--preset", o.preset,
+                   "Camera preset: paper (u 6m, f' 120mm, f 55mm, d 440um, "
+                   "w 30um, 720x480, 550nm)")
+        ->check(CLI::IsMember({"paper"}))
+        ->capture_default_str();
+    cmd.add_option("--lens-focal", o.lens_focal,
+                   "Lens focal length f' (e.g. 120mm; inf = no lens)");
+    cmd.add_option("--sensor-distance", o.sensor_distance, "Lens-to-sensor distance f (e.g. 55mm)");
+    cmd.add_option("--object-distance", o.object_distance, "Object distance u (e.g. 6m, or inf)");
+    cmd.add_option("--wavelength", o.wavelength, "Design wavelength (e.g. 550nm)");
+    cmd.add_option("--pixel-pitch", o.pixel_pitch, "Sensor pixel pitch w (e.g. 30um)");
+    cmd.add_option("--pinhole", o.pinhole, "Pinhole side d = cell side (e.g. 440um)");
+    cmd.add_option("--sensor", o.sensor, "Sensor size in pixels, WIDTHxHEIGHT (e.g. 720x480)");
+}
+
+Camera resolve_camera(const CameraOptions& o) {
+    Camera c = o.camera_file ? io::read_camera_file(*o.camera_file)
+                             : (o.base ? *o.base : paper_camera());  // paper: the only preset
+    if (o.lens_focal)
+        c.lens_focal_m = parse_length_m(*o.lens_focal, "--lens-focal", AllowInfinity::kYes);
+    if (o.sensor_distance)
+        c.sensor_distance_m = parse_length_m(*o.sensor_distance, "--sensor-distance");
+    if (o.object_distance) {
+        c.object_distance_m =
+            parse_length_m(*o.object_distance, "--object-distance", AllowInfinity::kYes);
+    }
+    if (o.wavelength) c.wavelength_m = parse_length_m(*o.wavelength, "--wavelength");
+    if (o.pixel_pitch) c.pixel_pitch_m = parse_length_m(*o.pixel_pitch, "--pixel-pitch");
+    if (o.pinhole) c.pinhole_m = parse_length_m(*o.pinhole, "--pinhole");
+    if (o.sensor) {
+        const Size2 s = parse_size(*o.sensor, "--sensor");
+        c.sensor_cols = s.cols;
+        c.sensor_rows = s.rows;
+    }
+    // design/camera names Camera fields; on the command line the flag is what the user typed.
+    static const std::pair<const char*, const char*> kFlagOf[] = {
+        {"object_distance_m", "--object-distance"},
+        {"lens_focal_m", "--lens-focal"},
+        {"sensor_distance_m", "--sensor-distance"},
+        {"wavelength_m", "--wavelength"},
+        {"pixel_pitch_m", "--pixel-pitch"},
+        {"pinhole_m", "--pinhole"},
+        {"sensor", "--sensor"}};
+    try {
+        validate(c);
+    } catch (const InvalidInput& e) {
+        const std::string what = e.what();
+        for (const auto& [field, flag] : kFlagOf) {
+            if (what.rfind(std::string(field) + " ", 0) == 0) {
+                throw InvalidInput(std::string(flag) + ": " + what);
+            }
+        }
+        throw;
+    }
+    return c;
+}
+
+std::vector<CameraInput> camera_inputs(const CameraOptions& o, const Camera& c) {
+    const std::string base =
+        o.camera_file ? "camera file" : (o.base ? "config" : "paper preset default");
+    auto from = [&](const std::optional<std::string>& flag) { return flag ? "flag" : base; };
+    return {
+        {"d (pinhole)", format_length(c.pinhole_m), from(o.pinhole)},
+        {"lambda (wavelength)", format_length(c.wavelength_m), from(o.wavelength)},
+        {"f (lens to sensor)", format_length(c.sensor_distance_m), from(o.sensor_distance)},
+        {"f' (lens focal)", format_length(c.lens_focal_m), from(o.lens_focal)},
+        {"u (object distance)", format_length(c.object_distance_m), from(o.object_distance)},
+        {"w (pixel pitch)", format_length(c.pixel_pitch_m), from(o.pixel_pitch)},
+        {"sensor", std::to_string(c.sensor_cols) + " x " + std::to_string(c.sensor_rows) + " px",
+         from(o.sensor)},
+    };
+}
+
+void add_geometry_options(CLI::App& cmd, GeometryOptions& o, std::string* holes_range) {
+    cmd.add_option("--grid", o.grid, "Pattern size n (n x n cells, 1..4096)")
+        ->capture_default_str();
+    if (holes_range) {
+        cmd.add_option("--holes", *holes_range,
+                       "Number of pinholes K, or a range A..B: the search adds and removes "
+                       "pinholes, keeps the best mask per K and plots predicted PSNR against K")
+            ->capture_default_str();
+    } else {
+        cmd.add_option("--holes", o.holes, "Number of pinholes K")->capture_default_str();
+    }
+    cmd.add_option("--tiles", o.tiles, "Tiles per side of the cyclic mask")->capture_default_str();
+    cmd.add_option("--spacing", o.spacing,
+                   "Minimum pinhole centre spacing in cells, on the torus (2 = no two pinholes in "
+                   "each other's 8-neighbourhood)")
+        ->capture_default_str();
+}
+
+}  // namespace pinmask::cli

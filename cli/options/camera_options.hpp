@@ -1,0 +1,52 @@
+// Camera and pattern-geometry flags shared by design, generate, simulate, search: a preset, then
+// any parameter overridden with units (`--pinhole 440um`). Parsed once here into design types.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "design/camera.hpp"
+
+namespace pinmask::cli {
+
+struct CameraOptions {
+    std::string preset = "paper";
+    std::optional<Camera> base;  // used instead of the preset (search --config's "optics")
+    std::optional<std::string> camera_file;  // --camera FILE (*.camera.json): replaces the preset
+    std::optional<std::string> lens_focal, sensor_distance, object_distance, wavelength,
+        pixel_pitch, pinhole, sensor;
+};
+
+// --camera FILE, --preset, --lens-focal, --sensor-distance, --object-distance, --wavelength,
+// --pixel-pitch,
+// --pinhole, --sensor WxH.
+void add_camera_options(CLI::App& cmd, CameraOptions& o);
+
+// The preset (or --camera FILE, or `base`) with the flag overrides applied, validated
+// (InvalidInput naming the flag).
+Camera resolve_camera(const CameraOptions& o);
+
+// One input of the camera for reports: symbol, value as typed for people, and where it came
+// from: "flag", "camera file", "config" or "paper preset default".
+struct CameraInput {
+    std::string symbol;
+    std::string value;
+    std::string source;
+};
+std::vector<CameraInput> camera_inputs(const CameraOptions& o, const Camera& resolved);
+
+struct GeometryOptions {
+    int grid = 16;         // n
+    int holes = 20;        // K
+    int tiles = 2;         // tiles per side
+    double spacing = 2.0;  // min centre spacing, cells
+};
+
+// --grid, --holes, --tiles, --spacing (defaults: the paper's 16, 20, 2, 2.0). With
+// `holes_range` (search), --holes is read as text into it instead: K or a range A..B
+// (search/search_pipeline parse_holes_range), o.holes unused.
+void add_geometry_options(CLI::App& cmd, GeometryOptions& o, std::string* holes_range = nullptr);
+
+}  // namespace pinmask::cli

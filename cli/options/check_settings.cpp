@@ -1,0 +1,41 @@
+#include "cli/options/check_settings.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/units.hpp"
+#include "io/sidecar_layout.hpp"
+
+namespace pinmask::cli {
+
+// The flags as given settings; the rules are io/sidecar_layout's (shared with the Python module).
+LayoutOptions design_options(const CheckOptions& o, const io::ExportSidecar* side) {
+    return io::check_layout(io::check_layout_settings(o.layout), side);
+}
+
+namespace {
+
+std::int64_t length_nm(const std::string& text, const char* flag, std::int64_t min_nm) {
+    const double nm = std::round(parse_length_m(text, flag) * 1e9);
+    if (!(nm >= double(min_nm)) || nm > 1e12) {
+        throw invalid_field(flag, text,
+                            "must be between " + std::to_string(min_nm) + " nm and 1e12 nm (1 km)");
+    }
+    return static_cast<std::int64_t>(nm);
+}
+
+}  // namespace
+
+DrcRules resolve_rules(const CheckOptions& o, DrcRules rules) {
+    if (o.min_gap) rules.min_gap_nm = length_nm(*o.min_gap, "--min-gap", 1);
+    if (o.min_feature) rules.min_feature_nm = length_nm(*o.min_feature, "--min-feature", 0);
+    if (o.min_spacing) {
+        rules.min_center_spacing_nm = double(length_nm(*o.min_spacing, "--min-spacing", 0));
+    }
+    if (o.max_vertices) rules.max_vertices = *o.max_vertices;
+    rules.max_reported_per_rule = o.list;
+    return rules;
+}
+
+}  // namespace pinmask::cli

@@ -1,0 +1,37 @@
+// `pinmask check`'s flags, and the layout settings they give together with an export sidecar.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "export/drc.hpp"
+#include "layout/geometry.hpp"
+#include "io/export_sidecar.hpp"
+#include "io/sidecar_layout.hpp"
+
+namespace pinmask::cli {
+
+struct CheckOptions {
+    std::string input;
+    std::string mask;  // design of a fabrication file
+    std::string vendor = "film";
+    std::optional<std::string> min_gap, min_feature, min_spacing;
+    std::optional<std::size_t> max_vertices;
+    std::size_t list = 20;
+    double max_xor_um2 = 0.0;
+    // Layout options of the design the file is compared with (as given to `pinmask export`).
+    io::CheckLayoutText layout;
+    bool no_sidecar = false;
+    bool json = false;
+};
+
+// Layout settings: the sidecar's (when given), every explicit flag required to agree with it
+// (InvalidInput naming the flag otherwise); without a sidecar, the flags.
+LayoutOptions design_options(const CheckOptions& o, const io::ExportSidecar* side);
+
+// The rules: `rules` (the vendor's or the mask's) with every explicit flag applied.
+DrcRules resolve_rules(const CheckOptions& o, DrcRules rules);
+
+}  // namespace pinmask::cli

@@ -1,0 +1,228 @@
+#include "cli/options/decode_flags.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/field_names.hpp"
+#include "core/units.hpp"
+#include "decode/decode_modes.hpp"
+
+namespace pinmask::cli {
+
+const char* const kDecodeFooter = R"(
+Steps: dark frame subtracted (same size, 1 or the capture's channels) -> --background ->
+--downsample -> period check -> --crop -> --normalize -> decode each channel (RGB channels in
+parallel threads) -> write.
+Period: the PSF's size. The capture's own period is measured from its autocorrelation and a
+mismatch is reported on stderr and in the stats (skipped, with the reason, when the capture
+holds fewer than two periods along an axis).
+Flags of one method only (--nsr, --nsr-map: wiener; --lambda: tikhonov, tv; --regulariser:
+tikhonov; --eps, --noise-sigma: tvqc; --nonneg: tv, tvqc; --iters, --tol: tv, tvqc,
+richardson-lucy) are refused with another method; --nsr and --nsr-map exclude each other.
+NSR map (--nsr-map FILE): one NSR per frequency of the decoded working grid (the period, or the
+padded frame with --model linear; after --downsample), full spectrum in fft2 order, read as
+deconvwnr's array NSR. The robust design's decoder is this: `score MASK --robust SPEC
+--robust-decoder DIR` writes DIR/robust-psf.tiff and DIR/robust-nsr.npy, then
+`decode CAPTURE --psf DIR/robust-psf.npy --nsr-map DIR/robust-nsr.npy -o OUT`.
+Precision: auto uses float32 (FFTW float) for every method from 256 x 256 decoded pixels on,
+double below; a PSF whose values cancel beyond float32's range runs in double (auto, with a
+note in --explain) or is refused (single).
+Scale: every solver works on the capture divided by its largest magnitude and scales back, so
+the result does not depend on the capture's units. A TVQC run that ends without meeting
+||Ax - p||_2 <= eps still writes its estimate, exit 0, with a warning on stderr and
+"constraint_met": false in the stats.
+Output: PNG clips negatives to 0 and multiplies by 1/max over all channels (or by --scale),
+then writes 8- or 16-bit; .tif/.tiff (float32) and .npy (float32) hold the raw estimate.
+Orientation: the output is in the decoded window's pixel grid, never flipped or mirrored: row 0
+is the window's top row, column 0 its left column; a capture identical to the PSF decodes to a
+point at (row floor(H/2), column floor(W/2)), the PSF's centre (deconvwnr convention).
+Units: with --normalize none the PSF is scaled to unit sum and the estimate is in capture
+counts; with --normalize l2 both are divided by their L2 norms (the DiffuserCam tutorial).
+Also written: OUT.config.json (the resolved configuration) next to the output. In the stats,
+everything but "timings_s" is the same, byte for byte, for the same inputs and options.
+Ctrl-C (or SIGTERM) during tv, tvqc or richardson-lucy ends the iteration early: the estimate so
+far is written as usual and marked "interrupted" in the stats; a second Ctrl-C kills at once.
+
+Examples:
+  pinmask decode capture.tiff --mask paper.mask.json --dark dark.tiff -o scene.png --stats s.json
+  pinmask decode raw.tif --psf psf.tif --model linear --background corner --downsample 2 \
+      --normalize l2 --crop none --method tv --lambda 1e-4 --iters 100 -o hand.png)";
+
+DecodeFlags add_decode_flags(CLI::App& cmd, DecodeCommand& o) {
+    DecodeFlags f;
+    DecodeRequest& q = o.request;
+    auto method_flag = [&](CLI::Option* opt, MethodParameter p) {
+        f.method_flags.emplace_back(opt, p);
+        return opt;
+    };
+    cmd.add_option("capture", o.capture,
+                   "Capture image: TIFF (8/16-bit, float32), PNG (8/16-bit), .npy, JPEG, or camera "
+                   "RAW by extension (.dng, .cr2, .nef, ...: see --bayer); grey or RGB (required "
+                   "unless --batch)");
+    auto* mask =
+        cmd.add_option("--mask", o.mask, "Mask file (*.mask.json); its PSF is synthesised");
+    auto* psf = cmd.add_option("--psf", o.psf,
+                               "PSF file (float TIFF or .npy, with its sidecar when present)");
+    mask->excludes(psf);
+    psf->excludes(mask);
+    cmd.add_option("--object-distance", o.object_distance,
+                   "With --mask: decode with the PSF for an object at this distance (e.g. 2m, "
+                   "inf; refocusing after capture): kernel and whole pixels per cell at u")
+        ->needs(mask);
+    cmd.add_option("--dark", o.dark,
+                   "Dark frame (capture through an all-opaque film), subtracted first; same size");
+    cmd.add_option("--crop", o.crop,
+                   "Window decoded: center (the period centred in the frame), none (whole frame, "
+                   "PSF zero-padded), or X,Y (top-left column,row of one period)")
+        ->capture_default_str();
+    cmd.add_option("--method", o.method,
+                   "wiener (closed form, deconvwnr) | tikhonov (closed form) | tv (TV-L2, ADMM) | "
+                   "tvqc (min TV s.t. ||Ax - p||_2 <= eps) | richardson-lucy")
+        ->capture_default_str();
+    cmd.add_option("--model", o.model,
+                   "cyclic (circular convolution over one period, the paper) | linear (zero-padded "
+                   "convolution then crop: lensless captures, non-cyclic masks)")
+        ->check(CLI::IsMember(name_list(kConvModelNames)))
+        ->capture_default_str();
+    method_flag(cmd.add_option("--nsr", q.nsr,
+                               "wiener: noise-to-signal power ratio, dimensionless (>= 0); "
+                               "relative to |H|^2 of the PSF as normalised (sum 1: |H(0)| = 1)")
+                    ->capture_default_str(),
+                MethodParameter::kNsr);
+    cmd.add_option("--nsr-map", o.nsr_map,
+                   "wiener: per-frequency NSR instead of --nsr: a .npy or float TIFF of the "
+                   "working grid's full spectrum (fft2 layout: row k, column l is frequency "
+                   "(k/R, l/C)), finite, >= 0, same units as --nsr (e.g. score --robust-decoder's "
+                   "robust-nsr.npy)");
+    method_flag(cmd.add_option("--lambda", q.lambda,
+                               "tikhonov (> 0, dimensionless) / tv (>= 0, capture units) "
+                               "regularisation weight")
+                    ->capture_default_str(),
+                MethodParameter::kLambda);
+    method_flag(cmd.add_option("--regulariser", o.regulariser, "tikhonov: identity | gradient")
+                    ->check(CLI::IsMember(name_list(kRegulariserNames)))
+                    ->capture_default_str(),
+                MethodParameter::kRegulariser);
+    auto* eps = method_flag(
+        cmd.add_option("--eps", q.eps, "tvqc: residual bound ||Ax - p||_2 <= EPS (capture units)"),
+        MethodParameter::kEps);
+    auto* sigma = method_flag(cmd.add_option("--noise-sigma", q.noise_sigma,
+                                             "tvqc: per-pixel noise sigma (capture units) to "
+                                             "derive EPS"),
+                              MethodParameter::kNoiseSigma);
+    eps->excludes(sigma);
+    sigma->excludes(eps);
+    method_flag(cmd.add_flag("--nonneg", q.nonnegative, "tv / tvqc: constrain x >= 0"),
+                MethodParameter::kNonnegative);
+    method_flag(cmd.add_option("--iters", q.iterations,
+                               "tv, tvqc, richardson-lucy: maximum iterations (>= 1)")
+                    ->check(CLI::Range(1, 2147483647))
+                    ->capture_default_str(),
+                MethodParameter::kIterations);
+    method_flag(cmd.add_option("--tol", q.tolerance,
+                               "tv, tvqc, richardson-lucy: stop at this relative change of x")
+                    ->capture_default_str(),
+                MethodParameter::kTolerance);
+    cmd.add_option("--downsample", q.downsample,
+                   "K rounds of 2x2 box averaging of capture and PSF (factor 2^K per side)")
+        ->check(CLI::Range(0, 12))
+        ->capture_default_str();
+    cmd.add_option("--background", o.background,
+                   "none | corner (mean of the PSF's rows/cols 5..14, subtracted from PSF and "
+                   "capture, as the DiffuserCam tutorial) | VALUE (counts, from the capture only; "
+                   "|VALUE| <= the capture's largest magnitude)")
+        ->capture_default_str();
+    cmd.add_option("--normalize", o.normalize,
+                   "none (PSF scaled to unit sum) | l2 (capture window and PSF each divided by "
+                   "its L2 norm)")
+        ->check(CLI::IsMember(name_list(kNormalizeModeNames)))
+        ->capture_default_str();
+    cmd.add_option("--precision", o.precision,
+                   "auto (float32 from 256 x 256 decoded pixels, every method) | single | "
+                   "double")
+        ->check(CLI::IsMember(name_list(kPrecisionNames)))
+        ->capture_default_str();
+    cmd.add_option("--threads", q.threads,
+                   "FFTW threads for transforms of >= 512 x 512 (default: all cores); channels "
+                   "always decode in parallel. Results do not depend on it")
+        ->check(CLI::Range(1, 1024));
+    cmd.add_option("-o,--output", o.output,
+                   "Output image: .png (scaled, see below), .tif/.tiff or .npy (raw float32)")
+        ->required();
+    cmd.add_option("--bits", o.bits, "PNG bit depth: 8 | 16")
+        ->check(CLI::IsMember({8, 16}))
+        ->capture_default_str();
+    cmd.add_option("--scale", o.scale,
+                   "PNG scaling: max (1 / max over all channels) or a factor VALUE (> 0)")
+        ->capture_default_str();
+    cmd.add_option("--stats", o.stats,
+                   "Stats JSON: iterations, objective, residual, period check; wall-clock "
+                   "figures only under \"timings_s\"");
+    cmd.add_flag("--json", o.json, "Print the stats JSON on stdout instead of the summary");
+    cmd.add_flag("--explain", o.explain,
+                 "Say on stderr what each step decided (window, background, period check, "
+                 "precision, threads, FFT planning time)");
+    return f;
+}
+
+void resolve_method(DecodeCommand& c, const DecodeFlags& flags) {
+    std::vector<GivenParameter> given;
+    for (const auto& [opt, parameter] : flags.method_flags) {
+        if (opt->count() == 0) continue;
+        given.push_back({parameter, opt->as<std::string>()});
+        if (parameter == MethodParameter::kNsr && !c.nsr_map.empty()) {
+            throw invalid_field("--nsr", opt->as<std::string>(),
+                                "conflicts with --nsr-map " + c.nsr_map +
+                                    " (the map replaces the scalar NSR); give one of them");
+        }
+    }
+    c.request.method = parse_decode_method(c.method, "--method");
+    if (!c.nsr_map.empty() && c.request.method != DecodeMethod::kWiener) {
+        throw invalid_field("--nsr-map", c.nsr_map,
+                            "is not used by --method " + c.method +
+                                " (only by wiener); remove it or choose that method");
+    }
+    refuse_unused_parameters(c.request, given);
+}
+
+void resolve_request(DecodeCommand& c) {
+    DecodeRequest& q = c.request;
+    q.crop = parse_crop(c.crop);
+    q.background = parse_background(c.background);
+    q.normalize = parse_normalize_mode(c.normalize, "--normalize");
+    q.method = parse_decode_method(c.method, "--method");
+    q.model = parse_conv_model(c.model, "--model");
+    q.regulariser = parse_regulariser(c.regulariser, "--regulariser");
+    q.precision = parse_precision(c.precision, "--precision");
+}
+
+CropSpec parse_crop(const std::string& s) {
+    if (s == "center" || s == "centre") return {CropMode::kCenter};
+    if (s == "none") return {CropMode::kNone};
+    const auto comma = s.find(',');
+    if (comma != std::string::npos) {
+        const double x = parse_number(s.substr(0, comma), "--crop X");
+        const double y = parse_number(s.substr(comma + 1), "--crop Y");
+        // Range first: casting a double outside int's range is undefined behaviour.
+        const auto whole = [](double v) { return std::fabs(v) <= 1e9 && v == std::floor(v); };
+        if (whole(x) && whole(y))
+            return {CropMode::kCorner, static_cast<int>(y), static_cast<int>(x)};
+    }
+    throw invalid_field("--crop", s, "must be center, none or X,Y (integer pixel corner)");
+}
+
+DecodeBackground parse_background(const std::string& s) {
+    for (const auto& [mode, name] : kBackgroundModeNames)
+        if (mode != BackgroundMode::kValue && s == name) return {mode, 0.0};
+    return {BackgroundMode::kValue, parse_number(s, "--background")};
+}
+
+std::optional<double> parse_scale(const std::string& s) {
+    if (s == "max") return std::nullopt;
+    const double v = parse_number(s, "--scale");
+    if (!(v > 0.0)) throw invalid_field("--scale", s, "must be max or a factor > 0");
+    return v;
+}
+
+}  // namespace pinmask::cli

@@ -1,0 +1,76 @@
+// The flags of `pinmask decode` (with their help texts), the command's settings they fill, and
+// the refusal of flags the chosen method does not read: a value given for a parameter the
+// method ignores is an error (exit 2 naming the flag), never silently dropped
+// (decode/decode_request.hpp write_method_parameter says which method's options struct each
+// parameter writes to).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "decode/decode_method.hpp"
+#include "decode/decode_request.hpp"
+
+namespace pinmask::cli {
+
+// Everything `pinmask decode` is told: the input files, the library's settings and the
+// command's own output settings.
+struct DecodeCommand {
+    std::string capture, mask, psf, dark;
+    // --object-distance: refocus the mask's PSF to an object at this distance.
+    std::optional<std::string> object_distance;
+    // --nsr-map: a file of per-frequency NSRs (wiener only; replaces nsr), read into
+    // DecodeOptions::wiener.nsr_per_frequency (cli/options/decode_inputs load_nsr_map).
+    std::string nsr_map;
+    // The library's settings: the numbers are parsed into it directly; the flags given as text
+    // (below) are parsed into it by resolve_method and resolve_request.
+    DecodeRequest request;
+    // The text flags as given; OUT.config.json and the stats repeat them as given.
+    std::string crop = "center";    // center | centre | none | X,Y
+    std::string method = "wiener";  // decode/decode_method.hpp names
+    std::string model = "cyclic";
+    std::string regulariser = "identity";
+    std::string background = "none";  // none | corner | VALUE
+    std::string normalize = "none";   // none | l2
+    std::string precision = "auto";   // auto | single | double
+    // The command's output settings.
+    std::string output;
+    int bits = 8;
+    std::string scale = "max";  // max | VALUE
+    std::string stats;
+    bool json = false;
+    bool explain = false;
+};
+
+// The method-specific flags as parsed, each with the parameter it sets.
+struct DecodeFlags {
+    std::vector<std::pair<CLI::Option*, MethodParameter>> method_flags;
+};
+
+// Adds every decode flag to `cmd`, writing into `command`.
+DecodeFlags add_decode_flags(CLI::App& cmd, DecodeCommand& command);
+
+// After parsing: parses --method into command.request, then InvalidInput naming the first flag
+// given that --method does not read, and the refusals of values that are legal for the type but
+// meaningless (--lambda 0 for tikhonov).
+void resolve_method(DecodeCommand& command, const DecodeFlags& flags);
+
+// Parses the remaining text flags (--crop, --background, --model, --regulariser, --normalize,
+// --precision) into command.request; InvalidInput naming the flag otherwise.
+void resolve_request(DecodeCommand& command);
+
+// --crop: center (or centre) | none | X,Y (integer top-left column, row). InvalidInput otherwise.
+CropSpec parse_crop(const std::string& text);
+
+// --background: none | corner | a number of counts (mode "value").
+DecodeBackground parse_background(const std::string& text);
+
+// --scale: "max" -> empty; a factor > 0 otherwise (InvalidInput for anything else).
+std::optional<double> parse_scale(const std::string& text);
+
+extern const char* const kDecodeFooter;
+
+}  // namespace pinmask::cli

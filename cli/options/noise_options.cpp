@@ -1,0 +1,112 @@
+#include "cli/options/noise_options.hpp"
+
+#include <sstream>
+
+#include "core/error.hpp"
+#include "core/units.hpp"
+#include "io/json_strict.hpp"
+
+namespace pinmask::cli {
+namespace {
+
+using io::json_strict::finite_or_null;
+
+constexpr const char* kSensorFlags[] = {"--read-noise", "--dark-current", "--bits", "--full-well",
+                                        "--optical-density"};
+
+}  // namespace
+
+void add_sensor_flags(CLI::App& cmd, SensorFlags& f) {
+    cmd.add_option("--read-noise", f.read_noise,
+                   "Photon model: rms read noise, electrons (default 0)");
+    cmd.add_option("--dark-current", f.dark_current,
+                   "Photon model: mean dark-current electrons per pixel over the exposure, "
+                   "Poisson (default 0)");
+    cmd.add_option("--full-well", f.full_well,
+                   "Photon model: saturation, electrons (default: none)");
+    cmd.add_option("--bits", f.bits,
+                   "Photon model: ADC bit depth 1..24, steps of full-well / (2^bits - 1) "
+                   "electrons; needs --full-well (default: no quantisation)");
+    cmd.add_option("--optical-density", f.optical_density,
+                   "Photon model: optical density OD of the opaque film (transmission 10^-OD); "
+                   "its leak over the closed cells adds a uniform background (default: "
+                   "perfectly opaque)");
+}
+
+std::vector<std::string> split_list(const std::string& text, const std::string& flag) {
+    std::vector<std::string> out;
+    std::string item;
+    std::istringstream in(text);
+    while (std::getline(in, item, ',')) {
+        if (item.empty()) throw invalid_field(flag, "'" + text + "'", "has an empty list item");
+        out.push_back(item);
+    }
+    if (out.empty()) throw invalid_field(flag, "''", "needs at least one item");
+    if (out.size() > kMaxNoiseLevels) {
+        throw invalid_field(flag, "'" + text + "'", "has more than 64 items");
+    }
+    return out;
+}
+
+void add_noise_flags(CLI::App& cmd, NoiseFlags& f, const std::string& default_snr) {
+    f.snr = default_snr;
+    auto* snr =
+        cmd.add_option("--snr", f.snr, "Capture SNRs in dB, comma-separated (Gaussian noise)")
+            ->capture_default_str();
+    cmd.add_option("--photons", f.photons,
+                   "The photon model instead of --snr: mean electrons per pixel through ONE "
+                   "pinhole for a uniform scene of value 1, comma-separated levels (K pinholes "
+                   "collect K times that: the multiplexing trade-off), with the sensor flags")
+        ->excludes(snr);
+    add_sensor_flags(cmd, f.sensor);
+}
+
+std::vector<NoiseLevel> noise_levels(const NoiseFlags& f, const CLI::App& cmd, std::string* text) {
+    NoiseLevelSettings s;
+    s.sensor = f.sensor;
+    if (!f.photons.empty()) {
+        if (cmd.count("--snr") > 0)
+            throw invalid_field("--snr", f.snr, "cannot be combined with --photons");
+        for (const std::string& item : split_list(f.photons, "--photons"))
+            s.photons.push_back(parse_number(item, "--photons"));
+    } else {
+        refuse_sensor_flags_without_photons(cmd);
+        s.snr_db.clear();
+        for (const std::string& item : split_list(f.snr, "--snr"))
+            s.snr_db.push_back(parse_number(item, "--snr"));
+    }
+    return pinmask::noise_levels(s, text);
+}
+
+void refuse_sensor_flags_without_photons(const CLI::App& cmd) {
+    for (const char* flag : kSensorFlags) {
+        if (cmd.count(flag) > 0) {
+            throw InvalidInput(std::string(flag) +
+                               ": a sensor parameter of the photon model; give --photons too "
+                               "(the --snr model is Gaussian noise at a fixed SNR)");
+        }
+    }
+}
+
+nlohmann::ordered_json noise_json(const NoiseModel& m) {
+    switch (m.kind) {
+        case NoiseKind::kNone:
+            return {{"kind", "none"}};
+        case NoiseKind::kGaussianSnr:
+            return {{"kind", "gaussian-snr"},
+                    {"snr_db", m.snr_db},
+                    {"definition", "10 log10(mean(c^2) / sigma^2) over the noiseless capture"}};
+        case NoiseKind::kPhoton:
+            break;
+    }
+    return {{"kind", "photon"},
+            {"photons_per_pinhole", m.photons_per_pinhole},
+            {"read_noise_e", m.read_noise_e},
+            {"dark_current_e", m.dark_current_e},
+            {"full_well_e", finite_or_null(m.full_well_e)},
+            {"adc_bits", m.adc_bits},
+            {"film_optical_density", finite_or_null(m.film_optical_density)},
+            {"film_transmission", film_transmission(m)}};
+}
+
+}  // namespace pinmask::cli

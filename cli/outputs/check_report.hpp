@@ -1,0 +1,23 @@
+// Rendering of `pinmask check` results: the text table and the --json object.
+#pragma once
+
+#include <string>
+
+#include "export/file_check.hpp"
+#include "layout/vendor_rules.hpp"
+
+namespace pinmask::cli {
+
+struct CheckReport {
+    std::string input, kind, vendor, mask;  // mask: the design compared with ("" if none)
+    std::string settings;                   // where the layout settings came from
+    std::size_t list = 20;                  // violations listed per rule
+    const FileCheck* check = nullptr;
+    DrcRules rules;
+    std::string note;
+};
+
+void print_check_text(const CheckReport& r, const VendorRules& vendor);
+void print_check_json(const CheckReport& r);
+
+}  // namespace pinmask::cli

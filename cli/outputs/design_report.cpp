@@ -1,0 +1,197 @@
+// The `pinmask design` report rendered: a table (quantity, value, note) or one JSON object whose
+// keys carry units; infinite values are JSON null with the reason under "notes".
+#include "cli/outputs/design_report.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/units.hpp"
+
+namespace pinmask::cli {
+namespace {
+
+std::string num(double v, int digits = 4) {
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    return buf;
+}
+
+std::string length(double v) { return format_length(v); }
+
+// A number, or null with a note when it is infinite.
+void put(nlohmann::ordered_json& j, nlohmann::ordered_json& notes, const std::string& key, double v,
+         const std::string& why_infinite = "") {
+    if (std::isfinite(v)) {
+        j[key] = v;
+    } else {
+        j[key] = nullptr;
+        notes[key] = std::string(v > 0 ? "+inf" : "-inf") +
+                     (why_infinite.empty() ? "" : ": " + why_infinite);
+    }
+}
+
+}  // namespace
+
+nlohmann::ordered_json design_json(const OpticsReport& r, const WorkingDistance& wd) {
+    using Json = nlohmann::ordered_json;
+    Json j, notes = Json::object();
+    const Camera& c = r.camera;
+    Json cam;
+    put(cam, notes, "object_distance_m", c.object_distance_m, "distant object");
+    put(cam, notes, "lens_focal_m", c.lens_focal_m, "no lens");
+    cam["sensor_distance_m"] = c.sensor_distance_m;
+    cam["wavelength_m"] = c.wavelength_m;
+    cam["pixel_pitch_m"] = c.pixel_pitch_m;
+    cam["pinhole_m"] = c.pinhole_m;
+    cam["sensor_px"] = {c.sensor_cols, c.sensor_rows};
+    j["camera"] = cam;
+    j["geometry"] = {{"n", r.geometry.n},
+                     {"holes", r.geometry.holes},
+                     {"tiles", {r.geometry.tiles_rows, r.geometry.tiles_cols}}};
+    const std::string focus = "f = f' (Fraunhofer limit: 1/z_eff = 0)";
+    j["optimum_pinhole_m"] = r.optimum_pinhole_m;
+    j["fresnel_number"] = r.fresnel_number;
+    j["fresnel_number_with_lens"] = r.fresnel_number_with_lens;
+    j["fresnel_number_with_lens_at_u"] = r.fresnel_number_with_lens_at_u;
+    put(j, notes, "effective_distance_m", r.effective_distance_m, focus);
+    put(j, notes, "effective_distance_at_u_m", r.effective_distance_at_u_m, "1/f - 1/f' + 1/u = 0");
+    j["magnification"] = r.magnification;
+    j["magnification_at_u"] = r.magnification_at_u;
+    j["geometric_spot_m"] = r.geometric_spot_m;
+    j["geometric_spot_at_u_m"] = r.geometric_spot_at_u_m;
+    j["pixels_per_cell"] = r.pixels_per_cell;
+    j["pixels_per_cell_at_u"] = r.pixels_per_cell_at_u;
+    j["integer_pixels_per_cell"] = r.integer_pixels_per_cell;
+    put(j, notes, "pinhole_for_integer_pixels_m", r.pinhole_for_integer_pixels_m,
+        "magnification 1 - f/f' = 0: every pinhole images to the same spot");
+    j["max_separation_m"] = r.max_separation_m;
+    j["lsi_tolerance_px"] = r.options.lsi_tolerance_px;
+    j["lsi_min_object_distance_m"] = r.lsi_min_object_distance_m;
+    j["lsi_mismatch_px"] = r.lsi_mismatch_px;
+    j["lsi_shift_invariant"] = r.is_shift_invariant();
+    j["psf_size_px"] = r.psf_size_px;
+    j["periods_on_sensor"] = {{"cols", r.periods_on_sensor_cols},
+                              {"rows", r.periods_on_sensor_rows}};
+    j["mask_size_m"] = {{"width", r.mask_width_m}, {"height", r.mask_height_m}};
+    j["open_fraction"] = r.open_fraction;
+    j["light_gain"] = r.light_gain;
+    j["kernel_model"] = kernel_model_name(r.kernel_model);
+    j["kernel_reason"] = r.kernel_reason;
+    j["whole_pixels_per_cell_at_u"] = wd.pixels_per_cell;
+    put(j, notes, "pinhole_for_pixels_per_cell_m", wd.pinhole_for_pixels_per_cell_m,
+        "1 - f/f' + f/u = 0: every pinhole images to the same spot");
+    j["period_at_u_px"] = wd.period_px;
+    j["lsi_mismatch_at_u_px"] = wd.lsi_mismatch_px;
+    j["object_distance_range_m"] = {
+        wd.range_near_m, std::isfinite(wd.range_far_m) ? Json(wd.range_far_m) : Json(nullptr)};
+    if (!std::isfinite(wd.range_far_m)) {
+        notes["object_distance_range_m"] = "far end +inf: shift invariant out to infinity";
+    }
+    j["optimum_pinhole_lensless_m"] = wd.optimum_pinhole_lensless_m;
+    put(j, notes, "optimum_pinhole_with_lens_m", wd.optimum_pinhole_with_lens_m,
+        "z_eff(u) infinite (f = f' at u = inf): no diffraction distance to balance; the lensless "
+        "rule optimum_pinhole_lensless_m is the limit");
+    put(j, notes, "spot_spread_cells", wd.spot_spread_cells, "Fresnel number 0");
+    j["spot_spreads_beyond_cell"] = wd.spreads_beyond_cell();
+    j["notes"] = notes;
+    return j;
+}
+
+namespace {
+std::string range_text(const WorkingDistance& wd) {
+    return length(wd.range_near_m) + (wd.range_near_clamped_to_focal ? " (f')" : "") + " .. " +
+           length(wd.range_far_m);
+}
+
+std::string regime_text(const OpticsReport& r, const WorkingDistance& wd) {
+    std::string s = kernel_model_name(r.kernel_model) +
+                    ", N_F = " + num(wd.fresnel_number_with_lens_at_u, 3) + "; spot ~" +
+                    num(wd.spot_spread_cells, 3) + " cells";
+    if (wd.spreads_beyond_cell()) s += "  WARNING: spots spread over more than one cell";
+    return s;
+}
+
+}  // namespace
+
+std::string design_table(const OpticsReport& r, const WorkingDistance& wd,
+                         const std::string& solved, const std::vector<CameraInput>& inputs) {
+    const Camera& c = r.camera;
+    const std::string at_u = "u = " + length(c.object_distance_m);
+    std::vector<std::vector<std::string>> rows = {
+        {"magnification M", num(r.magnification), "1 - f/f' (u = inf; < 0 past focus)"},
+        {"  at u", num(r.magnification_at_u), "1 - f/f' + f/u, " + at_u},
+        {"geometric spot = cell pitch p", length(r.geometric_spot_m),
+         "d |M| (u = inf, as the paper quotes)"},
+        {"  at u", length(r.geometric_spot_at_u_m), at_u},
+        {"pixels per cell", num(r.pixels_per_cell), "p / w"},
+        {"  at u", num(r.pixels_per_cell_at_u), at_u},
+        {"integer pixels per cell n_px", std::to_string(r.integer_pixels_per_cell),
+         "nearest integer (u = inf), at least 1"},
+        {"pinhole for n_px pixels per cell", length(r.pinhole_for_integer_pixels_m),
+         "n_px w / |1 - f/f'|"},
+        {"optimum single pinhole", length(r.optimum_pinhole_m), "1.56 sqrt(lambda f)"},
+        {"Fresnel number, no lens", num(r.fresnel_number), "d^2 / (4 lambda f)"},
+        {"effective distance z_eff", length(r.effective_distance_m),
+         "f f' / (f' - f), u = inf (inf: f = f'; < 0: past focus)"},
+        {"  at u", length(r.effective_distance_at_u_m), "1/z = 1/f - 1/f' + 1/u"},
+        {"Fresnel number with lens", num(r.fresnel_number_with_lens),
+         "d^2 / (4 lambda |z_eff|), u = inf"},
+        {"  at u", num(r.fresnel_number_with_lens_at_u), "used by the kernel models"},
+        {"largest separation s_max", length(r.max_separation_m), "n d"},
+        {"LSI min object distance", length(r.lsi_min_object_distance_m),
+         "f s_max / (" + num(r.options.lsi_tolerance_px) + " px * w)"},
+        {"LSI mismatch at u", num(r.lsi_mismatch_px) + " px",
+         std::string("f s_max / (u w): ") +
+             (r.is_shift_invariant() ? "shift invariant" : "NOT shift invariant") + " within " +
+             num(r.options.lsi_tolerance_px) + " px"},
+        {"PSF size (one period)",
+         std::to_string(r.psf_size_px) + " x " + std::to_string(r.psf_size_px) + " px", "n n_px"},
+        {"periods on the sensor",
+         num(r.periods_on_sensor_cols, 3) + " x " + num(r.periods_on_sensor_rows, 3),
+         std::to_string(c.sensor_cols) + " x " + std::to_string(c.sensor_rows) + " px / PSF size"},
+        {"mask size", length(r.mask_width_m) + " x " + length(r.mask_height_m),
+         "n tiles d per side"},
+        {"open fraction", num(100 * r.open_fraction, 3) + " %", "K / n^2"},
+        {"light gain", num(r.light_gain) + " x", "K: light over one pinhole"},
+        {"kernel model", kernel_model_name(r.kernel_model), r.kernel_reason},
+        {"WORKING DISTANCE", "", at_u + " (the camera is designed for this u)"},
+        {"whole pixels per cell N at u", std::to_string(wd.pixels_per_cell),
+         solved.empty() ? "nearest whole number to the pitch at u" : solved},
+        {"pinhole for N px per cell at u", length(wd.pinhole_for_pixels_per_cell_m),
+         "N w / |1 - f/f' + f/u|" + std::string(solved.empty() ? "" : " (used above)")},
+        {"period at u", num(wd.period_px, 6) + " px", "n d |M(u)| / w"},
+        {"LSI mismatch at u", num(wd.lsi_mismatch_px, 3) + " px",
+         "n |pitch(u) - N|: against the N-pixel model the decoder uses"},
+        {"usable object distances", range_text(wd),
+         "pitch within " + num(r.options.lsi_tolerance_px) +
+             " px of u's across s_max: f s_max |1/u' - 1/u| / w"},
+        {"optimum pinhole, lensless", length(wd.optimum_pinhole_lensless_m),
+         "1.56 sqrt(lambda f) (the paper's rule)"},
+        {"optimum pinhole, with the lens", length(wd.optimum_pinhole_with_lens_m),
+         "1.56 sqrt(lambda |z_eff(u)|), z_eff(u) = 1/(1/f - 1/f' + 1/u)"},
+        {"regime", regime_text(r, wd),
+         "Fresnel number with the lens at u; spot = max(1, 1/(2 N_F)) cells"},
+    };
+    std::size_t w0 = 8, w1 = 5;
+    for (const auto& row : rows) {
+        w0 = std::max(w0, row[0].size());
+        w1 = std::max(w1, row[1].size());
+    }
+    std::ostringstream s;
+    auto line = [&](const std::string& a, const std::string& b, const std::string& n) {
+        s << a << std::string(w0 + 2 - a.size(), ' ') << b << std::string(w1 + 2 - b.size(), ' ')
+          << n << "\n";
+    };
+    line("input", "value", "from");
+    for (const CameraInput& in : inputs) line(in.symbol, in.value, in.source);
+    s << "\n";
+    line("quantity", "value", "note");
+    for (const auto& row : rows) line(row[0], row[1], row[2]);
+    return s.str();
+}
+
+}  // namespace pinmask::cli

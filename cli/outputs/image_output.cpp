@@ -1,0 +1,59 @@
+#include "cli/outputs/image_output.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <iostream>
+
+#include "core/error.hpp"
+#include "core/image_io.hpp"
+
+namespace pinmask::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string lower_ext(const fs::path& path) {
+    std::string ext = path.extension().string();
+    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    return ext;
+}
+
+}  // namespace
+
+void check_image_extension(const std::string& path, const std::string& flag) {
+    const std::string ext = lower_ext(path);
+    if (ext != ".tif" && ext != ".tiff" && ext != ".png" && ext != ".npy") {
+        throw invalid_field(flag, path, "must end in .tif, .tiff (float32), .png (16-bit) or .npy");
+    }
+    const fs::path dir = fs::path(path).parent_path();
+    if (!dir.empty() && !fs::is_directory(dir)) {
+        throw invalid_field(flag, path, "the output directory does not exist");
+    }
+}
+
+void write_image_as(const fs::path& tmp, const fs::path& final_path, const Image& image) {
+    const std::string ext = lower_ext(final_path);
+    if (ext == ".png") {
+        write_png(tmp, image, 16);
+    } else if (ext == ".npy") {
+        write_npy(tmp, image, SampleFormat::kFloat32);
+    } else {
+        write_tiff(tmp, image, SampleFormat::kFloat32);
+    }
+}
+
+void warn_png_clipping(const std::string& who, const std::string& path, const Image& image) {
+    if (path.empty() || lower_ext(path) != ".png") return;
+    double lo = 0.0, hi = 0.0;
+    for (const Plane& ch : image.channels) {
+        lo = std::min(lo, ch.minCoeff());
+        hi = std::max(hi, ch.maxCoeff());
+    }
+    if (lo < 0.0 || hi > 1.0) {
+        std::cerr << who << ": warning: " << path << ": values in [" << lo << ", " << hi
+                  << "] are clipped to [0, 1] in a PNG; use .tiff or .npy for raw float values\n";
+    }
+}
+
+}  // namespace pinmask::cli

@@ -1,0 +1,173 @@
+#include "cli/outputs/search_outputs.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "core/atomic_file.hpp"
+#include "core/number_format.hpp"
+#include "io/json_strict.hpp"
+#include "io/mask_json.hpp"
+#include "report/holes_plot.hpp"
+
+namespace pinmask::cli {
+namespace fs = std::filesystem;
+
+namespace {
+
+double score_or_nan(const Mask& m, const char* key) {
+    const auto it = m.provenance.scores.find(key);
+    return it == m.provenance.scores.end() ? NAN : it->second;
+}
+
+// "Best possible for K holes <= X dB" (search/objective_bound): for rank 1's K, and with a
+// pinhole-count range the largest bound over the range's K.
+std::string bound_summary(const SearchPipelineSummary& summary) {
+    if (summary.ranked.empty() || !std::isfinite(summary.ranked.front().upper_bound_psnr_db))
+        return "";
+    const RankedMask& top = summary.ranked.front();
+    std::ostringstream s;
+    s << "\nBest possible for " << top.mask.pattern.pinholes.size()
+      << " holes <= " << format_cell(top.upper_bound_psnr_db)
+      << " dB (analytic Wiener PSNR of any pattern with "
+      << "that K, optimal linear decoder, this kernel, prior and noise); rank 1: "
+      << format_cell(score_or_nan(top.mask, "analytic_wiener_psnr_db")) << " dB.\n";
+    const RankedMask* best = nullptr;
+    for (const RankedMask& r : summary.best_per_holes)
+        if (std::isfinite(r.upper_bound_psnr_db) &&
+            (!best || r.upper_bound_psnr_db > best->upper_bound_psnr_db))
+            best = &r;
+    if (best) {
+        s << "Best possible for any K searched <= " << format_cell(best->upper_bound_psnr_db)
+          << " dB (K = " << best->mask.pattern.pinholes.size() << ").\n";
+    }
+    return s.str();
+}
+
+}  // namespace
+
+std::string search_summary_markdown(const SearchPipelineSummary& summary) {
+    std::ostringstream s;
+    s << "| rank | geometry hash | objective | analytic Wiener PSNR (dB) | simulated Wiener PSNR "
+         "(dB) | simulated TV PSNR (dB) | max sidelobe / K | min |P^| / sqrt(K) |\n"
+      << "|---:|---|---:|---:|---:|---:|---:|---:|\n";
+    for (std::size_t i = 0; i < summary.ranked.size(); ++i) {
+        const RankedMask& r = summary.ranked[i];
+        const Mask& m = r.mask;
+        s << "| " << i + 1 << " | " << geometry_hash(m) << " | " << format_cell(r.objective, "%.4f")
+          << " | " << format_cell(score_or_nan(m, "analytic_wiener_psnr_db")) << " | "
+          << format_cell(r.sim_wiener_psnr_db) << " | " << format_cell(r.sim_tv_psnr_db) << " | "
+          << format_cell(score_or_nan(m, "max_sidelobe")) << " | "
+          << format_cell(-score_or_nan(m, "min_spectrum")) << " |\n";
+    }
+    // --robust: the expected PSNR under fabrication errors beside the nominal figure.
+    bool robust = false;
+    for (const RankedMask& r : summary.ranked)
+        robust = robust || !std::isnan(score_or_nan(r.mask, "robust_wiener_psnr_db"));
+    if (robust) {
+        s << "\nAnalytic Wiener PSNR (dB), nominal -> expected under the --robust fabrication "
+             "errors (decoded with the nominal PSF):";
+        for (std::size_t i = 0; i < summary.ranked.size(); ++i) {
+            const Mask& m = summary.ranked[i].mask;
+            s << (i ? "," : "") << " rank " << i + 1 << " "
+              << format_cell(score_or_nan(m, "analytic_wiener_psnr_db")) << " -> "
+              << format_cell(score_or_nan(m, "robust_wiener_psnr_db"));
+        }
+        s << "\n";
+    }
+    const SearchSummary& sr = summary.search;
+    s << "\n"
+      << sr.evaluations << " evaluations; stopped: " << search_termination_name(summary.termination)
+      << " (" << search_termination_message(summary.termination) << "); per chain:";
+    for (auto e : sr.evaluations_per_chain) s << " " << e;
+    s << "\nRe-ranked by simulation: " << summary.reranked << " of " << summary.ranked.size()
+      << " candidates.\n";
+    for (std::size_t i = 0; i < summary.ranked.size(); ++i) {
+        if (summary.ranked[i].spectral_zero) {
+            s << "WARNING: rank " << i + 1 << ": " << summary.ranked[i].spectral_zero_message
+              << " (kept because of --allow-spectral-zeros)\n";
+        }
+    }
+    if (!summary.best_per_holes.empty()) {
+        s << "\nBest mask per pinhole count (predicted by the analytic objective; light gain = K "
+             "times one pinhole's light):\n\n"
+          << "| K | light gain | objective | analytic Wiener PSNR (dB) | bound (dB) | geometry "
+             "hash | spectral zero |\n|---:|---:|---:|---:|---:|---|---|\n";
+        for (const RankedMask& r : summary.best_per_holes) {
+            const std::size_t k = r.mask.pattern.pinholes.size();
+            s << "| " << k << " | " << k << "x | " << format_cell(r.objective, "%.4f") << " | "
+              << format_cell(score_or_nan(r.mask, "analytic_wiener_psnr_db")) << " | "
+              << format_cell(r.upper_bound_psnr_db) << " | " << geometry_hash(r.mask) << " | "
+              << (r.spectral_zero ? "yes" : "no") << " |\n";
+        }
+    }
+    s << bound_summary(summary);
+    if (summary.planned_s > 0.0) {  // timings only for time-budget runs (never reproducible)
+        s << "Time: planned " << format_cell(summary.planned_s, "%.2f") << " s, used "
+          << format_cell(summary.used_s, "%.2f") << " s (search "
+          << format_cell(summary.search_s, "%.2f") << " s, re-ranking "
+          << format_cell(summary.rerank_s, "%.2f") << " s, "
+          << format_cell(summary.rerank_reserved_s, "%.2f") << " s reserved for it).\n";
+    }
+    return s.str();
+}
+
+std::vector<fs::path> write_search_outputs(const fs::path& dir,
+                                           const SearchPipelineSummary& summary,
+                                           const nlohmann::ordered_json& config) {
+    fs::create_directories(dir);
+    StagedFiles files;
+    std::vector<fs::path> paths;
+    for (std::size_t i = 0; i < summary.ranked.size(); ++i) {
+        const fs::path p = dir / ("rank-" + std::to_string(i + 1) + ".mask.json");
+        const Mask& mask = summary.ranked[i].mask;
+        files.stage(p, [&](const fs::path& tmp) { io::write_mask_file(tmp, mask); });
+        paths.push_back(p);
+    }
+    std::ostringstream log;
+    log << "evaluations_per_chain,evaluations,best_objective\n";
+    for (const auto& row : summary.search.checkpoints) {
+        if (!std::isfinite(row.best_objective)) continue;  // before the first accepted pattern
+        log << row.evaluations_per_chain << "," << row.evaluations << ","
+            << format_cell(row.best_objective, "%.9g") << "\n";
+    }
+    files.stage_bytes(dir / "run-log.csv", log.str());
+    std::ostringstream timing;
+    timing << "seconds,evaluations,best_objective\n";
+    for (const auto& row : summary.search.log) {
+        if (!std::isfinite(row.best_objective)) continue;
+        timing << format_cell(row.seconds, "%.3f") << "," << row.evaluations << ","
+               << format_cell(row.best_objective, "%.9g") << "\n";
+    }
+    files.stage_bytes(dir / "timing.csv", timing.str());
+    if (!summary.best_per_holes.empty()) {
+        std::ostringstream csv;
+        csv << "holes,light_gain,objective,analytic_wiener_psnr_db,spectral_zero,geometry_hash,"
+               "upper_bound_psnr_db\n";
+        std::vector<HolesPoint> points;
+        for (const RankedMask& r : summary.best_per_holes) {
+            const int k = static_cast<int>(r.mask.pattern.pinholes.size());
+            const double psnr = score_or_nan(r.mask, "analytic_wiener_psnr_db");
+            csv << k << "," << k << "," << format_cell(r.objective, "%.9g") << ","
+                << format_cell(psnr, "%.9g") << "," << (r.spectral_zero ? 1 : 0) << ","
+                << geometry_hash(r.mask) << "," << format_cell(r.upper_bound_psnr_db, "%.9g")
+                << "\n";
+            points.push_back({k, psnr});
+            const fs::path p = dir / ("best-K" + std::to_string(k) + ".mask.json");
+            files.stage(p, [&](const fs::path& tmp) { io::write_mask_file(tmp, r.mask); });
+        }
+        files.stage_bytes(dir / "holes.csv", csv.str());
+        const std::string title = "search: predicted PSNR of the best mask per pinhole count";
+        files.stage(dir / "holes.svg",
+                    [&](const fs::path& tmp) { write_holes_svg(tmp, points, title); });
+        files.stage(dir / "holes.png",
+                    [&](const fs::path& tmp) { write_holes_png(tmp, points, title); });
+    }
+    files.stage_bytes(dir / "summary.md",
+                      "# Search summary\n\n" + search_summary_markdown(summary));
+    files.stage_bytes(dir / "search.config.json", io::json_strict::pretty(config) + "\n");
+    files.commit();
+    return paths;
+}
+
+}  // namespace pinmask::cli

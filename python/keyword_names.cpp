@@ -1,0 +1,47 @@
+#include "python/keyword_names.hpp"
+
+#include <algorithm>
+#include <array>
+#include <utility>
+
+#include "core/field_names.hpp"
+
+namespace pinmask::py_names {
+namespace {
+
+// field name (as the libraries write it) -> keyword argument. Sorted by field name (a test
+// checks it). A field whose keyword is its own name needs no row.
+constexpr std::array<std::pair<std::string_view, std::string_view>, 17> kKeywords{{
+    {"chord_tolerance_m", "chord_tol"},
+    {"frame_m", "frame"},
+    {"grid_m", "grid"},
+    {"hole_side_m", "hole_side"},
+    {"iterations", "iters"},
+    {"lambda", "lambda_"},
+    {"margin_m", "margin"},
+    {"no_rerank", "rerank_scenes=[]"},
+    {"no_rerank_tv", "rerank_tv=False"},
+    {"nonnegative", "nonneg"},
+    {"png_dpi", "dpi"},
+    {"polygon_sides", "sides"},
+    {"prior.count", "prior_scenes"},
+    {"tiff_dpi", "dpi"},
+    {"tolerance", "tol"},
+    {"weights.analytic_wiener", "w_analytic"},
+    {"wiener_nsr", "nsr"},
+}};
+
+}  // namespace
+
+std::optional<std::string> keyword_spelling(std::string_view field) {
+    const auto it = std::lower_bound(kKeywords.begin(), kKeywords.end(), field,
+                                     [](const auto& row, std::string_view f) { return row.first < f; });
+    if (it == kKeywords.end() || it->first != field) return std::string(field);
+    return std::string(it->second);
+}
+
+std::string spell_keywords(std::string_view message) {
+    return spell_fields(message, &keyword_spelling);
+}
+
+}  // namespace pinmask::py_names

@@ -1,0 +1,126 @@
+// decode/decode_request: the typed request sorted into the chosen method's options, and the
+// refusal of a parameter the method does not read, naming the request's fields (field_ref) and
+// never a face's spelling.
+#include <doctest/doctest.h>
+
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "decode/decode_method.hpp"
+#include "decode/decode_request.hpp"
+
+using namespace pinmask;
+
+namespace {
+
+std::string refusal(const DecodeRequest& r, const std::vector<GivenParameter>& given) {
+    try {
+        refuse_unused_parameters(r, given);
+    } catch (const InvalidInput& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+}  // namespace
+
+TEST_CASE("decode_request: each method's options get the parameters it reads, and only those") {
+    DecodeRequest r;
+    r.nsr = 0.5;
+    r.lambda = 0.25;
+    r.regulariser = TikhonovRegulariser::kGradient;
+    r.eps = 3.0;
+    r.nonnegative = true;
+    r.iterations = 17;
+    r.tolerance = 1e-6;
+    r.model = ConvModel::kLinear;
+
+    r.method = DecodeMethod::kWiener;
+    DecodeOptions d = decode_options(r);
+    CHECK(d.method == DecodeMethod::kWiener);
+    CHECK(d.model == ConvModel::kLinear);
+    CHECK(d.wiener.nsr == 0.5);
+    CHECK(d.tikhonov.lambda == DecodeOptions{}.tikhonov.lambda);
+    CHECK(d.iterative.max_iterations == DecodeOptions{}.iterative.max_iterations);
+
+    r.method = DecodeMethod::kTikhonov;
+    d = decode_options(r);
+    CHECK(d.tikhonov.lambda == 0.25);
+    CHECK(d.tikhonov.regulariser == TikhonovRegulariser::kGradient);
+    CHECK(d.wiener.nsr == DecodeOptions{}.wiener.nsr);
+
+    r.method = DecodeMethod::kTv;
+    d = decode_options(r);
+    CHECK(d.tv.lambda == 0.25);
+    CHECK(d.tv.nonnegative);
+    CHECK(d.iterative.max_iterations == 17);
+    CHECK(d.iterative.tolerance == 1e-6);
+    CHECK(d.iterative.record_history == DecodeOptions{}.iterative.record_history);
+
+    r.method = DecodeMethod::kTvqc;
+    d = decode_options(r);
+    REQUIRE(d.tvqc.eps.has_value());
+    CHECK(*d.tvqc.eps == 3.0);
+    CHECK(d.tvqc.nonnegative);
+
+    r.method = DecodeMethod::kRichardsonLucy;
+    d = decode_options(r);
+    CHECK(d.iterative.max_iterations == 17);
+    CHECK(d.tv.lambda == DecodeOptions{}.tv.lambda);
+}
+
+TEST_CASE("decode_request: the pipeline options carry crop, background and the rest as given") {
+    DecodeRequest r;
+    r.crop = {CropMode::kCorner, 4, 9};
+    r.background = {BackgroundMode::kValue, 2.5};
+    r.downsample = 2;
+    r.normalize = NormalizeMode::kL2;
+    r.precision = Precision::kDouble;
+    r.threads = 3;
+    const CaptureDecodeOptions o = capture_decode_options(r);
+    CHECK(o.crop.mode == CropMode::kCorner);
+    CHECK(o.crop.row == 4);
+    CHECK(o.crop.col == 9);
+    CHECK(o.background == BackgroundMode::kValue);
+    CHECK(o.background_value == 2.5);
+    CHECK(o.downsample == 2);
+    CHECK(o.normalize == NormalizeMode::kL2);
+    CHECK(o.precision == Precision::kDouble);
+    CHECK(o.threads == 3);
+    CHECK(o.decode.method == DecodeMethod::kWiener);
+}
+
+TEST_CASE("decode_request: a parameter the method ignores is refused by its field name") {
+    DecodeRequest r;
+    r.method = DecodeMethod::kTv;
+    CHECK(refusal(r, {{MethodParameter::kNsr, "0.1"}}) ==
+          "`nsr` = 0.1: is not used by `method` tv (only by wiener); remove it or choose that "
+          "method");
+    r.method = DecodeMethod::kWiener;
+    CHECK(refusal(r, {{MethodParameter::kIterations, "5"}}).find(
+              "`iterations` = 5: is not used by `method` wiener (only by tv, tvqc, "
+              "richardson-lucy)") == 0);
+    CHECK(refusal(r, {{MethodParameter::kLambda, "1"}}).find("(only by tikhonov, tv)") !=
+          std::string::npos);
+    CHECK(refusal(r, {{MethodParameter::kNsr, "0.1"}}) == "no error");
+
+    // Every parameter's field is a DecodeRequest field name, and some method reads it.
+    for (const MethodParameter p : kMethodParameters) {
+        const std::string field = method_parameter_field(p);
+        CHECK(field != "?");
+        bool read = false;
+        for (const DecodeMethod m : kDecodeMethods) {
+            DecodeOptions probe;
+            probe.method = m;
+            read = read || write_method_parameter(probe, p, DecodeRequest{});
+        }
+        CHECK(read);
+    }
+
+    r.method = DecodeMethod::kTikhonov;
+    r.lambda = 0.0;
+    const std::string m = refusal(r, {});
+    CHECK(m.find("`lambda` = ") == 0);
+    CHECK(m.find("use `method` wiener `nsr` 0 for the floored inverse") != std::string::npos);
+}
