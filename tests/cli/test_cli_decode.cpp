@@ -381,9 +381,10 @@ TEST_CASE("decode's library fields are spelled as the flags that set them") {
         {MethodParameter::kIterations, "--iters"},
         {MethodParameter::kTolerance, "--tol"},
     };
-    for (const auto& [parameter, flag] : flags) {
+    for (const auto& row : flags) {
+        const std::string flag = row.second;  // a copy: clang cannot capture a structured binding
         INFO(flag);
-        CHECK(cli::flag_spelling(method_parameter_field(parameter)) == std::string(flag));
+        CHECK(cli::flag_spelling(method_parameter_field(row.first)) == flag);
     }
     DecodeRequest r;
     r.method = DecodeMethod::kTv;

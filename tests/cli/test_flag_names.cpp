@@ -83,7 +83,10 @@ TEST_CASE("every field a library names in a message has a command-line flag") {
     // The scan sees the libraries' references (two of them, as a check of the scan).
     CHECK(fields.count("robust") == 1);
     CHECK(fields.count("chord_tolerance_m") == 1);
-    for (const auto& [field, file] : fields) {
+    for (const auto& entry : fields) {
+        // Copies: clang cannot capture a structured binding in INFO's lambda.
+        const std::string& field = entry.first;
+        const std::string& file = entry.second;
         INFO("field_ref(\"" << field << "\") in " << file);
         CHECK(pinmask::is_field_name(field));
         CHECK(pinmask::cli::flag_spelling(field).has_value());
