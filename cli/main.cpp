@@ -4,8 +4,8 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
-#include "cli/options/flag_names.hpp"
 #include "cli/options/fft_setup.hpp"
+#include "cli/options/flag_names.hpp"
 #include "cli/options/option_checks.hpp"
 #include "core/allocator.hpp"
 #include "core/error.hpp"
@@ -82,8 +82,9 @@ int main(int argc, char** argv) {
         if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
         return report_input_error([&] { app.exit(e); });
     } catch (const InvalidInput& e) {
-        return report_input_error(
-            [&] { std::cerr << "pinmask: error: " << cli::spell_flags(readable_numbers(e.what())) << "\n"; });
+        return report_input_error([&] {
+            std::cerr << "pinmask: error: " << cli::spell_flags(readable_numbers(e.what())) << "\n";
+        });
     } catch (const std::exception& e) {
         std::cerr << "pinmask: failed: " << cli::spell_flags(readable_numbers(e.what())) << "\n";
         return 1;

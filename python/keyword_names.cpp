@@ -34,8 +34,9 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 17> kKeyword
 }  // namespace
 
 std::optional<std::string> keyword_spelling(std::string_view field) {
-    const auto it = std::lower_bound(kKeywords.begin(), kKeywords.end(), field,
-                                     [](const auto& row, std::string_view f) { return row.first < f; });
+    const auto it =
+        std::lower_bound(kKeywords.begin(), kKeywords.end(), field,
+                         [](const auto& row, std::string_view f) { return row.first < f; });
     if (it == kKeywords.end() || it->first != field) return std::string(field);
     return std::string(it->second);
 }

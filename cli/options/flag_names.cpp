@@ -113,8 +113,9 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 96> kFlags{{
 }  // namespace
 
 std::optional<std::string> flag_spelling(std::string_view field) {
-    const auto it = std::lower_bound(kFlags.begin(), kFlags.end(), field,
-                                     [](const auto& row, std::string_view f) { return row.first < f; });
+    const auto it =
+        std::lower_bound(kFlags.begin(), kFlags.end(), field,
+                         [](const auto& row, std::string_view f) { return row.first < f; });
     if (it == kFlags.end() || it->first != field) return std::nullopt;
     return std::string(it->second);
 }
