@@ -1,12 +1,16 @@
 // pinmask: the command-line tool. Wires the subcommands (cli/commands.hpp) and maps errors to exit
 // codes.
+#include <cerrno>
+#include <filesystem>
 #include <functional>
 #include <iostream>
+#include <string_view>
 
 #include "cli/commands.hpp"
 #include "cli/options/fft_setup.hpp"
 #include "cli/options/flag_names.hpp"
 #include "cli/options/option_checks.hpp"
+#include "cli/outputs/interrupt.hpp"
 #include "core/allocator.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
@@ -38,11 +42,57 @@ int report_input_error(const std::function<void()>& print) {
     return 2;
 }
 
+// "--name=" with nothing after '=': CLI11 would take the next argument as the value (so
+// `--stats= --json` wrote the stats to a file named "--json"). Returns the first such argument.
+std::string_view empty_assigned_value(int argc, char** argv) {
+    for (int i = 1; i < argc; ++i) {
+        const std::string_view a = argv[i];
+        if (a == "--") break;  // what follows is positional
+        if (a.size() > 3 && a.substr(0, 2) == "--" && a.back() == '=' &&
+            a.find('=') == a.size() - 1) {
+            return a;
+        }
+    }
+    return {};
+}
+
+// A filesystem error on a path the user named (too long, not permitted, read-only, a missing
+// folder): an input problem, said with the path and the system's reason. Other filesystem
+// failures (disk full, I/O) stay runtime failures.
+bool is_path_error(const std::filesystem::filesystem_error& e) {
+    switch (e.code().value()) {
+        case ENAMETOOLONG:
+        case EACCES:
+        case EPERM:
+        case EROFS:
+        case ENOENT:
+        case ENOTDIR:
+        case EISDIR:
+        case ELOOP:
+        case EEXIST:
+            return true;
+        default:
+            return false;
+    }
+}
+
+std::string describe(const std::filesystem::filesystem_error& e) {
+    std::string what = "'" + e.path1().string() + "': " + e.code().message();
+    if (!e.path2().empty()) what += " (with '" + e.path2().string() + "')";
+    return what;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     using namespace pinmask;
     keep_freed_memory();  // core/allocator.hpp: no page faults re-taken per decode or evaluation
+    cli::install_cleanup_on_signal();  // a signal leaves no *.tmp-* file behind
+    if (const std::string_view bad = empty_assigned_value(argc, argv); !bad.empty()) {
+        std::cerr << "pinmask: error: " << bad.substr(0, bad.size() - 1)
+                  << ": the value after '=' is empty (give a value, or leave the option out)\n";
+        return 2;
+    }
     CLI::App app{
         "pinmask: design, simulate, export and decode coded pinhole-array masks for a coded "
         "pinhole lens camera.\nUnits take suffixes (440um, 55mm, 6m, 550nm); plain numbers are "
@@ -85,6 +135,13 @@ int main(int argc, char** argv) {
         return report_input_error([&] {
             std::cerr << "pinmask: error: " << cli::spell_flags(readable_numbers(e.what())) << "\n";
         });
+    } catch (const std::filesystem::filesystem_error& e) {
+        if (is_path_error(e)) {
+            return report_input_error(
+                [&] { std::cerr << "pinmask: error: cannot use " << describe(e) << "\n"; });
+        }
+        std::cerr << "pinmask: failed: " << describe(e) << "\n";
+        return 1;
     } catch (const std::exception& e) {
         std::cerr << "pinmask: failed: " << cli::spell_flags(readable_numbers(e.what())) << "\n";
         return 1;

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cstring>
 #include <fstream>
 #include <string>
 
@@ -20,6 +21,51 @@ fs::path temp_sibling(const fs::path& path) {
     return tmp;
 }
 
+// The temporaries that exist right now, readable from a signal handler: a list of slots that
+// only grows (a slot is allocated outside any handler and reused once free), each holding a
+// NUL-terminated path and a state. The handler reads only slots whose state is kLive.
+struct TempSlot {
+    static constexpr int kFree = 0, kWriting = 1, kLive = 2;
+    std::atomic<int> state{kFree};
+    std::string path;  // written only while kWriting; c_str() stable while kLive
+    TempSlot* next = nullptr;
+};
+std::atomic<TempSlot*> g_slots{nullptr};
+
+TempSlot* register_temp(const fs::path& tmp) {
+    TempSlot* slot = nullptr;
+    for (TempSlot* s = g_slots.load(); s && !slot; s = s->next) {
+        int expected = TempSlot::kFree;
+        if (s->state.compare_exchange_strong(expected, TempSlot::kWriting)) slot = s;
+    }
+    if (!slot) {
+        slot = new TempSlot;  // never freed: the handler may be walking the list
+        slot->state.store(TempSlot::kWriting);
+        slot->next = g_slots.load();
+        while (!g_slots.compare_exchange_weak(slot->next, slot)) {
+        }
+    }
+    slot->path = tmp.string();
+    slot->state.store(TempSlot::kLive);
+    return slot;
+}
+
+void release_temp(TempSlot* slot) {
+    if (slot) slot->state.store(TempSlot::kFree);
+}
+
+// Registers a temporary for its lifetime (write_file_atomic's).
+class TempGuard {
+  public:
+    explicit TempGuard(const fs::path& tmp) : slot_(register_temp(tmp)) {}
+    TempGuard(const TempGuard&) = delete;
+    TempGuard& operator=(const TempGuard&) = delete;
+    ~TempGuard() { release_temp(slot_); }
+
+  private:
+    TempSlot* slot_;
+};
+
 void write_bytes(const fs::path& p, std::string_view bytes) {
     std::ofstream out(p, std::ios::binary | std::ios::trunc);
     if (!out) throw RuntimeFailure("cannot open " + p.string() + " for writing");
@@ -30,9 +76,16 @@ void write_bytes(const fs::path& p, std::string_view bytes) {
 
 }  // namespace
 
+void remove_pending_temporaries() noexcept {
+    for (TempSlot* s = g_slots.load(); s; s = s->next) {
+        if (s->state.load() == TempSlot::kLive) ::unlink(s->path.c_str());
+    }
+}
+
 void write_file_atomic(const fs::path& path, const std::function<void(const fs::path&)>& write) {
     check_output_path(path, "output");
     const fs::path tmp = temp_sibling(path);
+    const TempGuard guard(tmp);
     try {
         write(tmp);
         fs::rename(tmp, path);
@@ -60,25 +113,30 @@ std::string list_paths(const std::vector<fs::path>& paths) {
 void StagedFiles::fail_rename_for_test(int index) { g_fail_rename_index = index; }
 
 StagedFiles::~StagedFiles() {
-    if (committed_) return;
-    for (const auto& t : temps_) {
-        std::error_code ec;
-        fs::remove(t, ec);
+    if (!committed_) {
+        for (const auto& t : temps_) {
+            std::error_code ec;
+            fs::remove(t, ec);
+        }
     }
+    for (void* slot : slots_) release_temp(static_cast<TempSlot*>(slot));
 }
 
 void StagedFiles::stage(const fs::path& path, const std::function<void(const fs::path&)>& write) {
     check_output_path(path, "output");
-    for (const fs::path& f : finals_) {
-        if (same_file(f, path)) {
+    const std::vector<std::string> keys = same_file_keys(path);
+    for (const std::string& key : keys) {
+        if (final_keys_.count(key)) {
             throw invalid_field("output", "'" + path.string() + "'",
                                 "is written twice by this run: two outputs must have different "
                                 "names");
         }
     }
+    final_keys_.insert(keys.begin(), keys.end());
     const fs::path tmp = temp_sibling(path);
     temps_.push_back(tmp);
     finals_.push_back(path);
+    slots_.push_back(register_temp(tmp));
     write(tmp);
 }
 

@@ -4,7 +4,9 @@
 
 #include <filesystem>
 #include <functional>
+#include <string>
 #include <string_view>
+#include <unordered_set>
 #include <vector>
 
 namespace pinmask {
@@ -16,6 +18,12 @@ void write_file_atomic(const std::filesystem::path& path,
 
 // Writes bytes (text or binary) atomically.
 void write_bytes_atomic(const std::filesystem::path& path, std::string_view bytes);
+
+// Unlinks every temporary file that write_file_atomic or a StagedFiles group has created and not
+// yet renamed or removed. Async-signal-safe (atomic loads and unlink only): a face's handler of a
+// fatal signal calls it before the process dies, so an interrupted run leaves no *.tmp-* file.
+// A temporary being renamed at that moment may already carry its final name (that file is whole).
+void remove_pending_temporaries() noexcept;
 
 // A group of files that appear together or not at all: stage() writes each to a temporary name
 // in the target directory, commit() renames them all; destroying an uncommitted group removes
@@ -42,6 +50,8 @@ class StagedFiles {
 
   private:
     std::vector<std::filesystem::path> temps_, finals_;
+    std::vector<void*> slots_;  // this group's entries of the pending-temporaries list
+    std::unordered_set<std::string> final_keys_;  // core/output_set same_file_keys of finals_
     bool committed_ = false;
 };
 

@@ -1,4 +1,5 @@
 // Format dispatch (magic bytes on read, extension on write) and the helpers the codecs share.
+#include "core/input_file.hpp"
 #include "core/image_io.hpp"
 
 #include <algorithm>
@@ -177,9 +178,7 @@ std::string lower(std::string s) {
 
 LoadedImage read_image(const fs::path& path) {
     std::error_code ec;
-    const auto status = fs::status(path, ec);
-    if (!fs::exists(status)) throw detail::bad_image_file(path, "file does not exist");
-    if (fs::is_directory(status)) throw detail::bad_image_file(path, "is a directory");
+    if (const auto problem = input_file_problem(path)) throw detail::bad_image_file(path, *problem);
     protect_input(path);  // no output of this run may replace it (core/output_set)
     std::ifstream in(path, std::ios::binary);
     if (!in) throw detail::bad_image_file(path, "cannot be opened for reading");

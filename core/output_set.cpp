@@ -1,10 +1,13 @@
 #include "core/output_set.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <mutex>
+#include <string>
 #include <system_error>
+#include <unordered_map>
 
 #include "core/error.hpp"
 
@@ -19,8 +22,14 @@ std::mutex& registry_mutex() {
 
 std::atomic<bool> g_protection{false};
 
-std::vector<fs::path>& protected_inputs() {
-    static std::vector<fs::path> inputs;
+// A protected input is found by its identity (device and inode) and by its canonical path, so
+// a lookup is one stat and one hash, whatever the number of inputs (a batch of 10,000
+// captures).
+struct ProtectedInputs {
+    std::unordered_map<std::string, fs::path> by_key;
+};
+ProtectedInputs& protected_inputs() {
+    static ProtectedInputs inputs;
     return inputs;
 }
 
@@ -46,14 +55,32 @@ fs::path nearest_existing_parent(const fs::path& p) {
     return parent;
 }
 
+// Identity keys of a path: "i<dev>:<ino>" when it exists, and "p<canonical path>" always.
+std::string inode_key(const fs::path& p) {
+    struct stat st {};
+    if (::stat(p.c_str(), &st) != 0) return "";
+    return "i" + std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino);
+}
+std::string path_key(const fs::path& p) { return "p" + canonical_or_absolute(p).string(); }
+
 const fs::path* find_protected(const fs::path& path) {
-    for (const fs::path& in : protected_inputs()) {
-        if (same_file(in, path)) return &in;
+    auto& map = protected_inputs().by_key;
+    if (map.empty()) return nullptr;
+    for (const std::string& key : {inode_key(path), path_key(path)}) {
+        if (key.empty()) continue;
+        if (const auto it = map.find(key); it != map.end()) return &it->second;
     }
     return nullptr;
 }
 
 }  // namespace
+
+std::vector<std::string> same_file_keys(const fs::path& p) {
+    std::vector<std::string> keys;
+    if (std::string key = inode_key(p); !key.empty()) keys.push_back(std::move(key));
+    keys.push_back(path_key(p));
+    return keys;
+}
 
 bool same_file(const fs::path& a, const fs::path& b) {
     std::error_code ec;
@@ -69,7 +96,7 @@ void enable_input_protection() { g_protection = true; }
 void reset_input_protection() {
     std::lock_guard lock(registry_mutex());
     g_protection = false;
-    protected_inputs().clear();
+    protected_inputs().by_key.clear();
 }
 
 void protect_input(const fs::path& path) {
@@ -77,14 +104,46 @@ void protect_input(const fs::path& path) {
     std::error_code ec;
     if (path.empty() || !fs::exists(path, ec)) return;
     std::lock_guard lock(registry_mutex());
-    if (find_protected(path) == nullptr) protected_inputs().push_back(canonical_or_absolute(path));
+    const fs::path canonical = canonical_or_absolute(path);
+    auto& map = protected_inputs().by_key;
+    if (const std::string key = inode_key(path); !key.empty()) map.emplace(key, canonical);
+    map.emplace(path_key(path), canonical);
 }
 
 void check_output_path(const fs::path& path, const std::string& flag) {
     if (path.empty()) throw invalid_field(flag, "''", "an output name must not be empty");
     std::error_code ec;
-    if (fs::is_directory(path, ec)) {
+    // Temporary siblings add ".tmp-<pid>-<n>" (twice when a writer nests) to the name: a name
+    // that leaves no room for them fails late with the system's raw message, so it is refused
+    // here, with the limit of the folder's file system.
+    const std::string name = path.filename().string();
+    const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
+    long name_max = ::pathconf(fs::exists(folder, ec) ? folder.c_str() : ".", _PC_NAME_MAX);
+    if (name_max <= 0) name_max = 255;
+    constexpr long kTempRoom = 64;
+    if (static_cast<long>(name.size()) + kTempRoom > name_max) {
+        throw bad_output(flag, path,
+                         "its file name has " + std::to_string(name.size()) +
+                             " bytes; this file system allows " + std::to_string(name_max) +
+                             " and pinmask keeps " + std::to_string(kTempRoom) +
+                             " of them for its temporary names: use a shorter name");
+    }
+    const fs::file_status st = fs::status(path, ec);  // follows a symlink to what it names
+    if (fs::is_directory(st)) {
         throw bad_output(flag, path, "is an existing directory, not a file name");
+    }
+    // Outputs are renamed into place: over a device, a pipe or a socket that would replace the
+    // special file itself (as root, /dev/null) with a regular file. Only regular files (or new
+    // names) are written.
+    if (fs::exists(st) && !fs::is_regular_file(st)) {
+        const char* kind = fs::is_character_file(st) ? "a character device"
+                           : fs::is_block_file(st)   ? "a block device"
+                           : fs::is_fifo(st)         ? "a named pipe"
+                           : fs::is_socket(st)       ? "a socket"
+                                                     : "not a regular file";
+        throw bad_output(flag, path,
+                         std::string("is ") + kind +
+                             ": pinmask writes only regular files (give a file name)");
     }
     std::lock_guard lock(registry_mutex());
     if (const fs::path* in = find_protected(path)) {
@@ -94,7 +153,14 @@ void check_output_path(const fs::path& path, const std::string& flag) {
 }
 
 void plan_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs) {
-    std::vector<const NamedPath*> seen;
+    // Every path is keyed once (identity and canonical path), so planning N outputs against M
+    // inputs costs O(N + M) lookups, not N x M comparisons.
+    std::unordered_map<std::string, const NamedPath*> input_keys, output_keys;
+    for (const NamedPath& in : inputs) {
+        if (in.path.empty()) continue;
+        for (const std::string& key : {inode_key(in.path), path_key(in.path)})
+            if (!key.empty()) input_keys.emplace(key, &in);
+    }
     for (const NamedPath& out : outputs) {
         if (out.path.empty()) {
             // "-o" is every command's required output; other empty names are optional outputs
@@ -107,21 +173,22 @@ void plan_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedP
             out.path.filename() == "..") {
             throw bad_output(out.flag, out.path, "names a directory, not a file");
         }
-        for (const NamedPath& in : inputs) {
-            if (!in.path.empty() && same_file(in.path, out.path)) {
+        for (const std::string& key : {inode_key(out.path), path_key(out.path)}) {
+            if (key.empty()) continue;
+            if (const auto it = input_keys.find(key); it != input_keys.end()) {
+                const NamedPath& in = *it->second;
                 throw bad_output(out.flag, out.path,
                                  "is also the input " + in.flag + " ('" + in.path.string() +
                                      "'): an output must not replace an input of the same run");
             }
-        }
-        for (const NamedPath* other : seen) {
-            if (same_file(other->path, out.path)) {
+            if (const auto it = output_keys.find(key); it != output_keys.end()) {
                 throw bad_output(out.flag, out.path,
-                                 "is also the output " + other->flag +
+                                 "is also the output " + it->second->flag +
                                      ": two outputs of one run must have different names");
             }
         }
-        seen.push_back(&out);
+        for (const std::string& key : {inode_key(out.path), path_key(out.path)})
+            if (!key.empty()) output_keys.emplace(key, &out);
         const fs::path parent = nearest_existing_parent(out.path);
         std::error_code ec;
         if (!parent.empty() && !fs::is_directory(parent, ec)) {

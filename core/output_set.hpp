@@ -48,8 +48,14 @@ void reset_input_protection();
 void protect_input(const std::filesystem::path& path);
 
 // The one-output check StagedFiles and write_file_atomic run on every final name: throws
-// InvalidInput("<flag>: '<path>': <rule>") for an existing directory or a protected input.
+// InvalidInput("<flag>: '<path>': <rule>") for an existing directory, an existing special file
+// (device, pipe, socket: renaming over it would replace it) or a protected input.
 void check_output_path(const std::filesystem::path& path, const std::string& flag);
+
+// Keys of a path's identity: "i<device>:<inode>" when it exists, and its canonical path. Two
+// paths sharing a key name the same file (a hash set of keys finds duplicates among N paths in
+// O(N), where same_file on every pair would take N^2 / 2 canonicalisations).
+std::vector<std::string> same_file_keys(const std::filesystem::path& path);
 
 // True when a and b name the same file (or would: compared by weakly_canonical path when one
 // does not exist yet).

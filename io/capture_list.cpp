@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/input_file.hpp"
 #include "core/error.hpp"
 #include "core/field_names.hpp"
 #include "core/raw_io.hpp"
@@ -13,6 +14,9 @@ namespace pinmask::io {
 namespace {
 
 namespace fs = std::filesystem;
+
+// A list names one capture a line: 64 MiB holds about a million paths.
+constexpr std::uintmax_t kMaxListBytes = 64ull << 20;
 
 bool capture_extension(const fs::path& p) {
     std::string e = p.extension().string();
@@ -46,6 +50,11 @@ std::vector<std::string> capture_list(const std::string& list_or_dir) {
                                 ".jpeg or a camera RAW file such as .dng)");
         return paths;
     }
+    if (const auto problem = input_file_problem(list_or_dir))
+        throw invalid_field(field_ref("batch"), list_or_dir, *problem);
+    if (fs::file_size(list_or_dir, ec) > kMaxListBytes)
+        throw invalid_field(field_ref("batch"), list_or_dir,
+                            "a list file of more than 64 MiB (one capture path a line)");
     std::ifstream in(list_or_dir);
     if (!in) throw invalid_field(field_ref("batch"), list_or_dir, "cannot be read");
     for (std::string raw; std::getline(in, raw);) {

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <type_traits>
 
+#include "core/input_file.hpp"
 #include "core/error.hpp"
 #include "io/json_strict.hpp"
 
@@ -137,6 +138,7 @@ std::string export_sidecar_text(const ExportSidecar& s) {
 }
 
 ExportSidecar read_export_sidecar(const std::filesystem::path& p) {
+    if (const auto problem = input_file_problem(p)) throw bad(p, "(root)", *problem);
     std::error_code ec;
     const std::uintmax_t bytes = std::filesystem::file_size(p, ec);
     if (!ec && bytes > kMaxSidecarBytes)

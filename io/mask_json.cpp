@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "core/input_file.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
@@ -290,6 +291,7 @@ std::string mask_file_text(const Mask& mask) {
 
 bool is_mask_file(const std::filesystem::path& path) {
     if (path.extension() == ".json") return true;
+    if (input_file_problem(path)) return false;  // the reader that follows says why
     std::ifstream in(path, std::ios::binary);
     char c = 0;
     while (in.get(c) && std::isspace(static_cast<unsigned char>(c))) {
@@ -299,6 +301,7 @@ bool is_mask_file(const std::filesystem::path& path) {
 
 Mask read_mask_file(const std::filesystem::path& path, const MaskReadOptions& options) {
     const std::string name = path.string();
+    if (const auto problem = input_file_problem(path)) throw InvalidInput(name + ": " + *problem);
     std::error_code ec;
     const auto size = std::filesystem::file_size(path, ec);
     if (ec) throw InvalidInput(name + ": cannot read mask file (" + ec.message() + ")");

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "core/input_file.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
@@ -248,6 +249,8 @@ PsfFile read_psf_file(const fs::path& image_path) {
     out.psf /= sum;
     const fs::path side = psf_sidecar_path(image_path);
     if (side != image_path && fs::exists(side)) {
+        if (const auto problem = input_file_problem(side))
+            throw InvalidInput(side.string() + ": the PSF's sidecar " + *problem);
         protect_input(side);
         std::ifstream in(side, std::ios::binary);
         std::stringstream buf;

@@ -20,6 +20,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cli/outputs/interrupt.hpp"
+#include "core/atomic_file.hpp"
 #include "io/mask_json.hpp"
 #include "tests/support/cli_run.hpp"
 
@@ -213,5 +215,32 @@ TEST_CASE("decode stops iterating on SIGINT and SIGTERM and writes the estimate 
                 CHECK(e.path().filename().string().find(".tmp-") == std::string::npos);
             }
         }
+    }
+}
+
+// Commands that do not stop cleanly on a signal (export, psf, check, ...) die of it, but first
+// unlink their temporary files (cli/outputs/interrupt install_cleanup_on_signal, which
+// cli/main.cpp installs). The signal arrives in the middle of an atomic write, deterministically:
+// the child raises it from inside the writer, after the temporary file holds data.
+TEST_CASE("a fatal signal during an atomic write leaves neither the file nor a temporary") {
+    for (const int sig : {SIGINT, SIGTERM, SIGHUP}) {
+        TempDir t("cleanup-signal");
+        const fs::path target = t.path / "mask.svg";
+        const pid_t pid = ::fork();
+        REQUIRE(pid >= 0);
+        if (pid == 0) {
+            pinmask::cli::install_cleanup_on_signal();
+            pinmask::write_file_atomic(target, [sig](const fs::path& tmp) {
+                pinmask::write_bytes_atomic(tmp, std::string(1 << 16, 'x'));
+                ::raise(sig);
+            });
+            ::_exit(0);  // not reached: the signal ends the process
+        }
+        int status = 0;
+        REQUIRE(::waitpid(pid, &status, 0) == pid);
+        INFO("signal " << sig);
+        CHECK(WIFSIGNALED(status));
+        CHECK(WTERMSIG(status) == sig);  // it died of the signal, as without the handler
+        CHECK(fs::is_empty(t.path));
     }
 }

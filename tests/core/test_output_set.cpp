@@ -3,12 +3,14 @@
 // before any work, naming the flag; a commit whose rename fails removes the files already
 // renamed, restores the files it replaced and says so.
 #include <doctest/doctest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -156,4 +158,66 @@ TEST_CASE("a real rename failure (the final name became a directory) rolls back 
     CHECK_FALSE(fs::exists(t.path / "a.txt"));
     CHECK(fs::is_directory(t.path / "b.txt" / "inside"));
     CHECK(count_files(t.path) == 1);
+}
+
+TEST_CASE("an output that is a device, a pipe or a socket is refused and left as it was") {
+    TempDir t("outset-special");
+    const fs::path fifo = t.path / "pipe.json";
+    REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+    std::string msg = message_of([&] { write_bytes_atomic(fifo, "x"); });
+    CHECK(msg.find("is a named pipe") != std::string::npos);
+    CHECK(fs::is_fifo(fifo));
+    msg = message_of([&] { plan_outputs({}, {{"--stats", fifo}}); });
+    CHECK(msg.find("--stats") != std::string::npos);
+    CHECK(msg.find("named pipe") != std::string::npos);
+    // /dev/null itself: refused before anything is written (a regression here would, as root,
+    // replace the system's /dev/null; the check runs before any temporary exists).
+    msg = message_of([&] {
+        StagedFiles files;
+        files.stage_bytes("/dev/null", "x");
+    });
+    CHECK(msg.find("is a character device") != std::string::npos);
+    CHECK(fs::is_character_file("/dev/null"));
+    // A symbolic link to a device is the device.
+    fs::create_symlink("/dev/null", t.path / "null-link");
+    CHECK(message_of([&] { write_bytes_atomic(t.path / "null-link", "x"); })
+              .find("character device") != std::string::npos);
+    CHECK(fs::is_symlink(t.path / "null-link"));
+    reset_input_protection();
+}
+
+TEST_CASE("a file name too long for its temporary names is refused with the limit") {
+    TempDir t("outset-long");
+    const long name_max = ::pathconf(t.path.c_str(), _PC_NAME_MAX);
+    REQUIRE(name_max > 64);
+    const std::string fits(static_cast<std::size_t>(name_max - 64), 'a');
+    write_bytes_atomic(t.path / fits, "ok");
+    CHECK(slurp(t.path / fits) == "ok");
+    const std::string too_long(static_cast<std::size_t>(name_max - 63), 'b');
+    const std::string msg = message_of([&] { write_bytes_atomic(t.path / too_long, "x"); });
+    CHECK(msg.find("bytes; this file system allows " + std::to_string(name_max)) !=
+          std::string::npos);
+    CHECK(count_files(t.path) == 1);
+}
+
+TEST_CASE("same_file_keys: two paths share a key exactly when same_file says they are one file") {
+    TempDir t("outset-keys");
+    write_text(t.path / "a.txt", "a");
+    write_text(t.path / "b.txt", "b");
+    fs::create_directories(t.path / "sub");
+    fs::create_hard_link(t.path / "a.txt", t.path / "hard.txt");
+    fs::create_symlink(t.path / "a.txt", t.path / "soft.txt");
+    const std::vector<fs::path> paths = {
+        t.path / "a.txt",        t.path / "b.txt",       t.path / "sub" / ".." / "a.txt",
+        t.path / "hard.txt",     t.path / "soft.txt",    t.path / "new.txt",
+        t.path / "sub/../new.txt", t.path / "other.txt"};
+    for (const fs::path& p : paths) {
+        for (const fs::path& q : paths) {
+            bool shared = false;
+            for (const std::string& kp : same_file_keys(p))
+                for (const std::string& kq : same_file_keys(q)) shared = shared || kp == kq;
+            INFO(p.string() << " vs " << q.string());
+            CHECK(shared == same_file(p, q));  // the pairwise reference the keys replace
+        }
+    }
 }

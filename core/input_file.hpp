@@ -1,0 +1,17 @@
+// The one check every reader of an outside file runs before opening it: the path must name a
+// regular file (after symbolic links). A named pipe would block the run until a writer appears,
+// a device such as /dev/zero never ends, a socket cannot be opened: each is refused by name,
+// before any read.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace pinmask {
+
+// Why `path` cannot be read as an input file ("does not exist", "is a directory", "is a named
+// pipe: ..."), or nullopt when it is a regular file.
+std::optional<std::string> input_file_problem(const std::filesystem::path& path);
+
+}  // namespace pinmask
