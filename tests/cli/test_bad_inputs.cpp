@@ -5,6 +5,7 @@
 // inputs in {work} that the line aims outputs at are left byte for byte. Plus the
 // regression tests of the bugs the corpus and the fuzzers found.
 #include <doctest/doctest.h>
+#include <sys/stat.h>
 
 #include <cstddef>
 #include <cstdlib>
@@ -98,6 +99,38 @@ const std::vector<std::string> kTakenNames = {
     "taken.tiff", "taken.npy",       "taken.png",         "taken.json",        "taken.pdf",
     "taken.svg",  "taken.mask.json", "o.png.config.json", "o.tiff.config.json"};
 
+// {special}: special files in place of inputs and outputs, made once: named pipes (pipe.npy,
+// pipe.tiff, pipe.json, pipe.txt, pipe.mask.json, pipe.png), symbolic links to /dev/null
+// (null.json, null.png, null.tiff) and /dev/zero (zero.txt, zero.npy), and a PSF whose sidecar
+// is a pipe (s.tiff + s.json). Reading a pipe would block the test (it has no writer), so a line
+// that reads one hangs instead of failing; afterwards each name must still be what it was.
+const std::vector<std::string> kPipeNames = {"pipe.npy", "pipe.tiff", "pipe.json", "pipe.txt",
+                                             "pipe.mask.json", "pipe.png", "s.json"};
+const std::vector<std::pair<std::string, std::string>> kDeviceLinks = {
+    {"null.json", "/dev/null"}, {"null.png", "/dev/null"},  {"null.tiff", "/dev/null"},
+    {"zero.txt", "/dev/zero"},  {"zero.npy", "/dev/zero"}};
+
+void make_special(const fs::path& dir) {
+    for (const auto& name : kPipeNames) REQUIRE(::mkfifo((dir / name).c_str(), 0600) == 0);
+    for (const auto& [name, target] : kDeviceLinks) fs::create_symlink(target, dir / name);
+    fs::copy_file(fs::path(PINMASK_SOURCE_DIR) / "fuzz/corpus/image/psf_box.tiff", dir / "s.tiff");
+}
+
+// The type of every entry (never its contents: a pipe cannot be read).
+std::map<std::string, std::string> kinds_in(const fs::path& dir) {
+    std::map<std::string, std::string> kinds;
+    for (const auto& e : fs::directory_iterator(dir)) {
+        const auto st = fs::symlink_status(e.path());
+        std::string kind = fs::is_fifo(st)      ? "fifo"
+                           : fs::is_symlink(st) ? "link:" + fs::read_symlink(e.path()).string()
+                           : fs::is_regular_file(st)
+                               ? "file:" + std::to_string(fs::file_size(e.path()))
+                               : "other";
+        kinds[e.path().filename().string()] = kind;
+    }
+    return kinds;
+}
+
 std::map<std::string, std::string> contents_of(const fs::path& dir) {
     std::map<std::string, std::string> files;
     for (const auto& e : fs::directory_iterator(dir)) {
@@ -108,8 +141,9 @@ std::map<std::string, std::string> contents_of(const fs::path& dir) {
 }
 
 std::string shell_command(const ManifestLine& m, const TempDir& out, const TempDir& work,
-                          const TempDir& taken) {
+                          const TempDir& taken, const TempDir& special) {
     std::string cmd = m.command;
+    replace_all(cmd, "{special}", quoted(special.path));
     replace_all(cmd, "{work}", quoted(work.path));
     replace_all(cmd, "{taken}", quoted(taken.path));
     if (m.file != "-") replace_all(cmd, "{in}", quoted(kCorpus / m.file));
@@ -119,7 +153,9 @@ std::string shell_command(const ManifestLine& m, const TempDir& out, const TempD
     replace_all(cmd, "{mask_capture}", quoted(kValidCapture));
     const auto at = cmd.find("pinmask ");
     REQUIRE(at != std::string::npos);
-    cmd.replace(at, 7, PINMASK_EXE);
+    // coreutils timeout: a line that blocks (a pipe read by mistake) fails with 124 instead of
+    // hanging the suite. A guard against a hang, not a timing assertion.
+    cmd.replace(at, 7, std::string("timeout -k 10 600 ") + PINMASK_EXE);
     return cmd;
 }
 
@@ -153,12 +189,15 @@ TEST_CASE("every malformed input is refused: expected exit code, a message, no o
     TempDir taken("bad-inputs-taken");
     for (const auto& name : kTakenNames) fs::create_directories(taken.path / name);
     const auto taken_before = contents_of(taken.path);
+    TempDir special("bad-inputs-special");
+    make_special(special.path);
+    const auto special_before = kinds_in(special.path);
     for (const ManifestLine& m : lines) {
         TempDir out("bad-inputs");
         TempDir work("bad-inputs-work");
         for (const auto& [name, from] : kWorkFiles) fs::copy_file(from, work.path / name);
         const auto work_before = contents_of(work.path);
-        const std::string cmd = shell_command(m, out, work, taken);
+        const std::string cmd = shell_command(m, out, work, taken, special);
         INFO("manifest.txt line " << m.line_number << ": " << m.file << " | " << m.command);
         const Run r = run_shell(cmd, scratch);
         INFO("output: " << r.output);
@@ -169,6 +208,7 @@ TEST_CASE("every malformed input is refused: expected exit code, a message, no o
         CHECK_MESSAGE(left.empty(), "left in the output folder: " << left);
         CHECK_MESSAGE(contents_of(work.path) == work_before, "an input in {work} was changed");
         CHECK_MESSAGE(contents_of(taken.path) == taken_before, "{taken} was changed");
+        CHECK_MESSAGE(kinds_in(special.path) == special_before, "{special} was changed");
     }
     CHECK(contents_of(kCorpus) == corpus_before);  // no file added, none changed
 }
