@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "core/fft.hpp"
 #include "decode/decoder.hpp"
 #include "decode/psf2otf.hpp"
@@ -50,8 +51,9 @@ double wiener_mse(const ComplexPlane& g, const Plane& multiplicity, const Trial&
 }  // namespace
 
 void SimulatedMetricsOptions::validate() const {
-    if (noise_seeds < 1) {
-        throw invalid_field("noise_seeds", std::to_string(noise_seeds), "must be >= 1");
+    if (noise_seeds < 1 || noise_seeds > kMaxNoiseSeeds) {
+        throw invalid_field(field_ref("noise_seeds"), std::to_string(noise_seeds),
+                            "must be between 1 and 1000 (noise realisations per scene)");
     }
     check_weight("wiener_nsr", wiener_nsr);
     check_weight("tv_lambda", tv_lambda);

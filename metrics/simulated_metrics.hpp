@@ -34,7 +34,9 @@ struct WeightChoice {
 };
 
 struct SimulatedMetricsOptions {
-    int noise_seeds = 1;     // noise realisations per scene, channel and SNR, >= 1
+    // The mean settles long before 1000 realisations; more is a run that never ends.
+    static constexpr int kMaxNoiseSeeds = 1000;
+    int noise_seeds = 1;     // noise realisations per scene, channel and SNR, 1..1000
     std::uint64_t seed = 0;  // base of every noise generator (std::seed_seq with the indices)
     WeightChoice wiener_nsr{false, 0.01};
     WeightChoice tv_lambda{false, 1e-3};

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 
 namespace pinmask {
 namespace {
@@ -264,13 +265,19 @@ void SearchOptions::validate() const {
     if (!(time_budget_s >= 0.0) || !std::isfinite(time_budget_s)) {
         throw invalid_field("time_budget_s", std::to_string(time_budget_s), "must be >= 0");
     }
-    if (max_evaluations < 0) {
-        throw invalid_field("max_evaluations", std::to_string(max_evaluations), "must be >= 0");
+    // 1e9 evaluations a chain is more than a day at the fastest rate `bench search` measures; a
+    // longer search is a time budget (it always ends, with the best so far).
+    if (max_evaluations < 0 || max_evaluations > kMaxEvaluations) {
+        throw invalid_field(field_ref("max_evaluations"), std::to_string(max_evaluations),
+                            "must be 0 (no evaluation budget) to 1e9 evaluations per chain (over "
+                            "a day of search): a longer search is a time budget");
     }
     if (time_budget_s == 0.0 && max_evaluations == 0) {
         throw InvalidInput("search needs a budget: a time budget > 0 or an evaluation budget > 0");
     }
-    if (top < 1) throw invalid_field("top", std::to_string(top), "must be >= 1");
+    if (top < 1 || top > kMaxTop) {
+        throw invalid_field(field_ref("top"), std::to_string(top), "must be between 1 and 1000");
+    }
     if (anneal_restart_moves < 1) {
         throw invalid_field("anneal_restart_moves", std::to_string(anneal_restart_moves),
                             "must be >= 1");

@@ -56,6 +56,10 @@ struct SearchOptions {
     double resize_probability = 0.2;
     bool holes_range() const { return max_holes > 0; }
 
+    // The bounds every face shares: evaluations per chain and candidates kept.
+    static constexpr std::int64_t kMaxEvaluations = 1'000'000'000;
+    static constexpr int kMaxTop = 1000;
+
     // Throws InvalidInput naming the field, value and rule.
     void validate() const;
 };

@@ -11,7 +11,7 @@ namespace {
 
 // field name (as the libraries write it) -> flag. Sorted by field name (a test checks it, and
 // that every field a library names has a row).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 96> kFlags{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 99> kFlags{{
     {"allow_spectral_zeros", "--allow-spectral-zeros"},
     {"allow_violations", "--allow-violations"},
     {"attempts", "--attempts"},
@@ -58,6 +58,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 96> kFlags{{
     {"layer", "--layer"},
     {"margin", "--margin"},
     {"margin_m", "--margin"},
+    {"max_evaluations", "--evals"},
     {"max_rotation_deg", "--max-rotation"},
     {"max_snap_error", "--max-snap-error"},
     {"max_snap_error_nm", "--max-snap-error"},
@@ -68,6 +69,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 96> kFlags{{
     {"no_rerank", "--no-rerank"},
     {"no_rerank_tv", "--no-rerank-tv"},
     {"no_sidecar", "--no-sidecar"},
+    {"noise_seeds", "--seeds"},
     {"noise_sigma", "--noise-sigma"},
     {"nonnegative", "--nonneg"},
     {"nsr", "--nsr"},
@@ -101,6 +103,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 96> kFlags{{
     {"to_m", "--to"},
     {"tolerance", "--tol"},
     {"tone", "--tone"},
+    {"top", "--top"},
     {"tv_iterations", "--tv-iters"},
     {"tv_lambda", "--tv-lambda"},
     {"units", "--units"},

@@ -21,6 +21,11 @@ import pinmask
      "^iters = -1"),
     (lambda: pinmask.search(threads=0, evals=5), "threads"),
     (lambda: pinmask.search(time="-3s"), "time"),
+    # The command line's bounds hold here too (the libraries define them once).
+    (lambda: pinmask.search(evals=10**12), "^evals = 1000000000000: must be 0"),
+    (lambda: pinmask.search(evals=5, top=1001), "^top = 1001"),
+    (lambda: pinmask.simulated_quality(pinmask.generate(), noise_seeds=10**9),
+     "^noise_seeds = 1000000000: must be between 1 and 1000"),
     (lambda: pinmask.simulate(pinmask.generate(), full_sensor=True, sensor=(0, 5)), "sensor"),
     (lambda: pinmask.Camera(sensor_cols=-5), "sensor"),
     (lambda: pinmask.Camera(wavelength_m=float("nan")), "wavelength_m"),
