@@ -13,21 +13,22 @@
 #include <sstream>
 #include <string>
 
+#include "cli/commands.hpp"
+#include "cli/options/check_settings.hpp"
 #include "cli/outputs/check_picture.hpp"
 #include "cli/outputs/check_report.hpp"
-#include "cli/options/check_settings.hpp"
-#include "cli/commands.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
+#include "design/fab_grid.hpp"
 #include "export/drc.hpp"
-#include "formats/fab_units.hpp"
 #include "export/file_check.hpp"
-#include "layout/geometry.hpp"
+#include "formats/fab_units.hpp"
 #include "formats/read_any.hpp"
-#include "layout/vendor_rules.hpp"
 #include "io/export_sidecar.hpp"
 #include "io/mask_json.hpp"
 #include "io/sidecar_layout.hpp"
+#include "layout/geometry.hpp"
+#include "layout/vendor_rules.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -42,31 +43,38 @@ int run(const CheckOptions& o) {
         throw invalid_field("--max-xor-um2", std::to_string(o.max_xor_um2),
                             "must be finite and >= 0");
     if (o.list < 1) throw invalid_field("--list", std::to_string(o.list), "must be >= 1");
-    const VendorRules vendor = vendor_rules(o.vendor);
+    const bool mask_input = io::is_mask_file(o.input);
+    // The export sidecar beside a fabrication file gives the vendor's rules (and the layout).
+    const fs::path side_path = io::sidecar_path_for(o.input);
+    std::optional<io::ExportSidecar> side;
+    if (!mask_input && !o.no_sidecar && fs::is_regular_file(side_path))
+        side = io::read_export_sidecar(side_path);
+    std::string rules_source;
+    const VendorRules vendor = check_vendor_rules(o, side ? &*side : nullptr, rules_source);
     CheckReport rep;  // fields assigned: a partial designated initializer warns (-Wextra)
     rep.input = o.input;
-    rep.vendor = o.vendor;
+    rep.vendor = vendor.name;
     rep.mask = o.mask;
     rep.list = o.list;
+    rep.rules_source = rules_source;
     FileCheck c;
-    if (const auto picture = picture_format_of(o.input); picture && !io::is_mask_file(o.input)) {
+    if (const auto picture = picture_format_of(o.input); picture && !mask_input) {
         rep.kind = fab_format_name(*picture);
         c = check_picture(o, vendor, rep);
-    } else if (io::is_mask_file(o.input)) {
+    } else if (mask_input) {
         if (!o.mask.empty())
             throw invalid_field("--mask", o.mask, "only used with a fabrication file");
         rep.kind = "mask";
         const Mask mask = io::read_mask_file(o.input, {.allow_spacing_violations = true});
         c.layout = make_layout(mask, design_options(o, nullptr));
-        rep.rules = resolve_rules(o, rules_for_mask(mask, vendor));
+        rep.rules = resolve_rules(o, rules_for_mask(mask, vendor, c.layout.grid_nm));
+        if (!o.min_spacing)
+            rep.spacing = spacing_rule_text(mask.pattern.min_spacing_cells, c.layout.pitch_nm,
+                                            c.layout.grid_nm);
         c.drc = run_drc(c.layout, rep.rules);
     } else {
         rep.kind = fs::path(o.input).extension().string().substr(1);
         const FileGeometry file = read_fabrication_file(o.input);
-        const fs::path side_path = io::sidecar_path_for(o.input);
-        std::optional<io::ExportSidecar> side;
-        if (!o.no_sidecar && fs::is_regular_file(side_path))
-            side = io::read_export_sidecar(side_path);
         if (side) {
             rep.settings = "from " + side_path.string();
             if (rep.mask.empty()) rep.mask = io::sidecar_mask(*side, side_path);
@@ -85,7 +93,10 @@ int run(const CheckOptions& o) {
             design = make_layout(*mask, lo);
             fo.design = &*design;
             fo.whole_layout = side.has_value();
-            rep.rules = resolve_rules(o, rules_for_mask(*mask, vendor));
+            rep.rules = resolve_rules(o, rules_for_mask(*mask, vendor, design->grid_nm));
+            if (!o.min_spacing)
+                rep.spacing = spacing_rule_text(mask->pattern.min_spacing_cells, design->pitch_nm,
+                                                design->grid_nm);
         } else {
             DrcRules rules;
             rules.min_gap_nm = vendor.min_gap_nm;
@@ -142,11 +153,13 @@ void setup(CLI::App& app, int& exit_code) {
                     "A *.mask.json, or a .gds/.oas/.dxf/.gbr/.svg/.pdf/.png/.tif file")
         ->required();
     cmd->add_option("--vendor", o->vendor,
-                    "Process limits: film (features and gaps >= 16 um, 20000 dpi plotter), chrome "
-                    "(>= 1 um), none (polygons must only not touch); all: <= 199 vertices")
-        ->capture_default_str();
-    cmd->add_option("--min-gap", o->min_gap,
-                    "Override the vendor's minimum gap between polygons (length, e.g. 16um; "
+                    "Process limits: a preset of `export --vendor` (chrome-photomask, "
+                    "film-plotter, ...) or rules film (features and gaps >= 16 um, 20000 dpi "
+                    "plotter), chrome (>= 1 um), none (polygons must only not touch); all: <= 199 "
+                    "vertices. Default: the rules the export sidecar records (vendor and any "
+                    "--min-feature/--min-space given to export), else film");
+    cmd->add_option("--min-space,--min-gap", o->min_gap,
+                    "Override the minimum space (gap) between polygons (length, e.g. 2um; "
                     ">= 1 nm)");
     cmd->add_option("--min-feature", o->min_feature,
                     "Override the vendor's minimum feature width (length; 0 disables)");

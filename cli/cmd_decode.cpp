@@ -13,9 +13,9 @@
 
 #include "cli/commands.hpp"
 #include "cli/decode_batch.hpp"
-#include "cli/options/flag_names.hpp"
 #include "cli/options/decode_flags.hpp"
 #include "cli/options/decode_inputs.hpp"
+#include "cli/options/flag_names.hpp"
 #include "cli/outputs/decode_output.hpp"
 #include "cli/outputs/interrupt.hpp"
 #include "core/atomic_file.hpp"
@@ -53,6 +53,7 @@ void run_decode(DecodeCommand& r, BayerMode bayer) {
     if (!out_dir.empty() && !fs::is_directory(out_dir))
         throw invalid_field("-o", r.output, "the output directory does not exist");
     const std::optional<double> scale = parse_scale(r.scale);
+    apply_refocus(r);  // a pitch at u that is not whole: exact geometry, linear model
     resolve_request(r);
     CaptureDecodeOptions options = capture_decode_options(r.request);
     // Per-iteration records cost an objective each iteration; only --stats and --json show them.

@@ -13,16 +13,18 @@
 #include <string>
 #include <vector>
 
-#include "cli/options/camera_options.hpp"
 #include "cli/commands.hpp"
+#include "cli/options/camera_options.hpp"
 #include "cli/options/flag_names.hpp"
 #include "cli/outputs/design_report.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
+#include "design/fab_grid.hpp"
 #include "design/kernel.hpp"
 #include "design/kernel_validity.hpp"
 #include "design/optics.hpp"
 #include "design/working_distance.hpp"
+#include "export/vendor_presets.hpp"
 #include "io/camera_json.hpp"
 #include "io/json_strict.hpp"
 
@@ -34,11 +36,38 @@ struct DesignOptions {
     GeometryOptions geometry;
     std::string kernel = "auto";
     double lsi_tolerance_px = 1.0;
-    std::optional<int> pixels_per_cell;  // solve the pinhole for N whole pixels per cell at u
-    std::string solve;                   // "pinhole": N = the nearest whole number at u
-    std::string save_camera;             // write the resolved (solved) camera here
+    std::optional<int> pixels_per_cell;   // solve the pinhole for N whole pixels per cell at u
+    std::string solve;                    // "pinhole": N = the nearest whole number at u
+    std::string save_camera;              // write the resolved (solved) camera here
+    std::optional<std::string> fab_grid;  // a solved pinhole lands on this grid (default 1nm)
+    std::optional<std::string> vendor;    // ... or on this export preset's grid
     bool json = false;
 };
+
+// The fabrication grid a solved pinhole is snapped to: --fab-grid, else the --vendor preset's,
+// else 1 nm.
+GridSnap fab_grid_of(const DesignOptions& o) {
+    GridSnap g;
+    if (o.fab_grid && o.vendor)
+        throw invalid_field("--fab-grid", *o.fab_grid,
+                            "and --vendor both set the grid: give one of them");
+    if (o.fab_grid) {
+        g.grid_nm = fab_grid_nm(parse_length_m(*o.fab_grid, "--fab-grid"), "--fab-grid");
+        g.grid_source = "--fab-grid";
+    } else if (o.vendor) {
+        const VendorPreset* p = find_vendor_preset(*o.vendor);
+        if (!p)
+            throw invalid_field("--vendor", *o.vendor,
+                                "is a rule preset without a grid; give an export preset "
+                                "(`pinmask export --vendor list`) or --fab-grid");
+        g.grid_nm = fab_grid_nm(p->grid_m, "--vendor");
+        g.grid_source = "vendor " + p->name;
+    } else {
+        g.grid_nm = kDefaultFabGridNm;
+        g.grid_source = "default";
+    }
+    return g;
+}
 
 PatternGeometry resolve_geometry(const GeometryOptions& g) {
     if (g.grid < 1 || g.grid > kMaxGrid) {
@@ -89,6 +118,12 @@ void run(const DesignOptions& o) {
                             "must be between 1 and " + std::to_string(kMaxPixelsPerCell));
     }
     check_object_distance(camera, camera.object_distance_m, "--object-distance");
+    GridSnap snap = fab_grid_of(o);
+    if ((o.fab_grid || o.vendor) && !o.pixels_per_cell && o.solve.empty())
+        throw invalid_field(o.fab_grid ? "--fab-grid" : "--vendor",
+                            o.fab_grid ? *o.fab_grid : *o.vendor,
+                            "sets the grid a solved pinhole lands on: use it with --solve pinhole "
+                            "or --pixels-per-cell");
     WorkingDistanceOptions wo{o.lsi_tolerance_px, o.pixels_per_cell.value_or(0)};
     std::string solved;
     if (o.pixels_per_cell || !o.solve.empty()) {
@@ -99,9 +134,15 @@ void run(const DesignOptions& o) {
                                     " px per cell, above the " + std::to_string(kMaxPixelsPerCell) +
                                     " px limit");
         }
-        camera.pinhole_m = pinhole_for_pixels_per_cell(camera, start.pixels_per_cell);
+        // d for exactly N at u, then on the fabrication grid (what export draws).
+        snap.exact_m = pinhole_for_pixels_per_cell(camera, start.pixels_per_cell);
+        snap.on_grid_m = pinhole_on_grid_m(snap.exact_m, snap.grid_nm);
+        snap.solved = true;
+        camera.pinhole_m = snap.on_grid_m;
+        snap.pitch_shift_px = pixels_per_cell_at(camera, camera.object_distance_m) -
+                              static_cast<double>(start.pixels_per_cell);
         wo.pixels_per_cell = static_cast<int>(start.pixels_per_cell);
-        solved = "solved: the pinhole d above is set to give exactly N at u";
+        solved = "solved: d gives N at u, then snapped to the fabrication grid";
     }
     OpticsReport r = compute_optics(camera, geometry, kernel, {o.lsi_tolerance_px});
     KernelValidity validity = kernel_validity(camera, r.kernel_model);  // never "accurate"
@@ -110,24 +151,30 @@ void run(const DesignOptions& o) {
     for (const auto& w : validity.warnings) std::cerr << "pinmask: warning: " << w << "\n";
     const WorkingDistance wd = compute_working_distance(camera, geometry, wo);
     std::vector<CameraInput> inputs = camera_inputs(o.camera, camera);
-    if (!solved.empty()) inputs[0].source = "solved for N px per cell at u";
+    if (!solved.empty())
+        inputs[0].source = "solved for N px per cell at u, on the " + std::to_string(snap.grid_nm) +
+                           " nm fabrication grid";
     if (!o.save_camera.empty()) io::write_camera_file(o.save_camera, camera);
     if (o.json) {
-        auto j = design_json(r, wd);
+        auto j = design_json(r, wd, snap);
         j["kernel_warnings"] = validity.warnings;
         for (const CameraInput& in : inputs) j["input_sources"][in.symbol] = in.source;
         std::cout << io::json_strict::pretty(j) << "\n";
     } else {
-        std::cout << design_table(r, wd, solved, inputs);
+        std::cout << design_table(r, wd, solved, inputs, snap);
         if (!o.save_camera.empty()) std::cerr << "wrote " << o.save_camera << "\n";
     }
 }
 
 constexpr const char* kFooter =
-    "Design values are for a distant object (u = inf), as the paper quotes them; the \"at u\" "
-    "rows use --object-distance (a point source at u: 1/z_eff = 1/f - 1/f' + 1/u), and the "
-    "kernel models use those. --json prints one object with unit-suffixed keys (_m = metres, "
-    "_px = pixels); infinite values are null, with the reason under \"notes\".\n"
+    "Every figure is at the working distance u (--object-distance; a point source at u: "
+    "1/z_eff = 1/f - 1/f' + 1/u): pitch, whole pixels per cell N, PSF size n N, periods on the "
+    "sensor, LSI mismatch against N; the indented \"u = inf\" lines are the distant-object "
+    "values the paper quotes. A solved pinhole (--solve pinhole, --pixels-per-cell) lands on the "
+    "fabrication grid (--fab-grid, or the --vendor preset's, default 1nm) and the table says how "
+    "far that moves the pitch at u. --json prints one object with unit-suffixed keys (_m = "
+    "metres, _px = pixels): keys without a suffix and \"_at_u\" keys are at u, \"_at_inf\" "
+    "keys at u = inf; infinite values are null, with the reason under \"notes\".\n"
     "Examples:\n"
     "  pinmask design --preset paper\n"
     "  pinmask design --lens-focal 55mm --object-distance inf --json   (f = f': Fraunhofer)\n"
@@ -164,6 +211,12 @@ void setup(CLI::App& app) {
     cmd->add_option("--save-camera", o->save_camera,
                     "Write the camera used (with a solved pinhole) as a *.camera.json file, for "
                     "--camera FILE of any command");
+    cmd->add_option("--fab-grid", o->fab_grid,
+                    "Fabrication grid a solved pinhole lands on (length, whole nm; default 1nm; "
+                    "export draws every cell edge on it)");
+    cmd->add_option("--vendor", o->vendor,
+                    "Export preset whose grid a solved pinhole lands on (e.g. film-plotter: "
+                    "1 um; `pinmask export --vendor list`)");
     cmd->add_flag("--json", o->json, "Print the report as one JSON object on stdout");
     cmd->callback([o] { run(*o); });
 }

@@ -11,12 +11,13 @@
 #include <string>
 
 #include "cli/commands.hpp"
-#include "cli/options/flag_names.hpp"
 #include "cli/options/export_options.hpp"
+#include "cli/options/flag_names.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
 #include "core/units.hpp"
+#include "design/fab_grid.hpp"
 #include "design/psf.hpp"
 #include "export/export_pipeline.hpp"
 #include "export/file_check.hpp"
@@ -56,11 +57,23 @@ string file_bytes(const fs::path& p) {
     return s.str();
 }
 
-void run_export(const ExportFlags& f) {
+// The rules the export checked, in words (vendor preset, overrides and the spacing rule on the
+// grid pitch the layout uses).
+string rules_line(const ExportOptions& o, const Mask& mask, const Layout& l) {
+    return o.drc.name + ": " + vendor_rules_text(o.drc) + ", " +
+           spacing_rule_text(mask.pattern.min_spacing_cells, l.pitch_nm, l.grid_nm);
+}
+
+// Returns the exit code: 0 clean, 1 the design-rule check found violations (the files are
+// written all the same, for inspection; --require-drc-clean writes none).
+int run_export(const ExportFlags& f) {
     if (f.vendor == "list") {
         std::cout << spell_flags(vendor_list_text());
-        return;
+        return 0;
     }
+    if (f.input.empty())
+        throw invalid_field("input", "''",
+                            "a mask file is required (only --vendor list needs none)");
     if (f.output.empty()) throw invalid_field("-o", "''", "an output directory is required");
     const fs::path out_dir = f.output;
     if (fs::exists(out_dir) && !fs::is_directory(out_dir))
@@ -134,9 +147,19 @@ void run_export(const ExportFlags& f) {
         for (const fs::path& p : psf_written) fs::remove(p, ec);
         throw;
     }
+    const bool clean = s.drc.clean();
+    auto verdict = [&] {
+        if (clean) return 0;
+        std::cerr
+            << "pinmask export: the design-rule check (" << rules_line(o, mask, s.layout)
+            << ") found violations; the files are written for inspection (`pinmask check "
+            << (out_dir / (stem + (s.files.empty() ? "" : s.files.front().extension))).string()
+            << "` lists them, --require-drc-clean writes none): exit 1\n";
+        return 1;
+    };
     if (f.json) {
         std::cout << side_text;
-        return;
+        return verdict();
     }
     std::cout << "export of " << f.input << " (hash " << s.layout.mask_hash << ", "
               << tone_words(s.layout.tone) << ", emulsion " << (side.mirrored ? "down" : "up")
@@ -147,12 +170,17 @@ void run_export(const ExportFlags& f) {
     for (const fs::path& p : psf_written) std::cout << "  " << p.filename().string() << "  PSF\n";
     std::cout << "  " << stem << ".export.json  sidecar\n";
     for (const string& n : s.notes) std::cout << "note: " << spell_flags(n) << "\n";
-    std::cout << "design-rule check (" << o.drc.name
-              << "): " << (s.drc.clean() ? "clean" : "violations") << "\n";
+    std::cout << "design-rule check (" << rules_line(o, mask, s.layout)
+              << "): " << (clean ? "clean" : "VIOLATIONS") << "\n";
     for (const auto& [rule, n] : s.drc.counts) std::cout << "  " << rule << ": " << n << "\n";
+    constexpr std::size_t kListed = 5;  // the first few, in the check's words
+    for (std::size_t i = 0; i < s.drc.violations.size() && i < kListed; ++i)
+        std::cout << "    " << drc_rule_name(s.drc.violations[i].rule) << ": "
+                  << s.drc.violations[i].message << "\n";
+    return verdict();
 }
 
-void setup(CLI::App& app) {
+void setup(CLI::App& app, int& exit_code) {
     auto f = std::make_shared<ExportFlags>();
     auto* c = app.add_subcommand(
         "export",
@@ -160,7 +188,7 @@ void setup(CLI::App& app) {
         "1-bit plotter TIFF, the PSF (<stem>.psf.tiff + .json) and <stem>.export.json. Geometry "
         "in integer nm, origin at the mask centre, mask row 0 at the top. GDS/OASIS/DXF/Gerber/SVG "
         "files are read back and must match the design exactly, else nothing is written (exit 1).");
-    c->add_option("input", f->input, "The mask file (*.mask.json)")->required();
+    c->add_option("input", f->input, "The mask file (*.mask.json); not with --vendor list");
     c->add_option("-o,--output", f->output, "Output directory (created if missing)");
     c->add_option("--format", f->formats,
                   "Comma-separated svg, pdf, gds, oasis, dxf, gerber, png, tiff1 (default: svg, "
@@ -200,7 +228,15 @@ void setup(CLI::App& app) {
     c->add_option("--kerf", f->kerf, "Laser kerf: holes drawn this much smaller (length; 0)");
     c->add_option("--chord-tol", f->chord_tol,
                   "Circles: largest sagitta of the polygon (length), or auto (default)");
-    c->add_option("--grid", f->grid, "Manufacturing grid, whole nm (length; 1nm)");
+    c->add_option("--grid", f->grid,
+                  "Manufacturing grid, whole nm (length; default the vendor's, else 1nm). The "
+                  "pinhole side is snapped to it once: every cell edge is a whole number of "
+                  "pitches on the grid");
+    c->add_option("--min-feature", f->min_feature,
+                  "The shop's minimum feature width (length, e.g. 2um), over the vendor's rules");
+    c->add_option("--min-space", f->min_space,
+                  "The shop's minimum space between polygons (length, e.g. 2um; >= 1 nm), over "
+                  "the vendor's rules");
     c->add_option("--max-vertices", f->max_vertices, "Vertex limit per polygon (default 199)");
     c->add_option("--layer", f->layer, "GDSII/OASIS layer (default 1)");
     c->add_option("--datatype", f->datatype, "GDSII/OASIS datatype (default 0)");
@@ -211,7 +247,8 @@ void setup(CLI::App& app) {
                   "tiff1: refuse when snapping to the plotter grid moves an edge more (length)");
     c->add_option("--margin", f->margin, "PDF page margin (length; default 10mm)");
     c->add_flag("--require-drc-clean", f->require_drc_clean,
-                "Fail (exit 1, no files) when the design-rule check finds violations");
+                "Fail (exit 1, no files) when the design-rule check finds violations "
+                "(without it: the files are written, the violations listed, exit 1)");
     c->add_flag("--allow-spacing-violations", f->allow_spacing_violations,
                 "Read masks that break their spacing rule (touching pinholes are merged)");
     c->add_flag("--no-psf", f->no_psf, "Do not write the PSF files");
@@ -222,10 +259,10 @@ void setup(CLI::App& app) {
         "1mm -o out/\n  pinmask export paper.mask.json --vendor film-plotter -o film/   (DXF in mm "
         "+ 1-bit TIFF at 25400 dpi, emulsion down)\n  pinmask check out/paper.gds   (settings "
         "from out/paper.export.json)");
-    c->callback([f] { run_export(*f); });
+    c->callback([f, &exit_code] { exit_code = run_export(*f); });
 }
 
 }  // namespace
 
-void add_export(CLI::App& app) { setup(app); }
+void add_export(CLI::App& app, int& exit_code) { setup(app, exit_code); }
 }  // namespace pinmask::cli

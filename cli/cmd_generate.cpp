@@ -1,6 +1,7 @@
 // `pinmask generate`: a pattern from one family (random | paper | mura) for a camera -> a mask
 // file (*.mask.json). The mask file records the whole resolved configuration (geometry, optics,
 // PSF settings, seed, generator), so no separate configuration file is written.
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <iomanip>
@@ -10,12 +11,13 @@
 #include <sstream>
 #include <string>
 
-#include "cli/options/camera_options.hpp"
 #include "cli/commands.hpp"
+#include "cli/options/camera_options.hpp"
 #include "cli/options/psf_options.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
 #include "core/units.hpp"
+#include "design/fab_grid.hpp"
 #include "design/families.hpp"
 #include "design/generate_pattern.hpp"
 #include "design/mask.hpp"
@@ -65,6 +67,7 @@ void run(const GenerateOptions& o, const CLI::App& cmd) {
 
     Mask m;
     m.camera = resolve_camera(o.camera);
+    go.pinhole_m = m.camera.pinhole_m;  // the rule on the 1 nm grid, as export evaluates it
     const double design_ppc = design_pixels_per_cell(m.camera);
     m.psf = resolve_psf_spec(o.psf, m.camera);
     check_period_psf_size(m.psf.pixels_per_cell, o.geometry.grid,
@@ -82,19 +85,25 @@ void run(const GenerateOptions& o, const CLI::App& cmd) {
     const std::string hash = geometry_hash(m);
     const std::size_t k = m.pattern.pinholes.size();
     if (o.json) {
-        const nlohmann::ordered_json j = {{"path", o.output},
-                                          {"geometry_hash", hash},
-                                          {"family", m.provenance.family},
-                                          {"seed", m.provenance.seed},
-                                          {"n", m.pattern.n},
-                                          {"holes", k},
-                                          {"tiles", {m.pattern.tiles_rows, m.pattern.tiles_cols}},
-                                          {"min_spacing_cells", m.pattern.min_spacing_cells},
-                                          {"spacing_violations", violations},
-                                          {"pinhole_m", m.camera.pinhole_m},
-                                          {"pixels_per_cell", m.psf.pixels_per_cell},
-                                          {"pixels_per_cell_design", design_ppc},
-                                          {"kernel", m.psf.kernel.model}};
+        const nlohmann::ordered_json j = {
+            {"path", o.output},
+            {"geometry_hash", hash},
+            {"family", m.provenance.family},
+            {"seed", m.provenance.seed},
+            {"n", m.pattern.n},
+            {"holes", k},
+            {"tiles", {m.pattern.tiles_rows, m.pattern.tiles_cols}},
+            {"min_spacing_cells", m.pattern.min_spacing_cells},
+            {"spacing_limit_m", gen.grid.limit_nm * 1e-9},
+            {"closest_pair_m", std::isfinite(gen.grid.closest_nm)
+                                   ? nlohmann::ordered_json(gen.grid.closest_nm * 1e-9)
+                                   : nlohmann::ordered_json(nullptr)},
+            {"fab_grid_m", double(gen.grid.grid_nm) * 1e-9},
+            {"spacing_violations", violations},
+            {"pinhole_m", m.camera.pinhole_m},
+            {"pixels_per_cell", m.psf.pixels_per_cell},
+            {"pixels_per_cell_design", design_ppc},
+            {"kernel", m.psf.kernel.model}};
         std::cout << j.dump() << "\n";
         return;
     }
@@ -111,6 +120,10 @@ void run(const GenerateOptions& o, const CLI::App& cmd) {
       << " cells on the torus: "
       << (violations == 0 ? std::string("met")
                           : std::to_string(violations) + " pair(s) closer (allowed)")
+      << "\n                 "
+      << spacing_rule_text(m.pattern.min_spacing_cells, gen.grid.pitch_nm, gen.grid.grid_nm)
+      << (std::isfinite(gen.grid.closest_nm) ? "; closest " + um_text(gen.grid.closest_nm)
+                                             : std::string("; no pair within reach"))
       << "\n";
     s << "  pinhole        " << format_length(m.camera.pinhole_m) << ", mask "
       << n * m.pattern.tiles_cols << " x " << n * m.pattern.tiles_rows

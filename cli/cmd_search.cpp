@@ -8,19 +8,19 @@
 #include <optional>
 #include <thread>
 
+#include "cli/command_footers.hpp"
+#include "cli/commands.hpp"
 #include "cli/options/analytic_setup.hpp"
 #include "cli/options/camera_options.hpp"
 #include "cli/options/flag_names.hpp"
-#include "cli/command_footers.hpp"
-#include "cli/commands.hpp"
-#include "cli/outputs/interrupt.hpp"
 #include "cli/options/noise_options.hpp"
-#include "cli/outputs/progress.hpp"
 #include "cli/options/psf_options.hpp"
-#include "cli/outputs/robust_decoder_files.hpp"
-#include "cli/search_cluster.hpp"
 #include "cli/options/search_options.hpp"
+#include "cli/outputs/interrupt.hpp"
+#include "cli/outputs/progress.hpp"
+#include "cli/outputs/robust_decoder_files.hpp"
 #include "cli/outputs/search_outputs.hpp"
+#include "cli/search_cluster.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
 #include "core/units.hpp"
@@ -58,6 +58,10 @@ void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd,
                   p);
     started = true;  // from here an error may be one rank's alone
     const bool root = comm.rank() == 0;
+    if (root && o.config_ranks && *o.config_ranks != comm.size())
+        std::cerr << "pinmask search: warning: --config " << o.config << " was written by a run on "
+                  << *o.config_ranks << " rank(s), this run has " << comm.size()
+                  << ": the chains and islands differ, so this is not the same search\n";
     ProgressLine bar;
     const auto& interrupted = install_interrupt_flag();
     const SearchPipelineSummary s = run_search_pipeline(
@@ -81,7 +85,7 @@ void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd,
                      "frequency; patterns with a spectral zero where the kernel passes light "
                   << (p.allow_spectral_zeros ? "were kept, flagged" : "were rejected") << ")\n";
     }
-    const auto paths = write_search_outputs(o.output, s, resolved_config(o, p, s));
+    const auto paths = write_search_outputs(o.output, s, resolved_config(o, p, s, comm.size()));
     std::optional<RobustDecoderFiles> decoder;  // robust-filter: rank 1's decoder beside it
     if (p.objective == ObjectiveKind::kRobustFilter && !paths.empty()) {
         const int m = p.tmpl.pattern.n * p.tmpl.psf.pixels_per_cell;

@@ -18,8 +18,8 @@ void add_search(CLI::App& app);
 void add_score(CLI::App& app);
 void add_calibrate(CLI::App& app);
 void add_compare(CLI::App& app);
-void add_export(CLI::App& app);
-void add_check(CLI::App& app, int& exit_code);  // exit_code = 1 when violations are found
+void add_export(CLI::App& app, int& exit_code);  // exit_code = 1 when the DRC finds violations
+void add_check(CLI::App& app, int& exit_code);   // exit_code = 1 when violations are found
 void add_depth(CLI::App& app);
 void add_sweep(CLI::App& app);
 

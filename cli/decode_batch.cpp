@@ -140,6 +140,8 @@ void run_decode_batch(const DecodeCommand& given, const BatchRequest& b, BayerMo
     out_paths.push_back({"-o (summary)", summary_path});
     in_paths.push_back({"--nsr-map", r.nsr_map});
     plan_outputs(in_paths, out_paths);
+    if (apply_refocus(r))
+        for (DecodeCommand& rc : requests) rc.model = r.model, rc.crop = r.crop;
     resolve_request(r);
     for (DecodeCommand& rc : requests) rc.request = r.request;
     CaptureDecodeOptions options = capture_decode_options(r.request);

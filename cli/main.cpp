@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
     cli::add_score(app);
     cli::add_calibrate(app);
     cli::add_compare(app);
-    cli::add_export(app);
+    cli::add_export(app, exit_code);
     cli::add_check(app, exit_code);
     cli::add_depth(app);
     cli::add_sweep(app);

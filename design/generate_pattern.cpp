@@ -1,5 +1,6 @@
 #include "design/generate_pattern.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <sstream>
@@ -38,7 +39,8 @@ GeneratedPattern generate_pattern(const GeneratePatternOptions& o) {
     if (family == Family::kPaper) {
         const std::string why =
             "the paper family fixes n = 16, K = 20, 2 x 2 tiles, spacing 2 "
-            "(use " + field_ref("family") + " random for other geometries)";
+            "(use " +
+            field_ref("family") + " random for other geometries)";
         require_unset_or(g.grid_given, "grid", g.grid, kPaperGrid, why);
         require_unset_or(g.holes_given, "holes", g.holes, kPaperHoles, why);
         require_unset_or(g.tiles_given, "tiles", g.tiles, kPaperTiles, why);
@@ -63,19 +65,31 @@ GeneratedPattern generate_pattern(const GeneratePatternOptions& o) {
                              " has (p^2 - 1) / 2 = " + std::to_string(open) + " pinholes");
     }
     violations = count_spacing_violations(p);
+    GridSpacing grid;
+    std::string closest;
+    if (o.pinhole_m > 0 && o.pinhole_m <= kMaxGridPitchM) {  // beyond: no layout exists
+        // The same rule on the grid pitch, in the words export and check use.
+        grid = spacing_on_grid(p, o.pinhole_m, o.fab_grid_nm);
+        violations = std::max(violations, grid.violations);
+        if (grid.violations > 0)
+            closest = " (closest: centres " + um_text(grid.closest_nm) + " apart < " +
+                      um_text(grid.limit_nm) + ", the rule " +
+                      spacing_rule_text(p.min_spacing_cells, grid.pitch_nm, grid.grid_nm) + ")";
+    }
     if (violations > 0 && !o.allow_violations) {
         std::ostringstream v;
+        v.precision(10);  // a rule a grid step above a whole number of cells stays readable
         v << p.min_spacing_cells;
         throw invalid_field(field_ref("spacing"), v.str(),
                             "the " + family_name(family) + " pattern of order " +
                                 std::to_string(p.n) + " has " + std::to_string(violations) +
-                                " pinhole pair(s) closer than that on the torus; pass " +
-                                field_ref("allow_violations") +
+                                " pinhole pair(s) closer than that on the torus" + closest +
+                                "; pass " + field_ref("allow_violations") +
                                 " to write it anyway (the file records "
                                 "spacing_violations_allowed), or lower " +
                                 field_ref("spacing"));
     }
-    return {p, violations};
+    return {p, violations, grid};
 }
 
 // Bounds that later commands enforce, checked here so generate never writes a mask they refuse.

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "design/fab_grid.hpp"
 #include "design/families.hpp"
 #include "design/pattern.hpp"
 
@@ -23,6 +24,10 @@ struct GeneratePatternOptions {
     std::uint64_t seed = 1;         // random, paper
     int attempts = 20;              // random, paper: restarts of random sequential placement, >= 1
     bool allow_violations = false;  // else a pattern that breaks the spacing rule is refused
+    // The camera's pinhole side: when > 0 the spacing rule is also evaluated on the fabrication
+    // grid pitch (design/fab_grid), as export and check evaluate it.
+    double pinhole_m = 0.0;
+    std::int64_t fab_grid_nm = kDefaultFabGridNm;
 
     // InvalidInput naming the field, value and rule: attempts >= 1, tiles in 1..kMaxTiles,
     // grid in 1..kMaxGrid (the bounds the mask reader and export accept).
@@ -32,6 +37,7 @@ struct GeneratePatternOptions {
 struct GeneratedPattern {
     Pattern pattern;
     std::size_t spacing_violations = 0;  // > 0 only with allow_violations
+    GridSpacing grid;                    // the rule on the grid pitch (pinhole_m > 0)
 };
 
 GeneratedPattern generate_pattern(const GeneratePatternOptions& options);

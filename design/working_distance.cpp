@@ -84,6 +84,17 @@ Mask mask_at_distance(const Mask& mask, double u) {
     return out;
 }
 
+RefocusGeometry refocus_geometry(const Mask& mask, double u) {
+    validate(mask.camera);
+    check_object_distance(mask.camera, u, "object_distance_m");
+    RefocusGeometry g;
+    g.pitch_px = pixels_per_cell_at(mask.camera, u);
+    g.whole_px = static_cast<long long>(std::clamp(std::round(g.pitch_px), 1.0, 65536.0));
+    g.mismatch_px = mask.pattern.n * std::fabs(g.pitch_px - static_cast<double>(g.whole_px));
+    g.exact_geometry = g.mismatch_px > kRefocusWholeTolerancePx;
+    return g;
+}
+
 WorkingDistance compute_working_distance(const Camera& c, const PatternGeometry& g,
                                          const WorkingDistanceOptions& o) {
     validate(c);
@@ -105,6 +116,10 @@ WorkingDistance compute_working_distance(const Camera& c, const PatternGeometry&
     r.period_px = g.n * r.pixels_per_cell_at_u;
     r.lsi_mismatch_px =
         g.n * std::fabs(r.pixels_per_cell_at_u - static_cast<double>(r.pixels_per_cell));
+    r.lsi_tolerance_px = o.lsi_tolerance_px;
+    r.psf_size_px = static_cast<long long>(g.n) * r.pixels_per_cell;
+    r.periods_on_sensor_cols = c.sensor_cols / static_cast<double>(r.psf_size_px);
+    r.periods_on_sensor_rows = c.sensor_rows / static_cast<double>(r.psf_size_px);
 
     // f s_max |1/u' - 1/u| / w <= t  <=>  |1/u' - 1/u| <= t w / (f n d).
     const double dx = o.lsi_tolerance_px * w / (f * g.n * d);

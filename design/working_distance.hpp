@@ -7,6 +7,7 @@
 //   period(u)     = n pitch(u)                        one period of the image, pixels
 //   mismatch(u)   = n |pitch(u) - N|                  pitch error across one period against the
 //                                                     N-pixel model, pixels
+//   PSF size      = n N                               one period of the decoder's model at u
 //   range         = {u' : f s_max |1/u' - 1/u| / w <= t}: the object distances whose pitch stays
 //                   within t pixels (across one period) of the pitch at u. For a pinhole solved
 //                   for N at u the pitch at u is N, so this is where the integer model holds.
@@ -44,7 +45,11 @@ struct WorkingDistance {
     double pinhole_for_pixels_per_cell_m = 0;  // d(N, u)
     double period_px = 0;                      // period(u)
     double lsi_mismatch_px = 0;                // mismatch(u) against N
-    double range_near_m = 0;                   // usable object-distance range (far may be inf)
+    double lsi_tolerance_px = 1;               // t
+    long long psf_size_px = 1;                 // n N: one period of the decoder's model at u
+    double periods_on_sensor_cols = 0;         // sensor width / (n N)
+    double periods_on_sensor_rows = 0;
+    double range_near_m = 0;  // usable object-distance range (far may be inf)
     double range_far_m = 0;
     bool range_near_clamped_to_focal = false;  // u_near = f' (the tolerance reaches further)
     double optimum_pinhole_lensless_m = 0;     // 1.56 sqrt(lambda f)
@@ -53,6 +58,8 @@ struct WorkingDistance {
     double spot_spread_cells = 1;              // max(1, 1 / (2 N_F(u))), inf when N_F = 0
 
     bool spreads_beyond_cell() const { return spot_spread_cells > kSpotSpreadWarnCells; }
+    // The N-pixel model holds at u: mismatch(u) within the tolerance.
+    bool is_shift_invariant() const { return lsi_mismatch_px <= lsi_tolerance_px; }
 };
 
 // Throws InvalidInput when the object sits inside the lens' focal length (finite f', u <= f'),
@@ -72,6 +79,21 @@ double pinhole_for_pixels_per_cell(const Camera& camera, long long pixels_per_ce
 // pixels per cell the nearest whole number to pitch(u) (at least 1), kernel unchanged (its models
 // evaluate at the camera's u). InvalidInput for an object inside the focal length.
 Mask mask_at_distance(const Mask& mask, double object_distance_m);
+
+// Refocusing to u (decode --object-distance) keeps the integer torus only while the pitch at u
+// is this close to a whole number across one period (n |pitch(u) - N| px); beyond, the torus
+// would misplace the pinholes' images by that much and the exact-geometry PSF is used instead.
+inline constexpr double kRefocusWholeTolerancePx = 0.25;
+
+struct RefocusGeometry {
+    double pitch_px = 0;          // pitch(u)
+    long long whole_px = 1;       // N = the nearest whole number (at least 1)
+    double mismatch_px = 0;       // n |pitch(u) - N|
+    bool exact_geometry = false;  // mismatch above kRefocusWholeTolerancePx
+};
+
+// How a mask decodes an object at u (InvalidInput for an object inside the focal length).
+RefocusGeometry refocus_geometry(const Mask& mask, double object_distance_m);
 
 // Everything above for the camera at its u; validates camera, geometry, options and the object
 // distance (InvalidInput naming the field).

@@ -523,10 +523,10 @@ std::string drc_rule_name(DrcRule rule) { return rule_entry(rule).name; }
 
 std::string drc_rule_unit(DrcRule rule) { return rule_entry(rule).unit; }
 
-DrcRules rules_for_mask(const Mask& mask, const VendorRules& vendor) {
+DrcRules rules_for_mask(const Mask& mask, const VendorRules& vendor, std::int64_t grid_nm) {
     DrcRules rules;
-    const double side_nm = std::round(mask.camera.pinhole_m * 1e9);
-    rules.min_center_spacing_nm = mask.pattern.min_spacing_cells * side_nm;
+    const double pitch_nm = double(pitch_on_grid_nm(mask.camera.pinhole_m, grid_nm));
+    rules.min_center_spacing_nm = mask.pattern.min_spacing_cells * pitch_nm;
     rules.min_gap_nm = vendor.min_gap_nm;
     rules.min_feature_nm = vendor.min_feature_nm;
     rules.max_vertices = vendor.max_vertices;

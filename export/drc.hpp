@@ -32,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "design/fab_grid.hpp"
 #include "design/mask.hpp"
 #include "layout/layout.hpp"
 #include "layout/vendor_rules.hpp"
@@ -39,9 +40,7 @@
 
 namespace pinmask {
 
-// Centroids are computed in double from exact vertices; at |coordinate| <= 2^30 nm their error
-// is below 1e-6 nm, so a pair counts as too close only when short by more than this.
-inline constexpr double kCentroidToleranceNm = 1e-3;
+// kCentroidToleranceNm (design/fab_grid): a pair counts as too close only when short by more.
 
 enum class DrcRule {
     kRing,
@@ -115,9 +114,11 @@ DrcReport run_drc(const std::vector<Ring>& polygons, const DrcRules& rules);
 // in active_area, dark-tone pieces (which include the frame) and annotations in extent.
 DrcReport run_drc(const Layout& layout, const DrcRules& rules);
 
-// Rules for a mask made at a vendor: centre spacing = min_spacing_cells * pinhole side (the
-// side rounded to whole nanometres, as in geometry_hash), gap, feature and vertex limits from
-// the vendor.
-DrcRules rules_for_mask(const Mask& mask, const VendorRules& vendor);
+// Rules for a mask made at a vendor: centre spacing = min_spacing_cells * P, P the pinhole side
+// on the fabrication grid (design/fab_grid pitch_on_grid_nm: the pitch the layout uses, so the
+// rule is evaluated on the same integers in generate, export and check), gap, feature and
+// vertex limits from the vendor.
+DrcRules rules_for_mask(const Mask& mask, const VendorRules& vendor,
+                        std::int64_t grid_nm = kDefaultFabGridNm);
 
 }  // namespace pinmask

@@ -1,9 +1,11 @@
 #include "export/export_pipeline.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.hpp"
 #include "core/field_names.hpp"
+#include "design/working_distance.hpp"
 #include "formats/png_preview.hpp"
 #include "layout/rings.hpp"
 #include "layout/shapes.hpp"
@@ -73,6 +75,23 @@ ExportSummary export_mask(const Mask& mask, const ExportOptions& o) {
                           ") so the cut comes out at the design size");
     }
     s.layout = make_layout(mask, lo);
+    if (const double d_nm = mask.camera.pinhole_m * 1e9;
+        std::fabs(double(s.layout.pitch_nm) - d_nm) > 1e-6) {
+        // The cells are drawn at the pitch on the grid: say how far that moves the image.
+        Camera on_grid = mask.camera;
+        on_grid.pinhole_m = double(s.layout.pitch_nm) * 1e-9;
+        const double u = mask.camera.object_distance_m;
+        const double shift = pixels_per_cell_at(on_grid, u) - pixels_per_cell_at(mask.camera, u);
+        char buf[320];
+        std::snprintf(buf, sizeof buf,
+                      "pinhole side d = %.3f nm is not on the %lld nm grid: cells drawn at pitch "
+                      "%lld nm; the pitch at u moves by %+.3g px per cell (%+.3g px across one "
+                      "period of %d cells)",
+                      d_nm, static_cast<long long>(s.layout.grid_nm),
+                      static_cast<long long>(s.layout.pitch_nm), shift, shift * mask.pattern.n,
+                      mask.pattern.n);
+        s.notes.push_back(buf);
+    }
     if (o.plate_m > 0) {
         const BoxNm& e = s.layout.extent;
         const double w = double(e.x1 - e.x0), h = double(e.y1 - e.y0);
@@ -86,7 +105,7 @@ ExportSummary export_mask(const Mask& mask, const ExportOptions& o) {
             field_ref("circles") +
             " native: no round pinholes to draw natively (square or polygon shape, or dark tone, "
             "where pinholes are holes in opaque pieces): polygons written");
-    s.drc = run_drc(s.layout, rules_for_mask(mask, o.drc));
+    s.drc = run_drc(s.layout, rules_for_mask(mask, o.drc, s.layout.grid_nm));
     if (o.require_drc_clean && !s.drc.clean()) {
         std::string what;
         for (const auto& [rule, n] : s.drc.counts) what += " " + rule + "=" + std::to_string(n);

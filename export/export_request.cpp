@@ -1,6 +1,7 @@
 #include "export/export_request.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -44,6 +45,9 @@ ExportOptions export_options_from(const ExportRequest& f, const Mask& mask, cons
         if (v->tiff_dpi > 0) o.write.tiff_dpi = v->tiff_dpi;
     }
     o.drc = vendor_rules(v ? v->drc : f.vendor);
+    if (f.min_feature)
+        o.drc.min_feature_nm = rule_length_nm(*f.min_feature, field_ref("min_feature"), 0);
+    if (f.min_space) o.drc.min_gap_nm = rule_length_nm(*f.min_space, field_ref("min_space"), 1);
     if (f.formats) o.formats = parse_formats(*f.formats);
     if (f.units) o.write.unit = parse_fab_unit(*f.units, field_ref("units"));
     if (f.tone) l.tone = parse_tone(*f.tone, field_ref("tone"));
@@ -94,6 +98,14 @@ ExportOptions export_options_from(const ExportRequest& f, const Mask& mask, cons
     o.write.pdf.margin_m = parse_length_m(f.margin, field_ref("margin"));
     o.require_drc_clean = f.require_drc_clean;
     return o;
+}
+
+std::int64_t rule_length_nm(const string& text, const string& field, std::int64_t min_nm) {
+    const double nm = std::round(parse_length_m(text, field) * 1e9);
+    if (!(nm >= double(min_nm)) || nm > double(std::int64_t{1} << 31))
+        throw invalid_field(field, text,
+                            "must be between " + std::to_string(min_nm) + " nm and 2^31 nm");
+    return static_cast<std::int64_t>(nm);
 }
 
 }  // namespace pinmask

@@ -19,6 +19,8 @@ struct ExportRequest {
                                      hierarchy = "auto";
     std::optional<std::string> draw, formats, units, tone, emulsion, frame, grid, circles, kerf,
         hole_side, max_snap_error;
+    // The shop's own limits over the vendor's rule preset (lengths as typed).
+    std::optional<std::string> min_feature, min_space;
     std::optional<std::size_t> max_vertices;
     std::optional<double> dpi;
     int sides = 8, layer = 1, datatype = 0;
@@ -29,5 +31,9 @@ struct ExportRequest {
 // Settings over the `vendor` preset over the defaults; InvalidInput names the field.
 ExportOptions export_options_from(const ExportRequest& f, const Mask& mask,
                                   const std::string& stem);
+
+// A design-rule length (min_feature, min_space) in whole nm: the text parsed as a length,
+// at least `min_nm` and at most 2^31 nm; InvalidInput naming `field` otherwise.
+std::int64_t rule_length_nm(const std::string& text, const std::string& field, std::int64_t min_nm);
 
 }  // namespace pinmask

@@ -84,6 +84,18 @@ const VendorPreset* find_vendor_preset(std::string_view name) {
                         "must be list or one of: " + known.substr(0, known.size() - 2));
 }
 
+VendorRules vendor_rules_for(std::string_view name) {
+    const VendorPreset* p = find_vendor_preset(name);
+    return vendor_rules(p ? std::string_view(p->drc) : name);
+}
+
+std::string vendor_rules_text(const VendorRules& r) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "features >= %.3f um, spaces >= %.3f um, <= %zu vertices",
+                  double(r.min_feature_nm) * 1e-3, double(r.min_gap_nm) * 1e-3, r.max_vertices);
+    return buf;
+}
+
 std::string vendor_list_text() {
     std::string s = "Vendor presets (explicit flags win over a preset):\n";
     for (const VendorPreset& p : vendor_presets()) {

@@ -11,8 +11,9 @@
 #include <vector>
 
 #include "formats/fab_units.hpp"
-#include "layout/layout.hpp"
 #include "formats/read_any.hpp"
+#include "layout/layout.hpp"
+#include "layout/vendor_rules.hpp"
 
 namespace pinmask {
 
@@ -39,6 +40,13 @@ const std::vector<VendorPreset>& vendor_presets();
 // The preset called `name`, or nullptr when `name` is a design-rule preset only (film, chrome,
 // none). Anything else throws InvalidInput naming --vendor and listing every name.
 const VendorPreset* find_vendor_preset(std::string_view name);
+
+// The design rules of a vendor name: a full preset's rule preset (chrome-photomask -> chrome),
+// or a rule preset itself (film, chrome, none); InvalidInput naming `vendor` otherwise.
+VendorRules vendor_rules_for(std::string_view name);
+
+// The rule lengths in words: "features >= 2.000 um, spaces >= 1.000 um, <= 199 vertices".
+std::string vendor_rules_text(const VendorRules& rules);
 
 // One line per preset and per design-rule preset, for `--vendor list`.
 std::string vendor_list_text();

@@ -129,6 +129,11 @@ std::string export_sidecar_text(const ExportSidecar& s) {
         {"files", files},
         {"psf", s.psf_absent},
         {"notes", s.notes}};
+    if (!s.rules_name.empty())
+        side["drc"]["rules"] = {{"name", s.rules_name},
+                                {"min_feature_nm", s.rules_min_feature_nm},
+                                {"min_space_nm", s.rules_min_space_nm},
+                                {"max_vertices", s.rules_max_vertices}};
     if (!s.psf_files.empty())
         side["psf"] = {{"files", s.psf_files},
                        {"kernel", s.psf_kernel},
@@ -192,8 +197,24 @@ ExportSidecar read_export_sidecar(const std::filesystem::path& p) {
         throw bad(p, "geometry.png_dpi", "must be in 0..1000000");
     if (!(s.pdf_margin_m >= 0 && s.pdf_margin_m <= 1))
         throw bad(p, "geometry.pdf_margin_m", "must be in 0..1 m");
-    if (j.contains("drc") && j["drc"].is_object())
-        s.vendor = get_or<std::string>(j["drc"], "vendor", "none", p, "drc");
+    if (j.contains("drc") && j["drc"].is_object()) {
+        const json& d = j["drc"];
+        s.vendor = get_or<std::string>(d, "vendor", "none", p, "drc");
+        if (d.contains("rules")) {
+            const json& r = d["rules"];
+            s.rules_name = get<std::string>(r, "name", p, "drc.rules");
+            s.rules_min_feature_nm = get<std::int64_t>(r, "min_feature_nm", p, "drc.rules");
+            s.rules_min_space_nm = get<std::int64_t>(r, "min_space_nm", p, "drc.rules");
+            s.rules_max_vertices = get<std::size_t>(r, "max_vertices", p, "drc.rules");
+            constexpr std::int64_t kMaxRuleNm = std::int64_t{1} << 31;
+            if (s.rules_name.empty()) throw bad(p, "drc.rules.name", "must not be empty");
+            if (s.rules_min_feature_nm < 0 || s.rules_min_feature_nm > kMaxRuleNm)
+                throw bad(p, "drc.rules.min_feature_nm", "must be between 0 and 2^31");
+            if (s.rules_min_space_nm < 1 || s.rules_min_space_nm > kMaxRuleNm)
+                throw bad(p, "drc.rules.min_space_nm", "must be between 1 and 2^31");
+            if (s.rules_max_vertices < 3) throw bad(p, "drc.rules.max_vertices", "must be >= 3");
+        }
+    }
     if (j.contains("files") && j["files"].is_array())
         for (const json& f : j["files"]) {
             if (!f.is_object()) throw bad(p, "files[]", "must be an object");

@@ -53,6 +53,11 @@ struct ExportSidecar {
     std::size_t polygons = 0, annotations = 0;
     // Design-rule check at export
     std::string vendor = "none";
+    // The rules the export checked (vendor preset with any min_feature / min_space override), so
+    // that `check` applies the same ones; rules_name empty: an older sidecar without them.
+    std::string rules_name;
+    std::int64_t rules_min_feature_nm = 0, rules_min_space_nm = 1;
+    std::size_t rules_max_vertices = 199;
     bool drc_clean = true;
     std::map<std::string, std::size_t> drc_counts;
     std::vector<ExportSidecarFile> files;

@@ -86,7 +86,8 @@ SearchConfig parse_search_config(const std::string& text) {
                     "rank_by",
                     "objective",
                     "robust",
-                    "optics"});
+                    "optics",
+                    "ranks"});
     if (read_string(r.required("format"), "format") != kSearchConfigFormat)
         fail("format",
              "must be \"" + std::string(kSearchConfigFormat) + "\" (not a search config)");
@@ -101,12 +102,14 @@ SearchConfig parse_search_config(const std::string& text) {
     read_into(r, "strategy", c.strategy, [](const Json& v, const std::string& p) {
         return one_of(v, p, {"random", "anneal"});
     });
-    read_into(r, "time", c.time, [](const Json& v, const std::string& p) {
-        const std::string s = read_string(v, p);
-        const double seconds = parse_duration_s(s, p);
-        if (!(seconds > 0)) fail(p, "'" + s + "' must be a positive duration");
-        return s;
-    });
+    // "time": null is what an --evals run records (it had no time budget).
+    if (const Json* t = r.optional("time"); !(t && t->is_null()))
+        read_into(r, "time", c.time, [](const Json& v, const std::string& p) {
+            const std::string s = read_string(v, p);
+            const double seconds = parse_duration_s(s, p);
+            if (!(seconds > 0)) fail(p, "'" + s + "' must be a positive duration");
+            return s;
+        });
     read_into(r, "evaluations_per_chain", c.evaluations_per_chain,
               [](const Json& v, const std::string& p) -> std::int64_t {
                   if (!v.is_number_integer() ||
@@ -116,6 +119,8 @@ SearchConfig parse_search_config(const std::string& text) {
                   if (e < 0) fail(p, "must be an integer >= 0, got " + v.dump());
                   return e;
               });
+    read_into(r, "ranks", c.ranks,
+              [](const Json& v, const std::string& p) { return int_at_least(v, p, 1); });
     read_into(r, "threads", c.threads,
               [](const Json& v, const std::string& p) { return int_at_least(v, p, 0); });
     read_into(r, "seed", c.seed, [](const Json& v, const std::string& p) {
@@ -175,9 +180,8 @@ SearchConfig parse_search_config(const std::string& text) {
         read_into(n, "family", c.prior_family, [](const Json& v, const std::string& p) {
             return one_of(v, p, {"natural", "text", "stars", "files"});
         });
-        read_into(n, "files", c.prior_files, [](const Json& v, const std::string& p) {
-            return read_strings(v, p, "paths");
-        });
+        read_into(n, "files", c.prior_files,
+                  [](const Json& v, const std::string& p) { return read_strings(v, p, "paths"); });
         read_into(n, "scenes", c.prior_scenes,
                   [](const Json& v, const std::string& p) { return int_at_least(v, p, 1); });
     }

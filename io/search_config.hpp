@@ -3,7 +3,9 @@
 // vary the run (options given on the command line win). A hand-written file may hold any subset
 // of the keys; "format" and "version" are required. Layout (all optional but the first two):
 //   {"format": "pinmask-search-config", "version": 1, "generator" (informational),
-//    "strategy": "random" | "anneal", "time": "20s", "evaluations_per_chain": >= 0 (0: --time),
+//    "strategy": "random" | "anneal", "time": "20s" (null: an --evals run, no time budget),
+//    "evaluations_per_chain": >= 0 (0: --time), "ranks": >= 1 (MPI ranks of the run that wrote
+//    it: the chains and islands depend on it),
 //    "threads": >= 0, "seed": >= 0, "top": >= 1, "grid", "holes", "tiles" (integers >= 1),
 //    "max_holes": >= 0 (0: K fixed at "holes"; else the range holes..max_holes),
 //    "min_spacing_cells": > 0, "keep_out": "none" | "border", "pixels_per_cell": >= 1,
@@ -43,6 +45,7 @@ struct SearchConfig {
     std::optional<std::string> strategy, time, keep_out, kernel, kernel_path, filter;
     std::optional<std::int64_t> evaluations_per_chain;
     std::optional<int> threads, top, grid, holes, max_holes, tiles, pixels_per_cell, prior_scenes;
+    std::optional<int> ranks;  // of the run that wrote the file (informational; checked)
     std::optional<std::uint64_t> seed;
     std::optional<double> min_spacing_cells, snr_db;
     std::optional<double> w_analytic, w_max_sidelobe, w_sidelobe_energy, w_min_spectrum;

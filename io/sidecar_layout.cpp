@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "core/field_names.hpp"
 #include "core/units.hpp"
+#include "export/vendor_presets.hpp"
 #include "formats/fab_units.hpp"
 
 namespace pinmask::io {
@@ -91,6 +92,17 @@ void apply_file_declarations(LayoutOptions& lo, const FileGeometry& file) {
     if (auto it = info.find("mirrored"); it != info.end()) lo.mirror = it->second == "yes";
     if (auto it = info.find("grid_nm"); it != info.end())
         lo.grid_m = parse_number(it->second, "grid_nm") * 1e-9;
+}
+
+VendorRules sidecar_rules(const ExportSidecar& side) {
+    if (side.rules_name.empty()) return vendor_rules_for(side.vendor);
+    VendorRules r;
+    r.name = side.rules_name;
+    r.description = "as the export checked them (sidecar)";
+    r.min_feature_nm = side.rules_min_feature_nm;
+    r.min_gap_nm = side.rules_min_space_nm;
+    r.max_vertices = side.rules_max_vertices;
+    return r;
 }
 
 void check_sidecar_unit(const ExportSidecar& side, const FileGeometry& file) {

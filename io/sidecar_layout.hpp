@@ -10,9 +10,10 @@
 #include <optional>
 #include <string>
 
+#include "io/export_sidecar.hpp"
 #include "layout/geometry.hpp"
 #include "layout/rings.hpp"
-#include "io/export_sidecar.hpp"
+#include "layout/vendor_rules.hpp"
 
 namespace pinmask::io {
 
@@ -52,6 +53,10 @@ LayoutOptions check_layout(const CheckLayoutSettings& given, const ExportSidecar
 // Tone, mirroring and grid as a fabrication file declares them (its info), over `lo`: the
 // design's settings when no sidecar gives them.
 void apply_file_declarations(LayoutOptions& lo, const FileGeometry& file);
+
+// The design rules the export checked, as its sidecar records them (an older sidecar without
+// them: its vendor's rule preset, export/vendor_presets vendor_rules_for).
+VendorRules sidecar_rules(const ExportSidecar& side);
 
 // InvalidInput when the file's declared unit disagrees with the sidecar's.
 void check_sidecar_unit(const ExportSidecar& side, const FileGeometry& file);

@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "core/resource_limits.hpp"
+#include "design/fab_grid.hpp"
 #include "layout/cell_union.hpp"
 #include "layout/dark_tone.hpp"
 #include "layout/marks.hpp"
@@ -133,10 +134,16 @@ Layout make_layout(const Mask& mask, const LayoutOptions& o) {
     if (o.max_vertices < 8)
         throw invalid_field("max_vertices", std::to_string(o.max_vertices), "must be >= 8");
 
-    const double pitch = mask.camera.pinhole_m * 1e9;
-    if (pitch < 8.0 * double(grid))
-        throw invalid_field("pinhole_m", nm_text(pitch), "must be at least 8 grid steps");
-    const double hole = o.hole_side_m > 0 ? o.hole_side_m * 1e9 : pitch;
+    // The cell pitch on the grid (design/fab_grid): every cell edge is a whole number of
+    // pitches from the first, so pinholes k cells apart are exactly sqrt(k) P apart.
+    const double pitch_design = mask.camera.pinhole_m * 1e9;
+    if (pitch_design < 8.0 * double(grid))
+        throw invalid_field("pinhole_m", nm_text(pitch_design), "must be at least 8 grid steps");
+    const std::int64_t pitch_nm = pitch_on_grid_nm(mask.camera.pinhole_m, grid);
+    const double pitch = double(pitch_nm);
+    // A hole side given as the design's own d (e.g. an export sidecar's) is the whole cell.
+    double hole = o.hole_side_m > 0 ? o.hole_side_m * 1e9 : pitch;
+    if (o.hole_side_m > 0 && std::fabs(hole - pitch_design) <= 0.5 * double(grid)) hole = pitch;
     if (!std::isfinite(hole) || o.hole_side_m < 0 || hole > pitch * (1 + 1e-12))
         throw invalid_field("hole_side", nm_text(hole),
                             "must be > 0 and <= the cell pitch " + nm_text(pitch));
@@ -154,6 +161,9 @@ Layout make_layout(const Mask& mask, const LayoutOptions& o) {
     const std::int64_t cols = std::int64_t(p.n) * p.tiles_cols;
     const std::int64_t frame = length_nm(o.frame_m, grid, "frame", true);
     const double half_w = 0.5 * double(cols) * pitch, half_h = 0.5 * double(rows) * pitch;
+    // The active area's left and bottom edges: half the tiled size, rounded down to the grid, so
+    // the centre is the origin within one grid step.
+    const std::int64_t left = -floor_to_grid(half_w, grid), bottom = -floor_to_grid(half_h, grid);
     if (std::max(half_w, half_h) + double(frame) > 0.5 * double(kMaxCoordNm))
         throw invalid_field("mask size", nm_text(2 * std::max(half_w, half_h)),
                             "the outline must fit in +-2^29 nm (about 0.54 m) per side");
@@ -179,11 +189,12 @@ Layout make_layout(const Mask& mask, const LayoutOptions& o) {
     check_memory(double(count) * (16.0 * sides + 64.0) * 2.0, "export layout polygons");
 
     std::vector<std::int64_t> xe(std::size_t(cols) + 1), ye(std::size_t(rows) + 1);
-    for (std::int64_t j = 0; j <= cols; ++j) xe[j] = snap_nm(double(j) * pitch - half_w, grid);
-    for (std::int64_t i = 0; i <= rows; ++i) ye[i] = snap_nm(half_h - double(i) * pitch, grid);
+    for (std::int64_t j = 0; j <= cols; ++j) xe[j] = left + j * pitch_nm;
+    for (std::int64_t i = 0; i <= rows; ++i) ye[i] = bottom + (rows - i) * pitch_nm;
 
     Layout layout;
     layout.grid_nm = grid;
+    layout.pitch_nm = pitch_nm;
     layout.tone = o.tone;
     layout.mirrored = o.mirror;
     layout.mask_hash = geometry_hash(mask);
@@ -198,19 +209,31 @@ Layout make_layout(const Mask& mask, const LayoutOptions& o) {
     auto cell_box = [&](const Cell& c) {
         return BoxNm{xe[c.col], ye[c.row + 1], xe[c.col + 1], ye[c.row]};
     };
-    auto centre = [&](const Cell& c) {
-        return std::pair{(double(c.col) + 0.5) * pitch - half_w,
-                         half_h - (double(c.row) + 0.5) * pitch};
+    // Every pinhole is the one of cell (0, 0) moved by whole pitches, so all pinholes are
+    // identical on the grid and their centres exactly whole pitches apart.
+    const BoxNm first_cell = cell_box({0, 0});
+    const double first_cx = double(first_cell.x0) + 0.5 * pitch;
+    const double first_cy = double(first_cell.y0) + 0.5 * pitch;
+    auto moved = [&](const Cell& c) {
+        return std::pair{std::int64_t(c.col) * pitch_nm, -std::int64_t(c.row) * pitch_nm};
     };
+    // The square hole inside its cell: side and inset snapped once.
+    const std::int64_t hole_nm = snap_nm(hole, grid);
+    const std::int64_t inset = full_cell ? 0 : snap_nm(0.5 * (pitch - double(hole_nm)), grid);
     auto hole_box = [&](const Cell& c) {
         if (full_cell) return cell_box(c);
-        const auto [cx, cy] = centre(c);
-        return BoxNm{snap_nm(cx - hole / 2, grid), snap_nm(cy - hole / 2, grid),
-                     snap_nm(cx + hole / 2, grid), snap_nm(cy + hole / 2, grid)};
+        const BoxNm cb = cell_box(c);
+        return BoxNm{cb.x0 + inset, cb.y0 + inset, cb.x0 + inset + hole_nm,
+                     cb.y0 + inset + hole_nm};
     };
+    Ring first_polygon;
+    if (o.shape != HoleShape::kSquare)
+        first_polygon = place_polygon(offsets, first_cx, first_cy, first_cell, grid);
     auto polygon_in = [&](const Cell& c) {
-        const auto [cx, cy] = centre(c);
-        return place_polygon(offsets, cx, cy, cell_box(c), grid);
+        const auto [dx, dy] = moved(c);
+        Ring r = first_polygon;
+        for (PointNm& q : r) q = {q.x + dx, q.y + dy};
+        return r;
     };
 
     if (o.tone == Tone::kClear) {
@@ -222,9 +245,11 @@ Layout make_layout(const Mask& mask, const LayoutOptions& o) {
                 // (an even number of grid steps, so the radius is on the grid too)
                 const std::int64_t diameter = 2 * std::max(grid, snap_nm(hole / 2, grid));
                 layout.circles.reserve(cells.size());
+                const PointNm first{first_cell.x0 + floor_to_grid(0.5 * pitch, grid),
+                                    first_cell.y0 + floor_to_grid(0.5 * pitch, grid)};
                 for (const Cell& c : cells) {
-                    const auto [cx, cy] = centre(c);
-                    layout.circles.push_back({{snap_nm(cx, grid), snap_nm(cy, grid)}, diameter});
+                    const auto [dx, dy] = moved(c);
+                    layout.circles.push_back({{first.x + dx, first.y + dy}, diameter});
                 }
             }
         } else if (full_cell && edge_neighbours(p)) {

@@ -4,8 +4,10 @@
 // Orientation: mask row 0 is the TOP row and column 0 the LEFT column, as in the pattern's
 // row-major occupancy; with y up (GDSII/DXF/Gerber), row r spans y from H/2 - (r + 1) d to
 // H/2 - r d and column c spans x from c d - W/2 to (c + 1) d - W/2, where d is the cell pitch
-// (camera.pinhole_m) and W, H the tiled width and height. Row -> -y, column -> +x. Cell edges
-// are snapped to the grid individually, so neighbouring cells share their edge exactly.
+// (camera.pinhole_m) and W, H the tiled width and height. Row -> -y, column -> +x. The pitch is
+// snapped to the grid once (design/fab_grid pitch_on_grid_nm) and W/2, H/2 rounded down to it,
+// so every cell edge is on the grid, neighbouring cells share their edge exactly, and every
+// pinhole is the first one moved by whole pitches (the spacing rule sees exact multiples of P).
 // Mirroring (right-reading with the chrome/emulsion side down) maps x -> -x for everything,
 // marks and label included, after the layout is built.
 //

@@ -45,10 +45,11 @@ struct Layout {
     BoxNm active_area;              // the tiled pattern's extent
     BoxNm extent;                   // everything incl. frame, marks and label
     Tone tone = Tone::kClear;
-    bool mirrored = false;     // right-reading with chrome/emulsion down
-    std::int64_t grid_nm = 1;  // manufacturing grid the coordinates are snapped to
-    std::string mask_hash;     // geometry_hash of the source mask
-    int hole_sides = 4;        // sides of each pinhole's polygon before snapping (4: squares)
+    bool mirrored = false;      // right-reading with chrome/emulsion down
+    std::int64_t grid_nm = 1;   // manufacturing grid the coordinates are snapped to
+    std::int64_t pitch_nm = 0;  // cell pitch: the pinhole side on the grid (design/fab_grid)
+    std::string mask_hash;      // geometry_hash of the source mask
+    int hole_sides = 4;         // sides of each pinhole's polygon before snapping (4: squares)
     // Round pinholes in clear tone: the true circle each polygon stands for, in the same order
     // as `polygons` (writers with native circles draw these instead); empty otherwise.
     std::vector<CircleNm> circles;

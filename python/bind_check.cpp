@@ -11,14 +11,15 @@
 #include "core/units.hpp"
 #include "export/drc.hpp"
 #include "export/file_check.hpp"
-#include "layout/geometry.hpp"
+#include "export/vendor_presets.hpp"
 #include "formats/read_any.hpp"
-#include "layout/rings.hpp"
-#include "layout/vendor_rules.hpp"
-#include "layout/xor_area.hpp"
 #include "io/export_sidecar.hpp"
 #include "io/mask_json.hpp"
 #include "io/sidecar_layout.hpp"
+#include "layout/geometry.hpp"
+#include "layout/rings.hpp"
+#include "layout/vendor_rules.hpp"
+#include "layout/xor_area.hpp"
 #include "python/common.hpp"
 #include "python/values.hpp"
 
@@ -92,26 +93,45 @@ py::object index_or_none(std::size_t i) {
 void bind_check(py::module_& m) {
     m.def(
         "check",
-        [](const py::handle& input, const py::handle& mask, const std::string& vendor_name,
-           const py::object& min_gap, const py::object& min_feature, const py::object& min_spacing,
-           std::optional<std::size_t> max_vertices, std::size_t list, double max_xor_um2,
-           const std::optional<std::string>& shape, std::optional<int> sides,
+        [](const py::handle& input, const py::handle& mask,
+           const std::optional<std::string>& vendor_arg, const py::object& min_gap_arg,
+           const py::object& min_space, const py::object& min_feature,
+           const py::object& min_spacing, std::optional<std::size_t> max_vertices, std::size_t list,
+           double max_xor_um2, const std::optional<std::string>& shape, std::optional<int> sides,
            const py::object& hole_side, const py::object& frame, const py::object& chord_tol,
            const std::optional<std::string>& tone, const std::optional<std::string>& units,
            bool mirror, bool no_sidecar) {
+            if (!min_gap_arg.is_none() && !min_space.is_none())
+                throw invalid_field(
+                    field_ref("min_space"), py::str(min_space).cast<std::string>(),
+                    "is the same rule as " + field_ref("min_gap") + ": give one of them");
+            const py::object min_gap = min_space.is_none() ? min_gap_arg : min_space;
             CheckArgs o{min_gap,   min_feature, min_spacing, max_vertices, list,  shape, sides,
                         hole_side, frame,       chord_tol,   tone,         units, mirror};
             const io::CheckLayoutSettings given = layout_settings(o);
             if (!std::isfinite(max_xor_um2) || max_xor_um2 < 0)
                 throw invalid_field(field_ref("max_xor_um2"), std::to_string(max_xor_um2),
                                     "must be finite and >= 0");
-            const VendorRules vendor = vendor_rules(vendor_name);
             const bool input_is_mask = py::isinstance<Mask>(input);
             const std::string input_text =
                 input_is_mask ? std::string("python mask") : py::str(input).cast<std::string>();
             if (!input_is_mask && !fs::is_regular_file(input_text))
                 throw invalid_field("input", input_text,
                                     "must be an existing mask or fabrication file");
+            // The vendor: as given, else the rules the export sidecar records, else film.
+            std::optional<io::ExportSidecar> side;
+            const fs::path side_path =
+                input_is_mask ? fs::path() : io::sidecar_path_for(input_text);
+            if (!input_is_mask && !io::is_mask_file(input_text) && !no_sidecar &&
+                fs::is_regular_file(side_path))
+                side = io::read_export_sidecar(side_path);
+            std::string rules_from = vendor_arg ? "given"
+                                     : side     ? "the export sidecar"
+                                                : "default (film)";
+            const VendorRules vendor = vendor_arg ? vendor_rules_for(*vendor_arg)
+                                       : side     ? io::sidecar_rules(*side)
+                                                  : vendor_rules("film");
+            const std::string vendor_name = vendor.name;
             Layout l;
             DrcRules rules;
             std::string kind;
@@ -128,16 +148,12 @@ void bind_check(py::module_& m) {
                                               : io::read_mask_file(
                                                     input_text, {.allow_spacing_violations = true});
                 l = make_layout(mk, io::check_layout(given, nullptr));
-                rules = resolve_rules(o, rules_for_mask(mk, vendor));
+                rules = resolve_rules(o, rules_for_mask(mk, vendor, l.grid_nm));
                 py::gil_scoped_release release;
                 r = run_drc(l, rules);
             } else {
                 const FileGeometry file = read_fabrication_file(input_text);
                 kind = fs::path(input_text).extension().string().substr(1);
-                const fs::path side_path = io::sidecar_path_for(input_text);
-                std::optional<io::ExportSidecar> side;
-                if (!no_sidecar && fs::is_regular_file(side_path))
-                    side = io::read_export_sidecar(side_path);
                 std::optional<Mask> design_mask;
                 std::string mask_text;
                 if (!mask.is_none()) {
@@ -176,7 +192,7 @@ void bind_check(py::module_& m) {
                     design = make_layout(*design_mask, lo);
                     fo.design = &*design;
                     fo.whole_layout = side.has_value();
-                    rules = resolve_rules(o, rules_for_mask(*design_mask, vendor));
+                    rules = resolve_rules(o, rules_for_mask(*design_mask, vendor, design->grid_nm));
                 }
                 fo.rules = rules;
                 FileCheck fc;
@@ -222,6 +238,7 @@ void bind_check(py::module_& m) {
             j["input"] = input_text;
             j["kind"] = kind;
             j["vendor"] = vendor_name;
+            j["rules_from"] = rules_from;
             j["settings"] = settings;
             j["tone"] = tone_name(l.tone);
             j["polygons"] = l.polygons.size();
@@ -241,14 +258,14 @@ void bind_check(py::module_& m) {
             if (comparison) j["comparison"] = *comparison;
             return j;
         },
-        py::arg("input"), py::arg("mask") = py::none(), py::arg("vendor") = "film",
-        py::arg("min_gap") = py::none(), py::arg("min_feature") = py::none(),
-        py::arg("min_spacing") = py::none(), py::arg("max_vertices") = py::none(),
-        py::arg("list") = 20, py::arg("max_xor_um2") = 0.0, py::arg("shape") = py::none(),
-        py::arg("sides") = py::none(), py::arg("hole_side") = py::none(),
-        py::arg("frame") = py::none(), py::arg("chord_tol") = py::none(),
-        py::arg("tone") = py::none(), py::arg("units") = py::none(), py::arg("mirror") = false,
-        py::arg("no_sidecar") = false,
+        py::arg("input"), py::arg("mask") = py::none(), py::arg("vendor") = py::none(),
+        py::arg("min_gap") = py::none(), py::arg("min_space") = py::none(),
+        py::arg("min_feature") = py::none(), py::arg("min_spacing") = py::none(),
+        py::arg("max_vertices") = py::none(), py::arg("list") = 20, py::arg("max_xor_um2") = 0.0,
+        py::arg("shape") = py::none(), py::arg("sides") = py::none(),
+        py::arg("hole_side") = py::none(), py::arg("frame") = py::none(),
+        py::arg("chord_tol") = py::none(), py::arg("tone") = py::none(),
+        py::arg("units") = py::none(), py::arg("mirror") = false, py::arg("no_sidecar") = false,
         R"(The design-rule check of `pinmask check` (returns what its --json prints; `clean` is
 its exit status): input a Mask, a *.mask.json or a fabrication file (.gds .dxf .gbr .svg); with
 mask (the design a file was exported from) the file's pinholes are compared by exact XOR area
@@ -257,8 +274,11 @@ beside it (written by export) gives the layout settings (tone, mirroring, shape,
 label) and the mask when mask is None; the given shape/sides/hole_side/frame/chord_tol/tone/
 units/mirror must then agree with it (ValueError naming the flag); no_sidecar ignores it.
 Without a sidecar those arguments describe the design as given to export (tone, mirroring and
-grid as the file declares them). vendor film | chrome | none; min_gap, min_feature, min_spacing
-override it (lengths). Distances in the result are in um.)");
+grid as the file declares them). vendor: an export preset (chrome-photomask, film-plotter, ...)
+or rules film | chrome | none; None: the rules the export sidecar records (vendor and any
+min_feature / min_space given to export), else film. min_space (alias min_gap), min_feature,
+min_spacing override them (lengths). The spacing rule is min_spacing_cells x the pinhole side on
+the fabrication grid. Distances in the result are in um.)");
 }
 
 }  // namespace pinmask::python

@@ -35,28 +35,41 @@ py::dict optics_dict(const OpticsReport& r, const WorkingDistance& wd,
     d["geometry"] =
         py::dict(py::arg("n") = r.geometry.n, py::arg("holes") = r.geometry.holes,
                  py::arg("tiles") = py::make_tuple(r.geometry.tiles_rows, r.geometry.tiles_cols));
+    // Keys as `pinmask design --json` (cli/outputs/design_report): plain and "_at_u" keys at
+    // the working distance u, "_at_inf" keys for a distant object.
     d["optimum_pinhole_m"] = r.optimum_pinhole_m;
     d["fresnel_number"] = r.fresnel_number;
-    d["fresnel_number_with_lens"] = r.fresnel_number_with_lens;
+    d["fresnel_number_with_lens"] = r.fresnel_number_with_lens_at_u;
     d["fresnel_number_with_lens_at_u"] = r.fresnel_number_with_lens_at_u;
-    d["effective_distance_m"] = r.effective_distance_m;
+    d["fresnel_number_with_lens_at_inf"] = r.fresnel_number_with_lens;
+    d["effective_distance_m"] = r.effective_distance_at_u_m;
     d["effective_distance_at_u_m"] = r.effective_distance_at_u_m;
-    d["magnification"] = r.magnification;
+    d["effective_distance_at_inf_m"] = r.effective_distance_m;
+    d["magnification"] = r.magnification_at_u;
     d["magnification_at_u"] = r.magnification_at_u;
-    d["geometric_spot_m"] = r.geometric_spot_m;
+    d["magnification_at_inf"] = r.magnification;
+    d["geometric_spot_m"] = r.geometric_spot_at_u_m;
     d["geometric_spot_at_u_m"] = r.geometric_spot_at_u_m;
-    d["pixels_per_cell"] = r.pixels_per_cell;
+    d["geometric_spot_at_inf_m"] = r.geometric_spot_m;
+    d["pixels_per_cell"] = r.pixels_per_cell_at_u;
     d["pixels_per_cell_at_u"] = r.pixels_per_cell_at_u;
-    d["integer_pixels_per_cell"] = r.integer_pixels_per_cell;
-    d["pinhole_for_integer_pixels_m"] = r.pinhole_for_integer_pixels_m;
+    d["pixels_per_cell_at_inf"] = r.pixels_per_cell;
+    d["integer_pixels_per_cell"] = wd.pixels_per_cell;
+    d["integer_pixels_per_cell_at_inf"] = r.integer_pixels_per_cell;
+    d["pinhole_for_integer_pixels_m"] = wd.pinhole_for_pixels_per_cell_m;
+    d["pinhole_for_integer_pixels_at_inf_m"] = r.pinhole_for_integer_pixels_m;
     d["max_separation_m"] = r.max_separation_m;
     d["lsi_tolerance_px"] = r.options.lsi_tolerance_px;
-    d["lsi_min_object_distance_m"] = r.lsi_min_object_distance_m;
-    d["lsi_mismatch_px"] = r.lsi_mismatch_px;
-    d["lsi_shift_invariant"] = r.is_shift_invariant();
-    d["psf_size_px"] = r.psf_size_px;
-    d["periods_on_sensor"] = py::dict(py::arg("cols") = r.periods_on_sensor_cols,
-                                      py::arg("rows") = r.periods_on_sensor_rows);
+    d["lsi_mismatch_px"] = wd.lsi_mismatch_px;
+    d["lsi_shift_invariant"] = wd.is_shift_invariant();
+    d["lsi_mismatch_at_inf_px"] = r.lsi_mismatch_px;
+    d["lsi_min_object_distance_at_inf_m"] = r.lsi_min_object_distance_m;
+    d["psf_size_px"] = wd.psf_size_px;
+    d["psf_size_at_inf_px"] = r.psf_size_px;
+    d["periods_on_sensor"] = py::dict(py::arg("cols") = wd.periods_on_sensor_cols,
+                                      py::arg("rows") = wd.periods_on_sensor_rows);
+    d["periods_on_sensor_at_inf"] = py::dict(py::arg("cols") = r.periods_on_sensor_cols,
+                                             py::arg("rows") = r.periods_on_sensor_rows);
     d["mask_size_m"] =
         py::dict(py::arg("width") = r.mask_width_m, py::arg("height") = r.mask_height_m);
     d["open_fraction"] = r.open_fraction;
@@ -168,7 +181,9 @@ void bind_design(py::module_& m) {
         py::arg("tiles") = 2, py::arg("kernel") = "auto", py::arg("lsi_tolerance_px") = 1.0,
         "The optics report of `pinmask design --json` as a dict (same keys and numbers; lengths "
         "in metres with _m suffixes, infinite values as float('inf') where the CLI writes null "
-        "and a note), the working distance included: whole_pixels_per_cell_at_u, "
+        "and a note; keys without a suffix and \"_at_u\" keys are at the working distance u, "
+        "\"_at_inf\" keys are the distant-object design values), the working distance "
+        "included: whole_pixels_per_cell_at_u, "
         "pinhole_for_pixels_per_cell_m, period_at_u_px, lsi_mismatch_at_u_px, "
         "object_distance_range_m (near, far; far inf when shift invariant to infinity), "
         "optimum_pinhole_lensless_m, optimum_pinhole_with_lens_m, spot_spread_cells (cells), "
@@ -176,10 +191,7 @@ void bind_design(py::module_& m) {
         "side, kernel (kernel_models()), lsi_tolerance_px in pixels.");
 
     m.def(
-        "kernel_models",
-        [] {
-            return name_list(kKernelModelNames);
-        },
+        "kernel_models", [] { return name_list(kKernelModelNames); },
         "Names of the single-pinhole kernel models.");
     m.def(
         "choose_kernel_model",

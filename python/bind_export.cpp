@@ -17,14 +17,14 @@
 #include "export/drc.hpp"
 #include "export/export_pipeline.hpp"
 #include "export/export_request.hpp"
-#include "layout/geometry.hpp"
-#include "formats/read_any.hpp"
 #include "export/read_back.hpp"
+#include "formats/read_any.hpp"
+#include "formats/write_any.hpp"
+#include "io/mask_json.hpp"
+#include "layout/geometry.hpp"
 #include "layout/rings.hpp"
 #include "layout/vendor_rules.hpp"
-#include "formats/write_any.hpp"
 #include "layout/xor_area.hpp"
-#include "io/mask_json.hpp"
 #include "python/common.hpp"
 #include "python/values.hpp"
 
@@ -159,7 +159,9 @@ void bind_export(py::module_& m) {
            const py::object& chord_tol, const py::object& grid, const py::object& hole_side,
            std::size_t max_vertices, int layer, int datatype, const std::string& dxf_layer,
            std::optional<double> dpi, const py::object& margin, const std::string& vendor,
-           bool require_drc_clean, bool allow_spacing_violations) {
+           bool require_drc_clean, bool allow_spacing_violations,
+           const std::optional<std::string>& min_feature,
+           const std::optional<std::string>& min_space) {
             const std::vector<FabFormat> fmts = parse_formats(formats);
             if (out_dir.empty())
                 throw invalid_field(field_ref("out_dir"), "''", "an output directory is required");
@@ -197,6 +199,8 @@ void bind_export(py::module_& m) {
             f.dpi = dpi;
             f.margin = py::str(margin).cast<std::string>();
             f.vendor = vendor;
+            f.min_feature = min_feature;
+            f.min_space = min_space;
             f.require_drc_clean = require_drc_clean;
             f.allow_spacing_violations = allow_spacing_violations;
             f.no_psf = true;
@@ -258,12 +262,15 @@ void bind_export(py::module_& m) {
         py::arg("datatype") = 0, py::arg("dxf_layer") = "PINMASK", py::arg("dpi") = py::none(),
         py::arg("margin") = "10mm", py::arg("vendor") = "none",
         py::arg("require_drc_clean") = false, py::arg("allow_spacing_violations") = false,
+        py::arg("min_feature") = py::none(), py::arg("min_space") = py::none(),
         R"(Writes the fabrication files of `pinmask export MASK -o out_dir` (same options, same
 bytes; export/export_pipeline): formats svg pdf gds oasis dxf gerber png tiff1 ->
 out_dir/<stem>.svg .pdf .gds .oas .dxf .gbr .png .tif, all or nothing; dpi: PNG/TIFF
 resolution (None: the CLI's default per format); each readable format is read back from disk and compared with the design (identical polygons or XOR area 0, and the mask
-hash), else RuntimeError and no file. The design-rule check (vendor film | chrome | none) is
-reported (require_drc_clean: RuntimeError on violations). stem: default the mask file's name
+hash), else RuntimeError and no file. The design-rule check (vendor: an export preset or rules
+film | chrome | none; min_feature / min_space: the shop's own limits over them, lengths) is
+reported (require_drc_clean: RuntimeError on violations); the spacing rule is evaluated on the
+pinhole side snapped to the grid, the pitch every cell edge is drawn at. stem: default the mask file's name
 ('mask' for a Mask object). The export sidecar JSON and the PSF files are the CLI's; write_psf()
 writes the PSF. Returns {files: [{path, format, bytes, verification}], drc: {vendor, clean,
 counts}, mask_hash}.)");

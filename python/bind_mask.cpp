@@ -220,6 +220,7 @@ void bind_mask(py::module_& m) {
             parse_kernel_model(kernel, field_ref("kernel"));
             mk.psf = resolve_psf_spec(po, mk.camera);
             check_period_psf_size(mk.psf.pixels_per_cell, go.grid, pixels_per_cell.has_value());
+            go.pinhole_m = mk.camera.pinhole_m;  // the rule on the 1 nm grid, as the CLI
             const GeneratedPattern gen = generate_pattern(go);
             const std::size_t violations = gen.spacing_violations;
             mk.pattern = gen.pattern;

@@ -354,12 +354,15 @@ def export_mask(
     vendor: str = "none",
     require_drc_clean: bool = False,
     allow_spacing_violations: bool = False,
+    min_feature: Optional[str] = None,
+    min_space: Optional[str] = None,
 ) -> dict[str, Any]: ...
 def check(
     input: Union[Mask, PathLikeStr],
     mask: Optional[MaskLike] = None,
-    vendor: str = "film",
+    vendor: Optional[str] = None,  # None: the export sidecar's rules, else film
     min_gap: Optional[Length] = None,
+    min_space: Optional[Length] = None,  # alias of min_gap
     min_feature: Optional[Length] = None,
     min_spacing: Optional[Length] = None,
     max_vertices: Optional[int] = None,

@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "core/units.hpp"
+#include "export/vendor_presets.hpp"
 #include "io/sidecar_layout.hpp"
 
 namespace pinmask::cli {
@@ -27,8 +28,22 @@ std::int64_t length_nm(const std::string& text, const char* flag, std::int64_t m
 
 }  // namespace
 
+VendorRules check_vendor_rules(const CheckOptions& o, const io::ExportSidecar* side,
+                               std::string& source) {
+    if (o.vendor) {
+        source = "given";
+        return vendor_rules_for(*o.vendor);
+    }
+    if (side) {
+        source = "the export sidecar";
+        return io::sidecar_rules(*side);
+    }
+    source = "default (film)";
+    return vendor_rules("film");
+}
+
 DrcRules resolve_rules(const CheckOptions& o, DrcRules rules) {
-    if (o.min_gap) rules.min_gap_nm = length_nm(*o.min_gap, "--min-gap", 1);
+    if (o.min_gap) rules.min_gap_nm = length_nm(*o.min_gap, "--min-space/--min-gap", 1);
     if (o.min_feature) rules.min_feature_nm = length_nm(*o.min_feature, "--min-feature", 0);
     if (o.min_spacing) {
         rules.min_center_spacing_nm = double(length_nm(*o.min_spacing, "--min-spacing", 0));

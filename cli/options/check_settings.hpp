@@ -7,16 +7,16 @@
 #include <string>
 
 #include "export/drc.hpp"
-#include "layout/geometry.hpp"
 #include "io/export_sidecar.hpp"
 #include "io/sidecar_layout.hpp"
+#include "layout/geometry.hpp"
 
 namespace pinmask::cli {
 
 struct CheckOptions {
     std::string input;
-    std::string mask;  // design of a fabrication file
-    std::string vendor = "film";
+    std::string mask;                   // design of a fabrication file
+    std::optional<std::string> vendor;  // not given: the export sidecar's rules, else film
     std::optional<std::string> min_gap, min_feature, min_spacing;
     std::optional<std::size_t> max_vertices;
     std::size_t list = 20;
@@ -30,6 +30,12 @@ struct CheckOptions {
 // Layout settings: the sidecar's (when given), every explicit flag required to agree with it
 // (InvalidInput naming the flag otherwise); without a sidecar, the flags.
 LayoutOptions design_options(const CheckOptions& o, const io::ExportSidecar* side);
+
+// The vendor rules: --vendor when given (a preset or rule name), else the rules the export
+// sidecar records, else film; `source` says which ("given", "the export sidecar", "default
+// (film)": the words Python's check() uses too).
+VendorRules check_vendor_rules(const CheckOptions& o, const io::ExportSidecar* side,
+                               std::string& source);
 
 // The rules: `rules` (the vendor's or the mask's) with every explicit flag applied.
 DrcRules resolve_rules(const CheckOptions& o, DrcRules rules);

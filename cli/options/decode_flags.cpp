@@ -68,7 +68,10 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeCommand& o) {
     psf->excludes(mask);
     cmd.add_option("--object-distance", o.object_distance,
                    "With --mask: decode with the PSF for an object at this distance (e.g. 2m, "
-                   "inf; refocusing after capture): kernel and whole pixels per cell at u")
+                   "inf; refocusing after capture): the integer torus when the pitch there is a "
+                   "whole number of pixels (within 0.25 px across one period), else the "
+                   "exact-geometry PSF at u over the whole frame (sets --model linear --crop "
+                   "none)")
         ->needs(mask);
     cmd.add_option("--dark", o.dark,
                    "Dark frame (capture through an all-opaque film), subtracted first; same size");

@@ -1,6 +1,8 @@
 #include "cli/options/decode_inputs.hpp"
 
+#include <cmath>
 #include <iostream>
+#include <optional>
 #include <utility>
 
 #include "cli/options/flag_names.hpp"
@@ -9,6 +11,7 @@
 #include "core/units.hpp"
 #include "design/mask.hpp"
 #include "design/psf.hpp"
+#include "design/psf_exact.hpp"
 #include "design/working_distance.hpp"
 #include "io/mask_json.hpp"
 #include "io/psf_files.hpp"
@@ -23,7 +26,9 @@ CaptureDecodeInputs load_inputs(const DecodeCommand& r, BayerMode bayer, bool ne
         throw InvalidInput("decode needs the PSF: give --mask FILE.mask.json or --psf FILE");
     }
     Image capture = load_capture(r.capture, bayer, stats);
-    CaptureDecodeInputs in = load_shared_inputs(r, bayer, need_counts, stats);
+    CaptureDecodeInputs in =
+        load_shared_inputs(r, bayer, need_counts, stats, static_cast<int>(capture.rows()),
+                           static_cast<int>(capture.cols()));
     in.capture = std::move(capture);
     return in;
 }
@@ -41,8 +46,33 @@ Image load_capture(const std::string& path, BayerMode bayer, json& stats) {
     return std::move(loaded.image);
 }
 
+namespace {
+
+double refocus_distance(const DecodeCommand& r, const Mask& mask) {
+    const double u = parse_length_m(*r.object_distance, "--object-distance", AllowInfinity::kYes);
+    check_object_distance(mask.camera, u, "--object-distance");
+    return u;
+}
+
+}  // namespace
+
+bool apply_refocus(DecodeCommand& r) {
+    if (!r.object_distance || r.mask.empty()) return false;
+    const Mask mask = io::read_mask_file(r.mask);
+    const RefocusGeometry g = refocus_geometry(mask, refocus_distance(r, mask));
+    if (!g.exact_geometry) return false;
+    if (r.model != "linear" || r.crop != "none")
+        std::cerr << "decode: --object-distance " << *r.object_distance << ": the pitch there is "
+                  << g.pitch_px << " px per cell, not a whole number (" << g.mismatch_px
+                  << " px off across one period): decoding the whole frame with the exact-geometry "
+                     "PSF at that distance (--model linear --crop none)\n";
+    r.model = "linear";
+    r.crop = "none";
+    return true;
+}
+
 CaptureDecodeInputs load_shared_inputs(const DecodeCommand& r, BayerMode bayer, bool need_counts,
-                                       json& stats) {
+                                       json& stats, int frame_rows, int frame_cols) {
     if (r.mask.empty() && r.psf.empty()) {
         throw InvalidInput("decode needs the PSF: give --mask FILE.mask.json or --psf FILE");
     }
@@ -65,18 +95,35 @@ CaptureDecodeInputs load_shared_inputs(const DecodeCommand& r, BayerMode bayer, 
                                 "has no camera background");
         }
         Mask mask = io::read_mask_file(r.mask);
+        std::optional<RefocusGeometry> refocus;
+        double u = mask.camera.object_distance_m;
         if (r.object_distance) {  // refocus: the PSF for an object at u
-            const double u =
-                parse_length_m(*r.object_distance, "--object-distance", AllowInfinity::kYes);
-            check_object_distance(mask.camera, u, "--object-distance");
-            mask = mask_at_distance(mask, u);
+            u = refocus_distance(r, mask);
+            refocus = refocus_geometry(mask, u);
         }
-        in.psf = Image(mask_psf(mask));
+        if (refocus && refocus->exact_geometry) {
+            // The pitch at u is not whole: what the sensor records from a point at u, over the
+            // frame (design/psf_exact), for the linear model (apply_refocus set it).
+            ExactPsfOptions eo;
+            eo.object_distance_m = u;
+            eo.rows = frame_rows;
+            eo.cols = frame_cols;
+            in.psf = Image(exact_psf(mask, eo));
+        } else {
+            if (refocus) mask = mask_at_distance(mask, u);
+            in.psf = Image(mask_psf(mask));
+        }
         info = {{"source", "mask"},
                 {"path", r.mask},
                 {"mask_geometry_hash", geometry_hash(mask)},
                 {"pixels_per_cell", mask.psf.pixels_per_cell},
                 {"kernel_model", mask.psf.kernel.model}};
+        if (refocus)
+            info["refocus"] = {{"object_distance_m", std::isinf(u) ? json("inf") : json(u)},
+                               {"pitch_px", refocus->pitch_px},
+                               {"whole_pixels_per_cell", refocus->whole_px},
+                               {"mismatch_px", refocus->mismatch_px},
+                               {"geometry", refocus->exact_geometry ? "exact" : "integer"}};
     }
     check_psf(in.psf.channels[0], "PSF " + (r.psf.empty() ? r.mask : r.psf));
     info["rows"] = in.psf.rows();

@@ -17,10 +17,20 @@ namespace pinmask::cli {
 // The capture (RAW files through --bayer); stats["capture"] describes it.
 Image load_capture(const std::string& path, BayerMode bayer, nlohmann::json& stats);
 
+// Refocus (--object-distance with --mask): when the pitch at u is not a whole number of pixels
+// (design/working_distance refocus_geometry), the decode uses the exact-geometry PSF at u over
+// the whole frame: r.model becomes linear and r.crop none (a note on stderr says so when they
+// were set otherwise). Returns true then; false (nothing changed) for a whole pitch or no
+// refocus. Call before resolve_request.
+bool apply_refocus(DecodeCommand& r);
+
 // The PSF (r.psf or r.mask; `need_counts` keeps a PSF file's own values for --background
-// corner) and the dark frame; stats["psf"] and stats["dark"]. The capture is left empty.
+// corner) and the dark frame; stats["psf"] and stats["dark"]. The capture is left empty. A
+// refocus at a pitch that is not whole synthesises the exact-geometry PSF at u over `frame`
+// (rows, cols; 0: the camera's sensor).
 CaptureDecodeInputs load_shared_inputs(const DecodeCommand& r, BayerMode bayer, bool need_counts,
-                                       nlohmann::json& stats);
+                                       nlohmann::json& stats, int frame_rows = 0,
+                                       int frame_cols = 0);
 
 // Both, capture first (as `pinmask decode` reads them).
 CaptureDecodeInputs load_inputs(const DecodeCommand& r, BayerMode bayer, bool need_counts,

@@ -21,7 +21,8 @@ io::ExportSidecar export_sidecar_of(const ExportFlags& f, const Mask& mask, cons
     d.unit = fab_unit_name(o.write.unit);
     d.shape = f.shape;
     d.sides = d.drawn_sides = l.hole_sides;
-    d.hole_side_m = o.layout.hole_side_m > 0 ? o.layout.hole_side_m : mask.camera.pinhole_m;
+    // The pitch on the grid when the holes are the whole cell (layout/geometry).
+    d.hole_side_m = o.layout.hole_side_m > 0 ? o.layout.hole_side_m : double(l.pitch_nm) * 1e-9;
     if (o.kerf_m > 0) d.hole_side_m -= o.kerf_m;
     d.chord_tolerance_m = o.layout.chord_tolerance_m;
     d.frame_m = o.layout.frame_m;
@@ -40,6 +41,10 @@ io::ExportSidecar export_sidecar_of(const ExportFlags& f, const Mask& mask, cons
     d.polygons = l.polygons.size();
     d.annotations = l.annotations.size();
     d.vendor = f.vendor;
+    d.rules_name = o.drc.name;
+    d.rules_min_feature_nm = o.drc.min_feature_nm;
+    d.rules_min_space_nm = o.drc.min_gap_nm;
+    d.rules_max_vertices = o.drc.max_vertices;
     d.drc_clean = s.drc.clean();
     d.drc_counts = s.drc.counts;
     d.psf_absent = "not written (--no-psf)";

@@ -37,6 +37,7 @@ void apply_config(const io::SearchConfig& c, const CLI::App& cmd, SearchCliOptio
     auto set = [&](const char* flag, auto& field, const auto& value) {
         if (value && !given(flag)) field = *value;
     };
+    o.config_ranks = c.ranks;
     set("--strategy", o.strategy, c.strategy);
     set("--time", o.time, c.time);
     // A --time on the command line replaces the file's evaluation budget (and --evals its time).
@@ -97,7 +98,7 @@ void apply_config(const io::SearchConfig& c, const CLI::App& cmd, SearchCliOptio
 }
 
 nlohmann::ordered_json resolved_config(const SearchCliOptions& o, const SearchPipelineOptions& p,
-                                       const SearchPipelineSummary& s) {
+                                       const SearchPipelineSummary& s, int ranks) {
     nlohmann::ordered_json prior{{"family", prior_kind_name(p.prior.kind)},
                                  {"scenes", p.prior.count}};
     if (p.prior.kind == PriorKind::kFiles) {
@@ -108,8 +109,10 @@ nlohmann::ordered_json resolved_config(const SearchCliOptions& o, const SearchPi
             {"version", io::kSearchConfigVersion},
             {"generator", kSearchGenerator},
             {"strategy", o.strategy},
-            {"time", o.time},
+            {"time", p.search.max_evaluations > 0 ? nlohmann::ordered_json(nullptr)
+                                                  : nlohmann::ordered_json(o.time)},
             {"evaluations_per_chain", p.search.max_evaluations},
+            {"ranks", ranks},
             {"threads", p.search.threads},
             {"seed", o.seed},
             {"top", o.top},

@@ -26,6 +26,7 @@ struct SearchCliOptions {
     PsfOptions psf;
     std::string strategy = "anneal", time = "20s", filter = "auto", keep_out = "none";
     std::optional<std::int64_t> evals;
+    std::optional<int> config_ranks;  // --config's "ranks": the rank count of the run that wrote it
     int threads = 0, top = 5;
     std::uint64_t seed = 1;
     NoiseFlags noise;
@@ -50,7 +51,8 @@ void add_search_flags(CLI::App* cmd, const std::shared_ptr<SearchCliOptions>& o)
 SearchPipelineOptions search_pipeline_options(const SearchCliOptions& o, const CLI::App& cmd);
 
 // The resolved configuration of a run.
+// "time" is null for an --evals run (no time budget), "ranks" the MPI rank count.
 nlohmann::ordered_json resolved_config(const SearchCliOptions& o, const SearchPipelineOptions& p,
-                                       const SearchPipelineSummary& s);
+                                       const SearchPipelineSummary& s, int ranks = 1);
 
 }  // namespace pinmask::cli

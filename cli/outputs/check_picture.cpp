@@ -27,7 +27,7 @@ FileCheck check_picture(const CheckOptions& o, const VendorRules& vendor, CheckR
                             "sidecar (and its mask) beside the file, or give --mask");
     const Mask mask = io::read_mask_file(rep.mask, {.allow_spacing_violations = true});
     const Layout design = make_layout(mask, design_options(o, side ? &*side : nullptr));
-    rep.rules = resolve_rules(o, rules_for_mask(mask, vendor));
+    rep.rules = resolve_rules(o, rules_for_mask(mask, vendor, design.grid_nm));
     PictureCheckOptions po;
     po.rules = rep.rules;
     if (side) {

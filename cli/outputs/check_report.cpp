@@ -48,6 +48,7 @@ void print_check_json(const CheckReport& rep) {
         {"input", rep.input},
         {"kind", rep.kind},
         {"vendor", rep.vendor},
+        {"rules_from", rep.rules_source},
         {"settings", rep.settings},
         {"tone", tone_name(c.layout.tone)},
         {"polygons", c.layout.polygons.size()},
@@ -89,7 +90,8 @@ void print_check_text(const CheckReport& rep, const VendorRules& vendor) {
     std::ostringstream s;
     const DrcRules& ru = rep.rules;
     s << "check " << rep.input << " (" << rep.kind << "; vendor " << vendor.name << ": "
-      << vendor.description << ")\n";
+      << vendor.description << (rep.rules_source.empty() ? "" : "; rules: " + rep.rules_source)
+      << ")\n";
     s << "  polygons    " << c.layout.polygons.size() << " + " << c.layout.annotations.size()
       << " annotations, tone " << tone_name(c.layout.tone) << "\n";
     const bool spacing = ru.min_center_spacing_nm > 0;
@@ -102,6 +104,7 @@ void print_check_text(const CheckReport& rep, const VendorRules& vendor) {
       << (spacing ? um_text(r.measured.min_center_spacing_nm) : "not checked") << ", gap "
       << um_text(r.measured.min_gap_nm) << ", feature " << um_text(r.measured.min_feature_nm)
       << "\n";
+    if (!rep.spacing.empty()) s << "  spacing     " << rep.spacing << "\n";
     if (!rep.settings.empty()) s << "  settings    " << rep.settings << "\n";
     if (c.comparison) {
         const ReadBack& k = *c.comparison;

@@ -14,6 +14,8 @@ struct CheckReport {
     std::size_t list = 20;                  // violations listed per rule
     const FileCheck* check = nullptr;
     DrcRules rules;
+    std::string rules_source;  // where the vendor rules came from (--vendor, sidecar, default)
+    std::string spacing;       // the spacing rule in words (design/fab_grid), "" without a mask
     std::string note;
 };
 

@@ -22,6 +22,15 @@ std::string num(double v, int digits = 4) {
 
 std::string length(double v) { return format_length(v); }
 
+// Micrometres to the nanometre's thousandth: a pinhole side and its value on the grid differ
+// below format_length's four digits.
+std::string fine_length(double v) {
+    if (!std::isfinite(v)) return length(v);
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%.6f um", v * 1e6);
+    return buf;
+}
+
 // A number, or null with a note when it is infinite.
 void put(nlohmann::ordered_json& j, nlohmann::ordered_json& notes, const std::string& key, double v,
          const std::string& why_infinite = "") {
@@ -36,7 +45,8 @@ void put(nlohmann::ordered_json& j, nlohmann::ordered_json& notes, const std::st
 
 }  // namespace
 
-nlohmann::ordered_json design_json(const OpticsReport& r, const WorkingDistance& wd) {
+nlohmann::ordered_json design_json(const OpticsReport& r, const WorkingDistance& wd,
+                                   const GridSnap& snap) {
     using Json = nlohmann::ordered_json;
     Json j, notes = Json::object();
     const Camera& c = r.camera;
@@ -52,30 +62,46 @@ nlohmann::ordered_json design_json(const OpticsReport& r, const WorkingDistance&
     j["geometry"] = {{"n", r.geometry.n},
                      {"holes", r.geometry.holes},
                      {"tiles", {r.geometry.tiles_rows, r.geometry.tiles_cols}}};
+    // Keys without a suffix are at the working distance u (as are the "_at_u" keys); "_at_inf"
+    // keys are the distant-object design values the paper quotes (docs/commands.md).
     const std::string focus = "f = f' (Fraunhofer limit: 1/z_eff = 0)";
     j["optimum_pinhole_m"] = r.optimum_pinhole_m;
     j["fresnel_number"] = r.fresnel_number;
-    j["fresnel_number_with_lens"] = r.fresnel_number_with_lens;
+    j["fresnel_number_with_lens"] = r.fresnel_number_with_lens_at_u;
     j["fresnel_number_with_lens_at_u"] = r.fresnel_number_with_lens_at_u;
-    put(j, notes, "effective_distance_m", r.effective_distance_m, focus);
-    put(j, notes, "effective_distance_at_u_m", r.effective_distance_at_u_m, "1/f - 1/f' + 1/u = 0");
-    j["magnification"] = r.magnification;
+    j["fresnel_number_with_lens_at_inf"] = r.fresnel_number_with_lens;
+    const std::string focus_at_u =
+        "1/f - 1/f' + 1/u = 0 (e.g. f = f' at u = inf: the Fraunhofer limit)";
+    put(j, notes, "effective_distance_m", r.effective_distance_at_u_m, focus_at_u);
+    put(j, notes, "effective_distance_at_u_m", r.effective_distance_at_u_m, focus_at_u);
+    put(j, notes, "effective_distance_at_inf_m", r.effective_distance_m, focus);
+    j["magnification"] = r.magnification_at_u;
     j["magnification_at_u"] = r.magnification_at_u;
-    j["geometric_spot_m"] = r.geometric_spot_m;
+    j["magnification_at_inf"] = r.magnification;
+    j["geometric_spot_m"] = r.geometric_spot_at_u_m;
     j["geometric_spot_at_u_m"] = r.geometric_spot_at_u_m;
-    j["pixels_per_cell"] = r.pixels_per_cell;
+    j["geometric_spot_at_inf_m"] = r.geometric_spot_m;
+    j["pixels_per_cell"] = r.pixels_per_cell_at_u;
     j["pixels_per_cell_at_u"] = r.pixels_per_cell_at_u;
-    j["integer_pixels_per_cell"] = r.integer_pixels_per_cell;
-    put(j, notes, "pinhole_for_integer_pixels_m", r.pinhole_for_integer_pixels_m,
+    j["pixels_per_cell_at_inf"] = r.pixels_per_cell;
+    j["integer_pixels_per_cell"] = wd.pixels_per_cell;
+    j["integer_pixels_per_cell_at_inf"] = r.integer_pixels_per_cell;
+    put(j, notes, "pinhole_for_integer_pixels_m", wd.pinhole_for_pixels_per_cell_m,
+        "1 - f/f' + f/u = 0: every pinhole images to the same spot");
+    put(j, notes, "pinhole_for_integer_pixels_at_inf_m", r.pinhole_for_integer_pixels_m,
         "magnification 1 - f/f' = 0: every pinhole images to the same spot");
     j["max_separation_m"] = r.max_separation_m;
     j["lsi_tolerance_px"] = r.options.lsi_tolerance_px;
-    j["lsi_min_object_distance_m"] = r.lsi_min_object_distance_m;
-    j["lsi_mismatch_px"] = r.lsi_mismatch_px;
-    j["lsi_shift_invariant"] = r.is_shift_invariant();
-    j["psf_size_px"] = r.psf_size_px;
-    j["periods_on_sensor"] = {{"cols", r.periods_on_sensor_cols},
-                              {"rows", r.periods_on_sensor_rows}};
+    j["lsi_mismatch_px"] = wd.lsi_mismatch_px;
+    j["lsi_shift_invariant"] = wd.is_shift_invariant();
+    j["lsi_mismatch_at_inf_px"] = r.lsi_mismatch_px;
+    j["lsi_min_object_distance_at_inf_m"] = r.lsi_min_object_distance_m;
+    j["psf_size_px"] = wd.psf_size_px;
+    j["psf_size_at_inf_px"] = r.psf_size_px;
+    j["periods_on_sensor"] = {{"cols", wd.periods_on_sensor_cols},
+                              {"rows", wd.periods_on_sensor_rows}};
+    j["periods_on_sensor_at_inf"] = {{"cols", r.periods_on_sensor_cols},
+                                     {"rows", r.periods_on_sensor_rows}};
     j["mask_size_m"] = {{"width", r.mask_width_m}, {"height", r.mask_height_m}};
     j["open_fraction"] = r.open_fraction;
     j["light_gain"] = r.light_gain;
@@ -97,6 +123,13 @@ nlohmann::ordered_json design_json(const OpticsReport& r, const WorkingDistance&
         "rule optimum_pinhole_lensless_m is the limit");
     put(j, notes, "spot_spread_cells", wd.spot_spread_cells, "Fresnel number 0");
     j["spot_spreads_beyond_cell"] = wd.spreads_beyond_cell();
+    if (snap.solved) {
+        j["fab_grid_m"] = double(snap.grid_nm) * 1e-9;
+        j["pinhole_solved_m"] = snap.exact_m;
+        j["pinhole_on_grid_m"] = snap.on_grid_m;
+        j["grid_pitch_shift_px"] = snap.pitch_shift_px;
+        j["grid_period_shift_px"] = snap.pitch_shift_px * r.geometry.n;
+    }
     j["notes"] = notes;
     return j;
 }
@@ -118,64 +151,83 @@ std::string regime_text(const OpticsReport& r, const WorkingDistance& wd) {
 }  // namespace
 
 std::string design_table(const OpticsReport& r, const WorkingDistance& wd,
-                         const std::string& solved, const std::vector<CameraInput>& inputs) {
+                         const std::string& solved, const std::vector<CameraInput>& inputs,
+                         const GridSnap& snap) {
     const Camera& c = r.camera;
-    const std::string at_u = "u = " + length(c.object_distance_m);
+    const std::string at_u_text = "u = " + length(c.object_distance_m);
+    const std::string inf = "  u = inf";  // the distant-object line under a figure at u
     std::vector<std::vector<std::string>> rows = {
-        {"magnification M", num(r.magnification), "1 - f/f' (u = inf; < 0 past focus)"},
-        {"  at u", num(r.magnification_at_u), "1 - f/f' + f/u, " + at_u},
-        {"geometric spot = cell pitch p", length(r.geometric_spot_m),
-         "d |M| (u = inf, as the paper quotes)"},
-        {"  at u", length(r.geometric_spot_at_u_m), at_u},
-        {"pixels per cell", num(r.pixels_per_cell), "p / w"},
-        {"  at u", num(r.pixels_per_cell_at_u), at_u},
-        {"integer pixels per cell n_px", std::to_string(r.integer_pixels_per_cell),
-         "nearest integer (u = inf), at least 1"},
-        {"pinhole for n_px pixels per cell", length(r.pinhole_for_integer_pixels_m),
-         "n_px w / |1 - f/f'|"},
-        {"optimum single pinhole", length(r.optimum_pinhole_m), "1.56 sqrt(lambda f)"},
-        {"Fresnel number, no lens", num(r.fresnel_number), "d^2 / (4 lambda f)"},
-        {"effective distance z_eff", length(r.effective_distance_m),
-         "f f' / (f' - f), u = inf (inf: f = f'; < 0: past focus)"},
-        {"  at u", length(r.effective_distance_at_u_m), "1/z = 1/f - 1/f' + 1/u"},
-        {"Fresnel number with lens", num(r.fresnel_number_with_lens),
-         "d^2 / (4 lambda |z_eff|), u = inf"},
-        {"  at u", num(r.fresnel_number_with_lens_at_u), "used by the kernel models"},
-        {"largest separation s_max", length(r.max_separation_m), "n d"},
-        {"LSI min object distance", length(r.lsi_min_object_distance_m),
-         "f s_max / (" + num(r.options.lsi_tolerance_px) + " px * w)"},
-        {"LSI mismatch at u", num(r.lsi_mismatch_px) + " px",
-         std::string("f s_max / (u w): ") +
-             (r.is_shift_invariant() ? "shift invariant" : "NOT shift invariant") + " within " +
-             num(r.options.lsi_tolerance_px) + " px"},
-        {"PSF size (one period)",
-         std::to_string(r.psf_size_px) + " x " + std::to_string(r.psf_size_px) + " px", "n n_px"},
-        {"periods on the sensor",
-         num(r.periods_on_sensor_cols, 3) + " x " + num(r.periods_on_sensor_rows, 3),
-         std::to_string(c.sensor_cols) + " x " + std::to_string(c.sensor_rows) + " px / PSF size"},
-        {"mask size", length(r.mask_width_m) + " x " + length(r.mask_height_m),
-         "n tiles d per side"},
-        {"open fraction", num(100 * r.open_fraction, 3) + " %", "K / n^2"},
-        {"light gain", num(r.light_gain) + " x", "K: light over one pinhole"},
-        {"kernel model", kernel_model_name(r.kernel_model), r.kernel_reason},
-        {"WORKING DISTANCE", "", at_u + " (the camera is designed for this u)"},
+        {"WORKING DISTANCE", "",
+         at_u_text + ": every figure is at u; the \"u = inf\" lines below "
+                     "them are the distant-object values the paper quotes"},
+        {"magnification M(u)", num(r.magnification_at_u), "1 - f/f' + f/u (< 0 past focus)"},
+        {inf, num(r.magnification), "1 - f/f'"},
+        {"geometric spot = cell pitch p(u)", length(r.geometric_spot_at_u_m), "d |M(u)|"},
+        {inf, length(r.geometric_spot_m), "d |1 - f/f'|"},
+        {"pixels per cell (pitch at u)", num(r.pixels_per_cell_at_u, 8), "p(u) / w"},
+        {inf, num(r.pixels_per_cell), "p / w at u = inf"},
         {"whole pixels per cell N at u", std::to_string(wd.pixels_per_cell),
          solved.empty() ? "nearest whole number to the pitch at u" : solved},
-        {"pinhole for N px per cell at u", length(wd.pinhole_for_pixels_per_cell_m),
-         "N w / |1 - f/f' + f/u|" + std::string(solved.empty() ? "" : " (used above)")},
-        {"period at u", num(wd.period_px, 6) + " px", "n d |M(u)| / w"},
+        {inf, std::to_string(r.integer_pixels_per_cell), "nearest whole number at u = inf"},
+        {"pinhole for N px per cell at u", fine_length(wd.pinhole_for_pixels_per_cell_m),
+         "N w / |1 - f/f' + f/u|" + std::string(solved.empty() ? "" : " (before the grid)")},
+        {inf, length(r.pinhole_for_integer_pixels_m), "n_px w / |1 - f/f'|"},
+    };
+    if (snap.solved) {
+        char shift[160];
+        std::snprintf(shift, sizeof shift, "%+.3g px per cell, %+.3g px across one period",
+                      snap.pitch_shift_px, snap.pitch_shift_px * r.geometry.n);
+        rows.push_back({"pinhole on the fabrication grid", fine_length(snap.on_grid_m),
+                        "d snapped to the " + std::to_string(snap.grid_nm) + " nm grid (" +
+                            snap.grid_source + "): used above"});
+        rows.push_back({"  pitch at u moved by the grid", shift,
+                        "pitch(u) of the grid d minus N (what export draws)"});
+    }
+    const std::vector<std::vector<std::string>> rest = {
+        {"period at u", num(wd.period_px, 8) + " px", "n d |M(u)| / w"},
+        {"PSF size (one period)",
+         std::to_string(wd.psf_size_px) + " x " + std::to_string(wd.psf_size_px) + " px",
+         "n N (the decoder's torus at u)"},
+        {inf, std::to_string(r.psf_size_px) + " x " + std::to_string(r.psf_size_px) + " px",
+         "n n_px at u = inf"},
+        {"periods on the sensor",
+         num(wd.periods_on_sensor_cols, 3) + " x " + num(wd.periods_on_sensor_rows, 3),
+         std::to_string(c.sensor_cols) + " x " + std::to_string(c.sensor_rows) + " px / (n N)"},
+        {inf, num(r.periods_on_sensor_cols, 3) + " x " + num(r.periods_on_sensor_rows, 3),
+         "sensor / (n n_px) at u = inf"},
         {"LSI mismatch at u", num(wd.lsi_mismatch_px, 3) + " px",
-         "n |pitch(u) - N|: against the N-pixel model the decoder uses"},
+         "n |pitch(u) - N| against the N-pixel model the decoder uses: " +
+             std::string(wd.is_shift_invariant() ? "shift invariant" : "NOT shift invariant") +
+             " within " + num(r.options.lsi_tolerance_px) + " px"},
+        {"  against the u = inf pitch", num(r.lsi_mismatch_px) + " px",
+         "f s_max / (u w): how far u is from the distant-object design"},
+        {"  LSI min object distance", length(r.lsi_min_object_distance_m),
+         "f s_max / (" + num(r.options.lsi_tolerance_px) +
+             " px * w): where the u = inf design holds"},
         {"usable object distances", range_text(wd),
          "pitch within " + num(r.options.lsi_tolerance_px) +
              " px of u's across s_max: f s_max |1/u' - 1/u| / w"},
+        {"largest separation s_max", length(r.max_separation_m), "n d"},
+        {"effective distance z_eff(u)", length(r.effective_distance_at_u_m),
+         "1/z = 1/f - 1/f' + 1/u"},
+        {inf, length(r.effective_distance_m), "f f' / (f' - f) (inf: f = f'; < 0: past focus)"},
+        {"Fresnel number with lens at u", num(r.fresnel_number_with_lens_at_u),
+         "d^2 / (4 lambda |z_eff(u)|): used by the kernel models"},
+        {inf, num(r.fresnel_number_with_lens), "d^2 / (4 lambda |z_eff|)"},
+        {"Fresnel number, no lens", num(r.fresnel_number), "d^2 / (4 lambda f)"},
         {"optimum pinhole, lensless", length(wd.optimum_pinhole_lensless_m),
          "1.56 sqrt(lambda f) (the paper's rule)"},
         {"optimum pinhole, with the lens", length(wd.optimum_pinhole_with_lens_m),
          "1.56 sqrt(lambda |z_eff(u)|), z_eff(u) = 1/(1/f - 1/f' + 1/u)"},
         {"regime", regime_text(r, wd),
          "Fresnel number with the lens at u; spot = max(1, 1/(2 N_F)) cells"},
+        {"kernel model", kernel_model_name(r.kernel_model), r.kernel_reason},
+        {"mask size", length(r.mask_width_m) + " x " + length(r.mask_height_m),
+         "n tiles d per side"},
+        {"open fraction", num(100 * r.open_fraction, 3) + " %", "K / n^2"},
+        {"light gain", num(r.light_gain) + " x", "K: light over one pinhole"},
     };
+    rows.insert(rows.end(), rest.begin(), rest.end());
     std::size_t w0 = 8, w1 = 5;
     for (const auto& row : rows) {
         w0 = std::max(w0, row[0].size());

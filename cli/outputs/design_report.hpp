@@ -1,6 +1,7 @@
 // Rendering of the `pinmask design` report (cli/cmd_design.cpp): table and JSON.
 #pragma once
 
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -11,13 +12,26 @@
 
 namespace pinmask::cli {
 
+// A pinhole solved for N whole pixels per cell at u and snapped to the fabrication grid
+// (design/fab_grid): the exact solution, the side on the grid and how far the grid moves the
+// pitch at u (px per cell; n times that across one period).
+struct GridSnap {
+    bool solved = false;
+    std::int64_t grid_nm = 1;
+    std::string grid_source;  // "--fab-grid", "vendor NAME" or "default"
+    double exact_m = 0, on_grid_m = 0, pitch_shift_px = 0;
+};
+
 // One JSON object: camera, geometry, every OpticsReport and WorkingDistance figure (unit-suffixed
-// keys), "notes" (key -> why a value is null).
-nlohmann::ordered_json design_json(const OpticsReport& r, const WorkingDistance& wd);
+// keys: plain and "_at_u" keys at the working distance u, "_at_inf" keys for a distant object),
+// "notes" (key -> why a value is null).
+nlohmann::ordered_json design_json(const OpticsReport& r, const WorkingDistance& wd,
+                                   const GridSnap& snap = {});
 
 // The table (quantity, value, note), after the inputs used (symbol, value, source); `solved`
 // non-empty says the pinhole was solved for N at u.
 std::string design_table(const OpticsReport& r, const WorkingDistance& wd,
-                         const std::string& solved, const std::vector<CameraInput>& inputs);
+                         const std::string& solved, const std::vector<CameraInput>& inputs,
+                         const GridSnap& snap = {});
 
 }  // namespace pinmask::cli

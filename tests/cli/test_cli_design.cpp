@@ -34,18 +34,28 @@ TEST_CASE("design --json gives the paper's numbers with unit-carrying keys") {
     const auto j = design_json("--preset paper");
     CHECK(std::fabs(j["optimum_pinhole_m"].get<double>() - 0.271e-3) <= kHalfUnit3rdDecimalMm);
     CHECK(std::fabs(j["fresnel_number"].get<double>() - 1.6) <= kHalfUnit1stDecimal);
-    CHECK(std::fabs(j["fresnel_number_with_lens"].get<double>() - 0.87) <= kHalfUnit2ndDecimal);
-    CHECK(std::fabs(j["effective_distance_m"].get<double>() - 101.5e-3) <= kHalfUnit1stDecimalMm);
-    CHECK(std::fabs(j["geometric_spot_m"].get<double>() - 0.238e-3) <= kHalfUnit3rdDecimalMm);
+    CHECK(std::fabs(j["fresnel_number_with_lens_at_inf"].get<double>() - 0.87) <=
+          kHalfUnit2ndDecimal);
+    CHECK(std::fabs(j["effective_distance_at_inf_m"].get<double>() - 101.5e-3) <=
+          kHalfUnit1stDecimalMm);
+    CHECK(std::fabs(j["geometric_spot_at_inf_m"].get<double>() - 0.238e-3) <=
+          kHalfUnit3rdDecimalMm);
     CHECK(std::fabs(j["geometric_spot_at_u_m"].get<double>() - 0.242e-3) <= kHalfUnit3rdDecimalMm);
-    CHECK(std::fabs(j["pixels_per_cell"].get<double>() - 7.94) <= kHalfUnit2ndDecimal);
+    CHECK(std::fabs(j["pixels_per_cell_at_inf"].get<double>() - 7.94) <= kHalfUnit2ndDecimal);
     CHECK(std::fabs(j["pixels_per_cell_at_u"].get<double>() - 8.08) <= kHalfUnit2ndDecimal);
     CHECK(j["integer_pixels_per_cell"] == 8);
-    CHECK(std::fabs(j["pinhole_for_integer_pixels_m"].get<double>() - 443e-6) <= 0.5e-6);
-    CHECK(std::fabs(j["lsi_min_object_distance_m"].get<double>() - 12.9) <= kHalfUnit1stDecimal);
-    CHECK(std::fabs(j["lsi_mismatch_px"].get<double>() - 2.0) <= 0.5);
+    CHECK(std::fabs(j["pinhole_for_integer_pixels_at_inf_m"].get<double>() - 443e-6) <= 0.5e-6);
+    CHECK(std::fabs(j["lsi_min_object_distance_at_inf_m"].get<double>() - 12.9) <=
+          kHalfUnit1stDecimal);
+    CHECK(std::fabs(j["lsi_mismatch_at_inf_px"].get<double>() - 2.0) <= 0.5);
     CHECK(j["psf_size_px"] == 128);
     CHECK(j["periods_on_sensor"]["cols"] == 5.625);
+    // At u = 6 m: 8.08 px per cell, N = 8, so one period is 16 x 0.08 px off the 8-px model;
+    // the plain keys are at u, the "_at_inf" ones the paper's distant-object values.
+    CHECK(std::fabs(j["pixels_per_cell"].get<double>() - 8.08) <= kHalfUnit2ndDecimal);
+    CHECK(j["lsi_mismatch_px"].get<double>() ==
+          doctest::Approx(16 * (j["pixels_per_cell"].get<double>() - 8)).epsilon(1e-12));
+    CHECK(j["psf_size_at_inf_px"] == 128);
     CHECK(j["open_fraction"] == 0.078125);
     CHECK(j["light_gain"] == 20.0);
     CHECK(j["kernel_model"] == "fresnel");
@@ -69,12 +79,11 @@ TEST_CASE("f = f' and u = inf are valid; infinities are null with a note") {
     CHECK(contains(j["notes"]["effective_distance_m"].get<std::string>(), "f = f'"));
     CHECK(j["fresnel_number_with_lens"] == 0.0);
     CHECK(j["kernel_model"] == "fraunhofer");
-    CHECK(j["lsi_mismatch_px"] == 0.0);
-    CHECK(j["lsi_shift_invariant"] == true);
+    CHECK(j["lsi_mismatch_at_inf_px"] == 0.0);
     const auto past = design_json("--sensor-distance 200mm");
     CHECK(past["effective_distance_m"].get<double>() < 0);
     const auto no_lens = design_json("--lens-focal inf");
-    CHECK(no_lens["magnification"] == 1.0);
+    CHECK(no_lens["magnification_at_inf"] == 1.0);
     CHECK(design_json("--kernel box")["kernel_model"] == "box");
 }
 

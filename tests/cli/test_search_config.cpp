@@ -4,6 +4,8 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "core/error.hpp"
@@ -17,6 +19,10 @@ using pinmask::test::slurp;
 using pinmask::test::TempDir;
 
 namespace {
+
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
 
 std::string config_with(const std::string& body) {
     return R"({"format": "pinmask-search-config", "version": 1)" +
@@ -136,6 +142,25 @@ TEST_CASE("search --config repeats a run byte for byte, and the command line ove
     CHECK(slurp(a + "/search.config.json") == slurp(b + "/search.config.json"));
     CHECK(slurp(a + "/rank-1.mask.json") == slurp(b + "/rank-1.mask.json"));
     CHECK(slurp(a + "/rank-2.mask.json") == slurp(b + "/rank-2.mask.json"));
+    // An --evals run records no time budget, and the rank count it ran on.
+    const auto written = nlohmann::json::parse(slurp(a + "/search.config.json"));
+    CHECK(written["time"].is_null());
+    CHECK(written["evaluations_per_chain"] == 300);
+    CHECK(written["ranks"] == 1);
+    CHECK(*read_search_config(a + "/search.config.json").ranks == 1);
+    CHECK_FALSE(contains(again.err, "not the same search"));
+    // A file written on 3 ranks, re-run on 1: said on stderr.
+    {
+        auto three = written;
+        three["ranks"] = 3;
+        const std::string path = (dir.path / "three.config.json").string();
+        std::ofstream(path) << three.dump(2);
+        const auto other =
+            run_cli("search --config '" + path + "' -o '" + (dir.path / "d").string() + "'");
+        INFO(other.err);
+        CHECK(other.exit_code == 0);
+        CHECK(contains(other.err, "written by a run on 3 rank(s), this run has 1"));
+    }
 
     // Overrides: the seed, the budget (a --time replaces the file's evaluations) and one camera
     // field; everything else, the rest of the camera included, from the file.

@@ -24,9 +24,9 @@ def test_optics_equals_cli_design_json(cli):
 def test_optics_paper_figures():
     d = pinmask.optics(pinmask.paper_camera())
     # DESIGN.md section 1: 7.94 pixels per cell, N_F 1.6 without the lens, z_eff 101.5 mm.
-    assert d["pixels_per_cell"] == pytest.approx(7.944, abs=1e-3)
+    assert d["pixels_per_cell_at_inf"] == pytest.approx(7.944, abs=1e-3)
     assert d["fresnel_number"] == pytest.approx(1.6, abs=0.01)
-    assert d["effective_distance_m"] == pytest.approx(0.1015, abs=1e-4)
+    assert d["effective_distance_at_inf_m"] == pytest.approx(0.1015, abs=1e-4)
 
 
 def test_camera_units_and_infinity():
@@ -35,7 +35,7 @@ def test_camera_units_and_infinity():
     assert c.sensor_distance_m == pytest.approx(0.055)
     assert math.isinf(c.object_distance_m)
     d = pinmask.optics(c)
-    assert d["lsi_mismatch_px"] == 0.0  # u = inf: no object term
+    assert d["lsi_mismatch_at_inf_px"] == 0.0  # u = inf: no object term
 
 
 def test_camera_invalid_is_value_error():
