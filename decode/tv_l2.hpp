@@ -15,11 +15,14 @@
 // capture window only.
 // Over-relaxation alpha = 1.95 (cyclic model without nonnegative), else 1.8: the z-, w- and
 // s-steps see alpha (grad x, x, H x) + (1 - alpha) (previous z, w, s) instead of the new values.
-// Penalties: rho starts at the mean of |H|^2 over the spectrum (rho_s at 1) unless given, and
-// both follow residual balancing (x2 / /2 when one residual exceeds 2x the other) every 3
+// Penalties: rho starts at the mean of |H|^2 over the spectrum unless given, rho_s (rho_crop)
+// at the same value (the data term's own weight 1 converged far slower on simulated full-frame
+// captures: 3 against 18 dB after 30 iterations, see tv_l2.cpp), and both follow residual
+// balancing (x2 / /2 when one residual exceeds 2x the other) every 3
 // iterations up to iteration 100, then stay fixed (ADMM convergence holds for the tail).
-// Start (cyclic, no warm start): x0 = the quadratic estimate IFFT[conj(H) P / (|H|^2 + rho
-// |D|^2)] (one inverse FFT), else the warm start (or 0 for the linear model); then z =
+// Start (no warm start; TvL2Options::start): the quadratic estimate x0 = IFFT[conj(H) P / (|H|^2
+// + rho |D|^2)] (one inverse FFT; the linear model's on the zero-padded capture, weights as in
+// its x-step), the default for the cyclic model, or 0, the linear model's default; then z =
 // shrink(grad x0, lambda / rho), u = grad x0 - z, as after a z-step.
 // Scale: solved for p / max|p| with lambda / max|p| and scaled back (decode/decoder.hpp).
 // Precision: single_precision runs the iteration in float32 (FFTW float), the pointwise steps in
@@ -29,7 +32,7 @@
 // for the row above (row 0's at the end), branch-free so the compiler vectorises the rows; the
 // residual sums are gathered only on the adaptation iterations (every 3rd), vectorised too (the
 // row's old z kept in a scratch row, the per-pixel squares summed in four fixed partial sums),
-// the TV sum only with records (scalar); the pass and the cyclic spectral solve are also built
+// the TV sum only with records; the pass and the cyclic spectral solve are also built
 // for AVX2, chosen at run time (same bits, see set_tv_l2_avx2 below). The relative change of x
 // is summed in the same pass when tolerance > 0 (a comparison for tolerance 0). When residual
 // balancing changes rho, the right-hand side is rebuilt in a separate pass. Every buffer is
@@ -55,7 +58,8 @@
 
 namespace pinmask {
 
-// The starting point without a warm start: kAuto is the quadratic start (below).
+// The starting point without a warm start: kAuto is the quadratic start (below) for the cyclic
+// model and 0 for the linear model.
 enum class TvStart { kAuto, kZero, kQuadratic };
 
 struct TvL2Options : IterativeOptions {
