@@ -62,6 +62,38 @@ double time_per_call(const std::function<void()>& fn, int repeat, double min_bat
     return best;
 }
 
+// One iteration as the difference of a (1 + m)-iteration and a 1-iteration run of `solve`.
+double time_per_iteration(const std::function<void(int)>& solve, int repeat, double min_batch,
+                          const BenchClock& clock) {
+    const double t1 = time_per_call([&] { solve(1); }, repeat, min_batch, clock);
+    const double tm = time_per_call([&] { solve(1 + kExtraIterations); }, repeat, min_batch, clock);
+    // Under load the difference of two noisy timings can vanish; then the plain average over the
+    // longer run (which includes the set-up once) bounds it from above.
+    return tm > t1 ? (tm - t1) / kExtraIterations : tm / (1 + kExtraIterations);
+}
+
+// A lensless-camera-like PSF spread over its whole rows x cols support: seeded bright points
+// (about 1 % of the pixels, random weights), sum 1.
+Plane make_spread_psf(int rows, int cols, std::mt19937_64& rng) {
+    std::uniform_int_distribution<int> r(0, rows - 1), c(0, cols - 1);
+    std::uniform_real_distribution<double> weight(0.2, 1.0);
+    Plane psf = Plane::Zero(rows, cols);
+    const int points = std::max(1, rows * cols / 100);
+    for (int k = 0; k < points; ++k) psf(r(rng), c(rng)) += weight(rng);
+    return psf / psf.sum();
+}
+
+// A rows x cols scene of seeded rectangles of random brightness on a dark background.
+Plane make_scene_rect(int rows, int cols, std::mt19937_64& rng) {
+    std::uniform_int_distribution<int> pr(0, rows / 2), pc(0, cols / 2);
+    std::uniform_int_distribution<int> lr(std::max(1, rows / 16), std::max(1, rows / 2));
+    std::uniform_int_distribution<int> lc(std::max(1, cols / 16), std::max(1, cols / 2));
+    std::uniform_real_distribution<double> level(0.2, 1.0);
+    Plane x = Plane::Constant(rows, cols, 0.05);
+    for (int k = 0; k < 12; ++k) x.block(pr(rng), pc(rng), lr(rng), lc(rng)) = level(rng);
+    return x;
+}
+
 // A coded-aperture-like PSF: 20 square pinhole spots of side n / 32 at seeded positions.
 Plane make_psf(int n, std::mt19937_64& rng) {
     const int spot = std::max(1, n / 32);
@@ -228,7 +260,8 @@ std::vector<DecodeBenchRecord> bench_decode(const DecodeBenchOptions& o) {
             time_fft_pair<double>(rows, cols, o.repeat, o.min_batch_seconds, threads, clock);
         const double pair_f =
             time_fft_pair<float>(rows, cols, o.repeat, o.min_batch_seconds, threads, clock);
-        auto add = [&](const char* method, double t, int iterations = 1, bool converged = true) {
+        auto add = [&](const char* method, int fft_pairs, double t, int iterations = 1,
+                       bool converged = true) {
             DecodeBenchRecord rec;
             rec.method = method;
             rec.size = rows;
@@ -240,6 +273,7 @@ std::vector<DecodeBenchRecord> bench_decode(const DecodeBenchOptions& o) {
             rec.ratio_float = t / pair_f;
             rec.iterations = iterations;
             rec.converged = converged;
+            rec.fft_pairs = fft_pairs;
             out.push_back(rec);
         };
 
@@ -247,36 +281,30 @@ std::vector<DecodeBenchRecord> bench_decode(const DecodeBenchOptions& o) {
         WienerFilter::Workspace ws;
         WienerFilter::WorkspaceF wsf;
         Plane x;
-        add("wiener",
+        add("wiener", 1,
             time_per_call([&] { wiener.apply(p, x, ws); }, o.repeat, o.min_batch_seconds, clock));
-        add("wiener_single", time_per_call([&] { wiener.apply_single(p, x, wsf); }, o.repeat,
-                                           o.min_batch_seconds, clock));
+        add("wiener_single", 1,
+            time_per_call([&] { wiener.apply_single(p, x, wsf); }, o.repeat, o.min_batch_seconds,
+                          clock));
 
         const WienerFilter tik =
             make_tikhonov_filter(psf, rows, cols, 0.01, TikhonovRegulariser::kGradient);
-        add("tikhonov",
+        add("tikhonov", 1,
             time_per_call([&] { tik.apply(p, x, ws); }, o.repeat, o.min_batch_seconds, clock));
 
-        // One iteration as the difference of a (1 + m)-iteration and a 1-iteration run.
         auto per_iteration = [&](const std::function<void(int)>& solve) {
-            const double t1 =
-                time_per_call([&] { solve(1); }, o.repeat, o.min_batch_seconds, clock);
-            const double tm = time_per_call([&] { solve(1 + kExtraIterations); }, o.repeat,
-                                            o.min_batch_seconds, clock);
-            // Under load the difference of two noisy timings can vanish; then the plain average
-            // over the longer run (which includes the set-up once) bounds it from above.
-            return tm > t1 ? (tm - t1) / kExtraIterations : tm / (1 + kExtraIterations);
+            return time_per_iteration(solve, o.repeat, o.min_batch_seconds, clock);
         };
         TvL2Options tv;
         tv.lambda = 0.01 * sigma;
         tv.tolerance = 0.0;
         tv.record_history = false;
-        add("tv_l2_iteration", per_iteration([&](int iters) {
+        add("tv_l2_iteration", 1, per_iteration([&](int iters) {
                 tv.max_iterations = iters;
                 solve_tv_l2(op, p, tv);
             }));
         tv.single_precision = true;
-        add("tv_l2_iteration_single", per_iteration([&](int iters) {
+        add("tv_l2_iteration_single", 1, per_iteration([&](int iters) {
                 tv.max_iterations = iters;
                 solve_tv_l2(op, p, tv);
             }));
@@ -289,7 +317,7 @@ std::vector<DecodeBenchRecord> bench_decode(const DecodeBenchOptions& o) {
             t2.tolerance = 0.0;
             t2.record_history = false;
             t2.max_iterations = c.iterations;
-            add("tv_l2_to_0.2dB",
+            add("tv_l2_to_0.2dB", 0,
                 time_per_call([&] { solve_tv_l2(op, p, t2); }, o.repeat, o.min_batch_seconds,
                               clock),
                 c.iterations, c.reached);
@@ -304,15 +332,15 @@ std::vector<DecodeBenchRecord> bench_decode(const DecodeBenchOptions& o) {
         const double t0 = clock.now();
         const DecodeResult last = solve_tvqc(op, p, qc);
         const double t_qc = clock.now() - t0;
-        add("tvqc_to_tolerance", t_qc, last.iterations, last.converged);
+        add("tvqc_to_tolerance", 0, t_qc, last.iterations, last.converged);
         qc.max_iterations = 1 + kExtraIterations;
-        add("tvqc_iteration", per_iteration([&](int iters) {
+        add("tvqc_iteration", 2, per_iteration([&](int iters) {
                 qc.max_iterations = iters;
                 qc.tolerance = 0.0;
                 solve_tvqc(op, p, qc);
             }));
         qc.single_precision = true;
-        add("tvqc_iteration_single", per_iteration([&](int iters) {
+        add("tvqc_iteration_single", 2, per_iteration([&](int iters) {
                 qc.max_iterations = iters;
                 qc.tolerance = 0.0;
                 solve_tvqc(op, p, qc);
@@ -321,15 +349,82 @@ std::vector<DecodeBenchRecord> bench_decode(const DecodeBenchOptions& o) {
         RichardsonLucyOptions rl;
         rl.tolerance = 0.0;
         rl.record_history = false;
-        add("rl_iteration", per_iteration([&](int iters) {
+        add("rl_iteration", 2, per_iteration([&](int iters) {
                 rl.max_iterations = iters;
                 solve_richardson_lucy(op, psf, p, rl);
             }));
         rl.single_precision = true;
-        add("rl_iteration_single", per_iteration([&](int iters) {
+        add("rl_iteration_single", 2, per_iteration([&](int iters) {
                 rl.max_iterations = iters;
                 solve_richardson_lucy(op, psf, p, rl);
             }));
+
+        if (!o.linear) continue;
+        // Linear model: this shape is the working grid of a capture of half its size and a PSF
+        // of the other half (capture + PSF - 1 = the shape per axis).
+        const int cap_r = rows / 2, cap_c = cols / 2;
+        const Plane lpsf = make_spread_psf(rows + 1 - cap_r, cols + 1 - cap_c, rng);
+        const ConvGeometry lg = make_conv_geometry(ConvModel::kLinear, cap_r, cap_c,
+                                                   int(lpsf.rows()), int(lpsf.cols()));
+        const ConvolutionOperator lop(lpsf, lg);
+        Plane lscene = Plane::Constant(lg.work_rows, lg.work_cols, 0.05);
+        lscene.block(lg.crop_row, lg.crop_col, cap_r, cap_c) = make_scene_rect(cap_r, cap_c, rng);
+        Plane lp = lop.apply(lscene);
+        const double lsigma = kNoiseRelative * lp.mean();
+        std::normal_distribution<double> lnoise(0.0, lsigma);
+        for (Eigen::Index i = 0; i < lp.size(); ++i) lp.data()[i] += lnoise(rng);
+        // The pairs of the working grid (the shape itself unless it is not 2^a 3^b 5^c 7^d).
+        double lpair = pair, lpair_f = pair_f;
+        if (lg.work_rows != rows || lg.work_cols != cols) {
+            const int lt = fft_threads_for(lg.work_rows, lg.work_cols);
+            lpair = time_fft_pair<double>(lg.work_rows, lg.work_cols, o.repeat, o.min_batch_seconds,
+                                          lt, clock);
+            lpair_f = time_fft_pair<float>(lg.work_rows, lg.work_cols, o.repeat,
+                                           o.min_batch_seconds, lt, clock);
+        }
+        auto add_linear = [&](const char* method, int fft_pairs, double t) {
+            DecodeBenchRecord rec;
+            rec.method = method;
+            rec.model = "linear";
+            rec.size = lg.work_rows;
+            rec.cols = lg.work_cols;
+            rec.seconds_per_call = t;
+            rec.fft_pair_seconds = lpair;
+            rec.ratio = t / lpair;
+            rec.fft_pair_float_seconds = lpair_f;
+            rec.ratio_float = t / lpair_f;
+            rec.iterations = 1;
+            rec.fft_pairs = fft_pairs;
+            out.push_back(rec);
+        };
+        TvL2Options ltv;
+        ltv.lambda = 1e-4 * lp.abs().maxCoeff();
+        ltv.nonnegative = true;
+        ltv.single_precision = true;
+        ltv.tolerance = 0.0;
+        ltv.record_history = false;
+        add_linear("tv_l2_linear_iteration_single", 2, per_iteration([&](int iters) {
+                       ltv.max_iterations = iters;
+                       solve_tv_l2(lop, lp, ltv);
+                   }));
+        TvqcOptions lqc;
+        lqc.eps = tvqc_eps_from_sigma(lsigma, lp.size());
+        lqc.nonnegative = true;
+        lqc.single_precision = true;
+        lqc.tolerance = 0.0;
+        lqc.record_history = false;
+        add_linear("tvqc_linear_iteration_single", 2, per_iteration([&](int iters) {
+                       lqc.max_iterations = iters;
+                       solve_tvqc(lop, lp, lqc);
+                   }));
+        RichardsonLucyOptions lrl;
+        lrl.single_precision = true;
+        lrl.tolerance = 0.0;
+        lrl.record_history = false;
+        add_linear("rl_linear_iteration_single", 2, per_iteration([&](int iters) {
+                       lrl.max_iterations = iters;
+                       solve_richardson_lucy(lop, lpsf, lp, lrl);
+                   }));
     }
     return out;
 }

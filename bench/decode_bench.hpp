@@ -20,6 +20,16 @@
 //                     the step balance's adaptation)
 //   tvqc_iteration_single, rl_iteration_single  the same in float32
 //   rl_iteration      one Richardson-Lucy iteration, measured like tv_l2_iteration
+// Linear model (options.linear, on by default): the same shape is the padded working grid of a
+// capture of about half its size per axis with a PSF of the other half (600 x 800: a 300 x 400
+// capture and a 301 x 401 PSF, as the DiffuserCam hand after the tutorial's preprocessing), the
+// PSF a seeded caustic-like pattern spread over its whole support, the scene seeded rectangles:
+//   tv_l2_linear_iteration_single     one TV-L2 iteration in float32 with x >= 0 (the decode of a
+//                                     real capture)
+//   tvqc_linear_iteration_single, rl_linear_iteration_single   likewise
+// fft_pairs is the floor of each figure: the FFT pairs the method's transforms cost (an
+// iteration's, or the call's for the closed forms), so fft_pairs x the float pair is the time an
+// iteration would take if everything but FFTW were free.
 // Each other figure is the minimum over `repeat` timed batches of the per-call time (batches last
 // at least min_batch_seconds): the minimum is the figure least disturbed by other load.
 // The default sizes keep a run near 10 s on an idle 2-core machine; 1024 adds ~20 s (TVQC).
@@ -48,6 +58,8 @@ struct DecodeBenchOptions {
     // work, time-slicing inflates wall time but not CPU time (caches are still shared). Only
     // meaningful with threads = 1 (FFTW's worker threads are not counted).
     bool cpu_time = false;
+    // Also time the linear-model iterations (see above) at each shape.
+    bool linear = true;
 };
 
 struct DecodeBenchRecord {
@@ -61,6 +73,8 @@ struct DecodeBenchRecord {
     double ratio_float = 0.0;             // seconds_per_call / fft_pair_float_seconds
     int iterations = 0;                   // tvqc_to_tolerance: iterations run; others 1 (or 0)
     bool converged = true;                // tvqc_to_tolerance: tolerance met within the cap
+    int fft_pairs = 0;  // the floor: FFT pairs per call (iteration) of the method; 0 = not one
+    std::string model = "cyclic";  // "cyclic" or "linear"
 };
 
 // TV-L2 iterations to come within `within_db` of the converged PSNR on the paper problem of size

@@ -42,8 +42,8 @@ void run(Options& o) {
     }
     const auto records = bench_decode(o.bench);
     if (!o.json) {
-        std::printf("%9s  %-22s %11s %11s %7s %11s %7s  %s\n", "size", "method", "s/call", "pair s",
-                    "ratio", "pair f s", "ratio f", "note");
+        std::printf("%9s %-7s %-30s %11s %11s %7s %11s %7s %6s  %s\n", "size", "model", "method",
+                    "s/call", "pair s", "ratio", "pair f s", "ratio f", "floor", "note");
     }
     for (const auto& r : records) {
         if (o.json) {
@@ -56,7 +56,9 @@ void run(Options& o) {
                                         {"fft_pair_float_seconds", r.fft_pair_float_seconds},
                                         {"ratio_float", r.ratio_float},
                                         {"iterations", r.iterations},
-                                        {"converged", r.converged}}
+                                        {"converged", r.converged},
+                                        {"model", r.model},
+                                        {"fft_pairs", r.fft_pairs}}
                              .dump()
                       << "\n";
         } else {
@@ -66,9 +68,12 @@ void run(Options& o) {
                        (r.converged ? "" : " (cap reached, not converged)");
             }
             const std::string size = std::to_string(r.size) + "x" + std::to_string(r.cols);
-            std::printf("%9s  %-22s %11.4g %11.4g %7.2f %11.4g %7.2f  %s\n", size.c_str(),
-                        r.method.c_str(), r.seconds_per_call, r.fft_pair_seconds, r.ratio,
-                        r.fft_pair_float_seconds, r.ratio_float, note.c_str());
+            // The floor: the method's FFT pairs (its transforms, nothing else), in pairs.
+            const std::string floor = r.fft_pairs > 0 ? std::to_string(r.fft_pairs) : "-";
+            std::printf("%9s %-7s %-30s %11.4g %11.4g %7.2f %11.4g %7.2f %6s  %s\n", size.c_str(),
+                        r.model.c_str(), r.method.c_str(), r.seconds_per_call, r.fft_pair_seconds,
+                        r.ratio, r.fft_pair_float_seconds, r.ratio_float, floor.c_str(),
+                        note.c_str());
         }
     }
 }
@@ -85,8 +90,13 @@ void add_bench_decode(CLI::App& bench) {
         "wiener and tikhonov (precomputed filter applied; wiener also in float32), one TV-L2 "
         "ADMM iteration (double and float32), TV-L2 iterations to 0.2 dB of converged on the "
         "paper problem (sizes 16 n_px up to 256), TVQC run to tolerance 1e-4 and one TVQC "
-        "iteration, one Richardson-Lucy iteration. Each figure is the minimum over --repeat "
-        "timed batches.");
+        "iteration, one Richardson-Lucy iteration. Linear model (zero-padded, cropped; off with "
+        "--no-linear): each size is the padded grid of a capture of half its size per axis "
+        "and a spread PSF of the other half (600x800: a 300 x 400 capture, as the DiffuserCam "
+        "hand); one float32 iteration of TV-L2 with x >= 0, TVQC and Richardson-Lucy. The "
+        "floor column is the FFT pairs the method's transforms cost per call (iteration): "
+        "ratio f at or near it means nothing but FFTW is left. Each figure is the minimum over "
+        "--repeat timed batches.");
     cmd->add_option("--sizes", opts->sizes,
                     "Channel sizes: N (N x N pixels) or RxC, each side 16..8192; 1024 adds "
                     "~20 s, mostly TVQC")
@@ -105,11 +115,14 @@ void add_bench_decode(CLI::App& bench) {
     cmd->add_flag("--cpu-time", opts->bench.cpu_time,
                   "Time this thread's CPU time instead of wall time (for a loaded machine; use "
                   "with --threads 1)");
+    cmd->add_flag("--linear,!--no-linear", opts->bench.linear,
+                  "Also time the linear (zero-padded) model's iterations (default on)");
     cmd->add_flag("--json", opts->json,
                   "One JSON record per line: method, rows, cols, seconds_per_call, "
-                  "fft_pair_seconds, ratio, fft_pair_float_seconds, ratio_float");
+                  "fft_pair_seconds, ratio, fft_pair_float_seconds, ratio_float, iterations, "
+                  "converged, model, fft_pairs");
     cmd->footer(
-        "Example: pinmask bench decode --sizes 128,480x720 --repeat 5\n"
+        "Example: pinmask bench decode --sizes 128,600x800 --repeat 5\n"
         "Timings depend on the machine and its load; the ratios to the FFT pairs are the "
         "figures to compare. Our transforms use the process's planner (FFTW_MEASURE with "
         "the wisdom cache unless PINMASK_WISDOM=off).");

@@ -17,8 +17,9 @@ TEST_CASE("bench_decode returns every method per size with ratio = seconds / fft
     o.min_batch_seconds = 1e-4;
     o.tvqc_max_iterations = 20;
     const auto records = bench_decode(o);
-    // 10 methods per size, plus tv_l2_to_0.2dB for the sizes 16 n_px (16 here, not 24).
-    REQUIRE(records.size() == 21);
+    // 10 cyclic and 3 linear methods per size, plus tv_l2_to_0.2dB for the sizes 16 n_px (16
+    // here, not 24).
+    REQUIRE(records.size() == 27);
     std::set<std::string> methods;
     for (const auto& r : records) {
         methods.insert(r.method);
@@ -29,16 +30,29 @@ TEST_CASE("bench_decode returns every method per size with ratio = seconds / fft
         CHECK(r.fft_pair_float_seconds > 0.0);
         CHECK(r.ratio_float == doctest::Approx(r.seconds_per_call / r.fft_pair_float_seconds));
         if (r.method == "tv_l2_to_0.2dB") CHECK(r.size == 16);
+        // The floor in FFT pairs: one for the closed forms and a cyclic TV-L2 iteration, two for
+        // the other iterations; none for the whole runs.
+        const bool linear = r.method.find("_linear_") != std::string::npos;
+        CHECK(r.model == (linear ? "linear" : "cyclic"));
+        if (r.method.rfind("wiener", 0) == 0 || r.method == "tikhonov" ||
+            r.method.rfind("tv_l2_iteration", 0) == 0) {
+            CHECK(r.fft_pairs == 1);
+        } else if (r.method.find("_to_") != std::string::npos) {
+            CHECK(r.fft_pairs == 0);
+        } else {
+            CHECK(r.fft_pairs == 2);
+        }
         if (r.method == "tvqc_to_tolerance") {
             CHECK(r.iterations >= 1);
             CHECK(r.iterations <= 20);
         }
     }
-    CHECK(methods == std::set<std::string>{"wiener", "wiener_single", "tikhonov", "tv_l2_iteration",
-                                           "tv_l2_iteration_single", "tv_l2_to_0.2dB",
-                                           "tvqc_to_tolerance", "tvqc_iteration",
-                                           "tvqc_iteration_single", "rl_iteration",
-                                           "rl_iteration_single"});
+    CHECK(methods ==
+          std::set<std::string>{"wiener", "wiener_single", "tikhonov", "tv_l2_iteration",
+                                "tv_l2_iteration_single", "tv_l2_to_0.2dB", "tvqc_to_tolerance",
+                                "tvqc_iteration", "tvqc_iteration_single", "rl_iteration",
+                                "rl_iteration_single", "tv_l2_linear_iteration_single",
+                                "tvqc_linear_iteration_single", "rl_linear_iteration_single"});
 }
 
 TEST_CASE("bench_decode validates its options, naming the field") {

@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <tuple>
 #include <utility>
 
 #include "bench/decode_bench.hpp"
@@ -83,6 +84,63 @@ TEST_CASE("TV-L2 on the linear model reaches the Newton reference with the dense
     CHECK(r.image.rows() == P.g.work_rows);
     CHECK(r.objective <= f_ref * (1.0 + kTvObjectiveTol));
     CHECK(r.objective >= f_ref * (1.0 - kTvObjectiveTol));
+}
+
+TEST_CASE("TV-L2 on the linear model: the Newton reference on several geometries, in float32") {
+    // The crop split's state lives on the capture window only (decode/tv_l2.cpp): windows that
+    // touch the grid's edge on one side only (odd sizes), PSFs wider than the capture, and a
+    // float32 run held to the double run's objective.
+    const std::tuple<int, int, int, int, unsigned> shapes[] = {
+        {7, 10, 5, 3, 21}, {9, 6, 10, 7, 22}, {10, 11, 2, 9, 23}};
+    for (const auto& t : shapes) {
+        // Copies (clang 14 cannot capture structured bindings in INFO's lambda).
+        const int R = std::get<0>(t), C = std::get<1>(t), pr = std::get<2>(t), pc = std::get<3>(t);
+        const unsigned seed = std::get<4>(t);
+        const Problem P = make_problem(ConvModel::kLinear, R, C, pr, pc, seed);
+        const double lambda = 0.01;
+        const Eigen::MatrixXd A = dense_model(P.psf, P.g);
+        const Plane x_ref =
+            as_plane(smoothed_tv_reference(A, as_vector(P.p), lambda, P.g.work_rows, P.g.work_cols),
+                     P.g.work_rows, P.g.work_cols);
+        const ConvolutionOperator op(P.psf, P.g);
+        const double f_ref = tv_l2_objective(op, P.p, x_ref, lambda);
+        const DecodeResult d = solve_tv_l2(op, P.p, tight(lambda));
+        TvL2Options single = tight(lambda);
+        single.single_precision = true;
+        single.max_iterations = 3000;
+        single.tolerance = 0.0;
+        const DecodeResult f = solve_tv_l2(op, P.p, single);
+        INFO(R << " x " << C << ", psf " << pr << " x " << pc << ": admm " << d.objective
+               << " float32 " << f.objective << " ref " << f_ref << " after " << d.iterations);
+        CHECK(d.converged);
+        CHECK(d.objective <= f_ref * (1.0 + kTvObjectiveTol));
+        CHECK(d.objective >= f_ref * (1.0 - kTvObjectiveTol));
+        // float32: the objective within 1e-4 of the optimum (float rounding of the iterates,
+        // ~1e-7 relative, bounds the gap from above far below this).
+        CHECK(f.objective <= f_ref * (1.0 + 1e-4));
+    }
+}
+
+TEST_CASE("TV-L2 linear with x >= 0: between the unconstrained optimum and its clipped copy") {
+    const Problem P = make_problem(ConvModel::kLinear, 9, 8, 4, 5, 24);
+    const ConvolutionOperator op(P.psf, P.g);
+    const double lambda = 0.02;
+    const DecodeResult free = solve_tv_l2(op, P.p, tight(lambda));
+    for (bool single : {false, true}) {
+        TvL2Options o = tight(lambda);
+        o.nonnegative = true;
+        o.single_precision = single;
+        if (single) {
+            o.max_iterations = 3000;
+            o.tolerance = 0.0;
+        }
+        const DecodeResult nn = solve_tv_l2(op, P.p, o);
+        INFO("single " << single << ": " << nn.objective << " free " << free.objective);
+        CHECK(nn.image.minCoeff() >= 0.0);
+        CHECK(nn.objective >= free.objective * (1.0 - kTvObjectiveTol));
+        CHECK(nn.objective <=
+              tv_l2_objective(op, P.p, free.image.max(0.0), lambda) * (1.0 + kTvObjectiveTol));
+    }
 }
 
 TEST_CASE("TV-L2 with x >= 0: feasible, between the unconstrained optimum and its clipped copy") {
