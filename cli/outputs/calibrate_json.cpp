@@ -47,6 +47,7 @@ Json calibration_result_json(const calibrate::CalibrationSummary& s, const fs::p
                             {"in_frame", p.in_frame},
                             {"missing", p.missing}});
     }
+    j["pinholes"] = pinholes;
     j["pinholes_in_frame"] = in_frame;
     j["missing_pinholes"] = cells_json(s.missing);
     j["missing_rule"] = {{"false_alarm", 0.5 * std::erfc(f.missing_z / std::sqrt(2.0))},
