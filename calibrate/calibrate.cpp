@@ -187,6 +187,27 @@ CalibrationSummary calibrate_point_source(const Plane& capture, const std::optio
     ForwardFitOptions fo;
     fo.dark_subtracted = dark.has_value();
     s.fit = fit_forward_model(frame, mask, start, fo);
+    // Spots several cells wide run together in the spot start, which can then assign the lattice
+    // one cell off; the fit of a wrong assignment ends on a negative median gain. Then the eight
+    // neighbouring assignments are fitted and the one with the smallest chi^2 and a positive
+    // median gain is kept.
+    if (!(s.fit.median_gain > 0)) {
+        const double ct = std::cos(start.rotation_rad), st = std::sin(start.rotation_rad);
+        for (int dj = -1; dj <= 1; ++dj)
+            for (int di = -1; di <= 1; ++di) {
+                if (di == 0 && dj == 0) continue;
+                LatticeStart alt = start;
+                alt.x0 -= start.pitch_x_px * ct * di + start.pitch_y_px * st * dj;
+                alt.y0 -= -start.pitch_x_px * st * di + start.pitch_y_px * ct * dj;
+                try {
+                    ForwardFit g = fit_forward_model(frame, mask, alt, fo);
+                    if (g.median_gain > 0 &&
+                        (!(s.fit.median_gain > 0) || g.chi2_reduced < s.fit.chi2_reduced))
+                        s.fit = std::move(g);
+                } catch (const InvalidInput&) {
+                }
+            }
+    }
     const ForwardFit& f = s.fit;
     s.design_pitch_px = design_pitch;
     s.rotation_deg = f.lattice.rotation_rad * kDeg;

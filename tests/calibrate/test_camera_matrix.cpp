@@ -100,3 +100,7 @@ TEST_CASE("camera matrix: C-mount, 2 degrees, side -10 %, three missing" * docte
 TEST_CASE("camera matrix: NIR camera, spots one cell wide, the issue's capture" * doctest::skip()) {
     run_row("nir", {1.0, 1.008, 1.008, 1.0, 0, INFINITY, 0, 14});
 }
+
+TEST_CASE("camera matrix: lensless, pitch -1 %, one missing, OD 2" * doctest::skip()) {
+    run_row("lensless", {0.0, 0.99, 0.99, 1.0, 1, 2.0, 0, 16});
+}
