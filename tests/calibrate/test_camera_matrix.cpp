@@ -89,18 +89,20 @@ void run_row(const std::string& camera, const Perturbation& p) {
 
 // The paper's row runs by default (about 5 s); the others are slow (CTest label slow,
 // tests/CMakeLists.txt: slow-calibrate-matrix-*), about 10 s each in Release.
-TEST_CASE("camera matrix: paper camera, rotated, pitch off, two missing, OD 2") {
+TEST_CASE("camera matrix: paper camera rotated with pitch off and two missing at OD 2") {
     run_row("paper", {1.0, 1.006, 0.995, 1.06, 2, 2.0, 0, 11});
 }
 
-TEST_CASE("camera matrix: C-mount, 2 degrees, side -10 %, three missing" * doctest::skip()) {
+TEST_CASE("camera matrix: C-mount at 2 degrees with side -10 % and three missing" *
+          doctest::skip()) {
     run_row("c-mount", {2.0, 0.992, 1.004, 0.9, 3, 1.5, 0, 12});
 }
 
-TEST_CASE("camera matrix: NIR camera, spots one cell wide, the issue's capture" * doctest::skip()) {
+TEST_CASE("camera matrix: NIR camera with spots one cell wide in the issue's capture" *
+          doctest::skip()) {
     run_row("nir", {1.0, 1.008, 1.008, 1.0, 0, INFINITY, 0, 14});
 }
 
-TEST_CASE("camera matrix: lensless, pitch -1 %, one missing, OD 2" * doctest::skip()) {
+TEST_CASE("camera matrix: lensless with pitch -1 % and one missing at OD 2" * doctest::skip()) {
     run_row("lensless", {0.0, 0.99, 0.99, 1.0, 1, 2.0, 0, 16});
 }
