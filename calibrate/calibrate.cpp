@@ -18,11 +18,12 @@ void check_range(const char* field, double v, double lo, double hi, const char* 
 }
 
 constexpr double kDeg = 180.0 / std::numbers::pi;
-// Pixels outside the mask's footprint needed to measure the dark level there.
-constexpr int kMinDarkPixels = 1000;
-// Half-width of the kernel window, in cells: wide enough for the diffraction tails of a Fresnel
-// kernel (N ~ 1) whose neighbours, 2 cells away at the closest, the per-pixel median rejects.
+// Half-width of the window the fitted kernel is written on, in cells.
 constexpr double kKernelHalfCells = 2.0;
+// Trust: the median pinhole's flux in standard errors, and the residual's share of the signal.
+constexpr double kMinGainSnr = 10.0;
+constexpr double kMaxUnexplained = 0.05;
+constexpr double kExtraFluxFraction = 0.25;
 
 struct Pass {
     std::vector<Spot> spots;
@@ -68,8 +69,8 @@ Pass register_spots(const Plane& frame, const Plane& raw, const Background& bg, 
     if (std::abs(rot) > o.max_rotation_deg)
         throw InvalidInput("calibrate: the rotation " + format_number(rot) +
                            " deg is beyond what the search covers (" +
-                           field_ref("max_rotation_deg") + " " +
-                           format_number(o.max_rotation_deg) + " deg)");
+                           field_ref("max_rotation_deg") + " " + format_number(o.max_rotation_deg) +
+                           " deg)");
     p.match = match_pinholes(p.spots, p.fit, mask.pattern, static_cast<int>(frame.rows()),
                              static_cast<int>(frame.cols()), o.max_index_offset);
     int expected = 0, seen = 0;
@@ -81,9 +82,49 @@ Pass register_spots(const Plane& frame, const Plane& raw, const Background& bg, 
         throw InvalidInput("calibrate: far fewer spots than the design: " + std::to_string(seen) +
                            " spots on the " + std::to_string(expected) +
                            " design pinholes inside the frame (the rotation may exceed " +
-                           field_ref("max_rotation_deg") +
-                           ", or the capture is not of this mask)");
+                           field_ref("max_rotation_deg") + ", or the capture is not of this mask)");
     return p;
+}
+
+// The fit cannot be trusted: too few photons (the median pinhole's flux below kMinGainSnr of its
+// standard error) or a capture the model does not explain (more than kMaxUnexplained of the
+// signal's energy left in the residual beyond the noise model's variance).
+void check_trust(const ForwardFit& f, const CalibrationOptions&) {
+    std::vector<double> sig;
+    for (const auto& p : f.pinholes)
+        if (p.in_frame) sig.push_back(p.gain_sigma);
+    const double gs = median_of(sig);
+    if (!(f.median_gain > kMinGainSnr * gs))
+        throw InvalidInput(
+            "calibrate: too few photons to trust the fit: the median pinhole's flux " +
+            format_number(f.median_gain) + " is " +
+            format_number(gs > 0 ? f.median_gain / gs : 0.0) + " standard errors (at least " +
+            format_number(kMinGainSnr) + " needed); expose longer or average captures");
+    if (f.chi2_reduced > 1.0 && f.unexplained > kMaxUnexplained)
+        throw InvalidInput(
+            "calibrate: the capture is not explained by this mask's point-source model: " +
+            format_number(std::round(1000 * f.unexplained) / 10) +
+            " % of its signal remains in the residual (at most " +
+            format_number(100 * kMaxUnexplained) +
+            " % allowed); is it a point-source capture through this mask?");
+}
+
+// Extra light: blobs of the residual normalised by the noise model's sigma (calibrate/spots on
+// it) whose residual flux reaches kExtraFluxFraction of the median pinhole flux.
+std::vector<std::array<double, 3>> extra_light(const Plane& residual, const ForwardFit& f,
+                                               const CalibrationOptions& o) {
+    const Plane z = residual / (f.noise_alpha * f.model.max(0.0) + f.noise_beta).sqrt();
+    SpotOptions so;
+    so.threshold_sigmas = o.threshold_sigmas;
+    so.relative_threshold = 0.0;
+    std::vector<std::array<double, 3>> out;
+    for (const Spot& sp : detect_spots(z, Background{0.0, 1.0}, so)) {
+        double flux = 0.0;
+        for (int r = sp.row0; r <= sp.row1; ++r)
+            for (int c = sp.col0; c <= sp.col1; ++c) flux += residual(r, c);
+        if (flux >= kExtraFluxFraction * f.median_gain) out.push_back({sp.x, sp.y, flux});
+    }
+    return out;
 }
 
 }  // namespace
@@ -114,8 +155,8 @@ CalibrationSummary calibrate_point_source(const Plane& capture, const std::optio
         throw InvalidInput("calibrate: the capture (" + std::to_string(cols) + " x " +
                            std::to_string(rows) + " px) is smaller than one period (" +
                            format_number(mask.pattern.n * design_pitch) + " px)");
-    // Working copies: frame, smoothing, masks, a few PSF-sized planes.
-    check_memory(8.0 * double(rows) * cols * sizeof(double), "calibrating the capture");
+    // Working copies: frame, model, weights, derivative planes.
+    check_memory(16.0 * double(rows) * cols * sizeof(double), "calibrating the capture");
     CalibrationSummary s;
     Plane frame = capture;
     if (dark) {
@@ -126,76 +167,72 @@ CalibrationSummary calibrate_point_source(const Plane& capture, const std::optio
         s.dark_level = dark->mean();
         s.dark_source = "dark frame";
     }
+    // The start: spots and a lattice through them.
     const Background bg0 = estimate_background(frame);
-    Pass pass = register_spots(frame, capture, bg0, mask, o);
-
-    // Footprint of the mask: pixels whose nearest lattice site is a mask cell; "between spots"
-    // excludes cells next to (or on) an open cell.
-    const int n = mask.pattern.n;
-    const int mr = n * mask.pattern.tiles_rows, mc = n * mask.pattern.tiles_cols;
-    std::vector<std::uint8_t> open(static_cast<std::size_t>(n) * n, 0);
-    for (const Cell& c : mask.pattern.pinholes)
-        open[static_cast<std::size_t>(c.row) * n + c.col] = 1;
-    auto open_at = [&](int r, int c) {
-        r = ((r % n) + n) % n;
-        c = ((c % n) + n) % n;
-        return open[static_cast<std::size_t>(r) * n + c] != 0;
-    };
-    std::vector<double> between, outside;
-    for (int r = 0; r < rows; ++r)
-        for (int c = 0; c < cols; ++c) {
-            const Eigen::Vector2d u = pass.fit.indices(c, r);
-            const int R = static_cast<int>(std::lround(u.y())) + pass.match.offset_row;
-            const int C = static_cast<int>(std::lround(u.x())) + pass.match.offset_col;
-            if (R < -1 || C < -1 || R > mr || C > mc) {
-                outside.push_back(frame(r, c));
-                continue;
-            }
-            if (R < 0 || C < 0 || R >= mr || C >= mc) continue;  // the footprint's rim
-            bool near = false;
-            for (int dr = -1; dr <= 1 && !near; ++dr)
-                for (int dc = -1; dc <= 1 && !near; ++dc) near = open_at(R + dr, C + dc);
-            if (!near) between.push_back(frame(r, c));
-        }
-    double floor_level = 0.0;  // level outside the footprint (after the dark frame, if any)
-    if (static_cast<int>(outside.size()) >= kMinDarkPixels) {
-        floor_level = median_of(outside);
-        if (!dark) {
-            s.dark_level = floor_level;
-            s.dark_source = "outside the mask's footprint";
-        }
-    } else if (!dark) {
-        s.dark_source =
-            "not measured (the mask's footprint fills the frame; give " + field_ref("dark") + ")";
-    }
-    const double inside_level = between.empty() ? bg0.level : median_of(between);
-    s.background = inside_level - floor_level;
-
-    // Second pass above the local background.
-    Background bg1 = bg0;
-    bg1.level = inside_level;
-    pass = register_spots(frame, capture, bg1, mask, o);
-    s.noise_sigma = bg0.sigma;
+    const Pass pass = register_spots(frame, capture, bg0, mask, o);
     s.spots = pass.spots;
-    s.fit = pass.fit;
+    s.start = pass.fit;
     s.match = pass.match;
-    s.rotation_deg = s.fit.rotation_rad * kDeg;
-    s.rotation_sigma_deg = s.fit.rotation_sigma_rad * kDeg;
-    s.pitch_x_px = s.fit.pitch_x_px;
-    s.pitch_y_px = s.fit.pitch_y_px;
-    s.pitch_x_sigma_px = s.fit.pitch_x_sigma_px;
-    s.pitch_y_sigma_px = s.fit.pitch_y_sigma_px;
     for (int k = 0; k < static_cast<int>(s.spots.size()); ++k)
         if (s.spots[k].saturated) s.saturated_spots.push_back(k);
-    for (const auto& r : s.match.pinholes) {
-        if (r.state == PinholeState::kMissing) s.missing.push_back(r.mask_cell);
-        if (r.state == PinholeState::kMerged) s.merged.push_back(r.mask_cell);
-        if (r.oversized) s.oversized.push_back(r.mask_cell);
+    // registration's rotation runs clockwise on screen: the fit's counter-clockwise angle is
+    // its negative; lattice index (i, j) is mask cell (j + offset_row, i + offset_col).
+    LatticeStart start;
+    const Eigen::Vector2d origin = s.start.position(-s.match.offset_col, -s.match.offset_row);
+    start.x0 = origin.x();
+    start.y0 = origin.y();
+    start.rotation_rad = -s.start.rotation_rad;
+    start.pitch_x_px = s.start.pitch_x_px;
+    start.pitch_y_px = s.start.pitch_y_px;
+    ForwardFitOptions fo;
+    fo.dark_subtracted = dark.has_value();
+    s.fit = fit_forward_model(frame, mask, start, fo);
+    // Spots several cells wide run together in the spot start, which can then assign the lattice
+    // one cell off; the fit of a wrong assignment ends on a negative median gain. Then the eight
+    // neighbouring assignments are fitted and the one with the smallest chi^2 and a positive
+    // median gain is kept.
+    if (!(s.fit.median_gain > 0)) {
+        const double ct = std::cos(start.rotation_rad), st = std::sin(start.rotation_rad);
+        for (int dj = -1; dj <= 1; ++dj)
+            for (int di = -1; di <= 1; ++di) {
+                if (di == 0 && dj == 0) continue;
+                LatticeStart alt = start;
+                alt.x0 -= start.pitch_x_px * ct * di + start.pitch_y_px * st * dj;
+                alt.y0 -= -start.pitch_x_px * st * di + start.pitch_y_px * ct * dj;
+                try {
+                    ForwardFit g = fit_forward_model(frame, mask, alt, fo);
+                    if (g.median_gain > 0 &&
+                        (!(s.fit.median_gain > 0) || g.chi2_reduced < s.fit.chi2_reduced))
+                        s.fit = std::move(g);
+                } catch (const InvalidInput&) {
+                }
+            }
     }
+    const ForwardFit& f = s.fit;
+    s.design_pitch_px = design_pitch;
+    s.rotation_deg = f.lattice.rotation_rad * kDeg;
+    s.rotation_sigma_deg = f.rotation_sigma_rad * kDeg;
+    if (std::abs(s.rotation_deg) > o.max_rotation_deg)
+        throw InvalidInput("calibrate: the fitted rotation " + format_number(s.rotation_deg) +
+                           " deg is beyond what the search covers (" +
+                           field_ref("max_rotation_deg") + " " + format_number(o.max_rotation_deg) +
+                           " deg)");
+    s.pitch_x_px = f.lattice.pitch_x_px;
+    s.pitch_y_px = f.lattice.pitch_y_px;
+    s.pitch_x_sigma_px = f.pitch_x_sigma_px;
+    s.pitch_y_sigma_px = f.pitch_y_sigma_px;
+    check_trust(f, o);
+    for (const auto& p : f.pinholes)
+        if (p.missing) s.missing.push_back(p.mask_cell);
+
     // Position of pattern cell (0, 0) in the first tile lying wholly in the frame (else the first
     // whose cell (0, 0) does).
+    const int n = mask.pattern.n;
     auto site = [&](int R, int C) {
-        return s.fit.position(C - s.match.offset_col, R - s.match.offset_row);
+        const double ct = std::cos(f.lattice.rotation_rad), st = std::sin(f.lattice.rotation_rad);
+        return Eigen::Vector2d(
+            f.lattice.x0 + f.lattice.pitch_x_px * ct * C + f.lattice.pitch_y_px * st * R,
+            f.lattice.y0 - f.lattice.pitch_x_px * st * C + f.lattice.pitch_y_px * ct * R);
     };
     auto inside = [&](const Eigen::Vector2d& p) {
         return p.x() >= 0 && p.y() >= 0 && p.x() <= cols - 1 && p.y() <= rows - 1;
@@ -216,46 +253,50 @@ CalibrationSummary calibrate_point_source(const Plane& capture, const std::optio
             chosen = true;
         }
     if (!chosen) {
-        const Eigen::Vector2d p = site(0, 0);
-        s.position_x_px = p.x();
-        s.position_y_px = p.y();
+        s.position_x_px = f.lattice.x0;
+        s.position_y_px = f.lattice.y0;
     }
-    s.position_sigma_px = std::hypot(s.fit.x0_sigma, s.fit.y0_sigma);
+    s.position_sigma_px = std::hypot(f.x0_sigma, f.y0_sigma);
 
-    // Kernel from the good spots, above the local background.
-    Plane clean = frame - inside_level;
-    std::vector<Eigen::Vector2d> centres;
-    std::vector<double> fluxes;
-    for (const auto& r : s.match.pinholes)
-        if (r.state == PinholeState::kFound && !r.oversized && !s.spots[r.spot].saturated &&
-            s.spots[r.spot].flux > 0) {
-            centres.push_back(r.measured);
-            fluxes.push_back(s.spots[r.spot].flux);
+    // Background and leak. Without a dark frame the fitted background is the dark level.
+    s.background = f.leak;
+    s.background_sigma = f.leak_sigma;
+    if (!dark) {
+        s.dark_level = f.background;
+        s.dark_source = "fitted background";
+    } else {
+        s.dark_level += f.background;
+    }
+    s.noise_sigma = std::sqrt(f.noise_alpha * std::max(f.background, 0.0) + f.noise_beta);
+    const double cell_area = s.pitch_x_px * s.pitch_y_px;
+    if (!f.leak_measured) {
+        s.optical_density = std::numeric_limits<double>::quiet_NaN();
+        s.dark_source +=
+            " (the footprint fills the frame: leak not measured; give " + field_ref("dark") + ")";
+    } else if (f.median_gain > 0) {
+        const double to_t = cell_area / f.median_gain;
+        if (f.leak > 2 * f.leak_sigma && f.leak > 0) {
+            const double t = f.leak * to_t;
+            s.optical_density = std::max(0.0, -std::log10(t));
+            s.optical_density_sigma = f.leak_sigma / (f.leak * std::log(10.0));
+        } else if (f.leak_sigma > 0) {
+            s.optical_density = std::max(0.0, -std::log10((f.leak + 2 * f.leak_sigma) * to_t));
+            s.optical_density_is_bound = true;
         }
+    }
+
+    // Kernel: the fitted one, on a window of two cells either side, against the design's models.
     const double pitch = 0.5 * (s.pitch_x_px + s.pitch_y_px);
-    s.kernel = estimate_kernel(clean, centres, fluxes,
-                               static_cast<int>(std::lround(kKernelHalfCells * pitch)));
+    const int half = static_cast<int>(std::lround(kKernelHalfCells * pitch));
+    s.kernel.values = fitted_kernel(f, mask, half);
+    s.kernel.half_px = half;
+    s.kernel.spots_used = static_cast<int>(f.pinholes.size());
     s.kernel_fit = compare_kernel_models(s.kernel.values, mask.camera,
                                          std::max(1, static_cast<int>(std::lround(design_pitch))));
     s.best_model = best_model(s.kernel_fit);
-    // Optical density: leak per cell area against a pinhole's flux.
-    const double open_flux = s.match.median_flux;
-    const double leak_per_cell = s.background * s.pitch_x_px * s.pitch_y_px;
-    if (leak_per_cell > 0 && open_flux > 0)
-        s.optical_density = -std::log10(leak_per_cell / open_flux);
-    s.psfs = calibrated_psfs(rows, cols, s.kernel, s.spots, s.match, s.fit, mask.pattern,
-                             o.period_tolerance_px);
-    double total = 0.0;
-    for (const auto& r : s.match.pinholes)
-        if (r.state == PinholeState::kFound) total += s.spots[r.spot].flux;
-    std::vector<std::uint8_t> merged_done(s.spots.size(), 0);
-    for (const auto& r : s.match.pinholes)
-        if (r.state == PinholeState::kMerged && !merged_done[r.spot]) {
-            merged_done[r.spot] = 1;
-            total += s.spots[r.spot].flux;
-        }
-    for (int k : s.match.extra_spots) total += std::max(0.0, s.spots[k].flux);
-    s.residual_map = clean - total * s.psfs.full_frame;
+    s.psfs = calibrated_psfs(rows, cols, f, mask, o.period_tolerance_px);
+    s.residual_map = frame - f.model;
+    s.extra_spots = extra_light(s.residual_map, f, o);
     return s;
 }
 

@@ -1,19 +1,23 @@
 // The calibration pipeline: a point-source capture through the whole mask (several periods,
-// K x tiles spots) -> measured geometry, per-pinhole record, background, kernel, calibrated PSF.
-// Steps (one concept per file): dark frame -> spots (calibrate/spots) -> lattice registration
-// (calibrate/registration) -> pinhole matching (calibrate/pinholes) -> background inside the
-// mask's footprint (leak, optical density) -> spots again above that background -> registration
-// and matching again -> kernel (calibrate/kernel_estimate) -> model comparison
-// (calibrate/kernel_fit) -> PSFs (calibrate/calibrated_psf).
-// Coordinates: index coordinates (x = column, y = row, pixel centres on integers).
+// K x tiles spots) -> measured geometry, per-pinhole gains, leak, background, kernel, calibrated
+// PSF. Steps (one concept per file): dark frame -> spots and a lattice through them, matched to
+// mask cells (calibrate/spots, registration, pinholes): the start -> the fit of the forward model
+// to the whole capture (calibrate/forward_fit): geometry, kernel side, gains, leak, background
+// and their standard errors -> missing pinholes from the gains, extra light from the residual ->
+// PSFs from the fitted model (calibrate/calibrated_psf) -> the fitted kernel against the design's
+// kernel models (calibrate/kernel_fit).
+// Coordinates: index coordinates (x = column, y = row, pixel centres on integers). Rotation:
+// counter-clockwise on screen with rows running down positive (scipy.ndimage.rotate's sense).
 #pragma once
 
+#include <array>
 #include <limits>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "calibrate/calibrated_psf.hpp"
+#include "calibrate/forward_fit.hpp"
 #include "calibrate/kernel_estimate.hpp"
 #include "calibrate/kernel_fit.hpp"
 #include "calibrate/pinholes.hpp"
@@ -48,28 +52,42 @@ struct CalibrationOptions {
 void validate(const CalibrationOptions& options);
 
 struct CalibrationSummary {
+    // The fit of the forward model (calibrate/forward_fit): rotation counter-clockwise on screen
+    // with rows running down (scipy.ndimage.rotate's sense), pitches along the mask's axes.
     double rotation_deg = 0.0, rotation_sigma_deg = 0.0;
     double pitch_x_px = 0.0, pitch_y_px = 0.0, pitch_x_sigma_px = 0.0, pitch_y_sigma_px = 0.0;
-    double position_x_px = 0.0, position_y_px = 0.0;  // lattice site of pattern cell (0, 0) in
+    double position_x_px = 0.0, position_y_px = 0.0;  // spot centre of pattern cell (0, 0) in
     double position_sigma_px = 0.0;                   // the first full tile (row-major order)
     Cell first_tile;                                  // that tile (row, col)
-    LatticeFit fit;
+    double design_pitch_px = 0.0;                     // the design's pitch at u (capture pixels)
+    ForwardFit fit;
+    // The start: spots above a threshold and a lattice through their centroids (its own
+    // rotation sign, calibrate/registration), matched to mask cells.
     std::vector<Spot> spots;
+    LatticeFit start;
     PinholeMatch match;
-    std::vector<Cell> missing;         // mask cells (R, C) over the tiled mask
-    std::vector<Cell> merged;          // mask cells whose spots ran together
-    std::vector<Cell> oversized;       // mask cells with an oversized spot
-    std::vector<int> saturated_spots;  // indices into spots
+    std::vector<Cell> missing;  // mask cells (R, C) over the tiled mask, decided by the fit
+    // Blobs of the normalised residual above the threshold carrying at least a quarter of the
+    // median pinhole flux: light the design does not explain (a pinhole not in the design, a
+    // scratch). (x, y, flux).
+    std::vector<std::array<double, 3>> extra_spots;
+    std::vector<int> saturated_spots;                              // indices into spots
     double dark_level = std::numeric_limits<double>::quiet_NaN();  // counts, NaN: not measured
-    std::string dark_source;  // "dark frame", "outside the mask's footprint", "not measured"
-    double background = 0.0;  // leak between the spots inside the footprint, above the dark
-    double optical_density = std::numeric_limits<double>::infinity();  // -log10(leak / open)
-    double noise_sigma = 0.0;
-    KernelEstimate kernel;
+    std::string dark_source;  // "dark frame", "fitted background", "not measured"
+    double background = 0.0, background_sigma = 0.0;  // leak per pixel inside the footprint
+    // -log10(leak per cell / median pinhole flux) with its standard error; when the leak is not
+    // significant (below 2 sigma) the value is a lower bound (from leak + 2 sigma) and
+    // optical_density_is_bound is set. Never negative. NaN when the leak is not measured (the
+    // mask's footprint fills the frame and no dark frame fixes the background).
+    double optical_density = std::numeric_limits<double>::infinity();
+    double optical_density_sigma = 0.0;
+    bool optical_density_is_bound = false;
+    double noise_sigma = 0.0;  // sqrt of the noise model's variance at the background level
+    KernelEstimate kernel;     // the fitted kernel on a window
     std::vector<ModelResidual> kernel_fit;
     std::string best_model;
     CalibratedPsfs psfs;
-    Plane residual_map;  // capture - background - flux-scaled full-frame PSF
+    Plane residual_map;  // capture (after the dark frame) - fitted model
 };
 
 // Throws InvalidInput (exit 2 in the CLI) for: an empty/non-finite capture or dark frame of

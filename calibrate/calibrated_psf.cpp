@@ -1,73 +1,66 @@
 #include "calibrate/calibrated_psf.hpp"
 
 #include <cmath>
-#include <map>
 
-#include "calibrate/subpixel.hpp"
+#include "calibrate/profile_table.hpp"
+#include "core/number_format.hpp"
 
 namespace pinmask::calibrate {
 
-CalibratedPsfs calibrated_psfs(int rows, int cols, const KernelEstimate& kernel,
-                               const std::vector<Spot>& spots, const PinholeMatch& match,
-                               const LatticeFit& fit, const Pattern& pattern, double tol) {
-    CalibratedPsfs out;
-    const double h = kernel.half_px;
-    const double mf = match.median_flux > 0 ? match.median_flux : 1.0;
-    out.full_frame = Plane::Zero(rows, cols);
-    std::map<int, int> merged_count;
-    for (const auto& rec : match.pinholes)
-        if (rec.state == PinholeState::kMerged) ++merged_count[rec.spot];
-    for (const auto& rec : match.pinholes) {
-        Eigen::Vector2d p = rec.predicted;
-        double w = 0.0;
-        if (rec.state == PinholeState::kFound) {
-            const Eigen::Vector2d res = rec.measured - rec.predicted;
-            if (res.norm() > kResidualSignificance * fit.residual_rms_px) p = rec.measured;
-            w = rec.gain;
-        } else if (rec.state == PinholeState::kMerged) {
-            w = spots[rec.spot].flux / mf / merged_count[rec.spot];
-        }
-        if (w > 0) add_kernel(out.full_frame, kernel.values, h, h, p.y(), p.x(), w);
-    }
-    for (int k : match.extra_spots)
-        if (spots[k].flux > 0)
-            add_kernel(out.full_frame, kernel.values, h, h, spots[k].y, spots[k].x,
-                       spots[k].flux / mf);
-    const double s = out.full_frame.sum();
-    if (s > 0) out.full_frame /= s;
+Plane fitted_kernel(const ForwardFit& fit, const Mask& mask, int half) {
+    const ProfileTable q(mask.camera, fit.family, fit.side_m, half + 1.0);
+    Plane k(2 * half + 1, 2 * half + 1);
+    for (int r = -half; r <= half; ++r)
+        for (int c = -half; c <= half; ++c) k(r + half, c + half) = q.value(r) * q.value(c);
+    const double s = k.sum();
+    if (s > 0) k /= s;
+    return k;
+}
 
-    // One period.
-    const int n = pattern.n;
-    const double c = std::cos(fit.rotation_rad), sn = std::sin(fit.rotation_rad);
-    const int nc = static_cast<int>(std::lround(n * fit.pitch_x_px * c));
-    const int nr = static_cast<int>(std::lround(n * fit.pitch_y_px * c));
-    out.period_drift_px =
-        std::max({std::abs(n * fit.pitch_x_px * c - nc), std::abs(n * fit.pitch_x_px * sn),
-                  std::abs(n * fit.pitch_y_px * c - nr), std::abs(n * fit.pitch_y_px * sn)});
+CalibratedPsfs calibrated_psfs(int rows, int cols, const ForwardFit& fit, const Mask& mask,
+                               double tol) {
+    CalibratedPsfs out;
+    out.full_frame = fitted_psf(fit, mask, rows, cols);
+
+    const int n = mask.pattern.n;
+    const double c = std::cos(fit.lattice.rotation_rad), sn = std::sin(fit.lattice.rotation_rad);
+    const double px = fit.lattice.pitch_x_px, py = fit.lattice.pitch_y_px;
+    const int nc = static_cast<int>(std::lround(n * px * c));
+    const int nr = static_cast<int>(std::lround(n * py * c));
+    out.period_drift_px = std::max({std::abs(n * px * c - nc), std::abs(n * px * sn),
+                                    std::abs(n * py * c - nr), std::abs(n * py * sn)});
     if (out.period_drift_px > tol || nc < 1 || nr < 1) {
-        out.period_reason = "the lattice drifts " + std::to_string(out.period_drift_px) +
+        out.period_reason = "the lattice drifts " + format_number(out.period_drift_px) +
                             " px from whole pixels over one period (tolerance " +
-                            std::to_string(tol) +
+                            format_number(tol) +
                             " px): no cyclic PSF on a pixel torus; use the full-frame PSF";
         return out;
     }
     out.period_reason = "period " + std::to_string(nc) + " x " + std::to_string(nr) +
-                        " px, drift " + std::to_string(out.period_drift_px) + " px";
+                        " px, drift " + format_number(out.period_drift_px) + " px";
+    // The kernel wrapped onto the torus: a window as wide as the period (its tails fold).
+    const int half = std::max(nr, nc) / 2;
+    const ProfileTable q(mask.camera, fit.family, fit.side_m, half + 1.0);
     Plane per = Plane::Zero(nr, nc);
-    for (const Cell& cell : pattern.pinholes) {
+    for (const Cell& cell : mask.pattern.pinholes) {
         double g = 0.0;
         int copies = 0;
-        for (const auto& rec : match.pinholes) {
-            if (rec.mask_cell.row % n != cell.row || rec.mask_cell.col % n != cell.col) continue;
+        for (const auto& f : fit.pinholes) {
+            if (!f.in_frame || f.mask_cell.row % n != cell.row || f.mask_cell.col % n != cell.col)
+                continue;
             ++copies;
-            if (rec.state == PinholeState::kFound) g += rec.gain;
-            if (rec.state == PinholeState::kMerged)
-                g += spots[rec.spot].flux / mf / merged_count[rec.spot];
+            if (!f.missing) g += std::max(f.gain, 0.0);
         }
-        g = copies > 0 ? g / copies : 1.0;
+        g = copies > 0 ? g / copies : fit.median_gain;
         if (g <= 0) continue;
         const double x = (cell.col + 0.5) * nc / n - 0.5, y = (cell.row + 0.5) * nr / n - 0.5;
-        add_kernel(per, kernel.values, h, h, y, x, g, true);
+        const int xi = static_cast<int>(std::floor(x)), yi = static_cast<int>(std::floor(y));
+        for (int dr = -half; dr <= half + 1; ++dr)
+            for (int dc = -half; dc <= half + 1; ++dc) {
+                const int r = yi + dr, cc = xi + dc;
+                const double v = q.value(r - y) * q.value(cc - x);
+                per(((r % nr) + nr) % nr, ((cc % nc) + nc) % nc) += g * v;
+            }
     }
     if (per.sum() > 0) {
         per /= per.sum();

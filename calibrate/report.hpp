@@ -1,13 +1,12 @@
 // The calibration report as PDF bytes (Cairo, A4 portrait, metadata dates pinned so the same
 // calibration gives the same bytes):
-//   page 1  the capture (grey, 1st to 99.9th percentile) with the predicted spot sites (circles:
-//           green found, red missing, orange merged) and the measured centroids (crosses; blue
-//           for extra spots), and the figures (rotation, pitch, position, background);
-//   page 2  the residual map (capture - background - flux-scaled calibrated PSF, grey, symmetric
-//           range) and the kernel comparison (the measured kernel, each available model on the
-//           same window, residuals);
-//   page 3+ the per-pinhole table (mask cell, state, predicted and measured position, residual,
-//           gain).
+//   page 1  the capture (grey, 1st to 99.9th percentile) with the fitted spot sites (circles:
+//           green found, red missing) and extra light (blue crosses), and the uncertainty table:
+//           measured against design lattice (rotation, pitches, pinhole side), position, leak,
+//           optical density, noise model, chi^2, the missing rule and the coverage tested;
+//   page 2  the residual map (capture - fitted model, grey, symmetric range) and the kernel
+//           comparison (the fitted kernel, each available design model on the same window);
+//   page 3+ the per-pinhole table (mask cell, state, fitted position, gain +- sigma).
 #pragma once
 
 #include <string>

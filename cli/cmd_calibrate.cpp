@@ -9,14 +9,15 @@
 
 #include "calibrate/calibrate.hpp"
 #include "calibrate/report.hpp"
-#include "cli/outputs/calibrate_json.hpp"
+#include "cli/commands.hpp"
 #include "cli/options/camera_options.hpp"
 #include "cli/options/flag_names.hpp"
-#include "cli/commands.hpp"
+#include "cli/outputs/calibrate_json.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
 #include "core/raw_io.hpp"
+#include "design/kernel_model.hpp"
 #include "io/mask_json.hpp"
 #include "io/psf_files.hpp"
 
@@ -85,7 +86,8 @@ void run(CalibrateCommandOptions& o) {
     // The calibrated mask: the measured kernel and the measured geometry in its provenance.
     Mask cal = mask;
     cal.psf.kernel = {"measured", (dir / "kernel.tiff").string(), {}};
-    cal.psf.pixels_per_cell = static_cast<int>(std::lround(0.5 * (s.pitch_x_px + s.pitch_y_px)));
+    cal.psf.pixels_per_cell =
+        std::max(1, static_cast<int>(std::lround(0.5 * (s.pitch_x_px + s.pitch_y_px))));
     cal.provenance.generator = "pinmask calibrate 0.1.0";
     auto& sc = cal.provenance.scores;
     sc["calibrated_rotation_deg"] = s.rotation_deg;
@@ -95,10 +97,11 @@ void run(CalibrateCommandOptions& o) {
     sc["calibrated_position_y_px"] = s.position_y_px;
     sc["calibrated_missing_pinholes"] = static_cast<double>(s.missing.size());
     sc["calibrated_background"] = s.background;
+    sc["calibrated_pinhole_side_m"] = s.fit.side_m;
     if (std::isfinite(s.optical_density)) sc["calibrated_optical_density"] = s.optical_density;
     const Kernel kernel = measured_kernel(
         s.kernel.values, cal.psf.pixels_per_cell,
-        "calibrate: median of " + std::to_string(s.kernel.spots_used) + " spots of " + o.capture);
+        "calibrate: fitted " + kernel_model_name(s.fit.family) + " kernel of " + o.capture);
     Json j = calibration_result_json(s, dir);
     const Json config = {{"capture", o.capture},
                          {"mask", o.mask},
@@ -143,19 +146,26 @@ void run(CalibrateCommandOptions& o) {
         return;
     }
     std::cout << "calibrate " << o.capture << " -> " << o.output << "/\n"
-              << "  rotation   " << s.rotation_deg << " +- " << s.rotation_sigma_deg << " deg\n"
+              << "  rotation   " << s.rotation_deg << " +- " << s.rotation_sigma_deg
+              << " deg (counter-clockwise on screen, rows down)\n"
               << "  pitch      x " << s.pitch_x_px << " +- " << s.pitch_x_sigma_px << ", y "
-              << s.pitch_y_px << " +- " << s.pitch_y_sigma_px << " px\n"
+              << s.pitch_y_px << " +- " << s.pitch_y_sigma_px << " px (design " << s.design_pitch_px
+              << ")\n"
               << "  position   x " << s.position_x_px << ", y " << s.position_y_px
               << " px (pattern cell (0, 0) of tile " << s.first_tile.row << "," << s.first_tile.col
               << ")\n"
-              << "  pinholes   " << s.match.pinholes.size() << " in frame, " << s.missing.size()
-              << " missing, " << s.merged.size() << " merged, " << s.match.extra_spots.size()
-              << " extra spots\n"
-              << "  background " << s.background << " counts (optical density " << s.optical_density
+              << "  pinhole    side " << s.fit.side_m * 1e6 << " um (x " << s.fit.side_scale
+              << " +- " << s.fit.side_scale_sigma << " of the design), "
+              << kernel_model_name(s.fit.family) << " kernel\n"
+              << "  pinholes   " << s.fit.pinholes.size() << " fitted, " << s.missing.size()
+              << " missing, " << s.extra_spots.size() << " extra spots\n"
+              << "  leak       " << s.background << " +- " << s.background_sigma
+              << " counts/px (optical density " << (s.optical_density_is_bound ? "> " : "")
+              << s.optical_density << (s.optical_density_is_bound ? "" : " +- ")
+              << (s.optical_density_is_bound ? "" : std::to_string(s.optical_density_sigma))
               << "), dark level " << s.dark_level << " (" << s.dark_source << ")\n"
-              << "  kernel     best model " << (s.best_model.empty() ? "none" : s.best_model)
-              << ", from " << s.kernel.spots_used << " spots\n"
+              << "  fit        chi2/dof " << s.fit.chi2_reduced << ", " << s.fit.iterations
+              << " iterations\n"
               << "  period PSF " << s.psfs.period_reason << "\n"
               << "  wrote      psf.tiff (+ psf.json)" << (s.psfs.period ? ", psf-period.tiff" : "")
               << ", kernel.tiff, calibrated.mask.json, report.pdf, calibration.json\n";
@@ -164,8 +174,14 @@ void run(CalibrateCommandOptions& o) {
 constexpr const char* kFooter =
     "Input: a capture of a point source (laser pinhole, distant LED) through the whole mask: "
     "several periods, every pinhole's spot. RAW files are read as sensor data (see decode). "
-    "Pitch and position are in capture pixels; rotation in degrees, counter-clockwise on screen "
-    "positive when rows run down.\n"
+    "The forward model (every pinhole's kernel at its lattice site, one gain per pinhole, the "
+    "pinhole side, leak and background) is fitted to the whole capture; standard errors come from "
+    "the Fisher information. Pitch and position are in capture pixels; rotation in degrees, "
+    "positive counter-clockwise on screen with rows running down (scipy.ndimage.rotate's sense): "
+    "turn the mask holder clockwise by the reported angle to undo it. A pinhole is missing when "
+    "its gain + 3.72 sigma is below half the median (false alarm 1e-4 per pinhole). Refused "
+    "(exit 2, nothing written) when the fit cannot be trusted: too few photons, a capture the "
+    "model does not explain, a rotation beyond --max-rotation.\n"
     "Writes DIR/psf.tiff (+ psf.json sidecar): the full-frame calibrated PSF (the measured "
     "kernel at every measured spot), which `pinmask decode CAPTURE --psf DIR/psf.tiff` uses "
     "directly; DIR/psf-period.tiff: the one-period cyclic PSF when the measured lattice fits a "
@@ -177,8 +193,9 @@ void setup(CLI::App& app) {
     auto o = std::make_shared<CalibrateCommandOptions>();
     auto* cmd = app.add_subcommand(
         "calibrate",
-        "Register the design against a point-source capture: rotation, pitch, position, missing "
-        "and extra spots, leak, kernel; write the calibrated PSF, mask and a report.");
+        "Fit the design's forward model to a point-source capture: rotation, pitch, position, "
+        "pinhole side, per-pinhole gains (missing pinholes), leak, with standard errors; write "
+        "the calibrated PSF, mask and a report.");
     cmd->footer(kFooter);
     cmd->add_option("point", o->capture, "Point-source capture (TIFF, PNG, npy, camera RAW)")
         ->required();
@@ -186,8 +203,8 @@ void setup(CLI::App& app) {
     cmd->add_option("--dark", o->dark, "Dark frame (same size), subtracted first");
     cmd->add_option("-o,--output", o->output, "Output folder (new or empty)")->required();
     cmd->add_option("--max-rotation", o->cal.max_rotation_deg,
-                    "Rotations searched: +- this many degrees; a capture rotated further is "
-                    "refused")
+                    "Rotations searched: +- this many degrees (counter-clockwise on screen "
+                    "positive); a capture rotated further is refused")
         ->capture_default_str();
     cmd->add_option("--pitch-range", o->cal.pitch_range,
                     "Spot pitches searched: the design's pixels per cell +- this fraction")

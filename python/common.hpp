@@ -96,5 +96,6 @@ void bind_search(py::module_& m);
 void bind_compare(py::module_& m);
 void bind_export(py::module_& m);
 void bind_check(py::module_& m);
+void bind_calibrate(py::module_& m);
 
 }  // namespace pinmask::python

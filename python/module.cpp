@@ -43,4 +43,5 @@ field, the value and the rule), RuntimeError for failures while doing valid work
     bind_compare(m);
     bind_export(m);
     bind_check(m);
+    bind_calibrate(m);
 }

@@ -378,5 +378,15 @@ def check(
     mirror: bool = False,
     no_sidecar: bool = False,  # ignore NAME.export.json beside a fabrication file
 ) -> dict[str, Any]: ...
+def calibrate(
+    point: ArrayLike,
+    mask: MaskLike,
+    dark: Optional[ArrayLike] = None,
+    max_rotation_deg: float = 5.0,  # counter-clockwise on screen (rows down) positive
+    pitch_range: float = 0.05,
+    threshold_sigmas: float = 6.0,
+    saturation_level: Optional[float] = None,
+    pixel_binning: int = 1,
+) -> dict[str, Any]: ...  # the keys of `pinmask calibrate --json`; psf, kernel... as arrays
 def is_library_buffer(array: object) -> bool: ...
 def input_copies() -> int: ...

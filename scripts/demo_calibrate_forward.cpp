@@ -49,8 +49,9 @@ Plane render(const Mask& m, const Kernel& k, double rot_deg, double scale, int m
     Plane psf = Plane::Zero(rows, cols);
     for (const Cell& c : open) {
         const double u = c.col - 0.5 * (mc - 1), v = c.row - 0.5 * (mr - 1);
-        const double x = 0.5 * (cols - 1) + p * (std::cos(t) * u - std::sin(t) * v);
-        const double y = 0.5 * (rows - 1) + p * (std::sin(t) * u + std::cos(t) * v);
+        // Counter-clockwise on screen with rows running down for t > 0 (the project's sense).
+        const double x = 0.5 * (cols - 1) + p * (std::cos(t) * u + std::sin(t) * v);
+        const double y = 0.5 * (rows - 1) + p * (-std::sin(t) * u + std::cos(t) * v);
         calibrate::add_kernel(psf, k.values, ky, kx, y, x, 1.0);
     }
     return psf;

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "design/kernel_model.hpp"
+
 namespace pinmask::cli {
 
 namespace fs = std::filesystem;
@@ -18,39 +20,67 @@ Json cells_json(const std::vector<Cell>& cells) {
 }  // namespace
 
 Json calibration_result_json(const calibrate::CalibrationSummary& s, const fs::path& dir) {
+    const calibrate::ForwardFit& f = s.fit;
     Json j;
+    j["rotation_convention"] =
+        "counter-clockwise on screen with rows running down (scipy.ndimage.rotate's sense)";
     j["rotation_deg"] = s.rotation_deg;
     j["rotation_sigma_deg"] = s.rotation_sigma_deg;
     j["pitch_px"] = {s.pitch_x_px, s.pitch_y_px};
     j["pitch_sigma_px"] = {s.pitch_x_sigma_px, s.pitch_y_sigma_px};
+    j["design_pitch_px"] = s.design_pitch_px;
     j["position_px"] = {s.position_x_px, s.position_y_px};
     j["position_sigma_px"] = s.position_sigma_px;
     j["first_full_tile"] = {s.first_tile.row, s.first_tile.col};
-    j["fit_residual_rms_px"] = s.fit.residual_rms_px;
-    j["pinholes_in_frame"] = s.match.pinholes.size();
+    j["kernel_family"] = kernel_model_name(f.family);
+    j["pinhole_side_m"] = f.side_m;
+    j["pinhole_side_scale"] = f.side_scale;
+    j["pinhole_side_scale_sigma"] = f.side_scale_sigma;
+    int in_frame = 0;
+    Json pinholes = Json::array();
+    for (const auto& p : f.pinholes) {
+        in_frame += p.in_frame ? 1 : 0;
+        pinholes.push_back({{"cell", {p.mask_cell.row, p.mask_cell.col}},
+                            {"position_px", {p.x, p.y}},
+                            {"gain", p.gain},
+                            {"gain_sigma", p.gain_sigma},
+                            {"in_frame", p.in_frame},
+                            {"missing", p.missing}});
+    }
+    j["pinholes"] = pinholes;
+    j["pinholes_in_frame"] = in_frame;
     j["missing_pinholes"] = cells_json(s.missing);
-    j["merged_pinholes"] = cells_json(s.merged);
-    j["oversized_pinholes"] = cells_json(s.oversized);
+    j["missing_rule"] = {{"false_alarm", 0.5 * std::erfc(f.missing_z / std::sqrt(2.0))},
+                         {"z", f.missing_z},
+                         {"rule", "gain + z sigma < median gain / 2"}};
+    j["median_gain"] = f.median_gain;
     Json extra = Json::array();
-    for (int k : s.match.extra_spots) extra.push_back({s.spots[k].x, s.spots[k].y});
+    for (const auto& e : s.extra_spots) extra.push_back({e[0], e[1]});
     j["extra_spots"] = extra;
     j["saturated_spots"] = s.saturated_spots.size();
     j["background"] = s.background;
+    j["background_sigma"] = s.background_sigma;
     j["optical_density"] = std::isfinite(s.optical_density) ? Json(s.optical_density) : Json();
+    j["optical_density_sigma"] = s.optical_density_sigma;
+    j["optical_density_is_lower_bound"] = s.optical_density_is_bound;
     j["dark_level"] = std::isfinite(s.dark_level) ? Json(s.dark_level) : Json();
     j["dark_source"] = s.dark_source;
     j["noise_sigma"] = s.noise_sigma;
+    j["noise_model"] = {{"alpha", f.noise_alpha}, {"beta", f.noise_beta}};
+    j["chi2_reduced"] = f.chi2_reduced;
+    j["unexplained_fraction"] = f.unexplained;
+    j["fit_iterations"] = f.iterations;
+    j["fit_converged"] = f.converged;
     Json fit = Json::object(), unavailable = Json::object();
-    for (const auto& f : s.kernel_fit) {
-        if (f.available)
-            fit[f.model] = f.residual;
+    for (const auto& m : s.kernel_fit) {
+        if (m.available)
+            fit[m.model] = m.residual;
         else
-            unavailable[f.model] = f.reason;
+            unavailable[m.model] = m.reason;
     }
     j["kernel_fit"] = fit;
     j["kernel_models_unavailable"] = unavailable;
     j["kernel_best_model"] = s.best_model;
-    j["kernel_spots_used"] = s.kernel.spots_used;
     j["psf"] = (dir / "psf.tiff").string();
     j["psf_period"] = s.psfs.period ? Json((dir / "psf-period.tiff").string()) : Json();
     j["psf_period_note"] = s.psfs.period_reason;

@@ -1,8 +1,10 @@
 // The results of `pinmask calibrate` as JSON (the --json output and calibration.json's
-// "result"): the measured keys (rotation_deg, pitch_px [x, y], position_px [x, y],
-// missing_pinholes [[row, col]], extra_spots [[x, y]], background, kernel_fit {model: residual},
-// psf) plus uncertainties, merged/oversized pinholes, dark level, optical density, the kernel
-// models design/ cannot make and the paths of every file written into `dir`.
+// "result"): the fitted keys (rotation_deg, pitch_px [x, y], position_px [x, y], the pinhole side,
+// pinholes [{cell, position_px, gain, gain_sigma, in_frame, missing}], missing_pinholes
+// [[row, col]] with the rule and its false-alarm rate, extra_spots [[x, y]], background (leak),
+// optical density, dark level, noise model, chi^2, kernel_fit {model: residual}, psf) with their
+// standard errors, and the paths of every file written into `dir`. The Python module builds the
+// same keys (python/bind_calibrate.cpp).
 #pragma once
 
 #include <filesystem>
