@@ -32,7 +32,8 @@ std::string camera_file_text(const Camera& camera) {
 
 Camera read_camera_file(const std::filesystem::path& path) {
     const std::string name = path.string();
-    if (const auto problem = input_file_problem(path)) throw InvalidInput(name + ": " + *problem);
+    if (const auto problem = input_file_problem(path))
+        throw InvalidInput(name + ": cannot read camera file (" + *problem + ")");
     std::error_code ec;
     const auto size = std::filesystem::file_size(path, ec);
     if (ec) throw InvalidInput(name + ": cannot read camera file (" + ec.message() + ")");

@@ -37,7 +37,8 @@ std::string byte_limit_text(std::uintmax_t bytes) {
 
 std::string read_bounded_file(const std::filesystem::path& path, const std::string& where,
                               std::uintmax_t max_bytes, const std::string& kind) {
-    if (const auto problem = input_file_problem(path)) throw InvalidInput(where + ": " + *problem);
+    if (const auto problem = input_file_problem(path))
+        throw InvalidInput(where + ": cannot read: " + *problem);
     std::error_code ec;
     const auto size = std::filesystem::file_size(path, ec);
     if (ec) throw InvalidInput(where + ": cannot read: " + ec.message());

@@ -301,7 +301,8 @@ bool is_mask_file(const std::filesystem::path& path) {
 
 Mask read_mask_file(const std::filesystem::path& path, const MaskReadOptions& options) {
     const std::string name = path.string();
-    if (const auto problem = input_file_problem(path)) throw InvalidInput(name + ": " + *problem);
+    if (const auto problem = input_file_problem(path))
+        throw InvalidInput(name + ": cannot read mask file (" + *problem + ")");
     std::error_code ec;
     const auto size = std::filesystem::file_size(path, ec);
     if (ec) throw InvalidInput(name + ": cannot read mask file (" + ec.message() + ")");
