@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "cli/options/analytic_setup.hpp"
 #include "cli/command_footers.hpp"
 #include "cli/commands.hpp"
+#include "cli/options/analytic_setup.hpp"
 #include "cli/options/noise_options.hpp"
 #include "cli/outputs/robust_decoder_files.hpp"
 #include "core/error.hpp"

@@ -1,5 +1,4 @@
 // Format dispatch (magic bytes on read, extension on write) and the helpers the codecs share.
-#include "core/input_file.hpp"
 #include "core/image_io.hpp"
 
 #include <algorithm>
@@ -11,6 +10,7 @@
 #include <string>
 
 #include "core/image_io_detail.hpp"
+#include "core/input_file.hpp"
 #include "core/output_set.hpp"
 #include "core/raw_io.hpp"
 #include "core/resource_limits.hpp"

@@ -141,9 +141,9 @@ void check_output_path(const fs::path& path, const std::string& flag) {
                            : fs::is_fifo(st)         ? "a named pipe"
                            : fs::is_socket(st)       ? "a socket"
                                                      : "not a regular file";
-        throw bad_output(flag, path,
-                         std::string("is ") + kind +
-                             ": pinmask writes only regular files (give a file name)");
+        throw bad_output(
+            flag, path,
+            std::string("is ") + kind + ": pinmask writes only regular files (give a file name)");
     }
     std::lock_guard lock(registry_mutex());
     if (const fs::path* in = find_protected(path)) {

@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/input_file.hpp"
 #include "core/error.hpp"
 #include "core/field_names.hpp"
+#include "core/input_file.hpp"
 #include "core/raw_io.hpp"
 
 namespace pinmask::io {

@@ -8,8 +8,8 @@
 #include <sstream>
 #include <type_traits>
 
-#include "core/input_file.hpp"
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 #include "io/json_strict.hpp"
 
 namespace pinmask::io {

@@ -8,8 +8,8 @@
 #include <set>
 #include <sstream>
 
-#include "core/input_file.hpp"
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 
 namespace pinmask::io::json_strict {
 

@@ -23,9 +23,9 @@
 #include <string>
 #include <vector>
 
-#include "core/input_file.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 #include "core/output_set.hpp"
 #include "core/resource_limits.hpp"
 #include "design/kernel_model.hpp"

@@ -7,10 +7,10 @@
 #include <sstream>
 #include <tuple>
 
-#include "core/input_file.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
+#include "core/input_file.hpp"
 #include "core/number_format.hpp"
 #include "core/output_set.hpp"
 #include "design/kernel.hpp"

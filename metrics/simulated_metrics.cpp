@@ -6,14 +6,14 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "core/field_names.hpp"
 #include "core/fft.hpp"
+#include "core/field_names.hpp"
 #include "decode/decoder.hpp"
 #include "decode/psf2otf.hpp"
 #include "decode/wiener.hpp"
+#include "metrics/nsr_tuning.hpp"
 #include "simulate/image_quality.hpp"
 #include "simulate/noise_model.hpp"
-#include "metrics/nsr_tuning.hpp"
 
 namespace pinmask {
 namespace {

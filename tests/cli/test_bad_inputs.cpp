@@ -104,11 +104,13 @@ const std::vector<std::string> kTakenNames = {
 // (null.json, null.png, null.tiff) and /dev/zero (zero.txt, zero.npy), and a PSF whose sidecar
 // is a pipe (s.tiff + s.json). Reading a pipe would block the test (it has no writer), so a line
 // that reads one hangs instead of failing; afterwards each name must still be what it was.
-const std::vector<std::string> kPipeNames = {"pipe.npy", "pipe.tiff", "pipe.json", "pipe.txt",
-                                             "pipe.mask.json", "pipe.png", "s.json"};
-const std::vector<std::pair<std::string, std::string>> kDeviceLinks = {
-    {"null.json", "/dev/null"}, {"null.png", "/dev/null"},  {"null.tiff", "/dev/null"},
-    {"zero.txt", "/dev/zero"},  {"zero.npy", "/dev/zero"}};
+const std::vector<std::string> kPipeNames = {"pipe.npy",       "pipe.tiff", "pipe.json", "pipe.txt",
+                                             "pipe.mask.json", "pipe.png",  "s.json"};
+const std::vector<std::pair<std::string, std::string>> kDeviceLinks = {{"null.json", "/dev/null"},
+                                                                       {"null.png", "/dev/null"},
+                                                                       {"null.tiff", "/dev/null"},
+                                                                       {"zero.txt", "/dev/zero"},
+                                                                       {"zero.npy", "/dev/zero"}};
 
 void make_special(const fs::path& dir) {
     for (const auto& name : kPipeNames) REQUIRE(::mkfifo((dir / name).c_str(), 0600) == 0);

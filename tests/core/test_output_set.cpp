@@ -180,8 +180,9 @@ TEST_CASE("an output that is a device, a pipe or a socket is refused and left as
     CHECK(fs::is_character_file("/dev/null"));
     // A symbolic link to a device is the device.
     fs::create_symlink("/dev/null", t.path / "null-link");
-    CHECK(message_of([&] { write_bytes_atomic(t.path / "null-link", "x"); })
-              .find("character device") != std::string::npos);
+    CHECK(message_of([&] {
+              write_bytes_atomic(t.path / "null-link", "x");
+          }).find("character device") != std::string::npos);
     CHECK(fs::is_symlink(t.path / "null-link"));
     reset_input_protection();
 }
@@ -208,8 +209,8 @@ TEST_CASE("same_file_keys: two paths share a key exactly when same_file says the
     fs::create_hard_link(t.path / "a.txt", t.path / "hard.txt");
     fs::create_symlink(t.path / "a.txt", t.path / "soft.txt");
     const std::vector<fs::path> paths = {
-        t.path / "a.txt",        t.path / "b.txt",       t.path / "sub" / ".." / "a.txt",
-        t.path / "hard.txt",     t.path / "soft.txt",    t.path / "new.txt",
+        t.path / "a.txt",          t.path / "b.txt",    t.path / "sub" / ".." / "a.txt",
+        t.path / "hard.txt",       t.path / "soft.txt", t.path / "new.txt",
         t.path / "sub/../new.txt", t.path / "other.txt"};
     for (const fs::path& p : paths) {
         for (const fs::path& q : paths) {
