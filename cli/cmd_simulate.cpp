@@ -12,9 +12,9 @@
 
 #include "cli/commands.hpp"
 #include "cli/options/flag_names.hpp"
-#include "cli/outputs/image_output.hpp"
 #include "cli/options/noise_options.hpp"
 #include "cli/options/simulate_config.hpp"
+#include "cli/outputs/image_output.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/fft.hpp"
@@ -229,8 +229,10 @@ void setup(CLI::App& app) {
                     "read noise, same exposure); photon model only");
     cmd->add_option("-o,--output", o->output, "Capture file: .tif/.tiff, .png or .npy")->required();
     cmd->add_option("--threads", o->threads,
-                    "FFTW threads for transforms of >= 512 x 512 (default: all cores); the "
-                    "capture does not depend on it")
+                    "FFTW threads for transforms of >= 512 x 512 (default: all cores). With "
+                    "PINMASK_WISDOM=off the bytes do not depend on it; with the wisdom cache "
+                    "FFTW measures a plan per thread count, and a float32 convolution can differ "
+                    "in the last bits between counts")
         ->check(CLI::Range(1, 1024));
     cmd->add_option("--precision", o->precision,
                     "auto (float32 from a 256 x 256 convolution grid) | single | double: the "

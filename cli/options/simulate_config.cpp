@@ -1,6 +1,7 @@
 #include "cli/options/simulate_config.hpp"
 
 #include "cli/options/noise_options.hpp"
+#include "core/fft.hpp"
 #include "design/kernel_model.hpp"
 #include "io/mask_json.hpp"
 
@@ -52,6 +53,7 @@ ordered_json simulate_config_json(const SimulateConfigInputs& in, const Mask& ma
         {"noise", noise_json(po.sim.noise)},
         {"seed", in.seed},
         {"precision", sum.single_precision ? "single" : "double"},
+        {"threads", fft_threads()},
         {"units", po.sim.noise.kind == NoiseKind::kPhoton
                       ? "electrons / (photons_per_pinhole * holes); a uniform noiseless scene "
                         "of value v gives v plus the background"

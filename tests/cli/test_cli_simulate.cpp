@@ -173,6 +173,11 @@ TEST_CASE("simulate --precision: double = the default bytes (128 px < 256), sing
     CHECK(r.err.find("convolution in float32") != std::string::npos);
     CHECK(nlohmann::json::parse(slurp(sgl + ".config.json"))["precision"] == "single");
     CHECK(nlohmann::json::parse(slurp(dbl + ".config.json"))["precision"] == "double");
+    // Measured FFT plans may differ between thread counts, so the count a capture used is recorded.
+    const std::string one = m.dir / "one.tiff";
+    REQUIRE(run_cli(args + "--threads 1 -o " + one).exit_code == 0);
+    CHECK(nlohmann::json::parse(slurp(one + ".config.json"))["threads"] == 1);
+    CHECK(slurp(one) == slurp(base));  // estimated plans in tests: the same bytes
     // The float32 convolution moves each value by float rounding of the capture's scale
     // (tests/simulate/test_simulate_precision.cpp); the file stores float32 either way.
     const pinmask::Plane a = read_plane(sgl), b = read_plane(dbl);
