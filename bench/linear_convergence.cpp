@@ -108,7 +108,7 @@ std::vector<LinearProblem> linear_convergence_cases(double scale,
                                                   int(psf.rows()), int(psf.cols()));
         out.push_back(make_linear_problem(
             u == mask.camera.object_distance_m ? "paper-full-sensor" : "refocused-2m", psf,
-            sensor_r, sensor_c, natural_scene(g.work_rows, g.work_cols, seed), 30.0, 1e-3,
+            sensor_r, sensor_c, natural_scene(g.work_rows, g.work_cols, seed), 30.0, 3e-3,
             seed + 1));
         seed += 2;
     }
@@ -119,7 +119,7 @@ std::vector<LinearProblem> linear_convergence_cases(double scale,
         const int cr = int(psf.rows()), cc = int(psf.cols());
         const ConvGeometry g = make_conv_geometry(ConvModel::kLinear, cr, cc, cr, cc);
         out.push_back(make_linear_problem("diffusercam", psf, cr, cc,
-                                          natural_scene(g.work_rows, g.work_cols, seed), 30.0, 1e-4,
+                                          natural_scene(g.work_rows, g.work_cols, seed), 30.0, 1e-3,
                                           seed + 1));
     }
     return out;

@@ -63,6 +63,16 @@ constexpr double kMu = 2.0;
 constexpr double kTau = 2.0;
 constexpr int kAdaptEvery = 3;
 constexpr int kAdaptUntil = 100;
+// The linear model adapts two penalties (the TV split's rho and the crop split's rho_s), and the
+// cyclic rule oscillates there: on bench/linear_convergence's simulated full-frame captures (a
+// quarter size, x >= 0) the iterations to within 0.2 dB of converged were 83 / 385 / 401+ (paper
+// sensor, refocused at 2 m, DiffuserCam PSF) with every 3, mu 2, tau 2, and 36 / 40 / 49 with
+// every 5, mu 3, tau 1.5 (every 4-5, mu 2-5 at tau 1.5 all within 34-49; every 3 or tau 2 at
+// every 4 or 6 fell back to hundreds on one case). At half size: 353 / 401+ / 401+ against
+// 50 / 51 / 138. tests/bench/test_linear_convergence.cpp holds the counts.
+constexpr double kMuLinear = 3.0;
+constexpr double kTauLinear = 1.5;
+constexpr int kAdaptEveryLinear = 5;
 // Over-relaxation (Eckstein and Bertsekas 1992; Boyd et al. sec. 3.4.3): alpha in (0, 2); 1.8
 // cut the iterations to 0.2 dB by ~45% against alpha = 1 on the paper problem. The cyclic model
 // without the nonnegative split takes 1.95: on the paper problem (lambda 1e-4, 1e-3, 1e-2) 6, 17,
@@ -75,8 +85,7 @@ constexpr double kRelaxation = 1.8;
 constexpr double kRelaxationCyclic = 1.95;
 
 // Multiplies rho by kTau, divides it, or leaves it; returns the factor applied.
-double balance(double primal, double dual, double& rho) {
-    const double mu = kMu, tau = kTau;
+double balance(double primal, double dual, double& rho, double mu, double tau) {
     if (primal > mu * dual) {
         rho *= tau;
         return tau;
@@ -622,7 +631,7 @@ DecodeResult run_admm(const ConvolutionOperator& op, const Plane& capture_d, con
         // z-step (isotropic shrinkage of the over-relaxed gradient plus u, by lambda / rho),
         // w-step and the next right-hand side in one pass; the residual and TV sums only on the
         // iterations that use them (adaptation, records).
-        const bool adapt = k % kAdaptEvery == 0 && k <= kAdaptUntil;
+        const bool adapt = k % (linear ? kAdaptEveryLinear : kAdaptEvery) == 0 && k <= kAdaptUntil;
         const bool stats = adapt || o.record_history;
 
         // s-step (linear model), over-relaxed: hx_hat = alpha H x + (1 - alpha) s; its residual
@@ -682,9 +691,11 @@ DecodeResult run_admm(const ConvolutionOperator& op, const Plane& capture_d, con
         if (iteration_ends(small_change, o, r)) break;
 
         if (adapt) {
-            const double f = balance(std::sqrt(sums.prim2), rho * std::sqrt(sums.dual2), rho);
+            const double mu = linear ? kMuLinear : kMu, tau = linear ? kTauLinear : kTau;
+            const double f =
+                balance(std::sqrt(sums.prim2), rho * std::sqrt(sums.dual2), rho, mu, tau);
             double fs = 1.0;
-            if (linear) fs = balance(prim_s, dual_s, rho_s);
+            if (linear) fs = balance(prim_s, dual_s, rho_s, mu, tau);
             if (f != 1.0) {
                 ur /= T(f);
                 uc /= T(f);
