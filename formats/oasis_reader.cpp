@@ -5,8 +5,8 @@
 
 #include "core/error.hpp"
 #include "core/resource_limits.hpp"
-#include "layout/geometry.hpp"
 #include "formats/oasis_codec.hpp"
+#include "layout/geometry.hpp"
 #include "layout/xor_area.hpp"
 
 namespace pinmask {
@@ -282,8 +282,11 @@ class OasisParser {
     void emit(const std::vector<PointNm>& shape, bool repeated, std::size_t at) {
         static const std::vector<PointNm> kOnce{{0, 0}};
         const std::vector<PointNm>& offsets = repeated ? repetition_ : kOnce;
-        check_memory(double(offsets.size()) * (double(shape.size()) * 16.0 + 32.0),
-                     "OASIS elements");
+        // Every ring made so far is charged, not only this record's: a repetition reused by
+        // many records (type 0) multiplies a small file into millions of rings. Twice the
+        // rings' bytes: the design-rule check makes a canonical copy of the geometry.
+        expanded_bytes_ += double(offsets.size()) * (double(shape.size()) * 16.0 + 56.0);
+        check_memory(2.0 * expanded_bytes_, "OASIS elements (repetitions expanded)");
         for (const PointNm& o : offsets) {
             Ring ring;
             ring.reserve(shape.size());
@@ -402,6 +405,7 @@ class OasisParser {
     bool relative_ = false;
     std::vector<PointNm> repetition_;
     bool have_repetition_ = false;
+    double expanded_bytes_ = 0.0;  // rings made so far (bytes, estimated), see emit()
 };
 
 }  // namespace

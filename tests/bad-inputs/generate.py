@@ -374,6 +374,10 @@ cell = b"\x0e\x04CELL"
 rect = b"\x14\xdf\x01\x00\x0a\x00\x00\x01\xff\xff\xff\x07\xff\xff\xff\x07\x02\x02"
 end = b"\x02\xfc\x01" + bytes(252) + b"\x00"
 write("layout-giga-repetition.oas", start + cell + rect + end)
+# one 45 x 45 grid repetition (2,025 squares) placed again by 10^4 RECTANGLE records that reuse
+# it (repetition type 0): 20 million squares from a 30 KB file
+grid_rect = b"\x14\xdf\x01\x00\x0a\x00\x00\x01\x2b\x2b\x14\x14"
+write("layout-reused-repetition.oas", start + cell + grid_rect + b"\x14\x04\x00" * 10000 + end)
 
 # ---------------------------------------------------------------- camera RAW (raw-*)
 # A minimal uncompressed DNG (32 x 24 pixels, 16-bit RGGB CFA, BlackLevel 64, WhiteLevel 4095,

@@ -178,6 +178,10 @@ TEST_CASE("every command stays under PINMASK_MEMORY_LIMIT plus the code margin")
          "memory bound"},
         {"search on a 1024 grid", "search --grid 1024 --holes 20 --evals 5 -o bigsearch", "100M", 2,
          "memory bound"},
+        // A 30 KB OASIS file whose 10^4 records reuse one 2,025-square repetition (20 million
+        // squares): every ring made is charged, not only each record's.
+        {"check an OASIS file of reused repetitions",
+         "check " + (kCorpus / "layout-reused-repetition.oas").string(), "1G", 2, "memory bound"},
     };
     for (const Case& c : cases) check_case(c, d);
     // Nothing of the refused runs was written.
