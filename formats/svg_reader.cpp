@@ -9,8 +9,8 @@
 
 #include "core/error.hpp"
 #include "formats/decimal.hpp"
-#include "layout/geometry.hpp"
 #include "formats/svg_writer.hpp"
+#include "layout/geometry.hpp"
 
 namespace pinmask {
 namespace {
@@ -190,9 +190,98 @@ std::optional<BoxNm> viewbox_nm(std::string_view root) {
     return BoxNm{v[0], -(v[1] + v[3]), v[0] + v[2], -v[1]};
 }
 
+// The paint a renderer gives a drawn shape: black (the writer's "#000000"), white ("#ffffff",
+// the clear rings of a film drawing), or anything else (refused where it is met).
+enum class Paint { kBlack, kWhite };
+
+std::optional<Paint> paint_of(std::string_view v) {
+    if (v == "#000000" || v == "#000" || v == "black") return Paint::kBlack;
+    if (v == "#ffffff" || v == "#fff" || v == "white") return Paint::kWhite;
+    return std::nullopt;
+}
+
+// The attributes a renderer could draw differently with (visibility, opacity, stroke, clipping,
+// classes and styles, paint) are refused by name unless they are what the writer writes: each
+// element admits a fixed list, and values are checked. One tag's attributes, double-quoted.
+struct TagAttributes {
+    std::optional<Paint> fill;
+};
+
+TagAttributes check_attributes(std::string_view tag, const std::string& name, std::size_t pos) {
+    static const char* const kSvg[] = {"xmlns",  "xmlns:xlink", "version", "width",
+                                       "height", "viewBox",     "id"};
+    static const char* const kShape[] = {"d", "points", "id", "fill", "stroke"};
+    static const char* const kGroup[] = {"id", "fill", "stroke"};
+    static const char* const kText[] = {"id"};
+    auto allowed = [&](std::string_view a) {
+        auto in = [&](const auto& list) {
+            for (const char* x : list)
+                if (a == x) return true;
+            return false;
+        };
+        if (name == "svg") return in(kSvg);
+        if (name == "path" || name == "polygon") return in(kShape);
+        if (name == "g") return in(kGroup);
+        return in(kText);
+    };
+    TagAttributes out;
+    std::size_t i = 1 + name.size();
+    while (true) {
+        while (i < tag.size() && std::isspace(static_cast<unsigned char>(tag[i]))) ++i;
+        if (i >= tag.size() || tag[i] == '/' || tag[i] == '?') break;
+        const std::size_t n0 = i;
+        while (i < tag.size() && tag[i] != '=' && tag[i] != '/' &&
+               !std::isspace(static_cast<unsigned char>(tag[i])))
+            ++i;
+        const std::string attr(tag.substr(n0, i - n0));
+        while (i < tag.size() && std::isspace(static_cast<unsigned char>(tag[i]))) ++i;
+        if (i + 1 >= tag.size() || tag[i] != '=' || tag[i + 1] != '"')
+            throw bad(pos + n0, "attribute '" + attr.substr(0, 30) + "' on <" + name +
+                                    "> is not of the form name=\"value\" (pinmask reads "
+                                    "double-quoted attributes)");
+        const std::size_t v0 = i + 2, v1 = tag.find('"', v0);
+        if (v1 == std::string_view::npos) throw bad(pos + n0, "attribute value is not closed");
+        const std::string_view value = tag.substr(v0, v1 - v0);
+        i = v1 + 1;
+        if (!allowed(attr))
+            throw bad(pos + n0, "attribute '" + attr.substr(0, 30) + "' on <" + name +
+                                    "> is not supported: it can change what a renderer draws "
+                                    "(pinmask reads the attributes its writer uses: d, points, "
+                                    "fill, stroke=\"none\", id; svg: width, height, viewBox)");
+        if (attr == "fill") {
+            if (value == "none")
+                throw bad(pos, "fill=\"none\" on <" + name +
+                                   "> is not supported (an outline, not an area: pinmask reads "
+                                   "filled shapes)");
+            out.fill = paint_of(value);
+            if (!out.fill)
+                throw bad(pos, "fill=\"" + std::string(value.substr(0, 30)) + "\" on <" + name +
+                                   "> is not supported (pinmask reads black shapes, and white "
+                                   "ones on a film drawing's plate)");
+        }
+        if (attr == "stroke" && value != "none")
+            throw bad(pos, "stroke=\"" + std::string(value.substr(0, 30)) + "\" on <" + name +
+                               "> is not supported (a stroke widens the drawn shape)");
+    }
+    return out;
+}
+
 // Elements that change geometry and are not implemented are refused by name; elements that
-// carry no geometry are allowed.
-void check_element(std::string_view text, std::size_t pos) {
+// carry no geometry are allowed. Declarations (<!DOCTYPE>, <!ENTITY>, CDATA) and processing
+// instructions other than the XML declaration are refused: a DOCTYPE can give attributes
+// defaults (fill="none") and a stylesheet can restyle every shape. Returns the tag's attributes.
+TagAttributes check_element(std::string_view text, std::size_t pos, std::size_t root) {
+    if (text.substr(pos, 2) == "<!")
+        throw bad(pos, "markup declaration " + std::string(text.substr(pos, 12)) +
+                           " is not supported (a DOCTYPE can set attribute defaults and "
+                           "entities)");
+    if (text.substr(pos, 2) == "<?") {
+        if (text.substr(pos, 6) != "<?xml " || pos > root)
+            throw bad(pos, "processing instruction " + std::string(text.substr(pos, 20)) +
+                               " is not supported (a stylesheet can restyle the drawing)");
+        return {};
+    }
+    if (text.substr(pos, 2) == "</") return {};
     std::size_t end = pos + 1;
     while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) ||
                                  text[end] == ':' || text[end] == '-' || text[end] == '_'))
@@ -200,26 +289,19 @@ void check_element(std::string_view text, std::size_t pos) {
     const std::string name(text.substr(pos + 1, end - pos - 1));
     static const char* const kAllowed[] = {"svg",      "g",     "path", "polygon",
                                            "metadata", "title", "desc", "defs"};
-    bool ok = name.empty();  // "</...", "<!--", "<?xml"
+    bool ok = false;
     for (const char* a : kAllowed) ok = ok || name == a;
     if (!ok)
         throw bad(pos, "element <" + name.substr(0, 30) +
                            "> is not supported (pinmask reads filled <path> and <polygon> "
                            "elements only)");
+    if (name == "svg" && pos != root)
+        throw bad(pos, "a nested <svg> is not supported (its viewport can scale and clip)");
+    if (name == "defs") throw bad(pos, "<defs> (reusable content) is not supported");
     const std::size_t close = text.find('>', pos);
     const std::string_view tag =
         text.substr(pos, (close == std::string_view::npos ? text.size() : close) - pos);
-    std::string_view v;
-    if (attribute(tag, "transform", v))
-        throw bad(pos, "transform attribute on <" + name + "> is not supported");
-    if (attribute(tag, "style", v))
-        throw bad(pos, "style attribute on <" + name +
-                           "> is not supported (use fill=\"#000000\" and no transform)");
-    if (attribute(tag, "fill", v) && v == "none")
-        throw bad(pos, "fill=\"none\" on <" + name +
-                           "> is not supported (an outline, not an area: pinmask reads filled "
-                           "shapes)");
-    if (name == "defs") throw bad(pos, "<defs> (reusable content) is not supported");
+    return check_attributes(tag, name, pos);
 }
 
 }  // namespace
@@ -237,11 +319,31 @@ FileGeometry read_svg(std::string_view text) {
         if (stop == std::string_view::npos) throw bad(meta, "<metadata> is not closed");
         g.info = parse_info(text.substr(meta + 10, stop - meta - 10));
     }
+    // The prolog: the XML declaration and comments only (a DOCTYPE or a stylesheet there would
+    // restyle the drawing).
+    for (std::size_t pos = 0; (pos = text.find('<', pos)) < root; ++pos) {
+        if (text.substr(pos, 4) == "<!--") {
+            constexpr char kCommentEnd[] = {'-', '-', '>', '\0'};
+            const std::size_t stop = text.find(kCommentEnd, pos);
+            if (stop == std::string_view::npos) throw bad(pos, "comment is not closed");
+            pos = stop + 2;
+            continue;
+        }
+        if (text.substr(pos, 6) == "<?xml " && pos == 0) continue;
+        check_element(text, pos, root);
+        throw bad(pos, "unexpected markup before <svg>");
+    }
     const std::string_view root_tag = text.substr(root, text.find('>', root) - root);
     check_scale(root_tag, root);
     // A film drawing's opaque plate (formats/svg_writer kSvgFilmGroup): read, checked, left out.
     std::vector<Ring> plate;
     bool in_plate = false;
+    // Fills of the open groups (the root's: none given).
+    std::vector<std::optional<Paint>> group_fill{std::nullopt};
+    const auto draw_it = g.info.find("draw");
+    const auto tone_it = g.info.find("tone");
+    const bool film_clear = draw_it != g.info.end() && draw_it->second == "film" &&
+                            tone_it != g.info.end() && tone_it->second == "clear";
     for (std::size_t pos = root; (pos = text.find('<', pos)) != std::string_view::npos; ++pos) {
         if (text.substr(pos, 4) == "<!--") {  // comments may contain anything
             // The comment's end, "-" "-" ">", as characters: no string literal here starts
@@ -254,17 +356,32 @@ FileGeometry read_svg(std::string_view text) {
         }
         if (meta != std::string_view::npos && pos > meta && pos < text.find("</metadata>", meta))
             continue;
-        check_element(text, pos);
-        if (text.substr(pos, 3) == "<g ") {
+        const TagAttributes attrs = check_element(text, pos, root);
+        const bool is_group = text.substr(pos, 3) == "<g " || text.substr(pos, 3) == "<g>";
+        if (is_group) {
             std::string_view id;
             const std::string_view tag = text.substr(pos, text.find('>', pos) - pos);
             in_plate = attribute(tag, "id", id) && id == kSvgFilmGroup;
+            const bool self_closing = !tag.empty() && tag.back() == '/';
+            if (!self_closing) group_fill.push_back(attrs.fill ? attrs.fill : group_fill.back());
         } else if (text.substr(pos, 4) == "</g>") {
             in_plate = false;
+            if (group_fill.size() > 1) group_fill.pop_back();
         }
         const bool is_path = text.substr(pos, 6) == "<path " || text.substr(pos, 6) == "<path\n";
         const bool is_polygon = text.substr(pos, 9) == "<polygon ";
         if (!is_path && !is_polygon) continue;
+        // The paint it is drawn with (its own fill, else its group's, else SVG's default, black)
+        // against the drawing's: black shapes, or white clear rings on a film drawing's plate.
+        const Paint paint = attrs.fill ? *attrs.fill : group_fill.back().value_or(Paint::kBlack);
+        const Paint expected = in_plate || !film_clear ? Paint::kBlack : Paint::kWhite;
+        if (paint != expected)
+            throw bad(pos, std::string("a ") + (paint == Paint::kWhite ? "white" : "black") +
+                               " shape where the drawing's shapes are " +
+                               (expected == Paint::kWhite ? "white (the clear rings of a film "
+                                                            "drawing)"
+                                                          : "black") +
+                               ": a renderer would not draw it as part of the mask");
         const std::size_t close = text.find('>', pos);
         if (close == std::string_view::npos) throw bad(pos, "element is not closed");
         const std::string_view tag = text.substr(pos, close - pos);

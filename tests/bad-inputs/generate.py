@@ -351,6 +351,28 @@ write("layout-svg-rect.svg", SVG_HEAD + '<rect x="0" y="0" width="10" height="10
 write("layout-svg-circle.svg", SVG_HEAD + '<circle cx="5" cy="5" r="3"/>\n</svg>\n')
 write("layout-svg-fill-none.svg", SVG_HEAD + SVG_PATH.replace("<path ", '<path fill="none" ') + "</svg>\n")
 write("layout-svg-style.svg", SVG_HEAD + SVG_PATH.replace("<path ", '<path style="fill:none" ') + "</svg>\n")
+# styling a renderer honours (tests/python/test_check_svg_render.py shows each changes
+# rsvg-convert's drawing): refused by name
+SVG_STYLED = {
+    "display": '<path display="none" ',
+    "visibility": '<path visibility="hidden" ',
+    "opacity": '<path opacity="0" ',
+    "fill-opacity": '<path fill-opacity="0" ',
+    "white": '<path fill="#ffffff" ',
+    "red": '<path fill="red" ',
+    "stroke": '<path stroke="#000000" stroke-width="300" ',
+    "clip-path": '<path clip-path="url(#c)" ',
+    "class": '<path class="hole" ',
+    "single-quote": "<path fill='none' ",
+}
+for name, start in SVG_STYLED.items():
+    write("layout-svg-%s.svg" % name, SVG_HEAD + SVG_PATH.replace("<path ", start) + "</svg>\n")
+write("layout-svg-doctype.svg", '<!DOCTYPE svg [<!ATTLIST path fill CDATA "none">]>\n' + SVG_HEAD
+      + SVG_PATH + "</svg>\n")
+write("layout-svg-stylesheet.svg", '<?xml-stylesheet type="text/css" href="s.css"?>\n' + SVG_HEAD
+      + SVG_PATH + "</svg>\n")
+write("layout-svg-nested.svg", SVG_HEAD + '<svg viewBox="0 0 500 500" width="1000" height="1000">'
+      + SVG_PATH + "</svg>\n</svg>\n")
 
 
 def dxf_with_insunits(code):
