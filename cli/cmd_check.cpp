@@ -117,6 +117,14 @@ int run(const CheckOptions& o) {
         }
         fo.rules = rep.rules;
         c = check_file_geometry(file, fo);
+        if (auto it = file.info.find("unit_assumed"); it != file.info.end() && !side) {
+            const std::string w =
+                "the file states no unit ($INSUNITS 0 or absent, no pinmask "
+                "units= comment): read as " +
+                it->second;
+            std::cerr << "pinmask: warning: " << w << "\n";
+            rep.note = rep.note.empty() ? w : rep.note + "; " + w;
+        }
     }
     rep.check = &c;
     if (o.json)

@@ -1,6 +1,9 @@
 #include "formats/dxf_reader.hpp"
 
 #include <charconv>
+#include <cstdlib>
+#include <functional>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -163,11 +166,86 @@ void finish(Ring ring, bool closed, std::size_t line, std::vector<Ring>& out) {
     out.push_back(std::move(ring));
 }
 
+// True when a group value is the number 0 ("0", "0.0", "-0.000", " 0"); false for anything else,
+// malformed values included (the caller refuses those as not zero).
+bool is_zero(std::string_view v) {
+    const std::string t(v);
+    char* end = nullptr;
+    const double x = std::strtod(t.c_str(), &end);
+    return end != t.c_str() && x == 0.0;
+}
+
+// Layers of the LAYER table a viewer does not draw: off (a negative colour, group 62) or frozen
+// (flag 1 of group 70).
+using HiddenLayers = std::map<std::string, std::string, std::less<>>;  // name -> "off" | "frozen"
+
+// An entity group a viewer draws differently from the outline pinmask reads is refused by name:
+// the entity on a hidden layer, invisible (60 = 1), with a colour < 0 (off), with a width
+// (40, 41, 43: a wide polyline covers more than its outline), or with an extrusion direction
+// other than +z (210, 220, 230: the entity is mirrored or tilted into the plane).
+void check_entity_group(const Pair& p, const HiddenLayers& hidden, std::string_view entity) {
+    const std::string e(entity);
+    switch (p.code) {
+        case 8:
+            if (auto it = hidden.find(p.value); it != hidden.end())
+                throw bad(p.line, e + " on layer '" + std::string(p.value.substr(0, 30)) +
+                                      "', which is " + it->second + ": a viewer does not draw it");
+            break;
+        case 60:
+            if (p.value != "0") throw bad(p.line, e + " is invisible (group 60)");
+            break;
+        case 62:
+            if (p.value.starts_with('-'))
+                throw bad(p.line, e + " with a negative colour is off: a viewer does not draw it");
+            break;
+        case 40:
+        case 41:
+        case 43:
+            if (!is_zero(p.value))
+                throw bad(p.line, e + " width " + std::string(p.value.substr(0, 20)) + " (group " +
+                                      std::to_string(p.code) +
+                                      ") is not supported: a wide polyline covers more than its "
+                                      "outline");
+            break;
+        case 210:
+        case 220:
+            if (!is_zero(p.value))
+                throw bad(p.line, e + " with a tilted extrusion direction is not supported");
+            break;
+        case 230:
+            if (p.value.starts_with('-'))
+                throw bad(p.line, e + " with a negative extrusion direction (mirrored) is not "
+                                      "supported");
+            break;
+        default:
+            break;
+    }
+}
+
+// A LAYER table entry: its name and whether a viewer draws it.
+void read_layer(PairReader& rd, HiddenLayers& hidden) {
+    std::string name;
+    bool off = false, frozen = false;
+    Pair p;
+    while ((p = rd.take()).code != 0) {
+        if (p.code == 2) name = std::string(p.value);
+        if (p.code == 62) off = p.value.starts_with('-');
+        if (p.code == 70) frozen = integer(p) & 1;
+    }
+    rd.unread(p);
+    if (frozen)
+        hidden[name] = "frozen";
+    else if (off)
+        hidden[name] = "off";
+}
+
 // A POLYLINE entity: its own groups, then VERTEX entities, then SEQEND.
-void read_polyline(PairReader& rd, std::size_t line, DrawingUnit& u, std::vector<Ring>& out) {
+void read_polyline(PairReader& rd, std::size_t line, DrawingUnit& u, const HiddenLayers& hidden,
+                   std::vector<Ring>& out) {
     bool closed = false;
     Pair p;
     while ((p = rd.take()).code != 0) {
+        check_entity_group(p, hidden, "POLYLINE");
         if (p.code == 70) {
             const int flags = integer(p);
             if (flags & ~(1 | 128)) throw bad(p.line, "only plain 2D polylines are supported");
@@ -179,6 +257,7 @@ void read_polyline(PairReader& rd, std::size_t line, DrawingUnit& u, std::vector
         PointNm v;
         bool has_x = false, has_y = false;
         while ((p = rd.take()).code != 0) {
+            check_entity_group(p, hidden, "VERTEX");
             if (p.code == 10) v.x = coordinate(p, u), has_x = true;
             if (p.code == 20) v.y = coordinate(p, u), has_y = true;
             if (p.code == 42) check_bulge(p);
@@ -193,11 +272,13 @@ void read_polyline(PairReader& rd, std::size_t line, DrawingUnit& u, std::vector
     finish(std::move(ring), closed, line, out);
 }
 
-void read_lwpolyline(PairReader& rd, std::size_t line, DrawingUnit& u, std::vector<Ring>& out) {
+void read_lwpolyline(PairReader& rd, std::size_t line, DrawingUnit& u, const HiddenLayers& hidden,
+                     std::vector<Ring>& out) {
     bool closed = false;
     Ring ring;
     Pair p;
     while ((p = rd.take()).code != 0) {
+        check_entity_group(p, hidden, "LWPOLYLINE");
         if (p.code == 70) closed = integer(p) & 1;
         if (p.code == 10) ring.push_back({coordinate(p, u), 0});
         if (p.code == 20) {
@@ -211,22 +292,16 @@ void read_lwpolyline(PairReader& rd, std::size_t line, DrawingUnit& u, std::vect
 }
 
 // A CIRCLE entity: centre 10/20, radius 40 (a true circle, FileGeometry circles).
-void read_circle(PairReader& rd, std::size_t line, DrawingUnit& u, std::vector<CircleNm>& out) {
+void read_circle(PairReader& rd, std::size_t line, DrawingUnit& u, const HiddenLayers& hidden,
+                 std::vector<CircleNm>& out) {
     CircleNm c;
     bool has_x = false, has_y = false, has_r = false;
     Pair p;
     while ((p = rd.take()).code != 0) {
+        if (p.code != 40) check_entity_group(p, hidden, "CIRCLE");  // 40: a circle's radius
         if (p.code == 10) c.centre.x = coordinate(p, u), has_x = true;
         if (p.code == 20) c.centre.y = coordinate(p, u), has_y = true;
         if (p.code == 40) c.diameter_nm = 2 * coordinate(p, u), has_r = true;
-        if (p.code == 210 || p.code == 220) {  // extrusion direction other than +z mirrors
-            if (p.value != "0" && p.value != "0.0")
-                throw bad(p.line,
-                          "CIRCLE with an extrusion "
-                          "direction is not supported");
-        }
-        if (p.code == 230 && p.value.starts_with('-'))
-            throw bad(p.line, "CIRCLE with a negative extrusion direction is not supported");
     }
     rd.unread(p);
     if (!has_x || !has_y || !has_r) throw bad(line, "CIRCLE without 10/20/40 groups");
@@ -241,6 +316,7 @@ FileGeometry read_dxf(std::string_view text) {
     PairReader rd(text);
     std::string section;
     DrawingUnit unit;
+    HiddenLayers hidden;
     for (;;) {
         const Pair p = rd.take();
         if (p.code == 999) {
@@ -292,18 +368,25 @@ FileGeometry read_dxf(std::string_view text) {
             section.clear();
             continue;
         }
+        if (section == "TABLES" && p.value == "LAYER") {
+            read_layer(rd, hidden);
+            continue;
+        }
         if (section != "ENTITIES") continue;
         if (p.value == "POLYLINE")
-            read_polyline(rd, p.line, unit, g.rings);
+            read_polyline(rd, p.line, unit, hidden, g.rings);
         else if (p.value == "CIRCLE")
-            read_circle(rd, p.line, unit, g.circles);
+            read_circle(rd, p.line, unit, hidden, g.circles);
         else if (p.value == "LWPOLYLINE")
-            read_lwpolyline(rd, p.line, unit, g.rings);
+            read_lwpolyline(rd, p.line, unit, hidden, g.rings);
         else
             throw bad(p.line, "unsupported entity " + std::string(p.value.substr(0, 20)) +
                                   " (pinmask reads closed POLYLINE, LWPOLYLINE and CIRCLE only)");
     }
     if (unit.nm != 0) g.info["unit_nm"] = std::to_string(unit.nm);
+    // The file states no unit: the coordinates were read as micrometres (pinmask's historical
+    // DXF unit); the faces say so.
+    if (unit.source.starts_with("assumed")) g.info["unit_assumed"] = "um";
     return g;
 }
 

@@ -223,6 +223,13 @@ class GerberParser {
 
 }  // namespace
 
-FileGeometry read_gerber(std::string_view text) { return GerberParser(text).run(); }
+FileGeometry read_gerber(std::string_view text) {
+    FileGeometry g = GerberParser(text).run();
+    // A fabrication file that draws nothing cannot be a mask (gerbv shows an empty image): an
+    // error, not a clean check of zero polygons.
+    if (g.rings.empty() && g.circles.empty())
+        throw bad(text.size(), "the file draws nothing (no region and no flash)");
+    return g;
+}
 
 }  // namespace pinmask

@@ -381,6 +381,21 @@ write("layout-dxf-insunits-feet.dxf", dxf_with_insunits(2))
 write("layout-dxf-insunits-unknown.dxf", dxf_with_insunits(99))
 # $INSUNITS 1 (inches) contradicts the pinmask comment's units=um
 write("layout-dxf-inches-vs-comment.dxf", dxf_with_insunits(1))
+# what a viewer draws differently (tests/python/test_check_dxf_styles.py edits an export with
+# ezdxf the same ways)
+LAYER_ENTRY = "  2\nPINMASK\n 70\n0\n 62\n7\n"
+assert LAYER_ENTRY in DXF
+write("layout-dxf-layer-off.dxf", DXF.replace(LAYER_ENTRY, "  2\nPINMASK\n 70\n0\n 62\n-7\n", 1))
+write("layout-dxf-layer-frozen.dxf", DXF.replace(LAYER_ENTRY, "  2\nPINMASK\n 70\n1\n 62\n7\n", 1))
+POLY_HEAD = "POLYLINE\n  8\nPINMASK\n 66\n1\n"
+assert POLY_HEAD in DXF
+write("layout-dxf-width.dxf", DXF.replace(POLY_HEAD, POLY_HEAD + " 40\n300.0\n 41\n300.0\n", 1))
+write("layout-dxf-mirrored.dxf", DXF.replace(POLY_HEAD, POLY_HEAD + "210\n0.0\n220\n0.0\n230\n-1.0\n", 1))
+write("layout-dxf-tilted.dxf", DXF.replace(POLY_HEAD, POLY_HEAD + "210\n0.5\n", 1))
+write("layout-dxf-invisible.dxf", DXF.replace(POLY_HEAD, POLY_HEAD + " 60\n1\n", 1))
+write("layout-dxf-colour-off.dxf", DXF.replace(POLY_HEAD, POLY_HEAD + " 62\n-1\n", 1))
+# a Gerber that draws nothing: its header and M02 only
+write("layout-empty.gbr", GBR[: GBR.index("G36*")] + "M02*\n")
 
 OAS = seed("oasis/clear.oas")
 write("layout-truncated.oas", OAS[: len(OAS) // 2])
