@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -19,18 +20,18 @@
 #include "design/random_sparse.hpp"
 #include "metrics/mask_metrics.hpp"
 #include "metrics/metric_spellings.hpp"
-#include "simulate/scenes.hpp"
-#include "search/search_pipeline.hpp"
 #include "metrics/simulated_metrics.hpp"
+#include "search/search_pipeline.hpp"
+#include "simulate/scenes.hpp"
 
 using namespace pinmask;
 
 namespace {
 
 // The requirement: the searched mask beats the best per-K random median by >= 0.5 dB of held-out
-// simulated Wiener PSNR on natural images the project never saw. Measured (docs/benchmarks.md "Choosing K at
-// dim light", search seeds 1..3): on a 32 x 32 grid 0.86-0.93 dB on the photographs and
-// 0.61-0.63 dB expected over the synthetic family; on the paper's 16 x 16 grid 0.48-0.56 dB on
+// simulated Wiener PSNR on natural images the project never saw. Measured (docs/benchmarks.md
+// "Choosing K at dim light", search seeds 1..3): on a 32 x 32 grid 0.86-0.93 dB on the photographs
+// and 0.61-0.63 dB expected over the synthetic family; on the paper's 16 x 16 grid 0.48-0.56 dB on
 // the photographs, 0.40-0.43 dB expected. At dim light the capture is shot-noise limited,
 // |H|^2 / sigma^2 ~ (|P^|^2 / K^2) (3 K mean) hardly grows with K, and the pattern only shapes
 // its spectrum's dips: on 16 x 16 every search route ends near 0.4 dB expected and the bound
@@ -103,9 +104,10 @@ struct DimLightSizes {
 bool photos_available() {
     const std::filesystem::path photo_dir = PINMASK_PHOTO_DIR;
     if (std::filesystem::is_regular_file(photo_dir / kPhotos[0])) return true;
-    MESSAGE("skipped: python3-skimage is not installed (its photographs are the held-out scenes; "
-            "scripts/install-deps --with-optional installs it); looked in '"
-            << photo_dir.string() << "'");
+    MESSAGE(
+        "skipped: python3-skimage is not installed (its photographs are the held-out scenes; "
+        "scripts/install-deps --with-optional installs it); looked in '"
+        << photo_dir.string() << "'");
     return false;
 }
 
@@ -192,24 +194,22 @@ DimLightResult dim_light_search_against_random(const DimLightSizes& z) {
     return r;
 }
 
-bool sanitized() { return std::getenv("PINMASK_SANITIZED") != nullptr; }
-
 }  // namespace
 
 TEST_CASE(
-    "search --holes 5..40 beats the best median random mask of any single K by 0.5 dB "
-    "(dim light, 32 x 32)") {
-    // The full measurement: 10 photographs, 9 random masks per K, 20000 evaluations. Under
-    // PINMASK_SANITIZED a smaller run (one photograph, one draw, 200 evaluations, a 16-scene
-    // family) checks the machinery, not the bar.
+    "search --holes 5..40 against random masks of every K at dim light, 32 x 32: the "
+    "measurement runs (its 0.5 dB bar: the slow case over seeds 1 2 3)") {
+    // The default run checks the machinery on a small run (one photograph, one draw, 200
+    // evaluations, a 16-scene family): the full measurement (10 photographs, 9 random masks per
+    // K, 20000 evaluations) took 150-350 s, the largest share of the suite. The bar itself is
+    // held by the slow case below over search seeds 1, 2, 3 (seed 1 is this one's), CTest
+    // slow-dim-light-32-seeds.
     if (!photos_available()) return;
-    if (sanitized()) {
-        dim_light_search_against_random({32, 1, 1, 200, 16});
-        return;
-    }
-    const DimLightResult r = dim_light_search_against_random({32, kPhotoCount, 9, 20000});
-    CHECK(r.found_psnr >= r.best_median + kRequiredGainDb);
-    CHECK(r.found_expected >= r.best_expected_median + kRequiredGainDb);
+    const DimLightResult r = dim_light_search_against_random({32, 1, 1, 200, 16});
+    CHECK(std::isfinite(r.found_psnr));
+    CHECK(std::isfinite(r.found_expected));
+    CHECK(r.best_k >= 5);
+    CHECK(r.best_k <= 40);
 }
 
 TEST_CASE("at the paper's 16 x 16 grid the dim-light search gains what the grid allows") {
