@@ -72,6 +72,7 @@ int run(const CheckOptions& o) {
             rep.spacing = spacing_rule_text(mask.pattern.min_spacing_cells, c.layout.pitch_nm,
                                             c.layout.grid_nm);
         c.drc = run_drc(c.layout, rep.rules);
+        add_pattern_spacing(c.drc, mask, c.layout.pitch_nm, rep.rules);
     } else {
         rep.kind = fs::path(o.input).extension().string().substr(1);
         const FileGeometry file = read_fabrication_file(o.input);
@@ -98,6 +99,9 @@ int run(const CheckOptions& o) {
                 rep.spacing = spacing_rule_text(mask->pattern.min_spacing_cells, design->pitch_nm,
                                                 design->grid_nm);
         } else {
+            // No design to build, but the flags given are still checked, and compared with the
+            // sidecar: a contradiction stops the check whether or not its mask resolves.
+            (void)design_options(o, side ? &*side : nullptr);
             DrcRules rules;
             rules.min_gap_nm = vendor.min_gap_nm;
             rules.min_feature_nm = vendor.min_feature_nm;
@@ -117,6 +121,7 @@ int run(const CheckOptions& o) {
         }
         fo.rules = rep.rules;
         c = check_file_geometry(file, fo);
+        if (mask) add_pattern_spacing(c.drc, *mask, design->pitch_nm, rep.rules);
         if (auto it = file.info.find("unit_assumed"); it != file.info.end() && !side) {
             const std::string w =
                 "the file states no unit ($INSUNITS 0 or absent, no pinmask "

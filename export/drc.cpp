@@ -523,6 +523,33 @@ std::string drc_rule_name(DrcRule rule) { return rule_entry(rule).name; }
 
 std::string drc_rule_unit(DrcRule rule) { return rule_entry(rule).unit; }
 
+void add_pattern_spacing(DrcReport& report, const Mask& mask, std::int64_t pitch_nm,
+                         const DrcRules& rules) {
+    if (!(rules.min_center_spacing_nm > 0.0)) return;
+    const auto it = report.counts.find(drc_rule_name(DrcRule::kSpacing));
+    if (it != report.counts.end() && it->second > 0) return;
+    const std::vector<SpacingViolation> pairs = spacing_violations(mask.pattern);
+    if (pairs.empty()) return;
+    const double p = double(pitch_nm);
+    report.counts[drc_rule_name(DrcRule::kSpacing)] += pairs.size();
+    std::size_t stored = 0;
+    for (const SpacingViolation& v : pairs) {
+        if (stored++ >= rules.max_reported_per_rule) break;
+        const double d = v.distance_cells * p;
+        const auto cell = [](const Cell& c) {
+            return "(" + std::to_string(c.row) + ", " + std::to_string(c.col) + ")";
+        };
+        DrcViolation x;
+        x.rule = DrcRule::kSpacing;
+        x.message = "pinholes " + cell(v.a) + " and " + cell(v.b) + " of the design: centres " +
+                    um(d) + " apart < " + um(rules.min_center_spacing_nm) +
+                    " (on the torus; the layout merges them into one polygon)";
+        x.value = d;
+        x.limit = rules.min_center_spacing_nm;
+        report.violations.push_back(std::move(x));
+    }
+}
+
 DrcRules rules_for_mask(const Mask& mask, const VendorRules& vendor, std::int64_t grid_nm) {
     DrcRules rules;
     const double pitch_nm = double(pitch_on_grid_nm(mask.camera.pinhole_m, grid_nm));

@@ -121,4 +121,12 @@ DrcReport run_drc(const Layout& layout, const DrcRules& rules);
 DrcRules rules_for_mask(const Mask& mask, const VendorRules& vendor,
                         std::int64_t grid_nm = kDefaultFabGridNm);
 
+// The spacing rule on the design's own pinholes, before the layout merges touching ones (merged,
+// two too-close pinholes become one polygon, and the polygon-level rule above cannot see them):
+// when `report` holds no spacing violation, each pair of spacing_violations(mask.pattern) is
+// added, its distance in nm on the pitch `pitch_nm` (the fabrication grid's; see
+// rules_for_mask). A no-op when rules.min_center_spacing_nm is 0 (the rule is off).
+void add_pattern_spacing(DrcReport& report, const Mask& mask, std::int64_t pitch_nm,
+                         const DrcRules& rules);
+
 }  // namespace pinmask

@@ -105,7 +105,9 @@ ExportSummary export_mask(const Mask& mask, const ExportOptions& o) {
             field_ref("circles") +
             " native: no round pinholes to draw natively (square or polygon shape, or dark tone, "
             "where pinholes are holes in opaque pieces): polygons written");
-    s.drc = run_drc(s.layout, rules_for_mask(mask, o.drc, s.layout.grid_nm));
+    const DrcRules rules = rules_for_mask(mask, o.drc, s.layout.grid_nm);
+    s.drc = run_drc(s.layout, rules);
+    add_pattern_spacing(s.drc, mask, s.layout.pitch_nm, rules);  // pinholes before merging
     if (o.require_drc_clean && !s.drc.clean()) {
         std::string what;
         for (const auto& [rule, n] : s.drc.counts) what += " " + rule + "=" + std::to_string(n);

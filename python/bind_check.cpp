@@ -151,6 +151,7 @@ void bind_check(py::module_& m) {
                 rules = resolve_rules(o, rules_for_mask(mk, vendor, l.grid_nm));
                 py::gil_scoped_release release;
                 r = run_drc(l, rules);
+                add_pattern_spacing(r, mk, l.pitch_nm, rules);  // before the layout's merging
             } else {
                 const FileGeometry file = read_fabrication_file(input_text);
                 kind = fs::path(input_text).extension().string().substr(1);
@@ -202,6 +203,8 @@ void bind_check(py::module_& m) {
                 }
                 l = fc.layout;
                 r = fc.drc;
+                if (design_mask && design)
+                    add_pattern_spacing(r, *design_mask, design->pitch_nm, rules);
                 if (fc.comparison) {
                     const ReadBack& k = *fc.comparison;
                     comparison_ok =

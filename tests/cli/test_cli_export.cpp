@@ -131,6 +131,23 @@ TEST_CASE("touching pinholes (spacing rule off) are merged; --require-drc-clean 
     CHECK(names_in(dir.path / "strict").empty());
 }
 
+TEST_CASE("touching pinholes that break the spacing rule fail export and check, merged or not") {
+    // (0, 0) and (0, 1) touch: the layout merges them into one polygon, whose centroid the
+    // polygon-level spacing rule cannot see; the rule is applied to the design's pinholes first.
+    TempDir dir("export-merged-spacing");
+    const std::string mask = dir / "close.mask.json";
+    std::ofstream(mask) << mask_json(5, {{0, 0}, {0, 1}, {3, 3}}, 2, 2.0, true);
+    const auto e = run_cli("export '" + mask + "' --format gds --no-psf -o '" + (dir / "o") + "'");
+    CHECK(e.exit_code == 1);
+    CHECK((e.out + e.err).find("pinholes (0, 0) and (0, 1) of the design") != std::string::npos);
+    for (const std::string& input : {mask, (dir.path / "o" / "close.gds").string()}) {
+        const auto c = run_cli("check '" + input + "'");
+        INFO(input << "\n" << c.out << c.err);
+        CHECK(c.exit_code == 1);
+        CHECK(c.out.find("spacing 1") != std::string::npos);
+    }
+}
+
 TEST_CASE("bad input: exit 2 and no files") {
     TempDir dir("export-bad");
     const std::string mask = golden_mask_file(dir);
