@@ -17,6 +17,7 @@
 #include "cli/options/decode_inputs.hpp"
 #include "cli/options/flag_names.hpp"
 #include "cli/outputs/decode_output.hpp"
+#include "cli/outputs/image_output.hpp"
 #include "cli/outputs/interrupt.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -102,6 +103,8 @@ void run_decode(DecodeCommand& r, BayerMode bayer) {
 
     // Write: the image, its config and the stats appear together or not at all.
     t0 = Clock::now();
+    warn_all_zero("pinmask", "the estimate", result.estimate,
+                  "a very large --nsr or --lambda passes nothing; so does an all-zero capture");
     StagedFiles files;
     json output = {{"path", r.output},
                    {"format", output_kind_name(kind)},
@@ -116,6 +119,11 @@ void run_decode(DecodeCommand& r, BayerMode bayer) {
         output["max_value"] = png.max_value;
         if (png.max_value <= 0.0)
             std::cerr << "pinmask: warning: the estimate has no positive value; the PNG is black\n";
+        else if (png.max_value * png.factor * double((1 << r.bits) - 1) < 0.5)
+            std::cerr << "pinmask: warning: at --scale " << png.factor
+                      << " every pixel rounds to 0: the PNG is black (the estimate's largest "
+                         "value is "
+                      << png.max_value << ")\n";
     } else {
         files.stage(r.output, [&](const fs::path& tmp) {
             write_output_image(tmp, result.estimate, kind, r.bits);

@@ -69,6 +69,10 @@ GridSnap fab_grid_of(const DesignOptions& o) {
     return g;
 }
 
+// The largest --lsi-tolerance: the mismatch is in pixels of one period, and no sensor's period
+// reaches 1000 px per cell.
+constexpr double kMaxLsiTolerancePx = 1000.0;
+
 PatternGeometry resolve_geometry(const GeometryOptions& g) {
     if (g.grid < 1 || g.grid > kMaxGrid) {
         throw invalid_field("--grid", std::to_string(g.grid),
@@ -79,7 +83,9 @@ PatternGeometry resolve_geometry(const GeometryOptions& g) {
         throw invalid_field("--holes", std::to_string(g.holes),
                             "must be between 0 and n^2 = " + std::to_string(cells));
     }
-    if (g.tiles < 1) throw invalid_field("--tiles", std::to_string(g.tiles), "must be >= 1");
+    if (g.tiles < 1 || g.tiles > kMaxTiles)
+        throw invalid_field("--tiles", std::to_string(g.tiles),
+                            "must be between 1 and " + std::to_string(kMaxTiles));
     if (!std::isfinite(g.spacing) || g.spacing < 0) {
         throw invalid_field("--spacing", std::to_string(g.spacing), "must be finite and >= 0");
     }
@@ -90,10 +96,11 @@ void run(const DesignOptions& o) {
     Camera camera = resolve_camera(o.camera);
     const PatternGeometry geometry = resolve_geometry(o.geometry);
     const KernelModel kernel = parse_kernel_model(o.kernel, "--kernel");
-    if (!(o.lsi_tolerance_px > 0) || !std::isfinite(o.lsi_tolerance_px)) {
+    if (!(o.lsi_tolerance_px > 0) || !(o.lsi_tolerance_px <= kMaxLsiTolerancePx)) {
         throw invalid_field("--lsi-tolerance", std::to_string(o.lsi_tolerance_px),
-                            "must be finite and > 0 (0 or less gives an empty object-distance "
-                            "range)");
+                            "must be > 0 and <= 1000 px (0 or less gives an empty "
+                            "object-distance range; a mismatch of more than a whole period "
+                            "of any real sensor says nothing)");
     }
     if (!o.save_camera.empty()) {
         const std::filesystem::path out(o.save_camera), dir = out.parent_path();

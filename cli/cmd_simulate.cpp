@@ -136,6 +136,8 @@ void run(const SimulateOptions& o, const CLI::App& cmd) {
     }
 
     warn_png_clipping("pinmask simulate", o.output, s.capture);
+    warn_all_zero("pinmask simulate", "the capture", s.capture,
+                  "no light counted, or every pixel saturated: check --photons and --full-well");
     if (!o.dark_frame.empty()) warn_png_clipping("pinmask simulate", o.dark_frame, s.dark);
 
     const std::string config_path = o.output + ".config.json";

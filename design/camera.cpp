@@ -39,6 +39,15 @@ void validate(const Camera& c) {
     require_positive("wavelength_m", c.wavelength_m, false);
     require_positive("pixel_pitch_m", c.pixel_pitch_m, false);
     require_positive("pinhole_m", c.pinhole_m, false);
+    // One rule for every command that builds a camera (design, generate, psf, search, ...): the
+    // object must be beyond a finite lens's focal length, else the lens forms no real image and
+    // the mask written would be one no other command accepts.
+    if (std::isfinite(c.lens_focal_m) && c.object_distance_m <= c.lens_focal_m) {
+        throw invalid_field("object_distance_m", format_length(c.object_distance_m),
+                            "is inside the focal length f' = " + format_length(c.lens_focal_m) +
+                                " of the lens: the thin lens forms no real image of such an "
+                                "object; use an object distance beyond f'");
+    }
     if (c.sensor_cols < 1 || c.sensor_rows < 1) {
         throw invalid_field("sensor",
                             std::to_string(c.sensor_cols) + "x" + std::to_string(c.sensor_rows),

@@ -36,10 +36,12 @@ void validate(const PatternGeometry& g) {
         throw invalid_field("holes", std::to_string(g.holes),
                             "must be between 0 and n^2 = " + std::to_string(cells));
     }
-    if (g.tiles_rows < 1 || g.tiles_cols < 1) {
+    if (g.tiles_rows < 1 || g.tiles_cols < 1 || g.tiles_rows > kMaxTiles ||
+        g.tiles_cols > kMaxTiles) {
         throw invalid_field("tiles",
                             std::to_string(g.tiles_rows) + "x" + std::to_string(g.tiles_cols),
-                            "must be >= 1 per side");
+                            "must be between 1 and " + std::to_string(kMaxTiles) +
+                                " per side (as a mask file's pattern.tiles)");
     }
 }
 

@@ -98,7 +98,9 @@ ExportSummary export_mask(const Mask& mask, const ExportOptions& o) {
         if (std::max(w, h) > o.plate_m * 1e9)
             throw invalid_field(
                 field_ref("plate_m"), nm_text(o.plate_m * 1e9),
-                "the layout extent " + nm_text(w) + " x " + nm_text(h) + " does not fit the plate");
+                "the layout extent " + nm_text(w) + " x " + nm_text(h) +
+                    " does not fit the preset's plate (the largest square it writes, this "
+                    "side): use fewer tiles, a smaller frame, or a vendor with a larger plate");
     }
     if (o.write.native_circles && s.layout.circles.empty())
         s.notes.push_back(

@@ -8,6 +8,7 @@
 #include "core/field_names.hpp"
 #include "core/units.hpp"
 #include "export/vendor_presets.hpp"
+#include "layout/shapes.hpp"
 
 namespace pinmask {
 namespace {
@@ -70,6 +71,10 @@ ExportOptions export_options_from(const ExportRequest& f, const Mask& mask, cons
         o.write.max_snap_error_nm =
             parse_length_m(*f.max_snap_error, field_ref("max_snap_error")) * 1e9;
     l.shape = parse_hole_shape(f.shape, field_ref("shape"));
+    // Checked whatever the shape, so a bad value is never silently ignored.
+    if (f.sides < 3 || f.sides > kMaxPolygonSides)
+        throw invalid_field(field_ref("sides"), std::to_string(f.sides),
+                            "must be in 3.." + std::to_string(kMaxPolygonSides));
     l.polygon_sides = f.sides;
     l.marks = f.marks;
     if (f.chord_tol != "auto")

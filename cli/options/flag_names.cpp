@@ -80,7 +80,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 101> kFlags{
     {"optical_density", "--optical-density"},
     {"photons", "--photons"},
     {"pixels_per_cell", "--pixels-per-cell"},
-    {"plate_m", "--plate"},
+    {"plate_m", "--vendor"},  // the plate size comes with the vendor preset
     {"png_dpi", "--dpi"},
     {"polygon_sides", "--sides"},
     {"precision", "--precision"},

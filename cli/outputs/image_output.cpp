@@ -56,4 +56,28 @@ void warn_png_clipping(const std::string& who, const std::string& path, const Im
     }
 }
 
+void warn_all_zero(const std::string& who, const std::string& what, const Image& image,
+                   const std::string& hint) {
+    // Below 1e-30 in every sample counts as zero: no capture or estimate in electrons, counts or
+    // normalised units is that small, and subnormal inputs (--photons 1e-320) produce such values.
+    constexpr double kNegligible = 1e-30;
+    double lo = 0.0, hi = 0.0;
+    bool first = true;
+    for (const Plane& ch : image.channels) {
+        if (ch.size() == 0) continue;
+        if ((ch.abs() >= kNegligible).any() == false) continue;
+        const double a = ch.minCoeff(), b = ch.maxCoeff();
+        lo = first ? a : std::min(lo, a);
+        hi = first ? b : std::max(hi, b);
+        first = false;
+    }
+    if (first) {
+        std::cerr << who << ": warning: " << what
+                  << " is all zero (every value below 1e-30: " << hint << ")\n";
+    } else if (lo == hi) {
+        std::cerr << who << ": warning: " << what << " is constant (every value " << lo << ": "
+                  << hint << ")\n";
+    }
+}
+
 }  // namespace pinmask::cli

@@ -22,4 +22,11 @@ void write_image_as(const std::filesystem::path& tmp, const std::filesystem::pat
 // has values outside, rather than hide the clipping.
 void warn_png_clipping(const std::string& who, const std::string& path, const Image& image);
 
+// A warning when every value of `image` is 0 (below 1e-30) or all are equal: a result that is all
+// zero or flat (a photon level or full
+// well so small that nothing is counted, an NSR so large the filter passes nothing) is said, never
+// a silent success. `what` names it ("the capture", "the estimate") and `hint` the likely cause.
+void warn_all_zero(const std::string& who, const std::string& what, const Image& image,
+                   const std::string& hint);
+
 }  // namespace pinmask::cli

@@ -166,11 +166,19 @@ TEST_CASE("f -> f' and f = f': the Fraunhofer limit, finite kernels, M = 0 said"
     }
 }
 
-TEST_CASE("u -> f: the object at the sensor distance keeps every output finite") {
+TEST_CASE("u -> f': the object just beyond the focal length keeps every output finite") {
+    // Inside the focal length (at the sensor distance, or at f' itself) the lens forms no real
+    // image: every command refuses the camera, naming the field.
+    for (double u : {paper_camera().sensor_distance_m, paper_camera().lens_focal_m}) {
+        Camera c = paper_camera();
+        c.object_distance_m = u;
+        CHECK_THROWS_WITH_AS(validate(c), doctest::Contains("inside the focal length"),
+                             InvalidInput);
+    }
     for (double rel : {1.0, 1e-2, 1e-4, 1e-8}) {
         CAPTURE(rel);
         Camera c = paper_camera();
-        c.object_distance_m = c.sensor_distance_m * (1.0 + rel);
+        c.object_distance_m = c.lens_focal_m * (1.0 + rel);
         validate(c);
         check_report_has_no_nan(c);
         const KernelValidity v = kernel_validity(c, KernelModel::kAuto);
