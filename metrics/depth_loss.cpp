@@ -106,10 +106,10 @@ void parallel_for(std::size_t count, int threads, const std::function<void(std::
 }  // namespace
 
 void DepthOptions::validate() const {
-    if (scenes.empty()) throw invalid_field("scenes", "none", "need at least one scene");
+    if (scenes.empty()) throw invalid_field(field_ref("scenes"), "none", "need at least one scene");
     pinmask::validate(noise);
     if (!wiener_nsr.tuned && (!(wiener_nsr.value > 0.0) || !std::isfinite(wiener_nsr.value))) {
-        throw invalid_field("wiener_nsr", std::to_string(wiener_nsr.value),
+        throw invalid_field(field_ref("wiener_nsr"), std::to_string(wiener_nsr.value),
                             "must be finite and > 0 (or tuned)");
     }
     if (!(tv_lambda > 0.0) || !std::isfinite(tv_lambda)) {
