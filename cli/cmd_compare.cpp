@@ -11,19 +11,20 @@
 #include <string>
 #include <vector>
 
-#include "cli/options/analytic_setup.hpp"
-#include "cli/options/flag_names.hpp"
 #include "cli/command_footers.hpp"
 #include "cli/commands.hpp"
-#include "cli/outputs/compare_report.hpp"
+#include "cli/options/analytic_setup.hpp"
+#include "cli/options/flag_names.hpp"
 #include "cli/options/noise_options.hpp"
+#include "cli/outputs/compare_report.hpp"
+#include "cli/outputs/progress.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
-#include "report/report.hpp"
 #include "io/json_strict.hpp"
 #include "io/mask_json.hpp"
 #include "metrics/compare.hpp"
+#include "report/report.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -92,18 +93,24 @@ void run(const Options& o, const CLI::App& cmd) {
     CompareSummary summary;
     summary.camera = entries.front().mask.camera;
     summary.noise_text = noise;
+    ProgressLine bar("pinmask compare");
     CompareOutcome out =
         run_compare(entries, options, [&](const std::string& phase, int done, int total) {
             if (o.quiet) return;
-            if (phase == "mask") {
-                std::cerr << "compare: " << done + 1 << "/" << total << " "
-                          << (done < static_cast<int>(entries.size()) ? entries[done].name
-                                                                      : "baseline")
-                          << "\n";
-            } else if (done == total || done % std::max(1, total / 10) == 0) {
-                std::cerr << "compare: " << phase << " " << done << "/" << total << "\n";
+            if (total == 0) {  // a set-up phase
+                bar.phase(phase);
+            } else if (phase == "mask") {  // a mask starts: each named, also in a log
+                bar.phase(
+                    "mask " + std::to_string(done + 1) + "/" + std::to_string(total) + ": " +
+                    (done < static_cast<int>(entries.size()) ? entries[done].name : "a baseline") +
+                    " (metrics, simulated decodes)");
+            } else {
+                bar.update(double(done) / total,
+                           phase + " " + std::to_string(done) + "/" + std::to_string(total));
             }
         });
+    if (!o.quiet) bar.update(1.0, std::to_string(out.results.size()) + " masks compared");
+    bar.finish();
     // The library's words name settings by field: spelled as flags (a given mask's source is
     // its path, left as typed).
     for (CompareResult& r : out.results)

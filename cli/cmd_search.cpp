@@ -62,11 +62,15 @@ void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd,
         std::cerr << "pinmask search: warning: --config " << o.config << " was written by a run on "
                   << *o.config_ranks << " rank(s), this run has " << comm.size()
                   << ": the chains and islands differ, so this is not the same search\n";
-    ProgressLine bar;
+    ProgressLine bar("pinmask search");
     const auto& interrupted = install_interrupt_flag();
     const SearchPipelineSummary s = run_search_pipeline(
-        p, &interrupted, [&](const std::string& phase, double fraction, const std::string& text) {
+        p, &interrupted,
+        [&](const std::string& phase, double fraction, const std::string& text) {
             if (!o.quiet && root) bar.update(fraction, phase + ": " + text);
+        },
+        [&](const std::string& phase) {
+            if (!o.quiet && root) bar.phase(phase);
         });
     if (!root) return;  // rank 0 holds every chain's result and alone writes
     bar.finish();

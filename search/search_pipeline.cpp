@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -14,11 +15,11 @@
 #include "design/packing_bound.hpp"
 #include "design/psf.hpp"
 #include "design/random_sparse.hpp"
-#include "search/island_search.hpp"
-#include "search/objective_bound.hpp"
 #include "metrics/robust_wiener.hpp"
 #include "metrics/simulated_metrics.hpp"
 #include "metrics/spectrum_metrics.hpp"
+#include "search/island_search.hpp"
+#include "search/objective_bound.hpp"
 
 namespace pinmask {
 namespace {
@@ -243,7 +244,8 @@ void SearchPipelineOptions::validate() const {
 
 SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
                                           const std::atomic<bool>* cancel,
-                                          const PipelineProgress& progress) {
+                                          const PipelineProgress& progress,
+                                          const PipelinePhase& setup_phase) {
     o.validate();
     const auto t0 = Clock::now();
     const bool timed = o.search.time_budget_s > 0.0 && o.search.max_evaluations == 0;
@@ -252,6 +254,11 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
 
     const int n = o.tmpl.pattern.n, ppc = o.tmpl.psf.pixels_per_cell, m = n * ppc;
     check_psf_memory(n, ppc, 4, 2);
+    // Set-up phases are named as they start (they can take seconds at large periods).
+    const auto phase = [&](const std::string& name) {
+        if (setup_phase) setup_phase(name);
+    };
+    phase("building the kernel and the scene prior");
     const Kernel kernel = mask_kernel(o.tmpl);
     out.kernel_resolved = kernel_model_name(kernel.model);
     const ComplexPlane kernel_otf = expand_half_spectrum(kernel_spectrum(kernel, n, ppc), m);
@@ -309,6 +316,7 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
     std::mt19937_64 probe_rng(o.search.seed);  // fail fast on infeasible requests
     const Pattern probe = sample(probe_rng);
 
+    if (!o.rerank_scenes.empty()) phase("building the re-rank scenes");
     Reranker rr;
     rr.noise = o.noise;
     rr.tv = o.rerank_tv;
@@ -323,6 +331,7 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
     // of the budget; a tuned TV weight costs kTunedDecodesPerScene times the fixed one.
     double one_rerank_s = 0.0;
     if (timed && !rr.scenes.empty()) {
+        phase("timing one re-ranking");
         RankedMask trial;
         trial.mask = o.tmpl;
         trial.mask.pattern = probe;
@@ -354,16 +363,30 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
     const auto s0 = Clock::now();
     LocalComm one_process;
     RankComm& comm = o.comm ? *o.comm : one_process;
-    out.search = run_island_search(comm, objective, so, sample, o.islands, cancel,
-                                   [&](const SearchLogRow& row, double fraction) {
-                                       if (!progress) return;
-                                       std::ostringstream t;
-                                       t.precision(4);
-                                       t << "best " << row.best_objective << ", "
-                                         << (row.seconds > 0 ? row.evaluations / row.seconds : 0.0)
-                                         << " evals/s, " << static_cast<int>(row.seconds) << " s";
-                                       progress("search", fraction, t.str());
-                                   });
+    phase("starting the chains");
+    // The rate counts from the first logged row with an evaluation on: the chains' own set-up
+    // (sampling, their first evaluation's tables) is not search throughput.
+    std::optional<SearchLogRow> first_row;
+    out.search = run_island_search(
+        comm, objective, so, sample, o.islands, cancel,
+        [&](const SearchLogRow& row, double fraction) {
+            if (!progress) return;
+            if (!first_row && row.evaluations > 0) first_row = row;
+            std::ostringstream t;
+            t.precision(4);
+            if (!first_row) {
+                t << "setting up the chains, " << static_cast<int>(row.seconds) << " s";
+            } else {
+                const double dt = row.seconds - first_row->seconds;
+                t << "best " << row.best_objective << ", ";
+                if (dt > 0)
+                    t << (row.evaluations - first_row->evaluations) / dt << " evals/s";
+                else
+                    t << "first evaluation after " << first_row->seconds << " s";
+                t << ", " << static_cast<int>(row.seconds) << " s";
+            }
+            progress("search", fraction, t.str());
+        });
     out.search_s = seconds_since(s0);
     out.termination = out.search.termination;
     if (comm.rank() != 0) {  // rank 0 holds every rank's chains and alone re-ranks and writes

@@ -18,12 +18,12 @@
 
 #include "design/mask.hpp"
 #include "metrics/analytic_error.hpp"
-#include "search/island_search.hpp"
 #include "metrics/mask_metrics.hpp"
-#include "search/mask_objective.hpp"
-#include "search/robust_objective.hpp"
-#include "search/rank_comm.hpp"
 #include "metrics/robust_errors.hpp"
+#include "search/island_search.hpp"
+#include "search/mask_objective.hpp"
+#include "search/rank_comm.hpp"
+#include "search/robust_objective.hpp"
 #include "search/search.hpp"
 
 namespace pinmask {
@@ -107,15 +107,20 @@ struct SearchPipelineSummary {
     std::string prior_description;
 };
 
-// Progress: (phase "search" | "rerank", fraction 0..1, text).
+// Progress: (phase "search" | "rerank", fraction 0..1, text). The search's rate counts from its
+// first logged row on (the chains' set-up is not throughput).
 using PipelineProgress = std::function<void(const std::string&, double, const std::string&)>;
+// A set-up phase starting ("building the kernel and the scene prior", "building the re-rank
+// scenes", "timing one re-ranking", "starting the chains").
+using PipelinePhase = std::function<void(const std::string&)>;
 
 // Runs everything. `cancel` (may be null) stops the search and skips re-ranking; the best so far
 // is returned. RuntimeFailure when no candidate was found (e.g. every pattern had a spectral
 // zero: the message says so and names --allow-spectral-zeros).
 SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& options,
                                           const std::atomic<bool>* cancel = nullptr,
-                                          const PipelineProgress& progress = {});
+                                          const PipelineProgress& progress = {},
+                                          const PipelinePhase& setup_phase = {});
 
 // "K" or "A..B" (--holes); InvalidInput naming --holes for anything else (A > B, A < 1, junk).
 // Returns {A, B} with B = 0 for a single K.

@@ -25,7 +25,7 @@ void ProgressLine::phase(const std::string& name) {
     std::fprintf(stderr, "%s: %s...\n", label_.c_str(), name.c_str());
     std::fflush(stderr);
     last_plain_ = Clock::now();
-    any_plain_ = true;
+    print_next_ = true;  // the work's first figures follow the phase's name at once
     plain_done_ = false;
 }
 
@@ -35,13 +35,13 @@ void ProgressLine::update(double fraction, const std::string& text) {
         const Clock::time_point now = Clock::now();
         const bool done = fraction >= 1.0;
         const bool due =
-            !any_plain_ || std::chrono::duration<double>(now - last_plain_).count() >= interval_s_;
+            print_next_ || std::chrono::duration<double>(now - last_plain_).count() >= interval_s_;
         if ((done && !plain_done_) || (!done && due)) {
             std::fprintf(stderr, "%s: %3.0f%% %s\n", label_.c_str(), 100.0 * fraction,
                          text.c_str());
             std::fflush(stderr);
             last_plain_ = now;
-            any_plain_ = true;
+            print_next_ = false;
             plain_done_ = done;
         }
         return;

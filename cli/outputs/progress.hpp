@@ -1,7 +1,7 @@
 // Progress on stderr. On a terminal: a one-line bar redrawn in place. Otherwise (stderr to a file
-// or a pipe, a batch job's log): plain lines, one when a set-up phase starts, then at most one per
-// `plain_interval_s` seconds while the work runs, and one when it reaches 100 %, so a log shows
-// that the run is alive without filling up.
+// or a pipe, a batch job's log): plain lines, one when a phase starts, the first figures after it,
+// then at most one per `plain_interval_s` seconds while the work runs, and one when it reaches
+// 100 %, so a log shows that the run is alive without filling up.
 #pragma once
 
 #include <chrono>
@@ -30,7 +30,7 @@ class ProgressLine {
     bool drawn_ = false;
     bool plain_done_ = false;  // the 100 % plain line was printed
     Clock::time_point last_plain_;
-    bool any_plain_ = false;
+    bool print_next_ = true;  // the next update prints (the first, or the first after a phase)
 };
 
 }  // namespace pinmask::cli
