@@ -114,6 +114,15 @@ void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd,
                              {"search_s", s.search_s},
                              {"rerank_s", s.rerank_s},
                              {"reranked", s.reranked}};
+    std::string scenes;
+    for (const std::string& n : s.rerank_scene_names) scenes += (scenes.empty() ? "" : ",") + n;
+    j["psnr_columns"] = {
+        {"analytic_wiener_psnr_db", "closed form over one period, prior " + s.prior_description},
+        {"sim_wiener_psnr_db", "simulated on scenes " + scenes +
+                                   " (cyclic model, the search's "
+                                   "noise, noise seed = --seed), Wiener NSR tuned per mask"},
+        {"sim_tv_psnr_db", "simulated on scenes " + scenes + ", TV-L2"}};
+    j["reordered"] = s.reordered;
     for (std::size_t i = 0; i < s.ranked.size(); ++i) {
         nlohmann::ordered_json r{{"rank", i + 1},
                                  {"path", paths[i].string()},

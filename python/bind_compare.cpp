@@ -9,14 +9,14 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/field_names.hpp"
-#include "report/report.hpp"
 #include "io/mask_json.hpp"
-#include "report/compare_report.hpp"
 #include "python/common.hpp"
 #include "python/keyword_names.hpp"
 #include "python/level_args.hpp"
 #include "python/metrics_common.hpp"
 #include "python/values.hpp"
+#include "report/compare_report.hpp"
+#include "report/report.hpp"
 
 namespace pinmask::python {
 
@@ -115,7 +115,7 @@ void bind_compare(py::module_& m) {
         },
         py::arg("masks"), py::arg("report") = py::none(), py::arg("baselines") = false,
         py::arg("baseline_count") = 100, py::arg("snr_db") = py::none(),
-        py::arg("scenes") = std::vector<std::string>{"letter-R", "usaf"},
+        py::arg("scenes") = std::vector<std::string>{"letter-R", "usaf", "siemens-star"},
         py::arg("prior_scenes") = kDefaultPriorScenes, py::arg("nsr") = "tuned",
         py::arg("tv_lambda") = "1e-3", py::arg("tv_iterations") = 200, py::arg("seed") = 1,
         py::arg("allow_violations") = false, py::arg("photons") = py::none(),

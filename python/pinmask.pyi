@@ -182,7 +182,7 @@ def decode(
 def metrics(
     mask: MaskLike,
     snr_db: Optional[Levels] = None,  # dB; None: 30
-    scenes: Sequence[str] = ("letter-R", "usaf"),
+    scenes: Sequence[str] = ("letter-R", "usaf", "siemens-star"),  # as compare and search
     prior_scenes: int = 16,
     nsr: str = "tuned",
     tv_lambda: str = "1e-3",
@@ -274,7 +274,7 @@ def compare(
     baselines: bool = False,
     baseline_count: int = 100,
     snr_db: Optional[Levels] = None,  # dB; None: 30
-    scenes: Sequence[str] = ("letter-R", "usaf"),
+    scenes: Sequence[str] = ("letter-R", "usaf", "siemens-star"),  # search's re-rank scenes
     prior_scenes: int = 16,
     nsr: str = "tuned",
     tv_lambda: str = "1e-3",

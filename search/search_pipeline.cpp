@@ -20,6 +20,7 @@
 #include "metrics/spectrum_metrics.hpp"
 #include "search/island_search.hpp"
 #include "search/objective_bound.hpp"
+#include "search/rerank_order.hpp"
 
 namespace pinmask {
 namespace {
@@ -100,22 +101,25 @@ struct Reranker {
         const Plane psf = mask_psf(r.mask);
         const int k = static_cast<int>(r.mask.pattern.pinholes.size());
         const int cells = r.mask.pattern.n * r.mask.pattern.n;
-        r.sim_wiener_psnr_db =
-            simulated_quality(psf, scenes, noise, k, cells, SimulatedDecoder::kWiener, sim)
-                .mean_psnr_db;
+        const SimulatedQuality w =
+            simulated_quality(psf, scenes, noise, k, cells, SimulatedDecoder::kWiener, sim);
+        r.sim_wiener_psnr_db = w.mean_psnr_db;
+        r.sim_scene_psnr_db.clear();
+        for (const SceneQuality& q : w.scenes) r.sim_scene_psnr_db.push_back(q.psnr_db);
         r.mask.provenance.scores["sim_wiener_psnr_db"] = r.sim_wiener_psnr_db;
         if (tv) {
             const SimulatedQuality q =
                 simulated_quality(psf, scenes, noise, k, cells, SimulatedDecoder::kTv, sim);
             r.sim_tv_psnr_db = q.mean_psnr_db;
             r.tv_lambda = q.weight;
+            if (rank_by == RankBy::kTv) {
+                r.sim_scene_psnr_db.clear();
+                for (const SceneQuality& sq : q.scenes) r.sim_scene_psnr_db.push_back(sq.psnr_db);
+            }
             r.mask.provenance.scores["sim_tv_psnr_db"] = r.sim_tv_psnr_db;
             r.mask.provenance.scores["sim_tv_lambda"] = r.tv_lambda;
         }
         r.reranked = true;
-    }
-    double key(const RankedMask& r) const {
-        return rank_by == RankBy::kTv ? r.sim_tv_psnr_db : r.sim_wiener_psnr_db;
     }
 };
 
@@ -324,8 +328,10 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
     rr.sim.seed = o.search.seed;
     rr.sim.wiener_nsr = {true, 0.01};
     rr.sim.tv_lambda = {o.rank_by == RankBy::kTv, 1e-3};
-    for (const SceneSpec& s : o.rerank_scenes)
+    for (const SceneSpec& s : o.rerank_scenes) {
         rr.scenes.push_back({scene_name(s), make_scene(s, m, m)});
+        out.rerank_scene_names.push_back(rr.scenes.back().name);
+    }
 
     // Time one re-ranking (on the probe pattern, TV with a fixed weight) to reserve its share
     // of the budget; a tuned TV weight costs kTunedDecodesPerScene times the fixed one.
@@ -460,15 +466,21 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
                     "re-ranked " + std::to_string(i + 1) + "/" + std::to_string(out.ranked.size()));
             }
         }
-        // Re-ranked candidates first, by the chosen decoder's simulated PSNR; the rest after,
-        // in search order. The robust objective keeps its own order (the simulations use the
-        // nominal PSF).
-        if (!robust_objective)
-            std::stable_sort(out.ranked.begin(), out.ranked.end(),
-                             [&](const RankedMask& a, const RankedMask& b) {
-                                 if (a.reranked != b.reranked) return a.reranked;
-                                 return a.reranked && rr.key(a) > rr.key(b);
-                             });
+        // Re-ranked candidates first (they are a prefix: re-ranked in search order), ordered by
+        // search/rerank_order: the objective's order unless the simulated PSNR of the chosen
+        // decoder tells two apart beyond its standard error; the rest after, in search order.
+        // The robust objective keeps its own order (the simulations use the nominal PSF).
+        if (!robust_objective && out.reranked > 1) {
+            std::vector<std::vector<double>> psnr;
+            for (int i = 0; i < out.reranked; ++i) psnr.push_back(out.ranked[i].sim_scene_psnr_db);
+            const std::vector<std::size_t> order = rerank_order(psnr);
+            std::vector<RankedMask> sorted;
+            for (std::size_t i = 0; i < order.size(); ++i) {
+                if (order[i] != i) ++out.reordered;
+                sorted.push_back(std::move(out.ranked[order[i]]));
+            }
+            std::move(sorted.begin(), sorted.end(), out.ranked.begin());
+        }
     }
     out.rerank_s = seconds_since(r0);
     out.used_s = seconds_since(t0);

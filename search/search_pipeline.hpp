@@ -82,6 +82,8 @@ struct RankedMask {
     double sim_tv_psnr_db = 0.0;      // NaN when not re-ranked or TV skipped
     double tv_lambda = 0.0;           // the TV weight used (tuned with rank_by tv)
     bool reranked = false;
+    // Per re-rank scene, the ranking decoder's simulated PSNR (search/rerank_order's input).
+    std::vector<double> sim_scene_psnr_db;
     bool spectral_zero = false;  // only with allow_spectral_zeros
     std::string spectral_zero_message;
     // Upper bound on the analytic Wiener PSNR of ANY pattern with this mask's K under the
@@ -103,6 +105,8 @@ struct SearchPipelineSummary {
     double search_s = 0.0, rerank_s = 0.0;
     double rerank_reserved_s = 0.0;  // time held back from the search for re-ranking
     int reranked = 0;                // candidates re-ranked (the rest: budget or interrupt)
+    int reordered = 0;  // candidates the simulation moved (search/rerank_order: beyond the SE)
+    std::vector<std::string> rerank_scene_names;  // the simulated figures' scenes
     PriorRelevance prior_relevance;  // frequencies the prior makes irrelevant (for --explain)
     std::string prior_description;
 };
