@@ -9,14 +9,14 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/field_names.hpp"
+#include "report/report.hpp"
 #include "io/mask_json.hpp"
+#include "report/compare_report.hpp"
 #include "python/common.hpp"
 #include "python/keyword_names.hpp"
 #include "python/level_args.hpp"
 #include "python/metrics_common.hpp"
 #include "python/values.hpp"
-#include "report/compare_report.hpp"
-#include "report/report.hpp"
 
 namespace pinmask::python {
 
