@@ -197,6 +197,13 @@ void setup(CLI::App& app) {
     cmd->add_option("--steps", o->steps, "Points of the range, equally spaced in 1/u (2..1000)")
         ->capture_default_str();
     add_noise_flags(*cmd, o->noise, "30");
+    // depth takes one level (score's flags take lists).
+    cmd->get_option("--snr")->description(
+        "Gaussian SNR of the simulated captures, dB, one value (inf: noiseless)");
+    cmd->get_option("--photons")
+        ->description(
+            "The photon model instead of --snr: mean electrons per pixel through ONE pinhole for "
+            "a uniform scene of value 1, one value, with the sensor flags");
     cmd->add_option("--nsr", o->nsr,
                     "Wiener noise-to-signal ratio (> 0), or 'tuned' (once per run, as score)")
         ->capture_default_str();
