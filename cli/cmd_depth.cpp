@@ -1,7 +1,9 @@
 // `pinmask depth MASK`: pitch, period, shift-invariance mismatch and the PSNR lost by decoding
 // the exact-geometry capture with the mask's integer cyclic PSF, against object distance
-// (metrics/depth_loss.hpp). Table on stdout, --json (one record per distance), -o DIR for the
-// plot (depth.svg + depth.png, written together) and the resolved configuration.
+// (metrics/depth_loss.hpp). Table on stdout, --json (one record per distance), -o DIR (created
+// when missing) for the plot (depth.svg + depth.png, written together) and the resolved
+// configuration. Noise: the flags of score (--snr or --photons with the sensor flags), one
+// level; Wiener NSR tuned as score tunes it unless --nsr gives a value.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -14,12 +16,16 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/options/noise_options.hpp"
+#include "cli/outputs/progress.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/fft.hpp"
 #include "core/number_format.hpp"
 #include "core/units.hpp"
 #include "io/mask_json.hpp"
 #include "metrics/depth_loss.hpp"
+#include "metrics/metric_spellings.hpp"
 #include "report/depth_plot.hpp"
 
 namespace pinmask::cli {
@@ -32,7 +38,9 @@ struct DepthCommandOptions {
     std::optional<std::string> distances;  // "1m,2m,6m,inf"
     std::optional<std::string> from, to;
     int steps = 8;
-    std::string snr = "30";
+    NoiseFlags noise;
+    std::string nsr = "tuned";
+    std::uint64_t seed = 1;
     std::string scenes = "letter-R,natural";
     bool no_tv = false;
     std::string output_dir;
@@ -77,31 +85,54 @@ nlohmann::ordered_json record_json(const DepthRecord& r) {
              {"period_px", r.period_px},
              {"lsi_mismatch_px", r.lsi_mismatch_px},
              {"wiener_psnr_loss_db", finite(r.wiener_psnr_loss_db)},
-             {"tv_psnr_loss_db", finite(r.tv_psnr_loss_db)}};
+             {"tv_psnr_loss_db", finite(r.tv_psnr_loss_db)},
+             {"wiener_nsr", r.wiener_nsr}};
 }
 
-void run(const DepthCommandOptions& o) {
+void run(const DepthCommandOptions& o, const CLI::App& cmd) {
     const std::vector<double> distances = resolve_distances(o);
-    if (!o.output_dir.empty() && !fs::is_directory(o.output_dir)) {
-        throw invalid_field("-o", o.output_dir, "must be an existing folder");
+    if (!o.output_dir.empty() && fs::exists(o.output_dir) && !fs::is_directory(o.output_dir)) {
+        throw invalid_field("-o", o.output_dir, "is a file; give a folder (created when missing)");
     }
     DepthOptions d;
     d.scenes = split(o.scenes);
-    d.snr_db = (o.snr == "inf" || o.snr == "+inf") ? INFINITY : parse_number(o.snr, "--snr");
+    std::string noise_text;
+    if (o.noise.photons.empty() && (o.noise.snr == "inf" || o.noise.snr == "+inf")) {
+        refuse_sensor_flags_without_photons(cmd);
+        d.noise.kind = NoiseKind::kNone;
+        noise_text = "no noise";
+    } else {
+        const std::vector<NoiseLevel> levels = noise_levels(o.noise, cmd, &noise_text);
+        if (levels.size() != 1) {
+            throw invalid_field(o.noise.photons.empty() ? "--snr" : "--photons",
+                                o.noise.photons.empty() ? o.noise.snr : o.noise.photons,
+                                "depth takes one noise level");
+        }
+        d.noise = levels.front().model;
+    }
+    d.wiener_nsr = parse_weight_choice(o.nsr, "--nsr");
+    d.seed = o.seed;
+    d.threads = fft_threads();  // the hardware threads, as the FFTs use
     d.with_tv = !o.no_tv;
     const Mask mask = io::read_mask_file(o.mask);
-    if (!o.json) {
-        std::fprintf(stderr, "simulating %zu distance(s) x %zu scene(s)...\n", distances.size(),
-                     d.scenes.size());
-    }
+    ProgressLine bar("pinmask depth");
+    bar.phase(std::string(d.wiener_nsr.tuned ? "tuning the Wiener NSR and decoding" : "decoding") +
+              " the reference captures (" + std::to_string(d.scenes.size()) + " scene(s), " +
+              noise_text + ")");
+    d.progress = [&](std::size_t done, std::size_t total) {
+        bar.update(double(done) / double(total),
+                   std::to_string(done) + "/" + std::to_string(total) + " distances");
+    };
     const std::vector<DepthRecord> records = depth_analysis(mask, distances, d);
+    bar.finish();
 
     nlohmann::ordered_json j = nlohmann::ordered_json::array();
     for (const auto& r : records) j.push_back(record_json(r));
     if (!o.output_dir.empty()) {
         const fs::path dir(o.output_dir);
-        const std::string title = "pinmask depth: " + fs::path(o.mask).filename().string() +
-                                  " (SNR " + o.snr + " dB, scenes " + o.scenes + ")";
+        fs::create_directories(dir);
+        const std::string title = "pinmask depth: " + fs::path(o.mask).filename().string() + " (" +
+                                  noise_text + ", scenes " + o.scenes + ")";
         StagedFiles files;
         files.stage(dir / "depth.svg", [&](const fs::path& tmp) {
             write_depth_svg(tmp, records, mask.camera.object_distance_m, title);
@@ -109,10 +140,9 @@ void run(const DepthCommandOptions& o) {
         files.stage(dir / "depth.png", [&](const fs::path& tmp) {
             write_depth_png(tmp, records, mask.camera.object_distance_m, title);
         });
-        nlohmann::ordered_json config{{"mask", o.mask},
-                                      {"snr", o.snr},
-                                      {"scenes", o.scenes},
-                                      {"tv", !o.no_tv},
+        nlohmann::ordered_json config{{"mask", o.mask},     {"noise", noise_json(d.noise)},
+                                      {"nsr", o.nsr},       {"seed", o.seed},
+                                      {"scenes", o.scenes}, {"tv", !o.no_tv},
                                       {"records", j}};
         files.stage_bytes(dir / "depth.json", config.dump(2) + "\n");
         files.commit();
@@ -124,6 +154,9 @@ void run(const DepthCommandOptions& o) {
         std::cout << j.dump(2) << "\n";
         return;
     }
+    std::printf("%s; Wiener NSR %s%s\n", noise_text.c_str(),
+                format_number(records.front().wiener_nsr).c_str(),
+                d.wiener_nsr.tuned ? " (tuned)" : "");
     std::printf("%12s %10s %10s %13s %14s %11s\n", "u", "px/cell", "period px", "mismatch px",
                 "Wiener loss dB", "TV loss dB");
     for (const auto& r : records) {
@@ -139,9 +172,14 @@ constexpr const char* kFooter =
     "mismatch n |pitch - the mask's pixels per cell| (px across one period), and the PSNR lost "
     "when the capture recorded at u (exact geometry: every pinhole at its true position, linear "
     "convolution) is decoded with the mask's integer cyclic PSF, against decoding the cyclic "
-    "capture itself (same scenes, noise and decoder; Wiener NSR 0.01, TV lambda 1e-3, as score).\n"
+    "capture itself (same scenes, noise and decoder; TV lambda 1e-3). Noise as score: Gaussian "
+    "--snr (one value, dB; inf: none) or the photon model --photons (electrons per pixel through "
+    "one pinhole) with --read-noise, --dark-current, --full-well, --bits, --optical-density. The "
+    "Wiener NSR is tuned once per run on the cyclic captures (as score --nsr tuned) unless --nsr "
+    "gives it. Progress per distance on stderr (plain lines when stderr is not a terminal).\n"
     "Examples:\n"
     "  pinmask depth m.mask.json --distances 1m,2m,6m,inf\n"
+    "  pinmask depth m.mask.json --from 0.9m --to 2m --steps 9 --photons 20 --read-noise 6\n"
     "  pinmask depth m.mask.json --from 2m --to inf --steps 6 -o depth_out --json";
 
 void setup(CLI::App& app) {
@@ -158,15 +196,26 @@ void setup(CLI::App& app) {
     cmd->add_option("--to", o->to, "Last distance of a range (e.g. inf)");
     cmd->add_option("--steps", o->steps, "Points of the range, equally spaced in 1/u (2..1000)")
         ->capture_default_str();
-    cmd->add_option("--snr", o->snr, "Gaussian SNR of the simulated captures, dB (inf: noiseless)")
+    add_noise_flags(*cmd, o->noise, "30");
+    // depth takes one level (score's flags take lists).
+    cmd->get_option("--snr")->description(
+        "Gaussian SNR of the simulated captures, dB, one value (inf: noiseless)");
+    cmd->get_option("--photons")
+        ->description(
+            "The photon model instead of --snr: mean electrons per pixel through ONE pinhole for "
+            "a uniform scene of value 1, one value, with the sensor flags");
+    cmd->add_option("--nsr", o->nsr,
+                    "Wiener noise-to-signal ratio (> 0), or 'tuned' (once per run, as score)")
         ->capture_default_str();
+    cmd->add_option("--seed", o->seed, "Base seed of the noise generators")->capture_default_str();
     cmd->add_option("--scenes", o->scenes, "Scenes, comma-separated (as simulate --scene)")
         ->capture_default_str();
     cmd->add_flag("--no-tv", o->no_tv, "Skip the TV decodes (Wiener only; faster)");
     cmd->add_option("-o,--output-dir", o->output_dir,
-                    "Existing folder for depth.svg, depth.png and depth.json (written together)");
+                    "Folder for depth.svg, depth.png and depth.json (written together; created "
+                    "when missing)");
     cmd->add_flag("--json", o->json, "Print one JSON record per distance on stdout");
-    cmd->callback([o] { run(*o); });
+    cmd->callback([o, cmd] { run(*o, *cmd); });
 }
 
 }  // namespace

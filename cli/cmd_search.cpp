@@ -62,11 +62,15 @@ void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd,
         std::cerr << "pinmask search: warning: --config " << o.config << " was written by a run on "
                   << *o.config_ranks << " rank(s), this run has " << comm.size()
                   << ": the chains and islands differ, so this is not the same search\n";
-    ProgressLine bar;
+    ProgressLine bar("pinmask search");
     const auto& interrupted = install_interrupt_flag();
     const SearchPipelineSummary s = run_search_pipeline(
-        p, &interrupted, [&](const std::string& phase, double fraction, const std::string& text) {
+        p, &interrupted,
+        [&](const std::string& phase, double fraction, const std::string& text) {
             if (!o.quiet && root) bar.update(fraction, phase + ": " + text);
+        },
+        [&](const std::string& phase) {
+            if (!o.quiet && root) bar.phase(phase);
         });
     if (!root) return;  // rank 0 holds every chain's result and alone writes
     bar.finish();
@@ -110,6 +114,15 @@ void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd,
                              {"search_s", s.search_s},
                              {"rerank_s", s.rerank_s},
                              {"reranked", s.reranked}};
+    std::string scenes;
+    for (const std::string& n : s.rerank_scene_names) scenes += (scenes.empty() ? "" : ",") + n;
+    j["psnr_columns"] = {
+        {"analytic_wiener_psnr_db", "closed form over one period, prior " + s.prior_description},
+        {"sim_wiener_psnr_db", "simulated on scenes " + scenes +
+                                   " (cyclic model, the search's "
+                                   "noise, noise seed = --seed), Wiener NSR tuned per mask"},
+        {"sim_tv_psnr_db", "simulated on scenes " + scenes + ", TV-L2"}};
+    j["reordered"] = s.reordered;
     for (std::size_t i = 0; i < s.ranked.size(); ++i) {
         nlohmann::ordered_json r{{"rank", i + 1},
                                  {"path", paths[i].string()},

@@ -82,6 +82,31 @@ std::string describe(const std::filesystem::filesystem_error& e) {
     return what;
 }
 
+// CLI11's ExtrasError lists the left-over arguments in reverse order ("20 --photons"), which reads
+// as garbage. Says instead, in command-line order, what the command did not take, and where its
+// options are listed.
+std::string describe_extras(const CLI::App& app) {
+    const CLI::App* cmd = &app;
+    std::string path = "pinmask";
+    while (!cmd->get_subcommands().empty()) {
+        cmd = cmd->get_subcommands().front();
+        path += " " + cmd->get_name();
+    }
+    std::vector<std::string> left = cmd->remaining(false);
+    if (left.empty()) left = app.remaining(true);
+    std::string options, values;
+    for (const std::string& a : left) {
+        std::string& list = (a.size() > 1 && a[0] == '-') ? options : values;
+        list += (list.empty() ? "" : ", ") + a;
+    }
+    std::string what;
+    if (!options.empty()) what = "does not take the option(s) " + options;
+    if (!values.empty()) {
+        what += (what.empty() ? "" : "; ") + std::string("has no place for the value(s) ") + values;
+    }
+    return path + " " + what + " (see '" + path + " --help')";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -121,6 +146,7 @@ int main(int argc, char** argv) {
     cli::add_bench_export(bench);
     cli::add_bench_error_time(bench);
     cli::add_bench_period(bench);
+    cli::add_bench_depth(bench);
     cli::refuse_negative_unsigned(app);  // --seed -1 must not wrap to 2^64 - 1
     enable_input_protection();           // no output may replace a file this run read
     try {
@@ -128,6 +154,9 @@ int main(int argc, char** argv) {
         cli::configure_fft_for_process();
         app.parse(argc, argv);
         cli::print_fft_warnings();
+    } catch (const CLI::ExtrasError&) {
+        return report_input_error(
+            [&] { std::cerr << "pinmask: error: " << describe_extras(app) << "\n"; });
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
         return report_input_error([&] { app.exit(e); });

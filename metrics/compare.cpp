@@ -17,10 +17,10 @@
 #include "design/psf.hpp"
 #include "design/random_sparse.hpp"
 #include "metrics/autocorrelation.hpp"
+#include "metrics/spectrum_metrics.hpp"
 #include "simulate/image_quality.hpp"
 #include "simulate/noise_model.hpp"
 #include "simulate/simulate.hpp"
-#include "metrics/spectrum_metrics.hpp"
 
 namespace pinmask {
 namespace {
@@ -267,6 +267,7 @@ CompareOutcome run_compare(std::vector<CompareEntry> entries, const CompareRunOp
     o.validate();
     if (entries.empty()) throw InvalidInput("compare: no mask given");
     const CompareSettings& s = o.settings;
+    if (progress) progress("building the scenes and the prior", 0, 0);
     MetricsContext context(s.metrics);
     CompareOutcome out;
     const std::size_t given = entries.size();

@@ -1,5 +1,5 @@
-// The figures `pinmask compare` puts side by side, gathered from simulate/, metrics/ and decode/: per
-// mask a metrics row (sidelobes, spectrum, OTF condition, analytic and simulated error) and the
+// The figures `pinmask compare` puts side by side, gathered from simulate/, metrics/ and decode/:
+// per mask a metrics row (sidelobes, spectrum, OTF condition, analytic and simulated error) and the
 // pictures of its report page (pattern, PSF, log |OTF|, autocorrelation, scene, capture, Wiener
 // and TV reconstructions), plus the baselines (random median, paper-like geometry, MURA).
 //
@@ -22,8 +22,8 @@
 #include "design/mask.hpp"
 #include "metrics/analytic_error.hpp"
 #include "metrics/mask_metrics.hpp"
-#include "simulate/scenes.hpp"
 #include "metrics/simulated_metrics.hpp"
+#include "simulate/scenes.hpp"
 
 namespace pinmask {
 
@@ -141,7 +141,8 @@ struct CompareOutcome {
     int mura_order = 0;
 };
 
-// Progress: (phase, done, total), phase "random baseline" or "mask".
+// Progress: (phase, done, total), phase "random baseline" or "mask" (done masks before this
+// one starts); total 0: a set-up phase starting, named by phase.
 using CompareProgress = std::function<void(const std::string&, int, int)>;
 
 // Every mask of `entries` (at least one; the first sets the camera of the baselines) and the

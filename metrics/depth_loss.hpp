@@ -12,27 +12,42 @@
 //                   compared with the scene after the integer cyclic shift that maximises their
 //                   correlation;
 //   loss = reference PSNR - exact PSNR, dB, averaged over the scenes.
-// Noise: Gaussian at snr_db from each capture's own mean square (inf: noiseless), one seeded draw
-// per scene shared by both captures.
+// Noise: any model of simulate/noise_model (Gaussian at an SNR from each capture's own mean
+// square, the photon model with its sensor stages, or none), one seeded generator per scene
+// shared by both captures (K = the pattern's pinholes, n^2 its cells, for the photon model).
+// Wiener NSR: a given value, or tuned as score tunes it (metrics/simulated_metrics: the NSR
+// minimising the mean MSE of the cyclic captures of the same scenes under the same noise model),
+// once per run; both decodes use it.
+// Cost: the reference decodes do not depend on u and run once. Only the centred m x m crop of the
+// exact capture is decoded, and it depends only on the exact PSF within m pixels of the axis, so
+// the PSF is computed on a 2m x 2m window and the crop by one cyclic convolution of side 2m
+// (exactly the crop of the full linear capture: no wrapped term reaches it).
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
 
 #include "design/mask.hpp"
+#include "metrics/simulated_metrics.hpp"
+#include "simulate/noise_model.hpp"
 
 namespace pinmask {
 
 struct DepthOptions {
     std::vector<std::string> scenes{"letter-R", "natural"};  // simulate/scenes names
-    double snr_db = 30.0;                                    // inf: noiseless
-    double wiener_nsr = 0.01;                                // as pinmask score's default
+    NoiseModel noise;                                        // Gaussian 30 dB by default
+    WeightChoice wiener_nsr{true, 0.01};                     // tuned unless a value is given
     double tv_lambda = 1e-3;                                 // as pinmask score's default
     int tv_iterations = 100;                                 // >= 1
     bool with_tv = true;
     std::uint64_t seed = 1;
+    int threads = 1;  // worker threads over (distance, scene) pairs, 1..256; figures do not change
+    // Called (from a worker thread, one call at a time) after the set-up (done 0) and after each
+    // distance (done = distances finished).
+    std::function<void(std::size_t done, std::size_t total)> progress;
     // Throws InvalidInput naming the field, value and rule.
     void validate() const;
 };
@@ -44,6 +59,7 @@ struct DepthRecord {
     double lsi_mismatch_px = 0;  // n |pitch - mask's pixels per cell|
     double wiener_psnr_loss_db = 0;
     double tv_psnr_loss_db = std::numeric_limits<double>::quiet_NaN();  // NaN without TV
+    double wiener_nsr = 0;  // the NSR both Wiener decodes used (tuned or given)
 };
 
 // Distances from `from` to `to` (to may be inf) in `steps` >= 2 points equally spaced in 1/u

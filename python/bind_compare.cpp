@@ -115,7 +115,7 @@ void bind_compare(py::module_& m) {
         },
         py::arg("masks"), py::arg("report") = py::none(), py::arg("baselines") = false,
         py::arg("baseline_count") = 100, py::arg("snr_db") = py::none(),
-        py::arg("scenes") = std::vector<std::string>{"letter-R", "usaf"},
+        py::arg("scenes") = std::vector<std::string>{"letter-R", "usaf", "siemens-star"},
         py::arg("prior_scenes") = kDefaultPriorScenes, py::arg("nsr") = "tuned",
         py::arg("tv_lambda") = "1e-3", py::arg("tv_iterations") = 200, py::arg("seed") = 1,
         py::arg("allow_violations") = false, py::arg("photons") = py::none(),

@@ -131,7 +131,7 @@ void bind_metrics(py::module_& m) {
             return row_dict(r.row);
         },
         py::arg("mask"), py::arg("snr_db") = py::none(),
-        py::arg("scenes") = std::vector<std::string>{"letter-R", "usaf"},
+        py::arg("scenes") = std::vector<std::string>{"letter-R", "usaf", "siemens-star"},
         py::arg("prior_scenes") = kDefaultPriorScenes, py::arg("nsr") = "tuned",
         py::arg("tv_lambda") = "1e-3", py::arg("tv_iterations") = 200, py::arg("seed") = 1,
         py::arg("name") = "mask", py::arg("photons") = py::none(),

@@ -3,6 +3,10 @@
 #include "core/fft_environment.hpp"
 #include "python/common.hpp"
 
+namespace pinmask::python {
+void bind_depth(py::module_& m);  // python/bind_depth.cpp
+}
+
 PYBIND11_MODULE(pinmask, m) {
     using namespace pinmask::python;
     m.doc() = R"(pinmask: coded pinhole-array masks for a coded pinhole lens camera.
@@ -44,4 +48,5 @@ field, the value and the rule), RuntimeError for failures while doing valid work
     bind_export(m);
     bind_check(m);
     bind_calibrate(m);
+    bind_depth(m);
 }

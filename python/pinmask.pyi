@@ -182,7 +182,7 @@ def decode(
 def metrics(
     mask: MaskLike,
     snr_db: Optional[Levels] = None,  # dB; None: 30
-    scenes: Sequence[str] = ("letter-R", "usaf"),
+    scenes: Sequence[str] = ("letter-R", "usaf", "siemens-star"),  # as compare and search
     prior_scenes: int = 16,
     nsr: str = "tuned",
     tv_lambda: str = "1e-3",
@@ -274,7 +274,7 @@ def compare(
     baselines: bool = False,
     baseline_count: int = 100,
     snr_db: Optional[Levels] = None,  # dB; None: 30
-    scenes: Sequence[str] = ("letter-R", "usaf"),
+    scenes: Sequence[str] = ("letter-R", "usaf", "siemens-star"),  # search's re-rank scenes
     prior_scenes: int = 16,
     nsr: str = "tuned",
     tv_lambda: str = "1e-3",
@@ -388,5 +388,23 @@ def calibrate(
     saturation_level: Optional[float] = None,
     pixel_binning: int = 1,
 ) -> dict[str, Any]: ...  # the keys of `pinmask calibrate --json`; psf, kernel... as arrays
+def depth(
+    mask: MaskLike,
+    distances: Optional[Sequence[float]] = None,  # object distances, m (inf allowed)
+    from_m: Optional[float] = None,  # a range from_m..to_m (inf allowed), steps points in 1/u
+    to_m: Optional[float] = None,
+    steps: int = 8,
+    snr_db: Optional[float] = None,  # one level, dB; None: 30; inf: noiseless
+    photons: Optional[float] = None,  # electrons per pixel through one pinhole (photon model)
+    read_noise: Optional[float] = None,  # rms electrons
+    dark_current: Optional[float] = None,  # mean electrons per pixel
+    full_well: Optional[float] = None,  # electrons
+    bits: Optional[int] = None,  # ADC bits 1..24, needs full_well
+    optical_density: Optional[float] = None,  # film OD (transmission 10^-OD)
+    nsr: str = "tuned",  # Wiener NSR: 'tuned' or a number > 0
+    scenes: Sequence[str] = ("letter-R", "natural"),
+    tv: bool = True,
+    seed: int = 1,
+) -> list[dict[str, Any]]: ...  # one dict per distance, the keys of `pinmask depth --json`
 def is_library_buffer(array: object) -> bool: ...
 def input_copies() -> int: ...

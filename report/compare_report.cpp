@@ -12,6 +12,13 @@ namespace pinmask {
 namespace {
 
 // "inf", "n/a" (NaN) or printf with the given format.
+// The simulated scenes' names, comma-separated.
+std::string scene_list(const MaskMetricsOptions& mo) {
+    std::string out;
+    for (const SceneSpec& s : mo.scenes) out += (out.empty() ? "" : ", ") + scene_name(s);
+    return out;
+}
+
 std::string fmt(double v, const char* format) {
     if (std::isnan(v)) return "n/a";
     if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
@@ -231,8 +238,8 @@ ReportDocument compare_document(const std::vector<CompareResult>& results, const
         "sim W / sim TV: one period of each scene through the PSF (cyclic model) with " +
             summary.noise_text +
             " (the first level), decoded by Wiener and TV-L2; PSNR = 10 log10(1 / MSE) for scenes "
-            "in [0, 1], SSIM with an 11 x 11 Gaussian window; means over the scenes. Each mask is "
-            "simulated on its own period m = n x pixels per cell.",
+            "in [0, 1], SSIM with an 11 x 11 Gaussian window; means over the scenes (" +
+            scene_list(mo) + "). Each mask is simulated on its own period m = n x pixels per cell.",
     };
     const std::string holes = compare_holes_text(results);
     if (!holes.empty()) d.notes.push_back(holes);

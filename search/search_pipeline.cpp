@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -14,11 +15,12 @@
 #include "design/packing_bound.hpp"
 #include "design/psf.hpp"
 #include "design/random_sparse.hpp"
-#include "search/island_search.hpp"
-#include "search/objective_bound.hpp"
 #include "metrics/robust_wiener.hpp"
 #include "metrics/simulated_metrics.hpp"
 #include "metrics/spectrum_metrics.hpp"
+#include "search/island_search.hpp"
+#include "search/objective_bound.hpp"
+#include "search/rerank_order.hpp"
 
 namespace pinmask {
 namespace {
@@ -99,22 +101,25 @@ struct Reranker {
         const Plane psf = mask_psf(r.mask);
         const int k = static_cast<int>(r.mask.pattern.pinholes.size());
         const int cells = r.mask.pattern.n * r.mask.pattern.n;
-        r.sim_wiener_psnr_db =
-            simulated_quality(psf, scenes, noise, k, cells, SimulatedDecoder::kWiener, sim)
-                .mean_psnr_db;
+        const SimulatedQuality w =
+            simulated_quality(psf, scenes, noise, k, cells, SimulatedDecoder::kWiener, sim);
+        r.sim_wiener_psnr_db = w.mean_psnr_db;
+        r.sim_scene_psnr_db.clear();
+        for (const SceneQuality& q : w.scenes) r.sim_scene_psnr_db.push_back(q.psnr_db);
         r.mask.provenance.scores["sim_wiener_psnr_db"] = r.sim_wiener_psnr_db;
         if (tv) {
             const SimulatedQuality q =
                 simulated_quality(psf, scenes, noise, k, cells, SimulatedDecoder::kTv, sim);
             r.sim_tv_psnr_db = q.mean_psnr_db;
             r.tv_lambda = q.weight;
+            if (rank_by == RankBy::kTv) {
+                r.sim_scene_psnr_db.clear();
+                for (const SceneQuality& sq : q.scenes) r.sim_scene_psnr_db.push_back(sq.psnr_db);
+            }
             r.mask.provenance.scores["sim_tv_psnr_db"] = r.sim_tv_psnr_db;
             r.mask.provenance.scores["sim_tv_lambda"] = r.tv_lambda;
         }
         r.reranked = true;
-    }
-    double key(const RankedMask& r) const {
-        return rank_by == RankBy::kTv ? r.sim_tv_psnr_db : r.sim_wiener_psnr_db;
     }
 };
 
@@ -243,7 +248,8 @@ void SearchPipelineOptions::validate() const {
 
 SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
                                           const std::atomic<bool>* cancel,
-                                          const PipelineProgress& progress) {
+                                          const PipelineProgress& progress,
+                                          const PipelinePhase& setup_phase) {
     o.validate();
     const auto t0 = Clock::now();
     const bool timed = o.search.time_budget_s > 0.0 && o.search.max_evaluations == 0;
@@ -252,6 +258,11 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
 
     const int n = o.tmpl.pattern.n, ppc = o.tmpl.psf.pixels_per_cell, m = n * ppc;
     check_psf_memory(n, ppc, 4, 2);
+    // Set-up phases are named as they start (they can take seconds at large periods).
+    const auto phase = [&](const std::string& name) {
+        if (setup_phase) setup_phase(name);
+    };
+    phase("building the kernel and the scene prior");
     const Kernel kernel = mask_kernel(o.tmpl);
     out.kernel_resolved = kernel_model_name(kernel.model);
     const ComplexPlane kernel_otf = expand_half_spectrum(kernel_spectrum(kernel, n, ppc), m);
@@ -309,6 +320,7 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
     std::mt19937_64 probe_rng(o.search.seed);  // fail fast on infeasible requests
     const Pattern probe = sample(probe_rng);
 
+    if (!o.rerank_scenes.empty()) phase("building the re-rank scenes");
     Reranker rr;
     rr.noise = o.noise;
     rr.tv = o.rerank_tv;
@@ -316,13 +328,16 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
     rr.sim.seed = o.search.seed;
     rr.sim.wiener_nsr = {true, 0.01};
     rr.sim.tv_lambda = {o.rank_by == RankBy::kTv, 1e-3};
-    for (const SceneSpec& s : o.rerank_scenes)
+    for (const SceneSpec& s : o.rerank_scenes) {
         rr.scenes.push_back({scene_name(s), make_scene(s, m, m)});
+        out.rerank_scene_names.push_back(rr.scenes.back().name);
+    }
 
     // Time one re-ranking (on the probe pattern, TV with a fixed weight) to reserve its share
     // of the budget; a tuned TV weight costs kTunedDecodesPerScene times the fixed one.
     double one_rerank_s = 0.0;
     if (timed && !rr.scenes.empty()) {
+        phase("timing one re-ranking");
         RankedMask trial;
         trial.mask = o.tmpl;
         trial.mask.pattern = probe;
@@ -354,16 +369,30 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
     const auto s0 = Clock::now();
     LocalComm one_process;
     RankComm& comm = o.comm ? *o.comm : one_process;
-    out.search = run_island_search(comm, objective, so, sample, o.islands, cancel,
-                                   [&](const SearchLogRow& row, double fraction) {
-                                       if (!progress) return;
-                                       std::ostringstream t;
-                                       t.precision(4);
-                                       t << "best " << row.best_objective << ", "
-                                         << (row.seconds > 0 ? row.evaluations / row.seconds : 0.0)
-                                         << " evals/s, " << static_cast<int>(row.seconds) << " s";
-                                       progress("search", fraction, t.str());
-                                   });
+    phase("starting the chains");
+    // The rate counts from the first logged row with an evaluation on: the chains' own set-up
+    // (sampling, their first evaluation's tables) is not search throughput.
+    std::optional<SearchLogRow> first_row;
+    out.search = run_island_search(
+        comm, objective, so, sample, o.islands, cancel,
+        [&](const SearchLogRow& row, double fraction) {
+            if (!progress) return;
+            if (!first_row && row.evaluations > 0) first_row = row;
+            std::ostringstream t;
+            t.precision(4);
+            if (!first_row) {
+                t << "setting up the chains, " << static_cast<int>(row.seconds) << " s";
+            } else {
+                const double dt = row.seconds - first_row->seconds;
+                t << "best " << row.best_objective << ", ";
+                if (dt > 0)
+                    t << (row.evaluations - first_row->evaluations) / dt << " evals/s";
+                else
+                    t << "first evaluation after " << first_row->seconds << " s";
+                t << ", " << static_cast<int>(row.seconds) << " s";
+            }
+            progress("search", fraction, t.str());
+        });
     out.search_s = seconds_since(s0);
     out.termination = out.search.termination;
     if (comm.rank() != 0) {  // rank 0 holds every rank's chains and alone re-ranks and writes
@@ -437,15 +466,21 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
                     "re-ranked " + std::to_string(i + 1) + "/" + std::to_string(out.ranked.size()));
             }
         }
-        // Re-ranked candidates first, by the chosen decoder's simulated PSNR; the rest after,
-        // in search order. The robust objective keeps its own order (the simulations use the
-        // nominal PSF).
-        if (!robust_objective)
-            std::stable_sort(out.ranked.begin(), out.ranked.end(),
-                             [&](const RankedMask& a, const RankedMask& b) {
-                                 if (a.reranked != b.reranked) return a.reranked;
-                                 return a.reranked && rr.key(a) > rr.key(b);
-                             });
+        // Re-ranked candidates first (they are a prefix: re-ranked in search order), ordered by
+        // search/rerank_order: the objective's order unless the simulated PSNR of the chosen
+        // decoder tells two apart beyond its standard error; the rest after, in search order.
+        // The robust objective keeps its own order (the simulations use the nominal PSF).
+        if (!robust_objective && out.reranked > 1) {
+            std::vector<std::vector<double>> psnr;
+            for (int i = 0; i < out.reranked; ++i) psnr.push_back(out.ranked[i].sim_scene_psnr_db);
+            const std::vector<std::size_t> order = rerank_order(psnr);
+            std::vector<RankedMask> sorted;
+            for (std::size_t i = 0; i < order.size(); ++i) {
+                if (order[i] != i) ++out.reordered;
+                sorted.push_back(std::move(out.ranked[order[i]]));
+            }
+            std::move(sorted.begin(), sorted.end(), out.ranked.begin());
+        }
     }
     out.rerank_s = seconds_since(r0);
     out.used_s = seconds_since(t0);

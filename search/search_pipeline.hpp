@@ -18,12 +18,12 @@
 
 #include "design/mask.hpp"
 #include "metrics/analytic_error.hpp"
-#include "search/island_search.hpp"
 #include "metrics/mask_metrics.hpp"
-#include "search/mask_objective.hpp"
-#include "search/robust_objective.hpp"
-#include "search/rank_comm.hpp"
 #include "metrics/robust_errors.hpp"
+#include "search/island_search.hpp"
+#include "search/mask_objective.hpp"
+#include "search/rank_comm.hpp"
+#include "search/robust_objective.hpp"
 #include "search/search.hpp"
 
 namespace pinmask {
@@ -82,6 +82,8 @@ struct RankedMask {
     double sim_tv_psnr_db = 0.0;      // NaN when not re-ranked or TV skipped
     double tv_lambda = 0.0;           // the TV weight used (tuned with rank_by tv)
     bool reranked = false;
+    // Per re-rank scene, the ranking decoder's simulated PSNR (search/rerank_order's input).
+    std::vector<double> sim_scene_psnr_db;
     bool spectral_zero = false;  // only with allow_spectral_zeros
     std::string spectral_zero_message;
     // Upper bound on the analytic Wiener PSNR of ANY pattern with this mask's K under the
@@ -103,19 +105,26 @@ struct SearchPipelineSummary {
     double search_s = 0.0, rerank_s = 0.0;
     double rerank_reserved_s = 0.0;  // time held back from the search for re-ranking
     int reranked = 0;                // candidates re-ranked (the rest: budget or interrupt)
+    int reordered = 0;  // candidates the simulation moved (search/rerank_order: beyond the SE)
+    std::vector<std::string> rerank_scene_names;  // the simulated figures' scenes
     PriorRelevance prior_relevance;  // frequencies the prior makes irrelevant (for --explain)
     std::string prior_description;
 };
 
-// Progress: (phase "search" | "rerank", fraction 0..1, text).
+// Progress: (phase "search" | "rerank", fraction 0..1, text). The search's rate counts from its
+// first logged row on (the chains' set-up is not throughput).
 using PipelineProgress = std::function<void(const std::string&, double, const std::string&)>;
+// A set-up phase starting ("building the kernel and the scene prior", "building the re-rank
+// scenes", "timing one re-ranking", "starting the chains").
+using PipelinePhase = std::function<void(const std::string&)>;
 
 // Runs everything. `cancel` (may be null) stops the search and skips re-ranking; the best so far
 // is returned. RuntimeFailure when no candidate was found (e.g. every pattern had a spectral
 // zero: the message says so and names --allow-spectral-zeros).
 SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& options,
                                           const std::atomic<bool>* cancel = nullptr,
-                                          const PipelineProgress& progress = {});
+                                          const PipelineProgress& progress = {},
+                                          const PipelinePhase& setup_phase = {});
 
 // "K" or "A..B" (--holes); InvalidInput naming --holes for anything else (A > B, A < 1, junk).
 // Returns {A, B} with B = 0 for a single K.

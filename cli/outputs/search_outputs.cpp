@@ -48,8 +48,16 @@ std::string bound_summary(const SearchPipelineSummary& summary) {
 
 std::string search_summary_markdown(const SearchPipelineSummary& summary) {
     std::ostringstream s;
-    s << "| rank | geometry hash | objective | analytic Wiener PSNR (dB) | simulated Wiener PSNR "
-         "(dB) | simulated TV PSNR (dB) | max sidelobe / K | min |P^| / sqrt(K) |\n"
+    // Every PSNR column names what it is computed on: the analytic figure over the prior in
+    // closed form, the simulated ones on the re-rank scenes.
+    std::string scenes;
+    for (const std::string& n : summary.rerank_scene_names)
+        scenes += (scenes.empty() ? "" : "+") + n;
+    if (scenes.empty()) scenes = "none";
+    s << "| rank | geometry hash | objective | analytic Wiener PSNR (dB; closed form, prior "
+      << summary.prior_description << ") | simulated Wiener PSNR (dB; scenes " << scenes
+      << ", NSR tuned) | simulated TV PSNR (dB; scenes " << scenes
+      << ") | max sidelobe / K | min |P^| / sqrt(K) |\n"
       << "|---:|---|---:|---:|---:|---:|---:|---:|\n";
     for (std::size_t i = 0; i < summary.ranked.size(); ++i) {
         const RankedMask& r = summary.ranked[i];
@@ -81,7 +89,16 @@ std::string search_summary_markdown(const SearchPipelineSummary& summary) {
       << " (" << search_termination_message(summary.termination) << "); per chain:";
     for (auto e : sr.evaluations_per_chain) s << " " << e;
     s << "\nRe-ranked by simulation: " << summary.reranked << " of " << summary.ranked.size()
-      << " candidates.\n";
+      << " candidates";
+    if (summary.reranked > 1) {
+        s << "; " << summary.reordered
+          << " moved. A candidate moves above another only when its simulated PSNR is higher by "
+             "more than the standard error of the per-scene difference ("
+          << summary.rerank_scene_names.size()
+          << " scenes); smaller differences are the simulation's noise and the objective's order "
+             "stands";
+    }
+    s << ".\n";
     for (std::size_t i = 0; i < summary.ranked.size(); ++i) {
         if (summary.ranked[i].spectral_zero) {
             s << "WARNING: rank " << i + 1 << ": " << summary.ranked[i].spectral_zero_message

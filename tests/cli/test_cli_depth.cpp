@@ -1,16 +1,20 @@
-// `pinmask depth` end to end: the loss at 6 m against a direct simulation written for the test,
-// the loss growing as u falls, the files of -o DIR, and bad input.
+// `pinmask depth` end to end: the loss at 6 m against a direct simulation written for the test
+// (Gaussian-free and under the photon model), the tuned NSR equal to score's, the loss growing as
+// u falls, the files of -o DIR (created when missing), progress lines on a pipe, and bad input.
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <string>
 
 #include "decode/decoder.hpp"
 #include "design/psf.hpp"
 #include "design/psf_exact.hpp"
 #include "io/mask_json.hpp"
+#include "simulate/noise_model.hpp"
 #include "simulate/scenes.hpp"
 #include "simulate/simulate.hpp"
 #include "tests/support/cli_run.hpp"
@@ -59,16 +63,17 @@ double registered_psnr(const Plane& x, const Plane& scene) {
     return 10.0 * std::log10(1.0 / (best / (double(m) * m)));
 }
 
-double wiener_psnr(const Plane& capture, const Plane& psf, const Plane& scene) {
+double wiener_psnr(const Plane& capture, const Plane& psf, const Plane& scene, double nsr = 0.01) {
     DecodeOptions d;
-    d.wiener.nsr = 0.01;
+    d.wiener.nsr = nsr;
     return registered_psnr(decode_plane(capture, psf, d).image, scene);
 }
 
 }  // namespace
 
 TEST_CASE("depth of the paper mask: the Wiener loss at 6 m equals a direct simulation") {
-    const auto j = depth_json(kPaperMask + " --distances 6m --snr inf --scenes letter-R --no-tv");
+    const auto j =
+        depth_json(kPaperMask + " --distances 6m --snr inf --scenes letter-R --no-tv --nsr 0.01");
     REQUIRE(j.size() == 1);
     const double loss = j[0]["wiener_psnr_loss_db"].get<double>();
 
@@ -88,6 +93,52 @@ TEST_CASE("depth of the paper mask: the Wiener loss at 6 m equals a direct simul
         wiener_psnr(cyclic_capture(scene, psf), psf, scene) - wiener_psnr(cap, psf, scene);
     CHECK(std::fabs(loss - direct) <= kLossTolDb);
     CHECK(loss > 0.0);
+}
+
+TEST_CASE("depth under the photon model: the Wiener loss equals a direct simulation") {
+    // 20 e- per pinhole, 6 e- read noise, NSR fixed (the tuned one is checked below); the test's
+    // exact capture is the centred period of the full linear capture on a 4-period window,
+    // noised by the photon model with the generator depth documents for scene 0 of seed 7.
+    const auto j = depth_json(kPaperMask +
+                              " --distances 3m --photons 20 --read-noise 6 --scenes natural "
+                              "--no-tv --nsr 0.003 --seed 7");
+    REQUIRE(j.size() == 1);
+    CHECK(j[0]["wiener_nsr"].get<double>() == 0.003);
+    const Mask m = io::read_mask_file(kPaperMask);
+    const Plane psf = mask_psf(m);
+    const int p = static_cast<int>(psf.rows());
+    const Plane scene = make_scene(scene_from_name("natural"), p, p).channels[0];
+    ExactPsfOptions eo;
+    eo.object_distance_m = 3.0;
+    eo.rows = eo.cols = 4 * p;
+    const int o = (eo.rows - p) / 2;
+    const Plane clean = linear_capture(scene, exact_psf(m, eo)).block(o, o, p, p);
+    NoiseModel photon;
+    photon.kind = NoiseKind::kPhoton;
+    photon.photons_per_pinhole = 20;
+    photon.read_noise_e = 6;
+    const int k = static_cast<int>(m.pattern.pinholes.size()), cells = m.pattern.n * m.pattern.n;
+    auto noised = [&](const Plane& c) {
+        std::mt19937_64 rng(7ULL * 1000003ULL);
+        return add_noise(c, photon, k, cells, rng);
+    };
+    const double direct = wiener_psnr(noised(cyclic_capture(scene, psf)), psf, scene, 0.003) -
+                          wiener_psnr(noised(clean), psf, scene, 0.003);
+    CHECK(j[0]["wiener_psnr_loss_db"].get<double>() == doctest::Approx(direct).epsilon(1e-9));
+}
+
+TEST_CASE("depth tunes the Wiener NSR as score does: the same NSR for the same scenes and noise") {
+    const auto j =
+        depth_json(kPaperMask + " --distances 6m,3m --photons 20 --read-noise 6 --no-tv --seed 1");
+    const auto r = run_cli("score " + kPaperMask +
+                           " --photons 20 --read-noise 6 --nsr tuned --scenes letter-R,natural "
+                           "--metrics wiener --seed 1 --json");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const double score_nsr =
+        nlohmann::json::parse(r.out)["masks"][0]["wiener_nsr_ph20"].get<double>();
+    CHECK(score_nsr != 0.01);
+    for (const auto& rec : j) CHECK(rec["wiener_nsr"].get<double>() == score_nsr);
 }
 
 TEST_CASE("depth: the loss grows as u falls; mismatch and period follow the pitch") {
@@ -118,7 +169,14 @@ TEST_CASE("depth -o DIR writes the plot (SVG + PNG) and the records; bad input e
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
     CHECK(contains(r.out, "Wiener loss dB"));
+    CHECK(contains(r.out, "Wiener NSR"));
     for (const char* f : {"depth.svg", "depth.png", "depth.json"}) CHECK(fs::exists(dir / f));
+    // A folder that does not exist yet is created (with its parents).
+    const fs::path fresh = dir.path / "new" / "depth";
+    REQUIRE(
+        run_cli("depth " + kPaperMask + " --distances 6m --no-tv -o " + fresh.string()).exit_code ==
+        0);
+    CHECK(fs::exists(fresh / "depth.json"));
     TempDir empty("depth-bad");
     auto refused = [&](const std::string& args, const std::string& says) {
         const auto b = run_cli("depth " + kPaperMask + " " + args + " -o " + empty.path.string());
@@ -133,6 +191,27 @@ TEST_CASE("depth -o DIR writes the plot (SVG + PNG) and the records; bad input e
     refused("", "--distances");
     refused("--distances 6m --snr loud", "--snr");
     refused("--distances 6m --scenes nope", "nope");
+    refused("--distances 6m --read-noise 6", "give --photons too");
+    refused("--distances 6m --photons 20,40", "one noise level");
+    refused("--distances 6m --photons -1", "--photons");
+    refused("--distances 6m --nsr 0", "--nsr");
+    // An option the command lacks is named in command-line order, with its value.
+    refused("--distances 6m --brightness 20", "does not take the option(s) --brightness");
+    refused("--distances 6m --brightness 20", "no place for the value(s) 20");
+}
+
+TEST_CASE("depth with stderr on a pipe prints plain progress lines: the set-up phase, 100 %") {
+    TempDir dir("depth-pipe");
+    const fs::path err = dir.path / "err.txt";
+    const std::string cmd = std::string(PINMASK_EXE) + " depth " + kPaperMask +
+                            " --distances 6m,3m,2m --no-tv 2>&1 >/dev/null </dev/null | cat > " +
+                            err.string();
+    REQUIRE(std::system(cmd.c_str()) == 0);
+    const std::string text = test::slurp(err);
+    INFO(text);
+    CHECK(contains(text, "pinmask depth: tuning the Wiener NSR and decoding the reference"));
+    CHECK(contains(text, "pinmask depth: 100% 3/3 distances\n"));
+    CHECK_FALSE(contains(text, "\r"));  // no bar redrawn in place
 }
 
 TEST_CASE("decode --object-distance refocuses: the PSF for that distance (whole pixels at u)") {
