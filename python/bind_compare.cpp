@@ -9,14 +9,14 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/field_names.hpp"
-#include "report/report.hpp"
 #include "io/mask_json.hpp"
-#include "report/compare_report.hpp"
 #include "python/common.hpp"
 #include "python/keyword_names.hpp"
 #include "python/level_args.hpp"
 #include "python/metrics_common.hpp"
 #include "python/values.hpp"
+#include "report/compare_report.hpp"
+#include "report/report.hpp"
 
 namespace pinmask::python {
 
@@ -101,13 +101,13 @@ void bind_compare(py::module_& m) {
                     files.commit();
                 }
             }
-            py::list rows;
+            py::list rows;  // under "masks", the key of `pinmask compare --json`
             for (const auto& r : outcome.results) rows.append(row_dict(r.row));
             py::list warnings;
             for (const auto& w : {outcome.random_skipped, outcome.mura_skipped})
                 if (!w.empty()) warnings.append(w);
             py::dict out;
-            out["rows"] = rows;
+            out["masks"] = rows;
             out["report"] = written;
             out["warnings"] = warnings;
             out["baselines"] = outcome.baseline_lines;
@@ -125,7 +125,8 @@ void bind_compare(py::module_& m) {
         R"(Compares masks (Mask objects or *.mask.json paths; one camera) as `pinmask compare`:
 a metric row per mask (see metrics()), with baselines the median of baseline_count random
 valid masks, the paper-like geometry and a MURA; report: a .pdf, .svg or .png path for the
-multi-page report (written atomically; SVG/PNG: one file per page). Returns {rows, report:
+multi-page report (written atomically; SVG/PNG: one file per page). Returns {masks (the rows of
+`pinmask compare --json`'s masks), report:
 [paths written], warnings: [baselines left out and why], baselines: [what each baseline is]}.
 Noise (snr_db or photons with the sensor stages) and prior as in metrics().
 The run is metrics/compare's run_compare (one camera rule, baselines, metric rows).)");

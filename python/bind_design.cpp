@@ -129,22 +129,26 @@ void bind_design(py::module_& m) {
         .def(
             "validate", [](const Camera& c) { validate(c); },
             "ValueError naming the first field that is not physical.")
-        .def("__eq__",
-             [](const Camera& a, const Camera& b) {
-                 return a.object_distance_m == b.object_distance_m &&
-                        a.lens_focal_m == b.lens_focal_m &&
-                        a.sensor_distance_m == b.sensor_distance_m &&
-                        a.wavelength_m == b.wavelength_m && a.pixel_pitch_m == b.pixel_pitch_m &&
-                        a.pinhole_m == b.pinhole_m && a.sensor_cols == b.sensor_cols &&
-                        a.sensor_rows == b.sensor_rows;
-             })
+        .def(
+            "__eq__",
+            [](const Camera& a, const Camera& b) {
+                return a.object_distance_m == b.object_distance_m &&
+                       a.lens_focal_m == b.lens_focal_m &&
+                       a.sensor_distance_m == b.sensor_distance_m &&
+                       a.wavelength_m == b.wavelength_m && a.pixel_pitch_m == b.pixel_pitch_m &&
+                       a.pinhole_m == b.pinhole_m && a.sensor_cols == b.sensor_cols &&
+                       a.sensor_rows == b.sensor_rows;
+            },
+            py::arg("other"))
         .def("__repr__", [](const Camera& c) {
-            return "Camera(object_distance_m=" + std::to_string(c.object_distance_m) +
-                   ", lens_focal_m=" + std::to_string(c.lens_focal_m) +
-                   ", sensor_distance_m=" + std::to_string(c.sensor_distance_m) +
-                   ", wavelength_m=" + std::to_string(c.wavelength_m) +
-                   ", pixel_pitch_m=" + std::to_string(c.pixel_pitch_m) +
-                   ", pinhole_m=" + std::to_string(c.pinhole_m) +
+            // Python's own float repr (the shortest that reads back the same value): 850 nm
+            // prints as 8.5e-07, where std::to_string's six decimals would print 0.000001.
+            const auto r = [](double v) { return std::string(py::repr(py::float_(v))); };
+            return "Camera(object_distance_m=" + r(c.object_distance_m) +
+                   ", lens_focal_m=" + r(c.lens_focal_m) +
+                   ", sensor_distance_m=" + r(c.sensor_distance_m) +
+                   ", wavelength_m=" + r(c.wavelength_m) + ", pixel_pitch_m=" + r(c.pixel_pitch_m) +
+                   ", pinhole_m=" + r(c.pinhole_m) +
                    ", sensor_cols=" + std::to_string(c.sensor_cols) +
                    ", sensor_rows=" + std::to_string(c.sensor_rows) + ")";
         });

@@ -1,5 +1,6 @@
 # Type stub of the pinmask module (python/*.cpp). Units are SI (metres, seconds) unless a name
-# says otherwise. tests/python/test_stub.py checks that every public name of the module is here.
+# says otherwise. tests/python/test_stub_readme.py checks that every public name of the module is
+# here, tests/python/test_stub_signatures.py every parameter, default and return type.
 from os import PathLike
 from typing import Any, Callable, Literal, Optional, Sequence, Union
 
@@ -60,7 +61,7 @@ class Pattern:
     def __init__(
         self,
         n: int = 16,
-        pinholes: Sequence[tuple[int, int]] = ...,
+        pinholes: Sequence[tuple[int, int]] = (),
         tiles_rows: int = 2,
         tiles_cols: int = 2,
         min_spacing_cells: float = 2.0,
@@ -246,7 +247,7 @@ def search(
     seed: int = 1,
     top: int = 5,
     snr_db: Optional[float] = None,  # dB; None: 30 (search takes one level)
-    filter: str = "optimal",
+    filter: str = "auto",  # auto: tuned with photons, optimal with snr_db
     w_analytic: float = 1.0,
     w_max_sidelobe: float = 0.0,
     w_sidelobe_energy: float = 0.0,

@@ -11,9 +11,9 @@ def test_compare_report_and_rows(tmp_path, mask7):
     out = pinmask.compare([mask7, other], report=str(tmp_path / "r.pdf"), tv_iterations=30)
     assert out["report"] == [str(tmp_path / "r.pdf")]
     assert (tmp_path / "r.pdf").read_bytes()[:5] == b"%PDF-"
-    assert [r["geometry_hash"] for r in out["rows"]] == [mask7.geometry_hash(),
+    assert [r["geometry_hash"] for r in out["masks"]] == [mask7.geometry_hash(),
                                                         other.geometry_hash()]
-    assert out["rows"][0]["analytic_wiener_psnr_db"] == pinmask.metrics(
+    assert out["masks"][0]["analytic_wiener_psnr_db"] == pinmask.metrics(
         mask7, tv_iterations=30)["analytic_wiener_psnr_db"]
 
 
@@ -23,8 +23,8 @@ def test_compare_with_baselines_equals_cli(cli, tmp_path, mask7):
                            "--tv-iters", "20", "--json").stdout)
     out = pinmask.compare([str(tmp_path / "m.mask.json")], baselines=True, baseline_count=3,
                           tv_iterations=20)
-    assert [r["kind"] for r in out["rows"]] == [m["kind"] for m in j["masks"]]
-    for row, cli_row in zip(out["rows"], j["masks"]):
+    assert [r["kind"] for r in out["masks"]] == [m["kind"] for m in j["masks"]]
+    for row, cli_row in zip(out["masks"], j["masks"]):
         assert row["geometry_hash"] == cli_row["geometry_hash"]
         assert row["wiener_psnr_db"] == cli_row["wiener_psnr_db"]
 

@@ -159,8 +159,8 @@ def test_compare_photon_model_and_prior_equal_cli(cli, tmp_path, mask7):
     out = pinmask.compare([str(tmp_path / "m.mask.json"), str(tmp_path / "o.mask.json")],
                           tv_iterations=20, prior="stars", report=str(tmp_path / "py.pdf"),
                           **PHOTON_PY)
-    assert len(out["rows"]) == 2
-    for row, cli_row in zip(out["rows"], j["masks"]):
+    assert len(out["masks"]) == 2
+    for row, cli_row in zip(out["masks"], j["masks"]):
         assert_rows_equal(row, cli_row, PHOTON_KEYS)
     assert (tmp_path / "py.pdf").read_bytes()[:5] == b"%PDF-"
 
