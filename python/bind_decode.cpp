@@ -11,9 +11,9 @@
 #include "core/units.hpp"
 #include "decode/capture.hpp"
 #include "decode/capture_pipeline.hpp"
+#include "decode/decode_method.hpp"
 #include "decode/decode_modes.hpp"
 #include "decode/decode_request.hpp"
-#include "decode/decode_method.hpp"
 #include "decode/decoder.hpp"
 #include "decode/period.hpp"
 #include "design/psf.hpp"
@@ -242,6 +242,15 @@ void bind_decode(py::module_& m) {
             }
 
             std::atomic<bool> stop{false};
+            // Iterations finished over all channels (the solvers count them): progress gets
+            // the iteration each channel has reached.
+            std::atomic<long long> iterations_done{0};
+            options.decode.iterative.iterations_done = &iterations_done;
+            const long long channel_count =
+                cap.plane ? 1 : std::max<long long>(1, cap.image.channels.size());
+            const bool iterative = options.decode.method != DecodeMethod::kWiener &&
+                                   options.decode.method != DecodeMethod::kTikhonov;
+            const int max_iterations = iterative ? options.decode.iterative.max_iterations : 0;
             DecodeOutput out;
             const auto work = [&] {
                 out = decode_pipeline(cap, *psf_arg, !psf.is_none(), dark_img, options, &stop);
@@ -262,7 +271,13 @@ void bind_decode(py::module_& m) {
                 py::gil_scoped_release release;
                 work();
             } else {
-                poll = run_with_interrupt(work, stop, progress, poll_s);
+                poll = run_with_interrupt(work, stop, progress, poll_s, [&](double seconds) {
+                    py::dict info;
+                    info["iteration"] = iterations_done.load() / channel_count;
+                    info["max_iterations"] = max_iterations;
+                    info["seconds"] = seconds;
+                    return py::object(info);
+                });
             }
 
             py::dict d;
@@ -336,8 +351,9 @@ threads for transforms of >= 512 x 512 (0: all cores; results do not depend on i
 nsr_map: wiener only, in place of nsr: a per-frequency NSR on the working grid (the decoded
 window's size for the cyclic model), as `decode --nsr-map` reads it, e.g. the robust-nsr.npy
 that `score --robust-decoder` writes beside robust-psf.npy.
-progress: called every poll_s seconds with the elapsed seconds while the decode runs; return
-False to stop. Ctrl-C (KeyboardInterrupt) or False ends an iterative method after its current
+progress: called every poll_s seconds while the decode runs with {iteration (the iterations
+each channel has finished), max_iterations (iters; 0 for the closed-form wiener and tikhonov),
+seconds (elapsed)}; return False to stop. Ctrl-C (KeyboardInterrupt) or False ends an iterative method after its current
 iteration and returns the estimate so far with interrupted = True (as the CLI writes it); a
 Ctrl-C that cut nothing short (a closed-form method, or one that had finished) is raised.
 Returns {image, channels: [{iterations, objective, residual, converged, interrupted, seconds,
