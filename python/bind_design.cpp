@@ -10,6 +10,7 @@
 #include "design/kernel_validity.hpp"
 #include "design/optics.hpp"
 #include "design/working_distance.hpp"
+#include "io/camera_json.hpp"
 #include "python/common.hpp"
 #include "python/keyword_names.hpp"
 #include "python/values.hpp"
@@ -129,6 +130,9 @@ void bind_design(py::module_& m) {
         .def(
             "validate", [](const Camera& c) { validate(c); },
             "ValueError naming the first field that is not physical.")
+        .def("to_json", &io::camera_file_text,
+             "The text of the camera file save_camera writes (and `pinmask design "
+             "--save-camera`), lengths in metres.")
         .def(
             "__eq__",
             [](const Camera& a, const Camera& b) {
@@ -152,6 +156,20 @@ void bind_design(py::module_& m) {
                    ", sensor_cols=" + std::to_string(c.sensor_cols) +
                    ", sensor_rows=" + std::to_string(c.sensor_rows) + ")";
         });
+
+    m.def(
+        "load_camera", [](const std::filesystem::path& path) { return io::read_camera_file(path); },
+        py::arg("path"),
+        "Reads and validates a *.camera.json (the file `pinmask design --save-camera` writes and "
+        "--camera reads; ValueError naming the file, the key and the rule).");
+    m.def(
+        "save_camera",
+        [](const Camera& camera, const std::filesystem::path& path) {
+            io::write_camera_file(path, camera);
+        },
+        py::arg("camera"), py::arg("path"),
+        "Writes a *.camera.json atomically (the bytes of `pinmask design --save-camera` for the "
+        "same camera; every command's --camera reads it).");
 
     m.def("paper_camera", &paper_camera,
           "The paper's prototype: u = 6 m, f' = 120 mm, f = 55 mm, d = 440 um, w = 30 um, "

@@ -38,8 +38,11 @@ class Camera:
         sensor_rows: int = 480,
     ) -> None: ...
     def validate(self) -> None: ...
+    def to_json(self) -> str: ...
     def __eq__(self, other: object) -> bool: ...
 
+def load_camera(path: PathLikeStr) -> Camera: ...
+def save_camera(camera: Camera, path: PathLikeStr) -> None: ...
 def paper_camera() -> Camera: ...
 def optics(
     camera: Optional[Camera] = None,
@@ -176,7 +179,7 @@ def decode(
     normalize: Literal["none", "l2"] = "none",
     precision: Literal["auto", "single", "double"] = "auto",
     threads: int = 0,
-    progress: Optional[Callable[[float], Optional[bool]]] = None,
+    progress: Optional[Callable[[dict[str, Any]], Optional[bool]]] = None,  # {iteration, max_iterations, seconds}
     poll_s: float = 0.05,
     nsr_map: Optional[ArrayLike] = None,
 ) -> dict[str, Any]: ...
@@ -234,7 +237,7 @@ def simulated_quality(
 def search(
     camera: Optional[Camera] = None,
     grid: int = 16,
-    holes: int = 20,
+    holes: Union[int, str] = 20,  # K, or a range "A..B": the best mask per K
     tiles: int = 2,
     spacing: float = 2.0,
     kernel: str = "auto",
