@@ -126,6 +126,9 @@ def psf(
     kernel: Optional[str] = None,
     kernel_path: str = "",
     energy_fraction: float = 0.999,
+    geometry: Literal["integer", "exact"] = "integer",
+    object_distance: Optional[Length] = None,  # exact: default the mask's u
+    size: Optional[tuple[int, int]] = None,  # exact: (rows, cols), default the sensor
 ) -> FloatArray: ...
 def write_psf(
     mask: Mask,
@@ -157,6 +160,9 @@ def simulate(
     seed: int = 1,
     allow_violations: bool = False,
     precision: Literal["auto", "single", "double"] = "auto",
+    geometry: Literal["integer", "exact"] = "integer",
+    object_distance: Optional[Length] = None,  # exact: default the mask's u
+    size: Optional[tuple[int, int]] = None,  # exact: (rows, cols), default the sensor
 ) -> dict[str, Any]: ...
 def decode(
     capture: ArrayLike,
@@ -182,6 +188,7 @@ def decode(
     progress: Optional[Callable[[dict[str, Any]], Optional[bool]]] = None,  # {iteration, max_iterations, seconds}
     poll_s: float = 0.05,
     nsr_map: Optional[ArrayLike] = None,
+    object_distance: Optional[Length] = None,  # refocus (with mask=)
 ) -> dict[str, Any]: ...
 def metrics(
     mask: MaskLike,
