@@ -51,6 +51,10 @@ def optics(
     tiles: int = 2,
     kernel: str = "auto",
     lsi_tolerance_px: float = 1.0,
+    pixels_per_cell: Optional[int] = None,  # solve d for N whole pixels per cell at u
+    solve: Optional[Literal["pinhole"]] = None,  # N = the nearest whole number at u
+    fab_grid: Optional[Length] = None,  # the solved d lands on this grid (default 1 nm)
+    vendor: Optional[str] = None,  # ... or on this export preset's grid
 ) -> dict[str, Any]: ...
 def kernel_models() -> list[str]: ...
 def choose_kernel_model(fresnel_number: float) -> tuple[str, str]: ...

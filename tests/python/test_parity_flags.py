@@ -104,10 +104,6 @@ BY_DESIGN = {
 # Not in the module yet: (command, flag) -> what is missing.
 GAPS = {
     ("design", "--spacing"): "optics() reports a geometry without the spacing rule",
-    ("design", "--pixels-per-cell"): "optics() does not solve the pinhole for N pixels per cell",
-    ("design", "--solve"): "optics() does not solve the pinhole",
-    ("design", "--fab-grid"): "optics() does not snap a solved pinhole to a fabrication grid",
-    ("design", "--vendor"): "optics() does not snap a solved pinhole to a vendor's grid",
     ("simulate", "--threads"): "simulate() has no thread count",
     ("decode", "--bayer"): "camera RAW captures: read_image does not demosaic RAW files",
     ("decode", "--batch"): "batch decode (many captures, one PSF) is not in the module",
