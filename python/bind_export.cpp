@@ -161,7 +161,10 @@ void bind_export(py::module_& m) {
            std::optional<double> dpi, const py::object& margin, const std::string& vendor,
            bool require_drc_clean, bool allow_spacing_violations,
            const std::optional<std::string>& min_feature,
-           const std::optional<std::string>& min_space) {
+           const std::optional<std::string>& min_space, const std::optional<std::string>& units,
+           const std::optional<std::string>& emulsion, const std::optional<std::string>& draw,
+           const std::optional<std::string>& circles, const std::string& hierarchy,
+           const py::object& kerf, const py::object& max_snap_error) {
             const std::vector<FabFormat> fmts = parse_formats(formats);
             if (out_dir.empty())
                 throw invalid_field(field_ref("out_dir"), "''", "an output directory is required");
@@ -203,6 +206,16 @@ void bind_export(py::module_& m) {
             f.min_space = min_space;
             f.require_drc_clean = require_drc_clean;
             f.allow_spacing_violations = allow_spacing_violations;
+            // The command's --units, --emulsion, --draw, --circles, --hierarchy, --kerf and
+            // --max-snap-error, as typed (lengths: metres or a string with a unit).
+            f.units = units;
+            f.emulsion = emulsion;
+            f.draw = draw;
+            f.circles = circles;
+            f.hierarchy = hierarchy;
+            if (!kerf.is_none()) f.kerf = py::str(kerf).cast<std::string>();
+            if (!max_snap_error.is_none())
+                f.max_snap_error = py::str(max_snap_error).cast<std::string>();
             f.no_psf = true;
             const ExportOptions o = export_options_from(f, mk, stem);
             py::list files;
@@ -263,6 +276,10 @@ void bind_export(py::module_& m) {
         py::arg("margin") = "10mm", py::arg("vendor") = "none",
         py::arg("require_drc_clean") = false, py::arg("allow_spacing_violations") = false,
         py::arg("min_feature") = py::none(), py::arg("min_space") = py::none(),
+        py::arg("units") = py::none(), py::arg("emulsion") = py::none(),
+        py::arg("draw") = py::none(), py::arg("circles") = py::none(),
+        py::arg("hierarchy") = "auto", py::arg("kerf") = py::none(),
+        py::arg("max_snap_error") = py::none(),
         R"(Writes the fabrication files of `pinmask export MASK -o out_dir` (same options, same
 bytes; export/export_pipeline): formats svg pdf gds oasis dxf gerber png tiff1 ->
 out_dir/<stem>.svg .pdf .gds .oas .dxf .gbr .png .tif, all or nothing; dpi: PNG/TIFF
@@ -271,7 +288,12 @@ hash), else RuntimeError and no file. The design-rule check (vendor: an export p
 film | chrome | none; min_feature / min_space: the shop's own limits over them, lengths) is
 reported (require_drc_clean: RuntimeError on violations); the spacing rule is evaluated on the
 pinhole side snapped to the grid, the pitch every cell edge is drawn at. stem: default the mask file's name
-('mask' for a Mask object). The export sidecar JSON and the PSF files are the CLI's; write_psf()
+('mask' for a Mask object). units: DXF unit and GDSII/OASIS user unit um | mm | in (default um;
+Gerber always mm); emulsion up | down (= mirror); draw (PDF/PNG/SVG) film | polygons; circles
+(DXF/Gerber round pinholes) native | polygon; hierarchy (GDSII) flat | cells | auto; kerf: laser
+kerf, holes drawn this much smaller (a length); max_snap_error (tiff1): refuse when snapping moves
+an edge more (a length); each as the command's flag of the same name, defaults and vendor
+presets included. The export sidecar JSON and the PSF files are the CLI's; write_psf()
 writes the PSF. Returns {files: [{path, format, bytes, verification}], drc: {vendor, clean,
 counts}, mask_hash}.)");
 }

@@ -11,7 +11,7 @@ namespace {
 
 // field name (as the libraries write it) -> keyword argument. Sorted by field name (a test
 // checks it). A field whose keyword is its own name needs no row.
-constexpr std::array<std::pair<std::string_view, std::string_view>, 18> kKeywords{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 19> kKeywords{{
     {"chord_tolerance_m", "chord_tol"},
     {"frame_m", "frame"},
     {"grid_m", "grid"},
@@ -20,6 +20,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 18> kKeyword
     {"lambda", "lambda_"},
     {"margin_m", "margin"},
     {"max_evaluations", "evals"},
+    {"max_snap_error_nm", "max_snap_error"},
     {"no_rerank", "rerank_scenes=[]"},
     {"no_rerank_tv", "rerank_tv=False"},
     {"nonnegative", "nonneg"},

@@ -371,6 +371,13 @@ def export_mask(
     allow_spacing_violations: bool = False,
     min_feature: Optional[str] = None,
     min_space: Optional[str] = None,
+    units: Optional[Literal["um", "mm", "in"]] = None,  # DXF unit, GDSII/OASIS user unit
+    emulsion: Optional[Literal["up", "down"]] = None,
+    draw: Optional[Literal["film", "polygons"]] = None,  # PDF/PNG/SVG
+    circles: Optional[Literal["native", "polygon"]] = None,  # DXF/Gerber round pinholes
+    hierarchy: Literal["flat", "cells", "auto"] = "auto",  # GDSII
+    kerf: Optional[Length] = None,  # laser kerf: holes drawn this much smaller
+    max_snap_error: Optional[Length] = None,  # tiff1
 ) -> dict[str, Any]: ...
 def check(
     input: Union[Mask, PathLikeStr],

@@ -1,5 +1,6 @@
 """Compare report, export and check: the module against `pinmask compare/export/check`."""
 import json
+import pathlib
 
 import pytest
 
@@ -91,3 +92,40 @@ def test_export_new_formats_same_bytes_as_cli(cli, tmp_path, mask7):
         assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
     assert out["files"][0]["verification"].startswith("read back")
     assert pinmask.check(str(tmp_path / "py" / "m.oas"), mask=mask7)["comparison"]["ok"]
+
+
+@pytest.mark.parametrize("cli_args,kwargs", [
+    (["--format", "dxf,gds", "--units", "mm"], dict(formats=["dxf", "gds"], units="mm")),
+    (["--format", "dxf,gerber", "--shape", "circle", "--circles", "native", "--kerf", "20um"],
+     dict(formats=["dxf", "gerber"], shape="circle", circles="native", kerf="20um")),
+    (["--format", "gds,svg", "--hierarchy", "cells", "--emulsion", "down", "--draw", "film"],
+     dict(formats=["gds", "svg"], hierarchy="cells", emulsion="down", draw="film")),
+])
+def test_export_units_and_drawing_equal_cli(cli, tmp_path, mask7, cli_args, kwargs):
+    """Export's units, emulsion, drawing, circles, hierarchy, kerf and snap bound: the same
+    bytes as the command's flags (the DXF in mm is the case a shop asks for)."""
+    mask7.save(str(tmp_path / "m.mask.json"))
+    cli.run("export", "m.mask.json", *cli_args, "--no-psf", "-o", "cli")
+    out = pinmask.export_mask(str(tmp_path / "m.mask.json"), str(tmp_path / "py"), **kwargs)
+    names = sorted(p.name for p in (tmp_path / "cli").iterdir() if p.suffix != ".json")
+    assert names == sorted(pathlib.Path(f["path"]).name for f in out["files"])
+    for name in names:
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    # The settings are used: without them the files differ.
+    default = pinmask.export_mask(str(tmp_path / "m.mask.json"), str(tmp_path / "default"),
+                                  formats=kwargs["formats"])
+    assert any((tmp_path / "default" / pathlib.Path(f["path"]).name).read_bytes() !=
+               (tmp_path / "py" / pathlib.Path(f["path"]).name).read_bytes()
+               for f in default["files"])
+
+
+def test_export_max_snap_error_refuses_as_cli(cli, tmp_path, mask7):
+    mask7.save(str(tmp_path / "m.mask.json"))
+    msg = cli.error("export", "m.mask.json", "--format", "tiff1", "--dpi", "1000",
+                    "--max-snap-error", "1nm", "--no-psf", "-o", "cli")
+    with pytest.raises(ValueError) as e:
+        pinmask.export_mask(mask7, str(tmp_path / "py"), formats=["tiff1"], dpi=1000,
+                            max_snap_error="1nm")
+    assert str(e.value) == msg.replace("--max-snap-error", "max_snap_error").replace("--dpi",
+                                                                                     "dpi")
+    assert not (tmp_path / "py").exists() or not any((tmp_path / "py").iterdir())

@@ -117,13 +117,6 @@ GAPS = {
     ("score", "--seeds"): "metrics() has one noise seed (simulated_quality has noise_seeds)",
     ("calibrate", "--bayer"): "camera RAW point captures are not read by the module",
     ("compare", "--robust"): "compare() has no fabrication robustness",
-    ("export", "--units"): "export_mask() writes DXF and Gerber in its default units only",
-    ("export", "--emulsion"): "export_mask() has no emulsion side",
-    ("export", "--draw"): "export_mask() has no drawing style",
-    ("export", "--circles"): "export_mask() has no circle primitives",
-    ("export", "--hierarchy"): "export_mask() writes flat GDS only",
-    ("export", "--kerf"): "export_mask() has no kerf compensation",
-    ("export", "--max-snap-error"): "export_mask() has no snap-error bound",
     ("export", "--no-psf"): "export_mask() writes no PSF files (so nothing to leave out)",
     ("export", "--npy"): "export_mask() writes no PSF files",
 }
