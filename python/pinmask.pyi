@@ -303,6 +303,7 @@ def compare(
     bits: Optional[int] = None,  # ADC bits 1..24, needs full_well
     optical_density: Optional[float] = None,  # film OD (transmission 10^-OD)
     prior: Prior = "natural",
+    robust: Optional[str] = None,  # as --robust: "size=44um,jitter=2um,missing=0.01"
 ) -> dict[str, Any]: ...
 
 class Layout:

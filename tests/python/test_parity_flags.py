@@ -116,7 +116,6 @@ GAPS = {
     ("score", "--robust-decoder"): "metrics(robust=) has no decoder choice",
     ("score", "--seeds"): "metrics() has one noise seed (simulated_quality has noise_seeds)",
     ("calibrate", "--bayer"): "camera RAW point captures are not read by the module",
-    ("compare", "--robust"): "compare() has no fabrication robustness",
     ("export", "--no-psf"): "export_mask() writes no PSF files (so nothing to leave out)",
     ("export", "--npy"): "export_mask() writes no PSF files",
 }
