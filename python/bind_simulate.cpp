@@ -125,9 +125,9 @@ void bind_simulate(py::module_& m) {
             if (geometry == "exact" || !object_distance.is_none() || size) {
                 // `simulate --geometry exact` (simulate/simulate_pipeline, as the command runs
                 // it): every pinhole of the tiled mask at its true position for an object at
-                // object_distance, over the sensor or a size = (rows, cols) window. The
-                // pipeline refuses object_distance and size without exact geometry and
-                // full_sensor or sensor with it, naming them.
+                // object_distance, over the sensor or a size = (rows, cols) window.
+                // object_distance and size need exact geometry (refused here); the pipeline
+                // refuses full_sensor and sensor with it, naming them.
                 if (geometry != "exact") {
                     throw invalid_field(
                         field_ref(size ? "size" : "object_distance"),

@@ -11,8 +11,9 @@ namespace {
 
 // field name (as the libraries write it) -> keyword argument. Sorted by field name (a test
 // checks it). A field whose keyword is its own name needs no row.
-constexpr std::array<std::pair<std::string_view, std::string_view>, 19> kKeywords{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 21> kKeywords{{
     {"chord_tolerance_m", "chord_tol"},
+    {"exact_geometry", "geometry='exact'"},
     {"frame_m", "frame"},
     {"grid_m", "grid"},
     {"hole_side_m", "hole_side"},
@@ -31,6 +32,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 19> kKeyword
     {"tolerance", "tol"},
     {"weights.analytic_wiener", "w_analytic"},
     {"wiener_nsr", "nsr"},
+    {"window", "size"},
 }};
 
 }  // namespace

@@ -107,3 +107,13 @@ def test_exact_geometry_capture_equals_cli(cli, tmp_path):
     assert out["object_distance_m"] == 2.0 and out["psf"] is None
     with pytest.raises(ValueError, match="^size = 200x240: only used with geometry='exact'"):
         pinmask.simulate(mask, "point", size=(200, 240))
+
+
+def test_exact_geometry_refusals_name_keywords():
+    mask = pinmask.generate(seed=3)
+    with pytest.raises(ValueError, match="^full_sensor = given: geometry='exact' always covers "
+                                         "the sensor \\(or size ROWSxCOLS\\)"):
+        pinmask.simulate(mask, "point", geometry="exact", full_sensor=True)
+    with pytest.raises(ValueError, match="^object_distance = 2m: only used with "
+                                         "geometry='exact'"):
+        pinmask.simulate(mask, "point", object_distance="2m")
