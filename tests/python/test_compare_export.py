@@ -129,3 +129,31 @@ def test_export_max_snap_error_refuses_as_cli(cli, tmp_path, mask7):
     assert str(e.value) == msg.replace("--max-snap-error", "max_snap_error").replace("--dpi",
                                                                                      "dpi")
     assert not (tmp_path / "py").exists() or not any((tmp_path / "py").iterdir())
+
+
+def test_export_sidecar_equals_cli_and_check_reads_it(cli, tmp_path, mask7, monkeypatch):
+    """export_mask writes <stem>.export.json as `pinmask export` does (the PSF entry aside: the
+    module writes no PSF), and check() of a Python export reads its settings from it."""
+    mask7.save(str(tmp_path / "m.mask.json"))
+    args = dict(formats=["gds", "dxf"], tone="dark", shape="circle", units="mm", frame="1mm")
+    cli.run("export", "m.mask.json", "--format", "gds,dxf", "--tone", "dark", "--shape",
+            "circle", "--units", "mm", "--frame", "1mm", "--no-psf", "-o", "cli")
+    monkeypatch.chdir(tmp_path)  # the mask path recorded as given, as the command records it
+    out = pinmask.export_mask("m.mask.json", "py", **args)
+    assert out["sidecar"] == "py/m.export.json"
+    py_side = json.loads((tmp_path / "py" / "m.export.json").read_text())
+    cli_side = json.loads((tmp_path / "cli" / "m.export.json").read_text())
+    py_side.pop("psf")
+    cli_side.pop("psf")
+    assert py_side == cli_side
+    # check() of the Python export uses the sidecar's tone, shape, frame and units: clean, the
+    # same report as the command's check of the same file.
+    report = pinmask.check("py/m.gds", mask="m.mask.json")
+    cli_report = json.loads(cli.run("check", "py/m.gds", "--mask", "m.mask.json",
+                                    "--json").stdout)
+    for key in ["clean", "settings", "rules_from", "tone", "polygons", "annotations"]:
+        assert report[key] == cli_report[key], key
+    assert report["clean"] and report["settings"] == "from py/m.export.json"
+    # Without the sidecar the defaults (film rules, squares, no frame) do not fit the file.
+    bare = pinmask.check("py/m.gds", mask="m.mask.json", no_sidecar=True)
+    assert not bare["clean"] and bare["polygons"] != report["polygons"]
