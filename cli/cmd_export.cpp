@@ -24,6 +24,7 @@
 #include "export/read_back.hpp"
 #include "export/vendor_presets.hpp"
 #include "io/export_sidecar.hpp"
+#include "io/export_sidecar_of.hpp"
 #include "io/mask_json.hpp"
 #include "io/psf_files.hpp"
 
@@ -39,14 +40,6 @@ string default_stem(const fs::path& input) {
         if (name.size() > suffix.size() && name.ends_with(suffix))
             return name.substr(0, name.size() - suffix.size());
     return input.stem().string();
-}
-
-string fnv1a64(std::string_view bytes) {
-    std::uint64_t h = 14695981039346656037ULL;
-    for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ULL;
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-    return buf;
 }
 
 string file_bytes(const fs::path& p) {
@@ -119,14 +112,7 @@ int run_export(const ExportFlags& f) {
             if (is_readable(e.format)) check = verify_written(file_bytes(tmp), e.format, s.layout);
             if (is_picture(e.format)) check = verify_picture(tmp, e.format, s.layout, o.write);
         });
-        string detail;
-        if (e.format == FabFormat::kGds || e.format == FabFormat::kOasis)
-            detail = "layer " + std::to_string(f.layer) + "/" + std::to_string(f.datatype);
-        if (e.format == FabFormat::kDxf) detail = "layer " + f.dxf_layer;
-        if (e.format == FabFormat::kPng) detail = std::to_string(o.write.png_dpi) + " dpi";
-        if (e.format == FabFormat::kTiff1) detail = std::to_string(o.write.tiff_dpi) + " dpi";
-        side.files.push_back({path.filename().string(), fab_format_name(e.format), e.units,
-                              e.bytes.size(), fnv1a64(e.bytes), check, detail});
+        side.files.push_back(io::sidecar_file_entry(path.filename().string(), e, check, f, o));
     }
     std::vector<fs::path> psf_written;
     if (psf) {

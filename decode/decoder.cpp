@@ -152,6 +152,7 @@ void copy_iterative(const IterativeParams& o, IterativeOptions& it) {
     it.tolerance = o.tolerance;
     it.record_history = o.record_history;
     it.stop = o.stop;
+    it.iterations_done = o.iterations_done;
 }
 
 // Iterative methods on the working grid; the result's image is cropped to the capture.

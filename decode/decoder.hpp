@@ -43,7 +43,8 @@ struct IterativeParams {
     double tolerance = 1e-4;          // relative change of x between iterations
     std::optional<Plane> warm_start;  // initial x (working size)
     bool record_history = true;
-    const std::atomic<bool>* stop = nullptr;  // see IterativeOptions::stop
+    const std::atomic<bool>* stop = nullptr;            // see IterativeOptions::stop
+    std::atomic<long long>* iterations_done = nullptr;  // see IterativeOptions::iterations_done
     // InvalidInput naming the field ("iterative.max_iterations", ...), its value and the rule.
     void validate() const;
 };

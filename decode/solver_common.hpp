@@ -23,6 +23,9 @@ struct IterativeOptions {
     // in, as if it had reached max_iterations, and sets DecodeResult::interrupted (Ctrl-C in
     // `pinmask decode`: the estimate so far is written).
     const std::atomic<bool>* stop = nullptr;
+    // When set, every finished iteration adds 1 (over all channels decoded with these options),
+    // so a face can report the iteration while the solver runs (Python's decode progress).
+    std::atomic<long long>* iterations_done = nullptr;
 };
 
 // True when options.stop is set and raised.
@@ -33,6 +36,8 @@ inline bool stop_requested(const IterativeOptions& options) {
 // At the end of an iteration: true when the solver must stop, because its stopping rule holds
 // (`converged`: sets result.converged) or options.stop is raised (sets result.interrupted).
 inline bool iteration_ends(bool converged, const IterativeOptions& options, DecodeResult& result) {
+    if (options.iterations_done != nullptr)
+        options.iterations_done->fetch_add(1, std::memory_order_relaxed);
     if (converged) {
         result.converged = true;
         return true;

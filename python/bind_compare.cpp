@@ -9,14 +9,15 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/field_names.hpp"
-#include "report/report.hpp"
 #include "io/mask_json.hpp"
-#include "report/compare_report.hpp"
+#include "metrics/robust_errors.hpp"
 #include "python/common.hpp"
 #include "python/keyword_names.hpp"
 #include "python/level_args.hpp"
 #include "python/metrics_common.hpp"
 #include "python/values.hpp"
+#include "report/compare_report.hpp"
+#include "report/report.hpp"
 
 namespace pinmask::python {
 
@@ -35,13 +36,16 @@ void bind_compare(py::module_& m) {
            int tv_iterations, std::uint64_t seed, bool allow_violations, const py::object& photons,
            std::optional<double> read_noise, std::optional<double> dark_current,
            std::optional<double> full_well, std::optional<int> bits,
-           std::optional<double> optical_density, const py::object& prior) {
+           std::optional<double> optical_density, const py::object& prior,
+           const std::optional<std::string>& robust) {
             const SensorSettings sensor{read_noise, dark_current, full_well, optical_density, bits};
             std::string noise_text;
             CompareRunOptions options;
             options.settings = compare_settings(
                 noise_levels_arg(snr_db, photons, sensor, {30.0}, &noise_text),
                 prior_arg(prior, prior_scenes), scenes, nsr, tv_lambda, tv_iterations, seed);
+            // robust: as `compare --robust` (score's parser: InvalidInput naming `robust`).
+            if (robust) options.settings.metrics.robust = parse_fabrication_errors(*robust);
             options.baselines = baselines;
             options.baseline_count = baseline_count;
             options.validate();
@@ -90,7 +94,12 @@ void bind_compare(py::module_& m) {
                         " (the first is shown on each page), Wiener NSR " + nsr +
                         ", TV-L2 lambda " + tv_lambda + " (" + std::to_string(tv_iterations) +
                         " iterations max), noise seed " + std::to_string(seed) +
-                        ". Analytic prior: " + options.settings.metrics.prior.description() + "."};
+                        ". Analytic prior: " + options.settings.metrics.prior.description() + "." +
+                        (options.settings.metrics.robust.any()
+                             ? " Robust W: analytic Wiener expected under fabrication errors (" +
+                                   options.settings.metrics.robust.description() +
+                                   "), decoded with the nominal PSF."
+                             : "")};
                     const ReportDocument doc =
                         compare_document(outcome.results, options.settings, summary);
                     StagedFiles files;
@@ -101,13 +110,13 @@ void bind_compare(py::module_& m) {
                     files.commit();
                 }
             }
-            py::list rows;
+            py::list rows;  // under "masks", the key of `pinmask compare --json`
             for (const auto& r : outcome.results) rows.append(row_dict(r.row));
             py::list warnings;
             for (const auto& w : {outcome.random_skipped, outcome.mura_skipped})
                 if (!w.empty()) warnings.append(w);
             py::dict out;
-            out["rows"] = rows;
+            out["masks"] = rows;
             out["report"] = written;
             out["warnings"] = warnings;
             out["baselines"] = outcome.baseline_lines;
@@ -122,12 +131,15 @@ void bind_compare(py::module_& m) {
         py::arg("read_noise") = py::none(), py::arg("dark_current") = py::none(),
         py::arg("full_well") = py::none(), py::arg("bits") = py::none(),
         py::arg("optical_density") = py::none(), py::arg("prior") = "natural",
+        py::arg("robust") = py::none(),
         R"(Compares masks (Mask objects or *.mask.json paths; one camera) as `pinmask compare`:
 a metric row per mask (see metrics()), with baselines the median of baseline_count random
 valid masks, the paper-like geometry and a MURA; report: a .pdf, .svg or .png path for the
-multi-page report (written atomically; SVG/PNG: one file per page). Returns {rows, report:
+multi-page report (written atomically; SVG/PNG: one file per page). Returns {masks (the rows of
+`pinmask compare --json`'s masks), report:
 [paths written], warnings: [baselines left out and why], baselines: [what each baseline is]}.
-Noise (snr_db or photons with the sensor stages) and prior as in metrics().
+Noise (snr_db or photons with the sensor stages), prior and robust (fabrication errors, as
+--robust: 'size=44um,jitter=2um'; each row gains robust_wiener_psnr_db) as in metrics().
 The run is metrics/compare's run_compare (one camera rule, baselines, metric rows).)");
 }
 

@@ -11,12 +11,14 @@
 #include "core/units.hpp"
 #include "decode/capture.hpp"
 #include "decode/capture_pipeline.hpp"
+#include "decode/decode_method.hpp"
 #include "decode/decode_modes.hpp"
 #include "decode/decode_request.hpp"
-#include "decode/decode_method.hpp"
 #include "decode/decoder.hpp"
 #include "decode/period.hpp"
 #include "design/psf.hpp"
+#include "design/psf_exact.hpp"
+#include "design/working_distance.hpp"
 #include "python/common.hpp"
 #include "python/values.hpp"
 
@@ -178,7 +180,8 @@ void bind_decode(py::module_& m) {
            std::optional<int> iters, std::optional<double> tol, const py::handle& crop,
            const py::handle& dark, const py::handle& background, int downsample,
            const std::string& normalize, const std::string& precision, int threads,
-           const py::object& progress, double poll_s, const py::handle& nsr_map) {
+           const py::object& progress, double poll_s, const py::handle& nsr_map,
+           const py::object& object_distance) {
             DecodeRequest r;
             r.model = parse_conv_model(model, field_ref("model"));
             const std::vector<GivenParameter> given = set_method_args(
@@ -198,18 +201,6 @@ void bind_decode(py::module_& m) {
                 throw InvalidInput(
                     "decode needs the PSF: give psf= an array or mask= a Mask or path, not "
                     "both");
-            std::optional<PlaneArg> psf_arg;
-            if (!psf.is_none()) {
-                psf_arg = plane_arg(psf, "psf");
-            } else {
-                const Mask mk = mask_arg(mask);
-                Plane p;
-                {
-                    py::gil_scoped_release release;
-                    p = mask_psf(mk);
-                }
-                psf_arg = plane_arg(to_array(std::move(p)), "psf");
-            }
             CaptureArg cap;
             std::optional<PlaneArg> borrowed_capture;
             if (is_library_buffer(capture)) {
@@ -217,6 +208,53 @@ void bind_decode(py::module_& m) {
                 cap.plane = &borrowed_capture->get();
             } else {
                 cap.image = image_arg(capture, "capture");
+            }
+            std::optional<PlaneArg> psf_arg;
+            py::object refocus_info = py::none();
+            if (!object_distance.is_none() && mask.is_none())
+                throw invalid_field(field_ref("object_distance"),
+                                    std::string(py::str(object_distance)),
+                                    "refocuses the PSF synthesised from mask=: give mask=, not a "
+                                    "measured psf=");
+            if (!psf.is_none()) {
+                psf_arg = plane_arg(psf, "psf");
+            } else {
+                Mask mk = mask_arg(mask);
+                Plane p;
+                if (object_distance.is_none()) {
+                    py::gil_scoped_release release;
+                    p = mask_psf(mk);
+                } else {
+                    // `decode --mask M --object-distance U` (cli/options/decode_inputs): the PSF
+                    // of an object at u. A whole pitch there: the mask's PSF at that many pixels
+                    // per cell; otherwise the exact-geometry PSF over the frame, decoded with the
+                    // linear model and no crop (the command line switches the same way).
+                    const double u = length_value(object_distance, "object_distance", true);
+                    check_object_distance(mk.camera, u, "object_distance");
+                    const RefocusGeometry g = refocus_geometry(mk, u);
+                    if (g.exact_geometry) {
+                        r.model = ConvModel::kLinear;
+                        r.crop = {CropMode::kNone};
+                        ExactPsfOptions eo;
+                        eo.object_distance_m = u;
+                        eo.rows = cap.rows();
+                        eo.cols = cap.cols();
+                        py::gil_scoped_release release;
+                        p = exact_psf(mk, eo);
+                    } else {
+                        mk = mask_at_distance(mk, u);
+                        py::gil_scoped_release release;
+                        p = mask_psf(mk);
+                    }
+                    py::dict info;  // the keys of the command's stats "psf"."refocus"
+                    info["object_distance_m"] = u;
+                    info["pitch_px"] = g.pitch_px;
+                    info["whole_pixels_per_cell"] = g.whole_px;
+                    info["mismatch_px"] = g.mismatch_px;
+                    info["geometry"] = g.exact_geometry ? "exact" : "integer";
+                    refocus_info = info;
+                }
+                psf_arg = plane_arg(to_array(std::move(p)), "psf");
             }
             std::optional<Image> dark_img;
             if (!dark.is_none()) dark_img = image_arg(dark, "dark");
@@ -242,6 +280,15 @@ void bind_decode(py::module_& m) {
             }
 
             std::atomic<bool> stop{false};
+            // Iterations finished over all channels (the solvers count them): progress gets
+            // the iteration each channel has reached.
+            std::atomic<long long> iterations_done{0};
+            options.decode.iterative.iterations_done = &iterations_done;
+            const long long channel_count =
+                cap.plane ? 1 : std::max<long long>(1, cap.image.channels.size());
+            const bool iterative = options.decode.method != DecodeMethod::kWiener &&
+                                   options.decode.method != DecodeMethod::kTikhonov;
+            const int max_iterations = iterative ? options.decode.iterative.max_iterations : 0;
             DecodeOutput out;
             const auto work = [&] {
                 out = decode_pipeline(cap, *psf_arg, !psf.is_none(), dark_img, options, &stop);
@@ -262,7 +309,13 @@ void bind_decode(py::module_& m) {
                 py::gil_scoped_release release;
                 work();
             } else {
-                poll = run_with_interrupt(work, stop, progress, poll_s);
+                poll = run_with_interrupt(work, stop, progress, poll_s, [&](double seconds) {
+                    py::dict info;
+                    info["iteration"] = iterations_done.load() / channel_count;
+                    info["max_iterations"] = max_iterations;
+                    info["seconds"] = seconds;
+                    return py::object(info);
+                });
             }
 
             py::dict d;
@@ -301,6 +354,7 @@ void bind_decode(py::module_& m) {
             d["window"] =
                 py::make_tuple(out.window.row, out.window.col, out.window.rows, out.window.cols);
             d["period_check"] = period_dict(out.period);
+            if (!refocus_info.is_none()) d["refocus"] = refocus_info;
             return d;
         },
         py::arg("capture"), py::arg("psf") = py::none(), py::arg("mask") = py::none(),
@@ -311,7 +365,7 @@ void bind_decode(py::module_& m) {
         py::arg("crop") = "center", py::arg("dark") = py::none(), py::arg("background") = "none",
         py::arg("downsample") = 0, py::arg("normalize") = "none", py::arg("precision") = "auto",
         py::arg("threads") = 0, py::arg("progress") = py::none(), py::arg("poll_s") = 0.05,
-        py::arg("nsr_map") = py::none(),
+        py::arg("nsr_map") = py::none(), py::arg("object_distance") = py::none(),
         R"(Decodes a capture as `pinmask decode` does: dark frame subtracted, background,
 downsampling, period check, crop, normalisation, each channel decoded (colour channels in
 parallel). Same names, defaults, refusals and numbers as the CLI's flags.
@@ -336,8 +390,14 @@ threads for transforms of >= 512 x 512 (0: all cores; results do not depend on i
 nsr_map: wiener only, in place of nsr: a per-frequency NSR on the working grid (the decoded
 window's size for the cyclic model), as `decode --nsr-map` reads it, e.g. the robust-nsr.npy
 that `score --robust-decoder` writes beside robust-psf.npy.
-progress: called every poll_s seconds with the elapsed seconds while the decode runs; return
-False to stop. Ctrl-C (KeyboardInterrupt) or False ends an iterative method after its current
+object_distance (with mask=; metres or a string with a unit, '2m', 'inf'): refocus, as
+`decode --object-distance`: the PSF of an object at that distance; where the pitch there is
+not a whole number of pixels per cell, the exact-geometry PSF over the frame with
+model='linear' and crop='none'; the result's refocus says which {object_distance_m, pitch_px,
+whole_pixels_per_cell, mismatch_px, geometry}.
+progress: called every poll_s seconds while the decode runs with {iteration (the iterations
+each channel has finished), max_iterations (iters; 0 for the closed-form wiener and tikhonov),
+seconds (elapsed)}; return False to stop. Ctrl-C (KeyboardInterrupt) or False ends an iterative method after its current
 iteration and returns the estimate so far with interrupted = True (as the CLI writes it); a
 Ctrl-C that cut nothing short (a closed-form method, or one that had finished) is raised.
 Returns {image, channels: [{iterations, objective, residual, converged, interrupted, seconds,

@@ -6,10 +6,14 @@
 #include "core/field_names.hpp"
 #include "core/units.hpp"
 #include "design/camera.hpp"
+#include "design/fab_grid.hpp"
+#include "design/kernel.hpp"
 #include "design/kernel_model.hpp"
 #include "design/kernel_validity.hpp"
 #include "design/optics.hpp"
 #include "design/working_distance.hpp"
+#include "export/vendor_presets.hpp"
+#include "io/camera_json.hpp"
 #include "python/common.hpp"
 #include "python/keyword_names.hpp"
 #include "python/values.hpp"
@@ -129,25 +133,46 @@ void bind_design(py::module_& m) {
         .def(
             "validate", [](const Camera& c) { validate(c); },
             "ValueError naming the first field that is not physical.")
-        .def("__eq__",
-             [](const Camera& a, const Camera& b) {
-                 return a.object_distance_m == b.object_distance_m &&
-                        a.lens_focal_m == b.lens_focal_m &&
-                        a.sensor_distance_m == b.sensor_distance_m &&
-                        a.wavelength_m == b.wavelength_m && a.pixel_pitch_m == b.pixel_pitch_m &&
-                        a.pinhole_m == b.pinhole_m && a.sensor_cols == b.sensor_cols &&
-                        a.sensor_rows == b.sensor_rows;
-             })
+        .def("to_json", &io::camera_file_text,
+             "The text of the camera file save_camera writes (and `pinmask design "
+             "--save-camera`), lengths in metres.")
+        .def(
+            "__eq__",
+            [](const Camera& a, const Camera& b) {
+                return a.object_distance_m == b.object_distance_m &&
+                       a.lens_focal_m == b.lens_focal_m &&
+                       a.sensor_distance_m == b.sensor_distance_m &&
+                       a.wavelength_m == b.wavelength_m && a.pixel_pitch_m == b.pixel_pitch_m &&
+                       a.pinhole_m == b.pinhole_m && a.sensor_cols == b.sensor_cols &&
+                       a.sensor_rows == b.sensor_rows;
+            },
+            py::arg("other"))
         .def("__repr__", [](const Camera& c) {
-            return "Camera(object_distance_m=" + std::to_string(c.object_distance_m) +
-                   ", lens_focal_m=" + std::to_string(c.lens_focal_m) +
-                   ", sensor_distance_m=" + std::to_string(c.sensor_distance_m) +
-                   ", wavelength_m=" + std::to_string(c.wavelength_m) +
-                   ", pixel_pitch_m=" + std::to_string(c.pixel_pitch_m) +
-                   ", pinhole_m=" + std::to_string(c.pinhole_m) +
+            // Python's own float repr (the shortest that reads back the same value): 850 nm
+            // prints as 8.5e-07, where std::to_string's six decimals would print 0.000001.
+            const auto r = [](double v) { return std::string(py::repr(py::float_(v))); };
+            return "Camera(object_distance_m=" + r(c.object_distance_m) +
+                   ", lens_focal_m=" + r(c.lens_focal_m) +
+                   ", sensor_distance_m=" + r(c.sensor_distance_m) +
+                   ", wavelength_m=" + r(c.wavelength_m) + ", pixel_pitch_m=" + r(c.pixel_pitch_m) +
+                   ", pinhole_m=" + r(c.pinhole_m) +
                    ", sensor_cols=" + std::to_string(c.sensor_cols) +
                    ", sensor_rows=" + std::to_string(c.sensor_rows) + ")";
         });
+
+    m.def(
+        "load_camera", [](const std::filesystem::path& path) { return io::read_camera_file(path); },
+        py::arg("path"),
+        "Reads and validates a *.camera.json (the file `pinmask design --save-camera` writes and "
+        "--camera reads; ValueError naming the file, the key and the rule).");
+    m.def(
+        "save_camera",
+        [](const Camera& camera, const std::filesystem::path& path) {
+            io::write_camera_file(path, camera);
+        },
+        py::arg("camera"), py::arg("path"),
+        "Writes a *.camera.json atomically (the bytes of `pinmask design --save-camera` for the "
+        "same camera; every command's --camera reads it).");
 
     m.def("paper_camera", &paper_camera,
           "The paper's prototype: u = 6 m, f' = 120 mm, f = 55 mm, d = 440 um, w = 30 um, "
@@ -156,29 +181,91 @@ void bind_design(py::module_& m) {
     m.def(
         "optics",
         [](const std::optional<Camera>& camera, int grid, int holes, int tiles,
-           const std::string& kernel, double lsi_tolerance_px) {
+           const std::string& kernel, double lsi_tolerance_px,
+           std::optional<long long> pixels_per_cell, const std::optional<std::string>& solve,
+           const py::object& fab_grid, const std::optional<std::string>& vendor) {
             PatternGeometry g{grid, holes, tiles, tiles};
             OpticsOptions o;
             o.lsi_tolerance_px = lsi_tolerance_px;
-            const Camera c = camera.value_or(paper_camera());
+            Camera c = camera.value_or(paper_camera());
             const KernelModel model = parse_kernel_model(kernel, field_ref("kernel"));
             if (!(lsi_tolerance_px > 0) || !std::isfinite(lsi_tolerance_px)) {
                 throw invalid_field(field_ref("lsi_tolerance_px"), std::to_string(lsi_tolerance_px),
                                     "must be finite and > 0 (0 or less gives an empty "
                                     "object-distance range)");
             }
+            // Solving the pinhole, as `pinmask design --solve pinhole / --pixels-per-cell N`
+            // (the same checks in the same order, the same library calls).
+            if (solve && *solve != "pinhole")
+                throw invalid_field(field_ref("solve"), *solve, "must be 'pinhole'");
+            if (pixels_per_cell && (*pixels_per_cell < 1 || *pixels_per_cell > kMaxPixelsPerCell))
+                throw invalid_field(field_ref("pixels_per_cell"), std::to_string(*pixels_per_cell),
+                                    "must be between 1 and " + std::to_string(kMaxPixelsPerCell));
             check_object_distance(c, c.object_distance_m, "object_distance_m");
+            // The fabrication grid a solved pinhole lands on: fab_grid, else the vendor
+            // preset's, else 1 nm.
+            std::int64_t grid_nm = kDefaultFabGridNm;
+            if (!fab_grid.is_none() && vendor)
+                throw invalid_field(
+                    field_ref("fab_grid"), std::string(py::str(fab_grid)),
+                    "and " + field_ref("vendor") + " both set the grid: give one of them");
+            if (!fab_grid.is_none()) {
+                grid_nm = fab_grid_nm(length_value(fab_grid, "fab_grid", false), "fab_grid");
+            } else if (vendor) {
+                const VendorPreset* preset = find_vendor_preset(*vendor);
+                if (!preset)
+                    throw invalid_field(field_ref("vendor"), *vendor,
+                                        "is a rule preset without a grid; give an export preset "
+                                        "(pinmask export --vendor list) or " +
+                                            field_ref("fab_grid"));
+                grid_nm = fab_grid_nm(preset->grid_m, "vendor");
+            }
+            const bool solving = pixels_per_cell || solve;
+            if ((!fab_grid.is_none() || vendor) && !solving)
+                throw invalid_field(field_ref(!fab_grid.is_none() ? "fab_grid" : "vendor"),
+                                    !fab_grid.is_none() ? std::string(py::str(fab_grid)) : *vendor,
+                                    "sets the grid a solved pinhole lands on: use it with " +
+                                        field_ref("solve") + "='pinhole' or " +
+                                        field_ref("pixels_per_cell"));
+            WorkingDistanceOptions wo{lsi_tolerance_px,
+                                      static_cast<int>(pixels_per_cell.value_or(0))};
+            py::dict solved;
+            if (solving) {
+                const WorkingDistance start = compute_working_distance(c, g, wo);
+                if (start.pixels_per_cell > kMaxPixelsPerCell)
+                    throw invalid_field(field_ref("solve"), "pinhole",
+                                        "the pitch at u is " +
+                                            std::to_string(start.pixels_per_cell) +
+                                            " px per cell, above the " +
+                                            std::to_string(kMaxPixelsPerCell) + " px limit");
+                // d for exactly N at u, then on the fabrication grid (what export draws).
+                const double exact_m = pinhole_for_pixels_per_cell(c, start.pixels_per_cell);
+                c.pinhole_m = pinhole_on_grid_m(exact_m, grid_nm);
+                const double shift = pixels_per_cell_at(c, c.object_distance_m) -
+                                     static_cast<double>(start.pixels_per_cell);
+                wo.pixels_per_cell = static_cast<int>(start.pixels_per_cell);
+                // The keys `design --json` adds for a solved pinhole.
+                solved["fab_grid_m"] = double(grid_nm) * 1e-9;
+                solved["pinhole_solved_m"] = exact_m;
+                solved["pinhole_on_grid_m"] = c.pinhole_m;
+                solved["grid_pitch_shift_px"] = shift;
+                solved["grid_period_shift_px"] = shift * g.n;
+            }
             OpticsReport r = compute_optics(c, g, model, o);
             // As `pinmask design`: a kernel model outside its validity says so in the reason.
             KernelValidity validity = kernel_validity(c, r.kernel_model);
             for (auto& w : validity.warnings) w = py_names::spell_keywords(w);
             if (!validity.model_accurate)
                 r.kernel_reason = "NOT accurate: " + validity.warnings.front();
-            const WorkingDistance wd = compute_working_distance(c, g, {lsi_tolerance_px, 0});
-            return optics_dict(r, wd, validity.warnings);
+            const WorkingDistance wd = compute_working_distance(c, g, wo);
+            py::dict d = optics_dict(r, wd, validity.warnings);
+            for (auto item : solved) d[item.first] = item.second;
+            return d;
         },
         py::arg("camera") = py::none(), py::arg("grid") = 16, py::arg("holes") = 20,
         py::arg("tiles") = 2, py::arg("kernel") = "auto", py::arg("lsi_tolerance_px") = 1.0,
+        py::arg("pixels_per_cell") = py::none(), py::arg("solve") = py::none(),
+        py::arg("fab_grid") = py::none(), py::arg("vendor") = py::none(),
         "The optics report of `pinmask design --json` as a dict (same keys and numbers; lengths "
         "in metres with _m suffixes, infinite values as float('inf') where the CLI writes null "
         "and a note; keys without a suffix and \"_at_u\" keys are at the working distance u, "
@@ -188,7 +275,13 @@ void bind_design(py::module_& m) {
         "object_distance_range_m (near, far; far inf when shift invariant to infinity), "
         "optimum_pinhole_lensless_m, optimum_pinhole_with_lens_m, spot_spread_cells (cells), "
         "spot_spreads_beyond_cell, kernel_warnings. grid n (cells per side), holes K, tiles per "
-        "side, kernel (kernel_models()), lsi_tolerance_px in pixels.");
+        "side, kernel (kernel_models()), lsi_tolerance_px in pixels. Solving the pinhole as "
+        "`design --solve pinhole` / `--pixels-per-cell N`: solve='pinhole' (N = the nearest "
+        "whole number at u) or pixels_per_cell=N gives d for N whole pixels per cell at u, "
+        "snapped to the fabrication grid fab_grid (a length, '1um'; default 1 nm) or the export "
+        "preset vendor's; the report is then for that d (camera holds it: save_camera writes "
+        "it, as --save-camera) with fab_grid_m, pinhole_solved_m, pinhole_on_grid_m, "
+        "grid_pitch_shift_px and grid_period_shift_px.");
 
     m.def(
         "kernel_models", [] { return name_list(kKernelModelNames); },

@@ -1,8 +1,9 @@
 // Fabrication export. export_mask() is `pinmask export`'s library pipeline for the fabrication
 // files (cli/options/export_options turns the same flags into ExportOptions; export/export_pipeline
 // export_mask; each file read back from disk with export/read_back verify_written before it is
-// committed): same bytes. The export sidecar and the PSF files are the CLI's (write_psf() writes
-// the PSF). layout() builds the same layout (make_layout with the pipeline's LayoutOptions).
+// committed): same bytes, and the export sidecar (io/export_sidecar_of). The PSF files are the
+// CLI's (write_psf() writes the PSF). layout() builds the same layout (make_layout with the
+// pipeline's LayoutOptions).
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -20,12 +21,15 @@
 #include "export/read_back.hpp"
 #include "formats/read_any.hpp"
 #include "formats/write_any.hpp"
+#include "io/export_sidecar.hpp"
+#include "io/export_sidecar_of.hpp"
 #include "io/mask_json.hpp"
 #include "layout/geometry.hpp"
 #include "layout/rings.hpp"
 #include "layout/vendor_rules.hpp"
 #include "layout/xor_area.hpp"
 #include "python/common.hpp"
+#include "python/keyword_names.hpp"
 #include "python/values.hpp"
 
 namespace pinmask::python {
@@ -161,7 +165,10 @@ void bind_export(py::module_& m) {
            std::optional<double> dpi, const py::object& margin, const std::string& vendor,
            bool require_drc_clean, bool allow_spacing_violations,
            const std::optional<std::string>& min_feature,
-           const std::optional<std::string>& min_space) {
+           const std::optional<std::string>& min_space, const std::optional<std::string>& units,
+           const std::optional<std::string>& emulsion, const std::optional<std::string>& draw,
+           const std::optional<std::string>& circles, const std::string& hierarchy,
+           const py::object& kerf, const py::object& max_snap_error) {
             const std::vector<FabFormat> fmts = parse_formats(formats);
             if (out_dir.empty())
                 throw invalid_field(field_ref("out_dir"), "''", "an output directory is required");
@@ -203,13 +210,31 @@ void bind_export(py::module_& m) {
             f.min_space = min_space;
             f.require_drc_clean = require_drc_clean;
             f.allow_spacing_violations = allow_spacing_violations;
+            // The command's --units, --emulsion, --draw, --circles, --hierarchy, --kerf and
+            // --max-snap-error, as typed (lengths: metres or a string with a unit).
+            f.units = units;
+            f.emulsion = emulsion;
+            f.draw = draw;
+            f.circles = circles;
+            f.hierarchy = hierarchy;
+            if (!kerf.is_none()) f.kerf = py::str(kerf).cast<std::string>();
+            if (!max_snap_error.is_none())
+                f.max_snap_error = py::str(max_snap_error).cast<std::string>();
             f.no_psf = true;
+            // The input recorded in the sidecar: the path as given, as the command records it.
+            if (!py::isinstance<Mask>(mask_obj)) f.input = py::str(mask_obj).cast<std::string>();
             const ExportOptions o = export_options_from(f, mk, stem);
             py::list files;
             ExportSummary summary;
+            const fs::path sidecar_path = fs::path(out_dir) / (stem + ".export.json");
             {
                 py::gil_scoped_release release;
                 summary = pinmask::export_mask(mk, o);
+                // The export sidecar (io/export_sidecar_of, as `pinmask export` writes it):
+                // check() of these files reads their layout settings and rules from it.
+                io::ExportSidecar side = io::export_sidecar_of(f, mk, o, summary);
+                for (std::string& n : side.notes) n = py_names::spell_keywords(n);
+                side.psf_absent = "not written (export_mask writes no PSF; write_psf() does)";
                 fs::create_directories(out_dir);
                 StagedFiles staged;
                 std::vector<std::tuple<std::string, std::string, std::size_t, std::string>> info;
@@ -231,7 +256,10 @@ void bind_export(py::module_& m) {
                     });
                     info.emplace_back(path.string(), fab_format_name(e.format), e.bytes.size(),
                                       check);
+                    side.files.push_back(
+                        io::sidecar_file_entry(path.filename().string(), e, check, f, o));
                 }
+                staged.stage_bytes(sidecar_path, io::export_sidecar_text(side));
                 staged.commit();
                 py::gil_scoped_acquire gil;
                 for (const auto& [path, format, size, check] : info) {
@@ -250,6 +278,7 @@ void bind_export(py::module_& m) {
             out["drc"] = py::dict(py::arg("vendor") = vendor, py::arg("clean") = drc.clean(),
                                   py::arg("counts") = drc.counts);
             out["mask_hash"] = layout.mask_hash;
+            out["sidecar"] = sidecar_path.string();
             return out;
         },
         py::arg("mask"), py::arg("out_dir"),
@@ -263,6 +292,10 @@ void bind_export(py::module_& m) {
         py::arg("margin") = "10mm", py::arg("vendor") = "none",
         py::arg("require_drc_clean") = false, py::arg("allow_spacing_violations") = false,
         py::arg("min_feature") = py::none(), py::arg("min_space") = py::none(),
+        py::arg("units") = py::none(), py::arg("emulsion") = py::none(),
+        py::arg("draw") = py::none(), py::arg("circles") = py::none(),
+        py::arg("hierarchy") = "auto", py::arg("kerf") = py::none(),
+        py::arg("max_snap_error") = py::none(),
         R"(Writes the fabrication files of `pinmask export MASK -o out_dir` (same options, same
 bytes; export/export_pipeline): formats svg pdf gds oasis dxf gerber png tiff1 ->
 out_dir/<stem>.svg .pdf .gds .oas .dxf .gbr .png .tif, all or nothing; dpi: PNG/TIFF
@@ -271,8 +304,14 @@ hash), else RuntimeError and no file. The design-rule check (vendor: an export p
 film | chrome | none; min_feature / min_space: the shop's own limits over them, lengths) is
 reported (require_drc_clean: RuntimeError on violations); the spacing rule is evaluated on the
 pinhole side snapped to the grid, the pitch every cell edge is drawn at. stem: default the mask file's name
-('mask' for a Mask object). The export sidecar JSON and the PSF files are the CLI's; write_psf()
-writes the PSF. Returns {files: [{path, format, bytes, verification}], drc: {vendor, clean,
+('mask' for a Mask object). Beside the files, <stem>.export.json: the export sidecar of
+`pinmask export` (settings, rules, each file's hash; check() of these files reads it). units: DXF unit and GDSII/OASIS user unit um | mm | in (default um;
+Gerber always mm); emulsion up | down (= mirror); draw (PDF/PNG/SVG) film | polygons; circles
+(DXF/Gerber round pinholes) native | polygon; hierarchy (GDSII) flat | cells | auto; kerf: laser
+kerf, holes drawn this much smaller (a length); max_snap_error (tiff1): refuse when snapping moves
+an edge more (a length); each as the command's flag of the same name, defaults and vendor
+presets included. The PSF files are the CLI's; write_psf()
+writes the PSF. Returns {files: [{path, format, bytes, verification}], sidecar (its path), drc: {vendor, clean,
 counts}, mask_hash}.)");
 }
 

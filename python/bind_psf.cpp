@@ -7,9 +7,12 @@
 #include "core/image_io.hpp"
 #include "design/kernel.hpp"
 #include "design/psf.hpp"
+#include "design/psf_exact.hpp"
 #include "design/psf_settings.hpp"
+#include "design/working_distance.hpp"
 #include "io/psf_files.hpp"
 #include "python/common.hpp"
+#include "python/values.hpp"
 
 namespace pinmask::python {
 
@@ -105,19 +108,64 @@ void bind_psf(py::module_& m) {
     m.def(
         "psf",
         [](const Mask& mask, std::optional<std::string> kernel, const std::string& kernel_path,
-           double energy_fraction) {
+           double energy_fraction, const std::string& geometry, const py::object& object_distance,
+           std::optional<std::pair<int, int>> size) {
+            // As `pinmask psf`: the same checks in the same order, the keyword named.
+            if (!(energy_fraction > 0.0 && energy_fraction <= 1.0))
+                throw invalid_field(
+                    field_ref("energy_fraction"), std::to_string(energy_fraction),
+                    "must be in (0, 1]: the fraction of the kernel's energy its support keeps");
+            if (geometry != "integer" && geometry != "exact")
+                throw invalid_field(field_ref("geometry"), geometry, "must be integer or exact");
+            const bool exact = geometry == "exact";
+            if (!exact && (!object_distance.is_none() || size)) {
+                throw invalid_field(
+                    field_ref(size ? "size" : "object_distance"),
+                    size ? std::to_string(size->first) + "x" + std::to_string(size->second)
+                         : std::string(py::str(object_distance)),
+                    "only used with geometry='exact' (the integer model is one period at the "
+                    "mask's pixels per cell)");
+            }
             const Mask mk = with_kernel(mask, kernel, kernel_path);
+            KernelOptions ko;
+            ko.energy_fraction = energy_fraction;
+            if (!exact) {
+                Plane psf;
+                {
+                    py::gil_scoped_release release;
+                    psf = make_psf(mk, energy_fraction).psf;
+                }
+                return to_array(std::move(psf));
+            }
+            // design/psf_exact: what the sensor records from a point at object_distance
+            // (default the mask's u), over the sensor or size = (rows, cols).
+            ExactPsfOptions eo;
+            eo.kernel = ko;
+            eo.object_distance_m = object_distance.is_none()
+                                       ? mk.camera.object_distance_m
+                                       : length_value(object_distance, "object_distance", true);
+            check_object_distance(mk.camera, eo.object_distance_m, "object_distance");
+            if (size) {
+                eo.rows = size->first;
+                eo.cols = size->second;
+            }
             Plane psf;
             {
                 py::gil_scoped_release release;
-                psf = make_psf(mk, energy_fraction).psf;
+                psf = exact_psf(mk, eo);
             }
             return to_array(std::move(psf));
         },
         py::arg("mask"), py::arg("kernel") = py::none(), py::arg("kernel_path") = "",
         py::arg("energy_fraction") = KernelOptions{}.energy_fraction,
-        "The PSF of one period, (n ppc) x (n ppc) float64, sum 1, as `pinmask psf` computes it "
-        "(kernel: override the mask's model). The array owns the library's buffer (no copy).");
+        py::arg("geometry") = "integer", py::arg("object_distance") = py::none(),
+        py::arg("size") = py::none(),
+        "The PSF as `pinmask psf` computes it (kernel: override the mask's model). geometry "
+        "'integer' (default): the decoder's model, one period, (n ppc) x (n ppc) float64, sum 1. "
+        "'exact': what the sensor records from a point at object_distance (metres or a string "
+        "with a unit, '2m', 'inf'; default the mask's u): every pinhole of the tiled mask at its "
+        "true sub-pixel position, pitch d (1 - f/f' + f/u) / w pixels, over the sensor or size "
+        "= (rows, cols) pixels. The array owns the library's buffer (no copy).");
 
     m.def(
         "write_psf",

@@ -3,6 +3,7 @@
 // search on the analytic objective, the spectral-zero rule, the simulated re-ranking, top-k).
 #include <atomic>
 #include <memory>
+#include <tuple>
 
 #include "core/error.hpp"
 #include "core/field_names.hpp"
@@ -13,10 +14,10 @@
 #include "io/search_config.hpp"
 #include "metrics/metric_spellings.hpp"
 #include "metrics/robust_errors.hpp"
-#include "search/search_pipeline.hpp"
 #include "python/common.hpp"
 #include "python/level_args.hpp"
 #include "python/values.hpp"
+#include "search/search_pipeline.hpp"
 
 namespace pinmask::python {
 
@@ -35,8 +36,8 @@ py::dict log_row(const SearchLogRow& row) {
 void bind_search(py::module_& m) {
     m.def(
         "search",
-        [](const std::optional<Camera>& camera, int grid, int holes, int tiles, double spacing,
-           const std::string& kernel, const std::string& kernel_path,
+        [](const std::optional<Camera>& camera, int grid, const py::object& holes, int tiles,
+           double spacing, const std::string& kernel, const std::string& kernel_path,
            std::optional<int> pixels_per_cell, const std::string& strategy, const std::string& time,
            std::int64_t evals, int threads, std::uint64_t seed, int top, const py::object& snr_db,
            const std::string& filter, double w_analytic, double w_max_sidelobe,
@@ -59,7 +60,15 @@ void bind_search(py::module_& m) {
             p.tmpl.pattern.n = grid;
             p.tmpl.pattern.tiles_rows = p.tmpl.pattern.tiles_cols = tiles;
             p.tmpl.pattern.min_spacing_cells = spacing;
-            p.holes = holes;
+            // holes: K, or "A..B" as --holes (a pinhole-count range: the best mask per K).
+            if (py::isinstance<py::str>(holes)) {
+                std::tie(p.holes, p.max_holes) = parse_holes_range(holes.cast<std::string>());
+            } else if (py::isinstance<py::int_>(holes) && !py::isinstance<py::bool_>(holes)) {
+                p.holes = holes.cast<int>();
+            } else {
+                throw invalid_field(field_ref("holes"), std::string(py::repr(holes)),
+                                    "must be a pinhole count K or a range 'A..B'");
+            }
             if (strategy != "random" && strategy != "anneal")
                 throw invalid_field(field_ref("strategy"), strategy, "must be random or anneal");
             if (evals < 0)
@@ -73,7 +82,8 @@ void bind_search(py::module_& m) {
             so.seed = seed;
             so.top = top;
             if (top < 1 || top > 1000)
-                throw invalid_field(field_ref("top"), std::to_string(top), "must be between 1 and 1000");
+                throw invalid_field(field_ref("top"), std::to_string(top),
+                                    "must be between 1 and 1000");
             p.keep_out = keep_out;
             const SensorSettings sensor{read_noise, dark_current, full_well, optical_density, bits};
             const std::vector<NoiseLevel> levels =
@@ -172,7 +182,7 @@ void bind_search(py::module_& m) {
         py::arg("bits") = py::none(), py::arg("optical_density") = py::none(),
         py::arg("prior") = "natural", py::arg("robust") = py::none(),
         py::arg("objective") = "nominal",
-        R"(Searches masks for a camera (grid n, holes K, tiles, spacing in cells) as
+        R"(Searches masks for a camera (grid n, holes K or a range 'A..B', tiles, spacing in cells) as
 `pinmask search` (the same pipeline, search/search_pipeline): strategy random | anneal, a
 time budget (time, '20s', '2min'; it covers the re-ranking too) or evals per chain (> 0:
 deterministic for the same seed and threads), threads independent chains, top candidates,

@@ -8,12 +8,14 @@
 #include "core/resource_limits.hpp"
 #include "core/units.hpp"
 #include "design/psf.hpp"
+#include "design/working_distance.hpp"
 #include "io/mask_json.hpp"
 #include "metrics/noise_levels.hpp"
-#include "simulate/scenes.hpp"
-#include "simulate/simulate.hpp"
 #include "python/common.hpp"
 #include "python/values.hpp"
+#include "simulate/scenes.hpp"
+#include "simulate/simulate.hpp"
+#include "simulate/simulate_pipeline.hpp"
 
 namespace pinmask::python {
 
@@ -95,7 +97,8 @@ void bind_simulate(py::module_& m) {
            std::optional<double> dark_current, std::optional<double> full_well,
            std::optional<int> bits, std::optional<double> optical_density, bool full_sensor,
            std::optional<std::pair<int, int>> sensor, bool dark_frame, std::uint64_t seed,
-           bool allow_violations, const std::string& precision) {
+           bool allow_violations, const std::string& precision, const std::string& geometry,
+           const py::object& object_distance, std::optional<std::pair<int, int>> size) {
             SimulationOptions sim;
             sim.noise = noise_model(
                 {snr_db, photons, read_noise, dark_current, full_well, optical_density, bits});
@@ -115,8 +118,55 @@ void bind_simulate(py::module_& m) {
                                         " model has no leak, dark current or read noise to "
                                         "record");
             }
+            if (geometry != "integer" && geometry != "exact")
+                throw invalid_field(field_ref("geometry"), geometry, "must be integer or exact");
             const Mask mask = mask_arg(mask_obj, allow_violations);
             py::dict out;
+            if (geometry == "exact" || !object_distance.is_none() || size) {
+                // `simulate --geometry exact` (simulate/simulate_pipeline, as the command runs
+                // it): every pinhole of the tiled mask at its true position for an object at
+                // object_distance, over the sensor or a size = (rows, cols) window.
+                // object_distance and size need exact geometry (refused here); the pipeline
+                // refuses full_sensor and sensor with it, naming them.
+                if (geometry != "exact") {
+                    throw invalid_field(
+                        field_ref(size ? "size" : "object_distance"),
+                        size ? std::to_string(size->first) + "x" + std::to_string(size->second)
+                             : std::string(py::str(object_distance)),
+                        "only used with geometry='exact'");
+                }
+                SimulatePipelineOptions po;
+                po.sim = sim;
+                po.exact_geometry = true;
+                if (!py::isinstance<py::str>(scene_obj))
+                    throw invalid_field(field_ref("scene"), "an array",
+                                        "exact geometry renders a named scene or an image file "
+                                        "at the sensor window: give its name or path");
+                po.scene = scene_from_name(scene_obj.cast<std::string>());
+                if (!object_distance.is_none()) {
+                    po.object_distance_m = length_value(object_distance, "object_distance", true);
+                    check_object_distance(mask.camera, *po.object_distance_m, "object_distance");
+                }
+                if (size) po.window = Size2{size->first, size->second};  // as typed: ROWSxCOLS
+                po.sim.full_sensor = full_sensor;
+                if (sensor) po.sensor = Size2{sensor->first, sensor->second};
+                SimulatePipelineResult r;
+                {
+                    py::gil_scoped_release release;
+                    r = run_simulate_pipeline(mask, po);
+                }
+                SimulatedCapture& c = r.capture;
+                out["capture"] = image_to_array(std::move(c.capture));
+                out["dark"] = c.dark.empty() ? py::object(py::none())
+                                             : py::object(image_to_array(std::move(c.dark)));
+                out["clean"] = image_to_array(std::move(c.clean));
+                out["background"] = c.background;
+                out["origin"] = py::make_tuple(c.origin.row, c.origin.col);
+                out["whole_period_on_sensor"] = c.whole_period_on_sensor;
+                out["psf"] = py::none();  // psf(mask, geometry='exact', ...) gives it
+                out["object_distance_m"] = r.summary.object_distance_m;
+                return out;
+            }
             SimulatedCapture s;
             Plane psf;
             {
@@ -153,7 +203,8 @@ void bind_simulate(py::module_& m) {
         py::arg("bits") = py::none(), py::arg("optical_density") = py::none(),
         py::arg("full_sensor") = false, py::arg("sensor") = py::none(),
         py::arg("dark_frame") = false, py::arg("seed") = 1, py::arg("allow_violations") = false,
-        py::arg("precision") = "auto",
+        py::arg("precision") = "auto", py::arg("geometry") = "integer",
+        py::arg("object_distance") = py::none(), py::arg("size") = py::none(),
         "A simulated capture, as `pinmask simulate` computes it: the scene (a name, rendered at "
         "one period, or an array of the period's size, values in [0, 1]) convolved with the "
         "mask's PSF over one period, tiled over the sensor with full_sensor (sensor = (cols, "
@@ -164,7 +215,11 @@ void bind_simulate(py::module_& m) {
         "through all-opaque film. Units: normalised capture units (noise_model.hpp). precision: "
         "the convolution's, 'auto' (float32 from a 256 x 256 grid) | 'single' | 'double'. Returns "
         "{capture, dark (None unless asked), clean, background (per channel), origin (row, col) "
-        "of the period in the frame, whole_period_on_sensor, psf}.");
+        "of the period in the frame, whole_period_on_sensor, psf}. geometry 'exact' (as "
+        "`simulate --geometry exact`): every pinhole of the tiled mask at its true position for "
+        "an object at object_distance (metres or '2m', 'inf'; default the mask's u), over the "
+        "sensor or size = (rows, cols) pixels, a named scene; psf is then None "
+        "(psf(mask, geometry='exact', ...) gives it) and object_distance_m the u used.");
 }
 
 }  // namespace pinmask::python

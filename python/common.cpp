@@ -162,7 +162,8 @@ Image image_arg(const py::handle& obj, const std::string& what) {
 }
 
 Poll run_with_interrupt(const std::function<void()>& work, std::atomic<bool>& stop,
-                        const py::object& progress, double poll_s) {
+                        const py::object& progress, double poll_s,
+                        const std::function<py::object(double)>& info) {
     std::mutex mu;
     std::condition_variable cv;
     bool done = false;
@@ -196,7 +197,8 @@ Poll run_with_interrupt(const std::function<void()>& work, std::atomic<bool>& st
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         decision = poll_python(
-            progress, [&] { return py::float_(seconds); }, &py_error);
+            progress, [&] { return info ? info(seconds) : py::object(py::float_(seconds)); },
+            &py_error);
         if (decision != Poll::kContinue) stop.store(true);
     }
     {

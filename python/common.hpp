@@ -67,12 +67,14 @@ enum class Poll { kContinue, kStopRequested, kKeyboardInterrupt, kError };
 
 // Runs work() on a worker thread with the GIL released. The calling thread wakes every poll_s
 // seconds: it runs the signal handlers (PyErr_CheckSignals, so Ctrl-C raises KeyboardInterrupt
-// in Python code) and calls progress(seconds) when given. Anything but kContinue raises `stop`
+// in Python code) and calls progress(info(seconds)) when given (info: the elapsed seconds as a
+// float when not given; built with the GIL held). Anything but kContinue raises `stop`
 // (the library ends cleanly and keeps what it has); the first such decision is returned. A
 // Python exception other than KeyboardInterrupt is re-raised once the work has ended.
 // Exceptions of work() are re-thrown on the calling thread.
 Poll run_with_interrupt(const std::function<void()>& work, std::atomic<bool>& stop,
-                        const py::object& progress, double poll_s);
+                        const py::object& progress, double poll_s,
+                        const std::function<py::object(double)>& info = {});
 
 // Called from a library progress hook on the calling thread (GIL not held): acquires the GIL,
 // checks signals and calls progress(info()) when given (info is built with the GIL held).

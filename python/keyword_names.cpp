@@ -11,8 +11,9 @@ namespace {
 
 // field name (as the libraries write it) -> keyword argument. Sorted by field name (a test
 // checks it). A field whose keyword is its own name needs no row.
-constexpr std::array<std::pair<std::string_view, std::string_view>, 18> kKeywords{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 21> kKeywords{{
     {"chord_tolerance_m", "chord_tol"},
+    {"exact_geometry", "geometry='exact'"},
     {"frame_m", "frame"},
     {"grid_m", "grid"},
     {"hole_side_m", "hole_side"},
@@ -20,6 +21,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 18> kKeyword
     {"lambda", "lambda_"},
     {"margin_m", "margin"},
     {"max_evaluations", "evals"},
+    {"max_snap_error_nm", "max_snap_error"},
     {"no_rerank", "rerank_scenes=[]"},
     {"no_rerank_tv", "rerank_tv=False"},
     {"nonnegative", "nonneg"},
@@ -30,6 +32,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 18> kKeyword
     {"tolerance", "tol"},
     {"weights.analytic_wiener", "w_analytic"},
     {"wiener_nsr", "nsr"},
+    {"window", "size"},
 }};
 
 }  // namespace

@@ -1,5 +1,6 @@
 # Type stub of the pinmask module (python/*.cpp). Units are SI (metres, seconds) unless a name
-# says otherwise. tests/python/test_stub.py checks that every public name of the module is here.
+# says otherwise. tests/python/test_stub_readme.py checks that every public name of the module is
+# here, tests/python/test_stub_signatures.py every parameter, default and return type.
 from os import PathLike
 from typing import Any, Callable, Literal, Optional, Sequence, Union
 
@@ -37,8 +38,11 @@ class Camera:
         sensor_rows: int = 480,
     ) -> None: ...
     def validate(self) -> None: ...
+    def to_json(self) -> str: ...
     def __eq__(self, other: object) -> bool: ...
 
+def load_camera(path: PathLikeStr) -> Camera: ...
+def save_camera(camera: Camera, path: PathLikeStr) -> None: ...
 def paper_camera() -> Camera: ...
 def optics(
     camera: Optional[Camera] = None,
@@ -47,6 +51,10 @@ def optics(
     tiles: int = 2,
     kernel: str = "auto",
     lsi_tolerance_px: float = 1.0,
+    pixels_per_cell: Optional[int] = None,  # solve d for N whole pixels per cell at u
+    solve: Optional[Literal["pinhole"]] = None,  # N = the nearest whole number at u
+    fab_grid: Optional[Length] = None,  # the solved d lands on this grid (default 1 nm)
+    vendor: Optional[str] = None,  # ... or on this export preset's grid
 ) -> dict[str, Any]: ...
 def kernel_models() -> list[str]: ...
 def choose_kernel_model(fresnel_number: float) -> tuple[str, str]: ...
@@ -60,7 +68,7 @@ class Pattern:
     def __init__(
         self,
         n: int = 16,
-        pinholes: Sequence[tuple[int, int]] = ...,
+        pinholes: Sequence[tuple[int, int]] = (),
         tiles_rows: int = 2,
         tiles_cols: int = 2,
         min_spacing_cells: float = 2.0,
@@ -122,6 +130,9 @@ def psf(
     kernel: Optional[str] = None,
     kernel_path: str = "",
     energy_fraction: float = 0.999,
+    geometry: Literal["integer", "exact"] = "integer",
+    object_distance: Optional[Length] = None,  # exact: default the mask's u
+    size: Optional[tuple[int, int]] = None,  # exact: (rows, cols), default the sensor
 ) -> FloatArray: ...
 def write_psf(
     mask: Mask,
@@ -153,6 +164,9 @@ def simulate(
     seed: int = 1,
     allow_violations: bool = False,
     precision: Literal["auto", "single", "double"] = "auto",
+    geometry: Literal["integer", "exact"] = "integer",
+    object_distance: Optional[Length] = None,  # exact: default the mask's u
+    size: Optional[tuple[int, int]] = None,  # exact: (rows, cols), default the sensor
 ) -> dict[str, Any]: ...
 def decode(
     capture: ArrayLike,
@@ -175,9 +189,10 @@ def decode(
     normalize: Literal["none", "l2"] = "none",
     precision: Literal["auto", "single", "double"] = "auto",
     threads: int = 0,
-    progress: Optional[Callable[[float], Optional[bool]]] = None,
+    progress: Optional[Callable[[dict[str, Any]], Optional[bool]]] = None,  # {iteration, max_iterations, seconds}
     poll_s: float = 0.05,
     nsr_map: Optional[ArrayLike] = None,
+    object_distance: Optional[Length] = None,  # refocus (with mask=)
 ) -> dict[str, Any]: ...
 def metrics(
     mask: MaskLike,
@@ -233,7 +248,7 @@ def simulated_quality(
 def search(
     camera: Optional[Camera] = None,
     grid: int = 16,
-    holes: int = 20,
+    holes: Union[int, str] = 20,  # K, or a range "A..B": the best mask per K
     tiles: int = 2,
     spacing: float = 2.0,
     kernel: str = "auto",
@@ -246,7 +261,7 @@ def search(
     seed: int = 1,
     top: int = 5,
     snr_db: Optional[float] = None,  # dB; None: 30 (search takes one level)
-    filter: str = "optimal",
+    filter: str = "auto",  # auto: tuned with photons, optimal with snr_db
     w_analytic: float = 1.0,
     w_max_sidelobe: float = 0.0,
     w_sidelobe_energy: float = 0.0,
@@ -288,6 +303,7 @@ def compare(
     bits: Optional[int] = None,  # ADC bits 1..24, needs full_well
     optical_density: Optional[float] = None,  # film OD (transmission 10^-OD)
     prior: Prior = "natural",
+    robust: Optional[str] = None,  # as --robust: "size=44um,jitter=2um,missing=0.01"
 ) -> dict[str, Any]: ...
 
 class Layout:
@@ -356,6 +372,13 @@ def export_mask(
     allow_spacing_violations: bool = False,
     min_feature: Optional[str] = None,
     min_space: Optional[str] = None,
+    units: Optional[Literal["um", "mm", "in"]] = None,  # DXF unit, GDSII/OASIS user unit
+    emulsion: Optional[Literal["up", "down"]] = None,
+    draw: Optional[Literal["film", "polygons"]] = None,  # PDF/PNG/SVG
+    circles: Optional[Literal["native", "polygon"]] = None,  # DXF/Gerber round pinholes
+    hierarchy: Literal["flat", "cells", "auto"] = "auto",  # GDSII
+    kerf: Optional[Length] = None,  # laser kerf: holes drawn this much smaller
+    max_snap_error: Optional[Length] = None,  # tiff1
 ) -> dict[str, Any]: ...
 def check(
     input: Union[Mask, PathLikeStr],

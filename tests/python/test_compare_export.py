@@ -1,5 +1,6 @@
 """Compare report, export and check: the module against `pinmask compare/export/check`."""
 import json
+import pathlib
 
 import pytest
 
@@ -11,9 +12,9 @@ def test_compare_report_and_rows(tmp_path, mask7):
     out = pinmask.compare([mask7, other], report=str(tmp_path / "r.pdf"), tv_iterations=30)
     assert out["report"] == [str(tmp_path / "r.pdf")]
     assert (tmp_path / "r.pdf").read_bytes()[:5] == b"%PDF-"
-    assert [r["geometry_hash"] for r in out["rows"]] == [mask7.geometry_hash(),
+    assert [r["geometry_hash"] for r in out["masks"]] == [mask7.geometry_hash(),
                                                         other.geometry_hash()]
-    assert out["rows"][0]["analytic_wiener_psnr_db"] == pinmask.metrics(
+    assert out["masks"][0]["analytic_wiener_psnr_db"] == pinmask.metrics(
         mask7, tv_iterations=30)["analytic_wiener_psnr_db"]
 
 
@@ -23,8 +24,8 @@ def test_compare_with_baselines_equals_cli(cli, tmp_path, mask7):
                            "--tv-iters", "20", "--json").stdout)
     out = pinmask.compare([str(tmp_path / "m.mask.json")], baselines=True, baseline_count=3,
                           tv_iterations=20)
-    assert [r["kind"] for r in out["rows"]] == [m["kind"] for m in j["masks"]]
-    for row, cli_row in zip(out["rows"], j["masks"]):
+    assert [r["kind"] for r in out["masks"]] == [m["kind"] for m in j["masks"]]
+    for row, cli_row in zip(out["masks"], j["masks"]):
         assert row["geometry_hash"] == cli_row["geometry_hash"]
         assert row["wiener_psnr_db"] == cli_row["wiener_psnr_db"]
 
@@ -91,3 +92,68 @@ def test_export_new_formats_same_bytes_as_cli(cli, tmp_path, mask7):
         assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
     assert out["files"][0]["verification"].startswith("read back")
     assert pinmask.check(str(tmp_path / "py" / "m.oas"), mask=mask7)["comparison"]["ok"]
+
+
+@pytest.mark.parametrize("cli_args,kwargs", [
+    (["--format", "dxf,gds", "--units", "mm"], dict(formats=["dxf", "gds"], units="mm")),
+    (["--format", "dxf,gerber", "--shape", "circle", "--circles", "native", "--kerf", "20um"],
+     dict(formats=["dxf", "gerber"], shape="circle", circles="native", kerf="20um")),
+    (["--format", "gds,svg", "--hierarchy", "cells", "--emulsion", "down", "--draw", "film"],
+     dict(formats=["gds", "svg"], hierarchy="cells", emulsion="down", draw="film")),
+])
+def test_export_units_and_drawing_equal_cli(cli, tmp_path, mask7, cli_args, kwargs):
+    """Export's units, emulsion, drawing, circles, hierarchy, kerf and snap bound: the same
+    bytes as the command's flags (the DXF in mm is the case a shop asks for)."""
+    mask7.save(str(tmp_path / "m.mask.json"))
+    cli.run("export", "m.mask.json", *cli_args, "--no-psf", "-o", "cli")
+    out = pinmask.export_mask(str(tmp_path / "m.mask.json"), str(tmp_path / "py"), **kwargs)
+    names = sorted(p.name for p in (tmp_path / "cli").iterdir() if p.suffix != ".json")
+    assert names == sorted(pathlib.Path(f["path"]).name for f in out["files"])
+    for name in names:
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    # The settings are used: without them the files differ.
+    default = pinmask.export_mask(str(tmp_path / "m.mask.json"), str(tmp_path / "default"),
+                                  formats=kwargs["formats"])
+    assert any((tmp_path / "default" / pathlib.Path(f["path"]).name).read_bytes() !=
+               (tmp_path / "py" / pathlib.Path(f["path"]).name).read_bytes()
+               for f in default["files"])
+
+
+def test_export_max_snap_error_refuses_as_cli(cli, tmp_path, mask7):
+    mask7.save(str(tmp_path / "m.mask.json"))
+    msg = cli.error("export", "m.mask.json", "--format", "tiff1", "--dpi", "1000",
+                    "--max-snap-error", "1nm", "--no-psf", "-o", "cli")
+    with pytest.raises(ValueError) as e:
+        pinmask.export_mask(mask7, str(tmp_path / "py"), formats=["tiff1"], dpi=1000,
+                            max_snap_error="1nm")
+    assert str(e.value) == msg.replace("--max-snap-error", "max_snap_error").replace("--dpi",
+                                                                                     "dpi")
+    assert not (tmp_path / "py").exists() or not any((tmp_path / "py").iterdir())
+
+
+def test_export_sidecar_equals_cli_and_check_reads_it(cli, tmp_path, mask7, monkeypatch):
+    """export_mask writes <stem>.export.json as `pinmask export` does (the PSF entry aside: the
+    module writes no PSF), and check() of a Python export reads its settings from it."""
+    mask7.save(str(tmp_path / "m.mask.json"))
+    args = dict(formats=["gds", "dxf"], tone="dark", shape="circle", units="mm", frame="1mm")
+    cli.run("export", "m.mask.json", "--format", "gds,dxf", "--tone", "dark", "--shape",
+            "circle", "--units", "mm", "--frame", "1mm", "--no-psf", "-o", "cli")
+    monkeypatch.chdir(tmp_path)  # the mask path recorded as given, as the command records it
+    out = pinmask.export_mask("m.mask.json", "py", **args)
+    assert out["sidecar"] == "py/m.export.json"
+    py_side = json.loads((tmp_path / "py" / "m.export.json").read_text())
+    cli_side = json.loads((tmp_path / "cli" / "m.export.json").read_text())
+    py_side.pop("psf")
+    cli_side.pop("psf")
+    assert py_side == cli_side
+    # check() of the Python export uses the sidecar's tone, shape, frame and units: clean, the
+    # same report as the command's check of the same file.
+    report = pinmask.check("py/m.gds", mask="m.mask.json")
+    cli_report = json.loads(cli.run("check", "py/m.gds", "--mask", "m.mask.json",
+                                    "--json").stdout)
+    for key in ["clean", "settings", "rules_from", "tone", "polygons", "annotations"]:
+        assert report[key] == cli_report[key], key
+    assert report["clean"] and report["settings"] == "from py/m.export.json"
+    # Without the sidecar the defaults (film rules, squares, no frame) do not fit the file.
+    bare = pinmask.check("py/m.gds", mask="m.mask.json", no_sidecar=True)
+    assert not bare["clean"] and bare["polygons"] != report["polygons"]

@@ -82,26 +82,33 @@ def test_every_method_equals_cli(cli, tmp_path, mask7, method, kw, model):
         assert ch["history"].shape == (ch["iterations"], 4)
 
 
-def test_progress_false_stops_with_estimate(mask7):
+def test_progress_gets_the_iteration_and_false_stops_with_estimate(mask7):
     cap = pinmask.simulate(mask7, "letter-R", snr_db=30)["capture"]
     calls = []
 
-    def progress(seconds):
-        calls.append(seconds)
-        return False
+    def progress(info):
+        calls.append(info)
+        # Stop once 5 iterations are done (or after 500 polls, so a counter that never moves
+        # fails the assertions below instead of running a million iterations).
+        return not (info["iteration"] >= 5 or len(calls) >= 500)
 
     out = pinmask.decode(cap, mask=mask7, method="tv", iters=1000000, tol=0, progress=progress,
                          poll_s=0.01)
     assert calls and out["interrupted"]
+    assert calls[-1]["iteration"] >= 5
+    assert all(c["max_iterations"] == 1000000 for c in calls)
+    assert [c["iteration"] for c in calls] == sorted(c["iteration"] for c in calls)
+    assert [c["seconds"] for c in calls] == sorted(c["seconds"] for c in calls)
     ch = out["channels"][0]
-    assert ch["interrupted"] and 1 <= ch["iterations"] < 1000000
+    # The solver ends after the iteration it is in: at least the iterations reported.
+    assert ch["interrupted"] and calls[-1]["iteration"] <= ch["iterations"] < 1000000
     assert np.all(np.isfinite(out["image"]))
 
 
 def test_ctrl_c_keeps_the_estimate_so_far(mask7):
     cap = pinmask.simulate(mask7, "letter-R", snr_db=30)["capture"]
 
-    def progress(seconds):
+    def progress(info):
         os.kill(os.getpid(), signal.SIGINT)  # as if the user pressed Ctrl-C
 
     out = pinmask.decode(cap, mask=mask7, method="richardson-lucy", iters=1000000, tol=0, progress=progress,
@@ -112,7 +119,7 @@ def test_ctrl_c_keeps_the_estimate_so_far(mask7):
 def test_progress_exception_propagates(mask7):
     cap = pinmask.simulate(mask7, "letter-R", snr_db=30)["capture"]
 
-    def progress(seconds):
+    def progress(info):
         raise LookupError("from the callback")
 
     with pytest.raises(LookupError, match="from the callback"):
@@ -178,7 +185,7 @@ def test_ctrl_c_during_closed_form_is_raised(mask7):
     rng = np.random.default_rng(1)
     cap = rng.random((2048, 2048))  # a decode of ~0.5 s: the poll comes first
 
-    def progress(seconds):
+    def progress(info):
         os.kill(os.getpid(), signal.SIGINT)
 
     with pytest.raises(KeyboardInterrupt):

@@ -50,3 +50,53 @@ def test_choose_kernel_model():
     assert model == "fresnel" and reason
     assert pinmask.choose_kernel_model(1e-3)[0] == "fraunhofer"
     assert pinmask.choose_kernel_model(1e5)[0] == "box"
+
+
+# Solving the pinhole (design --pixels-per-cell / --solve pinhole): a machine-vision camera,
+# not the paper's (the example of `pinmask design --help`).
+MV_FLAGS = ["--pixel-pitch", "3.45um", "--sensor", "2448x2048", "--lens-focal", "25mm",
+            "--sensor-distance", "20mm", "--object-distance", "2m", "--wavelength", "530nm"]
+MV = dict(pixel_pitch_m="3.45um", sensor_cols=2448, sensor_rows=2048, lens_focal_m="25mm",
+          sensor_distance_m="20mm", object_distance_m="2m", wavelength_m="530nm")
+
+
+def same_report(d, j):
+    keys = [k for k, v in j.items() if isinstance(v, (int, float)) and not isinstance(v, bool)]
+    assert len(keys) > 25
+    for k in keys:
+        assert d[k] == j[k], k
+
+
+@pytest.mark.parametrize("cli_args,kwargs", [
+    (["--pixels-per-cell", "21"], dict(pixels_per_cell=21)),
+    (["--solve", "pinhole", "--fab-grid", "1um"], dict(solve="pinhole", fab_grid="1um")),
+    (["--pixels-per-cell", "12", "--vendor", "film-plotter"],
+     dict(pixels_per_cell=12, vendor="film-plotter")),
+])
+def test_optics_solving_the_pinhole_equals_cli(cli, tmp_path, cli_args, kwargs):
+    j = json.loads(cli.run("design", *MV_FLAGS, *cli_args, "--save-camera", "cli.camera.json",
+                           "--json").stdout)
+    d = pinmask.optics(pinmask.Camera(**MV), **kwargs)
+    same_report(d, j)
+    assert "pinhole_on_grid_m" in j and d["pinhole_on_grid_m"] == j["pinhole_on_grid_m"]
+    # The solved camera is the one --save-camera writes.
+    pinmask.save_camera(d["camera"], str(tmp_path / "py.camera.json"))
+    assert (tmp_path / "py.camera.json").read_bytes() == \
+        (tmp_path / "cli.camera.json").read_bytes()
+    # Independent of pinmask: N = d M(u) / w with M(u) = 1 - f/f' + f/u, before the grid.
+    f, fl, u, w = 0.020, 0.025, 2.0, 3.45e-6
+    n_whole = round(d["pinhole_solved_m"] * (1 - f / fl + f / u) / w)
+    assert abs(d["pinhole_solved_m"] * abs(1 - f / fl + f / u) / w - n_whole) < 1e-9
+    if "pixels_per_cell" in kwargs:
+        assert n_whole == kwargs["pixels_per_cell"]
+
+
+@pytest.mark.parametrize("kwargs,pattern", [
+    (dict(solve="lens"), "^solve = lens: must be 'pinhole'"),
+    (dict(fab_grid="1um"), "^fab_grid = 1um: sets the grid a solved pinhole lands on"),
+    (dict(pixels_per_cell=12, fab_grid="1um", vendor="film-plotter"), "^fab_grid = 1um: and vendor"),
+    (dict(pixels_per_cell=0), "^pixels_per_cell = 0"),
+])
+def test_optics_solving_errors_name_keywords(kwargs, pattern):
+    with pytest.raises(ValueError, match=pattern):
+        pinmask.optics(pinmask.Camera(**MV), **kwargs)

@@ -159,8 +159,8 @@ def test_compare_photon_model_and_prior_equal_cli(cli, tmp_path, mask7):
     out = pinmask.compare([str(tmp_path / "m.mask.json"), str(tmp_path / "o.mask.json")],
                           tv_iterations=20, prior="stars", report=str(tmp_path / "py.pdf"),
                           **PHOTON_PY)
-    assert len(out["rows"]) == 2
-    for row, cli_row in zip(out["rows"], j["masks"]):
+    assert len(out["masks"]) == 2
+    for row, cli_row in zip(out["masks"], j["masks"]):
         assert_rows_equal(row, cli_row, PHOTON_KEYS)
     assert (tmp_path / "py.pdf").read_bytes()[:5] == b"%PDF-"
 
@@ -288,3 +288,59 @@ def test_check_reads_the_export_sidecar_like_cli(cli, tmp_path, mask7, monkeypat
     assert got == json.loads(p.stdout)
     assert got["clean"] == (p.returncode == 0)
     assert got["settings"].startswith("from the flags")
+
+
+# Camera files: the module writes the bytes `design --save-camera` writes, and a camera file
+# read by the module gives the mask `generate --camera FILE` gives. The NIR camera of
+# docs/fabrication.md, not the paper's.
+NIR_FLAGS = ["--pixel-pitch", "5.86um", "--sensor", "1920x1200", "--lens-focal", "75mm",
+             "--sensor-distance", "45mm", "--object-distance", "1.2m", "--wavelength", "850nm",
+             "--pinhole", "350um"]
+
+
+def test_camera_file_equals_design_save_camera(cli, tmp_path):
+    cli.run("design", *NIR_FLAGS, "--save-camera", "cli.camera.json")
+    cam = pinmask.Camera(pixel_pitch_m="5.86um", sensor_cols=1920, sensor_rows=1200,
+                         lens_focal_m="75mm", sensor_distance_m="45mm", object_distance_m="1.2m",
+                         wavelength_m="850nm", pinhole_m="350um")
+    pinmask.save_camera(cam, str(tmp_path / "py.camera.json"))
+    assert (tmp_path / "py.camera.json").read_bytes() == \
+        (tmp_path / "cli.camera.json").read_bytes()
+    assert cam.to_json() == (tmp_path / "cli.camera.json").read_text()
+    loaded = pinmask.load_camera(str(tmp_path / "cli.camera.json"))
+    assert loaded == cam
+    assert "wavelength_m=8.5e-07" in repr(loaded)  # not rounded to six decimals
+    cli.run("generate", "--camera", "cli.camera.json", "--grid", "12", "--holes", "9",
+            "--seed", "3", "-o", "cli.mask.json")
+    mask = pinmask.generate(camera=loaded, grid=12, holes=9, seed=3)
+    assert mask.to_json() == (tmp_path / "cli.mask.json").read_text()
+
+
+def test_camera_file_errors_name_the_file(tmp_path):
+    bad = tmp_path / "bad.camera.json"
+    bad.write_text('{"format": "pinmask-camera", "version": 99}')
+    with pytest.raises(ValueError, match="bad.camera.json"):
+        pinmask.load_camera(str(bad))
+
+
+def test_search_holes_range_same_masks_as_cli(cli, tmp_path):
+    cli.run("search", "--preset", "paper", "--grid", "16", "--holes", "8..14", "--evals", "200",
+            "--threads", "1", "--seed", "5", "--top", "2", "--no-rerank", "-o", "runs")
+    r = pinmask.search(grid=16, holes="8..14", evals=200, threads=1, seed=5, top=2,
+                       rerank_scenes=[])
+    assert len(r["candidates"]) == 2
+    for i, c in enumerate(r["candidates"]):
+        assert c["mask"].to_json() == (tmp_path / "runs" / f"rank-{i + 1}.mask.json").read_text()
+    counts = {len(c["mask"].pattern.pinholes) for c in r["candidates"]}
+    assert all(8 <= k <= 14 for k in counts)
+    # The range's messages are the CLI's, in Python spelling.
+    msg = as_keywords_holes(cli.error("search", "--holes", "9..4", "--evals", "5", "-o", "bad"))
+    with pytest.raises(ValueError) as e:
+        pinmask.search(holes="9..4", evals=5)
+    assert str(e.value) == msg
+    with pytest.raises(ValueError, match="^holes = 2.5"):
+        pinmask.search(holes=2.5, evals=5)
+
+
+def as_keywords_holes(cli_message):
+    return cli_message.replace("--holes", "holes").replace("--evals", "evals")

@@ -78,3 +78,48 @@ def test_image_io_roundtrip(tmp_path):
     back, _ = pinmask.read_image(str(tmp_path / "c.npy"))
     assert back.shape == (5, 6, 3)
     assert np.allclose(back, rgb, atol=1e-7)
+
+
+# Exact geometry (`pinmask psf --geometry exact`): a smaller NIR-like camera than the paper's
+# (f = 45 mm, f' = 75 mm, w = 5.86 um), refocused to u = 2 m.
+NIR = dict(pixel_pitch_m="5.86um", sensor_cols=640, sensor_rows=480, lens_focal_m="75mm",
+           sensor_distance_m="45mm", object_distance_m="1.2m", wavelength_m="850nm",
+           pinhole_m="350um")
+
+
+def test_exact_psf_equals_cli_and_lands_where_eq3_puts_it(cli, tmp_path):
+    # The box kernel: compact spots, none cut by the window, so the centroid is exact.
+    mask = pinmask.generate(camera=pinmask.Camera(**NIR), grid=12, holes=9, seed=3, kernel="box")
+    mask.save(str(tmp_path / "m.mask.json"))
+    cli.run("psf", "m.mask.json", "-o", "e.tiff", "--npy", "--geometry", "exact",
+            "--object-distance", "2m", "--size", "700x720")
+    ref = np.load(tmp_path / "e.npy")
+    got = pinmask.psf(mask, geometry="exact", object_distance="2m", size=(700, 720))
+    assert got.shape == ref.shape == (700, 720)
+    assert np.array_equal(got.astype(np.float32), ref)  # the CLI writes float32
+    # Independent of pinmask: Eq. (3) puts each tiled pinhole's spot at
+    # rows/2 + M(u) s / w with M(u) = 1 - f/f' + f/u; area resampling keeps each spot's
+    # centroid there, so the PSF's centroid is their mean (every spot inside the window).
+    f, fl, w, d, u = 0.045, 0.075, 5.86e-6, 350e-6, 2.0
+    m_u = 1 - f / fl + f / u
+    n, tiles = 12, 2
+    nt = n * tiles
+    centres = [((i + 0.5) - nt / 2) * d * m_u / w
+               for (r, c) in mask.pattern.pinholes for t in range(tiles)
+               for i in [r + t * n]]
+    rows_expected = 700 / 2 + np.mean(centres)
+    cols_centres = [((j + 0.5) - nt / 2) * d * m_u / w
+                    for (r, c) in mask.pattern.pinholes for t in range(tiles) for j in [c + t * n]]
+    cols_expected = 720 / 2 + np.mean(cols_centres)
+    rr, cc = np.mgrid[0:700, 0:720] + 0.5  # pixel k covers [k, k + 1)
+    assert abs((got * rr).sum() / got.sum() - rows_expected) < 0.05
+    assert abs((got * cc).sum() / got.sum() - cols_expected) < 0.05
+    assert abs(got.sum() - tiles * tiles) < 1e-6  # K spots of 1/K per tile, none cut
+
+
+def test_exact_psf_settings_need_exact_geometry():
+    mask = pinmask.generate(seed=3)
+    with pytest.raises(ValueError, match="^object_distance = 2m: only used with geometry='exact'"):
+        pinmask.psf(mask, object_distance="2m")
+    with pytest.raises(ValueError, match="^geometry = 'straight'|^geometry = straight"):
+        pinmask.psf(mask, geometry="straight")

@@ -105,6 +105,12 @@ def test_refocus_at_2m_within_half_a_db_of_the_true_psf(cli, tmp_path):
     true = psnr_aligned(true_est, truth)
     print(f"refocus {refocus:.2f} dB, true PSF {true:.2f} dB")
     assert refocus >= true - 0.5, (refocus, true)
+    # The module refocuses the same way, to the same numbers (decode(mask=, object_distance=)).
+    import pinmask
+    out = pinmask.decode(np.load(tmp_path / "capture.npy"), mask=str(tmp_path / "m.mask.json"),
+                         object_distance="2m", nsr=float(NSR))
+    assert out["refocus"] == stats["psf"]["refocus"]
+    assert np.array_equal(out["image"].astype(np.float32), np.load(tmp_path / "refocus.npy"))
     # The decode itself works on this capture: the estimate follows the object.
     assert np.corrcoef(true_est.ravel(), truth.ravel())[0, 1] > 0.5
     assert np.corrcoef(refocus_est.ravel(), truth.ravel())[0, 1] > 0.5

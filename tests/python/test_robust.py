@@ -87,3 +87,22 @@ def test_decode_nsr_map_equals_cli(cli, tmp_path):
         pinmask.decode(capture, psf=psf, nsr_map=nsr[:-1], crop="none")
     with pytest.raises(ValueError):
         pinmask.decode(capture, psf=psf, nsr_map=-nsr, crop="none")
+
+
+def test_compare_robust_equals_cli(cli, tmp_path, mask7):
+    """compare(robust=) as `compare --robust`: every row's robust figure is the command's, and
+    the same as metrics(robust=) for that mask (one library path)."""
+    mask7.save(str(tmp_path / "m.mask.json"))
+    pinmask.generate(seed=8).save(str(tmp_path / "o.mask.json"))
+    spec = "size=44um,jitter=2um"
+    j = json.loads(cli.run("compare", "m.mask.json", "o.mask.json", "--robust", spec,
+                           "--tv-iters", "10", "--json").stdout)
+    out = pinmask.compare([str(tmp_path / "m.mask.json"), str(tmp_path / "o.mask.json")],
+                          robust=spec, tv_iterations=10)
+    assert len(out["masks"]) == 2
+    for row, cli_row in zip(out["masks"], j["masks"]):
+        for key in ["robust_wiener_psnr_db_snr30", "robust_loss_db_snr30"]:
+            assert row[key] == cli_row[key], key
+        assert row["robust_loss_db_snr30"] > 0  # the errors cost
+    single = pinmask.metrics(str(tmp_path / "m.mask.json"), robust=spec, tv_iterations=10)
+    assert single["robust_wiener_psnr_db"] == out["masks"][0]["robust_wiener_psnr_db"]

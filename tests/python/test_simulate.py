@@ -85,3 +85,35 @@ def test_simulate_precision_matches_cli_and_double(cli, tmp_path, mask7):
     assert np.array_equal(s.astype(np.float32), np.load(tmp_path / "cap.npy"))
     with pytest.raises(ValueError, match="^precision = half"):
         pinmask.simulate(mask7, precision="half")
+
+
+def test_exact_geometry_capture_equals_cli(cli, tmp_path):
+    """`simulate --geometry exact` on a camera that is not the paper's, refocused to 2 m: the
+    same capture, noise included (same seed). The exact PSF's geometry is checked against
+    Eq. (3) in test_psf.py."""
+    cam = pinmask.Camera(pixel_pitch_m="5.86um", sensor_cols=640, sensor_rows=480,
+                         lens_focal_m="75mm", sensor_distance_m="45mm",
+                         object_distance_m="1.2m", wavelength_m="850nm", pinhole_m="120um")
+    mask = pinmask.generate(camera=cam, grid=8, holes=6, seed=3)
+    mask.save(str(tmp_path / "m.mask.json"))
+    cli.run("simulate", "m.mask.json", "--scene", "point", "--geometry", "exact",
+            "--object-distance", "2m", "--size", "200x240", "--snr", "40", "--seed", "2",
+            "-o", "cap.npy")
+    out = pinmask.simulate(mask, "point", snr_db=40, seed=2, geometry="exact",
+                           object_distance="2m", size=(200, 240))
+    ref = np.load(tmp_path / "cap.npy")
+    assert out["capture"].shape == ref.shape == (200, 240)
+    assert np.array_equal(out["capture"].astype(ref.dtype), ref)
+    assert out["object_distance_m"] == 2.0 and out["psf"] is None
+    with pytest.raises(ValueError, match="^size = 200x240: only used with geometry='exact'"):
+        pinmask.simulate(mask, "point", size=(200, 240))
+
+
+def test_exact_geometry_refusals_name_keywords():
+    mask = pinmask.generate(seed=3)
+    with pytest.raises(ValueError, match="^full_sensor = given: geometry='exact' always covers "
+                                         "the sensor \\(or size ROWSxCOLS\\)"):
+        pinmask.simulate(mask, "point", geometry="exact", full_sensor=True)
+    with pytest.raises(ValueError, match="^object_distance = 2m: only used with "
+                                         "geometry='exact'"):
+        pinmask.simulate(mask, "point", object_distance="2m")

@@ -20,8 +20,8 @@ def stub_names(path):
 
 
 def test_stub_lists_every_public_name(source_dir):
-    stub = os.path.join(os.path.dirname(pinmask.__file__), "pinmask.pyi")
-    assert os.path.exists(stub), "pinmask.pyi must sit beside the module"
+    stub = os.path.join(os.path.dirname(pinmask.__file__), "__init__.pyi")
+    assert os.path.exists(stub), "the stub must sit beside the module, as the package's __init__.pyi"
     assert open(stub).read() == open(source_dir / "python" / "pinmask.pyi").read()
     names, tree = stub_names(stub)
     public = {n for n in dir(pinmask) if not n.startswith("_")} | {"__version__"}
