@@ -38,8 +38,6 @@ COMMANDS_BY_DESIGN = {
 
 # Commands whose function the module does not have yet.
 COMMAND_GAPS = {
-    "depth": "added by the depth work (python/bind_depth.cpp); its flags are checked here once "
-             "pinmask.depth exists",
     "sweep": "a design sweep (one search per grid point) is a loop over pinmask.search in Python; "
              "the sweep's table, per-point files and plots are not in the module",
 }
