@@ -64,6 +64,13 @@ void check_trust(const ForwardFit& f, const CalibrationOptions&) {
     for (const auto& p : f.pinholes)
         if (p.in_frame) sig.push_back(p.gain_sigma);
     const double gs = median_of(sig);
+    // A non-positive median flux is a fit that did not find the lattice, not a dim capture.
+    if (!(f.median_gain > 0))
+        throw InvalidInput(
+            "calibrate: the fit did not find the mask's lattice in the capture (the "
+            "median pinhole flux came out " +
+            format_number(f.median_gain) + "): is it a capture of this mask, rotated within " +
+            field_ref("max_rotation_deg") + "?");
     if (!(f.median_gain > kMinGainSnr * gs))
         throw InvalidInput(
             "calibrate: too few photons to trust the fit: the median pinhole's flux " +
