@@ -21,7 +21,9 @@ constexpr int kNonlinear = 6;  // x0, y0, t, px, py, s
 enum { kX0 = 0, kY0 = 1, kRot = 2, kPx = 3, kPy = 4, kSide = 5 };
 constexpr double kSideStep = 1e-4;  // forward difference of the side scale
 constexpr double kMinSideScale = 0.2, kMaxSideScale = 5.0;
-constexpr int kRounds = 3;  // unweighted, then weighted with the noise model refitted twice
+constexpr int kRounds = 3;
+constexpr double kConvergedChi2 = 1e-2;
+constexpr int kSmallSteps = 3;  // unweighted, then weighted with the noise model refitted twice
 
 struct Params {
     double v[kNonlinear] = {0, 0, 0, 0, 0, 1};
@@ -301,6 +303,7 @@ RoundResult levenberg_marquardt(const Problem& pb, Params& p, const std::vector<
     Evaluation e = evaluate(pb, p, foot, halo_plane, true);
     double cost = weighted_cost(w, pb.frame, e.model);
     double lambda = 1e-3;
+    int small_steps = 0;
     for (int it = 0; it < max_iterations; ++it) {
         ++rr.iterations;
         Eigen::MatrixXd A;
@@ -337,9 +340,15 @@ RoundResult levenberg_marquardt(const Problem& pb, Params& p, const std::vector<
                 cost = tc;
                 lambda = std::max(lambda / 5, 1e-9);
                 accepted = true;
-                // Converged: a negligible decrease from a step that was not merely damped
-                // short (a heavily damped step decreases little anywhere).
-                if (gain <= 1e-10 * cost && lambda < 1e-2) {
+                // Converged: a decrease below kConvergedChi2 in units of the cost per degree of
+                // freedom (chi^2 when the weights are the noise model's: the step moved the
+                // parameters by about a tenth of their standard error or less), from a step that
+                // was not merely damped short (a heavily damped step decreases little anywhere)
+                // or on kSmallSteps accepted steps in a row.
+                const double per_dof =
+                    cost / std::max(1.0, double(pb.frame.size()) - double(free.size()));
+                small_steps = gain <= kConvergedChi2 * per_dof ? small_steps + 1 : 0;
+                if (small_steps > 0 && (lambda < 1e-2 || small_steps >= kSmallSteps)) {
                     rr.converged = true;
                     e = evaluate(pb, p, foot, halo_plane, true);
                     return rr;
