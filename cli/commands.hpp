@@ -31,5 +31,6 @@ void add_bench_search(CLI::App& bench);
 void add_bench_export(CLI::App& bench);
 void add_bench_error_time(CLI::App& bench);
 void add_bench_period(CLI::App& bench);
+void add_bench_calibrate(CLI::App& bench);
 
 }  // namespace pinmask::cli
