@@ -90,7 +90,7 @@ void run_row(const std::string& camera, const Perturbation& p) {
 }  // namespace
 
 // The paper's row runs by default (about 5 s); the others are slow (CTest label slow,
-// tests/CMakeLists.txt: slow-calibrate-matrix-*), 5 to 20 s each in Release.
+// tests/CMakeLists.txt: slow-calibrate-matrix-*); the six rows take about 43 s in Release.
 TEST_CASE("camera matrix: paper camera rotated with pitch off and two missing at OD 2") {
     run_row("paper", {1.0, 1.006, 0.995, 1.06, 2, 2.0, 0, 11});
 }
