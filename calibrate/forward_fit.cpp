@@ -332,7 +332,10 @@ RoundResult levenberg_marquardt(const Problem& pb, Params& p, const std::vector<
             }
             Params trial = p;
             apply_step(trial, step, free);
-            Evaluation te = evaluate(pb, trial, foot, halo_plane, false);
+            // The first trial carries the derivatives (it is usually accepted and then serves
+            // the next iteration); retries after a rejection do not.
+            const bool with_derivs = attempt == 0;
+            Evaluation te = evaluate(pb, trial, foot, halo_plane, with_derivs);
             const double tc = weighted_cost(w, pb.frame, te.model);
             if (tc <= cost) {
                 const double gain = cost - tc;
@@ -350,9 +353,9 @@ RoundResult levenberg_marquardt(const Problem& pb, Params& p, const std::vector<
                 small_steps = gain <= kConvergedChi2 * per_dof ? small_steps + 1 : 0;
                 if (small_steps > 0 && (lambda < 1e-2 || small_steps >= kSmallSteps)) {
                     rr.converged = true;
-                    e = evaluate(pb, p, foot, halo_plane, true);
                     return rr;
                 }
+                e = with_derivs ? std::move(te) : evaluate(pb, p, foot, halo_plane, true);
             } else {
                 lambda *= 5;
             }
@@ -361,7 +364,6 @@ RoundResult levenberg_marquardt(const Problem& pb, Params& p, const std::vector<
             rr.converged = true;  // no descent left at any damping: a minimum to rounding
             break;
         }
-        e = evaluate(pb, p, foot, halo_plane, true);
     }
     return rr;
 }
