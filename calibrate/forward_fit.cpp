@@ -23,7 +23,12 @@ constexpr double kSideStep = 1e-4;  // forward difference of the side scale
 constexpr double kMinSideScale = 0.2, kMaxSideScale = 5.0;
 constexpr int kRounds = 3;
 constexpr double kConvergedChi2 = 1e-2;
-constexpr int kSmallSteps = 3;  // unweighted, then weighted with the noise model refitted twice
+constexpr int kSmallSteps = 3;
+// The first pass runs on a binned capture when cells are at least 2 kBinnedCellPx pixels wide
+// and the frame at least kMinBinnedFramePx on its short side.
+constexpr double kBinnedCellPx = 8.0;
+constexpr int kMinBinnedFramePx =
+    1024;  // unweighted, then weighted with the noise model refitted twice
 
 struct Params {
     double v[kNonlinear] = {0, 0, 0, 0, 0, 1};
@@ -660,9 +665,37 @@ ForwardFit fit_from(const Plane& frame, const Mask& mask, const LatticeStart& st
 // halo held fixed can settle on a false minimum).
 ForwardFit fit_forward_model(const Plane& frame, const Mask& mask, const LatticeStart& start,
                              const ForwardFitOptions& o) {
-    const ForwardFit first = fit_from(frame, mask, start, o, true);
-    ForwardFit out = fit_from(frame, mask, first.lattice, o, false);
-    out.iterations += first.iterations;
+    // A large capture with wide cells: the first pass on the capture binned b x b (b = pitch /
+    // kBinnedCellPx, the model's pixels b times larger: the pixel-integrated kernel stays exact),
+    // b^2 times fewer pixels per iteration.
+    const double pitch = 0.5 * (start.pitch_x_px + start.pitch_y_px);
+    const int b = static_cast<int>(std::floor(pitch / kBinnedCellPx));
+    LatticeStart refined;
+    int first_iterations = 0;
+    if (b >= 2 && std::min(frame.rows(), frame.cols()) >= kMinBinnedFramePx) {
+        const int R = static_cast<int>(frame.rows()) / b, C = static_cast<int>(frame.cols()) / b;
+        Plane binned = Plane::Zero(R, C);
+        for (int r = 0; r < R * b; ++r)
+            for (int c = 0; c < C * b; ++c) binned(r / b, c / b) += frame(r, c);
+        Mask coarse = mask;
+        coarse.camera.pixel_pitch_m *= b;
+        // Pixel (i, j) of the binned frame covers pixels b i .. b i + b - 1: index coordinate
+        // x of the capture is (x + 1/2) / b - 1/2 there.
+        auto to_binned = [b](double x) { return (x + 0.5) / b - 0.5; };
+        auto from_binned = [b](double x) { return (x + 0.5) * b - 0.5; };
+        const LatticeStart s{to_binned(start.x0), to_binned(start.y0), start.rotation_rad,
+                             start.pitch_x_px / b, start.pitch_y_px / b};
+        const ForwardFit f = fit_from(binned, coarse, s, o, true);
+        refined = {from_binned(f.lattice.x0), from_binned(f.lattice.y0), f.lattice.rotation_rad,
+                   f.lattice.pitch_x_px * b, f.lattice.pitch_y_px * b};
+        first_iterations = f.iterations;
+    } else {
+        const ForwardFit first = fit_from(frame, mask, start, o, true);
+        refined = first.lattice;
+        first_iterations = first.iterations;
+    }
+    ForwardFit out = fit_from(frame, mask, refined, o, false);
+    out.iterations += first_iterations;
     return out;
 }
 
