@@ -25,65 +25,35 @@ constexpr double kMinGainSnr = 10.0;
 constexpr double kMaxUnexplained = 0.05;
 constexpr double kExtraFluxFraction = 0.25;
 
-struct Pass {
-    std::vector<Spot> spots;
-    LatticeFit fit;
-    PinholeMatch match;
-};
-
-Pass register_spots(const Plane& frame, const Plane& raw, const Background& bg, const Mask& mask,
-                    const CalibrationOptions& o) {
-    Pass p;
+// The spots above the threshold: refusals of captures that are not a usable point source (no
+// spots, far fewer than the design, saturated). The lattice itself starts from the FFT
+// (calibrate/lattice_fft), not from these spots.
+std::vector<Spot> checked_spots(const Plane& frame, const Plane& raw, const Background& bg,
+                                const Mask& mask, const CalibrationOptions& o) {
     SpotOptions so;
     so.raw = &raw;
     so.threshold_sigmas = o.threshold_sigmas;
     so.saturation_level = o.saturation_level;
-    p.spots = detect_spots(frame, bg, so);
+    std::vector<Spot> spots = detect_spots(frame, bg, so);
     const int design_spots = static_cast<int>(mask.pattern.pinholes.size());
-    if (p.spots.empty())
+    if (spots.empty())
         throw InvalidInput("calibrate: no spots found in the capture (threshold " +
                            format_number(o.threshold_sigmas) + " noise sigmas above the median " +
                            format_number(bg.level) + "): is it a point-source capture?");
-    if (p.spots.size() < std::max<std::size_t>(3, std::lround(o.min_spot_fraction * design_spots)))
+    if (spots.size() < std::max<std::size_t>(3, std::lround(o.min_spot_fraction * design_spots)))
         throw InvalidInput(
-            "calibrate: far fewer spots than the design: " + std::to_string(p.spots.size()) +
+            "calibrate: far fewer spots than the design: " + std::to_string(spots.size()) +
             " found, the mask has " + std::to_string(design_spots) + " pinholes per period");
     int saturated = 0;
-    for (const Spot& s : p.spots) saturated += s.saturated ? 1 : 0;
-    const double frac = double(saturated) / double(p.spots.size());
+    for (const Spot& s : spots) saturated += s.saturated ? 1 : 0;
+    const double frac = double(saturated) / double(spots.size());
     if (frac > o.max_saturated_fraction)
         throw InvalidInput("calibrate: saturation over most spots: " + std::to_string(saturated) +
-                           " of " + std::to_string(p.spots.size()) + " spots (" +
+                           " of " + std::to_string(spots.size()) + " spots (" +
                            format_number(std::round(1000 * frac) / 10) +
                            " %) reach the saturation level " + format_number(o.saturation_level) +
                            "; expose shorter");
-    std::vector<Eigen::Vector2d> pts;
-    for (const Spot& s : p.spots) pts.emplace_back(s.x, s.y);
-    RegistrationOptions ro;
-    ro.nominal_pitch_px = double(mask.psf.pixels_per_cell) / o.pixel_binning;
-    ro.pitch_range = o.pitch_range;
-    ro.max_rotation_deg = o.max_rotation_deg;
-    ro.max_index_offset = o.max_index_offset;
-    p.fit = fit_lattice(pts, ro);
-    const double rot = p.fit.rotation_rad * kDeg;
-    if (std::abs(rot) > o.max_rotation_deg)
-        throw InvalidInput("calibrate: the rotation " + format_number(rot) +
-                           " deg is beyond what the search covers (" +
-                           field_ref("max_rotation_deg") + " " + format_number(o.max_rotation_deg) +
-                           " deg)");
-    p.match = match_pinholes(p.spots, p.fit, mask.pattern, static_cast<int>(frame.rows()),
-                             static_cast<int>(frame.cols()), o.max_index_offset);
-    int expected = 0, seen = 0;
-    for (const auto& r : p.match.pinholes) {
-        ++expected;
-        seen += r.state != PinholeState::kMissing ? 1 : 0;
-    }
-    if (expected == 0 || seen < o.min_spot_fraction * expected)
-        throw InvalidInput("calibrate: far fewer spots than the design: " + std::to_string(seen) +
-                           " spots on the " + std::to_string(expected) +
-                           " design pinholes inside the frame (the rotation may exceed " +
-                           field_ref("max_rotation_deg") + ", or the capture is not of this mask)");
-    return p;
+    return spots;
 }
 
 // The fit cannot be trusted: too few photons (the median pinhole's flux below kMinGainSnr of its
@@ -94,6 +64,13 @@ void check_trust(const ForwardFit& f, const CalibrationOptions&) {
     for (const auto& p : f.pinholes)
         if (p.in_frame) sig.push_back(p.gain_sigma);
     const double gs = median_of(sig);
+    // A non-positive median flux is a fit that did not find the lattice, not a dim capture.
+    if (!(f.median_gain > 0))
+        throw InvalidInput(
+            "calibrate: the fit did not find the mask's lattice in the capture (the "
+            "median pinhole flux came out " +
+            format_number(f.median_gain) + "): is it a capture of this mask, rotated within " +
+            field_ref("max_rotation_deg") + "?");
     if (!(f.median_gain > kMinGainSnr * gs))
         throw InvalidInput(
             "calibrate: too few photons to trust the fit: the median pinhole's flux " +
@@ -139,7 +116,6 @@ void validate(const CalibrationOptions& o) {
     check_range("max_saturated_fraction", o.max_saturated_fraction, 0.0, 1.0, "must be in [0, 1]");
     check_range("min_spot_fraction", o.min_spot_fraction, 0.0, 1.0, "must be in [0, 1]");
     check_range("period_tolerance_px", o.period_tolerance_px, 0.0, 1e3, "must be in [0, 1000]");
-    check_range("max_index_offset", o.max_index_offset, 0.05, 0.45, "must be in [0.05, 0.45]");
     check_range("pixel_binning", o.pixel_binning, 1, 16, "must be in [1, 16]");
 }
 
@@ -167,23 +143,17 @@ CalibrationSummary calibrate_point_source(const Plane& capture, const std::optio
         s.dark_level = dark->mean();
         s.dark_source = "dark frame";
     }
-    // The start: spots and a lattice through them.
+    // Refusals from the spots, then the start of the lattice from the FFT.
     const Background bg0 = estimate_background(frame);
-    const Pass pass = register_spots(frame, capture, bg0, mask, o);
-    s.spots = pass.spots;
-    s.start = pass.fit;
-    s.match = pass.match;
+    s.spots = checked_spots(frame, capture, bg0, mask, o);
     for (int k = 0; k < static_cast<int>(s.spots.size()); ++k)
         if (s.spots[k].saturated) s.saturated_spots.push_back(k);
-    // registration's rotation runs clockwise on screen: the fit's counter-clockwise angle is
-    // its negative; lattice index (i, j) is mask cell (j + offset_row, i + offset_col).
-    LatticeStart start;
-    const Eigen::Vector2d origin = s.start.position(-s.match.offset_col, -s.match.offset_row);
-    start.x0 = origin.x();
-    start.y0 = origin.y();
-    start.rotation_rad = -s.start.rotation_rad;
-    start.pitch_x_px = s.start.pitch_x_px;
-    start.pitch_y_px = s.start.pitch_y_px;
+    FftStartOptions so;
+    so.nominal_pitch_px = design_pitch;
+    so.pitch_range = o.pitch_range;
+    so.max_rotation_deg = o.max_rotation_deg;
+    s.fft_start = fft_lattice_start(frame, mask.pattern, so);
+    const LatticeStart start = s.fft_start.lattice;
     ForwardFitOptions fo;
     fo.dark_subtracted = dark.has_value();
     s.fit = fit_forward_model(frame, mask, start, fo);

@@ -1,7 +1,8 @@
 // The calibration pipeline: a point-source capture through the whole mask (several periods,
 // K x tiles spots) -> measured geometry, per-pinhole gains, leak, background, kernel, calibrated
-// PSF. Steps (one concept per file): dark frame -> spots and a lattice through them, matched to
-// mask cells (calibrate/spots, registration, pinholes): the start -> the fit of the forward model
+// PSF. Steps (one concept per file): dark frame -> spots (calibrate/spots: the refusals of
+// unusable captures) -> the lattice's start from the capture's Fourier transform
+// (calibrate/lattice_fft) -> the fit of the forward model
 // to the whole capture (calibrate/forward_fit): geometry, kernel side, gains, leak, background
 // and their standard errors -> missing pinholes from the gains, extra light from the residual ->
 // PSFs from the fitted model (calibrate/calibrated_psf) -> the fitted kernel against the design's
@@ -20,8 +21,7 @@
 #include "calibrate/forward_fit.hpp"
 #include "calibrate/kernel_estimate.hpp"
 #include "calibrate/kernel_fit.hpp"
-#include "calibrate/pinholes.hpp"
-#include "calibrate/registration.hpp"
+#include "calibrate/lattice_fft.hpp"
 #include "calibrate/spots.hpp"
 #include "core/image.hpp"
 #include "design/mask.hpp"
@@ -41,7 +41,6 @@ struct CalibrationOptions {
     // The one-period cyclic PSF is made when the lattice drifts by at most this over one
     // period (pixels): beyond, a cyclic PSF on a whole-pixel torus misplaces spots.
     double period_tolerance_px = 0.5;
-    double max_index_offset = 0.25;  // a spot sits on a lattice site within this (cells)
     // Sensor pixels per capture pixel along each axis (2 for a Bayer RAW read as 2 x 2 blocks):
     // the design's pitch in capture pixels is pixels_per_cell / pixel_binning. The mask's camera
     // must already carry the capture's pixel pitch (the kernel models use it).
@@ -61,11 +60,10 @@ struct CalibrationSummary {
     Cell first_tile;                                  // that tile (row, col)
     double design_pitch_px = 0.0;                     // the design's pitch at u (capture pixels)
     ForwardFit fit;
-    // The start: spots above a threshold and a lattice through their centroids (its own
-    // rotation sign, calibrate/registration), matched to mask cells.
+    // Spots above the threshold (the refusals of unusable captures) and the lattice's start
+    // from the capture's Fourier transform (calibrate/lattice_fft).
     std::vector<Spot> spots;
-    LatticeFit start;
-    PinholeMatch match;
+    FftStart fft_start;
     std::vector<Cell> missing;  // mask cells (R, C) over the tiled mask, decided by the fit
     // Blobs of the normalised residual above the threshold carrying at least a quarter of the
     // median pinhole flux: light the design does not explain (a pinhole not in the design, a

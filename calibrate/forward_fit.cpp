@@ -21,7 +21,14 @@ constexpr int kNonlinear = 6;  // x0, y0, t, px, py, s
 enum { kX0 = 0, kY0 = 1, kRot = 2, kPx = 3, kPy = 4, kSide = 5 };
 constexpr double kSideStep = 1e-4;  // forward difference of the side scale
 constexpr double kMinSideScale = 0.2, kMaxSideScale = 5.0;
-constexpr int kRounds = 3;  // unweighted, then weighted with the noise model refitted twice
+constexpr int kRounds = 3;
+constexpr double kConvergedChi2 = 1e-2;
+constexpr int kSmallSteps = 3;
+// The first pass runs on a binned capture when cells are at least 2 kBinnedCellPx pixels wide
+// and the frame at least kMinBinnedFramePx on its short side.
+constexpr double kBinnedCellPx = 8.0;
+constexpr int kMinBinnedFramePx =
+    1024;  // unweighted, then weighted with the noise model refitted twice
 
 struct Params {
     double v[kNonlinear] = {0, 0, 0, 0, 0, 1};
@@ -45,12 +52,18 @@ struct Problem {
     std::vector<Cell> outside;  // open cells whose only light in the frame is their halo
     double cell_px = 1.0;       // design pitch (pixels), for the window sizes
     int rows, cols;
+    // The lattice's pivot: (x0, y0) of the parameters is the spot centre of this cell (a cell
+    // amid the fitted ones), so rotation and pitches are nearly uncorrelated with the position
+    // (about cell (0, 0), often far outside the frame, a small rotation moves every spot far and
+    // the fit's valley is long and narrow).
+    int ref_row = 0, ref_col = 0;
 };
 
-Eigen::Vector2d centre_of(const double* v, const Cell& c) {
+Eigen::Vector2d centre_of(const Problem& pb, const double* v, const Cell& c) {
     const double ct = std::cos(v[kRot]), st = std::sin(v[kRot]);
-    return {v[kX0] + v[kPx] * ct * c.col + v[kPy] * st * c.row,
-            v[kY0] - v[kPx] * st * c.col + v[kPy] * ct * c.row};
+    const double dc = c.col - pb.ref_col, dr = c.row - pb.ref_row;
+    return {v[kX0] + v[kPx] * ct * dc + v[kPy] * st * dr,
+            v[kY0] - v[kPx] * st * dc + v[kPy] * ct * dr};
 }
 
 double side_m(const Problem& pb, double scale) { return scale * pb.mask.camera.pinhole_m; }
@@ -59,6 +72,12 @@ double core_half_px(const Problem& pb, double scale) {
     if (pb.family == KernelModel::kBox)
         return profile_support_px(pb.mask.camera, pb.family, side_m(pb, scale), 1.0, 1e9) + 0.5;
     return pb.o.core_cells * pb.cell_px;
+}
+
+// Half width of a spot's core window (pixels): the window is the pixels within this of the
+// spot centre's nearest pixel; the halo holds the kernel beyond it.
+int core_window_px(const Problem& pb, double scale) {
+    return static_cast<int>(std::ceil(core_half_px(pb, scale)));
 }
 
 double halo_half_px(const Problem& pb, double scale) {
@@ -76,7 +95,9 @@ Plane footprint(const Problem& pb, const double* v) {
     for (int r = 0; r < pb.rows; ++r)
         for (int c = 0; c < pb.cols; ++c) {
             const double dx = c - v[kX0], dy = r - v[kY0];
-            const double a = ct * dx - st * dy, b = st * dx + ct * dy;  // pixels along the axes
+            // Pixels along the axes from cell (0, 0)'s spot centre ((x0, y0) is the pivot's).
+            const double a = ct * dx - st * dy + pb.ref_col * v[kPx];
+            const double b = st * dx + ct * dy + pb.ref_row * v[kPy];
             const double fa = std::clamp(a + 0.5 * v[kPx] + 0.5, 0.0, 1.0) *
                               std::clamp((ncol - 0.5) * v[kPx] - a + 0.5, 0.0, 1.0);
             const double fb = std::clamp(b + 0.5 * v[kPy] + 0.5, 0.0, 1.0) *
@@ -90,32 +111,29 @@ Plane footprint(const Problem& pb, const double* v) {
 // bilinearly onto pixels; the tail is evaluated along the pixel axes).
 Plane halo(const Problem& pb, const Params& p, double median_gain) {
     const double rh = halo_half_px(pb, p.v[kSide]);
-    const double rc = core_half_px(pb, p.v[kSide]);
-    if (rh <= rc) return Plane::Zero(pb.rows, pb.cols);
+    const int H = core_window_px(pb, p.v[kSide]);
+    if (rh <= H) return Plane::Zero(pb.rows, pb.cols);
     const ProfileTable full(pb.mask.camera, pb.family, side_m(pb, p.v[kSide]), rh);
     const int pad = static_cast<int>(std::ceil(rh)) + 2;
     const int R = pb.rows + 2 * pad, C = pb.cols + 2 * pad;
     check_memory(6.0 * R * C * sizeof(double), "the calibration model's diffraction halo");
     Plane deltas = Plane::Zero(R, C);
+    // Each spot on its nearest pixel: the tail then starts exactly where its core window ends.
     auto splat = [&](const Eigen::Vector2d& q, double g) {
-        const double x = q.x() + pad, y = q.y() + pad;
-        const double fx = std::floor(x), fy = std::floor(y), tx = x - fx, ty = y - fy;
-        for (int a = 0; a < 2; ++a)
-            for (int b = 0; b < 2; ++b) {
-                const long r = long(fy) + a, c = long(fx) + b;
-                if (r < 0 || c < 0 || r >= R || c >= C) continue;
-                deltas(r, c) += g * (a ? ty : 1 - ty) * (b ? tx : 1 - tx);
-            }
+        const long r = std::lround(q.y()) + pad, c = std::lround(q.x()) + pad;
+        if (r < 0 || c < 0 || r >= R || c >= C) return;
+        deltas(r, c) += g;
     };
-    for (std::size_t k = 0; k < pb.cells.size(); ++k) splat(centre_of(p.v, pb.cells[k]), p.g[k]);
-    for (const Cell& c : pb.outside) splat(centre_of(p.v, c), median_gain);
+    for (std::size_t k = 0; k < pb.cells.size(); ++k)
+        splat(centre_of(pb, p.v, pb.cells[k]), p.g[k]);
+    for (const Cell& c : pb.outside) splat(centre_of(pb, p.v, c), median_gain);
     Plane tail = Plane::Zero(R, C);
     const int h = static_cast<int>(std::floor(rh));
     std::vector<double> q(2 * h + 1);
     for (int k = -h; k <= h; ++k) q[k + h] = full.value(k);
     for (int dy = -h; dy <= h; ++dy)
         for (int dx = -h; dx <= h; ++dx) {
-            if (std::max(std::abs(dx), std::abs(dy)) <= rc) continue;
+            if (std::max(std::abs(dx), std::abs(dy)) <= H) continue;
             tail((dy + R) % R, (dx + C) % C) = q[dy + h] * q[dx + h];
         }
     Fft2 fft(R, C);
@@ -137,7 +155,7 @@ Evaluation evaluate(const Problem& pb, const Params& p, const Plane& foot, const
     Evaluation e;
     e.model = p.background + p.leak * foot + halo_plane;
     const double s = p.v[kSide];
-    const double half = core_half_px(pb, s);
+    const int half = core_window_px(pb, s);
     const ProfileTable q(pb.mask.camera, pb.family, side_m(pb, s), half + 1.0);
     ProfileTable qs;
     if (derivs) {
@@ -148,20 +166,23 @@ Evaluation evaluate(const Problem& pb, const Params& p, const Plane& foot, const
     e.windows.resize(pb.cells.size());
     for (std::size_t k = 0; k < pb.cells.size(); ++k) {
         const Cell& cell = pb.cells[k];
-        const Eigen::Vector2d z = centre_of(p.v, cell);
+        const Eigen::Vector2d z = centre_of(pb, p.v, cell);
         Window& w = e.windows[k];
-        w.r0 = std::max(0, static_cast<int>(std::floor(z.y() - half)));
-        w.r1 = std::min(pb.rows - 1, static_cast<int>(std::ceil(z.y() + half)));
-        w.c0 = std::max(0, static_cast<int>(std::floor(z.x() - half)));
-        w.c1 = std::min(pb.cols - 1, static_cast<int>(std::ceil(z.x() + half)));
+        const int zr = static_cast<int>(std::lround(z.y())),
+                  zc = static_cast<int>(std::lround(z.x()));
+        w.r0 = std::max(0, zr - half);
+        w.r1 = std::min(pb.rows - 1, zr + half);
+        w.c0 = std::max(0, zc - half);
+        w.c1 = std::min(pb.cols - 1, zc + half);
         if (w.empty()) continue;
         w.k.assign(static_cast<std::size_t>(w.r1 - w.r0 + 1) * w.width(), 0.0);
         const double g = p.g[k];
         // Chain rule from the spot centre to the lattice parameters.
-        const double dxdt = -p.v[kPx] * st * cell.col + p.v[kPy] * ct * cell.row;
-        const double dydt = -p.v[kPx] * ct * cell.col - p.v[kPy] * st * cell.row;
-        const double dxdpx = ct * cell.col, dydpx = -st * cell.col;
-        const double dxdpy = st * cell.row, dydpy = ct * cell.row;
+        const double cc = cell.col - pb.ref_col, cr = cell.row - pb.ref_row;
+        const double dxdt = -p.v[kPx] * st * cc + p.v[kPy] * ct * cr;
+        const double dydt = -p.v[kPx] * ct * cc - p.v[kPy] * st * cr;
+        const double dxdpx = ct * cc, dydpx = -st * cc;
+        const double dxdpy = st * cr, dydpy = ct * cr;
         std::size_t idx = 0;
         for (int r = w.r0; r <= w.r1; ++r)
             for (int c = w.c0; c <= w.c1; ++c, ++idx) {
@@ -287,6 +308,7 @@ RoundResult levenberg_marquardt(const Problem& pb, Params& p, const std::vector<
     Evaluation e = evaluate(pb, p, foot, halo_plane, true);
     double cost = weighted_cost(w, pb.frame, e.model);
     double lambda = 1e-3;
+    int small_steps = 0;
     for (int it = 0; it < max_iterations; ++it) {
         ++rr.iterations;
         Eigen::MatrixXd A;
@@ -315,7 +337,10 @@ RoundResult levenberg_marquardt(const Problem& pb, Params& p, const std::vector<
             }
             Params trial = p;
             apply_step(trial, step, free);
-            Evaluation te = evaluate(pb, trial, foot, halo_plane, false);
+            // The first trial carries the derivatives (it is usually accepted and then serves
+            // the next iteration); retries after a rejection do not.
+            const bool with_derivs = attempt == 0;
+            Evaluation te = evaluate(pb, trial, foot, halo_plane, with_derivs);
             const double tc = weighted_cost(w, pb.frame, te.model);
             if (tc <= cost) {
                 const double gain = cost - tc;
@@ -323,13 +348,19 @@ RoundResult levenberg_marquardt(const Problem& pb, Params& p, const std::vector<
                 cost = tc;
                 lambda = std::max(lambda / 5, 1e-9);
                 accepted = true;
-                // Converged: a negligible decrease from a step that was not merely damped
-                // short (a heavily damped step decreases little anywhere).
-                if (gain <= 1e-10 * cost && lambda < 1e-2) {
+                // Converged: a decrease below kConvergedChi2 in units of the cost per degree of
+                // freedom (chi^2 when the weights are the noise model's: the step moved the
+                // parameters by about a tenth of their standard error or less), from a step that
+                // was not merely damped short (a heavily damped step decreases little anywhere)
+                // or on kSmallSteps accepted steps in a row.
+                const double per_dof =
+                    cost / std::max(1.0, double(pb.frame.size()) - double(free.size()));
+                small_steps = gain <= kConvergedChi2 * per_dof ? small_steps + 1 : 0;
+                if (small_steps > 0 && (lambda < 1e-2 || small_steps >= kSmallSteps)) {
                     rr.converged = true;
-                    e = evaluate(pb, p, foot, halo_plane, true);
                     return rr;
                 }
+                e = with_derivs ? std::move(te) : evaluate(pb, p, foot, halo_plane, true);
             } else {
                 lambda *= 5;
             }
@@ -338,7 +369,6 @@ RoundResult levenberg_marquardt(const Problem& pb, Params& p, const std::vector<
             rr.converged = true;  // no descent left at any damping: a minimum to rounding
             break;
         }
-        e = evaluate(pb, p, foot, halo_plane, true);
     }
     return rr;
 }
@@ -391,8 +421,12 @@ Plane weights_of(const Plane& model, double alpha, double beta) {
 
 }  // namespace
 
-ForwardFit fit_forward_model(const Plane& frame, const Mask& mask, const LatticeStart& start,
-                             const ForwardFitOptions& o) {
+namespace {
+
+// The fit from `start`; with `start_only` only its first round (no halo, unweighted), returning
+// the lattice alone.
+ForwardFit fit_from(const Plane& frame, const Mask& mask, const LatticeStart& start,
+                    const ForwardFitOptions& o, bool start_only) {
     const int rows = static_cast<int>(frame.rows()), cols = static_cast<int>(frame.cols());
     Problem pb{frame,
                mask,
@@ -416,7 +450,7 @@ ForwardFit fit_forward_model(const Plane& frame, const Mask& mask, const Lattice
         for (int tc = 0; tc < mask.pattern.tiles_cols; ++tc)
             for (const Cell& c : mask.pattern.pinholes) {
                 const Cell cell{c.row + tr * n, c.col + tc * n};
-                const Eigen::Vector2d z = centre_of(p.v, cell);
+                const Eigen::Vector2d z = centre_of(pb, p.v, cell);
                 auto within = [&](double m) {
                     return z.x() >= -m && z.y() >= -m && z.x() <= cols - 1 + m &&
                            z.y() <= rows - 1 + m;
@@ -430,6 +464,20 @@ ForwardFit fit_forward_model(const Plane& frame, const Mask& mask, const Lattice
     if (pb.cells.empty())
         throw InvalidInput("calibrate: no pinhole of the design images into the frame");
     const int G = static_cast<int>(pb.cells.size());
+    {  // The pivot: the fitted cell nearest the mean of the fitted cells.
+        double mr = 0, mc = 0;
+        for (const Cell& c : pb.cells) {
+            mr += c.row;
+            mc += c.col;
+        }
+        const Cell ref{static_cast<int>(std::lround(mr / G)),
+                       static_cast<int>(std::lround(mc / G))};
+        const Eigen::Vector2d z = centre_of(pb, p.v, ref);
+        p.v[kX0] = z.x();
+        p.v[kY0] = z.y();
+        pb.ref_row = ref.row;
+        pb.ref_col = ref.col;
+    }
     check_memory(double(G) * std::pow(2 * reach_core + 3, 2) * sizeof(double) +
                      12.0 * rows * cols * sizeof(double),
                  "the calibration model's spot windows");
@@ -460,10 +508,21 @@ ForwardFit fit_forward_model(const Plane& frame, const Mask& mask, const Lattice
     levenberg_marquardt(pb, p, linear, w, foot, halo_plane, 3);
     double median_gain = median_of(p.g);
     double alpha = 0, beta = 1;
-    bool leak_fixed = false;
+    bool leak_fixed = false, halo_current = false;
     for (int round = 0; round < kRounds; ++round) {
-        halo_plane = halo(pb, p, median_gain);
-        foot = footprint(pb, p.v);
+        // The first round fits without the halo: made from a start a few pixels off, the fixed
+        // halo holds the fit near that start (a fixed point that can stop short of the truth).
+        // From the second round on, a round whose end has a higher cost than its start (both
+        // with their own halo and footprint, the round's weights) is undone: the halo held fixed
+        // inside a round can lead the fit away from the self-consistent minimum.
+        if (round > 0 && !halo_current) {
+            halo_plane = halo(pb, p, median_gain);
+            foot = footprint(pb, p.v);
+        }
+        const Params before = p;
+        const double cost_before =
+            round > 0 ? weighted_cost(w, frame, evaluate(pb, p, foot, halo_plane, false).model)
+                      : 0.0;
         std::vector<int> free = all;
         if (leak_fixed) free.erase(std::find(free.begin(), free.end(), iL));
         const bool leak_free = std::find(free.begin(), free.end(), iL) != free.end();
@@ -479,6 +538,22 @@ ForwardFit fit_forward_model(const Plane& frame, const Mask& mask, const Lattice
                 levenberg_marquardt(pb, p, free, w, foot, halo_plane, o.max_iterations);
             out.iterations += again.iterations;
             out.converged = again.converged;
+        }
+        if (round > 0) {
+            const Plane h = halo(pb, p, median_of(p.g));
+            const Plane f = footprint(pb, p.v);
+            if (weighted_cost(w, frame, evaluate(pb, p, f, h, false).model) > cost_before) {
+                p = before;
+            } else {
+                halo_plane = h;
+                foot = f;
+            }
+            halo_current = true;
+        }
+        if (start_only) {
+            const Eigen::Vector2d origin = centre_of(pb, p.v, Cell{0, 0});
+            out.lattice = {origin.x(), origin.y(), p.v[kRot], p.v[kPx], p.v[kPy]};
+            return out;
         }
         median_gain = median_of(p.g);
         const Evaluation e = evaluate(pb, p, foot, halo_plane, false);
@@ -518,11 +593,28 @@ ForwardFit fit_forward_model(const Plane& frame, const Mask& mask, const Lattice
     auto sd = [&](int i) {
         return std::isnan(cov(i, i)) ? cov(i, i) : std::sqrt(std::max(cov(i, i), 0.0));
     };
-    out.lattice = {p.v[kX0], p.v[kY0], p.v[kRot], p.v[kPx], p.v[kPy]};
+    // Back from the pivot to cell (0, 0): position and its covariance through the linear map
+    // (x0, y0) = pivot - A (ref_col, ref_row).
+    const Eigen::Vector2d origin = centre_of(pb, p.v, Cell{0, 0});
+    out.lattice = {origin.x(), origin.y(), p.v[kRot], p.v[kPx], p.v[kPy]};
+    Eigen::Matrix<double, 2, 5> jo = Eigen::Matrix<double, 2, 5>::Zero();
+    {
+        const double ct = std::cos(p.v[kRot]), st = std::sin(p.v[kRot]);
+        const double cc = -pb.ref_col, cr = -pb.ref_row;
+        jo(0, kX0) = 1;
+        jo(1, kY0) = 1;
+        jo(0, kRot) = -p.v[kPx] * st * cc + p.v[kPy] * ct * cr;
+        jo(1, kRot) = -p.v[kPx] * ct * cc - p.v[kPy] * st * cr;
+        jo(0, kPx) = ct * cc;
+        jo(1, kPx) = -st * cc;
+        jo(0, kPy) = st * cr;
+        jo(1, kPy) = ct * cr;
+    }
+    const Eigen::Matrix2d cov_origin = jo * cov.topLeftCorner<5, 5>() * jo.transpose();
     out.side_scale = p.v[kSide];
     out.side_m = side_m(pb, p.v[kSide]);
-    out.x0_sigma = sd(kX0);
-    out.y0_sigma = sd(kY0);
+    out.x0_sigma = std::sqrt(std::max(cov_origin(0, 0), 0.0));
+    out.y0_sigma = std::sqrt(std::max(cov_origin(1, 1), 0.0));
     out.rotation_sigma_rad = sd(kRot);
     out.pitch_x_sigma_px = sd(kPx);
     out.pitch_y_sigma_px = sd(kPy);
@@ -541,7 +633,7 @@ ForwardFit fit_forward_model(const Plane& frame, const Mask& mask, const Lattice
     for (int k = 0; k < G; ++k) {
         FittedPinhole f;
         f.mask_cell = pb.cells[k];
-        const Eigen::Vector2d z = centre_of(p.v, f.mask_cell);
+        const Eigen::Vector2d z = centre_of(pb, p.v, f.mask_cell);
         f.x = z.x();
         f.y = z.y();
         f.gain = p.g[k];
@@ -562,6 +654,48 @@ ForwardFit fit_forward_model(const Plane& frame, const Mask& mask, const Lattice
     out.missing_z = 0.5 * (lo + hi);
     for (auto& f : out.pinholes)
         f.missing = f.in_frame && f.gain + out.missing_z * f.gain_sigma < 0.5 * out.median_gain;
+    return out;
+}
+
+}  // namespace
+
+// Two passes: the first round from the start (no halo) refines the lattice, and the whole fit
+// starts again from there, so the fitted cells, the pivot and the halo's first estimate come from
+// a lattice within a fraction of a pixel (from the start's, a few pixels off, the rounds with the
+// halo held fixed can settle on a false minimum).
+ForwardFit fit_forward_model(const Plane& frame, const Mask& mask, const LatticeStart& start,
+                             const ForwardFitOptions& o) {
+    // A large capture with wide cells: the first pass on the capture binned b x b (b = pitch /
+    // kBinnedCellPx, the model's pixels b times larger: the pixel-integrated kernel stays exact),
+    // b^2 times fewer pixels per iteration.
+    const double pitch = 0.5 * (start.pitch_x_px + start.pitch_y_px);
+    const int b = static_cast<int>(std::floor(pitch / kBinnedCellPx));
+    LatticeStart refined;
+    int first_iterations = 0;
+    if (b >= 2 && std::min(frame.rows(), frame.cols()) >= kMinBinnedFramePx) {
+        const int R = static_cast<int>(frame.rows()) / b, C = static_cast<int>(frame.cols()) / b;
+        Plane binned = Plane::Zero(R, C);
+        for (int r = 0; r < R * b; ++r)
+            for (int c = 0; c < C * b; ++c) binned(r / b, c / b) += frame(r, c);
+        Mask coarse = mask;
+        coarse.camera.pixel_pitch_m *= b;
+        // Pixel (i, j) of the binned frame covers pixels b i .. b i + b - 1: index coordinate
+        // x of the capture is (x + 1/2) / b - 1/2 there.
+        auto to_binned = [b](double x) { return (x + 0.5) / b - 0.5; };
+        auto from_binned = [b](double x) { return (x + 0.5) * b - 0.5; };
+        const LatticeStart s{to_binned(start.x0), to_binned(start.y0), start.rotation_rad,
+                             start.pitch_x_px / b, start.pitch_y_px / b};
+        const ForwardFit f = fit_from(binned, coarse, s, o, true);
+        refined = {from_binned(f.lattice.x0), from_binned(f.lattice.y0), f.lattice.rotation_rad,
+                   f.lattice.pitch_x_px * b, f.lattice.pitch_y_px * b};
+        first_iterations = f.iterations;
+    } else {
+        const ForwardFit first = fit_from(frame, mask, start, o, true);
+        refined = first.lattice;
+        first_iterations = first.iterations;
+    }
+    ForwardFit out = fit_from(frame, mask, refined, o, false);
+    out.iterations += first_iterations;
     return out;
 }
 
@@ -599,7 +733,7 @@ Plane fitted_psf(const ForwardFit& fit, const Mask& mask, int rows, int cols,
                 if (std::any_of(fit.pinholes.begin(), fit.pinholes.end(),
                                 [&](const FittedPinhole& f) { return f.mask_cell == cell; }))
                     continue;
-                const Eigen::Vector2d z = centre_of(p.v, cell);
+                const Eigen::Vector2d z = centre_of(pb, p.v, cell);
                 if (z.x() >= -reach_halo && z.y() >= -reach_halo &&
                     z.x() <= cols - 1 + reach_halo && z.y() <= rows - 1 + reach_halo)
                     pb.outside.push_back(cell);

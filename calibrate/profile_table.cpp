@@ -118,24 +118,4 @@ ProfileTable::ProfileTable(const Camera& camera, KernelModel family, double side
     enclosed_ = cumulative(half_ + 0.5) - cumulative(-half_ - 0.5);
 }
 
-double ProfileTable::value(double x) const {
-    const double t = (x + half_) * inv_step_;
-    if (t < 0 || t >= double(q_.size() - 1)) return 0.0;
-    const auto k = static_cast<std::size_t>(t);
-    const double f = t - double(k);
-    return q_[k] + f * (q_[k + 1] - q_[k]);
-}
-
-void ProfileTable::value_slope(double x, double& q, double& dq) const {
-    const double t = (x + half_) * inv_step_;
-    if (t < 0 || t >= double(q_.size() - 1)) {
-        q = dq = 0.0;
-        return;
-    }
-    const auto k = static_cast<std::size_t>(t);
-    const double f = t - double(k);
-    q = q_[k] + f * (q_[k + 1] - q_[k]);
-    dq = (q_[k + 1] - q_[k]) * inv_step_;
-}
-
 }  // namespace pinmask::calibrate

@@ -28,8 +28,25 @@ class ProfileTable {
 
     double half_px() const { return half_; }
     // q(x) and its derivative dq/dx (linear interpolation of q; the slope of the segment).
-    double value(double x) const;
-    void value_slope(double x, double& q, double& dq) const;
+    // Inline: the forward fit reads them for every pixel of every spot's window.
+    double value(double x) const {
+        const double t = (x + half_) * inv_step_;
+        if (t < 0 || t >= double(q_.size() - 1)) return 0.0;
+        const auto k = static_cast<std::size_t>(t);
+        const double f = t - double(k);
+        return q_[k] + f * (q_[k + 1] - q_[k]);
+    }
+    void value_slope(double x, double& q, double& dq) const {
+        const double t = (x + half_) * inv_step_;
+        if (t < 0 || t >= double(q_.size() - 1)) {
+            q = dq = 0.0;
+            return;
+        }
+        const auto k = static_cast<std::size_t>(t);
+        const double f = t - double(k);
+        q = q_[k] + f * (q_[k + 1] - q_[k]);
+        dq = (q_[k + 1] - q_[k]) * inv_step_;
+    }
     // Fraction of the profile's energy inside [-half - 1/2, half + 1/2] (1 for a box that fits).
     double enclosed() const { return enclosed_; }
 

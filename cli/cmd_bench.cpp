@@ -1,5 +1,5 @@
 // `pinmask bench`: the parent of the benchmark subcommands (plan, decode, search, export,
-// error-time, period); main adds each of them to the app this returns.
+// error-time, period, calibrate); main adds each of them to the app this returns.
 #include "cli/commands.hpp"
 
 namespace pinmask::cli {
