@@ -9,6 +9,7 @@
 #include <random>
 #include <string>
 
+#include "bench/best_of.hpp"
 #include "calibrate/calibrate.hpp"
 #include "calibrate/forward_fit.hpp"
 #include "calibrate/profile_table.hpp"
@@ -21,18 +22,7 @@ namespace pinmask {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
-template <class F>
-double best_of(int repeat, F&& fn) {
-    double best = std::numeric_limits<double>::infinity();
-    for (int r = 0; r < repeat; ++r) {
-        const auto t0 = Clock::now();
-        fn();
-        best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
-    }
-    return best;
-}
 
 constexpr double kRotationDeg = 1.0, kPitchScale = 1.005, kFluxPerPinhole = 5e5;
 constexpr double kBackground = 20.0, kReadNoise = 3.0;

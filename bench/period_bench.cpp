@@ -6,6 +6,7 @@
 #include <random>
 #include <string>
 
+#include "bench/best_of.hpp"
 #include "core/error.hpp"
 #include "decode/decoder.hpp"
 #include "decode/period.hpp"
@@ -16,18 +17,7 @@
 namespace pinmask {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
-template <class F>
-double best_of(int repeat, F&& fn) {
-    double best = std::numeric_limits<double>::infinity();
-    for (int r = 0; r < repeat; ++r) {
-        const auto t0 = Clock::now();
-        fn();
-        best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
-    }
-    return best;
-}
 
 Mask period_bench_mask() {
     Mask m;
