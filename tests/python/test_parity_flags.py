@@ -71,6 +71,9 @@ COUNTERPART = {
     ("psf", "--npy"): "npy",
     ("export", "--output"): "out_dir",
     ("export", "--format"): "formats",
+    ("depth", "--from"): "from_m",
+    ("depth", "--to"): "to_m",
+    ("depth", "--no-tv"): "tv",  # tv=False
     ("score", "--allow-violations"): "load_mask",  # load_mask(path, allow_spacing_violations=True)
 }
 # Camera flags name the camera in these commands (elsewhere --object-distance is the refocus
@@ -97,6 +100,8 @@ BY_DESIGN = {
                                    "launch; the module searches in one process",
     ("score", "--explain"): "the returned dict holds the resolved settings",
     ("calibrate", "--output"): "the calibrated PSF, mask and report are returned as values",
+    ("depth", "--output-dir"): "the per-distance figures are returned as dicts (write_image "
+                               "writes any image)",
 }
 
 # Not in the module yet: (command, flag) -> what is missing.

@@ -1,12 +1,13 @@
 """examples/python/walkthrough.py runs, and every figure it makes equals the command line's for
 the same inputs: the optics, the searched mask, the fabrication files, the simulated capture and
-its decode, the refocused capture and decode, and the calibration."""
+its decode, the refocused capture and decode, the calibration and the loss against distance."""
 import json
 import os
 import subprocess
 import sys
 
 import numpy as np
+import pytest
 
 
 def same_image(py_array, cli_file):
@@ -61,3 +62,10 @@ def test_walkthrough_figures_equal_the_cli(cli, tmp_path, source_dir):
                              "--json").stdout)
     assert cal["rotation_deg"] == summary["calibrate"]["rotation_deg"]
     assert list(cal["pitch_px"]) == summary["calibrate"]["pitch_px"]
+
+    depth = json.loads(cli.run("depth", mask, "--from", "0.9m", "--to", "2m", "--steps", "4",
+                               "--photons", "200", "--read-noise", "6", "--no-tv",
+                               "--json").stdout)
+    # The same library call: equal to the JSON's 17 significant digits.
+    assert [r["wiener_psnr_loss_db"] for r in depth] == \
+        pytest.approx([r["wiener_psnr_loss_db"] for r in summary["depth"]], rel=1e-12)
