@@ -191,7 +191,7 @@ constexpr const char* kFooter =
     "metres, _px = pixels): keys without a suffix and \"_at_u\" keys are at u, \"_at_inf\" "
     "keys at u = inf; infinite values are null, with the reason under \"notes\". The kernel row "
     "is the kernel psf would build at N px per cell over the band (--bandwidth: a Gaussian of "
-    "that FWHM at 7 wavelengths), with the energy its support keeps; its warnings are psf's.\n"
+    "that FWHM at 13 wavelengths), with the energy its support keeps; its warnings are psf's.\n"
     "Examples:\n"
     "  pinmask design --preset paper\n"
     "  pinmask design --lens-focal 55mm --object-distance inf --json   (f = f': Fraunhofer)\n"

@@ -133,7 +133,7 @@ void bind_design(py::module_& m) {
                        "design wavelength (the centre of the band), m")
         .def_readwrite("bandwidth_m", &Camera::bandwidth_m,
                        "B: full width at half maximum of the light's spectrum, m (0: one "
-                       "wavelength; kernels sum a Gaussian band at 7 wavelengths over +-1.5 FWHM)")
+                       "wavelength; kernels sum a Gaussian band at 13 wavelengths over +-1.5 FWHM)")
         .def_readwrite("pixel_pitch_m", &Camera::pixel_pitch_m, "w: sensor pixel pitch, m")
         .def_readwrite("pinhole_m", &Camera::pinhole_m, "d: pinhole side = cell side, m")
         .def_readwrite("sensor_cols", &Camera::sensor_cols, "sensor width, pixels")

@@ -27,7 +27,7 @@ void add_camera_options(CLI::App& cmd, CameraOptions& o) {
     cmd.add_option("--bandwidth", o.bandwidth,
                    "Full width at half maximum of the light's spectrum (e.g. 30nm for an LED; "
                    "default 0 = one wavelength, at most half the wavelength): the kernels sum a "
-                   "Gaussian band sampled at 7 wavelengths over +-1.5 FWHM (docs/commands.md)");
+                   "Gaussian band sampled at 13 wavelengths over +-1.5 FWHM (docs/commands.md)");
     cmd.add_option("--pixel-pitch", o.pixel_pitch, "Sensor pixel pitch w (e.g. 30um)");
     cmd.add_option("--pinhole", o.pinhole, "Pinhole side d = cell side (e.g. 440um)");
     cmd.add_option("--sensor", o.sensor, "Sensor size in pixels, WIDTHxHEIGHT (e.g. 720x480)");

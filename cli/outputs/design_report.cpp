@@ -157,7 +157,7 @@ std::string range_text(const WorkingDistance& wd) {
            length(wd.range_far_m);
 }
 
-// "850 nm, one wavelength" or "850 nm +- 30 nm FWHM: 7 samples 805 nm .. 895 nm".
+// "850 nm, one wavelength" or "850 nm +- 30 nm FWHM: 13 samples 805 nm .. 895 nm".
 std::string spectrum_text(const Camera& c) {
     const auto wl = band_wavelengths(c);
     if (wl.size() == 1) return length(c.wavelength_m) + ", one wavelength";
@@ -258,7 +258,7 @@ std::string design_table(const OpticsReport& r, const WorkingDistance& wd,
         {"kernel model", kernel_model_name(r.kernel_model), r.kernel_reason},
         {"spectrum", spectrum_text(c),
          c.bandwidth_m == 0.0 ? "--bandwidth 0: the design wavelength alone"
-                              : "Gaussian band of that FWHM, 7 wavelengths over +-1.5 FWHM"},
+                              : "Gaussian band of that FWHM, 13 wavelengths over +-1.5 FWHM"},
         {"kernel support", kernel_support_text(dk),
          dk.kernel ? "what psf builds at N px per cell over the band (psf --energy)"
                    : dk.not_built},

@@ -239,13 +239,13 @@ TEST_CASE(
     const auto j = design_json(nir);
     CHECK(j["camera"]["bandwidth_m"].get<double>() == doctest::Approx(30e-9).epsilon(1e-15));
     CHECK(j["spectrum"]["bandwidth_m"] == j["camera"]["bandwidth_m"]);
-    REQUIRE(j["spectrum"]["wavelengths"].size() == 7);
+    REQUIRE(j["spectrum"]["wavelengths"].size() == 13);
     CHECK(j["spectrum"]["wavelengths"][0][0].get<double>() == doctest::Approx(805e-9));
-    CHECK(j["spectrum"]["wavelengths"][6][0].get<double>() == doctest::Approx(895e-9));
+    CHECK(j["spectrum"]["wavelengths"][12][0].get<double>() == doctest::Approx(895e-9));
     CHECK(j["input_sources"]["B (bandwidth, FWHM)"] == "flag");
     CHECK(j["whole_pixels_per_cell_at_u"] == 34);
     const auto table = run_cli("design " + nir);
-    CHECK(contains(table.out, "850 nm, FWHM 30 nm: 7 samples 805 nm .. 895 nm"));
+    CHECK(contains(table.out, "850 nm, FWHM 30 nm: 13 samples 805 nm .. 895 nm"));
     CHECK(contains(table.out, "kernel support"));
 
     // The mask generated with the band carries it, and psf warns exactly as design did.
@@ -259,7 +259,7 @@ TEST_CASE(
     INFO(psf.err);
     REQUIRE(psf.exit_code == 0);
     const auto p = nlohmann::json::parse(psf.out);
-    CHECK(p["kernel"]["wavelengths"].size() == 7);
+    CHECK(p["kernel"]["wavelengths"].size() == 13);
     CHECK(p["kernel"]["enclosed_energy"] == j["kernel"]["enclosed_energy"]);
     CHECK(p["warnings"] == j["kernel_warnings"]);
 

@@ -46,12 +46,13 @@ Camera green_paper_camera() {
 }
 
 // Written from the definition of the FWHM, not from sigma: a Gaussian is half its peak at
-// +-B/2, so at k B / 2 it is 2^(-k^2) of the peak. Weights normalised to sum 1.
+// +-B/2, so at k B / 4 it is 2^(-k^2 / 4) of the peak (k = -6..6: +-1.5 B). Weights normalised
+// to sum 1.
 std::vector<std::pair<double, double>> half_max_samples(double lambda, double fwhm) {
     std::vector<std::pair<double, double>> out;
     double total = 0;
-    for (int k = -3; k <= 3; ++k) {
-        out.emplace_back(lambda + k * fwhm / 2, std::pow(2.0, -double(k * k)));
+    for (int k = -6; k <= 6; ++k) {
+        out.emplace_back(lambda + k * fwhm / 4, std::pow(2.0, -double(k * k) / 4));
         total += out.back().second;
     }
     for (auto& s : out) s.second /= total;
@@ -71,7 +72,7 @@ Mask small_mask(const Camera& c, int ppc) {
 
 }  // namespace
 
-TEST_CASE("band samples: 7 wavelengths over +-1.5 FWHM with the Gaussian's weights") {
+TEST_CASE("band samples: 13 wavelengths over +-1.5 FWHM with the Gaussian's weights") {
     for (const Camera& c : {nir_camera(), green_paper_camera()}) {
         const auto got = band_wavelengths(c);
         const auto want = half_max_samples(c.wavelength_m, c.bandwidth_m);
@@ -136,7 +137,7 @@ TEST_CASE("the PSF with a band is the weighted sum of the monochromatic PSFs") {
         mono.camera.bandwidth_m = 0.0;
         CHECK((got - mask_psf(mono)).cwiseAbs().maxCoeff() > 1e-4 * peak);
         const Kernel kernel = mask_kernel(band);
-        CHECK(kernel.wavelengths.size() == 7);
+        CHECK(kernel.wavelengths.size() == 13);
     }
 }
 
@@ -165,7 +166,7 @@ TEST_CASE("design_kernel: psf's kernel, with the energy warning psf gives") {
     m.psf.kernel.model = "auto";
     const Kernel psf_kernel = mask_kernel(m);
     CHECK(dk.kernel->enclosed_energy == psf_kernel.enclosed_energy);
-    CHECK(dk.kernel->wavelengths.size() == 7);
+    CHECK(dk.kernel->wavelengths.size() == 13);
     // 98.9 % on the 544 px period: below the 99 % kernel_validity warns at.
     CHECK(dk.kernel->enclosed_energy == doctest::Approx(0.989).epsilon(0.001));
     CHECK(!dk.validity.energy_ok);

@@ -20,10 +20,10 @@ def with_fields(c, **changes):
 
 
 def half_max_samples(lam, fwhm):
-    # A Gaussian is half its peak at +-FWHM/2, so 2^(-k^2) of it at k FWHM/2 (k = -3..3).
-    k = np.arange(-3, 4)
-    w = 2.0 ** (-(k * k).astype(float))
-    return lam + k * fwhm / 2, w / w.sum()
+    # A Gaussian is half its peak at +-FWHM/2, so 2^(-k^2/4) of it at k FWHM/4 (k = -6..6).
+    k = np.arange(-6, 7)
+    w = 2.0 ** (-(k * k).astype(float) / 4)
+    return lam + k * fwhm / 4, w / w.sum()
 
 
 # Two cameras that are not the paper's: a machine-vision camera at 2 m under a 530 nm LED, and a
