@@ -17,6 +17,7 @@
 #include "core/error.hpp"
 #include "core/image_io.hpp"
 #include "core/raw_io.hpp"
+#include "core/units.hpp"
 #include "design/kernel_model.hpp"
 #include "io/mask_json.hpp"
 #include "io/psf_files.hpp"
@@ -67,6 +68,12 @@ void run(CalibrateCommandOptions& o) {
     Mask mask = io::read_mask_file(o.mask);
     o.camera.base = mask.camera;
     mask.camera = resolve_camera(o.camera);
+    // The fit's kernel family (calibrate/profile_table) is one wavelength's: a band is not
+    // modelled there, so it is refused rather than silently dropped.
+    if (mask.camera.bandwidth_m > 0.0)
+        throw invalid_field("--bandwidth", format_length(mask.camera.bandwidth_m),
+                            "calibrate fits one wavelength's kernel and does not model a band "
+                            "yet: give --bandwidth 0 to fit at the centre wavelength");
     double full_scale = 1.0;
     RawInfo raw, raw_dark;
     const Plane capture = read_grey(o.capture, "capture", bayer, &full_scale, raw);

@@ -19,6 +19,7 @@
 #include "cli/outputs/design_report.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
+#include "design/design_kernel.hpp"
 #include "design/fab_grid.hpp"
 #include "design/kernel.hpp"
 #include "design/kernel_validity.hpp"
@@ -152,23 +153,30 @@ void run(const DesignOptions& o) {
         solved = "solved: d gives N at u, then snapped to the fabrication grid";
     }
     OpticsReport r = compute_optics(camera, geometry, kernel, {o.lsi_tolerance_px});
-    KernelValidity validity = kernel_validity(camera, r.kernel_model);  // never "accurate"
+    const WorkingDistance wd = compute_working_distance(camera, geometry, wo);
+    // The kernel psf would build for this design (its band, the model over the band, the energy
+    // its support keeps), so design warns where psf would.
+    DesignKernel dk = design_kernel(camera, geometry.n, wd.pixels_per_cell, o.kernel);
+    if (dk.kernel) {
+        r.kernel_model = dk.kernel->model;
+        r.kernel_reason = dk.kernel->model_reason;
+    }
+    KernelValidity& validity = dk.validity;
     for (auto& w : validity.warnings) w = spell_flags(w);
     if (!validity.model_accurate) r.kernel_reason = "NOT accurate: " + validity.warnings.front();
     for (const auto& w : validity.warnings) std::cerr << "pinmask: warning: " << w << "\n";
-    const WorkingDistance wd = compute_working_distance(camera, geometry, wo);
     std::vector<CameraInput> inputs = camera_inputs(o.camera, camera);
     if (!solved.empty())
         inputs[0].source = "solved for N px per cell at u, on the " + std::to_string(snap.grid_nm) +
                            " nm fabrication grid";
     if (!o.save_camera.empty()) io::write_camera_file(o.save_camera, camera);
     if (o.json) {
-        auto j = design_json(r, wd, snap);
+        auto j = design_json(r, wd, snap, dk);
         j["kernel_warnings"] = validity.warnings;
         for (const CameraInput& in : inputs) j["input_sources"][in.symbol] = in.source;
         std::cout << io::json_strict::pretty(j) << "\n";
     } else {
-        std::cout << design_table(r, wd, solved, inputs, snap);
+        std::cout << design_table(r, wd, solved, inputs, snap, dk);
         if (!o.save_camera.empty()) std::cerr << "wrote " << o.save_camera << "\n";
     }
 }
@@ -181,13 +189,16 @@ constexpr const char* kFooter =
     "fabrication grid (--fab-grid, or the --vendor preset's, default 1nm) and the table says how "
     "far that moves the pitch at u. --json prints one object with unit-suffixed keys (_m = "
     "metres, _px = pixels): keys without a suffix and \"_at_u\" keys are at u, \"_at_inf\" "
-    "keys at u = inf; infinite values are null, with the reason under \"notes\".\n"
+    "keys at u = inf; infinite values are null, with the reason under \"notes\". The kernel row "
+    "is the kernel psf would build at N px per cell over the band (--bandwidth: a Gaussian of "
+    "that FWHM at 13 wavelengths), with the energy its support keeps; its warnings are psf's.\n"
     "Examples:\n"
     "  pinmask design --preset paper\n"
     "  pinmask design --lens-focal 55mm --object-distance inf --json   (f = f': Fraunhofer)\n"
     "  pinmask design --pixel-pitch 3.45um --sensor 2448x2048 --lens-focal 25mm \\\n"
     "      --sensor-distance 20mm --object-distance 2m --wavelength 530nm --pixels-per-cell 21\n"
-    "      (solves d = 345 um for 21 whole pixels per cell at 2 m)";
+    "      (solves d = 345 um for 21 whole pixels per cell at 2 m)\n"
+    "  pinmask design --wavelength 850nm --bandwidth 30nm   (an LED's 30 nm band around 850 nm)";
 
 void setup(CLI::App& app) {
     auto o = std::make_shared<DesignOptions>();

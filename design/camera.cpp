@@ -37,6 +37,16 @@ void validate(const Camera& c) {
     require_positive("lens_focal_m", c.lens_focal_m, true);
     require_positive("sensor_distance_m", c.sensor_distance_m, false);
     require_positive("wavelength_m", c.wavelength_m, false);
+    // 0 is one wavelength; a Gaussian band sampled over +-1.5 FWHM (design/spectrum) stays at
+    // wavelengths >= lambda / 4 up to B = lambda / 2, and no light source a mask is designed
+    // for is broader than that around its centre.
+    if (!(c.bandwidth_m >= 0.0) || !(c.bandwidth_m <= 0.5 * c.wavelength_m)) {
+        throw invalid_field(
+            "bandwidth_m", std::isnan(c.bandwidth_m) ? "nan" : format_length(c.bandwidth_m),
+            "must be >= 0 and at most half the wavelength (" + format_length(0.5 * c.wavelength_m) +
+                "): the full width at half maximum of the light's spectrum, 0 "
+                "for one wavelength");
+    }
     require_positive("pixel_pitch_m", c.pixel_pitch_m, false);
     require_positive("pinhole_m", c.pinhole_m, false);
     // One rule for every command that builds a camera (design, generate, psf, search, ...): the

@@ -5,7 +5,9 @@
 //                          Fraunhofer limit; f > f' is past focus; all are legal)
 //   d  pinhole_m           side of one square pinhole = side of one pattern cell
 //   w  pixel_pitch_m       sensor pixel pitch
-//   lambda wavelength_m    design wavelength
+//   lambda wavelength_m    design wavelength (the centre of the band)
+//   B  bandwidth_m         full width at half maximum of the light's spectrum (0: one wavelength;
+//                          design/spectrum samples it for the kernels)
 // All lengths in metres.
 #pragma once
 
@@ -16,6 +18,7 @@ struct Camera {
     double lens_focal_m = 0.120;
     double sensor_distance_m = 0.055;
     double wavelength_m = 550e-9;
+    double bandwidth_m = 0.0;
     double pixel_pitch_m = 30e-6;
     double pinhole_m = 440e-6;
     int sensor_cols = 720;
@@ -27,7 +30,9 @@ struct Camera {
 Camera paper_camera();
 
 // Throws InvalidInput naming the first field that is not physical (non-finite where finiteness
-// is required, zero or negative lengths, sensor size < 1). u and f' may be +inf.
+// is required, zero or negative lengths, sensor size < 1). u and f' may be +inf. The bandwidth
+// may be 0 and at most half the wavelength (design/spectrum: its samples stay at positive
+// wavelengths).
 void validate(const Camera& camera);
 
 }  // namespace pinmask

@@ -6,10 +6,13 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "core/image_io.hpp"
+#include "core/units.hpp"
 #include "design/kernel_profile.hpp"
 #include "design/optics.hpp"
 #include "design/paper_kernel.hpp"
+#include "design/spectrum.hpp"
 
 namespace pinmask {
 namespace {
@@ -84,7 +87,14 @@ Kernel merge(const std::vector<PixelProfile>& monos,
 
 std::vector<std::pair<double, double>> normalised_wavelengths(const Camera& c,
                                                               const KernelSpec& spec) {
-    if (spec.wavelengths.empty()) return {{c.wavelength_m, 1.0}};
+    if (spec.wavelengths.empty()) return band_wavelengths(c);
+    // One source of the spectrum: an explicit list beside a camera band would leave the user
+    // guessing which one the kernel used.
+    if (c.bandwidth_m > 0.0) {
+        throw invalid_field(field_ref("bandwidth_m"), format_length(c.bandwidth_m),
+                            "and the mask's psf.kernel.wavelengths both give the spectrum: "
+                            "give one of them (bandwidth 0, or no wavelength list)");
+    }
     double total = 0.0;
     for (std::size_t i = 0; i < spec.wavelengths.size(); ++i) {
         const auto [lambda, weight] = spec.wavelengths[i];
@@ -183,8 +193,10 @@ Kernel make_kernel(const Camera& camera, const KernelSpec& spec, int ppc,
                 break;
             }
         }
-        if (wavelengths.size() > 1 && chosen.model != KernelModel::kFresnel) {
-            chosen.reason += " (and likewise at every other wavelength)";
+        if (wavelengths.size() > 1 &&
+            chosen.reason.find("different regimes") == std::string::npos) {
+            chosen.reason += " (N at the first wavelength, " + format_length(wavelengths[0].first) +
+                             "; the same model at every other wavelength)";
         }
     }
     std::vector<PixelProfile> monos;

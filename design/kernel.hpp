@@ -20,8 +20,10 @@
 // sum 1 (the cut tail is dropped, not folded back).
 //
 // Polychromatic: KernelSpec::wavelengths (wavelength_m, weight) gives the weighted sum of the
-// normalised monochromatic kernels, weights normalised to sum 1; empty means the camera's design
-// wavelength. "auto" resolves per wavelength; when wavelengths disagree, fresnel is used for all.
+// normalised monochromatic kernels, weights normalised to sum 1; empty means the camera's band
+// (design/spectrum: the design wavelength alone when Camera::bandwidth_m is 0). A list beside a
+// non-zero bandwidth_m is refused (InvalidInput naming bandwidth_m and the list). "auto" resolves
+// per wavelength; when wavelengths disagree, fresnel is used for all.
 //
 // "paper-fig3b" is the paper's measured 8 x 8 kernel (its Fig. 3b, design/paper_kernel.hpp),
 // normalised to sum 1, covering the cell exactly (origin 0, 0); defined only for 8 pixels per

@@ -17,7 +17,7 @@ namespace pinmask {
 // How the single-pinhole kernel is modelled. `model` is one of: auto, box, fraunhofer, fresnel,
 // paper-fig3b, measured. `measured_path` names the kernel image for `measured`.
 // `wavelengths` is a weighted list (wavelength_m, weight) for polychromatic kernels; empty means
-// the camera's single design wavelength.
+// the camera's band (Camera::bandwidth_m, design/spectrum; one wavelength when that is 0).
 struct KernelSpec {
     std::string model = "auto";
     std::string measured_path;

@@ -3,7 +3,8 @@
 //   {"format": "pinmask-mask", "version": 1,
 //    "pattern": {"n", "pinholes": [[row, col], ...], "tiles": [rows, cols], "min_spacing_cells"},
 //    "optics": {"object_distance_m" (number or "inf"), "lens_focal_m" (number or "inf"),
-//               "sensor_distance_m", "wavelength_m", "pixel_pitch_m", "pinhole_m",
+//               "sensor_distance_m", "wavelength_m", "bandwidth_m" (optional, written when
+//               not 0; not with psf.kernel.wavelengths), "pixel_pitch_m", "pinhole_m",
 //               "sensor_px": [cols, rows]},
 //    "psf": {"kernel": {"model", "measured_path" (optional), "wavelengths" (optional):
 //                       [[wavelength_m, weight], ...]}, "pixels_per_cell"},
@@ -230,6 +231,11 @@ Mask from_json(const Json& j, const MaskReadOptions& options, const std::vector<
     m.pattern = read_pattern(top.required("pattern"), streamed);
     m.camera = optics_from_json(top.required("optics"));
     m.psf = read_psf(top.required("psf"));
+    if (m.camera.bandwidth_m > 0.0 && !m.psf.kernel.wavelengths.empty()) {
+        fail("optics.bandwidth_m",
+             "and psf.kernel.wavelengths both give the light's spectrum: keep one of them (the "
+             "band is sampled as docs/commands.md says; the list is used as written)");
+    }
     std::string recorded_hash;
     m.provenance = read_provenance(top.required("provenance"), recorded_hash);
     validate(m.pattern,

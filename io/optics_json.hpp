@@ -1,7 +1,9 @@
 // The "optics" object of pinmask's JSON files (mask files, search configurations): a Camera in
 // SI units, {"object_distance_m" (number or "inf"), "lens_focal_m" (number or "inf"),
-// "sensor_distance_m", "wavelength_m", "pixel_pitch_m", "pinhole_m", "sensor_px": [cols, rows]}.
-// Every key is written and required on reading; unknown keys are refused.
+// "sensor_distance_m", "wavelength_m", "bandwidth_m" (optional), "pixel_pitch_m", "pinhole_m",
+// "sensor_px": [cols, rows]}. Every key is written and required on reading, except bandwidth_m:
+// written only when it is not 0 and read as 0 when absent, so files from before it read the same
+// and a monochromatic camera writes the same bytes. Unknown keys are refused.
 #pragma once
 
 #include <cmath>
@@ -23,6 +25,7 @@ J optics_to_json(const Camera& c) {
     optics["lens_focal_m"] = length_or_inf(c.lens_focal_m);
     optics["sensor_distance_m"] = c.sensor_distance_m;
     optics["wavelength_m"] = c.wavelength_m;
+    if (c.bandwidth_m != 0.0) optics["bandwidth_m"] = c.bandwidth_m;
     optics["pixel_pitch_m"] = c.pixel_pitch_m;
     optics["pinhole_m"] = c.pinhole_m;
     optics["sensor_px"] = J::array({c.sensor_cols, c.sensor_rows});

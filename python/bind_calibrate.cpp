@@ -7,6 +7,9 @@
 #include <optional>
 
 #include "calibrate/calibrate.hpp"
+#include "core/error.hpp"
+#include "core/field_names.hpp"
+#include "core/units.hpp"
 #include "design/kernel_model.hpp"
 #include "python/common.hpp"
 #include "python/keyword_names.hpp"
@@ -114,6 +117,13 @@ void bind_calibrate(py::module_& m) {
            double max_rotation, double pitch_range, double threshold, const py::handle& saturation,
            int pixel_binning) {
             const Mask mask = mask_arg(mask_obj);
+            // As `pinmask calibrate`: the fit's kernel family is one wavelength's.
+            if (mask.camera.bandwidth_m > 0.0)
+                throw invalid_field(field_ref("bandwidth_m"),
+                                    format_length(mask.camera.bandwidth_m),
+                                    "calibrate fits one wavelength's kernel and does not model a "
+                                    "band yet: set the mask's camera bandwidth_m to 0 to fit at "
+                                    "the centre wavelength");
             PlaneArg cap = plane_arg(point, "point");
             std::optional<Plane> dark;
             if (!dark_obj.is_none()) dark = plane_arg(dark_obj, "dark").take();

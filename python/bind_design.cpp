@@ -6,11 +6,13 @@
 #include "core/field_names.hpp"
 #include "core/units.hpp"
 #include "design/camera.hpp"
+#include "design/design_kernel.hpp"
 #include "design/fab_grid.hpp"
 #include "design/kernel.hpp"
 #include "design/kernel_model.hpp"
 #include "design/kernel_validity.hpp"
 #include "design/optics.hpp"
+#include "design/spectrum.hpp"
 #include "design/working_distance.hpp"
 #include "export/vendor_presets.hpp"
 #include "io/camera_json.hpp"
@@ -102,7 +104,7 @@ void bind_design(py::module_& m) {
         .def(py::init([](const py::object& object_distance_m, const py::object& lens_focal_m,
                          const py::object& sensor_distance_m, const py::object& wavelength_m,
                          const py::object& pixel_pitch_m, const py::object& pinhole_m,
-                         int sensor_cols, int sensor_rows) {
+                         int sensor_cols, int sensor_rows, const py::object& bandwidth_m) {
                  Camera c;
                  c.object_distance_m = length_value(object_distance_m, "object_distance_m", true);
                  c.lens_focal_m = length_value(lens_focal_m, "lens_focal_m", true);
@@ -112,20 +114,26 @@ void bind_design(py::module_& m) {
                  c.pinhole_m = length_value(pinhole_m, "pinhole_m", false);
                  c.sensor_cols = sensor_cols;
                  c.sensor_rows = sensor_rows;
+                 c.bandwidth_m = length_value(bandwidth_m, "bandwidth_m", false);
                  validate(c);
                  return c;
              }),
              py::arg("object_distance_m") = 6.0, py::arg("lens_focal_m") = 0.120,
              py::arg("sensor_distance_m") = 0.055, py::arg("wavelength_m") = 550e-9,
              py::arg("pixel_pitch_m") = 30e-6, py::arg("pinhole_m") = 440e-6,
-             py::arg("sensor_cols") = 720, py::arg("sensor_rows") = 480)
+             py::arg("sensor_cols") = 720, py::arg("sensor_rows") = 480,
+             py::arg("bandwidth_m") = 0.0)
         .def_readwrite("object_distance_m", &Camera::object_distance_m,
                        "u: object distance, m (+inf: distant object)")
         .def_readwrite("lens_focal_m", &Camera::lens_focal_m,
                        "f': lens focal length, m (+inf: no lens)")
         .def_readwrite("sensor_distance_m", &Camera::sensor_distance_m,
                        "f: lens-to-sensor distance, m")
-        .def_readwrite("wavelength_m", &Camera::wavelength_m, "design wavelength, m")
+        .def_readwrite("wavelength_m", &Camera::wavelength_m,
+                       "design wavelength (the centre of the band), m")
+        .def_readwrite("bandwidth_m", &Camera::bandwidth_m,
+                       "B: full width at half maximum of the light's spectrum, m (0: one "
+                       "wavelength; kernels sum a Gaussian band at 13 wavelengths over +-1.5 FWHM)")
         .def_readwrite("pixel_pitch_m", &Camera::pixel_pitch_m, "w: sensor pixel pitch, m")
         .def_readwrite("pinhole_m", &Camera::pinhole_m, "d: pinhole side = cell side, m")
         .def_readwrite("sensor_cols", &Camera::sensor_cols, "sensor width, pixels")
@@ -142,9 +150,9 @@ void bind_design(py::module_& m) {
                 return a.object_distance_m == b.object_distance_m &&
                        a.lens_focal_m == b.lens_focal_m &&
                        a.sensor_distance_m == b.sensor_distance_m &&
-                       a.wavelength_m == b.wavelength_m && a.pixel_pitch_m == b.pixel_pitch_m &&
-                       a.pinhole_m == b.pinhole_m && a.sensor_cols == b.sensor_cols &&
-                       a.sensor_rows == b.sensor_rows;
+                       a.wavelength_m == b.wavelength_m && a.bandwidth_m == b.bandwidth_m &&
+                       a.pixel_pitch_m == b.pixel_pitch_m && a.pinhole_m == b.pinhole_m &&
+                       a.sensor_cols == b.sensor_cols && a.sensor_rows == b.sensor_rows;
             },
             py::arg("other"))
         .def("__repr__", [](const Camera& c) {
@@ -157,7 +165,8 @@ void bind_design(py::module_& m) {
                    ", wavelength_m=" + r(c.wavelength_m) + ", pixel_pitch_m=" + r(c.pixel_pitch_m) +
                    ", pinhole_m=" + r(c.pinhole_m) +
                    ", sensor_cols=" + std::to_string(c.sensor_cols) +
-                   ", sensor_rows=" + std::to_string(c.sensor_rows) + ")";
+                   ", sensor_rows=" + std::to_string(c.sensor_rows) +
+                   ", bandwidth_m=" + r(c.bandwidth_m) + ")";
         });
 
     m.def(
@@ -252,13 +261,33 @@ void bind_design(py::module_& m) {
                 solved["grid_period_shift_px"] = shift * g.n;
             }
             OpticsReport r = compute_optics(c, g, model, o);
-            // As `pinmask design`: a kernel model outside its validity says so in the reason.
-            KernelValidity validity = kernel_validity(c, r.kernel_model);
+            const WorkingDistance wd = compute_working_distance(c, g, wo);
+            // As `pinmask design`: the kernel psf would build (band, model over the band, kept
+            // energy), and a kernel model outside its validity says so in the reason.
+            DesignKernel dk = design_kernel(c, g.n, wd.pixels_per_cell, kernel);
+            if (dk.kernel) {
+                r.kernel_model = dk.kernel->model;
+                r.kernel_reason = dk.kernel->model_reason;
+            }
+            KernelValidity& validity = dk.validity;
             for (auto& w : validity.warnings) w = py_names::spell_keywords(w);
             if (!validity.model_accurate)
                 r.kernel_reason = "NOT accurate: " + validity.warnings.front();
-            const WorkingDistance wd = compute_working_distance(c, g, wo);
             py::dict d = optics_dict(r, wd, validity.warnings);
+            py::dict spectrum;
+            spectrum["bandwidth_m"] = c.bandwidth_m;
+            spectrum["wavelengths"] = band_wavelengths(c);
+            d["spectrum"] = spectrum;
+            py::dict k;
+            if (dk.kernel) {
+                k["support_px"] =
+                    py::make_tuple(dk.kernel->values.rows(), dk.kernel->values.cols());
+                k["enclosed_energy"] = dk.kernel->enclosed_energy;
+                k["support_capped"] = dk.kernel->support_capped;
+            } else {
+                k["not_built"] = dk.not_built;
+            }
+            d["kernel"] = k;
             for (auto item : solved) d[item.first] = item.second;
             return d;
         },
@@ -274,7 +303,10 @@ void bind_design(py::module_& m) {
         "pinhole_for_pixels_per_cell_m, period_at_u_px, lsi_mismatch_at_u_px, "
         "object_distance_range_m (near, far; far inf when shift invariant to infinity), "
         "optimum_pinhole_lensless_m, optimum_pinhole_with_lens_m, spot_spread_cells (cells), "
-        "spot_spreads_beyond_cell, kernel_warnings. grid n (cells per side), holes K, tiles per "
+        "spot_spreads_beyond_cell, kernel_warnings (psf's warnings for the kernel it would build), "
+        "spectrum (bandwidth_m, wavelengths [(m, weight)]: the camera's band as the kernels "
+        "sample it), kernel (support_px, enclosed_energy, support_capped; or not_built). grid n "
+        "(cells per side), holes K, tiles per "
         "side, kernel (kernel_models()), lsi_tolerance_px in pixels. Solving the pinhole as "
         "`design --solve pinhole` / `--pixels-per-cell N`: solve='pinhole' (N = the nearest "
         "whole number at u) or pixels_per_cell=N gives d for N whole pixels per cell at u, "

@@ -21,7 +21,8 @@ class Camera:
     object_distance_m: float  # u, +inf: distant object
     lens_focal_m: float  # f', +inf: no lens
     sensor_distance_m: float  # f
-    wavelength_m: float
+    wavelength_m: float  # the centre of the band
+    bandwidth_m: float  # FWHM of the spectrum, 0: one wavelength
     pixel_pitch_m: float  # w
     pinhole_m: float  # d = cell side
     sensor_cols: int
@@ -36,6 +37,7 @@ class Camera:
         pinhole_m: Length = 440e-6,
         sensor_cols: int = 720,
         sensor_rows: int = 480,
+        bandwidth_m: Length = 0.0,
     ) -> None: ...
     def validate(self) -> None: ...
     def to_json(self) -> str: ...

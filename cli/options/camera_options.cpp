@@ -22,7 +22,12 @@ void add_camera_options(CLI::App& cmd, CameraOptions& o) {
                    "Lens focal length f' (e.g. 120mm; inf = no lens)");
     cmd.add_option("--sensor-distance", o.sensor_distance, "Lens-to-sensor distance f (e.g. 55mm)");
     cmd.add_option("--object-distance", o.object_distance, "Object distance u (e.g. 6m, or inf)");
-    cmd.add_option("--wavelength", o.wavelength, "Design wavelength (e.g. 550nm)");
+    cmd.add_option("--wavelength", o.wavelength,
+                   "Design wavelength, the centre of the band (e.g. 550nm)");
+    cmd.add_option("--bandwidth", o.bandwidth,
+                   "Full width at half maximum of the light's spectrum (e.g. 30nm for an LED; "
+                   "default 0 = one wavelength, at most half the wavelength): the kernels sum a "
+                   "Gaussian band sampled at 13 wavelengths over +-1.5 FWHM (docs/commands.md)");
     cmd.add_option("--pixel-pitch", o.pixel_pitch, "Sensor pixel pitch w (e.g. 30um)");
     cmd.add_option("--pinhole", o.pinhole, "Pinhole side d = cell side (e.g. 440um)");
     cmd.add_option("--sensor", o.sensor, "Sensor size in pixels, WIDTHxHEIGHT (e.g. 720x480)");
@@ -40,6 +45,7 @@ Camera resolve_camera(const CameraOptions& o) {
             parse_length_m(*o.object_distance, "--object-distance", AllowInfinity::kYes);
     }
     if (o.wavelength) c.wavelength_m = parse_length_m(*o.wavelength, "--wavelength");
+    if (o.bandwidth) c.bandwidth_m = parse_length_m(*o.bandwidth, "--bandwidth");
     if (o.pixel_pitch) c.pixel_pitch_m = parse_length_m(*o.pixel_pitch, "--pixel-pitch");
     if (o.pinhole) c.pinhole_m = parse_length_m(*o.pinhole, "--pinhole");
     if (o.sensor) {
@@ -53,6 +59,7 @@ Camera resolve_camera(const CameraOptions& o) {
         {"lens_focal_m", "--lens-focal"},
         {"sensor_distance_m", "--sensor-distance"},
         {"wavelength_m", "--wavelength"},
+        {"bandwidth_m", "--bandwidth"},
         {"pixel_pitch_m", "--pixel-pitch"},
         {"pinhole_m", "--pinhole"},
         {"sensor", "--sensor"}};
@@ -77,6 +84,9 @@ std::vector<CameraInput> camera_inputs(const CameraOptions& o, const Camera& c) 
     return {
         {"d (pinhole)", format_length(c.pinhole_m), from(o.pinhole)},
         {"lambda (wavelength)", format_length(c.wavelength_m), from(o.wavelength)},
+        {"B (bandwidth, FWHM)",
+         c.bandwidth_m == 0.0 ? "0 (one wavelength)" : format_length(c.bandwidth_m),
+         from(o.bandwidth)},
         {"f (lens to sensor)", format_length(c.sensor_distance_m), from(o.sensor_distance)},
         {"f' (lens focal)", format_length(c.lens_focal_m), from(o.lens_focal)},
         {"u (object distance)", format_length(c.object_distance_m), from(o.object_distance)},

@@ -15,13 +15,12 @@ struct CameraOptions {
     std::string preset = "paper";
     std::optional<Camera> base;  // used instead of the preset (search --config's "optics")
     std::optional<std::string> camera_file;  // --camera FILE (*.camera.json): replaces the preset
-    std::optional<std::string> lens_focal, sensor_distance, object_distance, wavelength,
+    std::optional<std::string> lens_focal, sensor_distance, object_distance, wavelength, bandwidth,
         pixel_pitch, pinhole, sensor;
 };
 
 // --camera FILE, --preset, --lens-focal, --sensor-distance, --object-distance, --wavelength,
-// --pixel-pitch,
-// --pinhole, --sensor WxH.
+// --bandwidth, --pixel-pitch, --pinhole, --sensor WxH.
 void add_camera_options(CLI::App& cmd, CameraOptions& o);
 
 // The preset (or --camera FILE, or `base`) with the flag overrides applied, validated

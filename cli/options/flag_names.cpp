@@ -11,10 +11,11 @@ namespace {
 
 // field name (as the libraries write it) -> flag. Sorted by field name (a test checks it, and
 // that every field a library names has a row).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 101> kFlags{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 102> kFlags{{
     {"allow_spectral_zeros", "--allow-spectral-zeros"},
     {"allow_violations", "--allow-violations"},
     {"attempts", "--attempts"},
+    {"bandwidth_m", "--bandwidth"},
     {"baseline_count", "--baseline-count"},
     {"batch", "--batch"},
     {"bayer", "--bayer"},

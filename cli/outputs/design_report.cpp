@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/units.hpp"
+#include "design/spectrum.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -46,7 +47,7 @@ void put(nlohmann::ordered_json& j, nlohmann::ordered_json& notes, const std::st
 }  // namespace
 
 nlohmann::ordered_json design_json(const OpticsReport& r, const WorkingDistance& wd,
-                                   const GridSnap& snap) {
+                                   const GridSnap& snap, const DesignKernel& dk) {
     using Json = nlohmann::ordered_json;
     Json j, notes = Json::object();
     const Camera& c = r.camera;
@@ -55,6 +56,7 @@ nlohmann::ordered_json design_json(const OpticsReport& r, const WorkingDistance&
     put(cam, notes, "lens_focal_m", c.lens_focal_m, "no lens");
     cam["sensor_distance_m"] = c.sensor_distance_m;
     cam["wavelength_m"] = c.wavelength_m;
+    cam["bandwidth_m"] = c.bandwidth_m;
     cam["pixel_pitch_m"] = c.pixel_pitch_m;
     cam["pinhole_m"] = c.pinhole_m;
     cam["sensor_px"] = {c.sensor_cols, c.sensor_rows};
@@ -107,6 +109,21 @@ nlohmann::ordered_json design_json(const OpticsReport& r, const WorkingDistance&
     j["light_gain"] = r.light_gain;
     j["kernel_model"] = kernel_model_name(r.kernel_model);
     j["kernel_reason"] = r.kernel_reason;
+    {
+        // The band the kernels sum (design/spectrum) and the kernel psf would build with it.
+        Json wl = Json::array();
+        for (const auto& [lambda, weight] : band_wavelengths(c)) wl.push_back({lambda, weight});
+        j["spectrum"] = {{"bandwidth_m", c.bandwidth_m}, {"wavelengths", wl}};
+        Json k;
+        if (dk.kernel) {
+            k["support_px"] = {dk.kernel->values.rows(), dk.kernel->values.cols()};
+            k["enclosed_energy"] = dk.kernel->enclosed_energy;
+            k["support_capped"] = dk.kernel->support_capped;
+        } else {
+            k["not_built"] = dk.not_built;
+        }
+        j["kernel"] = k;
+    }
     j["whole_pixels_per_cell_at_u"] = wd.pixels_per_cell;
     put(j, notes, "pinhole_for_pixels_per_cell_m", wd.pinhole_for_pixels_per_cell_m,
         "1 - f/f' + f/u = 0: every pinhole images to the same spot");
@@ -140,6 +157,23 @@ std::string range_text(const WorkingDistance& wd) {
            length(wd.range_far_m);
 }
 
+// "850 nm, one wavelength" or "850 nm +- 30 nm FWHM: 13 samples 805 nm .. 895 nm".
+std::string spectrum_text(const Camera& c) {
+    const auto wl = band_wavelengths(c);
+    if (wl.size() == 1) return length(c.wavelength_m) + ", one wavelength";
+    return length(c.wavelength_m) + ", FWHM " + length(c.bandwidth_m) + ": " +
+           std::to_string(wl.size()) + " samples " + length(wl.front().first) + " .. " +
+           length(wl.back().first);
+}
+
+std::string kernel_support_text(const DesignKernel& dk) {
+    if (!dk.kernel) return "not built";
+    const Kernel& k = *dk.kernel;
+    return std::to_string(k.values.rows()) + " x " + std::to_string(k.values.cols()) + " px, " +
+           num(100.0 * k.enclosed_energy, 4) + " % of the energy" +
+           (k.support_capped ? " (capped at the period)" : "");
+}
+
 std::string regime_text(const OpticsReport& r, const WorkingDistance& wd) {
     std::string s = kernel_model_name(r.kernel_model) +
                     ", N_F = " + num(wd.fresnel_number_with_lens_at_u, 3) + "; spot ~" +
@@ -152,7 +186,7 @@ std::string regime_text(const OpticsReport& r, const WorkingDistance& wd) {
 
 std::string design_table(const OpticsReport& r, const WorkingDistance& wd,
                          const std::string& solved, const std::vector<CameraInput>& inputs,
-                         const GridSnap& snap) {
+                         const GridSnap& snap, const DesignKernel& dk) {
     const Camera& c = r.camera;
     const std::string at_u_text = "u = " + length(c.object_distance_m);
     const std::string inf = "  u = inf";  // the distant-object line under a figure at u
@@ -222,6 +256,12 @@ std::string design_table(const OpticsReport& r, const WorkingDistance& wd,
         {"regime", regime_text(r, wd),
          "Fresnel number with the lens at u; spot = max(1, 1/(2 N_F)) cells"},
         {"kernel model", kernel_model_name(r.kernel_model), r.kernel_reason},
+        {"spectrum", spectrum_text(c),
+         c.bandwidth_m == 0.0 ? "--bandwidth 0: the design wavelength alone"
+                              : "Gaussian band of that FWHM, 13 wavelengths over +-1.5 FWHM"},
+        {"kernel support", kernel_support_text(dk),
+         dk.kernel ? "what psf builds at N px per cell over the band (psf --energy)"
+                   : dk.not_built},
         {"mask size", length(r.mask_width_m) + " x " + length(r.mask_height_m),
          "n tiles d per side"},
         {"open fraction", num(100 * r.open_fraction, 3) + " %", "K / n^2"},

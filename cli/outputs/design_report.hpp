@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cli/options/camera_options.hpp"
+#include "design/design_kernel.hpp"
 #include "design/optics.hpp"
 #include "design/working_distance.hpp"
 
@@ -24,14 +25,15 @@ struct GridSnap {
 
 // One JSON object: camera, geometry, every OpticsReport and WorkingDistance figure (unit-suffixed
 // keys: plain and "_at_u" keys at the working distance u, "_at_inf" keys for a distant object),
-// "notes" (key -> why a value is null).
+// "notes" (key -> why a value is null), and the kernel psf would build (`dk`): "spectrum"
+// (bandwidth_m, wavelengths [[m, weight], ...]) and "kernel" (support_px, enclosed_energy).
 nlohmann::ordered_json design_json(const OpticsReport& r, const WorkingDistance& wd,
-                                   const GridSnap& snap = {});
+                                   const GridSnap& snap = {}, const DesignKernel& dk = {});
 
 // The table (quantity, value, note), after the inputs used (symbol, value, source); `solved`
 // non-empty says the pinhole was solved for N at u.
 std::string design_table(const OpticsReport& r, const WorkingDistance& wd,
                          const std::string& solved, const std::vector<CameraInput>& inputs,
-                         const GridSnap& snap = {});
+                         const GridSnap& snap = {}, const DesignKernel& dk = {});
 
 }  // namespace pinmask::cli

@@ -338,6 +338,16 @@ mask_variant("mask-huge-wavelength.mask.json", set_path("optics", "wavelength_m"
 mask_variant("mask-tiny-pitch.mask.json", set_path("optics", "pixel_pitch_m", 1e-300))
 mask_variant("mask-huge-pinhole.mask.json", set_path("optics", "pinhole_m", 1e300))
 mask_variant("mask-huge-sensor-distance.mask.json", set_path("optics", "sensor_distance_m", 1e10))
+mask_variant("mask-negative-bandwidth.mask.json", set_path("optics", "bandwidth_m", -3e-8))
+mask_variant("mask-bandwidth-beyond-wavelength.mask.json", set_path("optics", "bandwidth_m", 1e-6))
+
+
+def band_and_list(m):
+    m["optics"]["bandwidth_m"] = 3e-8
+    m["psf"]["kernel"]["wavelengths"] = [[5.4e-7, 1.0], [5.6e-7, 1.0]]
+
+
+mask_variant("mask-bandwidth-and-wavelengths.mask.json", band_and_list)
 # ---- readers that must implement or refuse: SVG constructs that change
 # geometry, DXF units, OASIS records pinmask does not read.
 SVG_HEAD = ('<svg xmlns="http://www.w3.org/2000/svg" width="1mm" height="1mm" '

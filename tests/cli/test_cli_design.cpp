@@ -228,3 +228,59 @@ TEST_CASE("design --save-camera writes a camera file; --camera reads it; flags o
     refused("--save-camera " + (dir / "no/such.camera.json"), "--save-camera");
     refused("--camera " + file + " --save-camera " + file, "overwrite");
 }
+
+TEST_CASE(
+    "--bandwidth: design shows the band and psf's kernel warnings; masks and cameras carry it") {
+    pinmask::test::TempDir dir("bandwidth");
+    // An NIR camera lit by an 850 nm LED with a 30 nm band; d for 34 px per cell at u = 1.2 m.
+    const std::string nir =
+        "--pixel-pitch 5.86um --sensor 1920x1200 --lens-focal 75mm --sensor-distance 45mm "
+        "--object-distance 1.2m --wavelength 850nm --pinhole 455.406um --bandwidth 30nm";
+    const auto j = design_json(nir);
+    CHECK(j["camera"]["bandwidth_m"].get<double>() == doctest::Approx(30e-9).epsilon(1e-15));
+    CHECK(j["spectrum"]["bandwidth_m"] == j["camera"]["bandwidth_m"]);
+    REQUIRE(j["spectrum"]["wavelengths"].size() == 13);
+    CHECK(j["spectrum"]["wavelengths"][0][0].get<double>() == doctest::Approx(805e-9));
+    CHECK(j["spectrum"]["wavelengths"][12][0].get<double>() == doctest::Approx(895e-9));
+    CHECK(j["input_sources"]["B (bandwidth, FWHM)"] == "flag");
+    CHECK(j["whole_pixels_per_cell_at_u"] == 34);
+    const auto table = run_cli("design " + nir);
+    CHECK(contains(table.out, "850 nm, FWHM 30 nm: 13 samples 805 nm .. 895 nm"));
+    CHECK(contains(table.out, "kernel support"));
+
+    // The mask generated with the band carries it, and psf warns exactly as design did.
+    const std::string mask = dir / "nir.mask.json";
+    const auto gen = run_cli("generate " + nir + " --seed 3 -o " + mask);
+    INFO(gen.err);
+    REQUIRE(gen.exit_code == 0);
+    const auto m = nlohmann::json::parse(pinmask::test::slurp(mask));
+    CHECK(m["optics"]["bandwidth_m"] == j["camera"]["bandwidth_m"]);
+    const auto psf = run_cli("psf " + mask + " --json -o " + (dir / "p.tiff"));
+    INFO(psf.err);
+    REQUIRE(psf.exit_code == 0);
+    const auto p = nlohmann::json::parse(psf.out);
+    CHECK(p["kernel"]["wavelengths"].size() == 13);
+    CHECK(p["kernel"]["enclosed_energy"] == j["kernel"]["enclosed_energy"]);
+    CHECK(p["warnings"] == j["kernel_warnings"]);
+
+    // The camera file keeps the band; --camera gives it to every command.
+    const std::string cam = dir / "nir.camera.json";
+    REQUIRE(run_cli("design " + nir + " --save-camera " + cam).exit_code == 0);
+    const auto again = design_json("--camera " + cam);
+    CHECK(again["camera"]["bandwidth_m"] == j["camera"]["bandwidth_m"]);
+    CHECK(again["input_sources"]["B (bandwidth, FWHM)"] == "camera file");
+    CHECK(again["kernel_warnings"] == j["kernel_warnings"]);
+
+    // Without the flag: one wavelength, and no bandwidth key in the files written.
+    const auto mono = design_json("--preset paper");
+    CHECK(mono["spectrum"]["wavelengths"].size() == 1);
+    REQUIRE(run_cli("generate --seed 3 -o " + (dir / "mono.mask.json")).exit_code == 0);
+    CHECK(!contains(pinmask::test::slurp(dir / "mono.mask.json"), "bandwidth"));
+
+    for (const char* bad : {"-5nm", "nan", "1um", "300nm"}) {
+        const auto r = run_cli(std::string("design --bandwidth ") + bad);
+        INFO(bad << " -> " << r.err);
+        CHECK(r.exit_code == 2);
+        CHECK(contains(r.err, "--bandwidth"));
+    }
+}

@@ -99,6 +99,22 @@ TEST_CASE("file layout: fixed key order, one pinhole per line, infinite distance
     CHECK(text.back() == '\n');
 }
 
+TEST_CASE("the camera's band: carried in optics, refused beside an explicit wavelength list") {
+    Mask m = sample_mask();
+    m.psf.kernel.wavelengths.clear();
+    m.camera.bandwidth_m = 40e-9;
+    const std::string text = mask_file_text(m);
+    CHECK(text.find("\"bandwidth_m\": 4e-08") != std::string::npos);
+    CHECK(mask_from_json(nlohmann::json::parse(text)).camera.bandwidth_m == 40e-9);
+    nlohmann::json both = nlohmann::json::parse(text);
+    both["psf"]["kernel"]["wavelengths"] = {{540e-9, 1.0}, {560e-9, 1.0}};
+    CHECK_THROWS_WITH_AS(mask_from_json(both), Contains("optics.bandwidth_m"), InvalidInput);
+    CHECK_THROWS_WITH_AS(mask_from_json(both), Contains("psf.kernel.wavelengths"), InvalidInput);
+    // A mask without the key (every file from before it) reads as one wavelength.
+    CHECK(mask_from_json(mask_to_json(sample_mask())).camera.bandwidth_m == 0.0);
+    CHECK(mask_file_text(sample_mask()).find("bandwidth") == std::string::npos);
+}
+
 TEST_CASE("reading rejects each malformed field with its key path and rule") {
     const nlohmann::json good = mask_to_json(sample_mask());
     CHECK_NOTHROW(mask_from_json(good));

@@ -61,3 +61,32 @@ TEST_CASE("camera file: round trip (doubles exact, inf kept), malformed files re
               .find("pixel_pitch_m") != std::string::npos);
     CHECK_THROWS_AS(io::read_camera_file(dir / "missing.camera.json"), InvalidInput);
 }
+
+TEST_CASE("camera file: the band round-trips; files without it read 0 and are written unchanged") {
+    test::TempDir dir("camera-band");
+    Camera c = paper_camera();
+    c.wavelength_m = 850e-9;
+    c.bandwidth_m = 30e-9;
+    io::write_camera_file(dir / "band.camera.json", c);
+    const std::string text = test::slurp(dir / "band.camera.json");
+    CHECK(text.find("\"bandwidth_m\": 3e-08") != std::string::npos);
+    CHECK(io::read_camera_file(dir / "band.camera.json").bandwidth_m == c.bandwidth_m);
+
+    // A monochromatic camera writes no bandwidth key: the bytes of files from before the band.
+    const std::string mono = io::camera_file_text(paper_camera());
+    CHECK(mono.find("bandwidth") == std::string::npos);
+    std::ofstream(dir / "old.camera.json") << mono;
+    const Camera old = io::read_camera_file(dir / "old.camera.json");
+    CHECK(old.bandwidth_m == 0.0);
+    CHECK(io::camera_file_text(old) == mono);
+
+    // Not physical: refused naming the key.
+    for (const std::string bad : {"-3e-08", "5e-07", "\"wide\""}) {
+        CAPTURE(bad);
+        const std::string edited =
+            replaced(text, "\"bandwidth_m\": 3e-08", "\"bandwidth_m\": " + bad);
+        const std::string why = refusal(dir / "bad.json", edited);
+        INFO(why);
+        CHECK(why.find("bandwidth_m") != std::string::npos);
+    }
+}

@@ -50,6 +50,7 @@ CAMERA_FIELDS = {
     "--sensor-distance": "Camera.sensor_distance_m",
     "--object-distance": "Camera.object_distance_m",
     "--wavelength": "Camera.wavelength_m",
+    "--bandwidth": "Camera.bandwidth_m",
     "--pixel-pitch": "Camera.pixel_pitch_m",
     "--pinhole": "Camera.pinhole_m",
     "--sensor": "Camera.sensor_cols",
