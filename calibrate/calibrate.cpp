@@ -152,10 +152,20 @@ CalibrationSummary calibrate_point_source(const Plane& capture, const std::optio
     so.nominal_pitch_px = design_pitch;
     so.pitch_range = o.pitch_range;
     so.max_rotation_deg = o.max_rotation_deg;
+    const auto phase = [&](const char* name) {
+        if (o.progress) o.progress(name, 0, 0);
+    };
+    phase("finding the lattice (FFT)");
     s.fft_start = fft_lattice_start(frame, mask.pattern, so);
     const LatticeStart start = s.fft_start.lattice;
     ForwardFitOptions fo;
     fo.dark_subtracted = dark.has_value();
+    phase("fitting the forward model");
+    int fit_iterations = 0;  // over every round of the fit, for the progress text
+    if (o.progress)
+        fo.on_iteration = [&](int, int cap) {
+            o.progress("fitting the forward model", ++fit_iterations, cap);
+        };
     s.fit = fit_forward_model(frame, mask, start, fo);
     // Spots several cells wide run together in the spot start, which can then assign the lattice
     // one cell off; the fit of a wrong assignment ends on a negative median gain. Then the eight
@@ -264,6 +274,7 @@ CalibrationSummary calibrate_point_source(const Plane& capture, const std::optio
     s.kernel_fit = compare_kernel_models(s.kernel.values, mask.camera,
                                          std::max(1, static_cast<int>(std::lround(design_pitch))));
     s.best_model = best_model(s.kernel_fit);
+    phase("building the calibrated PSF");
     s.psfs = calibrated_psfs(rows, cols, f, mask, o.period_tolerance_px);
     s.residual_map = frame - f.model;
     s.extra_spots = extra_light(s.residual_map, f, o);

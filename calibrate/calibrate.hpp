@@ -12,6 +12,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -45,6 +46,11 @@ struct CalibrationOptions {
     // the design's pitch in capture pixels is pixels_per_cell / pixel_binning. The mask's camera
     // must already carry the capture's pixel pitch (the kernel models use it).
     int pixel_binning = 1;
+    // Progress for the faces (may be empty): a phase's name when it starts ("finding the
+    // lattice (FFT)", "fitting the forward model", "building the calibrated PSF") with iteration
+    // 0, and during the fit its Levenberg-Marquardt iterations so far (every round counted) and
+    // a round's cap.
+    std::function<void(const std::string& phase, int iteration, int cap)> progress;
 };
 
 // Throws InvalidInput naming the field, the value and the rule.

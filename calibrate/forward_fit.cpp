@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 
@@ -303,7 +304,8 @@ struct RoundResult {
 // Levenberg-Marquardt over the free parameters with the weights, footprint and halo fixed.
 RoundResult levenberg_marquardt(const Problem& pb, Params& p, const std::vector<int>& free,
                                 const Plane& w, const Plane& foot, const Plane& halo_plane,
-                                int max_iterations) {
+                                int max_iterations,
+                                const std::function<void(int, int)>* on_iteration = nullptr) {
     RoundResult rr;
     Evaluation e = evaluate(pb, p, foot, halo_plane, true);
     double cost = weighted_cost(w, pb.frame, e.model);
@@ -311,6 +313,7 @@ RoundResult levenberg_marquardt(const Problem& pb, Params& p, const std::vector<
     int small_steps = 0;
     for (int it = 0; it < max_iterations; ++it) {
         ++rr.iterations;
+        if (on_iteration && *on_iteration) (*on_iteration)(it + 1, max_iterations);
         Eigen::MatrixXd A;
         Eigen::VectorXd b;
         normal_equations(pb, e, w, pb.frame - e.model, foot, A, b);
@@ -526,16 +529,16 @@ ForwardFit fit_from(const Plane& frame, const Mask& mask, const LatticeStart& st
         std::vector<int> free = all;
         if (leak_fixed) free.erase(std::find(free.begin(), free.end(), iL));
         const bool leak_free = std::find(free.begin(), free.end(), iL) != free.end();
-        const RoundResult rr =
-            levenberg_marquardt(pb, p, free, w, foot, halo_plane, o.max_iterations);
+        const RoundResult rr = levenberg_marquardt(pb, p, free, w, foot, halo_plane,
+                                                   o.max_iterations, &o.on_iteration);
         out.iterations += rr.iterations;
         out.converged = rr.converged;
         if (leak_free && p.leak < 0) {  // the leak cannot be negative: refit on the bound
             p.leak = 0;
             leak_fixed = true;
             free.erase(std::find(free.begin(), free.end(), iL));
-            const RoundResult again =
-                levenberg_marquardt(pb, p, free, w, foot, halo_plane, o.max_iterations);
+            const RoundResult again = levenberg_marquardt(pb, p, free, w, foot, halo_plane,
+                                                          o.max_iterations, &o.on_iteration);
             out.iterations += again.iterations;
             out.converged = again.converged;
         }

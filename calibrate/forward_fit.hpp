@@ -27,6 +27,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,9 @@ struct ForwardFitOptions {
     // many and this fraction of the frame.
     int min_outside_px = 500;
     double min_outside_fraction = 0.02;
+    // Called after every Levenberg-Marquardt iteration with the iterations so far and the round's
+    // cap (progress for the faces; may be empty).
+    std::function<void(int iterations, int cap)> on_iteration;
 };
 
 struct FittedPinhole {

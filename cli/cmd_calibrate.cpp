@@ -13,6 +13,7 @@
 #include "cli/options/camera_options.hpp"
 #include "cli/options/flag_names.hpp"
 #include "cli/outputs/calibrate_json.hpp"
+#include "cli/outputs/progress.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
@@ -87,7 +88,20 @@ void run(CalibrateCommandOptions& o) {
     std::cerr << "calibrate: registering " << capture.cols() << " x " << capture.rows()
               << " px against " << mask.pattern.pinholes.size() << " pinholes x "
               << mask.pattern.tiles_rows * mask.pattern.tiles_cols << " tiles\n";
+    // Progress: each phase, and the fit's iterations (a large frame fits for tens of seconds).
+    ProgressLine bar("pinmask calibrate");
+    o.cal.progress = [&](const std::string& phase, int it, int cap) {
+        if (it == 0) {
+            bar.phase(phase);
+            return;
+        }
+        // The fit runs a few rounds of at most `cap` iterations: the bar shows the share of
+        // two rounds' caps, the text the count.
+        bar.update(std::min(0.99, double(it) / (2.0 * cap)),
+                   phase + ": " + std::to_string(it) + " iterations");
+    };
     auto s = calibrate::calibrate_point_source(capture, dark, mask, o.cal);
+    bar.finish();
     s.dark_source = spell_flags(s.dark_source);
 
     // The calibrated mask: the measured kernel and the measured geometry in its provenance.

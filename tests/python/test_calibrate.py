@@ -97,6 +97,11 @@ def test_module_returns_the_command_lines_json(capture, cli, tmp_path):
     out = cli.run("calibrate", tmp_path / "point.npy", "--mask", tmp_path / "m.mask.json",
                   "-o", tmp_path / "cal", "--json")
     j = json.loads(out.stdout)
+    # Progress with stderr to a pipe: each phase named, then the fit's iterations.
+    for phase in ["finding the lattice (FFT)", "fitting the forward model",
+                  "building the calibrated PSF"]:
+        assert f"pinmask calibrate: {phase}" in out.stderr, out.stderr
+    assert "iterations" in out.stderr, out.stderr
     r = pinmask.calibrate(point, tmp_path / "m.mask.json")
     files = {"psf", "psf_period", "kernel", "mask", "report"}
     assert set(j) - files == set(r) - files - {"residual_map"}
