@@ -22,8 +22,6 @@ namespace pinmask {
 
 namespace {
 
-
-
 constexpr double kRotationDeg = 1.0, kPitchScale = 1.005, kFluxPerPinhole = 5e5;
 constexpr double kBackground = 20.0, kReadNoise = 3.0;
 

@@ -17,8 +17,6 @@
 namespace pinmask {
 namespace {
 
-
-
 Mask period_bench_mask() {
     Mask m;
     m.camera.pixel_pitch_m = 3.45e-6;
