@@ -10,6 +10,7 @@
 #include <string>
 
 #include "bench/best_of.hpp"
+#include "bench/fft_pair.hpp"
 #include "calibrate/calibrate.hpp"
 #include "calibrate/forward_fit.hpp"
 #include "calibrate/profile_table.hpp"
@@ -105,14 +106,7 @@ CalibrateBenchResult bench_calibrate(const CalibrateBenchOptions& o) {
     r.true_rotation_deg = kRotationDeg;
     r.pitch_x_px = s.pitch_x_px;
     r.true_pitch_px = pitch;
-    Fft2 fft(o.rows, o.cols);
-    ComplexPlane spectrum;
-    Plane back;
-    ComplexPlane scratch;
-    r.fft_pair_seconds = best_of(std::max(3, o.repeat), [&] {
-        fft.forward(capture, spectrum);
-        fft.inverse(spectrum, back, scratch);
-    });
+    r.fft_pair_seconds = measured_fft_pair(o.rows, o.cols, std::max(3, o.repeat), 1).wall_seconds;
     return r;
 }
 

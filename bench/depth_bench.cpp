@@ -8,6 +8,7 @@
 #include <random>
 #include <string>
 
+#include "bench/fft_pair.hpp"
 #include "core/error.hpp"
 #include "core/fft.hpp"
 #include "design/mask.hpp"
@@ -96,20 +97,10 @@ DepthBenchResult bench_depth(const DepthBenchOptions& o) {
     for (const DepthRecord& rec : records)
         r.worst_wiener_loss_db = std::max(r.worst_wiener_loss_db, rec.wiener_psnr_loss_db);
 
-    const Fft2 fft(o.rows, o.cols);
-    Plane x(o.rows, o.cols);
-    std::mt19937_64 rng(2);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    for (Eigen::Index i = 0; i < x.size(); ++i) x.data()[i] = u(rng);
-    r.fft_pair_seconds = r.fft_pair_cpu_seconds = std::numeric_limits<double>::infinity();
-    double sink = 0;
-    for (int k = 0; k < o.repeat; ++k) {
-        const Times f = timed([&] { sink += fft.inverse(fft.forward(x))(0, 0); });
-        r.fft_pair_seconds = std::min(r.fft_pair_seconds, f.wall);
-        r.fft_pair_cpu_seconds = std::min(r.fft_pair_cpu_seconds, f.cpu);
-    }
-    if (!std::isfinite(sink))
-        throw RuntimeFailure("bench depth: the FFT pair gave a non-finite value");
+    const FftPairTime f =
+        measured_fft_pair(o.rows, o.cols, o.repeat, fft_threads_for(o.rows, o.cols));
+    r.fft_pair_seconds = f.wall_seconds;
+    r.fft_pair_cpu_seconds = f.cpu_seconds;
     return r;
 }
 

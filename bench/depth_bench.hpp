@@ -1,6 +1,6 @@
-// Cost of `pinmask depth` on a full-size sensor beside an FFT pair of the sensor's size, timed in
-// the same run (so the ratio, not the seconds, is the figure to compare between machines and
-// loads).
+// Cost of `pinmask depth` on a full-size sensor beside an FFT pair of the sensor's size (bare
+// FFTW, FFTW_MEASURE: bench/fft_pair), timed in the same run (so the ratio, not the seconds, is
+// the figure to compare between machines and loads).
 //
 // The camera: the NIR camera of the benchmarks page (5.86 um pixels, 1920 x 1200 sensor, f' =
 // 75 mm, sensor 45 mm behind the lens, u = 1.2 m, 850 nm, d = 455.406 um: the pinhole solved
