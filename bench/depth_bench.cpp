@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/fft.hpp"
 #include "design/mask.hpp"
+#include "design/random_sparse.hpp"
 #include "metrics/depth_loss.hpp"
 
 namespace pinmask {
@@ -32,15 +33,6 @@ Times timed(F&& fn) {
             double(std::clock() - c0) / CLOCKS_PER_SEC};
 }
 
-// Cells at least 2 apart on the n-torus: neither in the other's 8-neighbourhood.
-bool clear_of(const std::vector<Cell>& cells, Cell c, int n) {
-    for (const Cell& o : cells) {
-        const int dr = std::abs(o.row - c.row), dc = std::abs(o.col - c.col);
-        if (std::min(dr, n - dr) <= 1 && std::min(dc, n - dc) <= 1) return false;
-    }
-    return true;
-}
-
 Mask depth_bench_mask() {
     Mask m;
     m.camera.pixel_pitch_m = 5.86e-6;
@@ -51,16 +43,12 @@ Mask depth_bench_mask() {
     m.camera.object_distance_m = 1.2;
     m.camera.wavelength_m = 850e-9;
     m.camera.pinhole_m = 455.406e-6;
-    m.pattern.n = 16;
-    m.pattern.min_spacing_cells = 2.0;
+    RandomSparseOptions ro;  // 20 pinholes on 16 x 16 under the spacing rule s = 2
+    ro.n = 16;
+    ro.holes = 20;
+    ro.min_spacing_cells = 2.0;
     std::mt19937_64 rng(1);
-    std::uniform_int_distribution<int> cell(0, 255);
-    while (m.pattern.pinholes.size() < 20) {
-        const int k = cell(rng);
-        const Cell c{k / 16, k % 16};
-        if (clear_of(m.pattern.pinholes, c, 16)) m.pattern.pinholes.push_back(c);
-    }
-    std::sort(m.pattern.pinholes.begin(), m.pattern.pinholes.end());
+    m.pattern = random_sparse_pattern(ro, rng);
     m.psf.pixels_per_cell = 34;
     m.psf.kernel.model = "auto";
     return m;
