@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "core/error.hpp"
-#include "core/field_names.hpp"
 #include "core/fft.hpp"
+#include "core/field_names.hpp"
 #include "design/psf.hpp"
 #include "metrics/analytic_error.hpp"
 #include "metrics/autocorrelation.hpp"
@@ -14,14 +14,14 @@
 #include "metrics/mask_metrics.hpp"
 #include "metrics/metric_spellings.hpp"
 #include "metrics/robust_errors.hpp"
-#include "simulate/scene_prior.hpp"
-#include "simulate/scenes.hpp"
 #include "metrics/simulated_metrics.hpp"
 #include "metrics/spectrum_metrics.hpp"
 #include "python/common.hpp"
 #include "python/level_args.hpp"
 #include "python/metrics_common.hpp"
 #include "python/values.hpp"
+#include "simulate/scene_prior.hpp"
+#include "simulate/scenes.hpp"
 
 namespace pinmask::python {
 
@@ -70,7 +70,8 @@ py::dict row_dict(const CompareRow& r) {
     d["tv_psnr_db"] = r.tv_psnr_db;
     d["tv_ssim"] = r.tv_ssim;
     d["tv_lambda"] = r.tv_lambda;
-    // Every level under score's keys (cli/options/analytic_setup metrics_json names them the same way).
+    // Every level under score's keys (cli/options/analytic_setup metrics_json names them the same
+    // way).
     for (const LevelMetrics& l : r.metrics.levels) {
         const std::string& k = l.level.key;
         if (l.analytic) {
@@ -212,7 +213,8 @@ robust_loss_db_<level>, score's keys and numbers.)");
                 throw invalid_field("snr_db", "inf", "the analytic error needs noise");
             const Mask mk = mask_arg(mask_obj, true);
             if (prior_scenes < 1)
-                throw invalid_field(field_ref("prior.count"), std::to_string(prior_scenes), "must be >= 1");
+                throw invalid_field(field_ref("prior.count"), std::to_string(prior_scenes),
+                                    "must be >= 1");
             const bool tuned = filter == "tuned";
             const WienerFilterSpec f = tuned ? WienerFilterSpec{} : filter_spec(filter);
             AnalyticError e;
