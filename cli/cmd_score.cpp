@@ -16,6 +16,7 @@
 #include "core/error.hpp"
 #include "io/mask_json.hpp"
 #include "metrics/mask_metrics.hpp"
+#include "metrics/metric_spellings.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -37,18 +38,7 @@ struct ScoreOptions {
 
 MaskMetricsOptions make_options(const ScoreOptions& o, const CLI::App& cmd, std::string& noise) {
     MaskMetricsOptions m;
-    std::set<std::string> wanted;
-    for (const std::string& s : split_list(o.metrics, "--metrics")) {
-        if (s != "sidelobes" && s != "spectrum" && s != "analytic" && s != "wiener" && s != "tv")
-            throw invalid_field("--metrics", s,
-                                "must be one of sidelobes, spectrum, analytic, wiener, tv");
-        wanted.insert(s);
-    }
-    m.sidelobes = wanted.count("sidelobes") > 0;
-    m.spectrum = wanted.count("spectrum") > 0;
-    m.analytic = wanted.count("analytic") > 0;
-    m.wiener = wanted.count("wiener") > 0;
-    m.tv = wanted.count("tv") > 0;
+    select_metrics(m, split_list(o.metrics, "--metrics"));
     m.noise = noise_levels(o.noise, cmd, &noise);
     m.prior = prior_spec(o.prior);
     m.scenes = scene_specs(o.scenes);

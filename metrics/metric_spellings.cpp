@@ -1,5 +1,8 @@
 #include "metrics/metric_spellings.hpp"
 
+#include <algorithm>
+#include <set>
+
 #include "core/error.hpp"
 #include "core/field_names.hpp"
 #include "core/units.hpp"
@@ -56,6 +59,29 @@ void set_decoder_settings(SimulatedMetricsOptions& sim, const std::string& nsr,
                             "must be >= 1");
     }
     sim.tv_iterations = tv_iterations;
+}
+
+const std::vector<std::string>& metric_group_names() {
+    static const std::vector<std::string> names{"sidelobes", "spectrum", "analytic", "wiener",
+                                                "tv"};
+    return names;
+}
+
+void select_metrics(MaskMetricsOptions& m, const std::vector<std::string>& names) {
+    if (names.empty()) throw invalid_field(field_ref("metrics"), "''", "name at least one metric");
+    std::set<std::string> wanted;
+    for (const std::string& s : names) {
+        const auto& known = metric_group_names();
+        if (std::find(known.begin(), known.end(), s) == known.end())
+            throw invalid_field(field_ref("metrics"), s.empty() ? "''" : s,
+                                "must be one of sidelobes, spectrum, analytic, wiener, tv");
+        wanted.insert(s);
+    }
+    m.sidelobes = wanted.count("sidelobes") > 0;
+    m.spectrum = wanted.count("spectrum") > 0;
+    m.analytic = wanted.count("analytic") > 0;
+    m.wiener = wanted.count("wiener") > 0;
+    m.tv = wanted.count("tv") > 0;
 }
 
 }  // namespace pinmask

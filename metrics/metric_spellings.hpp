@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "metrics/analytic_error.hpp"
+#include "metrics/mask_metrics.hpp"
 #include "metrics/simulated_metrics.hpp"
 #include "simulate/scenes.hpp"
 
@@ -35,5 +36,13 @@ std::vector<SceneSpec> scene_specs_from_names(const std::vector<std::string>& na
 // `wiener_nsr`, `tv_lambda` or `tv_iterations`).
 void set_decoder_settings(SimulatedMetricsOptions& sim, const std::string& nsr,
                           const std::string& tv_lambda, int tv_iterations);
+
+// The metric groups of score's selection ("sidelobes", "spectrum", "analytic", "wiener", "tv"):
+// each named group on, the others off. InvalidInput naming `metrics` for an unknown or empty
+// name, or an empty list.
+void select_metrics(MaskMetricsOptions& m, const std::vector<std::string>& names);
+
+// The names select_metrics accepts, in the order score lists them.
+const std::vector<std::string>& metric_group_names();
 
 }  // namespace pinmask

@@ -5,6 +5,7 @@
 
 namespace pinmask::python {
 void bind_depth(py::module_& m);  // python/bind_depth.cpp
+void bind_score(py::module_& m);  // python/bind_score.cpp
 }
 
 PYBIND11_MODULE(pinmask, m) {
@@ -43,6 +44,7 @@ field, the value and the rule), RuntimeError for failures while doing valid work
     bind_simulate(m);
     bind_decode(m);
     bind_metrics(m);
+    bind_score(m);
     bind_search(m);
     bind_compare(m);
     bind_export(m);

@@ -215,6 +215,28 @@ def metrics(
     prior: Prior = "natural",
     robust: Optional[str] = None,  # as --robust: "size=44um,jitter=2um,missing=0.01"
 ) -> dict[str, Any]: ...
+def score(
+    masks: Sequence[MaskLike],
+    metrics: Union[str, Sequence[str]] = "sidelobes,spectrum,analytic,wiener",  # or tv
+    scenes: Sequence[str] = ("letter-R", "usaf", "natural"),  # as the score command
+    snr_db: Optional[Levels] = None,  # dB; None: 20, 30, 40
+    photons: Optional[Levels] = None,  # electrons per pixel through one pinhole (photon model)
+    read_noise: Optional[float] = None,  # rms electrons
+    dark_current: Optional[float] = None,  # mean electrons per pixel
+    full_well: Optional[float] = None,  # electrons
+    bits: Optional[int] = None,  # ADC bits 1..24, needs full_well
+    optical_density: Optional[float] = None,  # film OD (transmission 10^-OD)
+    prior: Prior = "natural",
+    prior_scenes: int = 16,
+    nsr: str = "0.01",
+    tv_lambda: str = "1e-3",
+    tv_iterations: int = 200,
+    noise_seeds: int = 1,  # realisations per scene and level, 1..1000
+    seed: int = 0,
+    robust: Optional[str] = None,  # "size=5um,jitter=2um,missing=0.01"
+    robust_decoder: bool = False,  # adds {psf, nsr_map, floored} arrays (needs robust)
+    allow_violations: bool = False,
+) -> dict[str, Any]: ...
 def sidelobes(pattern: Pattern) -> dict[str, Any]: ...
 def autocorrelation(pattern: Pattern) -> npt.NDArray[np.int32]: ...
 def spectrum_metrics(pattern: Pattern) -> dict[str, float]: ...

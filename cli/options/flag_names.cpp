@@ -11,7 +11,7 @@ namespace {
 
 // field name (as the libraries write it) -> flag. Sorted by field name (a test checks it, and
 // that every field a library names has a row).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 102> kFlags{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 103> kFlags{{
     {"allow_spectral_zeros", "--allow-spectral-zeros"},
     {"allow_violations", "--allow-violations"},
     {"attempts", "--attempts"},
@@ -65,6 +65,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 102> kFlags{
     {"max_snap_error_nm", "--max-snap-error"},
     {"max_vertices", "--max-vertices"},
     {"method", "--method"},
+    {"metrics", "--metrics"},
     {"migrate_every", "--migrate-every"},
     {"min_feature", "--min-feature"},
     {"min_space", "--min-space"},

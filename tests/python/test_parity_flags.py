@@ -21,7 +21,7 @@ FUNCTIONS = {
     "simulate": ["simulate"],
     "decode": ["decode"],
     "search": ["search"],
-    "score": ["metrics", "analytic_error", "simulated_quality"],
+    "score": ["score", "metrics", "analytic_error", "simulated_quality"],
     "calibrate": ["calibrate"],
     "compare": ["compare"],
     "export": ["export_mask"],
@@ -75,7 +75,7 @@ COUNTERPART = {
     ("depth", "--from"): "from_m",
     ("depth", "--to"): "to_m",
     ("depth", "--no-tv"): "tv",  # tv=False
-    ("score", "--allow-violations"): "load_mask",  # load_mask(path, allow_spacing_violations=True)
+    ("score", "--seeds"): "noise_seeds",
 }
 # Camera flags name the camera in these commands (elsewhere --object-distance is the refocus
 # distance of psf, simulate and decode).
@@ -116,9 +116,6 @@ GAPS = {
     ("search", "--checkpoint"): "search() does not write checkpoints",
     ("search", "--checkpoint-every"): "search() does not write checkpoints",
     ("search", "--resume"): "search() cannot resume from a checkpoint",
-    ("score", "--metrics"): "metrics() computes every metric (no selection)",
-    ("score", "--robust-decoder"): "metrics(robust=) has no decoder choice",
-    ("score", "--seeds"): "metrics() has one noise seed (simulated_quality has noise_seeds)",
     ("calibrate", "--bayer"): "camera RAW point captures are not read by the module",
     ("export", "--no-psf"): "export_mask() writes no PSF files (so nothing to leave out)",
     ("export", "--npy"): "export_mask() writes no PSF files",
