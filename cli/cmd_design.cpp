@@ -24,6 +24,7 @@
 #include "design/kernel.hpp"
 #include "design/kernel_validity.hpp"
 #include "design/optics.hpp"
+#include "design/packing_bound.hpp"
 #include "design/working_distance.hpp"
 #include "export/vendor_presets.hpp"
 #include "io/camera_json.hpp"
@@ -169,9 +170,20 @@ void run(const DesignOptions& o) {
     if (!solved.empty())
         inputs[0].source = "solved for N px per cell at u, on the " + std::to_string(snap.grid_nm) +
                            " nm fabrication grid";
+    // The spacing rule against the pinhole count: the proven packing bound (design/packing_bound),
+    // so a design that no search or generator can realise says so before any of them runs.
+    const PackingUpperBound most = packing_upper_bound(geometry.n, o.geometry.spacing);
+    if (geometry.holes > most.count)
+        std::cerr << "pinmask: warning: --holes " << geometry.holes
+                  << ": that many pinholes do not fit on a " << geometry.n << " x " << geometry.n
+                  << " grid at --spacing " << o.geometry.spacing << ": at most " << most.count
+                  << " (" << most.reason << ")\n";
     if (!o.save_camera.empty()) io::write_camera_file(o.save_camera, camera);
     if (o.json) {
         auto j = design_json(r, wd, snap, dk);
+        j["spacing_cells"] = o.geometry.spacing;
+        j["max_holes_at_spacing"] = most.count;
+        j["max_holes_reason"] = most.reason;
         j["kernel_warnings"] = validity.warnings;
         for (const CameraInput& in : inputs) j["input_sources"][in.symbol] = in.source;
         std::cout << io::json_strict::pretty(j) << "\n";

@@ -12,6 +12,7 @@
 #include "design/kernel_model.hpp"
 #include "design/kernel_validity.hpp"
 #include "design/optics.hpp"
+#include "design/packing_bound.hpp"
 #include "design/spectrum.hpp"
 #include "design/working_distance.hpp"
 #include "export/vendor_presets.hpp"
@@ -192,8 +193,11 @@ void bind_design(py::module_& m) {
         [](const std::optional<Camera>& camera, int grid, int holes, int tiles,
            const std::string& kernel, double lsi_tolerance_px,
            std::optional<long long> pixels_per_cell, const std::optional<std::string>& solve,
-           const py::object& fab_grid, const std::optional<std::string>& vendor) {
+           const py::object& fab_grid, const std::optional<std::string>& vendor, double spacing) {
             PatternGeometry g{grid, holes, tiles, tiles};
+            if (!std::isfinite(spacing) || spacing < 0)
+                throw invalid_field(field_ref("spacing"), std::to_string(spacing),
+                                    "must be finite and >= 0");
             OpticsOptions o;
             o.lsi_tolerance_px = lsi_tolerance_px;
             Camera c = camera.value_or(paper_camera());
@@ -289,12 +293,17 @@ void bind_design(py::module_& m) {
             }
             d["kernel"] = k;
             for (auto item : solved) d[item.first] = item.second;
+            // As `design --json`: the spacing rule's packing bound on the pinhole count.
+            const PackingUpperBound most = packing_upper_bound(g.n, spacing);
+            d["spacing_cells"] = spacing;
+            d["max_holes_at_spacing"] = most.count;
+            d["max_holes_reason"] = most.reason;
             return d;
         },
         py::arg("camera") = py::none(), py::arg("grid") = 16, py::arg("holes") = 20,
         py::arg("tiles") = 2, py::arg("kernel") = "auto", py::arg("lsi_tolerance_px") = 1.0,
         py::arg("pixels_per_cell") = py::none(), py::arg("solve") = py::none(),
-        py::arg("fab_grid") = py::none(), py::arg("vendor") = py::none(),
+        py::arg("fab_grid") = py::none(), py::arg("vendor") = py::none(), py::arg("spacing") = 2.0,
         "The optics report of `pinmask design --json` as a dict (same keys and numbers; lengths "
         "in metres with _m suffixes, infinite values as float('inf') where the CLI writes null "
         "and a note; keys without a suffix and \"_at_u\" keys are at the working distance u, "
@@ -313,7 +322,9 @@ void bind_design(py::module_& m) {
         "snapped to the fabrication grid fab_grid (a length, '1um'; default 1 nm) or the export "
         "preset vendor's; the report is then for that d (camera holds it: save_camera writes "
         "it, as --save-camera) with fab_grid_m, pinhole_solved_m, pinhole_on_grid_m, "
-        "grid_pitch_shift_px and grid_period_shift_px.");
+        "grid_pitch_shift_px and grid_period_shift_px. spacing (cells, as --spacing): "
+        "spacing_cells, max_holes_at_spacing (the proven packing bound: no valid placement of more "
+        "pinholes exists) and max_holes_reason.");
 
     m.def(
         "kernel_models", [] { return name_list(kKernelModelNames); },

@@ -152,7 +152,7 @@ void bind_score(py::module_& m) {
                 ++index;
                 loaded.push_back(mask_arg(h, allow_violations));
                 names.push_back(py::isinstance<Mask>(h) ? "mask " + std::to_string(index)
-                                                         : py::str(h).cast<std::string>());
+                                                        : py::str(h).cast<std::string>());
             }
             MetricsContext context(o);
             py::list rows;

@@ -1,9 +1,12 @@
 // Scenes and forward simulation (simulate/scenes.hpp, simulate/simulate.hpp): simulate() follows
 // `pinmask simulate` (cli/cmd_simulate.cpp) minus the file writing.
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <thread>
 
 #include "core/error.hpp"
+#include "core/fft.hpp"
 #include "core/field_names.hpp"
 #include "core/resource_limits.hpp"
 #include "core/units.hpp"
@@ -98,7 +101,15 @@ void bind_simulate(py::module_& m) {
            std::optional<int> bits, std::optional<double> optical_density, bool full_sensor,
            std::optional<std::pair<int, int>> sensor, bool dark_frame, std::uint64_t seed,
            bool allow_violations, const std::string& precision, const std::string& geometry,
-           const py::object& object_distance, std::optional<std::pair<int, int>> size) {
+           const py::object& object_distance, std::optional<std::pair<int, int>> size,
+           int threads) {
+            // As `simulate --threads` (1..1024) and decode(threads=): 0, all cores.
+            if (threads < 0 || threads > 1024)
+                throw invalid_field(field_ref("threads"), std::to_string(threads),
+                                    "must be 1..1024 (0: all cores)");
+            set_fft_threads(
+                threads > 0 ? threads
+                            : static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
             SimulationOptions sim;
             sim.noise = noise_model(
                 {snr_db, photons, read_noise, dark_current, full_well, optical_density, bits});
@@ -205,6 +216,7 @@ void bind_simulate(py::module_& m) {
         py::arg("dark_frame") = false, py::arg("seed") = 1, py::arg("allow_violations") = false,
         py::arg("precision") = "auto", py::arg("geometry") = "integer",
         py::arg("object_distance") = py::none(), py::arg("size") = py::none(),
+        py::arg("threads") = 0,
         "A simulated capture, as `pinmask simulate` computes it: the scene (a name, rendered at "
         "one period, or an array of the period's size, values in [0, 1]) convolved with the "
         "mask's PSF over one period, tiled over the sensor with full_sensor (sensor = (cols, "
@@ -219,7 +231,9 @@ void bind_simulate(py::module_& m) {
         "`simulate --geometry exact`): every pinhole of the tiled mask at its true position for "
         "an object at object_distance (metres or '2m', 'inf'; default the mask's u), over the "
         "sensor or size = (rows, cols) pixels, a named scene; psf is then None "
-        "(psf(mask, geometry='exact', ...) gives it) and object_distance_m the u used.");
+        "(psf(mask, geometry='exact', ...) gives it) and object_distance_m the u used. threads: "
+        "FFTW "
+        "threads for transforms of >= 512 x 512 (0: all cores), as `simulate --threads`.");
 }
 
 }  // namespace pinmask::python

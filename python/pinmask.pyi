@@ -57,6 +57,7 @@ def optics(
     solve: Optional[Literal["pinhole"]] = None,  # N = the nearest whole number at u
     fab_grid: Optional[Length] = None,  # the solved d lands on this grid (default 1 nm)
     vendor: Optional[str] = None,  # ... or on this export preset's grid
+    spacing: float = 2.0,  # cells: reports the packing bound on holes
 ) -> dict[str, Any]: ...
 def kernel_models() -> list[str]: ...
 def choose_kernel_model(fresnel_number: float) -> tuple[str, str]: ...
@@ -169,6 +170,7 @@ def simulate(
     geometry: Literal["integer", "exact"] = "integer",
     object_distance: Optional[Length] = None,  # exact: default the mask's u
     size: Optional[tuple[int, int]] = None,  # exact: (rows, cols), default the sensor
+    threads: int = 0,  # FFTW threads for >= 512 x 512 (0: all cores)
 ) -> dict[str, Any]: ...
 def decode(
     capture: ArrayLike,

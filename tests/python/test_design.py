@@ -100,3 +100,26 @@ def test_optics_solving_the_pinhole_equals_cli(cli, tmp_path, cli_args, kwargs):
 def test_optics_solving_errors_name_keywords(kwargs, pattern):
     with pytest.raises(ValueError, match=pattern):
         pinmask.optics(pinmask.Camera(**MV), **kwargs)
+
+
+@pytest.mark.parametrize("grid, holes, spacing", [(8, 40, 2.0), (16, 20, 3.0), (5, 3, 6.0)])
+def test_optics_spacing_bound_equals_cli(cli, grid, holes, spacing):
+    p = cli.run("design", "--grid", grid, "--holes", holes, "--spacing", spacing, "--json")
+    j = json.loads(p.stdout)
+    d = pinmask.optics(grid=grid, holes=holes, spacing=spacing)
+    for k in ("spacing_cells", "max_holes_at_spacing", "max_holes_reason"):
+        assert d[k] == j[k], k
+    # A pinhole closer than the spacing to its own periodic copy: nothing fits.
+    if spacing > grid:
+        assert d["max_holes_at_spacing"] == 0
+    # Two pinholes at least `spacing` apart on the torus: the bound can never be below what a
+    # placement on a lattice of step ceil(spacing) realises.
+    step = math.ceil(spacing)
+    assert d["max_holes_at_spacing"] >= (grid // step) ** 2 if step <= grid else True
+    fits = holes <= d["max_holes_at_spacing"]
+    assert ("do not fit" in p.stderr) == (not fits)
+
+
+def test_optics_spacing_refused():
+    with pytest.raises(ValueError, match="spacing"):
+        pinmask.optics(spacing=-1)

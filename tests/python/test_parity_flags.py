@@ -107,8 +107,6 @@ BY_DESIGN = {
 
 # Not in the module yet: (command, flag) -> what is missing.
 GAPS = {
-    ("design", "--spacing"): "optics() reports a geometry without the spacing rule",
-    ("simulate", "--threads"): "simulate() has no thread count",
     ("decode", "--bayer"): "camera RAW captures: read_image does not demosaic RAW files",
     ("decode", "--batch"): "batch decode (many captures, one PSF) is not in the module",
     ("decode", "--batch-format"): "batch decode is not in the module",

@@ -117,3 +117,13 @@ def test_exact_geometry_refusals_name_keywords():
     with pytest.raises(ValueError, match="^object_distance = 2m: only used with "
                                          "geometry='exact'"):
         pinmask.simulate(mask, "point", object_distance="2m")
+
+
+def test_simulate_threads_do_not_change_the_capture(mask7):
+    # A 512 x 512 full-sensor capture (the size FFTW plans with threads): as `simulate
+    # --threads`, the bytes do not depend on the count without a wisdom cache.
+    a = pinmask.simulate(mask7, full_sensor=True, sensor=(512, 512), threads=1)["capture"]
+    b = pinmask.simulate(mask7, full_sensor=True, sensor=(512, 512), threads=2)["capture"]
+    assert np.array_equal(a, b)
+    with pytest.raises(ValueError, match="threads = -1"):
+        pinmask.simulate(mask7, threads=-1)
