@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "core/number_format.hpp"
 #include "decode/convolution.hpp"
 #include "decode/decode_method.hpp"
@@ -27,7 +28,7 @@ std::string size_text(Eigen::Index r, Eigen::Index c) {
     return std::to_string(r) + " x " + std::to_string(c);
 }
 
-void check_nonnegative(const char* field, double v) {
+void check_nonnegative(const std::string& field, double v) {
     if (!(v >= 0.0) || !std::isfinite(v))
         throw invalid_field(field, format_number(v, 17), "must be finite and >= 0");
 }
@@ -50,7 +51,7 @@ double validate_inputs(const Plane& capture, const Plane& psf) {
     return peak;
 }
 
-void check_work_plane(const char* field, const Plane& p, const ConvGeometry& g) {
+void check_work_plane(const std::string& field, const Plane& p, const ConvGeometry& g) {
     if (p.rows() != g.work_rows || p.cols() != g.work_cols) {
         throw invalid_field(field, size_text(p.rows(), p.cols()),
                             "must have the working size " + size_text(g.work_rows, g.work_cols));
@@ -206,7 +207,7 @@ WienerFilter closed_form_filter(const ConvolutionOperator& op, const DecodeOptio
     if (o.method == DecodeMethod::kWiener) {
         const WienerParams& w = o.wiener;
         if (w.nsr_per_frequency) {
-            check_work_plane("wiener.nsr_per_frequency", *w.nsr_per_frequency, g);
+            check_work_plane(field_ref("nsr_map"), *w.nsr_per_frequency, g);
             return WienerFilter::from_otf(op.otf(), R, C, *w.nsr_per_frequency);
         }
         return WienerFilter::from_otf(op.otf(), R, C, w.nsr);
@@ -219,44 +220,44 @@ WienerFilter closed_form_filter(const ConvolutionOperator& op, const DecodeOptio
 
 void IterativeParams::validate() const {
     if (max_iterations < 0) {
-        throw invalid_field("iterative.max_iterations", std::to_string(max_iterations),
+        throw invalid_field(field_ref("iterations"), std::to_string(max_iterations),
                             "must be >= 0");
     }
-    check_nonnegative("iterative.tolerance", tolerance);
+    check_nonnegative(field_ref("tolerance"), tolerance);
     if (warm_start && !is_all_finite(*warm_start))
         throw invalid_field("iterative.warm_start", "non-finite values", "must be finite");
 }
 
 void WienerParams::validate() const {
-    check_nonnegative("wiener.nsr", nsr);
+    check_nonnegative(field_ref("wiener_nsr"), nsr);
     if (nsr_per_frequency &&
         !(nsr_per_frequency->minCoeff() >= 0.0 && is_all_finite(*nsr_per_frequency))) {
-        throw invalid_field("wiener.nsr_per_frequency", "negative or non-finite values",
+        throw invalid_field(field_ref("nsr_map"), "negative or non-finite values",
                             "every value must be finite and >= 0");
     }
 }
 
 void TikhonovParams::validate() const {
-    check_nonnegative("tikhonov.lambda", lambda);
+    check_nonnegative(field_ref("lambda"), lambda);
     if (regulariser != TikhonovRegulariser::kIdentity &&
         regulariser != TikhonovRegulariser::kGradient) {
-        throw invalid_field("tikhonov.regulariser", std::to_string(static_cast<int>(regulariser)),
+        throw invalid_field(field_ref("regulariser"), std::to_string(static_cast<int>(regulariser)),
                             "must be identity or gradient");
     }
 }
 
-void TvParams::validate() const { check_nonnegative("tv.lambda", lambda); }
+void TvParams::validate() const { check_nonnegative(field_ref("lambda"), lambda); }
 
 void TvqcParams::validate() const {
-    if (eps) check_nonnegative("tvqc.eps", *eps);
-    if (noise_sigma) check_nonnegative("tvqc.noise_sigma", *noise_sigma);
+    if (eps) check_nonnegative(field_ref("eps"), *eps);
+    if (noise_sigma) check_nonnegative(field_ref("noise_sigma"), *noise_sigma);
     if (!eps && !noise_sigma) {
-        throw invalid_field("tvqc.eps", "unset",
+        throw invalid_field(field_ref("eps"), "unset",
                             "TVQC needs eps or noise_sigma (eps = sigma sqrt(N) "
                             "sqrt(1 + 2 sqrt(2 / N)))");
     }
     if (eps && noise_sigma) {
-        throw invalid_field("tvqc.noise_sigma", format_number(*noise_sigma, 17),
+        throw invalid_field(field_ref("noise_sigma"), format_number(*noise_sigma, 17),
                             "must not be set together with tvqc.eps (" + format_number(*eps, 17) +
                                 "): give one of them");
     }

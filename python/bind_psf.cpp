@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "core/field_names.hpp"
 #include "core/image_io.hpp"
+#include "core/raw_io.hpp"
 #include "design/kernel.hpp"
 #include "design/psf.hpp"
 #include "design/psf_exact.hpp"
@@ -207,14 +208,23 @@ void bind_psf(py::module_& m) {
 
     m.def(
         "read_image",
-        [](const std::filesystem::path& path) {
-            LoadedImage li = read_image(path);
+        [](const std::filesystem::path& path, const std::string& bayer) {
+            const BayerMode mode = parse_bayer_mode(bayer, field_ref("bayer"));
+            LoadedImage li;
+            {
+                py::gil_scoped_release release;
+                li = read_capture(path, mode);
+            }
             return py::make_tuple(image_to_array(std::move(li.image)), li.full_scale);
         },
-        py::arg("path"),
-        "(image, full_scale) of a TIFF, PNG, JPEG or .npy file (by content): raw values (integer "
-        "files as counts, full_scale = 255 or 65535; float files 1.0). Grey: (rows, cols), no "
-        "copy; colour: (rows, cols, 3).");
+        py::arg("path"), py::arg("bayer") = "sum2x2",
+        "(image, full_scale) of a TIFF, PNG, JPEG or .npy file (by content), or of a camera RAW "
+        "file (by extension: .dng, .cr2, .nef, .arw, ...; through LibRaw, black level removed) as "
+        "`decode` and `calibrate` read captures: raw values (integer files as counts, full_scale "
+        "= 255 or 65535; float files 1.0; RAW: white - black). Grey: (rows, cols), no copy; "
+        "colour: (rows, cols, 3). bayer (RAW only, as --bayer): 'sum2x2' (each 2 x 2 Bayer cell "
+        "summed: half the resolution, pixel pitch doubled) | 'green' ('g') | 'r' | 'b' (one "
+        "colour's sites).");
     m.def(
         "write_image",
         [](const std::filesystem::path& path, const py::handle& image) {

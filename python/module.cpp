@@ -6,6 +6,7 @@
 namespace pinmask::python {
 void bind_depth(py::module_& m);  // python/bind_depth.cpp
 void bind_score(py::module_& m);  // python/bind_score.cpp
+void bind_decode_batch(py::module_& m);  // python/bind_decode_batch.cpp
 }
 
 PYBIND11_MODULE(pinmask, m) {
@@ -43,6 +44,7 @@ field, the value and the rule), RuntimeError for failures while doing valid work
     bind_psf(m);
     bind_simulate(m);
     bind_decode(m);
+    bind_decode_batch(m);
     bind_metrics(m);
     bind_score(m);
     bind_search(m);

@@ -11,7 +11,7 @@ namespace {
 
 // field name (as the libraries write it) -> flag. Sorted by field name (a test checks it, and
 // that every field a library names has a row).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 103> kFlags{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 104> kFlags{{
     {"allow_spectral_zeros", "--allow-spectral-zeros"},
     {"allow_violations", "--allow-violations"},
     {"attempts", "--attempts"},
@@ -77,6 +77,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 103> kFlags{
     {"noise_sigma", "--noise-sigma"},
     {"nonnegative", "--nonneg"},
     {"nsr", "--nsr"},
+    {"nsr_map", "--nsr-map"},
     {"object_distance_m", "--object-distance"},
     {"objective", "--objective"},
     {"optical_density", "--optical-density"},

@@ -19,7 +19,7 @@ FUNCTIONS = {
     "generate": ["generate"],
     "psf": ["psf", "write_psf"],
     "simulate": ["simulate"],
-    "decode": ["decode"],
+    "decode": ["decode", "decode_batch"],
     "search": ["search"],
     "score": ["score", "metrics", "analytic_error", "simulated_quality"],
     "calibrate": ["calibrate"],
@@ -72,6 +72,9 @@ COUNTERPART = {
     ("psf", "--npy"): "npy",
     ("export", "--output"): "out_dir",
     ("export", "--format"): "formats",
+    ("decode", "--batch"): "decode_batch",  # decode_batch(captures, **decode keywords)
+    ("decode", "--bayer"): "read_image",  # read_image(path, bayer=...) reads camera RAW
+    ("calibrate", "--bayer"): "read_image",
     ("depth", "--from"): "from_m",
     ("depth", "--to"): "to_m",
     ("depth", "--no-tv"): "tv",  # tv=False
@@ -93,6 +96,9 @@ BY_DESIGN = {
     ("decode", "--scale"): "PNG scaling of the written image: the image is returned unscaled",
     ("decode", "--stats"): "the stats JSON's values are the returned dict's (channels, window, "
                            "period_check)",
+    ("decode", "--batch-format"): "decode_batch returns the images as arrays (write_image "
+                                  "writes any of them)",
+    ("decode", "--batch-stats"): "decode_batch returns each capture's stats as its dict",
     ("decode", "--explain"): "the returned dict holds what each step decided",
     ("search", "--output"): "the candidates are returned as Mask objects (Mask.save writes one)",
     ("search", "--explain"): "the returned dict holds the resolved settings and the run's log",
@@ -107,14 +113,9 @@ BY_DESIGN = {
 
 # Not in the module yet: (command, flag) -> what is missing.
 GAPS = {
-    ("decode", "--bayer"): "camera RAW captures: read_image does not demosaic RAW files",
-    ("decode", "--batch"): "batch decode (many captures, one PSF) is not in the module",
-    ("decode", "--batch-format"): "batch decode is not in the module",
-    ("decode", "--batch-stats"): "batch decode is not in the module",
     ("search", "--checkpoint"): "search() does not write checkpoints",
     ("search", "--checkpoint-every"): "search() does not write checkpoints",
     ("search", "--resume"): "search() cannot resume from a checkpoint",
-    ("calibrate", "--bayer"): "camera RAW point captures are not read by the module",
     ("export", "--no-psf"): "export_mask() writes no PSF files (so nothing to leave out)",
     ("export", "--npy"): "export_mask() writes no PSF files",
 }

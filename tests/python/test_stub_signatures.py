@@ -45,6 +45,9 @@ def runtime_signature(obj, name):
     assert m, f"{name}: no pybind11 signature in its docstring ({first!r})"
     params = []
     for p in split_top(m.group(1)):
+        if p.startswith("**"):  # **kwargs: checked against the stub's own **kwargs
+            params.append((p, None))
+            continue
         pname, rest = p.split(":", 1)
         default = None
         eq = split_top(rest, "=")
@@ -127,6 +130,10 @@ def test_stub_signature_equals_runtime(qualified, obj, name, node, method):
         assert params[0][0] == "self", qualified
         params = params[1:]
     stub_args = node.args.args[1:] if method else node.args.args
+    has_kwargs = bool(params) and params[-1][0].startswith("**")
+    assert (node.args.kwarg is not None) == has_kwargs, f"{qualified}: **kwargs in one only"
+    if has_kwargs:
+        params = params[:-1]
     assert [a.arg for a in stub_args] == [p[0] for p in params], qualified
     defaults = node.args.defaults
     stub_defaults = [None] * (len(stub_args) - len(defaults)) + list(defaults)
