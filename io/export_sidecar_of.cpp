@@ -54,7 +54,7 @@ ExportSidecar export_sidecar_of(const ExportRequest& f, const Mask& mask, const 
     d.rules_max_vertices = o.drc.max_vertices;
     d.drc_clean = s.drc.clean();
     d.drc_counts = s.drc.counts;
-    d.psf_absent = "not written (--no-psf)";
+    d.psf_absent = "not written (the export was asked for no PSF files)";
     d.notes = s.notes;  // the library's words: each face spells the fields
     return d;
 }

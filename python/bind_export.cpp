@@ -15,6 +15,7 @@
 #include "core/error.hpp"
 #include "core/field_names.hpp"
 #include "core/units.hpp"
+#include "design/psf.hpp"
 #include "export/drc.hpp"
 #include "export/export_pipeline.hpp"
 #include "export/export_request.hpp"
@@ -24,6 +25,7 @@
 #include "io/export_sidecar.hpp"
 #include "io/export_sidecar_of.hpp"
 #include "io/mask_json.hpp"
+#include "io/psf_files.hpp"
 #include "layout/geometry.hpp"
 #include "layout/rings.hpp"
 #include "layout/vendor_rules.hpp"
@@ -168,8 +170,11 @@ void bind_export(py::module_& m) {
            const std::optional<std::string>& min_space, const std::optional<std::string>& units,
            const std::optional<std::string>& emulsion, const std::optional<std::string>& draw,
            const std::optional<std::string>& circles, const std::string& hierarchy,
-           const py::object& kerf, const py::object& max_snap_error) {
+           const py::object& kerf, const py::object& max_snap_error, bool psf, bool npy) {
             const std::vector<FabFormat> fmts = parse_formats(formats);
+            if (npy && !psf)
+                throw InvalidInput(field_ref("npy") + " writes the PSF as .npy: it needs " +
+                                   field_ref("psf") + "=True");
             if (out_dir.empty())
                 throw invalid_field(field_ref("out_dir"), "''", "an output directory is required");
             if (fs::exists(out_dir) && !fs::is_directory(out_dir))
@@ -220,11 +225,13 @@ void bind_export(py::module_& m) {
             if (!kerf.is_none()) f.kerf = py::str(kerf).cast<std::string>();
             if (!max_snap_error.is_none())
                 f.max_snap_error = py::str(max_snap_error).cast<std::string>();
-            f.no_psf = true;
+            f.no_psf = !psf;
+            f.psf_npy = npy;
             // The input recorded in the sidecar: the path as given, as the command records it.
             if (!py::isinstance<Mask>(mask_obj)) f.input = py::str(mask_obj).cast<std::string>();
             const ExportOptions o = export_options_from(f, mk, stem);
             py::list files;
+            std::vector<fs::path> psf_written;
             ExportSummary summary;
             const fs::path sidecar_path = fs::path(out_dir) / (stem + ".export.json");
             {
@@ -234,7 +241,15 @@ void bind_export(py::module_& m) {
                 // check() of these files reads their layout settings and rules from it.
                 io::ExportSidecar side = io::export_sidecar_of(f, mk, o, summary);
                 for (std::string& n : side.notes) n = py_names::spell_keywords(n);
-                side.psf_absent = "not written (export_mask writes no PSF; write_psf() does)";
+                // The PSF files beside the layouts, as the command writes them (<stem>.psf.tiff,
+                // its sidecar, with npy <stem>.psf.npy): decode --psf reads them.
+                std::optional<std::pair<Plane, io::PsfSidecar>> psf_files;
+                if (psf) {
+                    check_psf_memory(mk.pattern.n, mk.psf.pixels_per_cell, 2, 0);
+                    const Kernel kernel = mask_kernel(mk);
+                    psf_files.emplace(synthesize_psf(mk.pattern, kernel, mk.psf.pixels_per_cell),
+                                      io::psf_sidecar_for(mk, kernel, f.input));
+                }
                 fs::create_directories(out_dir);
                 StagedFiles staged;
                 std::vector<std::tuple<std::string, std::string, std::size_t, std::string>> info;
@@ -259,6 +274,16 @@ void bind_export(py::module_& m) {
                     side.files.push_back(
                         io::sidecar_file_entry(path.filename().string(), e, check, f, o));
                 }
+                if (psf_files) {
+                    psf_written = io::write_psf_files(fs::path(out_dir) / (stem + ".psf.tiff"),
+                                                      psf_files->first, psf_files->second, npy);
+                    for (const fs::path& p : psf_written)
+                        side.psf_files.push_back(p.filename().string());
+                    side.psf_kernel = psf_files->second.kernel_model;
+                    side.psf_pixels_per_cell = psf_files->second.pixels_per_cell;
+                    side.psf_rows = int(psf_files->first.rows());
+                    side.psf_cols = int(psf_files->first.cols());
+                }
                 staged.stage_bytes(sidecar_path, io::export_sidecar_text(side));
                 staged.commit();
                 py::gil_scoped_acquire gil;
@@ -279,6 +304,9 @@ void bind_export(py::module_& m) {
                                   py::arg("counts") = drc.counts);
             out["mask_hash"] = layout.mask_hash;
             out["sidecar"] = sidecar_path.string();
+            py::list psf_paths;
+            for (const fs::path& p : psf_written) psf_paths.append(p.string());
+            out["psf_files"] = psf_paths;
             return out;
         },
         py::arg("mask"), py::arg("out_dir"),
@@ -295,7 +323,7 @@ void bind_export(py::module_& m) {
         py::arg("units") = py::none(), py::arg("emulsion") = py::none(),
         py::arg("draw") = py::none(), py::arg("circles") = py::none(),
         py::arg("hierarchy") = "auto", py::arg("kerf") = py::none(),
-        py::arg("max_snap_error") = py::none(),
+        py::arg("max_snap_error") = py::none(), py::arg("psf") = true, py::arg("npy") = false,
         R"(Writes the fabrication files of `pinmask export MASK -o out_dir` (same options, same
 bytes; export/export_pipeline): formats svg pdf gds oasis dxf gerber png tiff1 ->
 out_dir/<stem>.svg .pdf .gds .oas .dxf .gbr .png .tif, all or nothing; dpi: PNG/TIFF
@@ -310,9 +338,10 @@ Gerber always mm); emulsion up | down (= mirror); draw (PDF/PNG/SVG) film | poly
 (DXF/Gerber round pinholes) native | polygon; hierarchy (GDSII) flat | cells | auto; kerf: laser
 kerf, holes drawn this much smaller (a length); max_snap_error (tiff1): refuse when snapping moves
 an edge more (a length); each as the command's flag of the same name, defaults and vendor
-presets included. The PSF files are the CLI's; write_psf()
-writes the PSF. Returns {files: [{path, format, bytes, verification}], sidecar (its path), drc: {vendor, clean,
-counts}, mask_hash}.)");
+presets included. psf (as the command, unless --no-psf): also <stem>.psf.tiff and its JSON
+sidecar (the mask's PSF, what decode --psf reads; npy: also <stem>.psf.npy). Returns {files:
+[{path, format, bytes, verification}], sidecar (its path), drc: {vendor, clean, counts},
+mask_hash, psf_files (paths written)}.)");
 }
 
 }  // namespace pinmask::python

@@ -413,6 +413,8 @@ def export_mask(
     hierarchy: Literal["flat", "cells", "auto"] = "auto",  # GDSII
     kerf: Optional[Length] = None,  # laser kerf: holes drawn this much smaller
     max_snap_error: Optional[Length] = None,  # tiff1
+    psf: bool = True,  # also <stem>.psf.tiff + sidecar, as the command (unless --no-psf)
+    npy: bool = False,  # also <stem>.psf.npy
 ) -> dict[str, Any]: ...
 def check(
     input: Union[Mask, PathLikeStr],

@@ -2,6 +2,8 @@
 import json
 import pathlib
 
+import numpy as np
+
 import pytest
 
 import pinmask
@@ -132,19 +134,17 @@ def test_export_max_snap_error_refuses_as_cli(cli, tmp_path, mask7):
 
 
 def test_export_sidecar_equals_cli_and_check_reads_it(cli, tmp_path, mask7, monkeypatch):
-    """export_mask writes <stem>.export.json as `pinmask export` does (the PSF entry aside: the
-    module writes no PSF), and check() of a Python export reads its settings from it."""
+    """export_mask writes <stem>.export.json as `pinmask export` does (without PSF files, as
+    --no-psf), and check() of a Python export reads its settings from it."""
     mask7.save(str(tmp_path / "m.mask.json"))
     args = dict(formats=["gds", "dxf"], tone="dark", shape="circle", units="mm", frame="1mm")
     cli.run("export", "m.mask.json", "--format", "gds,dxf", "--tone", "dark", "--shape",
             "circle", "--units", "mm", "--frame", "1mm", "--no-psf", "-o", "cli")
     monkeypatch.chdir(tmp_path)  # the mask path recorded as given, as the command records it
-    out = pinmask.export_mask("m.mask.json", "py", **args)
-    assert out["sidecar"] == "py/m.export.json"
+    out = pinmask.export_mask("m.mask.json", "py", psf=False, **args)
+    assert out["sidecar"] == "py/m.export.json" and out["psf_files"] == []
     py_side = json.loads((tmp_path / "py" / "m.export.json").read_text())
     cli_side = json.loads((tmp_path / "cli" / "m.export.json").read_text())
-    py_side.pop("psf")
-    cli_side.pop("psf")
     assert py_side == cli_side
     # check() of the Python export uses the sidecar's tone, shape, frame and units: clean, the
     # same report as the command's check of the same file.
@@ -157,3 +157,21 @@ def test_export_sidecar_equals_cli_and_check_reads_it(cli, tmp_path, mask7, monk
     # Without the sidecar the defaults (film rules, squares, no frame) do not fit the file.
     bare = pinmask.check("py/m.gds", mask="m.mask.json", no_sidecar=True)
     assert not bare["clean"] and bare["polygons"] != report["polygons"]
+
+
+def test_export_psf_files_equal_cli(cli, tmp_path, mask7, monkeypatch):
+    """The PSF files beside the layouts (the default, and npy=True as --npy): the same bytes as
+    the command's, the same export sidecar, and decode reads the PSF written."""
+    mask7.save(str(tmp_path / "m.mask.json"))
+    cli.run("export", "m.mask.json", "--format", "gds", "--npy", "-o", "cli")
+    monkeypatch.chdir(tmp_path)
+    out = pinmask.export_mask("m.mask.json", "py", formats=["gds"], npy=True)
+    assert sorted(pathlib.Path(p).name for p in out["psf_files"]) == [
+        "m.psf.json", "m.psf.npy", "m.psf.tiff"]
+    names = sorted(p.name for p in (tmp_path / "cli").iterdir())
+    assert names == sorted(p.name for p in (tmp_path / "py").iterdir())
+    for name in names:
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    np.testing.assert_allclose(np.load("py/m.psf.npy"), pinmask.psf(mask7), rtol=1e-6, atol=0)
+    with pytest.raises(ValueError, match="npy writes the PSF as .npy: it needs psf=True"):
+        pinmask.export_mask("m.mask.json", "py2", formats=["gds"], psf=False, npy=True)

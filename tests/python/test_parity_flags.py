@@ -72,6 +72,7 @@ COUNTERPART = {
     ("psf", "--npy"): "npy",
     ("export", "--output"): "out_dir",
     ("export", "--format"): "formats",
+    ("export", "--no-psf"): "psf",  # psf=False
     ("decode", "--batch"): "decode_batch",  # decode_batch(captures, **decode keywords)
     ("decode", "--bayer"): "read_image",  # read_image(path, bayer=...) reads camera RAW
     ("calibrate", "--bayer"): "read_image",
@@ -116,8 +117,6 @@ GAPS = {
     ("search", "--checkpoint"): "search() does not write checkpoints",
     ("search", "--checkpoint-every"): "search() does not write checkpoints",
     ("search", "--resume"): "search() cannot resume from a checkpoint",
-    ("export", "--no-psf"): "export_mask() writes no PSF files (so nothing to leave out)",
-    ("export", "--npy"): "export_mask() writes no PSF files",
 }
 
 
