@@ -7,6 +7,7 @@ namespace pinmask::python {
 void bind_depth(py::module_& m);  // python/bind_depth.cpp
 void bind_score(py::module_& m);  // python/bind_score.cpp
 void bind_decode_batch(py::module_& m);  // python/bind_decode_batch.cpp
+void bind_sweep(py::module_& m);  // python/bind_sweep.cpp
 }
 
 PYBIND11_MODULE(pinmask, m) {
@@ -48,6 +49,7 @@ field, the value and the rule), RuntimeError for failures while doing valid work
     bind_metrics(m);
     bind_score(m);
     bind_search(m);
+    bind_sweep(m);
     bind_compare(m);
     bind_export(m);
     bind_check(m);

@@ -317,6 +317,13 @@ def search(
     robust: Optional[str] = None,  # as --robust: "size=44um,jitter=2um,missing=0.01"
     objective: Literal["nominal", "robust"] = "nominal",  # robust needs robust
 ) -> dict[str, Any]: ...
+def sweep(
+    *,
+    product: Optional[dict[str, Sequence[Any]]] = None,  # {keyword: [values]} (file's "grid")
+    points: Optional[Sequence[dict[str, Any]]] = None,  # or a list of points
+    progress: Optional[Callable[[dict[str, Any]], Optional[bool]]] = None,
+    **kwargs: Any,  # search()'s keywords: the base of every point (evals required)
+) -> dict[str, Any]: ...
 def compare(
     masks: Sequence[MaskLike],
     report: Optional[str] = None,

@@ -37,10 +37,7 @@ COMMANDS_BY_DESIGN = {
 }
 
 # Commands whose function the module does not have yet.
-COMMAND_GAPS = {
-    "sweep": "a design sweep (one search per grid point) is a loop over pinmask.search in Python; "
-             "the sweep's table, per-point files and plots are not in the module",
-}
+COMMAND_GAPS = {}
 
 # Flags spelled differently in Python: flag -> keyword, function, or Camera field ("Camera.x").
 CAMERA_FIELDS = {
@@ -108,6 +105,8 @@ BY_DESIGN = {
                                    "launch; the module searches in one process",
     ("score", "--explain"): "the returned dict holds the resolved settings",
     ("calibrate", "--output"): "the calibrated PSF, mask and report are returned as values",
+    ("sweep", "--output"): "the rows and each point's best mask are returned (Mask.save writes "
+                           "one); the sweep's CSV, Markdown table and plots are the command's",
     ("depth", "--output-dir"): "the per-distance figures are returned as dicts (write_image "
                                "writes any image)",
 }

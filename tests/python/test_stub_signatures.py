@@ -48,6 +48,9 @@ def runtime_signature(obj, name):
         if p.startswith("**"):  # **kwargs: checked against the stub's own **kwargs
             params.append((p, None))
             continue
+        if p == "*":  # the keyword-only parameters follow
+            params.append(("*", None))
+            continue
         pname, rest = p.split(":", 1)
         default = None
         eq = split_top(rest, "=")
@@ -134,6 +137,17 @@ def test_stub_signature_equals_runtime(qualified, obj, name, node, method):
     assert (node.args.kwarg is not None) == has_kwargs, f"{qualified}: **kwargs in one only"
     if has_kwargs:
         params = params[:-1]
+    if ("*", None) in params:  # keyword-only: the stub's kwonlyargs, in order
+        star = params.index(("*", None))
+        params, kwonly = params[:star], params[star + 1:]
+        assert [a.arg for a in node.args.kwonlyargs] == [p[0] for p in kwonly], qualified
+        for arg, d, (pname, runtime_default) in zip(node.args.kwonlyargs, node.args.kw_defaults,
+                                                    kwonly):
+            assert (d is None) == (runtime_default is None), f"{qualified}({pname})"
+            if d is not None:
+                same_default(d, runtime_default, f"{qualified}({pname})")
+    else:
+        assert not node.args.kwonlyargs, f"{qualified}: keyword-only in the stub only"
     assert [a.arg for a in stub_args] == [p[0] for p in params], qualified
     defaults = node.args.defaults
     stub_defaults = [None] * (len(stub_args) - len(defaults)) + list(defaults)
