@@ -4,6 +4,7 @@
 
 #include "core/error.hpp"
 #include "io/checkpoint.hpp"
+#include "io/search_run_config.hpp"
 #include "search/byte_codec.hpp"
 #include "search/chain_codec.hpp"
 
@@ -30,11 +31,7 @@ void add_cluster_flags(CLI::App& cmd, ClusterFlags& f) {
 
 nlohmann::ordered_json checkpoint_config(nlohmann::ordered_json resolved, int ranks,
                                          const ClusterFlags& f) {
-    for (const char* k : {"time", "generator", "kernel_resolved"}) resolved.erase(k);
-    resolved["ranks"] = ranks;
-    resolved["migrate_every"] = f.migrate_every;
-    resolved["checkpoint_every"] = f.checkpoint_every;
-    return resolved;
+    return io::checkpoint_config(std::move(resolved), ranks, f.migrate_every, f.checkpoint_every);
 }
 
 void setup_cluster(const ClusterFlags& f, RankComm& comm, const nlohmann::ordered_json& config,

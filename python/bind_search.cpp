@@ -2,6 +2,7 @@
 // pipeline search/search_pipeline (run_search_pipeline: sampling with keep-out cells, the
 // search on the analytic objective, the spectral-zero rule, the simulated re-ranking, top-k).
 #include <atomic>
+#include <filesystem>
 #include <memory>
 #include <tuple>
 
@@ -11,7 +12,9 @@
 #include "design/optics.hpp"
 #include "design/psf.hpp"
 #include "design/psf_settings.hpp"
+#include "io/checkpoint.hpp"
 #include "io/search_config.hpp"
+#include "io/search_run_config.hpp"
 #include "metrics/metric_spellings.hpp"
 #include "metrics/robust_errors.hpp"
 #include "python/common.hpp"
@@ -31,6 +34,59 @@ py::dict log_row(const SearchLogRow& row) {
     return d;
 }
 
+// p.islands from checkpoint / checkpoint_every / resume (the checks of the command's
+// cli/search_cluster, in Python's words).
+void set_checkpoints(SearchPipelineOptions& p, const io::SearchRunTexts& texts,
+                     const std::optional<std::string>& checkpoint, std::int64_t every,
+                     const std::optional<std::string>& resume) {
+    namespace fs = std::filesystem;
+    const nlohmann::ordered_json config =
+        io::checkpoint_config(io::resolved_search_config(p, texts, "", 1), 1, 0, every);
+    p.islands.checkpoint_every = every;
+    if (every < 0)
+        throw invalid_field(field_ref("checkpoint_every"), std::to_string(every), "must be >= 0");
+    if (every > 0 && !checkpoint)
+        throw InvalidInput(field_ref("checkpoint_every") + ": needs " + field_ref("checkpoint") +
+                           " FILE");
+    if (checkpoint) {
+        if (every <= 0)
+            throw InvalidInput(field_ref("checkpoint") + ": needs " +
+                               field_ref("checkpoint_every") + " E (evaluations per chain)");
+        const fs::path path = *checkpoint;
+        if (checkpoint->empty() || fs::is_directory(path))
+            throw invalid_field(field_ref("checkpoint"), *checkpoint,
+                                "is a directory, not a file name");
+        const fs::path parent = path.has_parent_path() ? path.parent_path() : ".";
+        if (!fs::is_directory(parent))
+            throw invalid_field(field_ref("checkpoint"), *checkpoint, "its folder does not exist");
+        if (p.search.max_evaluations == 0)
+            throw InvalidInput(field_ref("checkpoint") + ": needs an evaluation budget (" +
+                               field_ref("max_evaluations") +
+                               "); a time-budget run does not end at a reproducible point");
+        p.islands.checkpoint = [path, config](std::int64_t segment, std::int64_t e,
+                                              const std::vector<ChainState>& states) {
+            io::SearchCheckpointFile c;
+            c.config = config;
+            c.segment = segment;
+            c.every = e;
+            c.chains = states;
+            io::write_checkpoint(path, c);
+        };
+    }
+    p.islands.validate();
+    if (!resume) return;
+    const io::SearchCheckpointFile c = io::read_checkpoint(*resume);
+    const std::vector<std::string> diff = io::differing_keys(config, c.config);
+    if (!diff.empty()) {
+        std::string keys;
+        for (const std::string& k : diff) keys += (keys.empty() ? "" : ", ") + k;
+        throw invalid_field(field_ref("resume"), *resume,
+                            "the checkpoint is of another configuration; differing keys: " + keys);
+    }
+    p.islands.resume_segment = c.segment;
+    p.islands.resume = c.chains;
+}
+
 }  // namespace
 
 void bind_search(py::module_& m) {
@@ -47,7 +103,9 @@ void bind_search(py::module_& m) {
            const py::object& progress, const py::object& photons, std::optional<double> read_noise,
            std::optional<double> dark_current, std::optional<double> full_well,
            std::optional<int> bits, std::optional<double> optical_density, const py::object& prior,
-           const std::optional<std::string>& robust, const std::string& objective) {
+           const std::optional<std::string>& robust, const std::string& objective,
+           const std::optional<std::string>& checkpoint, std::int64_t checkpoint_every,
+           const std::optional<std::string>& resume) {
             SearchPipelineOptions p;
             p.tmpl.camera = camera.value_or(paper_camera());
             validate(p.tmpl.camera);
@@ -106,6 +164,25 @@ void bind_search(py::module_& m) {
             if (robust) p.robust = parse_fabrication_errors(*robust);
             p.objective = parse_objective_kind(objective);
             p.validate();
+            // Checkpoints, as `search --checkpoint F --checkpoint-every E` / `--resume F`: the
+            // file records the run's resolved configuration (io/search_run_config, the command's
+            // own), so a checkpoint of either face resumes in the other with the same settings.
+            io::SearchRunTexts texts;
+            texts.strategy = strategy;
+            texts.time = time;
+            texts.filter = filter;
+            texts.keep_out = keep_out;
+            texts.rank_by = rank_by;
+            texts.objective = objective;
+            texts.robust = robust.value_or("");
+            texts.seed = seed;
+            texts.top = top;
+            texts.w_analytic = w_analytic;
+            texts.w_max_sidelobe = w_max_sidelobe;
+            texts.w_sidelobe_energy = w_sidelobe_energy;
+            texts.w_min_spectrum = w_min_spectrum;
+            texts.rerank_scenes = rerank_scenes;
+            set_checkpoints(p, texts, checkpoint, checkpoint_every, resume);
 
             std::atomic<bool> cancel{false};
             std::exception_ptr py_error;
@@ -181,7 +258,8 @@ void bind_search(py::module_& m) {
         py::arg("dark_current") = py::none(), py::arg("full_well") = py::none(),
         py::arg("bits") = py::none(), py::arg("optical_density") = py::none(),
         py::arg("prior") = "natural", py::arg("robust") = py::none(),
-        py::arg("objective") = "nominal",
+        py::arg("objective") = "nominal", py::arg("checkpoint") = py::none(),
+        py::arg("checkpoint_every") = 0, py::arg("resume") = py::none(),
         R"(Searches masks for a camera (grid n, holes K or a range 'A..B', tiles, spacing in cells) as
 `pinmask search` (the same pipeline, search/search_pipeline): strategy random | anneal, a
 time budget (time, '20s', '2min'; it covers the re-ranking too) or evals per chain (> 0:
@@ -200,6 +278,11 @@ with read_noise, dark_current, full_well, bits, optical_density, as metrics().
 robust (as --robust, e.g. 'size=44um,jitter=2um'): every candidate's terms gain
 robust_wiener_psnr_db (expected under those fabrication errors, nominal-PSF decoder);
 objective 'robust' (needs robust) optimises it, 'nominal' (default) the design's figure.
+Checkpoints (as --checkpoint / --checkpoint-every / --resume; needs evals): checkpoint=FILE
+with checkpoint_every=E writes every chain's state atomically every E evaluations per chain;
+resume=FILE continues from a checkpoint of the same settings (the command's file format and
+configuration: one written by `pinmask search` on one process with the same settings resumes
+here, and back), and the result equals the uninterrupted run's.
 Returns {candidates: [{mask, objective, terms, reranked, sim_wiener_psnr_db, sim_tv_psnr_db,
 tv_lambda, spectral_zero, upper_bound_psnr_db (the analytic PSNR no pattern with the
 candidate's K can exceed)}] best first, evaluations, evaluations_per_chain, seconds (all),

@@ -316,6 +316,9 @@ def search(
     prior: Prior = "natural",
     robust: Optional[str] = None,  # as --robust: "size=44um,jitter=2um,missing=0.01"
     objective: Literal["nominal", "robust"] = "nominal",  # robust needs robust
+    checkpoint: Optional[str] = None,  # chains' state written here (needs evals)
+    checkpoint_every: int = 0,  # evaluations per chain between checkpoints
+    resume: Optional[str] = None,  # continue from a checkpoint of the same settings
 ) -> dict[str, Any]: ...
 def sweep(
     *,

@@ -14,23 +14,9 @@
 #include "core/units.hpp"
 #include "io/optics_json.hpp"
 #include "io/search_config.hpp"
+#include "io/search_run_config.hpp"
 
 namespace pinmask::cli {
-namespace {
-
-nlohmann::ordered_json noise_config(const NoiseModel& m) {
-    if (m.kind != NoiseKind::kPhoton) return {{"model", "gaussian"}, {"snr_db", m.snr_db}};
-    const nlohmann::ordered_json j = noise_json(m);  // null for an infinite full well or OD
-    return {{"model", "photon"},
-            {"photons_per_pinhole", m.photons_per_pinhole},
-            {"read_noise_e", m.read_noise_e},
-            {"dark_current_e", m.dark_current_e},
-            {"full_well_e", j["full_well_e"]},
-            {"adc_bits", m.adc_bits},
-            {"film_optical_density", j["film_optical_density"]}};
-}
-
-}  // namespace
 
 void apply_config(const io::SearchConfig& c, const CLI::App& cmd, SearchCliOptions& o) {
     auto given = [&](const char* flag) { return cmd.get_option(flag)->count() > 0; };
@@ -99,48 +85,22 @@ void apply_config(const io::SearchConfig& c, const CLI::App& cmd, SearchCliOptio
 
 nlohmann::ordered_json resolved_config(const SearchCliOptions& o, const SearchPipelineOptions& p,
                                        const SearchPipelineSummary& s, int ranks) {
-    nlohmann::ordered_json prior{{"family", prior_kind_name(p.prior.kind)},
-                                 {"scenes", p.prior.count}};
-    if (p.prior.kind == PriorKind::kFiles) {
-        prior["files"] = nlohmann::ordered_json::array();
-        for (const auto& f : p.prior.files) prior["files"].push_back(f.string());
-    }
-    return {{"format", io::kSearchConfigFormat},
-            {"version", io::kSearchConfigVersion},
-            {"generator", kSearchGenerator},
-            {"strategy", o.strategy},
-            {"time", p.search.max_evaluations > 0 ? nlohmann::ordered_json(nullptr)
-                                                  : nlohmann::ordered_json(o.time)},
-            {"evaluations_per_chain", p.search.max_evaluations},
-            {"ranks", ranks},
-            {"threads", p.search.threads},
-            {"seed", o.seed},
-            {"top", o.top},
-            {"grid", p.tmpl.pattern.n},
-            {"holes", p.holes},
-            {"max_holes", p.max_holes},
-            {"tiles", p.tmpl.pattern.tiles_rows},
-            {"min_spacing_cells", p.tmpl.pattern.min_spacing_cells},
-            {"keep_out", o.keep_out},
-            {"pixels_per_cell", p.tmpl.psf.pixels_per_cell},
-            {"kernel_requested", p.tmpl.psf.kernel.model},
-            {"kernel_resolved", s.kernel_resolved},
-            {"kernel_path", p.tmpl.psf.kernel.measured_path},
-            {"noise", noise_config(p.noise)},
-            {"filter", o.filter},
-            {"prior", prior},
-            {"weights",
-             {{"analytic_wiener", o.w_analytic},
-              {"max_sidelobe", o.w_max_sidelobe},
-              {"sidelobe_energy", o.w_sidelobe_energy},
-              {"min_spectrum", o.w_min_spectrum}}},
-            {"rerank_scenes", o.no_rerank ? std::vector<std::string>{} : o.rerank_scenes},
-            {"rerank_tv", p.rerank_tv},
-            {"allow_spectral_zeros", p.allow_spectral_zeros},
-            {"rank_by", o.rank_by},
-            {"objective", o.objective},
-            {"robust", o.robust},
-            {"optics", io::optics_to_json<nlohmann::ordered_json>(p.tmpl.camera)}};
+    io::SearchRunTexts t;
+    t.strategy = o.strategy;
+    t.time = o.time;
+    t.filter = o.filter;
+    t.keep_out = o.keep_out;
+    t.rank_by = o.rank_by;
+    t.objective = o.objective;
+    t.robust = o.robust;
+    t.seed = o.seed;
+    t.top = o.top;
+    t.w_analytic = o.w_analytic;
+    t.w_max_sidelobe = o.w_max_sidelobe;
+    t.w_sidelobe_energy = o.w_sidelobe_energy;
+    t.w_min_spectrum = o.w_min_spectrum;
+    if (!o.no_rerank) t.rerank_scenes = o.rerank_scenes;
+    return io::resolved_search_config(p, t, s.kernel_resolved, ranks);
 }
 
 SearchPipelineOptions search_pipeline_options(const SearchCliOptions& o, const CLI::App& cmd) {

@@ -113,9 +113,6 @@ BY_DESIGN = {
 
 # Not in the module yet: (command, flag) -> what is missing.
 GAPS = {
-    ("search", "--checkpoint"): "search() does not write checkpoints",
-    ("search", "--checkpoint-every"): "search() does not write checkpoints",
-    ("search", "--resume"): "search() cannot resume from a checkpoint",
 }
 
 

@@ -1,0 +1,86 @@
+#include "io/search_run_config.hpp"
+
+#include <cmath>
+
+#include "io/optics_json.hpp"
+#include "io/search_config.hpp"
+#include "metrics/mask_metrics.hpp"
+
+namespace pinmask::io {
+namespace {
+
+nlohmann::ordered_json finite_or_null(double v) {
+    return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
+}
+
+nlohmann::ordered_json noise_config(const NoiseModel& m) {
+    if (m.kind != NoiseKind::kPhoton) return {{"model", "gaussian"}, {"snr_db", m.snr_db}};
+    return {{"model", "photon"},
+            {"photons_per_pinhole", m.photons_per_pinhole},
+            {"read_noise_e", m.read_noise_e},
+            {"dark_current_e", m.dark_current_e},
+            {"full_well_e", finite_or_null(m.full_well_e)},
+            {"adc_bits", m.adc_bits},
+            {"film_optical_density", finite_or_null(m.film_optical_density)}};
+}
+
+}  // namespace
+
+nlohmann::ordered_json resolved_search_config(const SearchPipelineOptions& p,
+                                              const SearchRunTexts& t,
+                                              const std::string& kernel_resolved, int ranks) {
+    nlohmann::ordered_json prior{{"family", prior_kind_name(p.prior.kind)},
+                                 {"scenes", p.prior.count}};
+    if (p.prior.kind == PriorKind::kFiles) {
+        prior["files"] = nlohmann::ordered_json::array();
+        for (const auto& f : p.prior.files) prior["files"].push_back(f.string());
+    }
+    return {{"format", kSearchConfigFormat},
+            {"version", kSearchConfigVersion},
+            {"generator", kSearchGenerator},
+            {"strategy", t.strategy},
+            {"time", p.search.max_evaluations > 0 ? nlohmann::ordered_json(nullptr)
+                                                  : nlohmann::ordered_json(t.time)},
+            {"evaluations_per_chain", p.search.max_evaluations},
+            {"ranks", ranks},
+            {"threads", p.search.threads},
+            {"seed", t.seed},
+            {"top", t.top},
+            {"grid", p.tmpl.pattern.n},
+            {"holes", p.holes},
+            {"max_holes", p.max_holes},
+            {"tiles", p.tmpl.pattern.tiles_rows},
+            {"min_spacing_cells", p.tmpl.pattern.min_spacing_cells},
+            {"keep_out", t.keep_out},
+            {"pixels_per_cell", p.tmpl.psf.pixels_per_cell},
+            {"kernel_requested", p.tmpl.psf.kernel.model},
+            {"kernel_resolved", kernel_resolved},
+            {"kernel_path", p.tmpl.psf.kernel.measured_path},
+            {"noise", noise_config(p.noise)},
+            {"filter", t.filter},
+            {"prior", prior},
+            {"weights",
+             {{"analytic_wiener", t.w_analytic},
+              {"max_sidelobe", t.w_max_sidelobe},
+              {"sidelobe_energy", t.w_sidelobe_energy},
+              {"min_spectrum", t.w_min_spectrum}}},
+            {"rerank_scenes", t.rerank_scenes},
+            {"rerank_tv", p.rerank_tv},
+            {"allow_spectral_zeros", p.allow_spectral_zeros},
+            {"rank_by", t.rank_by},
+            {"objective", t.objective},
+            {"robust", t.robust},
+            {"optics", optics_to_json<nlohmann::ordered_json>(p.tmpl.camera)}};
+}
+
+nlohmann::ordered_json checkpoint_config(nlohmann::ordered_json resolved, int ranks,
+                                         std::int64_t migrate_every,
+                                         std::int64_t checkpoint_every) {
+    for (const char* k : {"time", "generator", "kernel_resolved"}) resolved.erase(k);
+    resolved["ranks"] = ranks;
+    resolved["migrate_every"] = migrate_every;
+    resolved["checkpoint_every"] = checkpoint_every;
+    return resolved;
+}
+
+}  // namespace pinmask::io

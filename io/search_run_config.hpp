@@ -1,0 +1,39 @@
+// The resolved configuration of a search run (the search.config.json `pinmask search` writes,
+// read back by io/search_config) and the part of it a checkpoint must share with the run that
+// resumes it. Built from the pipeline options and the texts the run was given, so the command
+// line and the Python module write the same file for the same settings, and a checkpoint of one
+// resumes in the other.
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "search/search_pipeline.hpp"
+
+namespace pinmask::io {
+
+// The settings as the run was given them where the pipeline options keep a parsed form.
+struct SearchRunTexts {
+    std::string strategy = "anneal", time = "20s", filter = "auto", keep_out = "none";
+    std::string rank_by = "wiener", objective = "nominal", robust;
+    std::uint64_t seed = 1;
+    int top = 5;
+    double w_analytic = 1.0, w_max_sidelobe = 0.0, w_sidelobe_energy = 0.0, w_min_spectrum = 0.0;
+    std::vector<std::string> rerank_scenes;  // as given; empty: no re-ranking
+};
+
+// The resolved configuration: "time" null for a run with an evaluation budget, "ranks" the
+// process count, "kernel_resolved" the kernel the run used (empty before it ran).
+nlohmann::ordered_json resolved_search_config(const SearchPipelineOptions& p,
+                                              const SearchRunTexts& t,
+                                              const std::string& kernel_resolved, int ranks);
+
+// What a checkpoint records and a resume compares key by key: the resolved configuration without
+// what does not change the chains' work ("time", "generator", "kernel_resolved"), with the rank
+// count, the migration interval and the checkpoint interval.
+nlohmann::ordered_json checkpoint_config(nlohmann::ordered_json resolved, int ranks,
+                                         std::int64_t migrate_every, std::int64_t checkpoint_every);
+
+}  // namespace pinmask::io
