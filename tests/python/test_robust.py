@@ -83,7 +83,7 @@ def test_decode_nsr_map_equals_cli(cli, tmp_path):
         pinmask.decode(capture, psf=psf, nsr_map=nsr, nsr=0.01, crop="none")
     with pytest.raises(ValueError, match="wiener"):
         pinmask.decode(capture, psf=psf, nsr_map=nsr, method="tv", crop="none")
-    with pytest.raises(ValueError, match="nsr_per_frequency"):
+    with pytest.raises(ValueError, match="nsr_map = 127 x 128: must have the working size"):
         pinmask.decode(capture, psf=psf, nsr_map=nsr[:-1], crop="none")
     with pytest.raises(ValueError):
         pinmask.decode(capture, psf=psf, nsr_map=-nsr, crop="none")

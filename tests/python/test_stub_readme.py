@@ -72,6 +72,6 @@ def test_stub_parameters_match_the_module(source_dir):
             continue
         # pybind11 writes "name: type = default" per parameter; defaults may hold commas.
         names = re.findall(r"(?:^|, )(\w+): ", m.group(1))
-        assert [a.arg for a in node.args.args] == names, node.name
+        assert [a.arg for a in node.args.args + node.args.kwonlyargs] == names, node.name
         checked += 1
     assert checked > 30
