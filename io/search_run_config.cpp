@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "io/json_strict.hpp"
 #include "io/optics_json.hpp"
 #include "io/search_config.hpp"
 #include "metrics/mask_metrics.hpp"
@@ -9,9 +10,7 @@
 namespace pinmask::io {
 namespace {
 
-nlohmann::ordered_json finite_or_null(double v) {
-    return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
-}
+using json_strict::finite_or_null;
 
 nlohmann::ordered_json noise_config(const NoiseModel& m) {
     if (m.kind != NoiseKind::kPhoton) return {{"model", "gaussian"}, {"snr_db", m.snr_db}};

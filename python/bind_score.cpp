@@ -1,6 +1,7 @@
 // Scoring: score() is `pinmask score` on masks (paths or Mask objects): only the metric groups
 // asked for are computed (metrics/mask_metrics compute_mask_metrics with the selection of
-// metrics/metric_spellings select_metrics), with score's defaults (scenes letter-R, usaf,
+// metrics/metric_spellings select_metrics), rows built by io/metrics_json as the command builds
+// them, with score's defaults (scenes letter-R, usaf,
 // natural; SNR 20, 30, 40 dB; NSR 0.01; noise seed 0), and the rows carry the keys of
 // `pinmask score --json`. robust_decoder=True adds score --robust-decoder's decoder as arrays
 // (the PSF and the per-frequency NSR map that decode(psf=, nsr_map=) reads) instead of files.
@@ -11,6 +12,7 @@
 #include "core/field_names.hpp"
 #include "design/psf.hpp"
 #include "io/mask_json.hpp"
+#include "io/metrics_json.hpp"
 #include "metrics/mask_metrics.hpp"
 #include "metrics/metric_spellings.hpp"
 #include "metrics/robust_errors.hpp"
@@ -23,72 +25,9 @@ namespace pinmask::python {
 
 namespace {
 
-// A figure of the row: infinities (a PSR without sidelobes, a condition number with a spectral
-// zero) as None, as score --json writes null.
-py::object finite_or_none(double v) {
-    return std::isfinite(v) ? py::object(py::float_(v)) : py::object(py::none());
-}
-
-// The keys of score --json's row (cli/options/analytic_setup metrics_json): the groups computed.
-void add_metrics(const MaskMetrics& m, py::dict& row, py::dict& per_scene) {
-    if (m.sidelobes) {
-        const SidelobeMetrics& s = *m.sidelobes;
-        row["peak_autocorrelation"] = s.peak;
-        row["max_sidelobe"] = s.max_sidelobe;
-        row["mean_sidelobe"] = s.mean_sidelobe;
-        row["integrated_sidelobe_level"] = s.integrated_sidelobe_level;
-        row["peak_to_sidelobe_ratio"] = finite_or_none(s.peak_to_sidelobe_ratio);
-    }
-    if (m.spectrum) {
-        const PatternSpectrumMetrics& s = *m.spectrum;
-        row["min_abs_pattern_spectrum"] = s.min_abs_pattern_spectrum;
-        row["spectral_flatness"] = s.spectral_flatness;
-        row["open_fraction"] = s.open_fraction;
-        row["light_gain"] = s.light_gain;
-        row["otf_condition_number"] = finite_or_none(m.otf->condition_number);
-        row["otf_passband_frequencies"] = m.otf->passband_frequencies;
-        const SpectralZero& z = *m.spectral_zero;
-        if (z.found) {
-            py::dict zd;
-            zd["frequency"] = py::make_tuple(z.row, z.col);
-            zd["abs_pattern_spectrum"] = z.abs_value;
-            zd["threshold"] = z.threshold_abs;
-            zd["count"] = z.count;
-            zd["message"] = z.message();
-            row["spectral_zero"] = zd;
-        } else {
-            row["spectral_zero"] = py::none();
-        }
-    }
-    for (const LevelMetrics& l : m.levels) {
-        const std::string& k = l.level.key;
-        if (l.analytic) {
-            row[py::str("analytic_wiener_psnr_db_" + k)] = finite_or_none(l.analytic->psnr_db);
-            row[py::str("analytic_wiener_nsr_" + k)] = l.analytic->nsr;
-            row[py::str("analytic_optimal_wiener_psnr_db_" + k)] =
-                finite_or_none(l.analytic->optimal_psnr_db);
-        }
-        if (l.robust) {
-            row[py::str("robust_wiener_psnr_db_" + k)] = finite_or_none(l.robust->psnr_db);
-            row[py::str("robust_loss_db_" + k)] = finite_or_none(l.robust->loss_db);
-        }
-        const std::pair<std::string, const std::optional<SimulatedQuality>*> sims[] = {
-            {"wiener", &l.wiener}, {"tv", &l.tv}};
-        for (const auto& [metric, q] : sims) {
-            if (!*q) continue;
-            const std::string weight = metric == "wiener" ? "nsr" : "lambda";
-            row[py::str(metric + "_psnr_db_" + k)] = finite_or_none((*q)->mean_psnr_db);
-            row[py::str(metric + "_ssim_" + k)] = finite_or_none((*q)->mean_ssim);
-            row[py::str(metric + "_" + weight + "_" + k)] = (*q)->weight;
-            for (const SceneQuality& s : (*q)->scenes) {
-                const py::str scene(s.scene);
-                if (!per_scene.contains(scene)) per_scene[scene] = py::dict();
-                py::dict d = per_scene[scene].cast<py::dict>();
-                d[py::str(metric + "_psnr_db_" + k)] = finite_or_none(s.psnr_db);
-                d[py::str(metric + "_ssim_" + k)] = finite_or_none(s.ssim);
-            }
-        }
-    }
+// A JSON value of the library's as the Python value json.loads gives (null: None).
+py::object json_value(const nlohmann::ordered_json& j) {
+    return py::module_::import("json").attr("loads")(j.dump());
 }
 
 // metrics= as a list of names or one comma-separated string (as --metrics).
@@ -162,15 +101,16 @@ void bind_score(py::module_& m) {
                     py::gil_scoped_release release;
                     mm = compute_mask_metrics(loaded[i], context);
                 }
-                py::dict row, per_scene;
-                row["mask"] = names[i];
-                row["geometry_hash"] = geometry_hash(loaded[i]);
-                row["n"] = mm.n;
-                row["holes"] = mm.holes;
-                row["pixels_per_cell"] = mm.pixels_per_cell;
-                row["period_px"] = mm.period_px;
-                add_metrics(mm, row, per_scene);
-                if (!per_scene.empty()) row["per_scene"] = per_scene;
+                nlohmann::ordered_json row_json, per_scene = nlohmann::ordered_json::object();
+                row_json["mask"] = names[i];
+                row_json["geometry_hash"] = geometry_hash(loaded[i]);
+                row_json["n"] = mm.n;
+                row_json["holes"] = mm.holes;
+                row_json["pixels_per_cell"] = mm.pixels_per_cell;
+                row_json["period_px"] = mm.period_px;
+                io::metrics_json(mm, row_json, &per_scene);  // score --json's keys and values
+                if (!per_scene.empty()) row_json["per_scene"] = per_scene;
+                py::dict row = json_value(row_json);
                 if (robust_decoder) {
                     RobustDecoderInputs in;
                     {

@@ -27,63 +27,6 @@ std::vector<SceneSpec> scene_specs(const std::string& scenes) {
     return scene_specs_from_names(split_list(scenes, "--scenes"));
 }
 
-void metrics_json(const MaskMetrics& m, nlohmann::ordered_json& row,
-                  nlohmann::ordered_json* per_scene) {
-    if (m.sidelobes) {
-        const SidelobeMetrics& s = *m.sidelobes;
-        row["peak_autocorrelation"] = s.peak;
-        row["max_sidelobe"] = s.max_sidelobe;
-        row["mean_sidelobe"] = s.mean_sidelobe;
-        row["integrated_sidelobe_level"] = s.integrated_sidelobe_level;
-        row["peak_to_sidelobe_ratio"] = finite_or_null(s.peak_to_sidelobe_ratio);
-    }
-    if (m.spectrum) {
-        const PatternSpectrumMetrics& s = *m.spectrum;
-        row["min_abs_pattern_spectrum"] = s.min_abs_pattern_spectrum;
-        row["spectral_flatness"] = s.spectral_flatness;
-        row["open_fraction"] = s.open_fraction;
-        row["light_gain"] = s.light_gain;
-        row["otf_condition_number"] = finite_or_null(m.otf->condition_number);
-        row["otf_passband_frequencies"] = m.otf->passband_frequencies;
-        const SpectralZero& z = *m.spectral_zero;
-        if (z.found) {
-            row["spectral_zero"] = {{"frequency", {z.row, z.col}},
-                                    {"abs_pattern_spectrum", z.abs_value},
-                                    {"threshold", z.threshold_abs},
-                                    {"count", z.count},
-                                    {"message", z.message()}};
-        } else {
-            row["spectral_zero"] = nullptr;
-        }
-    }
-    for (const LevelMetrics& l : m.levels) {
-        const std::string& k = l.level.key;
-        if (l.analytic) {
-            row["analytic_wiener_psnr_db_" + k] = finite_or_null(l.analytic->psnr_db);
-            row["analytic_wiener_nsr_" + k] = l.analytic->nsr;
-            row["analytic_optimal_wiener_psnr_db_" + k] =
-                finite_or_null(l.analytic->optimal_psnr_db);
-        }
-        if (l.robust) {
-            row["robust_wiener_psnr_db_" + k] = finite_or_null(l.robust->psnr_db);
-            row["robust_loss_db_" + k] = finite_or_null(l.robust->loss_db);
-        }
-        for (const auto& [metric, q] :
-             {std::pair{std::string("wiener"), &l.wiener}, std::pair{std::string("tv"), &l.tv}}) {
-            if (!*q) continue;
-            const std::string weight = metric == "wiener" ? "nsr" : "lambda";
-            row[metric + "_psnr_db_" + k] = finite_or_null((*q)->mean_psnr_db);
-            row[metric + "_ssim_" + k] = finite_or_null((*q)->mean_ssim);
-            row[metric + "_" + weight + "_" + k] = (*q)->weight;
-            if (!per_scene) continue;
-            for (const SceneQuality& s : (*q)->scenes) {
-                (*per_scene)[s.scene][metric + "_psnr_db_" + k] = finite_or_null(s.psnr_db);
-                (*per_scene)[s.scene][metric + "_ssim_" + k] = finite_or_null(s.ssim);
-            }
-        }
-    }
-}
-
 std::string metrics_table_text(const std::vector<nlohmann::ordered_json>& rows,
                                const MaskMetricsOptions& m) {
     std::vector<std::pair<std::string, std::string>> cols{{"holes", "K"}};

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "io/metrics_json.hpp"
 #include "metrics/analytic_error.hpp"
 #include "metrics/mask_metrics.hpp"
 #include "metrics/metric_spellings.hpp"
@@ -32,10 +33,8 @@ PriorSpec prior_spec(const PriorFlags& flags);
 // natural scene pinned to texture seed 0).
 std::vector<SceneSpec> scene_specs(const std::string& scenes);
 
-// The metrics as JSON keys (score's names: max_sidelobe, analytic_wiener_psnr_db_snr30, ...);
-// per-scene figures go to `per_scene` when given.
-void metrics_json(const MaskMetrics& m, nlohmann::ordered_json& row,
-                  nlohmann::ordered_json* per_scene = nullptr);
+// The metrics as score's JSON keys (io/metrics_json, shared with the Python module).
+using io::metrics_json;
 
 // score's text table of JSON rows (one per mask), with spectral-zero warnings and a legend.
 std::string metrics_table_text(const std::vector<nlohmann::ordered_json>& rows,
