@@ -63,15 +63,7 @@ void setup_cluster(const ClusterFlags& f, RankComm& comm, const nlohmann::ordere
             throw InvalidInput(
                 "--checkpoint: needs an evaluation budget (--evals); a --time run does not "
                 "end at a reproducible point");
-        p.islands.checkpoint = [path, config](std::int64_t segment, std::int64_t every,
-                                              const std::vector<ChainState>& states) {
-            io::SearchCheckpointFile c;
-            c.config = config;
-            c.segment = segment;
-            c.every = every;
-            c.chains = states;
-            io::write_checkpoint(path, c);
-        };
+        p.islands.checkpoint = io::checkpoint_writer(path, config);
     }
     p.islands.validate();
     if (f.resume.empty()) return;
@@ -81,16 +73,7 @@ void setup_cluster(const ClusterFlags& f, RankComm& comm, const nlohmann::ordere
     if (comm.rank() == 0) {
         ByteWriter w;
         try {
-            const io::SearchCheckpointFile c = io::read_checkpoint(f.resume);
-            const std::vector<std::string> diff = io::differing_keys(config, c.config);
-            if (!diff.empty()) {
-                std::string keys;
-                for (const std::string& k : diff) keys += (keys.empty() ? "" : ", ") + k;
-                throw InvalidInput("--resume " + f.resume +
-                                   ": the checkpoint is of another configuration; differing "
-                                   "keys: " +
-                                   keys);
-            }
+            const io::SearchCheckpointFile c = io::checkpoint_to_resume(f.resume, config);
             w.u64(1);
             w.i64(c.segment);
             const Bytes chains = encode_chain_states(c.chains);

@@ -1,7 +1,11 @@
 #include "io/search_run_config.hpp"
 
 #include <cmath>
+#include <string>
+#include <vector>
 
+#include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "io/json_strict.hpp"
 #include "io/optics_json.hpp"
 #include "io/search_config.hpp"
@@ -80,6 +84,32 @@ nlohmann::ordered_json checkpoint_config(nlohmann::ordered_json resolved, int ra
     resolved["migrate_every"] = migrate_every;
     resolved["checkpoint_every"] = checkpoint_every;
     return resolved;
+}
+
+decltype(IslandOptions::checkpoint) checkpoint_writer(const std::filesystem::path& path,
+                                                      const nlohmann::ordered_json& config) {
+    return [path, config](std::int64_t segment, std::int64_t every,
+                          const std::vector<ChainState>& states) {
+        SearchCheckpointFile c;
+        c.config = config;
+        c.segment = segment;
+        c.every = every;
+        c.chains = states;
+        write_checkpoint(path, c);
+    };
+}
+
+SearchCheckpointFile checkpoint_to_resume(const std::filesystem::path& path,
+                                          const nlohmann::ordered_json& config) {
+    SearchCheckpointFile c = read_checkpoint(path);
+    const std::vector<std::string> diff = differing_keys(config, c.config);
+    if (!diff.empty()) {
+        std::string keys;
+        for (const std::string& k : diff) keys += (keys.empty() ? "" : ", ") + k;
+        throw invalid_field(field_ref("resume"), path.string(),
+                            "the checkpoint is of another configuration; differing keys: " + keys);
+    }
+    return c;
 }
 
 }  // namespace pinmask::io

@@ -6,10 +6,13 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "io/checkpoint.hpp"
+#include "search/island_search.hpp"
 #include "search/search_pipeline.hpp"
 
 namespace pinmask::io {
@@ -35,5 +38,15 @@ nlohmann::ordered_json resolved_search_config(const SearchPipelineOptions& p,
 // count, the migration interval and the checkpoint interval.
 nlohmann::ordered_json checkpoint_config(nlohmann::ordered_json resolved, int ranks,
                                          std::int64_t migrate_every, std::int64_t checkpoint_every);
+
+// The island options' checkpoint callback: at each boundary, `config` and every chain's state
+// written atomically to `path` (io/checkpoint).
+decltype(IslandOptions::checkpoint) checkpoint_writer(const std::filesystem::path& path,
+                                                      const nlohmann::ordered_json& config);
+
+// The checkpoint at `path` for resuming a run of `config`: InvalidInput naming `resume` when it
+// cannot be read or is of another configuration (the differing keys named).
+SearchCheckpointFile checkpoint_to_resume(const std::filesystem::path& path,
+                                          const nlohmann::ordered_json& config);
 
 }  // namespace pinmask::io

@@ -63,26 +63,11 @@ void set_checkpoints(SearchPipelineOptions& p, const io::SearchRunTexts& texts,
             throw InvalidInput(field_ref("checkpoint") + ": needs an evaluation budget (" +
                                field_ref("max_evaluations") +
                                "); a time-budget run does not end at a reproducible point");
-        p.islands.checkpoint = [path, config](std::int64_t segment, std::int64_t e,
-                                              const std::vector<ChainState>& states) {
-            io::SearchCheckpointFile c;
-            c.config = config;
-            c.segment = segment;
-            c.every = e;
-            c.chains = states;
-            io::write_checkpoint(path, c);
-        };
+        p.islands.checkpoint = io::checkpoint_writer(path, config);
     }
     p.islands.validate();
     if (!resume) return;
-    const io::SearchCheckpointFile c = io::read_checkpoint(*resume);
-    const std::vector<std::string> diff = io::differing_keys(config, c.config);
-    if (!diff.empty()) {
-        std::string keys;
-        for (const std::string& k : diff) keys += (keys.empty() ? "" : ", ") + k;
-        throw invalid_field(field_ref("resume"), *resume,
-                            "the checkpoint is of another configuration; differing keys: " + keys);
-    }
+    const io::SearchCheckpointFile c = io::checkpoint_to_resume(*resume, config);
     p.islands.resume_segment = c.segment;
     p.islands.resume = c.chains;
 }
