@@ -105,6 +105,43 @@ FeasiblePoint smooth_feasible_point(const ConvolutionOperator& op, const Plane& 
     return best;
 }
 
+// One row of the dual step of the gradient block (pdhg's dual_row): y1 <- the projection on the
+// unit ball of y1 + sigma grad xbar, xbar = x_new - d, with periodic forward differences (x, d:
+// this row; xd, dd: the row below; the last column's right neighbour is the row's first pixel).
+// Per pixel it stores the squared dual residual (y_old - y_new) / sigma - grad(x_old - x_new) in
+// e and, with kTv, |grad x_new| in tv; no reduction, and every pointer restrict, so the column
+// loop vectorises. Not inlined: inlined into pdhg's row loop, GCC 12 drops the restrict
+// qualifiers, needs more run-time alias checks than it allows and kept the loop scalar (the
+// projection's max and division one pixel at a time: a quarter of a linear-model iteration).
+template <class T, bool kTv>
+inline __attribute__((always_inline)) void dual_point(const T* __restrict x, const T* __restrict xd,
+                                                      const T* __restrict d, const T* __restrict dd,
+                                                      T* __restrict yr, T* __restrict yc,
+                                                      T* __restrict e, T* __restrict tv, int c,
+                                                      int rt, T st, T inv_s) {
+    const T gr = xd[c] - x[c], gc = x[rt] - x[c];
+    const T sr = dd[c] - d[c], sc = d[rt] - d[c];  // grad of the step
+    const T yro = yr[c], yco = yc[c];
+    const T ar = yro + st * (gr - sr), ac = yco + st * (gc - sc);
+    const T f = T(1) / std::max(T(1), std::sqrt(ar * ar + ac * ac));
+    const T nr = ar * f, nc = ac * f;
+    yr[c] = nr;
+    yc[c] = nc;
+    const T er = (yro - nr) * inv_s - sr, ec = (yco - nc) * inv_s - sc;
+    e[c] = er * er + ec * ec;
+    if constexpr (kTv) tv[c] = std::sqrt(gr * gr + gc * gc);
+}
+
+template <class T, bool kTv>
+__attribute__((noinline)) void dual_row_points(const T* __restrict x, const T* __restrict xd,
+                                               const T* __restrict d, const T* __restrict dd,
+                                               T* __restrict yr, T* __restrict yc, T* __restrict e,
+                                               T* __restrict tv, int W, T st, T inv_s) {
+    for (int c = 0; c + 1 < W; ++c)
+        dual_point<T, kTv>(x, xd, d, dd, yr, yc, e, tv, c, c + 1, st, inv_s);
+    dual_point<T, kTv>(x, xd, d, dd, yr, yc, e, tv, W - 1, 0, st, inv_s);
+}
+
 // Block weights: beta for A (beta = sqrt(8) / rms|H| puts the typical gain of beta A at the
 // gradient's bound sqrt 8, so the two dual blocks have comparable scales; the preconditioner
 // makes convergence hold for any beta, this choice makes it fast), gamma for I.
@@ -295,34 +332,14 @@ void pdhg(const ConvolutionOperator& op, const Plane& capture, const TvqcOptions
             T* __restrict ycq = ycp;
             const Eigen::Index o0 = Eigen::Index(rr) * W;
             const Eigen::Index od = Eigen::Index(rr + 1 < R ? rr + 1 : 0) * W - o0;
-            T* __restrict eq = row_e.data();
-            T* __restrict tq = row_tv.data();
-            // Per pixel, no reduction (so the row loop vectorises): the squared dual residual
-            // (y_old - y_new) / sigma - grad (x_old - x_new) and |grad x_new| go to row buffers,
-            // summed in double below.
-            // with_tv: std::true_type when the records need TV (a second sqrt per pixel).
-            auto point = [&](Eigen::Index i, Eigen::Index rt, int c, auto with_tv) {
-                const Eigen::Index dn = i + od;
-                const T gr = xq[dn] - xq[i], gc = xq[rt] - xq[i];
-                const T sr = dq[dn] - dq[i], sc = dq[rt] - dq[i];  // grad of the step
-                const T yro = yrq[i], yco = ycq[i];
-                const T ar = yro + st * (gr - sr), ac = yco + st * (gc - sc);
-                const T f = T(1) / std::max(T(1), std::sqrt(ar * ar + ac * ac));
-                const T nr = ar * f, nc = ac * f;
-                yrq[i] = nr;
-                ycq[i] = nc;
-                const T er = (yro - nr) * inv_s - sr, ec = (yco - nc) * inv_s - sc;
-                eq[c] = er * er + ec * ec;
-                if constexpr (decltype(with_tv)::value) tq[c] = std::sqrt(gr * gr + gc * gc);
-            };
-            auto row = [&](auto with_tv) {
-                for (int c = 0; c + 1 < W; ++c) point(o0 + c, o0 + c + 1, c, with_tv);
-                point(o0 + W - 1, o0, W - 1, with_tv);
-            };
+            const T* xr = xq + o0;
+            const T* dr = dq + o0;
             if (want_tv) {
-                row(std::true_type{});
+                dual_row_points<T, true>(xr, xr + od, dr, dr + od, yrq + o0, ycq + o0, row_e.data(),
+                                         row_tv.data(), W, st, inv_s);
             } else {
-                row(std::false_type{});
+                dual_row_points<T, false>(xr, xr + od, dr, dr + od, yrq + o0, ycq + o0,
+                                          row_e.data(), row_tv.data(), W, st, inv_s);
             }
             if (want_dres) d2 += row_sum(row_e, W);
             if (want_tv) tv += row_sum(row_tv, W);
