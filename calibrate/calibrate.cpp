@@ -156,7 +156,19 @@ CalibrationSummary calibrate_point_source(const Plane& capture, const std::optio
         if (o.progress) o.progress(name, 0, 0);
     };
     phase("finding the lattice (FFT)");
-    s.fft_start = fft_lattice_start(frame, mask.pattern, so);
+    {
+        // A capture the fit bins (calibrate/forward_fit) is searched binned as well: its cells
+        // are still at least 8 px wide, and b^2 times fewer pixels enter the FFTs and folds.
+        const int b = first_pass_binning(design_pitch, rows, cols);
+        if (b > 1) {
+            so.nominal_pitch_px = design_pitch / b;
+            s.fft_start = fft_lattice_start(bin_frame(frame, b), mask.pattern, so);
+            s.fft_start.lattice = from_binned(s.fft_start.lattice, b);
+            s.fft_start.max_frequency /= b;
+        } else {
+            s.fft_start = fft_lattice_start(frame, mask.pattern, so);
+        }
+    }
     const LatticeStart start = s.fft_start.lattice;
     ForwardFitOptions fo;
     fo.dark_subtracted = dark.has_value();

@@ -99,9 +99,22 @@ struct ForwardFit {
     Plane model;  // the fitted model of the frame (with background and leak)
 };
 
-// Fits the model above, started from `start`. `mask.camera` must carry the capture's pixel pitch
-// (binning applied). Throws InvalidInput when the start puts no open cell's spot in the frame,
-// RuntimeFailure when the normal equations are singular.
+// The binning of the fit of a capture with cells pitch_px wide on a rows x cols frame (1: none;
+// see fit_forward_model).
+int first_pass_binning(double pitch_px, int rows, int cols);
+// The frame's b x b pixel sums (rows / b x cols / b; a remainder of rows or columns is dropped).
+// Binned pixel (i, j) covers pixels b i .. b i + b - 1: index coordinate x of the capture is
+// (x + 1/2) / b - 1/2 in the binned frame.
+Plane bin_frame(const Plane& frame, int b);
+LatticeStart to_binned(const LatticeStart& lattice, int b);
+LatticeStart from_binned(const LatticeStart& lattice, int b);
+
+// Fits the model above, started from `start`. A capture whose short side is at least 1024 px
+// with cells at least 16 px wide is fitted binned b x b (b = floor(pitch / 8)): parameters,
+// standard errors and missing pinholes are the binned fit's in the capture's pixels; the model,
+// noise model, chi^2 and unexplained share are made at full resolution. `mask.camera` must carry
+// the capture's pixel pitch (binning applied). Throws InvalidInput when the start puts no open
+// cell's spot in the frame, RuntimeFailure when the normal equations are singular.
 ForwardFit fit_forward_model(const Plane& frame, const Mask& mask, const LatticeStart& start,
                              const ForwardFitOptions& options = {});
 
