@@ -14,6 +14,7 @@
 #include "core/number_format.hpp"
 #include "core/resource_limits.hpp"
 #include "decode/convolution.hpp"
+#include "design/optics.hpp"
 
 namespace pinmask::calibrate {
 
@@ -69,10 +70,20 @@ Eigen::Vector2d centre_of(const Problem& pb, const double* v, const Cell& c) {
 
 double side_m(const Problem& pb, double scale) { return scale * pb.mask.camera.pinhole_m; }
 
+// The window holds core_cells cells, and at least the kernel's central lobes: out to
+// v = 2 N + 2 (the Fresnel pattern's geometric half width 2N, then the sinc's second zero;
+// fraunhofer N = 0). The halo is held fixed inside a round and placed on whole pixels, so a spot
+// whose main lobe is wider than the window (a pinhole small against the cell: the walkthrough's
+// 9 px cells with a lobe of 54 px) would be fitted from its halo's fixed point, pulling the
+// lattice far off.
 double core_half_px(const Problem& pb, double scale) {
     if (pb.family == KernelModel::kBox)
         return profile_support_px(pb.mask.camera, pb.family, side_m(pb, scale), 1.0, 1e9) + 0.5;
-    return pb.o.core_cells * pb.cell_px;
+    Camera c = pb.mask.camera;
+    c.pinhole_m = side_m(pb, scale);
+    const double a = c.pinhole_m * c.pixel_pitch_m / (c.wavelength_m * c.sensor_distance_m);
+    const double n = pb.family == KernelModel::kFresnel ? fresnel_number_at_u(c) : 0.0;
+    return std::max(pb.o.core_cells * pb.cell_px, (2.0 * n + 2.0) / a);
 }
 
 // Half width of a spot's core window (pixels): the window is the pixels within this of the

@@ -46,8 +46,9 @@ inline Camera optics(double u_m, double lens_focal_m, double sensor_distance_m, 
 }
 
 // Cameras: the paper's (8 px per cell), a C-mount (20), a phone-like 1.12 um sensor (16), the
-// issue's NIR camera (34 px per cell, spots one cell wide: N = 0.59 with the lens) and a lensless
-// one (33). Each pinhole side is solved for whole pixels per cell at u (as design does).
+// issue's NIR camera (34 px per cell, spots one cell wide: N = 0.59 with the lens), a lensless
+// one (33) and the walkthrough's (the NIR optics with a 120 um pinhole: 9 px per cell, spots six
+// cells wide). Each pinhole side is solved for whole pixels per cell at u (as design does).
 inline CameraCase camera_case(const std::string& name) {
     CameraCase c;
     c.name = name;
@@ -76,6 +77,17 @@ inline CameraCase camera_case(const std::string& name) {
         c.holes = 15;
         c.ppc = 34;
         c.rows = c.cols = 340;
+    } else if (name == "walkthrough") {
+        // examples/python/walkthrough.py's camera: the NIR optics on a 640 x 480 sensor with a
+        // 120 um pinhole, 9 px per cell at u (8.96), N = 0.04: each spot's main lobe is +-54 px,
+        // six cells, wider than the 2.5-cell window the fit used to hold each spot in.
+        k = optics(1.2, 0.075, 0.045, 850e-9, 5.86e-6, 640, 480);
+        k.pinhole_m = 120e-6;
+        c.n = 8;
+        c.holes = 6;
+        c.ppc = 9;
+        c.rows = 200;
+        c.cols = 240;
     } else if (name == "lensless") {
         k = optics(2.0, INFINITY, 0.020, 550e-9, 5e-6, 1280, 1024);
         c.n = 10;
