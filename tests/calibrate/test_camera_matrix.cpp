@@ -98,10 +98,10 @@ TEST_CASE("camera matrix: paper camera rotated with pitch off and two missing at
 // The walkthrough's small window (examples/python/walkthrough.py: 200 x 240 px, 2 x 2 tiles of
 // an 8 x 8 pattern with 6 pinholes, 9 px per cell) with spots six cells wide (main lobe +-54 px).
 // Each spot's window used to be 2.5 cells, the rest of the spot in the halo held fixed on whole
-// pixels: on this capture the pitch came out 3 and 5 % high (30 and 50 sigmas) with a pinhole
-// called missing. Not a row of the table: the three PSFs decode alike (within 0.01 dB, the
-// spots wider than the scene's features), and the pitch along y keeps a bias of about 3 of its
-// sigmas (0.2 %; docs/calibration.md, Limits), held here to 0.4 % (about 2 s).
+// pixels: on this capture the pitch along y came out 2 % high and the rotation 2.2 deg off. Not a
+// row of the table: the three PSFs decode alike (within 0.01 dB, the spots wider than the scene's
+// features), and the pitch along y keeps a bias of about 3 of its sigmas (0.2 %;
+// docs/calibration.md, Limits), held here to 0.4 % (about 2 s).
 TEST_CASE("camera matrix: walkthrough camera with spots six cells wide in a small window") {
     const CameraCase c = camera_case("walkthrough");
     const Perturbation p{0.5, 1.004, 0.997, 1.0, 0, INFINITY, 3e6, 22};
