@@ -13,10 +13,11 @@
 // along the mask's axes; g_k the flux of pinhole k (its gain), L the leak through the opaque film
 // per pixel inside the mask's footprint F (the tiled mask's cells imaged by the same lattice,
 // anti-aliased over one pixel), B the background. Each spot is evaluated in a window of
-// +- core_cells cells; the diffraction tails beyond it (sinc^2 falls as 1/v^2) enter as a halo,
-// the same kernel's tail convolved (FFT) with the spots split bilinearly onto the pixel grid, made
-// from the current parameters before each solve (a fixed point: the tail carries a few percent of
-// the energy).
+// +- core_cells cells, or wider to hold the kernel's central lobes (out to v = 2N + 2); the
+// diffraction tails beyond it (sinc^2 falls as 1/v^2) enter as a halo, the same kernel's tail
+// with each spot on its nearest pixel (the separable kernel makes all the tails over the frame
+// one matrix product), made from the current parameters before each round and held fixed inside
+// it (a fixed point: the tail carries a few percent of the energy).
 // Solver: Levenberg-Marquardt on (x0, y0, t, px, py, s, g_1..g_G, L, B) with the analytic
 // Jacobian (s by a forward difference of the table), weights 1 / var with the Poisson-Gaussian
 // variance var = alpha max(m, 0) + beta fitted to the residuals (first an unweighted fit, then
