@@ -4,10 +4,12 @@
 #include <numbers>
 #include <sstream>
 
+#include "calibrate/profile_table.hpp"
 #include "core/error.hpp"
 #include "core/field_names.hpp"
 #include "core/number_format.hpp"
 #include "core/resource_limits.hpp"
+#include "design/optics.hpp"
 
 namespace pinmask::calibrate {
 
@@ -25,6 +27,23 @@ constexpr double kMinGainSnr = 10.0;
 constexpr double kMaxUnexplained = 0.05;
 constexpr double kExtraFluxFraction = 0.25;
 
+// Whether the point source's spots stand apart: each spot's main lobe ends within one cell
+// pitch of its centre (box: half the geometric spot; fraunhofer and fresnel: v = 2 N + 1, the
+// Fresnel pattern's geometric half width and the sinc's first zero). A pinhole small against
+// its cell (the walkthrough's 120 um on 9 px cells: a lobe of +-59 px) images every pinhole
+// into one blob, whose spot count says nothing about the pinholes.
+bool spots_stand_apart(const Mask& mask) {
+    const Camera& c = mask.camera;
+    const KernelModel family =
+        fit_family(c, parse_kernel_model(mask.psf.kernel.model, "kernel model"));
+    if (family == KernelModel::kBox)
+        return 0.5 * std::abs(magnification_at_u(c)) * c.pinhole_m / c.pixel_pitch_m <
+               mask.psf.pixels_per_cell;
+    const double a = c.pinhole_m * c.pixel_pitch_m / (c.wavelength_m * c.sensor_distance_m);
+    const double n = family == KernelModel::kFresnel ? fresnel_number_at_u(c) : 0.0;
+    return (2.0 * n + 1.0) / a < mask.psf.pixels_per_cell;
+}
+
 // The spots above the threshold: refusals of captures that are not a usable point source (no
 // spots, far fewer than the design, saturated). The lattice itself starts from the FFT
 // (calibrate/lattice_fft), not from these spots.
@@ -36,11 +55,16 @@ std::vector<Spot> checked_spots(const Plane& frame, const Plane& raw, const Back
     so.saturation_level = o.saturation_level;
     std::vector<Spot> spots = detect_spots(frame, bg, so);
     const int design_spots = static_cast<int>(mask.pattern.pinholes.size());
+    // Spots that run together into one blob are counted by nothing here: the fit's own refusals
+    // (too few photons, a capture the model does not explain) judge such a capture.
+    const bool apart = spots_stand_apart(mask);
+    if (!apart && spots.empty()) return spots;
     if (spots.empty())
         throw InvalidInput("calibrate: no spots found in the capture (threshold " +
                            format_number(o.threshold_sigmas) + " noise sigmas above the median " +
                            format_number(bg.level) + "): is it a point-source capture?");
-    if (spots.size() < std::max<std::size_t>(3, std::lround(o.min_spot_fraction * design_spots)))
+    if (apart &&
+        spots.size() < std::max<std::size_t>(3, std::lround(o.min_spot_fraction * design_spots)))
         throw InvalidInput(
             "calibrate: far fewer spots than the design: " + std::to_string(spots.size()) +
             " found, the mask has " + std::to_string(design_spots) + " pinholes per period");
@@ -156,7 +180,19 @@ CalibrationSummary calibrate_point_source(const Plane& capture, const std::optio
         if (o.progress) o.progress(name, 0, 0);
     };
     phase("finding the lattice (FFT)");
-    s.fft_start = fft_lattice_start(frame, mask.pattern, so);
+    {
+        // A capture the fit bins (calibrate/forward_fit) is searched binned as well: its cells
+        // are still at least 8 px wide, and b^2 times fewer pixels enter the FFTs and folds.
+        const int b = first_pass_binning(design_pitch, rows, cols);
+        if (b > 1) {
+            so.nominal_pitch_px = design_pitch / b;
+            s.fft_start = fft_lattice_start(bin_frame(frame, b), mask.pattern, so);
+            s.fft_start.lattice = from_binned(s.fft_start.lattice, b);
+            s.fft_start.max_frequency /= b;
+        } else {
+            s.fft_start = fft_lattice_start(frame, mask.pattern, so);
+        }
+    }
     const LatticeStart start = s.fft_start.lattice;
     ForwardFitOptions fo;
     fo.dark_subtracted = dark.has_value();

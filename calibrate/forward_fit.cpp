@@ -13,6 +13,8 @@
 #include "core/fft.hpp"
 #include "core/number_format.hpp"
 #include "core/resource_limits.hpp"
+#include "decode/convolution.hpp"
+#include "design/optics.hpp"
 
 namespace pinmask::calibrate {
 
@@ -25,11 +27,10 @@ constexpr double kMinSideScale = 0.2, kMaxSideScale = 5.0;
 constexpr int kRounds = 3;
 constexpr double kConvergedChi2 = 1e-2;
 constexpr int kSmallSteps = 3;
-// The first pass runs on a binned capture when cells are at least 2 kBinnedCellPx pixels wide
-// and the frame at least kMinBinnedFramePx on its short side.
+// A capture is fitted binned when cells are at least 2 kBinnedCellPx pixels wide and the frame
+// at least kMinBinnedFramePx on its short side (fit_forward_model).
 constexpr double kBinnedCellPx = 8.0;
-constexpr int kMinBinnedFramePx =
-    1024;  // unweighted, then weighted with the noise model refitted twice
+constexpr int kMinBinnedFramePx = 1024;
 
 struct Params {
     double v[kNonlinear] = {0, 0, 0, 0, 0, 1};
@@ -69,10 +70,20 @@ Eigen::Vector2d centre_of(const Problem& pb, const double* v, const Cell& c) {
 
 double side_m(const Problem& pb, double scale) { return scale * pb.mask.camera.pinhole_m; }
 
+// The window holds core_cells cells, and at least the kernel's central lobes: out to
+// v = 2 N + 2 (the Fresnel pattern's geometric half width 2N, then the sinc's second zero;
+// fraunhofer N = 0). The halo is held fixed inside a round and placed on whole pixels, so a spot
+// whose main lobe is wider than the window (a pinhole small against the cell: the walkthrough's
+// 9 px cells with a lobe of 54 px) would be fitted from its halo's fixed point, pulling the
+// lattice far off.
 double core_half_px(const Problem& pb, double scale) {
     if (pb.family == KernelModel::kBox)
         return profile_support_px(pb.mask.camera, pb.family, side_m(pb, scale), 1.0, 1e9) + 0.5;
-    return pb.o.core_cells * pb.cell_px;
+    Camera c = pb.mask.camera;
+    c.pinhole_m = side_m(pb, scale);
+    const double a = c.pinhole_m * c.pixel_pitch_m / (c.wavelength_m * c.sensor_distance_m);
+    const double n = pb.family == KernelModel::kFresnel ? fresnel_number_at_u(c) : 0.0;
+    return std::max(pb.o.core_cells * pb.cell_px, (2.0 * n + 2.0) / a);
 }
 
 // Half width of a spot's core window (pixels): the window is the pixels within this of the
@@ -108,39 +119,55 @@ Plane footprint(const Problem& pb, const double* v) {
     return f;
 }
 
-// The halo: each spot's kernel beyond its core window, by FFT on a padded grid (spots split
-// bilinearly onto pixels; the tail is evaluated along the pixel axes).
+// The halo: each spot's kernel beyond its core window, the spot on its nearest pixel (the tail
+// then starts exactly where its core window ends) and its tail evaluated along the pixel axes.
+// The kernel is separable, so the spots' full kernels over the frame are one matrix product
+// A diag(g) B^T (column k of A holds q(r - r_k), of B q(c - c_k)), from which each spot's core
+// square is then subtracted: exact, and far cheaper than an FFT convolution on a grid padded by
+// the halo's reach (the padding made the FFTs three times the frame).
 Plane halo(const Problem& pb, const Params& p, double median_gain) {
     const double rh = halo_half_px(pb, p.v[kSide]);
     const int H = core_window_px(pb, p.v[kSide]);
     if (rh <= H) return Plane::Zero(pb.rows, pb.cols);
-    const ProfileTable full(pb.mask.camera, pb.family, side_m(pb, p.v[kSide]), rh);
-    const int pad = static_cast<int>(std::ceil(rh)) + 2;
-    const int R = pb.rows + 2 * pad, C = pb.cols + 2 * pad;
-    check_memory(6.0 * R * C * sizeof(double), "the calibration model's diffraction halo");
-    Plane deltas = Plane::Zero(R, C);
-    // Each spot on its nearest pixel: the tail then starts exactly where its core window ends.
-    auto splat = [&](const Eigen::Vector2d& q, double g) {
-        const long r = std::lround(q.y()) + pad, c = std::lround(q.x()) + pad;
-        if (r < 0 || c < 0 || r >= R || c >= C) return;
-        deltas(r, c) += g;
-    };
-    for (std::size_t k = 0; k < pb.cells.size(); ++k)
-        splat(centre_of(pb, p.v, pb.cells[k]), p.g[k]);
-    for (const Cell& c : pb.outside) splat(centre_of(pb, p.v, c), median_gain);
-    Plane tail = Plane::Zero(R, C);
+    const ProfileTable table(pb.mask.camera, pb.family, side_m(pb, p.v[kSide]), rh);
     const int h = static_cast<int>(std::floor(rh));
     std::vector<double> q(2 * h + 1);
-    for (int k = -h; k <= h; ++k) q[k + h] = full.value(k);
-    for (int dy = -h; dy <= h; ++dy)
-        for (int dx = -h; dx <= h; ++dx) {
-            if (std::max(std::abs(dx), std::abs(dy)) <= H) continue;
-            tail((dy + R) % R, (dx + C) % C) = q[dy + h] * q[dx + h];
+    for (int k = -h; k <= h; ++k) q[k + h] = table.value(k);
+    struct Site {
+        long r, c;
+        double g;
+    };
+    std::vector<Site> sites;
+    auto add = [&](const Eigen::Vector2d& z, double g) {
+        const long r = std::lround(z.y()), c = std::lround(z.x());
+        if (r < -h || c < -h || r > pb.rows - 1 + h || c > pb.cols - 1 + h || g == 0.0) return;
+        sites.push_back({r, c, g});
+    };
+    for (std::size_t k = 0; k < pb.cells.size(); ++k) add(centre_of(pb, p.v, pb.cells[k]), p.g[k]);
+    for (const Cell& c : pb.outside) add(centre_of(pb, p.v, c), median_gain);
+    const Eigen::Index K = static_cast<Eigen::Index>(sites.size());
+    check_memory(double(K) * (pb.rows + pb.cols) * sizeof(double),
+                 "the calibration model's diffraction halo");
+    // In single precision (twice the SIMD width): the halo holds a few percent of the light, so
+    // its relative rounding of 1e-7 is far below any capture's noise.
+    Eigen::MatrixXf A = Eigen::MatrixXf::Zero(pb.rows, K), B = Eigen::MatrixXf::Zero(pb.cols, K);
+    for (Eigen::Index k = 0; k < K; ++k) {
+        const Site& s = sites[static_cast<std::size_t>(k)];
+        for (long r = std::max(0L, s.r - h); r <= std::min<long>(pb.rows - 1, s.r + h); ++r)
+            A(r, k) = static_cast<float>(s.g * q[r - s.r + h]);
+        for (long c = std::max(0L, s.c - h); c <= std::min<long>(pb.cols - 1, s.c + h); ++c)
+            B(c, k) = static_cast<float>(q[c - s.c + h]);
+    }
+    Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> full(pb.rows, pb.cols);
+    full.noalias() = A * B.transpose();
+    Plane out = full.array().cast<double>();
+    for (const Site& s : sites)
+        for (long r = std::max(0L, s.r - H); r <= std::min<long>(pb.rows - 1, s.r + H); ++r) {
+            const double a = s.g * q[r - s.r + h];
+            for (long c = std::max(0L, s.c - H); c <= std::min<long>(pb.cols - 1, s.c + H); ++c)
+                out(r, c) -= a * q[c - s.c + h];
         }
-    Fft2 fft(R, C);
-    const ComplexPlane D = fft.forward(deltas), T = fft.forward(tail);
-    const Plane conv = fft.inverse((D * T).eval());
-    return conv.block(pad, pad, pb.rows, pb.cols);
+    return out;
 }
 
 struct Evaluation {
@@ -163,6 +190,7 @@ Evaluation evaluate(const Problem& pb, const Params& p, const Plane& foot, const
         qs = ProfileTable(pb.mask.camera, pb.family, side_m(pb, s * (1 + kSideStep)), half + 1.0);
         for (auto& d : e.d) d = Plane::Zero(pb.rows, pb.cols);
     }
+    const bool same_grid = derivs && q.same_grid(qs);
     const double ct = std::cos(p.v[kRot]), st = std::sin(p.v[kRot]);
     e.windows.resize(pb.cells.size());
     for (std::size_t k = 0; k < pb.cells.size(); ++k) {
@@ -195,16 +223,23 @@ Evaluation evaluate(const Problem& pb, const Params& p, const Plane& foot, const
                     e.model(r, c) += g * kv;
                     continue;
                 }
-                double qu, du, qv, dv;
-                q.value_slope(u, qu, du);
-                q.value_slope(v, qv, dv);
+                double qu, du, qv, dv, su, sv;
+                if (same_grid) {
+                    q.value_slope_pair(qs, u, qu, du, su);
+                    q.value_slope_pair(qs, v, qv, dv, sv);
+                } else {
+                    q.value_slope(u, qu, du);
+                    q.value_slope(v, qv, dv);
+                    su = qs.value(u);
+                    sv = qs.value(v);
+                }
                 const double kv = qu * qv;
                 w.k[idx] = kv;
                 e.model(r, c) += g * kv;
                 const double kx = -(du * qv * ct + qu * dv * st);  // dK / dx_k
                 const double ky = du * qv * st - qu * dv * ct;     // dK / dy_k
                 const double krot = -du * qv * v + qu * dv * u;    // the kernel's own rotation
-                const double ks = (qs.value(u) * qs.value(v) - kv) / (s * kSideStep);
+                const double ks = (su * sv - kv) / (s * kSideStep);
                 e.d[kX0](r, c) += g * kx;
                 e.d[kY0](r, c) += g * ky;
                 e.d[kRot](r, c) += g * (kx * dxdt + ky * dydt + krot);
@@ -223,19 +258,48 @@ void normal_equations(const Problem& pb, const Evaluation& e, const Plane& w, co
     const int P = kNonlinear + G + 2, iL = kNonlinear + G, iB = iL + 1;
     A = Eigen::MatrixXd::Zero(P, P);
     b = Eigen::VectorXd::Zero(P);
-    const Plane wr = w * res, wf = w * foot;
-    for (int i = 0; i < kNonlinear; ++i) {
-        const Plane wd = w * e.d[i];
-        for (int j = i; j < kNonlinear; ++j) A(i, j) = (wd * e.d[j]).sum();
-        A(i, iL) = (wd * foot).sum();
-        A(i, iB) = wd.sum();
-        b(i) = (e.d[i] * wr).sum();
+    const Plane wr = w * res;
+    const bool derivs = e.d[0].size() > 0;
+    {  // The full-frame sums in one pass over the pixels (per row, then added up).
+        const Eigen::Index n = w.size();
+        const double* pw = w.data();
+        const double* pf = foot.data();
+        const double* pr = wr.data();
+        const double* pd[kNonlinear];
+        for (int i = 0; i < kNonlinear; ++i) pd[i] = derivs ? e.d[i].data() : nullptr;
+        double dd[kNonlinear][kNonlinear] = {}, dl[kNonlinear] = {}, db[kNonlinear] = {},
+               dr[kNonlinear] = {};
+        double ll = 0, lb = 0, bb = 0, rl = 0, rb = 0;
+        for (Eigen::Index k = 0; k < n; ++k) {
+            const double wk = pw[k], fk = pf[k], rk = pr[k], wf = wk * fk;
+            ll += wf * fk;
+            lb += wf;
+            bb += wk;
+            rl += fk * rk;
+            rb += rk;
+            if (!derivs) continue;
+            double d[kNonlinear];
+            for (int i = 0; i < kNonlinear; ++i) d[i] = pd[i][k];
+            for (int i = 0; i < kNonlinear; ++i) {
+                const double wd = wk * d[i];
+                for (int j = i; j < kNonlinear; ++j) dd[i][j] += wd * d[j];
+                dl[i] += wd * fk;
+                db[i] += wd;
+                dr[i] += d[i] * rk;
+            }
+        }
+        for (int i = 0; i < kNonlinear; ++i) {
+            for (int j = i; j < kNonlinear; ++j) A(i, j) = dd[i][j];
+            A(i, iL) = dl[i];
+            A(i, iB) = db[i];
+            b(i) = dr[i];
+        }
+        A(iL, iL) = ll;
+        A(iL, iB) = lb;
+        A(iB, iB) = bb;
+        b(iL) = rl;
+        b(iB) = rb;
     }
-    A(iL, iL) = (wf * foot).sum();
-    A(iL, iB) = wf.sum();
-    A(iB, iB) = w.sum();
-    b(iL) = (foot * wr).sum();
-    b(iB) = wr.sum();
     for (int k = 0; k < G; ++k) {
         const Window& wk = e.windows[k];
         if (wk.empty()) continue;
@@ -245,7 +309,8 @@ void normal_equations(const Problem& pb, const Evaluation& e, const Plane& w, co
         for (int r = wk.r0; r <= wk.r1; ++r)
             for (int c = wk.c0; c <= wk.c1; ++c, ++idx) {
                 const double wkv = w(r, c) * wk.k[idx];
-                for (int i = 0; i < kNonlinear; ++i) s[i] += wkv * e.d[i](r, c);
+                if (derivs)
+                    for (int i = 0; i < kNonlinear; ++i) s[i] += wkv * e.d[i](r, c);
                 sl += wkv * foot(r, c);
                 sb += wkv;
                 sr += wk.k[idx] * wr(r, c);
@@ -307,7 +372,10 @@ RoundResult levenberg_marquardt(const Problem& pb, Params& p, const std::vector<
                                 int max_iterations,
                                 const std::function<void(int, int)>* on_iteration = nullptr) {
     RoundResult rr;
-    Evaluation e = evaluate(pb, p, foot, halo_plane, true);
+    // Derivative planes only when a nonlinear parameter is free (the gains' columns are the
+    // windows' kernel values).
+    const bool need_d = std::any_of(free.begin(), free.end(), [](int i) { return i < kNonlinear; });
+    Evaluation e = evaluate(pb, p, foot, halo_plane, need_d);
     double cost = weighted_cost(w, pb.frame, e.model);
     double lambda = 1e-3;
     int small_steps = 0;
@@ -342,7 +410,7 @@ RoundResult levenberg_marquardt(const Problem& pb, Params& p, const std::vector<
             apply_step(trial, step, free);
             // The first trial carries the derivatives (it is usually accepted and then serves
             // the next iteration); retries after a rejection do not.
-            const bool with_derivs = attempt == 0;
+            const bool with_derivs = need_d && attempt == 0;
             Evaluation te = evaluate(pb, trial, foot, halo_plane, with_derivs);
             const double tc = weighted_cost(w, pb.frame, te.model);
             if (tc <= cost) {
@@ -363,7 +431,8 @@ RoundResult levenberg_marquardt(const Problem& pb, Params& p, const std::vector<
                     rr.converged = true;
                     return rr;
                 }
-                e = with_derivs ? std::move(te) : evaluate(pb, p, foot, halo_plane, true);
+                e = with_derivs || !need_d ? std::move(te)
+                                           : evaluate(pb, p, foot, halo_plane, true);
             } else {
                 lambda *= 5;
             }
@@ -386,8 +455,20 @@ void fit_noise(const Plane& frame, const Plane& model, double& alpha, double& be
         const double m = model.data()[i], r = frame.data()[i] - m;
         mr[static_cast<std::size_t>(i)] = {std::max(m, 0.0), r * r};
     }
-    std::sort(mr.begin(), mr.end());
+    // The bins are consecutive ranges of the order by (m, r^2): placed by selection (each bin's
+    // elements, not their order inside it, matter), O(n log kBins) instead of a full sort.
     constexpr int kBins = 24;
+    const std::function<void(int, int)> split = [&](int b0, int b1) {  // bins [b0, b1)
+        if (b1 - b0 < 2) return;
+        const int bm = (b0 + b1) / 2;
+        const auto first = mr.begin() + static_cast<std::ptrdiff_t>(mr.size() * b0 / kBins);
+        const auto last = mr.begin() + static_cast<std::ptrdiff_t>(mr.size() * b1 / kBins);
+        std::nth_element(first, mr.begin() + static_cast<std::ptrdiff_t>(mr.size() * bm / kBins),
+                         last);
+        split(b0, bm);
+        split(bm, b1);
+    };
+    split(0, kBins);
     double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
     std::vector<double> all;
     for (int b = 0; b < kBins; ++b) {
@@ -507,11 +588,12 @@ ForwardFit fit_from(const Plane& frame, const Mask& mask, const LatticeStart& st
         linear.erase(std::find(linear.begin(), linear.end(), held));
         out.leak_measured = o.dark_subtracted;
     }
-    // Gains, leak and background at the start's geometry (a linear problem).
-    levenberg_marquardt(pb, p, linear, w, foot, halo_plane, 3);
-    double median_gain = median_of(p.g);
+    double median_gain = 0.0;
     double alpha = 0, beta = 1;
     bool leak_fixed = false, halo_current = false;
+    // Gains, leak and background at the start's geometry (a linear problem).
+    levenberg_marquardt(pb, p, linear, w, foot, halo_plane, 3);
+    median_gain = median_of(p.g);
     for (int round = 0; round < kRounds; ++round) {
         // The first round fits without the halo: made from a start a few pixels off, the fixed
         // halo holds the fit near that start (a fixed point that can stop short of the truth).
@@ -563,9 +645,9 @@ ForwardFit fit_from(const Plane& frame, const Mask& mask, const LatticeStart& st
         fit_noise(frame, e.model, alpha, beta);
         w = weights_of(e.model, alpha, beta);
     }
-    // Fisher information at the solution, with the final noise model.
-    halo_plane = halo(pb, p, median_gain);
-    foot = footprint(pb, p.v);
+    // Fisher information at the solution, with the final noise model. The halo and footprint
+    // are those of p already: the last round either kept its end's (made at p) or was undone to
+    // its start, whose own they were.
     const Evaluation e = evaluate(pb, p, foot, halo_plane, true);
     w = weights_of(e.model, alpha, beta);
     Eigen::MatrixXd A;
@@ -660,50 +742,12 @@ ForwardFit fit_from(const Plane& frame, const Mask& mask, const LatticeStart& st
     return out;
 }
 
-}  // namespace
-
-// Two passes: the first round from the start (no halo) refines the lattice, and the whole fit
-// starts again from there, so the fitted cells, the pivot and the halo's first estimate come from
-// a lattice within a fraction of a pixel (from the start's, a few pixels off, the rounds with the
-// halo held fixed can settle on a false minimum).
-ForwardFit fit_forward_model(const Plane& frame, const Mask& mask, const LatticeStart& start,
-                             const ForwardFitOptions& o) {
-    // A large capture with wide cells: the first pass on the capture binned b x b (b = pitch /
-    // kBinnedCellPx, the model's pixels b times larger: the pixel-integrated kernel stays exact),
-    // b^2 times fewer pixels per iteration.
-    const double pitch = 0.5 * (start.pitch_x_px + start.pitch_y_px);
-    const int b = static_cast<int>(std::floor(pitch / kBinnedCellPx));
-    LatticeStart refined;
-    int first_iterations = 0;
-    if (b >= 2 && std::min(frame.rows(), frame.cols()) >= kMinBinnedFramePx) {
-        const int R = static_cast<int>(frame.rows()) / b, C = static_cast<int>(frame.cols()) / b;
-        Plane binned = Plane::Zero(R, C);
-        for (int r = 0; r < R * b; ++r)
-            for (int c = 0; c < C * b; ++c) binned(r / b, c / b) += frame(r, c);
-        Mask coarse = mask;
-        coarse.camera.pixel_pitch_m *= b;
-        // Pixel (i, j) of the binned frame covers pixels b i .. b i + b - 1: index coordinate
-        // x of the capture is (x + 1/2) / b - 1/2 there.
-        auto to_binned = [b](double x) { return (x + 0.5) / b - 0.5; };
-        auto from_binned = [b](double x) { return (x + 0.5) * b - 0.5; };
-        const LatticeStart s{to_binned(start.x0), to_binned(start.y0), start.rotation_rad,
-                             start.pitch_x_px / b, start.pitch_y_px / b};
-        const ForwardFit f = fit_from(binned, coarse, s, o, true);
-        refined = {from_binned(f.lattice.x0), from_binned(f.lattice.y0), f.lattice.rotation_rad,
-                   f.lattice.pitch_x_px * b, f.lattice.pitch_y_px * b};
-        first_iterations = f.iterations;
-    } else {
-        const ForwardFit first = fit_from(frame, mask, start, o, true);
-        refined = first.lattice;
-        first_iterations = first.iterations;
-    }
-    ForwardFit out = fit_from(frame, mask, refined, o, false);
-    out.iterations += first_iterations;
-    return out;
-}
-
-Plane fitted_psf(const ForwardFit& fit, const Mask& mask, int rows, int cols,
-                 const ForwardFitOptions& o) {
+// The model of a rows x cols frame at a fit's parameters: with `psf` the calibrated PSF (the
+// spots of the pinholes not missing, gains max(g, 0), no leak or background, sum 1), else the
+// whole model B + L F + spots (every fitted pinhole at its gain, cells beyond the frame at the
+// median gain in the halo) as fit_from's rounds evaluate it.
+Plane model_of_fit(const ForwardFit& fit, const Mask& mask, int rows, int cols,
+                   const ForwardFitOptions& o, bool psf) {
     const Plane no_frame;
     Problem pb{no_frame,
                mask,
@@ -722,9 +766,9 @@ Plane fitted_psf(const ForwardFit& fit, const Mask& mask, int rows, int cols,
     p.v[kPy] = fit.lattice.pitch_y_px;
     p.v[kSide] = fit.side_scale;
     for (const auto& f : fit.pinholes) {
-        if (f.missing) continue;
+        if (psf && f.missing) continue;
         pb.cells.push_back(f.mask_cell);
-        p.g.push_back(std::max(f.gain, 0.0));
+        p.g.push_back(psf ? std::max(f.gain, 0.0) : f.gain);
     }
     // Open cells the fit did not hold (their core off the frame) whose halo reaches it.
     const double reach_halo = halo_half_px(pb, fit.side_scale);
@@ -741,14 +785,105 @@ Plane fitted_psf(const ForwardFit& fit, const Mask& mask, int rows, int cols,
                     z.x() <= cols - 1 + reach_halo && z.y() <= rows - 1 + reach_halo)
                     pb.outside.push_back(cell);
             }
-    const Plane zero = Plane::Zero(rows, cols);
-    const Plane h = halo(pb, p, fit.median_gain);
-    Params q = p;
-    q.leak = q.background = 0;
-    Plane psf = evaluate(pb, q, zero, h, false).model;
-    const double s = psf.sum();
-    if (s > 0) psf /= s;
-    return psf;
+    if (psf) {
+        const Plane zero = Plane::Zero(rows, cols);
+        Plane m = evaluate(pb, p, zero, halo(pb, p, fit.median_gain), false).model;
+        const double s = m.sum();
+        if (s > 0) m /= s;
+        return m;
+    }
+    p.leak = fit.leak;
+    p.background = fit.background;
+    return evaluate(pb, p, footprint(pb, p.v), halo(pb, p, median_of(p.g)), false).model;
+}
+
+}  // namespace
+
+int first_pass_binning(double pitch_px, int rows, int cols) {
+    const int b = static_cast<int>(std::floor(pitch_px / kBinnedCellPx));
+    return b >= 2 && std::min(rows, cols) >= kMinBinnedFramePx ? b : 1;
+}
+
+Plane bin_frame(const Plane& frame, int b) {
+    const int R = static_cast<int>(frame.rows()) / b, C = static_cast<int>(frame.cols()) / b;
+    Plane binned = Plane::Zero(R, C);
+    for (int r = 0; r < R * b; ++r)
+        for (int c = 0; c < C * b; ++c) binned(r / b, c / b) += frame(r, c);
+    return binned;
+}
+
+LatticeStart to_binned(const LatticeStart& l, int b) {
+    return {(l.x0 + 0.5) / b - 0.5, (l.y0 + 0.5) / b - 0.5, l.rotation_rad, l.pitch_x_px / b,
+            l.pitch_y_px / b};
+}
+
+LatticeStart from_binned(const LatticeStart& l, int b) {
+    return {(l.x0 + 0.5) * b - 0.5, (l.y0 + 0.5) * b - 0.5, l.rotation_rad, l.pitch_x_px * b,
+            l.pitch_y_px * b};
+}
+
+// Two passes: the first round from the start (no halo) refines the lattice, and the whole fit
+// starts again from there, so the fitted cells, the pivot and the halo's first estimate come from
+// a lattice within a fraction of a pixel (from the start's, a few pixels off, the rounds with the
+// halo held fixed can settle on a false minimum).
+// A large capture with wide cells (b = floor(pitch / kBinnedCellPx) >= 2, the short side at
+// least kMinBinnedFramePx) is fitted binned b x b: the model's pixels b times larger (the
+// pixel-integrated kernel stays exact), the halo's reach the same on the sensor, b^2 times fewer
+// pixels per iteration. The fit's parameters, standard errors (from the binned capture's Fisher
+// information) and missing pinholes are the binned fit's, carried to the capture's pixels; the
+// model, the noise model, chi^2 and the unexplained share are made at full resolution.
+ForwardFit fit_forward_model(const Plane& frame, const Mask& mask, const LatticeStart& start,
+                             const ForwardFitOptions& o) {
+    const int b =
+        first_pass_binning(0.5 * (start.pitch_x_px + start.pitch_y_px),
+                           static_cast<int>(frame.rows()), static_cast<int>(frame.cols()));
+    if (b < 2) {
+        const ForwardFit first = fit_from(frame, mask, start, o, true);
+        ForwardFit out = fit_from(frame, mask, first.lattice, o, false);
+        out.iterations += first.iterations;
+        return out;
+    }
+    const Plane binned = bin_frame(frame, b);
+    Mask coarse = mask;
+    coarse.camera.pixel_pitch_m *= b;
+    ForwardFitOptions ob = o;
+    ob.halo_cap_px = std::max(1, o.halo_cap_px / b);
+    const LatticeStart s = to_binned(start, b);
+    const ForwardFit first = fit_from(binned, coarse, s, ob, true);
+    ForwardFit out = fit_from(binned, coarse, first.lattice, ob, false);
+    out.iterations += first.iterations;
+    // To the capture's pixels: positions x -> (x + 1/2) b - 1/2, lengths and their errors times
+    // b, per-pixel levels (leak, background, read-noise variance) over b^2.
+    const double b2 = double(b) * b;
+    out.lattice = from_binned(out.lattice, b);
+    out.x0_sigma *= b;
+    out.y0_sigma *= b;
+    out.pitch_x_sigma_px *= b;
+    out.pitch_y_sigma_px *= b;
+    for (FittedPinhole& f : out.pinholes) {
+        f.x = (f.x + 0.5) * b - 0.5;
+        f.y = (f.y + 0.5) * b - 0.5;
+    }
+    out.leak /= b2;
+    out.leak_sigma /= b2;
+    out.background /= b2;
+    out.background_sigma /= b2;
+    const int rows = static_cast<int>(frame.rows()), cols = static_cast<int>(frame.cols());
+    out.model = model_of_fit(out, mask, rows, cols, o, false);
+    fit_noise(frame, out.model, out.noise_alpha, out.noise_beta);
+    const Plane w = weights_of(out.model, out.noise_alpha, out.noise_beta);
+    const Plane res = frame - out.model;
+    const double params = kNonlinear + double(out.pinholes.size()) + 2;
+    out.chi2_reduced = (w * res.square()).sum() / std::max(1.0, double(frame.size()) - params);
+    const double signal = (out.model - out.background).square().sum();
+    out.unexplained =
+        signal > 0 ? std::max(0.0, res.square().sum() - (1.0 / w).sum()) / signal : 1.0;
+    return out;
+}
+
+Plane fitted_psf(const ForwardFit& fit, const Mask& mask, int rows, int cols,
+                 const ForwardFitOptions& o) {
+    return model_of_fit(fit, mask, rows, cols, o, true);
 }
 
 }  // namespace pinmask::calibrate

@@ -13,10 +13,11 @@
 // along the mask's axes; g_k the flux of pinhole k (its gain), L the leak through the opaque film
 // per pixel inside the mask's footprint F (the tiled mask's cells imaged by the same lattice,
 // anti-aliased over one pixel), B the background. Each spot is evaluated in a window of
-// +- core_cells cells; the diffraction tails beyond it (sinc^2 falls as 1/v^2) enter as a halo,
-// the same kernel's tail convolved (FFT) with the spots split bilinearly onto the pixel grid, made
-// from the current parameters before each solve (a fixed point: the tail carries a few percent of
-// the energy).
+// +- core_cells cells, or wider to hold the kernel's central lobes (out to v = 2N + 2); the
+// diffraction tails beyond it (sinc^2 falls as 1/v^2) enter as a halo, the same kernel's tail
+// with each spot on its nearest pixel (the separable kernel makes all the tails over the frame
+// one matrix product), made from the current parameters before each round and held fixed inside
+// it (a fixed point: the tail carries a few percent of the energy).
 // Solver: Levenberg-Marquardt on (x0, y0, t, px, py, s, g_1..g_G, L, B) with the analytic
 // Jacobian (s by a forward difference of the table), weights 1 / var with the Poisson-Gaussian
 // variance var = alpha max(m, 0) + beta fitted to the residuals (first an unweighted fit, then
@@ -99,9 +100,22 @@ struct ForwardFit {
     Plane model;  // the fitted model of the frame (with background and leak)
 };
 
-// Fits the model above, started from `start`. `mask.camera` must carry the capture's pixel pitch
-// (binning applied). Throws InvalidInput when the start puts no open cell's spot in the frame,
-// RuntimeFailure when the normal equations are singular.
+// The binning of the fit of a capture with cells pitch_px wide on a rows x cols frame (1: none;
+// see fit_forward_model).
+int first_pass_binning(double pitch_px, int rows, int cols);
+// The frame's b x b pixel sums (rows / b x cols / b; a remainder of rows or columns is dropped).
+// Binned pixel (i, j) covers pixels b i .. b i + b - 1: index coordinate x of the capture is
+// (x + 1/2) / b - 1/2 in the binned frame.
+Plane bin_frame(const Plane& frame, int b);
+LatticeStart to_binned(const LatticeStart& lattice, int b);
+LatticeStart from_binned(const LatticeStart& lattice, int b);
+
+// Fits the model above, started from `start`. A capture whose short side is at least 1024 px
+// with cells at least 16 px wide is fitted binned b x b (b = floor(pitch / 8)): parameters,
+// standard errors and missing pinholes are the binned fit's in the capture's pixels; the model,
+// noise model, chi^2 and unexplained share are made at full resolution. `mask.camera` must carry
+// the capture's pixel pitch (binning applied). Throws InvalidInput when the start puts no open
+// cell's spot in the frame, RuntimeFailure when the normal equations are singular.
 ForwardFit fit_forward_model(const Plane& frame, const Mask& mask, const LatticeStart& start,
                              const ForwardFitOptions& options = {});
 

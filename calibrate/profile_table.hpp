@@ -47,6 +47,24 @@ class ProfileTable {
         q = q_[k] + f * (q_[k + 1] - q_[k]);
         dq = (q_[k + 1] - q_[k]) * inv_step_;
     }
+    // The side derivative's two tables on one grid: q of this table and of `other` (same half
+    // width and step, e.g. another side) at x with one index computation, and this table's slope.
+    void value_slope_pair(const ProfileTable& other, double x, double& q, double& dq,
+                          double& q_other) const {
+        const double t = (x + half_) * inv_step_;
+        if (t < 0 || t >= double(q_.size() - 1)) {
+            q = dq = q_other = 0.0;
+            return;
+        }
+        const auto k = static_cast<std::size_t>(t);
+        const double f = t - double(k);
+        q = q_[k] + f * (q_[k + 1] - q_[k]);
+        dq = (q_[k + 1] - q_[k]) * inv_step_;
+        q_other = other.q_[k] + f * (other.q_[k + 1] - other.q_[k]);
+    }
+    bool same_grid(const ProfileTable& other) const {
+        return q_.size() == other.q_.size() && half_ == other.half_ && step_ == other.step_;
+    }
     // Fraction of the profile's energy inside [-half - 1/2, half + 1/2] (1 for a box that fits).
     double enclosed() const { return enclosed_; }
 

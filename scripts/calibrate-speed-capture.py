@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Renders the issue's NIR point-source capture on the full 1920 x 1200 sensor for timing
-`pinmask calibrate` (docs/calibration.md, Speed): writes OUT/nir.mask.json and OUT/nir-point.npy.
+`pinmask calibrate` (docs/calibration.md, Speed): writes OUT/nir.mask.json and OUT/nir-point.npy
+(OUT is created when it does not exist).
 Usage: PYTHONPATH=build/python /usr/bin/python3 scripts/calibrate-speed-capture.py OUT
 then: time build/cli/pinmask calibrate OUT/nir-point.npy --mask OUT/nir.mask.json -o OUT/cal"""
 import pathlib, sys
@@ -33,5 +34,8 @@ for tr in range(6):
             img += 5e5*np.outer(py, px)
 rng = np.random.default_rng(1)
 cap = np.round(rng.poisson(img + 20.0) + rng.normal(0, 3, img.shape))
-m.save(pathlib.Path(sys.argv[1]) / "nir.mask.json"); np.save(pathlib.Path(sys.argv[1]) / "nir-point.npy", cap)
+out = pathlib.Path(sys.argv[1])
+out.mkdir(parents=True, exist_ok=True)
+m.save(out / "nir.mask.json")
+np.save(out / "nir-point.npy", cap)
 print("rendered", cap.shape)

@@ -28,9 +28,27 @@ struct CameraCase {
     int rows = 200, cols = 200;
 };
 
+// A monochrome camera by name of field (a brace list would shift when Camera gains a field: the
+// band's width once took the pixel pitch's place); the pinhole side is set by the case.
+inline Camera optics(double u_m, double lens_focal_m, double sensor_distance_m, double wavelength_m,
+                     double pixel_pitch_m, int cols, int rows) {
+    Camera k;
+    k.object_distance_m = u_m;
+    k.lens_focal_m = lens_focal_m;
+    k.sensor_distance_m = sensor_distance_m;
+    k.wavelength_m = wavelength_m;
+    k.bandwidth_m = 0.0;
+    k.pixel_pitch_m = pixel_pitch_m;
+    k.pinhole_m = 0.0;
+    k.sensor_cols = cols;
+    k.sensor_rows = rows;
+    return k;
+}
+
 // Cameras: the paper's (8 px per cell), a C-mount (20), a phone-like 1.12 um sensor (16), the
-// issue's NIR camera (34 px per cell, spots one cell wide: N = 0.59 with the lens) and a lensless
-// one (33). Each pinhole side is solved for whole pixels per cell at u (as design does).
+// issue's NIR camera (34 px per cell, spots one cell wide: N = 0.59 with the lens), a lensless
+// one (33) and the walkthrough's (the NIR optics with a 120 um pinhole: 9 px per cell, spots six
+// cells wide). Each pinhole side is solved for whole pixels per cell at u (as design does).
 inline CameraCase camera_case(const std::string& name) {
     CameraCase c;
     c.name = name;
@@ -42,25 +60,36 @@ inline CameraCase camera_case(const std::string& name) {
         c.ppc = 8;
         c.rows = c.cols = 200;
     } else if (name == "c-mount") {
-        k = {2.0, 0.025, 0.015, 550e-9, 5.5e-6, 0.0, 1280, 1024};
+        k = optics(2.0, 0.025, 0.015, 550e-9, 5.5e-6, 1280, 1024);
         c.n = 8;
         c.holes = 10;
         c.ppc = 20;
         c.rows = c.cols = 240;
     } else if (name == "phone") {
-        k = {0.5, 0.004, 0.0035, 550e-9, 1.12e-6, 0.0, 4000, 3000};
+        k = optics(0.5, 0.004, 0.0035, 550e-9, 1.12e-6, 4000, 3000);
         c.n = 10;
         c.holes = 14;
         c.ppc = 16;
         c.rows = c.cols = 240;
     } else if (name == "nir") {
-        k = {1.2, 0.075, 0.045, 850e-9, 5.86e-6, 0.0, 1920, 1200};
+        k = optics(1.2, 0.075, 0.045, 850e-9, 5.86e-6, 1920, 1200);
         c.n = 10;
         c.holes = 15;
         c.ppc = 34;
         c.rows = c.cols = 340;
+    } else if (name == "walkthrough") {
+        // examples/python/walkthrough.py's camera: the NIR optics on a 640 x 480 sensor with a
+        // 120 um pinhole, 9 px per cell at u (8.96), N = 0.04: each spot's main lobe is +-54 px,
+        // six cells, wider than the 2.5-cell window the fit used to hold each spot in.
+        k = optics(1.2, 0.075, 0.045, 850e-9, 5.86e-6, 640, 480);
+        k.pinhole_m = 120e-6;
+        c.n = 8;
+        c.holes = 6;
+        c.ppc = 9;
+        c.rows = 200;
+        c.cols = 240;
     } else if (name == "lensless") {
-        k = {2.0, INFINITY, 0.020, 550e-9, 5e-6, 0.0, 1280, 1024};
+        k = optics(2.0, INFINITY, 0.020, 550e-9, 5e-6, 1280, 1024);
         c.n = 10;
         c.holes = 15;
         c.ppc = 33;

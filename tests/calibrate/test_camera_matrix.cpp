@@ -95,6 +95,36 @@ TEST_CASE("camera matrix: paper camera rotated with pitch off and two missing at
     run_row("paper", {1.0, 1.006, 0.995, 1.06, 2, 2.0, 0, 11});
 }
 
+// The walkthrough's small window (examples/python/walkthrough.py: 200 x 240 px, 2 x 2 tiles of
+// an 8 x 8 pattern with 6 pinholes, 9 px per cell) with spots six cells wide (main lobe +-54 px).
+// Each spot's window used to be 2.5 cells, the rest of the spot in the halo held fixed on whole
+// pixels: on this capture the pitch along y came out 2 % high and the rotation 2.2 deg off. Not a
+// row of the table: the three PSFs decode alike (within 0.01 dB, the spots wider than the scene's
+// features), and the pitch along y keeps a bias of about 3 of its sigmas (0.2 %;
+// docs/calibration.md, Limits), held here to 0.4 % (about 2 s).
+TEST_CASE("camera matrix: walkthrough camera with spots six cells wide in a small window") {
+    const CameraCase c = camera_case("walkthrough");
+    const Perturbation p{0.5, 1.004, 0.997, 1.0, 0, INFINITY, 3e6, 22};
+    const Mask mask = case_mask(c, p.seed + 100);
+    const PointSourceScene truth = scene_of(c, mask, p);
+    const Plane dark = Plane::Constant(c.rows, c.cols, truth.dark);
+    const calibrate::CalibrationSummary r =
+        calibrate::calibrate_point_source(point_source_capture(truth), dark, mask);
+    CAPTURE(r.rotation_deg);
+    CAPTURE(r.rotation_sigma_deg);
+    CAPTURE(r.pitch_x_px);
+    CAPTURE(r.pitch_y_px);
+    CAPTURE(r.pitch_x_sigma_px);
+    CAPTURE(r.pitch_y_sigma_px);
+    CAPTURE(r.fit.chi2_reduced);
+    CHECK(std::abs(r.rotation_deg - truth.rotation_deg) <= kMaxSigmas * r.rotation_sigma_deg);
+    CHECK(std::abs(r.pitch_x_px - truth.pitch_x) <= kMaxSigmas * r.pitch_x_sigma_px);
+    CHECK(std::abs(r.pitch_y_px / truth.pitch_y - 1) <= 0.004);
+    CHECK(r.missing.empty());
+    CHECK(r.extra_spots.empty());
+    CHECK(r.fit.chi2_reduced < 1.2);
+}
+
 TEST_CASE("camera matrix: C-mount at 2 degrees with side -10 % and three missing" *
           doctest::skip()) {
     run_row("c-mount", {2.0, 0.992, 1.004, 0.9, 3, 1.5, 0, 12});
