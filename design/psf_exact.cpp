@@ -1,5 +1,6 @@
 #include "design/psf_exact.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -76,9 +77,13 @@ Plane exact_psf(const Mask& m, const ExactPsfOptions& o) {
     }
     check_memory(double(rows) * cols * 8.0, "the " + std::to_string(rows) + " x " +
                                                 std::to_string(cols) + " exact-geometry PSF");
-    Mask at_u = m;
-    at_u.camera = cam;
-    const Kernel k = mask_kernel(at_u, o.kernel);
+    // The kernel over its own support, not cut to one period as the cyclic PSF's must be (a
+    // spot wider than the period folds onto itself there; over a frame it does not): at most
+    // what reaches across the window from a spot at its edge.
+    check_psf_memory(m.pattern.n, m.psf.pixels_per_cell, 0, 0);
+    KernelOptions ko = o.kernel;
+    ko.max_width_px = std::min(ko.max_width_px, 2 * std::max(rows, cols) + 1);
+    const Kernel k = make_kernel(cam, m.psf.kernel, m.psf.pixels_per_cell, ko);
     const int ppc = m.psf.pixels_per_cell;
     Plane out = Plane::Zero(rows, cols);
     const double weight = 1.0 / static_cast<double>(m.pattern.pinholes.size());

@@ -7,7 +7,8 @@
 //   q = M(u) s on the sensor (Eq. (3): image separation = (1 - f/f' + f/u) x mask separation),
 //   i.e. at the continuous pixel coordinate rows/2 + q_row / w (pixel k covers [k, k + 1)).
 //   The single-pinhole kernel is design/kernel's for the camera at u (its pixel-integrated
-//   values at the mask's integer pixels per cell, continuous centre ppc/2 from its cell corner),
+//   values at the mask's integer pixels per cell, continuous centre ppc/2 from its cell corner)
+//   over its own support: not cut to one period as the cyclic PSF's kernel is,
 //   moved to the spot centre by area resampling: the fractional shift spreads each kernel pixel
 //   over the two (per axis) sensor pixels it overlaps, in proportion to the overlap, so the
 //   values' sum and centroid move exactly with the shift.
