@@ -117,6 +117,27 @@ def test_exact_psf_equals_cli_and_lands_where_eq3_puts_it(cli, tmp_path):
     assert abs(got.sum() - tiles * tiles) < 1e-6  # K spots of 1/K per tile, none cut
 
 
+def test_exact_psf_keeps_spots_wider_than_the_period():
+    # The walkthrough's NIR camera with a 120 um pinhole: 8.96 px per cell, so an 8 x 8 period is
+    # 72 px while the spot's diffraction main lobe spans about 108 px. The cyclic PSF must fold
+    # its kernel into the period; the exact-geometry PSF of one pinhole over a 400 x 400 frame
+    # must not cut it there (it did, renormalised, moving light into the period).
+    cam = pinmask.Camera(pixel_pitch_m="5.86um", sensor_cols=640, sensor_rows=480,
+                         lens_focal_m="75mm", sensor_distance_m="45mm", object_distance_m="1.2m",
+                         wavelength_m="850nm", pinhole_m="120um")
+    mask = pinmask.generate(camera=cam, grid=8, holes=1, tiles=1, seed=1)
+    period = 8 * mask.pixels_per_cell
+    got = pinmask.psf(mask, geometry="exact", size=(400, 400))
+    cols = np.nonzero(got.sum(axis=0) > 1e-6 * got.sum())[0]
+    assert cols[-1] - cols[0] + 1 > period + 30
+    # The light the period's window holds: the kernel's own share, not all of it.
+    r, c = np.unravel_index(np.argmax(got), got.shape)
+    inside = got[r - period // 2:r + period // 2, c - period // 2:c + period // 2].sum()
+    assert inside < 0.97 * got.sum()
+    # One spot of weight 1 (K = 1): the frame holds all but the far tails.
+    assert 0.95 < got.sum() <= 1.0 + 1e-9
+
+
 def test_exact_psf_settings_need_exact_geometry():
     mask = pinmask.generate(seed=3)
     with pytest.raises(ValueError, match="^object_distance = 2m: only used with geometry='exact'"):
