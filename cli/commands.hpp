@@ -21,6 +21,7 @@ void add_compare(CLI::App& app);
 void add_export(CLI::App& app, int& exit_code);  // exit_code = 1 when the DRC finds violations
 void add_check(CLI::App& app, int& exit_code);   // exit_code = 1 when violations are found
 void add_depth(CLI::App& app);
+void add_depthmap(CLI::App& app);
 void add_sweep(CLI::App& app);
 
 // `pinmask bench`: returns the bench app, the parent of the add_bench_* subcommands.

@@ -138,6 +138,7 @@ int main(int argc, char** argv) {
     cli::add_export(app, exit_code);
     cli::add_check(app, exit_code);
     cli::add_depth(app);
+    cli::add_depthmap(app);
     cli::add_sweep(app);
     CLI::App& bench = cli::add_bench(app);
     cli::add_bench_plan(bench);

@@ -11,7 +11,7 @@ namespace {
 
 // field name (as the libraries write it) -> flag. Sorted by field name (a test checks it, and
 // that every field a library names has a row).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 102> kFlags{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 104> kFlags{{
     {"allow_spectral_zeros", "--allow-spectral-zeros"},
     {"allow_violations", "--allow-violations"},
     {"attempts", "--attempts"},
@@ -26,10 +26,12 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 102> kFlags{
     {"chord_tolerance_m", "--chord-tol"},
     {"circles", "--circles"},
     {"config", "--config"},
+    {"cost_window", "--window"},
     {"dark", "--dark"},
     {"dark_current", "--dark-current"},
     {"dark_frame", "--dark-frame"},
     {"datatype", "--datatype"},
+    {"distances_m", "--from/--to"},
     {"draw", "--draw"},
     {"emulsion", "--emulsion"},
     {"energy_fraction", "--energy"},
