@@ -28,6 +28,7 @@ FUNCTIONS = {
     "check": ["check"],
     "depth": ["depth"],
     "sweep": ["sweep"],
+    "depthmap": ["depthmap"],
 }
 
 # Commands with no function, and why.
@@ -40,6 +41,7 @@ COMMANDS_BY_DESIGN = {
 COMMAND_GAPS = {
     "sweep": "a design sweep (one search per grid point) is a loop over pinmask.search in Python; "
              "the sweep's table, per-point files and plots are not in the module",
+    "depthmap": "pinmask.depthmap (python/bind_depthmap.cpp) is not written yet; run the command",
 }
 
 # Flags spelled differently in Python: flag -> keyword, function, or Camera field ("Camera.x").
