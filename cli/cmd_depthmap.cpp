@@ -89,10 +89,6 @@ json summary(const DepthmapResult& r, const DepthmapCommandOptions& o, std::size
                           {"pixel_fraction", r.plane_fraction[k]},
                           {"mean_cost", r.plane_cost[k]}});
     }
-    std::vector<double> d(r.depth_m.data(), r.depth_m.data() + r.depth_m.size());
-    std::vector<double> c(r.confidence.data(), r.confidence.data() + r.confidence.size());
-    std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
-    std::nth_element(c.begin(), c.begin() + c.size() / 2, c.end());
     return json{
         {"capture", o.capture},
         {"mask", o.mask},
@@ -105,10 +101,10 @@ json summary(const DepthmapResult& r, const DepthmapCommandOptions& o, std::size
         {"window_px", o.window},
         {"capture_depth_m", finite_or_null(r.capture_depth_m)},
         {"capture_confidence", r.capture_confidence},
-        {"depth_min_m", finite_or_null(r.depth_m.minCoeff())},
-        {"depth_median_m", finite_or_null(d[d.size() / 2])},
-        {"depth_max_m", finite_or_null(r.depth_m.maxCoeff())},
-        {"confidence_median", c[c.size() / 2]},
+        {"depth_min_m", finite_or_null(r.depth_min_m)},
+        {"depth_median_m", finite_or_null(r.depth_median_m)},
+        {"depth_max_m", finite_or_null(r.depth_max_m)},
+        {"confidence_median", r.confidence_median},
         {"planes", planes},
         {"files",
          {"depth.tif", "confidence.tif", "all_in_focus.tif", "depthmap.png", "depthmap.json"}}};
@@ -167,12 +163,11 @@ void run(const DepthmapCommandOptions& o) {
         return;
     }
     for (const auto& p : files.final_paths()) std::cerr << "wrote " << p.string() << "\n";
-    std::cout << "depth " << format_length(r.depth_m.minCoeff()) << " .. "
-              << format_length(r.depth_m.maxCoeff()) << " (median "
-              << format_length(j["depth_median_m"].is_null() ? INFINITY
-                                                             : j["depth_median_m"].get<double>())
-              << "), median confidence " << j["confidence_median"].get<double>() << ", "
-              << r.distances_m.size() << " planes\n";
+    std::cout << "depth " << format_length(r.depth_min_m) << " .. " << format_length(r.depth_max_m)
+              << " (median " << format_length(r.depth_median_m) << "), median confidence "
+              << r.confidence_median << "; whole capture " << format_length(r.capture_depth_m)
+              << " (confidence " << r.capture_confidence << "); " << r.distances_m.size()
+              << " planes\n";
 }
 
 constexpr const char* kFooter =

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "core/error.hpp"
 #include "core/field_names.hpp"
@@ -76,6 +77,15 @@ DepthmapResult depthmap(const Plane& capture, const Mask& mask, const DepthmapOp
             out.plane_fraction[k] += 1.0 / double(capture.size());
         }
     }
+    auto median = [](const Plane& p) {
+        std::vector<double> v(p.data(), p.data() + p.size());
+        std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+        return v[v.size() / 2];
+    };
+    out.depth_min_m = out.depth_m.minCoeff();
+    out.depth_max_m = out.depth_m.maxCoeff();
+    out.depth_median_m = median(out.depth_m);
+    out.confidence_median = median(out.confidence);
     return out;
 }
 

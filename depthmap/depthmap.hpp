@@ -42,6 +42,8 @@ struct DepthmapResult {
     std::vector<double> plane_cost;
     double capture_depth_m = 0;
     double capture_confidence = 0;
+    // Summary of the maps: smallest, median (upper middle) and largest depth, median confidence.
+    double depth_min_m = 0, depth_median_m = 0, depth_max_m = 0, confidence_median = 0;
     bool interrupted = false;
 };
 

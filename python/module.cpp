@@ -4,8 +4,9 @@
 #include "python/common.hpp"
 
 namespace pinmask::python {
-void bind_depth(py::module_& m);  // python/bind_depth.cpp
-}
+void bind_depth(py::module_& m);     // python/bind_depth.cpp
+void bind_depthmap(py::module_& m);  // python/bind_depthmap.cpp
+}  // namespace pinmask::python
 
 PYBIND11_MODULE(pinmask, m) {
     using namespace pinmask::python;
@@ -49,4 +50,5 @@ field, the value and the rule), RuntimeError for failures while doing valid work
     bind_check(m);
     bind_calibrate(m);
     bind_depth(m);
+    bind_depthmap(m);
 }

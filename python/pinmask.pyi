@@ -431,5 +431,14 @@ def depth(
     tv: bool = True,
     seed: int = 1,
 ) -> list[dict[str, Any]]: ...  # one dict per distance, the keys of `pinmask depth --json`
+def depthmap(
+    capture: Union[PathLikeStr, ArrayLike],  # grey (colour: channels averaged) or an image path
+    mask: MaskLike,
+    from_m: float,  # nearest plane, m
+    to_m: float,  # farthest plane, m (inf allowed)
+    steps: int = 16,  # planes, equally spaced in 1/u
+    nsr: float = 0.01,  # Wiener NSR of every decode
+    window: int = 121,  # odd box side of the cost, px
+) -> dict[str, Any]: ...  # the keys of `pinmask depthmap --json`; depth_m, confidence... arrays
 def is_library_buffer(array: object) -> bool: ...
 def input_copies() -> int: ...

@@ -97,3 +97,44 @@ def test_outputs_and_refusals(cli, tmp_path):
     assert "--steps" in cli.error("depthmap", cap, "--mask", mask, "--from", "1m", "--to", "2m",
                                   "--steps", 1, "--window", 15, "-o", tmp_path / "x")
     assert not (tmp_path / "x").exists()
+
+
+def test_python_matches_the_command_line(cli, tmp_path):
+    mask = _mask(tmp_path, pinmask.Camera(**MV))
+    capture, _, _, _ = ds.scene(ds.load(mask), [0.5, 1.2], 96, 96, 2000.0, 2)
+    cap = tmp_path / "c.npy"
+    np.save(cap, capture.astype(np.float32))
+    out = tmp_path / "o"
+    c = json.loads(cli.run("depthmap", cap, "--mask", mask, "--from", "0.4m", "--to", "inf",
+                           "--steps", 5, "--window", 31, "-o", out, "--json").stdout)
+    p = pinmask.depthmap(str(cap), str(mask), from_m=0.4, to_m=math.inf, steps=5, window=31)
+    arrays = {"depth_m", "confidence", "all_in_focus", "label"}
+    assert set(p) - arrays == set(c)
+    for key, value in c.items():
+        if key == "files":
+            assert p[key] == []  # nothing written
+        elif key in ("planes",):
+            assert p[key] == [pytest.approx(x) for x in value]
+        elif isinstance(value, float):
+            assert p[key] == pytest.approx(value, rel=1e-12), key
+        else:
+            assert p[key] == value, key
+    assert np.array_equal(p["depth_m"].astype(np.float32), _read(out / "depth.tif"))
+    assert p["planes"][-1]["object_distance_m"] is None  # inf
+    # The array form gives the same maps as the path form.
+    q = pinmask.depthmap(np.load(cap), pinmask.load_mask(str(mask)), from_m=0.4, to_m=math.inf,
+                         steps=5, window=31)
+    assert np.array_equal(q["depth_m"], p["depth_m"]) and q["capture"] is None
+
+
+def test_python_refusals_name_the_keyword(tmp_path):
+    mask = _mask(tmp_path, pinmask.Camera(**MV))
+    cap = np.ones((40, 40))
+    with pytest.raises(ValueError, match="window"):
+        pinmask.depthmap(cap, mask, from_m=0.4, to_m=2.0, window=41)
+    with pytest.raises(ValueError, match="window"):
+        pinmask.depthmap(cap, mask, from_m=0.4, to_m=2.0, window=8)
+    with pytest.raises(ValueError, match="to_m"):
+        pinmask.depthmap(cap, mask, from_m=2.0, to_m=1.0, window=15)
+    with pytest.raises(ValueError, match="nsr"):
+        pinmask.depthmap(cap, mask, from_m=0.4, to_m=2.0, window=15, nsr=0)

@@ -41,7 +41,6 @@ COMMANDS_BY_DESIGN = {
 COMMAND_GAPS = {
     "sweep": "a design sweep (one search per grid point) is a loop over pinmask.search in Python; "
              "the sweep's table, per-point files and plots are not in the module",
-    "depthmap": "pinmask.depthmap (python/bind_depthmap.cpp) is not written yet; run the command",
 }
 
 # Flags spelled differently in Python: flag -> keyword, function, or Camera field ("Camera.x").
@@ -77,6 +76,8 @@ COUNTERPART = {
     ("depth", "--from"): "from_m",
     ("depth", "--to"): "to_m",
     ("depth", "--no-tv"): "tv",  # tv=False
+    ("depthmap", "--from"): "from_m",
+    ("depthmap", "--to"): "to_m",
     ("score", "--allow-violations"): "load_mask",  # load_mask(path, allow_spacing_violations=True)
 }
 # Camera flags name the camera in these commands (elsewhere --object-distance is the refocus
@@ -103,6 +104,8 @@ BY_DESIGN = {
                                    "launch; the module searches in one process",
     ("score", "--explain"): "the returned dict holds the resolved settings",
     ("calibrate", "--output"): "the calibrated PSF, mask and report are returned as values",
+    ("depthmap", "--output-dir"): "the maps are returned as arrays beside the summary (write "
+                                  "them with write_image)",
     ("depth", "--output-dir"): "the per-distance figures are returned as dicts (write_image "
                                "writes any image)",
 }
