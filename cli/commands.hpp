@@ -33,6 +33,7 @@ void add_bench_export(CLI::App& bench);
 void add_bench_error_time(CLI::App& bench);
 void add_bench_period(CLI::App& bench);
 void add_bench_depth(CLI::App& bench);
+void add_bench_depthmap(CLI::App& bench);
 void add_bench_calibrate(CLI::App& bench);
 
 }  // namespace pinmask::cli

@@ -148,6 +148,7 @@ int main(int argc, char** argv) {
     cli::add_bench_error_time(bench);
     cli::add_bench_period(bench);
     cli::add_bench_depth(bench);
+    cli::add_bench_depthmap(bench);
     cli::add_bench_calibrate(bench);
     cli::refuse_negative_unsigned(app);  // --seed -1 must not wrap to 2^64 - 1
     enable_input_protection();           // no output may replace a file this run read
