@@ -14,7 +14,7 @@ namespace {
 constexpr std::array<std::pair<std::string_view, std::string_view>, 23> kKeywords{{
     {"chord_tolerance_m", "chord_tol"},
     {"cost_window", "window"},
-    {"distances_m", "from_m/to_m"},
+    {"distances_m", "from_m"},
     {"exact_geometry", "geometry='exact'"},
     {"frame_m", "frame"},
     {"grid_m", "grid"},
