@@ -10,6 +10,7 @@
 #include "core/field_names.hpp"
 #include "core/image_io.hpp"
 #include "depthmap/depthmap.hpp"
+#include "metrics/depth_fisher.hpp"
 #include "metrics/depth_loss.hpp"
 #include "python/common.hpp"
 #include "python/values.hpp"
@@ -98,6 +99,38 @@ residual capture - PSF (*) estimate, per pixel the lowest-cost plane refined by 
 path. Returns the keys of `pinmask depthmap --json` (files empty: nothing is written) plus the
 arrays depth_m (metres), confidence ([0, 1]), all_in_focus and label (plane index).
 Method and measured accuracy: docs/depth.md.)");
+
+    m.def(
+        "depth_fisher",
+        [](const py::handle& mask, double object_distance_m, double photons, double read_noise,
+           int rows, int cols) {
+            DepthFisherOptions o;
+            o.photons = photons;
+            o.read_noise_e = read_noise;
+            o.rows = rows;
+            o.cols = cols;
+            const Mask mk = mask_arg(mask);
+            DepthFisher f;
+            {
+                py::gil_scoped_release release;
+                f = depth_fisher(mk, object_distance_m, o);
+            }
+            py::dict out;
+            out["object_distance_m"] = f.object_distance_m;
+            out["fisher_inverse_m2"] = f.fisher_inverse_m2;
+            out["crb_inverse_per_m"] = f.crb_inverse_per_m;
+            out["crb_distance_m"] = f.crb_distance_m;
+            out["one_pixel_inverse_per_m"] = f.one_pixel_inverse_per_m;
+            return out;
+        },
+        py::arg("mask"), py::arg("object_distance_m"), py::arg("photons") = 20000.0,
+        py::arg("read_noise") = 0.0, py::arg("rows") = 0, py::arg("cols") = 0,
+        R"(Depth discriminability of a mask (metrics/depth_fisher): the Fisher information of
+t = 1/u in the capture of a point source on the axis at object_distance_m (photons electrons
+over one period, Poisson plus Gaussian read noise, variance mu + read_noise^2), over a
+rows x cols window (0: the sensor). Returns fisher_inverse_m2 (I(t), m^2), the Cramer-Rao bounds
+crb_inverse_per_m (sigma of 1/u) and crb_distance_m (sigma of u), and one_pixel_inverse_per_m
+(w / (f N_t d): one pixel of pattern change in 1/u).)");
 }
 
 }  // namespace pinmask::python

@@ -440,5 +440,13 @@ def depthmap(
     nsr: float = 0.01,  # Wiener NSR of every decode
     window: int = 121,  # odd box side of the cost, px
 ) -> dict[str, Any]: ...  # the keys of `pinmask depthmap --json`; depth_m, confidence... arrays
+def depth_fisher(
+    mask: MaskLike,
+    object_distance_m: float,  # u, m (finite)
+    photons: float = 20000.0,  # electrons of the point source over one period
+    read_noise: float = 0.0,  # rms electrons
+    rows: int = 0,  # window; 0: the sensor
+    cols: int = 0,
+) -> dict[str, float]: ...  # fisher_inverse_m2, crb_inverse_per_m, crb_distance_m, ...
 def is_library_buffer(array: object) -> bool: ...
 def input_copies() -> int: ...

@@ -7,7 +7,8 @@ whole-capture figure capture_depth_m (the frame-mean cost's minimum, parabola-re
 DRAWS noise draws: the estimates' mean (bias against u0) and standard deviation; the FWHM of the
 estimate's profile is 2.355 sigma (a Gaussian's). Beside them the one-pixel figure: the
 pattern's extent N_t d grows by f N_t d |d(1/u)| / w pixels, one pixel at d(1/u) = w / (f N_t d),
-i.e. du = u0^2 w / (f N_t d). Writes docs/depthmap_axial.png and prints the table.
+i.e. du = u0^2 w / (f N_t d), and the Cramer-Rao bound of metrics/depth_fisher
+(pinmask.depth_fisher: the noise floor of any unbiased estimate, as a FWHM 2.355 sigma). Writes docs/depthmap_axial.png and prints the table.
 Run from the repository: PYTHONPATH=build/python /usr/bin/python3 scripts/depthmap_axial.py"""
 import json
 import pathlib
@@ -62,9 +63,13 @@ with tempfile.TemporaryDirectory() as tmp:
                 est.append(json.loads(p.stdout)["capture_depth_m"])
             mean, sd = float(np.mean(est)), float(np.std(est, ddof=1))
             bias_px = (1 / mean - 1 / u0) / one_px
-            rows.append((name, u0, mean, 2.355 * sd, abs(mean - u0), u0 * u0 * one_px))
+            crb = pinmask.depth_fisher(str(mask), u0, photons=20000.0, rows=SIZE,
+                                       cols=SIZE)["crb_distance_m"]
+            rows.append((name, u0, mean, 2.355 * sd, abs(mean - u0), u0 * u0 * one_px,
+                         2.355 * crb))
             print(f"| {name} | {u0:g} | {mean:.4f} | {mean - u0:+.4f} ({bias_px:+.2f} px) | "
-                  f"{2.355 * sd:.5f} | {u0 * u0 * one_px:.4f} |", flush=True)
+                  f"{2.355 * sd:.5f} | {2.355 * crb:.5f} | {u0 * u0 * one_px:.4f} |",
+                  flush=True)
 
 import matplotlib  # noqa: E402
 matplotlib.use("Agg")
@@ -79,6 +84,8 @@ for name, marker in zip(CAMERAS, ["o", "s"]):
               label=f"{name}: |bias| of the mean")
     ax.loglog(u, [x[5] for x in r], "-", color=line.get_color(),
               label=f"{name}: one pixel of pattern change")
+    ax.loglog(u, [x[6] for x in r], ":", color=line.get_color(),
+              label=f"{name}: Cramer-Rao bound (FWHM)")
 ax.set_xlabel("object distance u0 (m)")
 ax.set_ylabel("axial error (m)")
 ax.set_title("pinmask depthmap: a point source on the axis (scripts/depthmap_axial.py)",

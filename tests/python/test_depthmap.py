@@ -138,3 +138,38 @@ def test_python_refusals_name_the_keyword(tmp_path):
         pinmask.depthmap(cap, mask, from_m=2.0, to_m=1.0, window=15)
     with pytest.raises(ValueError, match="nsr"):
         pinmask.depthmap(cap, mask, from_m=0.4, to_m=2.0, window=15, nsr=0)
+
+
+@pytest.mark.parametrize("camera,u", [
+    (MV, 0.5),  # 115 um pinholes: 8.000 px per cell at 0.5 m
+    (dict(object_distance_m=1.0, lens_focal_m=0.05, sensor_distance_m=0.04, wavelength_m=550e-9,
+          pixel_pitch_m=5e-6, pinhole_m=208.333e-6, sensor_cols=512, sensor_rows=512), 1.0)])
+def test_depth_fisher_against_numpy(tmp_path, camera, u):
+    # Where the pitch at u is a whole number of pixels the geometric box spot of the numpy model
+    # and pinmask's box kernel coincide, so the two Fisher informations must agree; elsewhere
+    # pinmask's exact PSF keeps the kernel of the mask's whole pixels per cell (docs/depth.md).
+    m = pinmask.generate(family="random", grid=16, holes=20, spacing=2, tiles=2, seed=3,
+                         camera=pinmask.Camera(**camera), kernel="box")
+    path = tmp_path / "m.mask.json"
+    m.save(str(path))
+    mj = ds.load(path)
+    f = pinmask.depth_fisher(m, u, photons=20000, read_noise=3, rows=320, cols=320)
+    t, dt = 1 / u, f["one_pixel_inverse_per_m"] / 20
+    mu = lambda tt: 20000 * ds.exact_psf(mj, 1 / tt, 320, 320)
+    d = (mu(t + dt) - mu(t - dt)) / (2 * dt)
+    info = float(np.sum(d * d / (mu(t) + 9.0)))
+    assert f["fisher_inverse_m2"] == pytest.approx(info, rel=0.01)
+    assert f["crb_distance_m"] == pytest.approx(u * u / math.sqrt(info), rel=0.01)
+    o = mj["optics"]
+    assert f["one_pixel_inverse_per_m"] == pytest.approx(
+        o["pixel_pitch_m"] / (o["sensor_distance_m"] * 32 * o["pinhole_m"]), rel=1e-12)
+
+
+def test_depth_fisher_refusals(tmp_path):
+    m = _mask(tmp_path, pinmask.Camera(**MV))
+    with pytest.raises(ValueError, match="photons"):
+        pinmask.depth_fisher(m, 0.5, photons=0)
+    with pytest.raises(ValueError, match="read_noise"):
+        pinmask.depth_fisher(m, 0.5, read_noise=-1)
+    with pytest.raises(ValueError, match="object_distance_m"):
+        pinmask.depth_fisher(m, math.inf)
