@@ -173,3 +173,27 @@ def test_depth_fisher_refusals(tmp_path):
         pinmask.depth_fisher(m, 0.5, read_noise=-1)
     with pytest.raises(ValueError, match="object_distance_m"):
         pinmask.depth_fisher(m, math.inf)
+
+
+def test_ctrl_c_writes_the_planes_done(cli, tmp_path):
+    import os
+    import signal
+    import subprocess
+    mask = _mask(tmp_path, pinmask.Camera(**MV))
+    cap = tmp_path / "c.npy"
+    np.save(cap, np.random.default_rng(1).random((512, 512)).astype(np.float32))
+    out = tmp_path / "o"
+    p = subprocess.Popen([cli.exe, "depthmap", str(cap), "--mask", str(mask), "--from", "0.4m",
+                          "--to", "2m", "--steps", "400", "-o", str(out), "--json"],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         env=dict(os.environ, PINMASK_WISDOM="off"))
+    for line in p.stderr:  # the first progress line: one plane is done
+        if "planes" in line and "/400" in line:
+            break
+    p.send_signal(signal.SIGINT)
+    stdout, stderr = p.communicate(timeout=120)
+    assert p.returncode == 0, stderr
+    s = json.loads(stdout)
+    assert s["interrupted"] and 1 <= s["planes_done"] < 400
+    assert len(s["planes"]) == s["planes_done"]
+    assert _read(out / "depth.tif").shape == (512, 512)
