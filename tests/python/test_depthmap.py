@@ -50,7 +50,7 @@ def test_whole_capture_depth_of_one_plane(cli, tmp_path, camera, frm, to, truth,
     cam = pinmask.Camera(**MV) if camera == "mv" else pinmask.paper_camera()
     mask = _mask(tmp_path, cam)
     row = ds.measure(_runner(cli, tmp_path, mask), _read, mask, [truth], frm, to, 16, 384,
-                     2000.0, 1)
+                     2000.0, 1, baseline=False)
     # Measured 1.57 / 0.51 / 0.87 / 0.60 plane spacings (docs/depth.md).
     assert row["capture_error_planes"] <= bound
 
