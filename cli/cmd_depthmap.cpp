@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <iterator>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -20,6 +21,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
+#include "core/output_set.hpp"
 #include "core/units.hpp"
 #include "depthmap/depthmap.hpp"
 #include "io/mask_json.hpp"
@@ -30,6 +32,9 @@ namespace {
 
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
+
+constexpr const char* kOutputFiles[] = {"depth.tif", "confidence.tif", "all_in_focus.tif",
+                                        "depthmap.png", "depthmap.json"};
 
 struct DepthmapCommandOptions {
     std::string capture;
@@ -106,8 +111,7 @@ json summary(const DepthmapResult& r, const DepthmapCommandOptions& o, std::size
         {"depth_max_m", finite_or_null(r.depth_max_m)},
         {"confidence_median", r.confidence_median},
         {"planes", planes},
-        {"files",
-         {"depth.tif", "confidence.tif", "all_in_focus.tif", "depthmap.png", "depthmap.json"}}};
+        {"files", std::vector<std::string>(std::begin(kOutputFiles), std::end(kOutputFiles))}};
 }
 
 void run(const DepthmapCommandOptions& o) {
@@ -115,6 +119,10 @@ void run(const DepthmapCommandOptions& o) {
     if (fs::exists(dir) && !fs::is_directory(dir)) {
         throw invalid_field("-o", o.output_dir, "is a file; give a folder (created when missing)");
     }
+    // Before any work: no output may replace an input or another output (core/output_set).
+    std::vector<NamedPath> outputs;
+    for (const char* name : kOutputFiles) outputs.push_back({"-o", dir / name, true});
+    plan_outputs({{"CAPTURE", o.capture}, {"--mask", o.mask}}, outputs);
     const Mask mask = io::read_mask_file(o.mask);
     LoadedImage loaded = read_image(o.capture);
     Plane grey = Plane::Zero(loaded.image.rows(), loaded.image.cols());

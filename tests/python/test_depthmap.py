@@ -97,6 +97,12 @@ def test_outputs_and_refusals(cli, tmp_path):
     assert "--steps" in cli.error("depthmap", cap, "--mask", mask, "--from", "1m", "--to", "2m",
                                   "--steps", 1, "--window", 15, "-o", tmp_path / "x")
     assert not (tmp_path / "x").exists()
+    # An output that would replace the capture: refused before any work, the capture intact.
+    inside = tmp_path / "o" / "depth.tif"
+    before = inside.read_bytes()
+    assert "-o" in cli.error("depthmap", inside, "--mask", mask, "--from", "0.4m", "--to", "2m",
+                             "--window", 15, "-o", tmp_path / "o")
+    assert inside.read_bytes() == before
 
 
 def test_python_matches_the_command_line(cli, tmp_path):
