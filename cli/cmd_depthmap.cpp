@@ -2,9 +2,9 @@
 // and an all-in-focus image from one capture, by a plane sweep over object distance
 // (depthmap/depthmap.hpp). Writes into -o DIR, together: depth.tif (float32, metres),
 // confidence.tif (float32, [0, 1]), all_in_focus.tif (float32), depthmap.png (depth in colour and
-// confidence in grey side by side, a colour bar from near (dark) to far (bright) at the right),
-// depthmap.json (the summary, also on stdout with --json). Ctrl-C stops after the current plane
-// and writes the sweep over the planes finished.
+// confidence in grey scaled to its maximum, side by side, a colour bar from near (dark) to far
+// (bright) at the right), depthmap.json (the summary, also on stdout with --json). Ctrl-C stops
+// after the current plane and writes the sweep over the planes finished.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -55,7 +55,8 @@ void ramp(double t, double& r, double& g, double& b) {
     b = std::clamp(0.55 + 0.5 * t - 1.0 * t * t, 0.0, 1.0);
 }
 
-// Depth (colour, by 1/u between the first and last plane) | confidence (grey) | colour bar.
+// Depth (colour, by 1/u between the first and last plane) | confidence (grey, scaled to its
+// maximum) | colour bar.
 Image picture(const DepthmapResult& r) {
     const int rows = static_cast<int>(r.depth_m.rows()), cols = static_cast<int>(r.depth_m.cols());
     const int gap = 8, bar = std::max(8, cols / 16);
@@ -63,6 +64,9 @@ Image picture(const DepthmapResult& r) {
     for (auto& c : out.channels) c.setOnes();
     auto inv = [](double u) { return std::isinf(u) ? 0.0 : 1.0 / u; };
     const double near = inv(r.distances_m.front()), far = inv(r.distances_m.back());
+    // Confidence in grey from 0 (black) to its largest value (white): its values are small when
+    // the cost curves are shallow, and the picture shows where it is high.
+    const double cmax = r.confidence.maxCoeff() > 0.0 ? r.confidence.maxCoeff() : 1.0;
     for (int i = 0; i < rows; ++i) {
         for (int j = 0; j < cols; ++j) {
             const double t = near == far ? 0.0 : (inv(r.depth_m(i, j)) - near) / (far - near);
@@ -71,7 +75,8 @@ Image picture(const DepthmapResult& r) {
             out.channels[0](i, j) = cr;
             out.channels[1](i, j) = cg;
             out.channels[2](i, j) = cb;
-            for (int k = 0; k < 3; ++k) out.channels[k](i, cols + gap + j) = r.confidence(i, j);
+            for (int k = 0; k < 3; ++k)
+                out.channels[k](i, cols + gap + j) = r.confidence(i, j) / cmax;
         }
         // The bar: near at the top, far at the bottom.
         double cr, cg, cb;
@@ -189,10 +194,10 @@ constexpr const char* kFooter =
     "as one plane). Light from one point spreads over the whole PSF, so the map resolves depth "
     "only on regions about the PSF's size: measured accuracy in docs/depth.md. The capture is "
     "read as grey (channels averaged). Outputs in -o DIR, written together: depth.tif (float32, "
-    "metres), confidence.tif, all_in_focus.tif, depthmap.png (depth | confidence | colour bar, "
-    "near dark at the top, far bright at the bottom), depthmap.json (also on stdout with "
-    "--json). Progress per plane on stderr; Ctrl-C stops after the current plane and writes the "
-    "sweep over the planes done.\n"
+    "metres), confidence.tif, all_in_focus.tif, depthmap.png (depth | confidence scaled to its "
+    "maximum | colour bar: near dark at the top, far bright at the bottom), depthmap.json (also "
+    "on stdout with --json). Progress per plane on stderr; Ctrl-C stops after the current plane "
+    "and writes the sweep over the planes done.\n"
     "Examples:\n"
     "  pinmask depthmap cap.tif --mask m.mask.json --from 0.3m --to 2m\n"
     "  pinmask depthmap cap.tif --mask m.mask.json --from 1m --to inf --steps 8 -o dm --json";
