@@ -21,6 +21,7 @@ void add_compare(CLI::App& app);
 void add_export(CLI::App& app, int& exit_code);  // exit_code = 1 when the DRC finds violations
 void add_check(CLI::App& app, int& exit_code);   // exit_code = 1 when violations are found
 void add_depth(CLI::App& app);
+void add_depthmap(CLI::App& app);
 void add_sweep(CLI::App& app);
 
 // `pinmask bench`: returns the bench app, the parent of the add_bench_* subcommands.
@@ -32,6 +33,7 @@ void add_bench_export(CLI::App& bench);
 void add_bench_error_time(CLI::App& bench);
 void add_bench_period(CLI::App& bench);
 void add_bench_depth(CLI::App& bench);
+void add_bench_depthmap(CLI::App& bench);
 void add_bench_calibrate(CLI::App& bench);
 
 }  // namespace pinmask::cli

@@ -138,6 +138,7 @@ int main(int argc, char** argv) {
     cli::add_export(app, exit_code);
     cli::add_check(app, exit_code);
     cli::add_depth(app);
+    cli::add_depthmap(app);
     cli::add_sweep(app);
     CLI::App& bench = cli::add_bench(app);
     cli::add_bench_plan(bench);
@@ -147,6 +148,7 @@ int main(int argc, char** argv) {
     cli::add_bench_error_time(bench);
     cli::add_bench_period(bench);
     cli::add_bench_depth(bench);
+    cli::add_bench_depthmap(bench);
     cli::add_bench_calibrate(bench);
     cli::refuse_negative_unsigned(app);  // --seed -1 must not wrap to 2^64 - 1
     enable_input_protection();           // no output may replace a file this run read

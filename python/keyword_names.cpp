@@ -11,8 +11,10 @@ namespace {
 
 // field name (as the libraries write it) -> keyword argument. Sorted by field name (a test
 // checks it). A field whose keyword is its own name needs no row.
-constexpr std::array<std::pair<std::string_view, std::string_view>, 21> kKeywords{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 23> kKeywords{{
     {"chord_tolerance_m", "chord_tol"},
+    {"cost_window", "window"},
+    {"distances_m", "from_m"},
     {"exact_geometry", "geometry='exact'"},
     {"frame_m", "frame"},
     {"grid_m", "grid"},

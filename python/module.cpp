@@ -4,11 +4,12 @@
 #include "python/common.hpp"
 
 namespace pinmask::python {
-void bind_depth(py::module_& m);  // python/bind_depth.cpp
-void bind_score(py::module_& m);  // python/bind_score.cpp
+void bind_depth(py::module_& m);         // python/bind_depth.cpp
+void bind_depthmap(py::module_& m);      // python/bind_depthmap.cpp
+void bind_score(py::module_& m);         // python/bind_score.cpp
 void bind_decode_batch(py::module_& m);  // python/bind_decode_batch.cpp
-void bind_sweep(py::module_& m);  // python/bind_sweep.cpp
-}
+void bind_sweep(py::module_& m);         // python/bind_sweep.cpp
+}  // namespace pinmask::python
 
 PYBIND11_MODULE(pinmask, m) {
     using namespace pinmask::python;
@@ -55,4 +56,5 @@ field, the value and the rule), RuntimeError for failures while doing valid work
     bind_check(m);
     bind_calibrate(m);
     bind_depth(m);
+    bind_depthmap(m);
 }

@@ -475,5 +475,22 @@ def depth(
     tv: bool = True,
     seed: int = 1,
 ) -> list[dict[str, Any]]: ...  # one dict per distance, the keys of `pinmask depth --json`
+def depthmap(
+    capture: Union[PathLikeStr, ArrayLike],  # grey (colour: channels averaged) or an image path
+    mask: MaskLike,
+    from_m: float,  # nearest plane, m
+    to_m: float,  # farthest plane, m (inf allowed)
+    steps: int = 16,  # planes, equally spaced in 1/u
+    nsr: float = 0.01,  # Wiener NSR of every decode
+    window: int = 121,  # odd box side of the cost, px
+) -> dict[str, Any]: ...  # the keys of `pinmask depthmap --json`; depth_m, confidence... arrays
+def depth_fisher(
+    mask: MaskLike,
+    object_distance_m: float,  # u, m (finite)
+    photons: float = 20000.0,  # electrons of the point source over one period
+    read_noise: float = 0.0,  # rms electrons
+    rows: int = 0,  # window; 0: the sensor
+    cols: int = 0,
+) -> dict[str, float]: ...  # fisher_inverse_m2, crb_inverse_per_m, crb_distance_m, ...
 def is_library_buffer(array: object) -> bool: ...
 def input_copies() -> int: ...

@@ -28,6 +28,7 @@ FUNCTIONS = {
     "check": ["check"],
     "depth": ["depth"],
     "sweep": ["sweep"],
+    "depthmap": ["depthmap"],
 }
 
 # Commands with no function, and why.
@@ -76,6 +77,8 @@ COUNTERPART = {
     ("depth", "--from"): "from_m",
     ("depth", "--to"): "to_m",
     ("depth", "--no-tv"): "tv",  # tv=False
+    ("depthmap", "--from"): "from_m",
+    ("depthmap", "--to"): "to_m",
     ("score", "--seeds"): "noise_seeds",
 }
 # Camera flags name the camera in these commands (elsewhere --object-distance is the refocus
@@ -105,6 +108,8 @@ BY_DESIGN = {
                                    "launch; the module searches in one process",
     ("score", "--explain"): "the returned dict holds the resolved settings",
     ("calibrate", "--output"): "the calibrated PSF, mask and report are returned as values",
+    ("depthmap", "--output-dir"): "the maps are returned as arrays beside the summary (write "
+                                  "them with write_image)",
     ("sweep", "--output"): "the rows and each point's best mask are returned (Mask.save writes "
                            "one); the sweep's CSV, Markdown table and plots are the command's",
     ("depth", "--output-dir"): "the per-distance figures are returned as dicts (write_image "

@@ -1,0 +1,92 @@
+#include "depthmap/depthmap.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/field_names.hpp"
+#include "core/resource_limits.hpp"
+#include "core/units.hpp"
+#include "depthmap/refine.hpp"
+#include "depthmap/sweep_cost.hpp"
+#include "design/working_distance.hpp"
+
+namespace pinmask {
+
+void DepthmapOptions::validate() const {
+    if (distances_m.size() < 2 || distances_m.size() > 1000) {
+        throw invalid_field(field_ref("distances_m"), std::to_string(distances_m.size()),
+                            "need between 2 and 1000 planes");
+    }
+    if (!(wiener_nsr > 0.0) || !std::isfinite(wiener_nsr)) {
+        throw invalid_field(field_ref("wiener_nsr"), std::to_string(wiener_nsr),
+                            "must be finite and > 0");
+    }
+    if (window < 3 || window % 2 == 0) {
+        throw invalid_field(field_ref("cost_window"), std::to_string(window),
+                            "must be odd and >= 3");
+    }
+}
+
+DepthmapResult depthmap(const Plane& capture, const Mask& mask, const DepthmapOptions& o) {
+    o.validate();
+    std::vector<double> u = o.distances_m;
+    for (double d : u) check_object_distance(mask.camera, d, "distances_m");
+    std::sort(u.begin(), u.end());
+    if (std::adjacent_find(u.begin(), u.end()) != u.end()) {
+        throw invalid_field(field_ref("distances_m"), "", "holds the same distance twice");
+    }
+    // Costs and estimates of every plane, plus the working set of one plane.
+    check_memory((2.0 * u.size() + 12.0) * double(capture.size()) * 8.0,
+                 "the depth map's " + std::to_string(u.size()) + " planes");
+    std::vector<Plane> costs, estimates;
+    DepthmapResult out;
+    for (std::size_t k = 0; k < u.size(); ++k) {
+        if (o.stop && o.stop->load() && k >= 1) {
+            out.interrupted = true;
+            break;
+        }
+        PlaneCost pc = sweep_cost(capture, mask, u[k], o.wiener_nsr, o.window);
+        costs.push_back(std::move(pc.cost));
+        estimates.push_back(std::move(pc.estimate));
+        out.distances_m.push_back(u[k]);
+        if (o.progress) o.progress(k + 1, u.size());
+    }
+    std::vector<double> inv;
+    for (double d : out.distances_m) inv.push_back(std::isinf(d) ? 0.0 : 1.0 / d);
+    std::vector<Plane> means;
+    for (const Plane& c : costs) {
+        out.plane_cost.push_back(c.mean());
+        means.push_back(Plane::Constant(1, 1, c.mean()));
+    }
+    const RefinedDepth whole = refine_depth(means, inv);
+    out.capture_depth_m = whole.depth_m(0, 0);
+    out.capture_confidence = whole.confidence(0, 0);
+    RefinedDepth r = refine_depth(costs, inv);
+    out.depth_m = std::move(r.depth_m);
+    out.confidence = std::move(r.confidence);
+    out.label = std::move(r.label);
+    out.all_in_focus = Plane(capture.rows(), capture.cols());
+    out.plane_fraction.assign(out.distances_m.size(), 0.0);
+    for (Eigen::Index i = 0; i < capture.rows(); ++i) {
+        for (Eigen::Index j = 0; j < capture.cols(); ++j) {
+            const auto k = static_cast<std::size_t>(out.label(i, j));
+            out.all_in_focus(i, j) = estimates[k](i, j);
+            out.plane_fraction[k] += 1.0 / double(capture.size());
+        }
+    }
+    auto median = [](const Plane& p) {
+        std::vector<double> v(p.data(), p.data() + p.size());
+        std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+        return v[v.size() / 2];
+    };
+    out.depth_min_m = out.depth_m.minCoeff();
+    out.depth_max_m = out.depth_m.maxCoeff();
+    out.depth_median_m = median(out.depth_m);
+    out.confidence_median = median(out.confidence);
+    return out;
+}
+
+}  // namespace pinmask

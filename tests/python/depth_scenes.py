@@ -1,0 +1,124 @@
+"""An independent forward model of multi-plane scenes for the depthmap tests and the table of
+docs/depth.md: each plane's exact-geometry PSF is drawn here in numpy from the mask's pinhole
+cells and the camera (docs/design.md section 2, Eq. (3) of the paper), never by pinmask's code.
+
+Geometry: tiled-mask cell (i, j) sits at s = ((i + 1/2) - N_t/2, (j + 1/2) - N_t/2) d from the
+mask centre; its spot is centred at M(u) s / w pixels from the optical axis, which lies at the
+frame's centre (rows/2, cols/2, a pixel corner for even sides), with M(u) = 1 - f/f' + f/u. The
+spot is a geometric box of side d |M(u)| / w pixels (the pinhole's image), integrated exactly
+over the pixels (pinmask uses its own kernel model: the mismatch is part of the test). Each
+pinhole weighs 1/K. A scene is a sum of planes (no occlusion): plane k's texture, zero outside
+its region, circularly convolved with its PSF over the frame, then photon noise.
+"""
+import json
+
+import numpy as np
+
+
+def magnification(cam, u):
+    return 1.0 - cam["sensor_distance_m"] / cam["lens_focal_m"] + cam["sensor_distance_m"] / u
+
+
+def exact_psf(mask_json, u, rows, cols):
+    cam, pat = mask_json["optics"], mask_json["pattern"]
+    n = pat["n"]
+    tiles = pat["tiles"]
+    d, w = cam["pinhole_m"], cam["pixel_pitch_m"]
+    side = d * abs(magnification(cam, u)) / w
+    pitch = d * magnification(cam, u) / w
+    cells = [(r, c) for r, c in pat["pinholes"]]
+    ntr, ntc = n * tiles[0], n * tiles[1]
+    er, ec = np.arange(rows + 1), np.arange(cols + 1)
+    out = np.zeros((rows, cols))
+    for tr in range(tiles[0]):
+        for tc in range(tiles[1]):
+            for r, c in cells:
+                cy = rows / 2 + (tr * n + r + 0.5 - ntr / 2) * pitch
+                cx = cols / 2 + (tc * n + c + 0.5 - ntc / 2) * pitch
+                wy = np.clip(np.minimum(er[1:], cy + side / 2) - np.maximum(er[:-1], cy - side / 2), 0, None)
+                wx = np.clip(np.minimum(ec[1:], cx + side / 2) - np.maximum(ec[:-1], cx - side / 2), 0, None)
+                out += np.outer(wy, wx) / (side * side)
+    return out / len(cells)
+
+
+def blur(x, psf):
+    """Circular convolution with the PSF whose centre (rows/2, cols/2) is the origin."""
+    h = np.fft.rfft2(np.fft.ifftshift(psf))
+    return np.fft.irfft2(np.fft.rfft2(x) * h, s=x.shape)
+
+
+def texture(rows, cols, rng):
+    """A piecewise-constant texture: random discs and bars of random grey levels on 0.2."""
+    yy, xx = np.mgrid[0:rows, 0:cols]
+    t = np.full((rows, cols), 0.2)
+    for _ in range(rows * cols // 900):
+        cy, cx = rng.integers(0, rows), rng.integers(0, cols)
+        r = rng.integers(3, 12)
+        if rng.random() < 0.5:
+            t[(yy - cy) ** 2 + (xx - cx) ** 2 < r * r] = rng.random()
+        else:
+            t[(abs(yy - cy) < r) & (abs(xx - cx) < 2)] = rng.random()
+    return t
+
+
+def scene(mask_json, distances, rows, cols, photons, seed):
+    """Vertical bands, one per distance (left to right), over a frame whose outer `border` pixels
+    are dark. Returns (capture, truth depth map with NaN in the border, texture, valid mask)."""
+    rng = np.random.default_rng(seed)
+    tex = texture(rows, cols, rng)
+    border = rows // 8
+    yy, xx = np.mgrid[0:rows, 0:cols]
+    inside = (yy >= border) & (yy < rows - border) & (xx >= border) & (xx < cols - border)
+    band = np.minimum(((xx - border) * len(distances)) // (cols - 2 * border), len(distances) - 1)
+    truth = np.where(inside, np.asarray(distances)[band], np.nan)
+    clean = np.zeros((rows, cols))
+    for k, u in enumerate(distances):
+        clean += blur(tex * inside * (band == k), exact_psf(mask_json, u, rows, cols))
+    capture = rng.poisson(np.maximum(clean, 0) * photons) / photons
+    return capture, truth, tex * inside, inside
+
+
+def load(path):
+    with open(path) as f:
+        return json.load(f)
+
+
+def wiener(capture, psf, nsr):
+    """Wiener estimate with the PSF normalised to sum 1 (numpy, for the single-plane baseline)."""
+    h = np.fft.rfft2(np.fft.ifftshift(psf / psf.sum()))
+    return np.fft.irfft2(np.conj(h) / (abs(h) ** 2 + nsr) * np.fft.rfft2(capture), s=capture.shape)
+
+
+def psnr_fitted(x, truth, region):
+    """PSNR (peak 1) of x against truth on region after the least-squares gain (the decodes
+    normalise the PSF to sum 1, the capture holds every tile's light)."""
+    a, b = x[region], truth[region]
+    gain = float(a @ b) / float(a @ a)
+    return 10 * np.log10(1.0 / np.mean((gain * a - b) ** 2))
+
+
+def measure(run_depthmap, read_tiff, mask_path, planes, frm, to, steps, size, photons, seed,
+            nsr=0.01, baseline=True):
+    """One row: the scene of `planes` rendered here, depthmap run by run_depthmap(capture, frm,
+    to, steps) -> (out_dir, summary), figures against the truth; baseline=False skips the best
+    single-plane decode (16 numpy decodes)."""
+    mj = load(mask_path)
+    capture, truth, tex, inside = scene(mj, planes, size, size, photons, seed)
+    out, summary = run_depthmap(capture, frm, to, steps)
+    depth = read_tiff(out / "depth.tif")
+    aif = read_tiff(out / "all_in_focus.tif")
+    inv = lambda x: 1.0 / np.asarray(x, dtype=float)
+    spacing = (inv(frm) - (0.0 if np.isinf(to) else inv(to))) / (steps - 1)
+    err = inv(depth[inside]) - inv(truth[inside])
+    best_single = None if not baseline else max(psnr_fitted(wiener(capture, exact_psf(mj, u, size, size), nsr), tex, inside)
+                      for u in 1.0 / np.linspace(inv(frm), 0.0 if np.isinf(to) else inv(to), steps))
+    return {
+        "rms_m": float(np.sqrt(np.mean((depth[inside] - truth[inside]) ** 2))),
+        "rms_planes": float(np.sqrt(np.mean(err ** 2)) / spacing),
+        "within_spacing": float(np.mean(abs(err) <= spacing)),
+        "aif_psnr_db": psnr_fitted(aif, tex, inside),
+        "single_best_psnr_db": best_single,
+        "capture_depth_m": summary["capture_depth_m"],
+        "capture_error_planes": float(abs(inv(summary["capture_depth_m"]) - inv(planes[0])) / spacing)
+        if len(planes) == 1 else None,
+    }
