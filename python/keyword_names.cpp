@@ -11,7 +11,7 @@ namespace {
 
 // field name (as the libraries write it) -> keyword argument. Sorted by field name (a test
 // checks it). A field whose keyword is its own name needs no row.
-constexpr std::array<std::pair<std::string_view, std::string_view>, 23> kKeywords{{
+constexpr auto kKeywords = std::to_array<std::pair<std::string_view, std::string_view>>({
     {"chord_tolerance_m", "chord_tol"},
     {"cost_window", "window"},
     {"distances_m", "from_m"},
@@ -35,7 +35,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 23> kKeyword
     {"weights.analytic_wiener", "w_analytic"},
     {"wiener_nsr", "nsr"},
     {"window", "size"},
-}};
+});
 
 }  // namespace
 

@@ -11,7 +11,7 @@ namespace {
 
 // field name (as the libraries write it) -> flag. Sorted by field name (a test checks it, and
 // that every field a library names has a row).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 104> kFlags{{
+constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_view>>({
     {"allow_spectral_zeros", "--allow-spectral-zeros"},
     {"allow_violations", "--allow-violations"},
     {"attempts", "--attempts"},
@@ -118,7 +118,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 104> kFlags{
     {"weights.analytic_wiener", "--w-analytic"},
     {"wiener_nsr", "--nsr"},
     {"window", "--size"},
-}};
+});
 
 }  // namespace
 

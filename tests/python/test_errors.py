@@ -84,8 +84,7 @@ def test_keyword_table_is_sorted_and_names_keywords(source_dir):
     # each keyword a parameter of some function of the module (or its value, "rerank_tv=False").
     text = (source_dir / "python" / "keyword_names.cpp").read_text()
     rows = re.findall(r'\{"([^"]+)", "([^"]+)"\},', text)
-    size = int(re.search(r"std::string_view>, (\d+)>", text).group(1))
-    assert len(rows) == size > 0
+    assert len(rows) > 0
     fields = [f for f, _ in rows]
     assert fields == sorted(fields, key=lambda f: f.encode()) and len(set(fields)) == len(fields)
     stub = (source_dir / "python" / "pinmask.pyi").read_text()
