@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "core/number_format.hpp"
 #include "decode/convolution.hpp"
 #include "decode/decode_method.hpp"
@@ -27,7 +28,8 @@ std::string size_text(Eigen::Index r, Eigen::Index c) {
     return std::to_string(r) + " x " + std::to_string(c);
 }
 
-void check_nonnegative(const char* field, double v) {
+// `field` is a field reference (core/field_names): each face spells it as its flag or keyword.
+void check_nonnegative(const std::string& field, double v) {
     if (!(v >= 0.0) || !std::isfinite(v))
         throw invalid_field(field, format_number(v, 17), "must be finite and >= 0");
 }
@@ -222,13 +224,13 @@ void IterativeParams::validate() const {
         throw invalid_field("iterative.max_iterations", std::to_string(max_iterations),
                             "must be >= 0");
     }
-    check_nonnegative("iterative.tolerance", tolerance);
+    check_nonnegative(field_ref("tolerance"), tolerance);
     if (warm_start && !is_all_finite(*warm_start))
         throw invalid_field("iterative.warm_start", "non-finite values", "must be finite");
 }
 
 void WienerParams::validate() const {
-    check_nonnegative("wiener.nsr", nsr);
+    check_nonnegative(field_ref("wiener_nsr"), nsr);
     if (nsr_per_frequency &&
         !(nsr_per_frequency->minCoeff() >= 0.0 && is_all_finite(*nsr_per_frequency))) {
         throw invalid_field("wiener.nsr_per_frequency", "negative or non-finite values",
@@ -237,7 +239,7 @@ void WienerParams::validate() const {
 }
 
 void TikhonovParams::validate() const {
-    check_nonnegative("tikhonov.lambda", lambda);
+    check_nonnegative(field_ref("lambda"), lambda);
     if (regulariser != TikhonovRegulariser::kIdentity &&
         regulariser != TikhonovRegulariser::kGradient) {
         throw invalid_field("tikhonov.regulariser", std::to_string(static_cast<int>(regulariser)),
@@ -245,11 +247,11 @@ void TikhonovParams::validate() const {
     }
 }
 
-void TvParams::validate() const { check_nonnegative("tv.lambda", lambda); }
+void TvParams::validate() const { check_nonnegative(field_ref("lambda"), lambda); }
 
 void TvqcParams::validate() const {
-    if (eps) check_nonnegative("tvqc.eps", *eps);
-    if (noise_sigma) check_nonnegative("tvqc.noise_sigma", *noise_sigma);
+    if (eps) check_nonnegative(field_ref("eps"), *eps);
+    if (noise_sigma) check_nonnegative(field_ref("noise_sigma"), *noise_sigma);
     if (!eps && !noise_sigma) {
         throw invalid_field("tvqc.eps", "unset",
                             "TVQC needs eps or noise_sigma (eps = sigma sqrt(N) "

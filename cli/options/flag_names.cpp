@@ -11,7 +11,7 @@ namespace {
 
 // field name (as the libraries write it) -> flag. Sorted by field name (a test checks it, and
 // that every field a library names has a row).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 102> kFlags{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 106> kFlags{{
     {"allow_spectral_zeros", "--allow-spectral-zeros"},
     {"allow_violations", "--allow-violations"},
     {"attempts", "--attempts"},
@@ -101,6 +101,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 102> kFlags{
     {"snr_db", "--snr"},
     {"spacing", "--spacing"},
     {"steps", "--steps"},
+    {"threads", "--threads"},
     {"tiff_dpi", "--dpi"},
     {"tiles", "--tiles"},
     {"to_m", "--to"},
@@ -112,6 +113,9 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 102> kFlags{
     {"units", "--units"},
     {"vendor", "--vendor"},
     {"weights.analytic_wiener", "--w-analytic"},
+    {"weights.max_sidelobe", "--w-max-sidelobe"},
+    {"weights.min_spectrum", "--w-min-spectrum"},
+    {"weights.sidelobe_energy", "--w-sidelobe-energy"},
     {"wiener_nsr", "--nsr"},
     {"window", "--size"},
 }};
