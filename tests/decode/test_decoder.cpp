@@ -61,41 +61,42 @@ TEST_CASE("decode_plane rejects bad inputs, naming the option") {
         set(fresh);
         check_rejects(p, psf, fresh, field);
     };
-    // Each struct's validate() names the struct and the field.
-    with([](DecodeOptions& x) { x.wiener.nsr = -0.1; }, "wiener.nsr");
+    // Each struct's validate() names the field by its reference (core/field_names), which each
+    // face spells as its flag or keyword.
+    with([](DecodeOptions& x) { x.wiener.nsr = -0.1; }, "`wiener_nsr`");
     with(
         [](DecodeOptions& x) {
             x.method = DecodeMethod::kTikhonov;
             x.tikhonov.lambda = -1.0;
         },
-        "tikhonov.lambda");
+        "`lambda`");
     with(
         [](DecodeOptions& x) {
             x.method = DecodeMethod::kTv;
             x.tv.lambda = std::numeric_limits<double>::quiet_NaN();
         },
-        "tv.lambda");
+        "`lambda`");
     with(
         [](DecodeOptions& x) {
             x.method = DecodeMethod::kTvqc;
             x.tvqc.eps = -1.0;
         },
-        "tvqc.eps");
+        "`eps`");
     with(
         [](DecodeOptions& x) {
             x.method = DecodeMethod::kTvqc;
             x.tvqc.noise_sigma = -1.0;
         },
-        "tvqc.noise_sigma");
+        "`noise_sigma`");
     with(
         [](DecodeOptions& x) {
             x.method = DecodeMethod::kTvqc;
             x.tvqc.eps = 0.1;
             x.tvqc.noise_sigma = 0.1;
         },
-        "tvqc.noise_sigma");  // both: one must go
+        "`noise_sigma`");  // both: one must go
     with([](DecodeOptions& x) { x.iterative.max_iterations = -3; }, "iterative.max_iterations");
-    with([](DecodeOptions& x) { x.iterative.tolerance = -1e-3; }, "iterative.tolerance");
+    with([](DecodeOptions& x) { x.iterative.tolerance = -1e-3; }, "`tolerance`");
     with([](DecodeOptions& x) { x.iterative.warm_start = Plane::Zero(7, 8); }, "warm_start");
     with([](DecodeOptions& x) { x.wiener.nsr_per_frequency = Plane::Constant(8, 9, 0.1); },
          "nsr_per_frequency");
