@@ -94,7 +94,7 @@ TEST_CASE("decode_plane rejects bad inputs, naming the option") {
             x.tvqc.eps = 0.1;
             x.tvqc.noise_sigma = 0.1;
         },
-        "`noise_sigma`");  // both: one must go
+        "tvqc.noise_sigma");  // both: one must go
     with([](DecodeOptions& x) { x.iterative.max_iterations = -3; }, "iterative.max_iterations");
     with([](DecodeOptions& x) { x.iterative.tolerance = -1e-3; }, "`tolerance`");
     with([](DecodeOptions& x) { x.iterative.warm_start = Plane::Zero(7, 8); }, "warm_start");
