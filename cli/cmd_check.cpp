@@ -18,6 +18,7 @@
 #include "cli/outputs/check_picture.hpp"
 #include "cli/outputs/check_report.hpp"
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 #include "core/units.hpp"
 #include "design/fab_grid.hpp"
 #include "export/drc.hpp"
@@ -37,6 +38,10 @@ namespace fs = std::filesystem;
 
 // Returns the exit code: 0 clean, 1 violations found.
 int run(const CheckOptions& o) {
+    if (fs::exists(o.input)) {
+        if (const auto problem = input_file_problem(o.input))
+            throw invalid_field("input", o.input, *problem);
+    }
     if (!fs::is_regular_file(o.input))
         throw invalid_field("input", o.input, "must be an existing mask or fabrication file");
     if (!std::isfinite(o.max_xor_um2) || o.max_xor_um2 < 0)

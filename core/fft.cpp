@@ -17,6 +17,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/fftw_api.hpp"
+#include "core/resource_limits.hpp"
 
 namespace pinmask {
 namespace {
@@ -181,6 +182,27 @@ void* make_real_plan(bool forward, int rows, int cols, unsigned flags) {
     return plan;
 }
 
+// What planning one transform allocates: the two scratch buffers of make_plan (FFTW's own
+// working memory beside them is small: twiddle tables and row buffers). fftw_malloc failing
+// ends the process inside FFTW ("alloc.c: assertion failed"), so the size is checked against
+// the process-wide budget before planning.
+double plan_bytes(Kind kind, int rows, int cols) {
+    const double n = double(rows) * double(cols);
+    const double half = double(rows) * double(cols / 2 + 1);
+    switch (kind) {
+        case Kind::kR2C:
+        case Kind::kC2R:
+            return n * sizeof(double) + half * 2.0 * sizeof(double);
+        case Kind::kR2CF:
+        case Kind::kC2RF:
+            return n * sizeof(float) + half * 2.0 * sizeof(float);
+        case Kind::kC2CForward:
+        case Kind::kC2CBackward:
+            break;
+    }
+    return 2.0 * n * 2.0 * sizeof(double);
+}
+
 // Makes one plan with `flags` on fftw_malloc'd scratch buffers (never the caller's data).
 void* make_plan(Kind kind, int rows, int cols, unsigned flags) {
     switch (kind) {
@@ -218,6 +240,8 @@ void* cached_plan(Kind kind, int rows, int cols) {
     const auto key = std::make_tuple(kind, rows, cols, threads);
     if (auto it = c.plans.find(key); it != c.plans.end()) return it->second;
 
+    check_memory(plan_bytes(kind, rows, cols),
+                 "planning an FFT of " + std::to_string(rows) + " x " + std::to_string(cols));
     const auto t0 = std::chrono::steady_clock::now();
     if (is_float(kind)) {
         fftwf_plan_with_nthreads(threads);

@@ -1,13 +1,17 @@
 #include "core/output_set.hpp"
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <mutex>
 #include <string>
 #include <system_error>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "core/error.hpp"
 
@@ -53,6 +57,21 @@ fs::path nearest_existing_parent(const fs::path& p) {
         parent = parent.parent_path();
     }
     return parent;
+}
+
+// Why no file can be created in `folder` (which exists), or "" when one can. access() trusts
+// the permission bits; some folders refuse every new name whatever their bits (/proc, /sys,
+// a full or read-only mount seen through a writable bind): a real create-and-unlink finds
+// them before any work, instead of a raw "cannot open ... for writing" after it.
+std::string create_problem(const fs::path& folder) {
+    static std::atomic<unsigned> serial{0};
+    const fs::path probe = folder / (".pinmask-probe-" + std::to_string(::getpid()) + "-" +
+                                     std::to_string(serial.fetch_add(1)));
+    const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (fd < 0) return std::strerror(errno);
+    ::close(fd);
+    ::unlink(probe.c_str());
+    return "";
 }
 
 // Identity keys of a path: "i<dev>:<ino>" when it exists, and "p<canonical path>" always.
@@ -144,6 +163,21 @@ void check_output_path(const fs::path& path, const std::string& flag) {
         throw bad_output(
             flag, path,
             std::string("is ") + kind + ": pinmask writes only regular files (give a file name)");
+    }
+    // The folder it goes into, when it exists, must take new files: probed once per process.
+    const fs::path folder_now = fs::absolute(path, ec).lexically_normal().parent_path();
+    if (fs::is_directory(folder_now, ec)) {
+        static std::mutex probed_mutex;
+        static std::unordered_set<std::string> probed;
+        std::lock_guard probe_lock(probed_mutex);
+        if (!probed.count(folder_now.string())) {
+            if (const std::string why = create_problem(folder_now); !why.empty()) {
+                throw bad_output(
+                    flag, path,
+                    "no file can be created in its folder '" + folder_now.string() + "': " + why);
+            }
+            probed.insert(folder_now.string());
+        }
     }
     std::lock_guard lock(registry_mutex());
     if (const fs::path* in = find_protected(path)) {

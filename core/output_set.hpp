@@ -49,7 +49,9 @@ void protect_input(const std::filesystem::path& path);
 
 // The one-output check StagedFiles and write_file_atomic run on every final name: throws
 // InvalidInput("<flag>: '<path>': <rule>") for an existing directory, an existing special file
-// (device, pipe, socket: renaming over it would replace it) or a protected input.
+// (device, pipe, socket: renaming over it would replace it), a name with no room for the
+// temporary names, a folder where no file can be created (/proc: probed once per folder by a
+// create and unlink) or a protected input.
 void check_output_path(const std::filesystem::path& path, const std::string& flag);
 
 // Keys of a path's identity: "i<device>:<inode>" when it exists, and its canonical path. Two

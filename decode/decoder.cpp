@@ -28,6 +28,7 @@ std::string size_text(Eigen::Index r, Eigen::Index c) {
     return std::to_string(r) + " x " + std::to_string(c);
 }
 
+// `field` is a field reference (core/field_names): each face spells it as its flag or keyword.
 void check_nonnegative(const std::string& field, double v) {
     if (!(v >= 0.0) || !std::isfinite(v))
         throw invalid_field(field, format_number(v, 17), "must be finite and >= 0");

@@ -1,6 +1,7 @@
 #include "design/families.hpp"
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "design/random_sparse.hpp"
 
 namespace pinmask {
@@ -10,11 +11,12 @@ Family parse_family(std::string_view name) {
     if (name == "paper") return Family::kPaper;
     if (name == "mura") return Family::kMura;
     if (name == "ura") {
-        throw invalid_field("family", "ura",
+        throw invalid_field(field_ref("family"), "ura",
                             "not available: a URA is rectangular (p x (p + 2) cells) and pinmask "
                             "patterns are square n x n tori; use mura (square, prime p = 4m + 1)");
     }
-    throw invalid_field("family", std::string(name), "must be one of random, paper, mura");
+    throw invalid_field(field_ref("family"), std::string(name),
+                        "must be one of random, paper, mura");
 }
 
 std::string family_name(Family family) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "core/resource_limits.hpp"
 #include "design/exclusion_grid.hpp"
 #include "design/packing_bound.hpp"
@@ -19,7 +20,8 @@ void check_options(const RandomSparseOptions& o) {
         throw invalid_field("n", std::to_string(o.n),
                             "must be between 1 and " + std::to_string(kMaxGrid));
     }
-    if (o.holes < 1) throw invalid_field("holes", std::to_string(o.holes), "must be >= 1");
+    if (o.holes < 1)
+        throw invalid_field(field_ref("holes"), std::to_string(o.holes), "must be >= 1");
     if (!std::isfinite(o.min_spacing_cells) || o.min_spacing_cells < 0.0) {
         throw invalid_field("min_spacing_cells", std::to_string(o.min_spacing_cells),
                             "must be finite and >= 0");
@@ -65,7 +67,7 @@ std::vector<Cell> attempt(int n, int holes, double s, std::mt19937_64& rng) {
             << " attempt" << (attempts == 1 ? "" : "s") << ")";
     }
     msg << ". Ask for fewer pinholes, a smaller spacing or a larger grid";
-    throw invalid_field("holes", std::to_string(o.holes), msg.str());
+    throw invalid_field(field_ref("holes"), std::to_string(o.holes), msg.str());
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -56,6 +57,23 @@ void check_object_distance(const Camera& c, double u, const char* field) {
 
 double pixels_per_cell_at(const Camera& c, double u) {
     return std::fabs(magnification_at(c, u)) * c.pinhole_m / c.pixel_pitch_m;
+}
+
+std::optional<std::string> sub_pixel_cells(const Camera& c) {
+    const auto format_number = [](double v) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.3g", v);
+        return std::string(buf);
+    };
+    const double pitch = pixels_per_cell_at(c, c.object_distance_m);
+    if (!(pitch > 0.0 && pitch < 0.5)) return std::nullopt;
+    return "one cell (pinhole_m " + format_length(c.pinhole_m) + " times |1 - f/f' + f/u| = " +
+           format_number(std::fabs(magnification_at(c, c.object_distance_m))) + ") images to " +
+           format_number(pitch) + " px of pixel_pitch_m " + format_length(c.pixel_pitch_m) +
+           " at u = " + format_length(c.object_distance_m) +
+           ": less than half a pixel, so the pattern is not resolved and the whole-pixel "
+           "models use 1 px per cell, not this camera; check lens_focal_m, sensor_distance_m, "
+           "pinhole_m and pixel_pitch_m";
 }
 
 double pinhole_for_pixels_per_cell(const Camera& c, long long n_px) {

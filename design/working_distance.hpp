@@ -20,6 +20,9 @@
 //                 |z_eff| / d against the geometric cell d, i.e. 1/(2 N_F(u)), at least 1.
 #pragma once
 
+#include <optional>
+#include <string>
+
 #include "design/camera.hpp"
 #include "design/mask.hpp"
 #include "design/optics.hpp"
@@ -70,6 +73,13 @@ void check_object_distance(const Camera& camera, double object_distance_m,
 
 // pitch(u) for the camera's pinhole at the camera's own u.
 double pixels_per_cell_at(const Camera& camera, double object_distance_m);
+
+// Why the camera's cells are too small for its sensor, or nullopt: when one cell images to less
+// than half a pixel at the camera's u (0 < pitch(u) < 0.5), the nearest whole number of pixels
+// per cell is 0 and every whole-pixel model uses 1, so the PSF and the decoder would describe
+// another camera. The message names the camera fields that set the pitch. f = f' with u = inf
+// (pitch 0) is the zero-magnification case design/kernel_validity already reports.
+std::optional<std::string> sub_pixel_cells(const Camera& camera);
 
 // d(N, u) at the camera's u; InvalidInput when M(u) = 0 (f = f' with u = inf: z_eff infinite,
 // every pinhole images to the same spot) or N < 1.

@@ -11,6 +11,7 @@
 #include <functional>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 #include "layout/segment_predicates.hpp"
 #include "layout/xor_area.hpp"
 
@@ -460,7 +461,8 @@ void validate_rules(const DrcRules& r) {
                             "must be finite and >= 0");
     }
     if (r.max_vertices < 3) {
-        throw invalid_field("max_vertices", std::to_string(r.max_vertices), "must be >= 3");
+        throw invalid_field(field_ref("max_vertices"), std::to_string(r.max_vertices),
+                            "must be >= 3");
     }
 }
 

@@ -181,8 +181,9 @@ using HiddenLayers = std::map<std::string, std::string, std::less<>>;  // name -
 
 // An entity group a viewer draws differently from the outline pinmask reads is refused by name:
 // the entity on a hidden layer, invisible (60 = 1), with a colour < 0 (off), with a width
-// (40, 41, 43: a wide polyline covers more than its outline), or with an extrusion direction
-// other than +z (210, 220, 230: the entity is mirrored or tilted into the plane).
+// (40, 41, 43: a wide polyline covers more than its outline) or a lineweight (370), or with an
+// extrusion direction other than +z (210, 220, 230: the entity is mirrored or tilted into the
+// plane).
 void check_entity_group(const Pair& p, const HiddenLayers& hidden, std::string_view entity) {
     const std::string e(entity);
     switch (p.code) {
@@ -206,6 +207,12 @@ void check_entity_group(const Pair& p, const HiddenLayers& hidden, std::string_v
                                       std::to_string(p.code) +
                                       ") is not supported: a wide polyline covers more than its "
                                       "outline");
+            break;
+        case 370:  // lineweight in 1/100 mm; < 0 is by layer, by block or the default
+            if (!p.value.starts_with('-') && !is_zero(p.value))
+                throw bad(p.line, e + " lineweight " + std::string(p.value.substr(0, 20)) +
+                                      " (group 370) is not supported: a viewer or plotter draws "
+                                      "the outline that wide");
             break;
         case 210:
         case 220:

@@ -357,6 +357,34 @@ FileGeometry read_svg(std::string_view text) {
         if (meta != std::string_view::npos && pos > meta && pos < text.find("</metadata>", meta))
             continue;
         const TagAttributes attrs = check_element(text, pos, root);
+        // <title>, <desc> and <metadata> hold content a renderer never draws: a shape inside
+        // <title> or <desc> would be read as a pinhole no drawing shows, so markup there is
+        // refused; every <metadata> (other tools put RDF markup there) is skipped whole, as a
+        // renderer skips it.
+        bool skipped = false;
+        for (const std::string_view holder : {"title", "desc", "metadata"}) {
+            const std::string open = "<" + std::string(holder);
+            if (text.substr(pos, open.size()) != open || pos + open.size() >= text.size()) continue;
+            const char after = text[pos + open.size()];
+            if (after != '>' && after != '/' && !std::isspace(static_cast<unsigned char>(after)))
+                continue;
+            const std::size_t tag_end = text.find('>', pos);
+            if (tag_end == std::string_view::npos) throw bad(pos, "element is not closed");
+            if (text[tag_end - 1] == '/') break;  // <desc/>: empty
+            const std::string close = "</" + std::string(holder) + ">";
+            const std::size_t stop = text.find(close, tag_end);
+            if (stop == std::string_view::npos)
+                throw bad(pos, "<" + std::string(holder) + "> is not closed");
+            if (holder != "metadata" &&
+                text.substr(tag_end + 1, stop - tag_end - 1).find('<') != std::string_view::npos)
+                throw bad(pos, "markup inside <" + std::string(holder) +
+                                   "> is not supported: a renderer draws nothing inside it, so "
+                                   "a shape there is no part of the drawing");
+            pos = stop + close.size() - 1;
+            skipped = true;
+            break;
+        }
+        if (skipped) continue;
         const bool is_group = text.substr(pos, 3) == "<g " || text.substr(pos, 3) == "<g>";
         if (is_group) {
             std::string_view id;

@@ -17,6 +17,10 @@ using namespace json_strict;
 
 // A checkpoint holds a few KiB per chain (the generator state); 1 GiB is far past any real run.
 constexpr std::uintmax_t kMaxCheckpointBytes = std::uintmax_t{1} << 30;
+// A chain logs its best at 1, 2, .., 16 evaluations and then at ~19 % steps: 1e9 evaluations
+// (the bound of every face) make about 130 entries. A longer log is no chain's: refused before
+// it is read (a 300,000-entry log once took minutes to resume).
+constexpr std::size_t kMaxLogEntries = 4096;
 
 OrderedJson pattern_json(const Pattern& p) {
     OrderedJson holes = OrderedJson::array();
@@ -101,11 +105,20 @@ ChainState read_chain(const Json& j, const std::string& path) {
     s.next_checkpoint = read_count(r.required("next_log_at"), r.path("next_log_at"));
     const Json& log = r.required("log");
     if (!log.is_array()) fail(r.path("log"), "must be an array of [evaluations, best]");
+    if (log.size() > kMaxLogEntries) {
+        fail(r.path("log"),
+             "has " + std::to_string(log.size()) + " entries; a chain's log has at most " +
+                 std::to_string(kMaxLogEntries) + " (about 130 for 1e9 evaluations)");
+    }
     for (std::size_t i = 0; i < log.size(); ++i) {
         const std::string p = indexed(r.path("log"), i);
         if (!log[i].is_array() || log[i].size() != 2) fail(p, "must be [evaluations, best]");
         s.checkpoints.push_back(
             {read_count(log[i][0], p + "[0]"), read_objective(log[i][1], p + "[1]")});
+        if (i > 0 && s.checkpoints[i].first <= s.checkpoints[i - 1].first)
+            fail(p + "[0]", "must be above the previous entry's evaluations");
+        if (s.checkpoints[i].first > s.evaluations)
+            fail(p + "[0]", "must be at most the chain's evaluations");
     }
     const int capacity = read_int(r.required("top_capacity"), r.path("top_capacity"));
     if (capacity < 1 || capacity > 1000) fail(r.path("top_capacity"), "must be in 1..1000");

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/field_names.hpp"
 
 namespace pinmask {
 namespace {
@@ -43,7 +44,7 @@ void ObjectiveWeights::validate() const {
     bool any = false;
     for (const auto& [name, w] : all) {
         if (!std::isfinite(w) || w < 0.0) {
-            throw invalid_field(std::string("weights.") + name, std::to_string(w),
+            throw invalid_field(field_ref(std::string("weights.") + name), std::to_string(w),
                                 "must be finite and >= 0");
         }
         any = any || w > 0.0;

@@ -33,6 +33,82 @@ std::int64_t next_checkpoint(std::int64_t e) {
     return std::max(e + 1, static_cast<std::int64_t>(std::ceil(static_cast<double>(e) * 1.19)));
 }
 
+// A resumed chain state (a checkpoint file, or a message from another rank) is an input: it is
+// checked against this run before any chain continues from it. Its patterns must be patterns of
+// this search (the grid, tiling, spacing and pinhole count a fresh draw has), its counts within
+// the run's budget, its log ordered and within its counts, and every objective it claims must be
+// what the objective gives its pattern now: a state claiming 1e9 evaluations or an objective no
+// pattern reaches is refused, not copied into the summary.
+void check_resumed_state(const ChainState& s, std::size_t chain, const SearchOptions& o,
+                         const SearchObjective& objective, const Pattern& reference) {
+    const std::string where = "resume: chain " + std::to_string(chain);
+    const auto refuse = [&](const std::string& what) { throw InvalidInput(where + ": " + what); };
+    const std::int64_t budget =
+        o.max_evaluations > 0 ? o.max_evaluations : SearchOptions::kMaxEvaluations;
+    if (s.evaluations < 0 || s.evaluations > budget) {
+        refuse("claims " + std::to_string(s.evaluations) + " evaluations; this run's budget is " +
+               std::to_string(budget) + " per chain");
+    }
+    std::int64_t previous = 0;
+    double previous_best = INFINITY;
+    for (const auto& [e, best] : s.checkpoints) {
+        if (e <= previous || e > s.evaluations) {
+            refuse("its log must count evaluations upwards within the chain's " +
+                   std::to_string(s.evaluations) + " (entry at " + std::to_string(e) + ")");
+        }
+        if (best > previous_best) {
+            refuse("its log's best objective rises at " + std::to_string(e) +
+                   " evaluations (a best so far never gets worse)");
+        }
+        previous = e;
+        previous_best = best;
+    }
+    if (s.best_objective > previous_best) {
+        refuse("its best objective is worse than its log's last entry");
+    }
+    const auto check_pattern = [&](const Pattern& p, const std::string& what) {
+        const bool holes_ok = o.holes_range()
+                                  ? static_cast<int>(p.pinholes.size()) >= o.min_holes &&
+                                        static_cast<int>(p.pinholes.size()) <= o.max_holes
+                                  : p.pinholes.size() == reference.pinholes.size();
+        if (p.n != reference.n || p.tiles_rows != reference.tiles_rows ||
+            p.tiles_cols != reference.tiles_cols ||
+            p.min_spacing_cells != reference.min_spacing_cells || !holes_ok) {
+            refuse(what + " is not a pattern of this search (grid " + std::to_string(p.n) + ", " +
+                   std::to_string(p.pinholes.size()) + " pinholes; this run: grid " +
+                   std::to_string(reference.n) + ")");
+        }
+    };
+    // Objectives are recomputed, so equal up to the FFT's rounding; a tampered value is not.
+    const auto check_objective = [&](const Pattern& p, double claimed, const std::string& what) {
+        check_pattern(p, what);
+        const double actual = objective.evaluate(PatternState(p));
+        if (!(std::abs(claimed - actual) <= 1e-6 * std::max(1.0, std::abs(actual)))) {
+            refuse(what + " claims the objective " + std::to_string(claimed) +
+                   "; its pattern's objective is " + std::to_string(actual));
+        }
+    };
+    const auto& items = s.top.items();
+    for (std::size_t i = 0; i < items.size(); ++i)
+        check_objective(items[i].pattern, items[i].objective, "top candidate " + std::to_string(i));
+    const double best_listed = items.empty() ? INFINITY : items.front().objective;
+    if (s.best_objective != best_listed) {
+        refuse("its best objective " + std::to_string(s.best_objective) +
+               " is not its best candidate's (" + std::to_string(best_listed) + ")");
+    }
+    if (s.evaluations == 0 && !items.empty()) refuse("lists candidates before any evaluation");
+    for (const auto& [k, best] : s.best_per_holes) {
+        for (const auto& item : best.items())
+            check_objective(item.pattern, item.objective,
+                            "the best pattern of " + std::to_string(k) + " pinholes");
+        for (const auto& item : best.items())
+            if (static_cast<int>(item.pattern.pinholes.size()) != k)
+                refuse("its best pattern of " + std::to_string(k) + " pinholes has " +
+                       std::to_string(item.pattern.pinholes.size()));
+    }
+    if (s.start) check_pattern(*s.start, "its next start");
+}
+
 struct ChainShared {
     std::atomic<std::int64_t> evaluations{0};
     std::atomic<double> best{INFINITY};
@@ -260,7 +336,8 @@ std::string search_termination_message(SearchTermination t) {
 
 void SearchOptions::validate() const {
     if (threads < 1 || threads > 1024) {
-        throw invalid_field("threads", std::to_string(threads), "must be between 1 and 1024");
+        throw invalid_field(field_ref("threads"), std::to_string(threads),
+                            "must be between 1 and 1024");
     }
     if (!(time_budget_s >= 0.0) || !std::isfinite(time_budget_s)) {
         throw invalid_field("time_budget_s", std::to_string(time_budget_s), "must be >= 0");
@@ -327,6 +404,11 @@ SearchSummary run_search(const SearchObjective& objective, const SearchOptions& 
                 "resume", std::to_string(segments->resume.size()) + " chains",
                 "must be one state per chain (" + std::to_string(chains.size()) + ")");
         }
+        // What a fresh draw looks like: the grid, tiling, spacing and pinhole count of this run.
+        std::mt19937_64 probe(options.seed);
+        const Pattern reference = sample(probe);
+        for (std::size_t c = 0; c < chains.size(); ++c)
+            check_resumed_state(segments->resume[c], c, options, objective, reference);
         for (std::size_t c = 0; c < chains.size(); ++c) {
             chains[c]->mutable_state() = segments->resume[c];
             shared[c].evaluations = segments->resume[c].evaluations;
@@ -465,16 +547,22 @@ SearchSummary summarize_chains(const SearchObjective& objective, const SearchOpt
         for (const auto& [e, best] : st.checkpoints) counts.push_back(e);
     std::sort(counts.begin(), counts.end());
     counts.erase(std::unique(counts.begin(), counts.end()), counts.end());
+    // One pass: each chain's log is ordered, so a cursor per chain moves forward with e and
+    // its best so far is kept (a rescan of every log for each count was quadratic).
+    std::vector<std::size_t> cursor(states.size(), 0);
+    std::vector<double> best_so_far(states.size(), INFINITY);
     for (const std::int64_t e : counts) {
         SearchCheckpoint cp;
         cp.evaluations_per_chain = e;
         cp.best_objective = INFINITY;
-        for (const ChainState& st : states) {
+        for (std::size_t c = 0; c < states.size(); ++c) {
+            const ChainState& st = states[c];
             cp.evaluations += std::min(e, st.evaluations);
-            for (const auto& [ce, best] : st.checkpoints) {
-                if (ce > e) break;
-                cp.best_objective = std::min(cp.best_objective, best);
+            while (cursor[c] < st.checkpoints.size() && st.checkpoints[cursor[c]].first <= e) {
+                best_so_far[c] = std::min(best_so_far[c], st.checkpoints[cursor[c]].second);
+                ++cursor[c];
             }
+            cp.best_objective = std::min(cp.best_objective, best_so_far[c]);
         }
         summary.checkpoints.push_back(cp);
     }

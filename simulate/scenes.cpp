@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 
 namespace pinmask {
 namespace {
@@ -67,6 +68,12 @@ SceneSpec scene_from_name(const std::string& name) {
         s.kind = SceneKind::kNatural;
     } else {
         std::error_code ec;
+        // A name that exists but is no regular file (a pipe would block the read, a device
+        // never ends) is refused by what it is, as every reader refuses it.
+        if (!name.empty() && std::filesystem::exists(name, ec)) {
+            if (const auto problem = input_file_problem(name))
+                throw invalid_field("scene", "'" + name + "'", *problem);
+        }
         if (name.empty() || !std::filesystem::is_regular_file(name, ec)) {
             std::string list;
             for (const auto& n : builtin_scene_names()) list += (list.empty() ? "" : ", ") + n;

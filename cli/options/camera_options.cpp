@@ -1,10 +1,12 @@
 #include "cli/options/camera_options.hpp"
 
+#include <iostream>
 #include <string>
 #include <utility>
 
 #include "core/error.hpp"
 #include "core/units.hpp"
+#include "design/working_distance.hpp"
 #include "io/camera_json.hpp"
 
 namespace pinmask::cli {
@@ -73,6 +75,16 @@ Camera resolve_camera(const CameraOptions& o) {
             }
         }
         throw;
+    }
+    // Cells under half a pixel would be silently modelled as 1 px: said for every command that
+    // builds its camera here (design, generate, search, calibrate), with the flags spelled.
+    if (auto why = sub_pixel_cells(c)) {
+        for (const auto& [field, flag] : kFlagOf) {
+            if (std::string_view(field) == "sensor") continue;  // not named; a prefix of others
+            for (auto at = why->find(field); at != std::string::npos; at = why->find(field, at))
+                why->replace(at, std::string(field).size(), flag);
+        }
+        std::cerr << "pinmask: warning: " << *why << "\n";
     }
     return c;
 }

@@ -105,6 +105,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"snr_db", "--snr"},
     {"spacing", "--spacing"},
     {"steps", "--steps"},
+    {"threads", "--threads"},
     {"tiff_dpi", "--dpi"},
     {"tiles", "--tiles"},
     {"to_m", "--to"},
@@ -116,6 +117,9 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"units", "--units"},
     {"vendor", "--vendor"},
     {"weights.analytic_wiener", "--w-analytic"},
+    {"weights.max_sidelobe", "--w-max-sidelobe"},
+    {"weights.min_spectrum", "--w-min-spectrum"},
+    {"weights.sidelobe_energy", "--w-sidelobe-energy"},
     {"wiener_nsr", "--nsr"},
     {"window", "--size"},
 });

@@ -381,6 +381,52 @@ write("layout-svg-doctype.svg", '<!DOCTYPE svg [<!ATTLIST path fill CDATA "none"
       + SVG_PATH + "</svg>\n")
 write("layout-svg-stylesheet.svg", '<?xml-stylesheet type="text/css" href="s.css"?>\n' + SVG_HEAD
       + SVG_PATH + "</svg>\n")
+# more of the same: each construct changes the drawing (or may), none is what the writer writes
+SVG_MORE_ATTRIBUTES = {
+    "stroke-width": '<path stroke-width="300" ',
+    "fill-rule": '<path fill-rule="evenodd" ',
+    "mask": '<path mask="url(#m)" ',
+    "filter": '<path filter="url(#blur)" ',
+    "path-transform": '<path transform="translate(5,0)" ',
+    "marker": '<path marker-start="url(#dot)" ',
+    "paint-order": '<path paint-order="stroke" ',
+    "current-colour": '<path fill="currentColor" ',
+    "gradient": '<path fill="url(#g)" ',
+    "grey": '<path fill="#808080" ',
+    "xml-space": '<path xml:space="preserve" ',
+}
+for name, start in SVG_MORE_ATTRIBUTES.items():
+    write("layout-svg-%s.svg" % name, SVG_HEAD + SVG_PATH.replace("<path ", start) + "</svg>\n")
+SVG_MORE_ELEMENTS = {
+    # a stylesheet inside the document restyles every path
+    "style-element": "<style>path { fill: none }</style>\n" + SVG_PATH,
+    "group-display": '<g display="none">' + SVG_PATH + "</g>\n",
+    "group-opacity": '<g opacity="0">' + SVG_PATH + "</g>\n",
+    "group-red": '<g fill="red">' + SVG_PATH + "</g>\n",
+    "image": '<image href="holes.png" width="100" height="100"/>\n',
+    "text": "<text>o</text>\n",
+    "polyline": '<polyline points="0,0 100,0 100,100"/>\n',
+    "ellipse": '<ellipse cx="5" cy="5" rx="3" ry="2"/>\n',
+    "pattern-fill": '<pattern id="p" width="10" height="10">' + SVG_PATH + "</pattern>\n",
+    "symbol": '<symbol id="s">' + SVG_PATH + "</symbol>\n",
+    "switch": "<switch>" + SVG_PATH + "</switch>\n",
+    "anchor": '<a href="#x">' + SVG_PATH + "</a>\n",
+    "foreign-object": "<foreignObject><div/></foreignObject>\n",
+    "namespaced-path": SVG_PATH.replace("<path ", "<svg:path "),
+    "upper-case": SVG_PATH.replace("<path ", "<PATH "),
+    "defs": "<defs>" + SVG_PATH + "</defs>\n",
+    "cdata": "<![CDATA[ ]]>\n" + SVG_PATH,
+    "stylesheet-inside": '<?xml-stylesheet href="s.css"?>\n' + SVG_PATH,
+    # a renderer draws nothing inside <desc> or <title>: a pinhole there is not on the plate
+    "path-in-desc": "<desc>" + SVG_PATH + "</desc>\n" + SVG_PATH,
+    "path-in-title": "<title>" + SVG_PATH + "</title>\n",
+}
+for name, body in SVG_MORE_ELEMENTS.items():
+    write("layout-svg-%s.svg" % name, SVG_HEAD + body + "</svg>\n")
+write("layout-svg-root-aspect.svg", SVG_HEAD.replace("<svg ", '<svg preserveAspectRatio="none" ')
+      + SVG_PATH + "</svg>\n")
+write("layout-svg-root-transform.svg", SVG_HEAD.replace("<svg ", '<svg transform="scale(2)" ')
+      + SVG_PATH + "</svg>\n")
 write("layout-svg-nested.svg", SVG_HEAD + '<svg viewBox="0 0 500 500" width="1000" height="1000">'
       + SVG_PATH + "</svg>\n</svg>\n")
 
@@ -404,6 +450,33 @@ write("layout-dxf-mirrored.dxf", DXF.replace(POLY_HEAD, POLY_HEAD + "210\n0.0\n2
 write("layout-dxf-tilted.dxf", DXF.replace(POLY_HEAD, POLY_HEAD + "210\n0.5\n", 1))
 write("layout-dxf-invisible.dxf", DXF.replace(POLY_HEAD, POLY_HEAD + " 60\n1\n", 1))
 write("layout-dxf-colour-off.dxf", DXF.replace(POLY_HEAD, POLY_HEAD + " 62\n-1\n", 1))
+# the same constructs on a VERTEX, and what else changes the drawing or is not read
+VERTEX_HEAD = "VERTEX\n  8\nPINMASK\n"
+assert VERTEX_HEAD in DXF
+DXF_MORE = {
+    "lineweight": DXF.replace(POLY_HEAD, POLY_HEAD + "370\n50\n", 1),
+    "vertex-width": DXF.replace(VERTEX_HEAD, VERTEX_HEAD + " 40\n300.0\n", 1),
+    "vertex-invisible": DXF.replace(VERTEX_HEAD, VERTEX_HEAD + " 60\n1\n", 1),
+    "vertex-colour-off": DXF.replace(VERTEX_HEAD, VERTEX_HEAD + " 62\n-3\n", 1),
+    "vertex-mirrored": DXF.replace(VERTEX_HEAD, VERTEX_HEAD + "230\n-1.0\n", 1),
+    "vertex-bulge": DXF.replace(VERTEX_HEAD, VERTEX_HEAD + " 42\n1.0\n", 1),
+    "polyline-3d": DXF.replace(POLY_HEAD + " 10\n0.0\n 20\n0.0\n 30\n0.0\n 70\n1\n",
+                               POLY_HEAD + " 10\n0.0\n 20\n0.0\n 30\n0.0\n 70\n9\n", 1),
+    "polyline-open": DXF.replace(POLY_HEAD + " 10\n0.0\n 20\n0.0\n 30\n0.0\n 70\n1\n",
+                                 POLY_HEAD + " 10\n0.0\n 20\n0.0\n 30\n0.0\n 70\n0\n", 1),
+    "layer-off-and-frozen": DXF.replace(LAYER_ENTRY, "  2\nPINMASK\n 70\n1\n 62\n-7\n", 1),
+    "tilted-y": DXF.replace(POLY_HEAD, POLY_HEAD + "220\n0.25\n", 1),
+    "insert": DXF.replace("  0\nPOLYLINE\n", "  0\nINSERT\n  8\nPINMASK\n  2\nHOLE\n"
+                          " 10\n0.0\n 20\n0.0\n  0\nPOLYLINE\n", 1),
+    "hatch": DXF.replace("  0\nPOLYLINE\n", "  0\nHATCH\n  8\nPINMASK\n  0\nPOLYLINE\n", 1),
+    "solid": DXF.replace("  0\nPOLYLINE\n", "  0\nSOLID\n  8\nPINMASK\n  0\nPOLYLINE\n", 1),
+    "no-seqend": DXF.replace("  0\nSEQEND\n", "  0\nPOLYLINE\n", 1),
+    "vertex-without-y": DXF.replace(" 10\n-1540\n 20\n660\n", " 10\n-1540\n", 1),
+}
+for name, text in DXF_MORE.items():
+    assert text != DXF, name
+    write("layout-dxf-%s.dxf" % name, text)
+write("layout-dxf-insunits-cm.dxf", dxf_with_insunits(5))
 # a Gerber that draws nothing: its header and M02 only
 write("layout-empty.gbr", GBR[: GBR.index("G36*")] + "M02*\n")
 
@@ -425,6 +498,167 @@ write("layout-giga-repetition.oas", start + cell + rect + end)
 # it (repetition type 0): 20 million squares from a 30 KB file
 grid_rect = b"\x14\xdf\x01\x00\x0a\x00\x00\x01\x2b\x2b\x14\x14"
 write("layout-reused-repetition.oas", start + cell + grid_rect + b"\x14\x04\x00" * 10000 + end)
+
+
+def oas_uint(v):
+    """OASIS unsigned integer: little-endian base-128, high bit = more bytes follow."""
+    out = bytearray()
+    while True:
+        b = v & 0x7F
+        v >>= 7
+        out.append(b | (0x80 if v else 0))
+        if not v:
+            return bytes(out)
+
+
+# a 10-unit square (RECTANGLE, info S W X Y R D L) at the origin on layer 1 / datatype 0,
+# then the repetition bytes
+RECT_HEAD = b"\x14\xdf\x01\x00\x0a\x00\x00"
+
+
+def oas_rect(repetition):
+    return start + cell + RECT_HEAD + repetition + end
+
+
+# Repetitions: every type's counts and extents bounded before anything is expanded.
+OAS_REPETITIONS = {
+    # type 0 reuses the previous repetition: there is none
+    "type0-first": b"\x00",
+    "type12": b"\x0c",
+    # a row (type 2) and a column (type 3) of 2^25 + 2 elements: beyond the 2^24 per dimension
+    "row-2e25": b"\x02" + oas_uint(1 << 25) + oas_uint(20),
+    "column-2e25": b"\x03" + oas_uint(1 << 25) + oas_uint(20),
+    # 1,002 elements 2^39 units apart: the extent leaves 2^40 database units
+    "row-beyond-2e40": b"\x02" + oas_uint(1000) + oas_uint(1 << 39),
+    # a 2^24 x 2^24 grid given by two g-deltas (type 8): 2.8e14 elements
+    "gdelta-grid-giga": b"\x08" + oas_uint((1 << 24) - 2) * 2 + oas_uint(1 << 4)
+                        + oas_uint((1 << 4) | (1 << 1)),
+    # 2^24 elements along a diagonal g-delta (type 9): 1.3 GB of offsets before any shape
+    "diagonal-2e24": b"\x09" + oas_uint((1 << 24) - 2) + oas_uint((1 << 4) | (4 << 1)),
+    # arbitrary x offsets (type 4) that add up past 2^40
+    "steps-beyond-2e40": b"\x04" + oas_uint(1) + oas_uint((1 << 40) - 1) * 2,
+    # arbitrary g-deltas on a 2^30 grid (type 11): one step of 2^11 grid units is 2^41 units
+    "gdelta-steps-beyond-2e40": b"\x0b" + oas_uint(0) + oas_uint(1 << 30)
+                                + oas_uint(((1 << 11) << 4)),
+    # a count whose varint runs past 64 bits
+    "count-65-bits": b"\x02" + b"\xff" * 9 + b"\x7f" + oas_uint(20),
+    # the file ends inside the repetition
+    "truncated": b"\x01" + oas_uint(43),
+}
+for name, rep in OAS_REPETITIONS.items():
+    write("layout-repetition-%s.oas" % name, oas_rect(rep) if name != "truncated"
+          else start + cell + RECT_HEAD + rep)
+# one repetition of each other shape reused by 10^4 records (type 0): 20 million squares again
+row_rect = RECT_HEAD + b"\x02" + oas_uint(2023) + oas_uint(20)
+write("layout-reused-row.oas", start + cell + row_rect + b"\x14\x04\x00" * 10000 + end)
+diag_rect = RECT_HEAD + b"\x09" + oas_uint(2023) + oas_uint((20 << 4) | (4 << 1))
+write("layout-reused-diagonal.oas", start + cell + diag_rect + b"\x14\x04\x00" * 10000 + end)
+
+# ---------------------------------------------------------------- search checkpoints
+# A checkpoint of `pinmask search --grid 16 --holes 20 --evals 3000 --threads 1 --seed 1
+# --strategy random --checkpoint-every 1000` at its second boundary (the manifest's resume
+# lines give those flags), broken one way per file. The config is what that command writes; the
+# one candidate is a real pattern of that search with its objective, so only the edit is wrong.
+CHECKPOINT_CONFIG = json.loads(
+    '{"format": "pinmask-search-config", "version": 1, "strategy": "random", '
+    '"evaluations_per_chain": 3000, "ranks": 1, "threads": 1, "seed": 1, "top": 5, "grid": 16, '
+    '"holes": 20, "max_holes": 0, "tiles": 2, "min_spacing_cells": 2.0, "keep_out": "none", '
+    '"pixels_per_cell": 8, "kernel_requested": "auto", "kernel_path": "", '
+    '"noise": {"model": "gaussian", "snr_db": 30.0}, "filter": "auto", '
+    '"prior": {"family": "natural", "scenes": 16}, "weights": {"analytic_wiener": 1.0, '
+    '"max_sidelobe": 0.0, "sidelobe_energy": 0.0, "min_spectrum": 0.0}, '
+    '"rerank_scenes": ["letter-R", "usaf", "siemens-star"], "rerank_tv": true, '
+    '"allow_spectral_zeros": false, "rank_by": "wiener", "objective": "nominal", "robust": "", '
+    '"optics": {"object_distance_m": 6.0, "lens_focal_m": 0.12, "sensor_distance_m": 0.055, '
+    '"wavelength_m": 5.5e-07, "pixel_pitch_m": 3e-05, "pinhole_m": 0.00044, '
+    '"sensor_px": [720, 480]}, "migrate_every": 0, "checkpoint_every": 1000}')
+CHECKPOINT_HOLES = [[1, 0], [1, 11], [3, 3], [3, 9], [5, 2], [6, 11], [7, 1], [8, 4], [8, 7],
+                    [8, 10], [9, 2], [9, 12], [10, 9], [11, 0], [12, 3], [12, 11], [13, 5],
+                    [14, 1], [15, 9], [15, 15]]
+CHECKPOINT_BEST = -21.835705618815933  # that pattern's objective (negative analytic PSNR, dB)
+
+
+def checkpoint_pattern(holes=None, n=16):
+    return {"n": n, "tiles_rows": 2, "tiles_cols": 2, "min_spacing_cells": 2.0,
+            "pinholes": holes if holes is not None else [list(h) for h in CHECKPOINT_HOLES]}
+
+
+def checkpoint_log(evaluations):
+    """The log a chain keeps: 1, 2, .., 16 evaluations, then ~19 % steps (search/search)."""
+    log, e = [], 1
+    while e <= evaluations:
+        log.append([e, CHECKPOINT_BEST])
+        e = max(e + 1, math.ceil(e * 1.19))
+    return log, e
+
+
+def checkpoint(edit):
+    log, next_at = checkpoint_log(2000)
+    chain = {"rng": " ".join(str(i) for i in range(1, 313)) + " 312",
+             "evaluations": 2000, "best_objective": CHECKPOINT_BEST, "next_log_at": next_at,
+             "log": log, "top_capacity": 5,
+             "top": [{"objective": CHECKPOINT_BEST, "pattern": checkpoint_pattern()}],
+             "start": None, "best_per_holes": []}
+    c = {"format": "pinmask-search-checkpoint", "version": 1,
+         "config": json.loads(json.dumps(CHECKPOINT_CONFIG)), "segment": 2,
+         "evaluations_between_boundaries": 1000, "chains": [chain]}
+    edit(c, chain)
+    return json.dumps(c) + "\n"
+
+
+def shifted_holes(dc):
+    return sorted([r, (c + dc) % 16] for r, c in CHECKPOINT_HOLES)
+
+
+def set_keys(**kv):
+    return lambda c, ch: ch.update(kv)
+
+
+CHECKPOINT_EDITS = {
+    # claims beyond the run: counts and objectives no chain of it can have
+    "evals-1e9": set_keys(evaluations=10**9),
+    "evals-over-budget": set_keys(evaluations=5000),
+    "evals-negative": set_keys(evaluations=-1),
+    "objective-minus-1000": lambda c, ch: (ch.update(best_objective=-1000.0),
+                                           ch["top"][0].update(objective=-1000.0)),
+    "best-not-listed": set_keys(best_objective=-22.5),
+    "candidates-without-evaluations": lambda c, ch: ch.update(evaluations=0, log=[]),
+    # patterns of another search
+    "pattern-grid-32": lambda c, ch: ch["top"][0].update(pattern=checkpoint_pattern(n=32)),
+    "pattern-19-holes": lambda c, ch: ch["top"][0].update(
+        pattern=checkpoint_pattern([list(h) for h in CHECKPOINT_HOLES[:19]])),
+    "start-grid-32": set_keys(start=checkpoint_pattern(n=32)),
+    "pattern-outside": lambda c, ch: ch["top"][0].update(
+        pattern=checkpoint_pattern([[16, 0]] + [list(h) for h in CHECKPOINT_HOLES[1:]])),
+    "top-worse-first": lambda c, ch: ch.update(top=[
+        {"objective": -21.0, "pattern": checkpoint_pattern(shifted_holes(1))},
+        {"objective": CHECKPOINT_BEST, "pattern": checkpoint_pattern()}]),
+    "top-repeated": lambda c, ch: ch.update(top=[
+        {"objective": CHECKPOINT_BEST, "pattern": checkpoint_pattern()},
+        {"objective": CHECKPOINT_BEST, "pattern": checkpoint_pattern()}]),
+    "top-capacity-0": set_keys(top_capacity=0),
+    "per-holes-zero": set_keys(best_per_holes=[
+        {"holes": 0, "objective": CHECKPOINT_BEST, "pattern": checkpoint_pattern()}]),
+    # logs: bounded, ordered, within the chain's counts, a best that never rises
+    "log-4097": lambda c, ch: ch.update(log=[[e, None] for e in range(1, 4098)],
+                                        evaluations=3000),
+    "log-unordered": lambda c, ch: ch["log"].insert(5, ch["log"].pop(3)),
+    "log-beyond-evaluations": lambda c, ch: ch["log"].append([2500, CHECKPOINT_BEST]),
+    "log-best-rises": lambda c, ch: ch["log"][-1].__setitem__(1, -20.0),
+    "log-not-pairs": lambda c, ch: ch["log"].append([2000]),
+    # the file itself
+    "wrong-format": lambda c, ch: c.update(format="pinmask-search-config"),
+    "version-2": lambda c, ch: c.update(version=2),
+    "rng-garbage": set_keys(rng="not a generator state"),
+    "segment-0": lambda c, ch: c.update(segment=0),
+    "every-0": lambda c, ch: c.update(evaluations_between_boundaries=0),
+    "two-chains": lambda c, ch: c["chains"].append(json.loads(json.dumps(ch))),
+    "other-config": lambda c, ch: c["config"].update(grid=12),
+    "unknown-key": set_keys(evaluations_total=2000),
+}
+for name, edit in CHECKPOINT_EDITS.items():
+    write("checkpoint-%s.json" % name, checkpoint(edit))
+write("checkpoint-truncated.json", checkpoint(lambda c, ch: None)[:700])
 
 # ---------------------------------------------------------------- camera RAW (raw-*)
 # A minimal uncompressed DNG (32 x 24 pixels, 16-bit RGGB CFA, BlackLevel 64, WhiteLevel 4095,

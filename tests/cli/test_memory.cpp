@@ -22,6 +22,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -188,4 +190,41 @@ TEST_CASE("every command stays under PINMASK_MEMORY_LIMIT plus the code margin")
     for (const char* name : {"big.png", "big.tiff", "big", "bigsearch"}) {
         CHECK_FALSE(fs::exists(d / name));
     }
+}
+
+// Inputs whose size sets a container's size are charged (or bounded) before the container
+// grows, under a 1 GiB bound: a search configuration listing 30,000 re-rank scenes (19 GB when
+// uncharged), a checkpoint whose log has 300,000 entries (resumed in minutes before the bound),
+// a PSF whose sidecar is a link to /dev/zero (read to 16.8 GB before the type check).
+TEST_CASE("inputs that grow containers are charged or bounded before they grow (1 GiB bound)") {
+    TempDir t("memory-grow");
+    const fs::path d = t.path;
+    // A real configuration and checkpoint to edit: a 16-grid random search of 3000 evaluations.
+    const std::string run =
+        "search --grid 16 --holes 20 --evals 3000 --threads 1 --seed 1 --strategy random "
+        "--no-rerank --checkpoint ck.json --checkpoint-every 1000";
+    REQUIRE(pinmask::test::run_cli(run + " -o base", d).exit_code == 0);
+    nlohmann::json config = nlohmann::json::parse(slurp(d / "base" / "search.config.json"));
+    config["rerank_scenes"] = std::vector<std::string>(30000, "letter-R");
+    std::ofstream(d / "scenes.json") << config.dump();
+    nlohmann::json ck = nlohmann::json::parse(slurp(d / "ck.json"));
+    nlohmann::json log = nlohmann::json::array();
+    for (int e = 1; e <= 300000; ++e) log.push_back({e, nullptr});
+    ck["chains"][0]["log"] = log;
+    std::ofstream(d / "long-log.json") << ck.dump();
+    fs::copy_file(kSource / "fuzz/corpus/image/psf_box.tiff", d / "z.tiff");
+    fs::create_symlink("/dev/zero", d / "z.json");
+    const std::vector<Case> cases = {
+        {"search with 30,000 re-rank scenes", "search --config scenes.json -o s", "1G", 2,
+         "30000 re-rank scenes of 128 x 128"},
+        {"resume a checkpoint whose log has 300,000 entries",
+         run.substr(0, run.find("--checkpoint ")) + "--checkpoint ck2.json --checkpoint-every " +
+             "1000 --resume long-log.json -o r",
+         "1G", 2, "has 300000 entries"},
+        {"decode with a PSF sidecar linked to /dev/zero",
+         "decode " + kCapture.string() + " --psf z.tiff -o zz.png", "1G", 2,
+         "is a character device"},
+    };
+    for (const Case& c : cases) check_case(c, d);
+    for (const char* name : {"s", "r", "zz.png", "ck2.json"}) CHECK_FALSE(fs::exists(d / name));
 }

@@ -187,6 +187,25 @@ TEST_CASE("an output that is a device, a pipe or a socket is refused and left as
     reset_input_protection();
 }
 
+TEST_CASE("a folder where no file can be created is refused by name before any work") {
+    // /proc passes access(W_OK) for root but refuses every new name: found by a create and an
+    // unlink in the folder (once per folder), not by a raw "cannot open" after the work.
+    REQUIRE(fs::is_directory("/proc"));
+    std::string msg = message_of([&] { plan_outputs({}, {{"-o", "/proc/x.tiff"}}); });
+    CHECK(msg.find("-o") != std::string::npos);
+    CHECK(msg.find("no file can be created in its folder '/proc'") != std::string::npos);
+    msg = message_of([&] { write_bytes_atomic("/proc/x.json", "x"); });
+    CHECK(msg.find("no file can be created in its folder '/proc'") != std::string::npos);
+    // A folder that takes files is probed and left as it was: no probe file remains.
+    TempDir t("outset-probe");
+    plan_outputs({}, {{"-o", t.path / "a.json"}, {"--stats", t.path / "b.json"}});
+    write_bytes_atomic(t.path / "c.json", "x");
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(t.path)) names.push_back(e.path().filename());
+    CHECK(names == std::vector<std::string>{"c.json"});
+    reset_input_protection();
+}
+
 TEST_CASE("a file name too long for its temporary names is refused with the limit") {
     TempDir t("outset-long");
     const long name_max = ::pathconf(t.path.c_str(), _PC_NAME_MAX);

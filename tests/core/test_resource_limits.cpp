@@ -13,6 +13,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/fft.hpp"
 #include "core/image_io.hpp"
 #include "core/resource_limits.hpp"
 #include "decode/decoder.hpp"
@@ -220,4 +221,25 @@ TEST_CASE("export: the layout of a huge pattern is refused under the bound") {
     }
     CHECK_THROWS_WITH_AS(make_layout(m, LayoutOptions{}), doctest::Contains("memory bound"),
                          ResourceLimit);
+}
+
+// FFTW cannot report a failed allocation (fftw_malloc failing aborts inside FFTW: "alloc.c:
+// assertion failed"), so planning a transform is checked against the budget first: its scratch
+// buffers (the input and the output of one transform) must fit beside what is reserved.
+TEST_CASE("FFT plans: a plan whose scratch buffers exceed the bound is refused before planning") {
+    MemoryLimit limit("64M");
+    // Odd sizes no other test plans, so the plan cache cannot answer without planning.
+    // 4099 x 4097 doubles: 134 MB in, 134 MB of half spectrum out.
+    CHECK_THROWS_WITH_AS(Fft2(4099, 4097), doctest::Contains("planning an FFT of 4099 x 4097"),
+                         ResourceLimit);
+    CHECK_THROWS_WITH_AS(Fft2f(4099, 4097), doctest::Contains("more than the memory bound"),
+                         ResourceLimit);
+    CHECK_THROWS_WITH_AS(FftC2(2051, 2053), doctest::Contains("planning an FFT of 2051 x 2053"),
+                         ResourceLimit);
+    // 1001 x 1003 doubles: 8 MB + 8 MB, well inside; planned and usable.
+    const Fft2 fits(1001, 1003);
+    Plane x = Plane::Zero(1001, 1003);
+    x(0, 0) = 1.0;
+    const ComplexPlane spectrum = fits.forward(x);
+    CHECK(std::abs(spectrum(500, 400) - std::complex<double>(1.0, 0.0)) < 1e-12);
 }

@@ -137,7 +137,7 @@ TEST_CASE("infeasible requests throw with the bound, the lattice count and the r
                          InvalidInput);
     CHECK_THROWS_WITH_AS(draw(16, 80, 2.0, 1), Contains("random sequential placement reached"),
                          InvalidInput);
-    CHECK_THROWS_WITH_AS(draw(16, 65, 2.0, 1), Contains("holes = 65"), InvalidInput);
+    CHECK_THROWS_WITH_AS(draw(16, 65, 2.0, 1), Contains("`holes` = 65"), InvalidInput);
     // 64 is the exact maximum, but random sequential choice jams long before it.
     CHECK_THROWS_WITH_AS(draw(16, 64, 2.0, 1), Contains("(best of 20 attempts)"), InvalidInput);
     // Odd torus: floor(5 * 2 / 2) = 5 at most.

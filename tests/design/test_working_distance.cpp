@@ -129,3 +129,35 @@ TEST_CASE("paper: 8 px at 6 m, mismatch against the 8-px model, near end clamps 
     CHECK(huge.range_near_clamped_to_focal);
     CHECK(huge.range_near_m == paper_camera().lens_focal_m);
 }
+
+// pitch(u) = d |1 - f/f' + f/u| / w computed here by hand (not by pixels_per_cell_at): below half
+// a pixel the nearest whole number is 0 and every whole-pixel model would use 1, so it is said.
+TEST_CASE("cells under half a pixel are named, with the fields that set the pitch") {
+    Camera c = paper_camera();  // f' 120 mm, f 55 mm, u 6 m, d 440 um, w 30 um: 8.1 px per cell
+    CHECK_FALSE(sub_pixel_cells(c).has_value());
+    c.lens_focal_m = 0.055;  // f' = f: M(6 m) = f/u = 0.00917, 0.134 px per cell
+    const double pitch = c.pinhole_m * std::fabs(1.0 - 0.055 / 0.055 + 0.055 / 6.0) / 30e-6;
+    CHECK(pitch == doctest::Approx(0.1344).epsilon(1e-3));
+    const auto why = sub_pixel_cells(c);
+    REQUIRE(why.has_value());
+    CHECK(why->find("0.134 px") != std::string::npos);
+    for (const char* field : {"lens_focal_m", "sensor_distance_m", "pinhole_m", "pixel_pitch_m"})
+        CHECK(why->find(field) != std::string::npos);
+    // f = f' with u = inf: magnification 0, the case kernel_validity reports; not this one.
+    c.object_distance_m = INFINITY;
+    CHECK_FALSE(sub_pixel_cells(c).has_value());
+    // Just above half a pixel rounds to 1 honestly: d chosen for 0.6 px at u = 6 m.
+    c = paper_camera();
+    c.pinhole_m = 0.6 * c.pixel_pitch_m / std::fabs(1.0 - 0.055 / 0.12 + 0.055 / 6.0);
+    CHECK_FALSE(sub_pixel_cells(c).has_value());
+    c.pinhole_m *= 0.4 / 0.6;
+    CHECK(sub_pixel_cells(c).has_value());
+    // A second camera (3.45 um pixels): 0.3 px per cell is said, 0.7 px is not.
+    Camera m = fine_pixel_camera();
+    const double mag = std::fabs(1.0 - m.sensor_distance_m / m.lens_focal_m +
+                                 m.sensor_distance_m / m.object_distance_m);
+    m.pinhole_m = 0.3 * m.pixel_pitch_m / mag;
+    CHECK(sub_pixel_cells(m).has_value());
+    m.pinhole_m = 0.7 * m.pixel_pitch_m / mag;
+    CHECK_FALSE(sub_pixel_cells(m).has_value());
+}

@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <functional>
 #include <random>
 
 #include "core/error.hpp"
@@ -155,6 +156,88 @@ TEST_CASE("checkpoint codec: hostile files are refused naming the key") {
     CHECK(io::differing_keys({{"a", 1}, {"b", {{"x", 1}, {"y", 2}}}},
                              {{"b", {{"y", 2}, {"x", 1}}}, {"a", 2}, {"c", 0}}) ==
           std::vector<std::string>{"a", "c"});
+}
+
+TEST_CASE("a resumed state is checked against the run: counts, log, patterns, objectives") {
+    const SidelobeObjective obj;
+    const SearchOptions o = options(SearchStrategy::kRandom);
+    std::vector<ChainState> at2;
+    SearchSegments seg;
+    seg.every = 1000;
+    seg.at_boundary = [&](const SearchSegments::Boundary& b, std::vector<ChainState>& states) {
+        if (b.segment == 2) at2 = states;
+        return !b.finished;
+    };
+    run_search(obj, o, sample, nullptr, {}, &seg);
+    REQUIRE(at2.size() == 2);
+    REQUIRE_FALSE(at2[0].top.items().empty());
+    REQUIRE(at2[0].checkpoints.size() >= 3);
+    const auto resumed = [&](const std::vector<ChainState>& states) {
+        SearchSegments r;
+        r.every = 1000;
+        r.first_segment = 2;
+        r.resume = states;
+        r.at_boundary = [](const SearchSegments::Boundary& b, std::vector<ChainState>&) {
+            return !b.finished;
+        };
+        return run_search(obj, o, sample, nullptr, {}, &r);
+    };
+    CHECK_NOTHROW(resumed(at2));  // the states as captured
+    const auto refused = [&](const std::function<void(ChainState&)>& edit,
+                             const std::string& fragment) {
+        std::vector<ChainState> states = at2;
+        edit(states[1]);
+        CHECK_THROWS_WITH_AS(resumed(states), doctest::Contains(fragment.c_str()), InvalidInput);
+    };
+    // More evaluations than the run's budget (the file claimed 1e9).
+    refused([](ChainState& s) { s.evaluations = 1'000'000'000; }, "claims 1000000000 evaluations");
+    // An objective no pattern of this search reaches: the best candidate re-evaluated.
+    refused(
+        [](ChainState& s) {
+            std::vector<std::pair<Pattern, double>> items;
+            for (const auto& it : s.top.items()) items.push_back({it.pattern, it.objective});
+            items.front().second = -1000.0;
+            s.top = TopCandidates(static_cast<int>(s.top.capacity()));
+            for (const auto& [pattern, objective] : items) s.top.offer(pattern, objective);
+            s.best_objective = -1000.0;
+        },
+        "claims the objective -1000");
+    refused([](ChainState& s) { s.best_objective -= 1.0; }, "is not its best candidate's");
+    refused([](ChainState& s) { std::swap(s.checkpoints[1], s.checkpoints[2]); },
+            "its log must count evaluations upwards");
+    refused(
+        [](ChainState& s) {
+            s.checkpoints.push_back({s.evaluations + 1, s.best_objective});
+        },
+        "its log must count evaluations upwards");
+    refused([](ChainState& s) { s.checkpoints.back().second = s.checkpoints.front().second + 1; },
+            "best objective rises");
+    refused(
+        [](ChainState& s) {
+            Pattern p = s.top.items().front().pattern;
+            p.n = 17;
+            s.start = p;
+        },
+        "not a pattern of this search");
+}
+
+TEST_CASE("checkpoint logs: bounded and ordered when read") {
+    io::SearchCheckpointFile file;
+    file.segment = 1;
+    file.every = 10;
+    file.chains.resize(1);
+    file.chains[0].evaluations = 5000;
+    for (std::int64_t e = 1; e <= 4097; ++e) file.chains[0].checkpoints.push_back({e, 1.0});
+    CHECK_THROWS_WITH_AS(io::parse_checkpoint(io::checkpoint_to_json(file)),
+                         doctest::Contains("has 4097 entries"), InvalidInput);
+    file.chains[0].checkpoints.resize(4096);
+    CHECK_NOTHROW(io::parse_checkpoint(io::checkpoint_to_json(file)));
+    file.chains[0].checkpoints = {{1, 1.0}, {3, 1.0}, {2, 1.0}};
+    CHECK_THROWS_WITH_AS(io::parse_checkpoint(io::checkpoint_to_json(file)),
+                         doctest::Contains("chains[0].log[2][0]"), InvalidInput);
+    file.chains[0].checkpoints = {{1, 1.0}, {6000, 1.0}};
+    CHECK_THROWS_WITH_AS(io::parse_checkpoint(io::checkpoint_to_json(file)),
+                         doctest::Contains("at most the chain's evaluations"), InvalidInput);
 }
 
 TEST_CASE("island model on one process: chains worse than the best restart from it") {
