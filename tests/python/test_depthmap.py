@@ -148,14 +148,17 @@ def test_python_refusals_name_the_keyword(tmp_path):
 
 @pytest.mark.parametrize("camera,u", [
     (MV, 0.5),  # 115 um pinholes: 8.000 px per cell at 0.5 m
+    (MV, 2.0),  # 7.00 px per cell, spot centres off the pixel grid
     (dict(object_distance_m=1.0, lens_focal_m=0.05, sensor_distance_m=0.04, wavelength_m=550e-9,
-          pixel_pitch_m=5e-6, pinhole_m=208.333e-6, sensor_cols=512, sensor_rows=512), 1.0)])
+          pixel_pitch_m=5e-6, pinhole_m=208.333e-6, sensor_cols=512, sensor_rows=512), 1.0),
+    ("paper", 1.0), ("paper", 6.0)])  # 8.60 and 8.07 px per cell
 def test_depth_fisher_against_numpy(tmp_path, camera, u):
-    # Where the pitch at u is a whole number of pixels the geometric box spot of the numpy model
-    # and pinmask's box kernel coincide, so the two Fisher informations must agree; elsewhere
-    # pinmask's exact PSF keeps the kernel of the mask's whole pixels per cell (docs/depth.md).
+    # pinmask's exact PSF with a box kernel draws each spot as the numpy model does (the box of
+    # side d |M(u)| / w pixels at its Eq. (3) centre, integrated over the pixels), at any u, so
+    # the two Fisher informations must agree.
+    cam = pinmask.paper_camera() if camera == "paper" else pinmask.Camera(**camera)
     m = pinmask.generate(family="random", grid=16, holes=20, spacing=2, tiles=2, seed=3,
-                         camera=pinmask.Camera(**camera), kernel="box")
+                         camera=cam, kernel="box")
     path = tmp_path / "m.mask.json"
     m.save(str(path))
     mj = ds.load(path)
