@@ -153,7 +153,8 @@ constexpr const char* kFooter =
     "Geometry: integer (default) is the decoder's model, one period on the (n ppc)^2 torus; exact "
     "is what the sensor records from a point at --object-distance (default the mask's u): every "
     "pinhole of the tiled mask at its true sub-pixel position, pitch d (1 - f/f' + f/u) / w, "
-    "kernels moved by area resampling, over the sensor or --size ROWSxCOLS.\n"
+    "box spots of side d |1 - f/f' + f/u| / w integrated over the pixels at their own centres, "
+    "other kernels moved there by area resampling, over the sensor or --size ROWSxCOLS.\n"
     "Example: pinmask psf m.mask.json -o psf.tiff --npy\n"
     "         pinmask psf m.mask.json -o exact.tiff --geometry exact --object-distance 2m";
 
@@ -167,9 +168,9 @@ void setup(CLI::App& app) {
     cmd->add_option("mask", o->mask, "Mask file (*.mask.json)")->required();
     cmd->add_option("-o,--output", o->output, "Output PSF image, .tif or .tiff")->required();
     cmd->add_flag("--npy", o->npy, "Also write the PSF as float32 .npy next to the TIFF");
-    cmd->add_option("--kernel", o->kernel,
-                    "Override the mask's kernel model: " + kernel_model_names() +
-                        " (default: the mask's)");
+    cmd->add_option(
+        "--kernel", o->kernel,
+        "Override the mask's kernel model: " + kernel_model_names() + " (default: the mask's)");
     cmd->add_option("--kernel-path", o->kernel_path, "Kernel image for --kernel measured");
     cmd->add_option("--energy", o->energy_fraction,
                     "Fraction of the continuous 1-D kernel energy the support must keep per "

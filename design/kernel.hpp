@@ -72,6 +72,13 @@ struct PixelProfile {
 // exact overlaps divided by the width.
 PixelProfile box_pixel_profile(double spot_px, int pixels_per_cell, const KernelOptions& options);
 
+// The same geometric box with its continuous centre at `centre_px` in absolute pixel
+// coordinates (pixel k covers [k, k + 1)), any fraction: exact overlaps divided by the width, no
+// resampling; origin is the absolute index of values[0]. A support wider than max_width_px keeps
+// the max_width_px pixels around the centre's pixel (capped, enclosed < 1). Used by the
+// exact-geometry PSF, whose spots sit at fractional positions and whose side follows u.
+PixelProfile box_pixel_profile_at(double spot_px, double centre_px, const KernelOptions& options);
+
 // Any normalised, even, band-limited profile h(v) (<= 1 cycle per unit v) integrated over pixels
 // of width pixel_v = d w / (lambda f) in v, centred at ppc/2, support by energy (see above).
 // Throws InvalidInput when a pixel spans so many fringes that the work would exceed ~5e7

@@ -75,6 +75,46 @@ PixelProfile box_pixel_profile(double spot_px, int ppc, const KernelOptions& opt
     return p;
 }
 
+PixelProfile box_pixel_profile_at(double spot_px, double centre, const KernelOptions& options) {
+    validate(options);
+    if (!(spot_px >= 0.0) || std::isinf(spot_px)) {
+        throw invalid_field("geometric spot (pixels)", std::to_string(spot_px),
+                            "must be finite and >= 0");
+    }
+    if (!std::isfinite(centre) || std::fabs(centre) > 1e9) {
+        throw invalid_field("spot centre (pixels)", std::to_string(centre),
+                            "must be finite and within 1e9 pixels");
+    }
+    PixelProfile p;
+    const double half = 0.5 * spot_px;
+    if (spot_px == 0.0) {  // a point: its pixel, or split evenly over the two sharing an edge
+        const double f = std::floor(centre);
+        p.origin = static_cast<int>(f) - (f == centre ? 1 : 0);
+        p.values = f == centre ? std::vector<double>{0.5, 0.5} : std::vector<double>{1.0};
+        return p;
+    }
+    long long lo = static_cast<long long>(std::floor(centre - half));
+    long long hi = static_cast<long long>(std::ceil(centre + half));  // exclusive
+    if (hi <= lo) hi = lo + 1;
+    if (hi - lo > options.max_width_px) {
+        lo = static_cast<long long>(std::floor(centre)) - (options.max_width_px - 1) / 2;
+        hi = lo + options.max_width_px;
+        p.capped = true;
+    }
+    p.origin = static_cast<int>(lo);
+    p.values.assign(static_cast<std::size_t>(hi - lo), 0.0);
+    double kept = 0.0;
+    for (long long k = lo; k < hi; ++k) {
+        const double a = std::max(static_cast<double>(k), centre - half);
+        const double b = std::min(static_cast<double>(k + 1), centre + half);
+        const double e = std::max(0.0, b - a) / spot_px;
+        p.values[static_cast<std::size_t>(k - lo)] = e;
+        kept += e;
+    }
+    p.enclosed = std::min(1.0, kept);
+    return p;
+}
+
 PixelProfile diffraction_pixel_profile(const std::function<double(double)>& h, double pixel_v,
                                        int ppc, const KernelOptions& options) {
     check_ppc(ppc);

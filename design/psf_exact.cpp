@@ -45,6 +45,24 @@ void add_resampled(Plane& out, const Plane& k, double y0, double x0, double weig
     }
 }
 
+// Adds weight * row (x) col, each normalised to its kept sum (as make_kernel normalises a cut
+// support), at their absolute origins; pixels off the window are dropped.
+void add_box_spot(Plane& out, const PixelProfile& row, const PixelProfile& col, double weight) {
+    double sr = 0.0, sc = 0.0;
+    for (double v : row.values) sr += v;
+    for (double v : col.values) sc += v;
+    const double scale = weight / (sr * sc);
+    for (std::size_t i = 0; i < row.values.size(); ++i) {
+        const long long r = static_cast<long long>(row.origin) + static_cast<long long>(i);
+        if (r < 0 || r >= out.rows() || row.values[i] == 0.0) continue;
+        for (std::size_t j = 0; j < col.values.size(); ++j) {
+            const long long c = static_cast<long long>(col.origin) + static_cast<long long>(j);
+            if (c < 0 || c >= out.cols()) continue;
+            out(r, c) += scale * row.values[i] * col.values[j];
+        }
+    }
+}
+
 }  // namespace
 
 SpotCentre exact_spot_centre(const Mask& m, double u, int rows, int cols, int cell_row,
@@ -87,6 +105,24 @@ Plane exact_psf(const Mask& m, const ExactPsfOptions& o) {
     const int ppc = m.psf.pixels_per_cell;
     Plane out = Plane::Zero(rows, cols);
     const double weight = 1.0 / static_cast<double>(m.pattern.pinholes.size());
+    if (k.model == KernelModel::kBox) {
+        // The box is geometric (no wavelength): each spot integrated exactly over the pixels at
+        // its own centre with side |M(u)| d / w, so its size follows u and no resampling blurs it.
+        const double spot_px =
+            std::fabs(magnification_at_u(cam)) * cam.pinhole_m / cam.pixel_pitch_m;
+        for (int tr = 0; tr < m.pattern.tiles_rows; ++tr) {
+            for (int tc = 0; tc < m.pattern.tiles_cols; ++tc) {
+                for (const Cell& cell : m.pattern.pinholes) {
+                    const SpotCentre s =
+                        exact_spot_centre(m, o.object_distance_m, rows, cols,
+                                          tr * m.pattern.n + cell.row, tc * m.pattern.n + cell.col);
+                    add_box_spot(out, box_pixel_profile_at(spot_px, s.row, ko),
+                                 box_pixel_profile_at(spot_px, s.col, ko), weight);
+                }
+            }
+        }
+        return out;
+    }
     for (int tr = 0; tr < m.pattern.tiles_rows; ++tr) {
         for (int tc = 0; tc < m.pattern.tiles_cols; ++tc) {
             for (const Cell& cell : m.pattern.pinholes) {

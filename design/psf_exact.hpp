@@ -6,12 +6,15 @@
 //   s = ((i + 1/2) - N_t/2, (j + 1/2) - N_t/2) d from the mask centre; its spot centre lands at
 //   q = M(u) s on the sensor (Eq. (3): image separation = (1 - f/f' + f/u) x mask separation),
 //   i.e. at the continuous pixel coordinate rows/2 + q_row / w (pixel k covers [k, k + 1)).
-//   The single-pinhole kernel is design/kernel's for the camera at u (its pixel-integrated
-//   values at the mask's integer pixels per cell, continuous centre ppc/2 from its cell corner)
-//   over its own support: not cut to one period as the cyclic PSF's kernel is,
-//   moved to the spot centre by area resampling: the fractional shift spreads each kernel pixel
-//   over the two (per axis) sensor pixels it overlaps, in proportion to the overlap, so the
-//   values' sum and centroid move exactly with the shift.
+//   Box kernel (geometric, the same at every wavelength): each spot is the square of side
+//   |M(u)| d / w pixels centred exactly at its spot centre, integrated over the pixels in closed
+//   form (design/kernel box_pixel_profile_at), so its size and position both follow u.
+//   Other kernels: the single-pinhole kernel is design/kernel's for the camera at u (its
+//   pixel-integrated values at the mask's integer pixels per cell, continuous centre ppc/2 from its
+//   cell corner) over its own support: not cut to one period as the cyclic PSF's kernel is, moved
+//   to the spot centre by area resampling: the fractional shift spreads each kernel pixel over the
+//   two (per axis) sensor pixels it overlaps, in proportion to the overlap, so the values' sum and
+//   centroid move exactly with the shift.
 // Each pinhole weighs 1/K (K = pinholes of the basic pattern), as in design/psf, so one period
 // of the exact PSF sums to about 1; spots off the window are cut (the sum says how much is kept).
 // The integer-model PSF (design/psf) is the decoder's model; this one is what the sensor records.

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The table of docs/depth.md: `pinmask depthmap` on scenes rendered by the independent numpy
 model of tests/python/depth_scenes.py, for the close-range machine-vision camera and the paper's
-camera. Run from the repository: PYTHONPATH=build/python /usr/bin/python3 scripts/depthmap_table.py
+camera. Run from the repository: PYTHONPATH=build/python /usr/bin/python3 scripts/depthmap_table.py [KERNEL]
 (build/cli/pinmask must exist)."""
 import json
 import pathlib
@@ -16,6 +16,10 @@ sys.path.insert(0, str(ROOT / "tests" / "python"))
 import depth_scenes as ds  # noqa: E402
 import pinmask  # noqa: E402
 
+# The masks' kernel model: the first argument (default auto, the mask's own choice; "box" draws
+# the spots as the numpy scene model does, so the sweep's model matches the scene exactly).
+KERNEL = sys.argv[1] if len(sys.argv) > 1 else "auto"
+
 MV = dict(object_distance_m=0.5, lens_focal_m=0.025, sensor_distance_m=0.020,
           wavelength_m=530e-9, pixel_pitch_m=3.45e-6, pinhole_m=115e-6, sensor_cols=512,
           sensor_rows=512)
@@ -29,7 +33,7 @@ with tempfile.TemporaryDirectory() as tmp:
         cam = pinmask.Camera(**MV) if cam_name == "mv" else pinmask.paper_camera()
         mask = tmp / "m.mask.json"
         pinmask.generate(family="random", grid=16, holes=20, spacing=2, tiles=2, seed=3,
-                         camera=cam).save(str(mask))
+                         camera=cam, kernel=KERNEL).save(str(mask))
 
         def run(capture, frm, to, steps):
             np.save(tmp / "cap.npy", capture.astype(np.float32))

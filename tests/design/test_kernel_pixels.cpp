@@ -73,6 +73,48 @@ TEST_CASE("box: exact overlaps, centred, even and odd ppc, a point spot") {
     CHECK_THROWS_AS(box_pixel_profile(1.0, 0, o), InvalidInput);
 }
 
+TEST_CASE("box at a fractional centre: hand-computed overlaps, a point, the cap, refusals") {
+    const KernelOptions o;
+    // Side 3.5 centred at 10.3: [8.55, 12.05] covers pixels 8..12 by 0.45, 1, 1, 1, 0.05.
+    const PixelProfile p = box_pixel_profile_at(3.5, 10.3, o);
+    REQUIRE(p.values.size() == 5);
+    CHECK(p.origin == 8);
+    const double expected[5] = {0.45, 1.0, 1.0, 1.0, 0.05};
+    for (int k = 0; k < 5; ++k) CHECK(std::fabs(p.values[k] - expected[k] / 3.5) <= kBoxTol);
+    CHECK(std::fabs(sum(p.values) - 1) <= kBoxTol);
+    CHECK(!p.capped);
+    // Whole-pixel edges give no empty end pixels: side 2 centred at 5 covers pixels 4 and 5.
+    const PixelProfile whole = box_pixel_profile_at(2.0, 5.0, o);
+    CHECK(whole.origin == 4);
+    CHECK(whole.values == std::vector<double>{0.5, 0.5});
+    // Negative coordinates (a spot left of the window): side 1 at -0.25 covers [-0.75, 0.25].
+    const PixelProfile left = box_pixel_profile_at(1.0, -0.25, o);
+    CHECK(left.origin == -1);
+    CHECK(std::fabs(left.values[0] - 0.75) <= kBoxTol);
+    CHECK(std::fabs(left.values[1] - 0.25) <= kBoxTol);
+    // A point: its pixel, or split over the two pixels sharing the edge it sits on.
+    CHECK(box_pixel_profile_at(0.0, 3.7, o).values == std::vector<double>{1.0});
+    CHECK(box_pixel_profile_at(0.0, 3.7, o).origin == 3);
+    CHECK(box_pixel_profile_at(0.0, 4.0, o).values == std::vector<double>{0.5, 0.5});
+    CHECK(box_pixel_profile_at(0.0, 4.0, o).origin == 3);
+    // The integer kernel's placement (centre ppc/2 of the cell) gives the integer kernel.
+    const PixelProfile centred = box_pixel_profile_at(7.94, 4.0, o);
+    const PixelProfile integer = box_pixel_profile(7.94, 8, o);
+    CHECK(centred.origin == integer.origin);
+    REQUIRE(centred.values.size() == integer.values.size());
+    for (std::size_t k = 0; k < centred.values.size(); ++k) {
+        CHECK(std::fabs(centred.values[k] - integer.values[k]) <= kBoxTol);
+    }
+    // A spot wider than the cap keeps the cap's pixels around the centre's pixel.
+    const PixelProfile capped = box_pixel_profile_at(100.0, 50.5, KernelOptions{0.999, 21});
+    CHECK(capped.capped);
+    CHECK(capped.values.size() == 21);
+    CHECK(capped.origin == 40);
+    CHECK(std::fabs(capped.enclosed - 0.21) <= kBoxTol);
+    CHECK_THROWS_AS(box_pixel_profile_at(-1.0, 0.0, o), InvalidInput);
+    CHECK_THROWS_AS(box_pixel_profile_at(1.0, NAN, o), InvalidInput);
+}
+
 TEST_CASE("sinc^2 pixel integrals match the reference for odd, even, prime ppc and pixel sizes") {
     for (int ppc : {1, 2, 7, 8, 13}) {
         for (double pixel_v : {0.05, 0.436, 1.0, 3.7}) {

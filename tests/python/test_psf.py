@@ -144,3 +144,31 @@ def test_exact_psf_settings_need_exact_geometry():
         pinmask.psf(mask, object_distance="2m")
     with pytest.raises(ValueError, match="^geometry = 'straight'|^geometry = straight"):
         pinmask.psf(mask, geometry="straight")
+
+
+@pytest.mark.parametrize("camera,u", [
+    (NIR, 2.0), (NIR, 0.7),  # 25.23 and 27.73 px per cell
+    ("paper", 3.0), ("paper", 1.3)])  # 8.21 and 8.57 px per cell
+def test_exact_box_psf_matches_an_independent_model_at_fractional_pitch(tmp_path, camera, u):
+    # The box kernel's spots follow u in size as well as position: each spot is the square of
+    # side d |M(u)| / w pixels at its Eq. (3) centre, integrated exactly over the pixels. The
+    # numpy model of depth_scenes.py (written for the tests, not pinmask's code) draws the same,
+    # so away from whole-pixel pitches the two must agree to rounding (area resampling of a
+    # kernel built at the mask's whole pixels per cell blurred each spot by up to a pixel).
+    import pathlib
+    import sys
+    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+    import depth_scenes as ds
+    cam = pinmask.Camera(**NIR) if camera == NIR else pinmask.paper_camera()
+    mask = pinmask.generate(camera=cam, grid=12, holes=9, tiles=2, seed=5, kernel="box")
+    mask.save(str(tmp_path / "m.mask.json"))
+    mj = ds.load(tmp_path / "m.mask.json")
+    o = mj["optics"]
+    pitch = o["pinhole_m"] * ds.magnification(o, u) / o["pixel_pitch_m"]
+    assert abs(pitch - round(pitch)) > 0.2  # a fractional pitch: not the integer model's case
+    size = (700, 720) if camera == NIR else (260, 270)  # every spot inside the window
+    got = pinmask.psf(mask, geometry="exact", object_distance=f"{u}m", size=size)
+    ref = ds.exact_psf(mj, u, *size)
+    assert got.shape == ref.shape
+    assert abs(ref.sum() - 4) < 1e-9  # 2 x 2 tiles of K spots of 1/K, none cut
+    assert np.max(np.abs(got - ref)) <= 1e-12 * np.max(ref)
