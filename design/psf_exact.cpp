@@ -105,33 +105,27 @@ Plane exact_psf(const Mask& m, const ExactPsfOptions& o) {
     const int ppc = m.psf.pixels_per_cell;
     Plane out = Plane::Zero(rows, cols);
     const double weight = 1.0 / static_cast<double>(m.pattern.pinholes.size());
-    if (k.model == KernelModel::kBox) {
-        // The box is geometric (no wavelength): each spot integrated exactly over the pixels at
-        // its own centre with side |M(u)| d / w, so its size follows u and no resampling blurs it.
-        const double spot_px =
-            std::fabs(magnification_at_u(cam)) * cam.pinhole_m / cam.pixel_pitch_m;
-        for (int tr = 0; tr < m.pattern.tiles_rows; ++tr) {
-            for (int tc = 0; tc < m.pattern.tiles_cols; ++tc) {
-                for (const Cell& cell : m.pattern.pinholes) {
-                    const SpotCentre s =
-                        exact_spot_centre(m, o.object_distance_m, rows, cols,
-                                          tr * m.pattern.n + cell.row, tc * m.pattern.n + cell.col);
-                    add_box_spot(out, box_pixel_profile_at(spot_px, s.row, ko),
-                                 box_pixel_profile_at(spot_px, s.col, ko), weight);
-                }
-            }
-        }
-        return out;
-    }
+    // The box is geometric (no wavelength): each spot integrated exactly over the pixels at its
+    // own centre with side |M(u)| d / w, so its size follows u and no resampling blurs it. Other
+    // kernels are moved to the spot centre by area resampling.
+    const bool box = k.model == KernelModel::kBox;
+    const double spot_px =
+        box ? std::fabs(magnification_at_u(cam)) * cam.pinhole_m / cam.pixel_pitch_m : 0.0;
     for (int tr = 0; tr < m.pattern.tiles_rows; ++tr) {
         for (int tc = 0; tc < m.pattern.tiles_cols; ++tc) {
             for (const Cell& cell : m.pattern.pinholes) {
                 const SpotCentre s =
                     exact_spot_centre(m, o.object_distance_m, rows, cols,
                                       tr * m.pattern.n + cell.row, tc * m.pattern.n + cell.col);
-                // Kernel pixel i covers [y0 + i, y0 + i + 1): its centre ppc/2 - origin from y0.
-                add_resampled(out, k.values, s.row - ppc / 2.0 + k.origin_row,
-                              s.col - ppc / 2.0 + k.origin_col, weight);
+                if (box) {
+                    add_box_spot(out, box_pixel_profile_at(spot_px, s.row, ko),
+                                 box_pixel_profile_at(spot_px, s.col, ko), weight);
+                } else {
+                    // Kernel pixel i covers [y0 + i, y0 + i + 1): its centre ppc/2 - origin
+                    // from y0.
+                    add_resampled(out, k.values, s.row - ppc / 2.0 + k.origin_row,
+                                  s.col - ppc / 2.0 + k.origin_col, weight);
+                }
             }
         }
     }
