@@ -1,5 +1,6 @@
 // Time of `calibrate` on a full-sensor point-source capture beside one FFTW transform pair of the
-// same size (bare FFTW, FFTW_MEASURE, one thread: bench/fft_pair), timed in the same run (the bar: <= 2 s on one core for 1920 x 1200).
+// same size (bare FFTW, FFTW_MEASURE, one thread: bench/fft_pair), timed in the same run (the bar:
+// <= 2 s on one core for 1920 x 1200).
 //
 // The capture: the NIR camera of the calibration docs (5.86 um pixels, lens 75 mm, sensor 45 mm
 // behind it, u = 1.2 m, 850 nm, a 455.4 um pinhole: 34 px per cell, Fresnel number 0.59 with the

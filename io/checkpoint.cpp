@@ -209,8 +209,8 @@ void write_checkpoint(const std::filesystem::path& path, const SearchCheckpointF
 }
 
 SearchCheckpointFile read_checkpoint(const std::filesystem::path& path) {
-    return parse_bounded_file(path, field_ref("resume"), kMaxCheckpointBytes,
-                              "a search checkpoint", parse_checkpoint);
+    return parse_bounded_file(path, field_ref("resume"), kMaxCheckpointBytes, "a search checkpoint",
+                              parse_checkpoint);
 }
 
 std::vector<std::string> differing_keys(const nlohmann::ordered_json& a,
