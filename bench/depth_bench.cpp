@@ -8,11 +8,11 @@
 #include <random>
 #include <string>
 
+#include "bench/bench_pattern.hpp"
 #include "bench/fft_pair.hpp"
 #include "core/error.hpp"
 #include "core/fft.hpp"
 #include "design/mask.hpp"
-#include "design/random_sparse.hpp"
 #include "metrics/depth_loss.hpp"
 
 namespace pinmask {
@@ -43,12 +43,7 @@ Mask depth_bench_mask() {
     m.camera.object_distance_m = 1.2;
     m.camera.wavelength_m = 850e-9;
     m.camera.pinhole_m = 455.406e-6;
-    RandomSparseOptions ro;  // 20 pinholes on 16 x 16 under the spacing rule s = 2
-    ro.n = 16;
-    ro.holes = 20;
-    ro.min_spacing_cells = 2.0;
-    std::mt19937_64 rng(1);
-    m.pattern = random_sparse_pattern(ro, rng);
+    m.pattern = bench_pattern_16x16_k20();
     m.psf.pixels_per_cell = 34;
     m.psf.kernel.model = "auto";
     return m;

@@ -7,6 +7,7 @@
 #include <random>
 #include <string>
 
+#include "bench/bench_pattern.hpp"
 #include "bench/fft_pair.hpp"
 #include "core/error.hpp"
 #include "core/fft.hpp"
@@ -14,7 +15,6 @@
 #include "depthmap/depthmap.hpp"
 #include "design/mask.hpp"
 #include "design/psf_exact.hpp"
-#include "design/random_sparse.hpp"
 #include "metrics/depth_loss.hpp"
 
 namespace pinmask {
@@ -30,12 +30,7 @@ Mask depthmap_bench_mask() {
     m.camera.object_distance_m = 0.5;
     m.camera.wavelength_m = 530e-9;
     m.camera.pinhole_m = 115e-6;
-    RandomSparseOptions ro;  // 20 pinholes on 16 x 16 under the spacing rule s = 2
-    ro.n = 16;
-    ro.holes = 20;
-    ro.min_spacing_cells = 2.0;
-    std::mt19937_64 rng(1);
-    m.pattern = random_sparse_pattern(ro, rng);
+    m.pattern = bench_pattern_16x16_k20();
     m.pattern.tiles_rows = m.pattern.tiles_cols = 2;
     m.psf.pixels_per_cell = 8;
     m.psf.kernel.model = "auto";
