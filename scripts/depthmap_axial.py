@@ -28,9 +28,7 @@ import pinmask  # noqa: E402
 # the spots as the numpy scene model does, so the sweep's model matches the scene exactly).
 KERNEL = sys.argv[1] if len(sys.argv) > 1 else "auto"
 
-MV = dict(object_distance_m=0.5, lens_focal_m=0.025, sensor_distance_m=0.020,
-          wavelength_m=530e-9, pixel_pitch_m=3.45e-6, pinhole_m=115e-6, sensor_cols=512,
-          sensor_rows=512)
+MV = ds.MACHINE_VISION
 CAMERAS = {"machine vision (f' 25 mm, f 20 mm)": (MV, [0.3, 0.5, 0.8, 1.2, 2.0, 3.0]),
            "paper (f' 120 mm, f 55 mm)": (None, [0.6, 1.0, 2.0, 4.0, 6.0, 10.0])}
 SIZE, STEPS = 384, 41

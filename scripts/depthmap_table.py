@@ -20,9 +20,7 @@ import pinmask  # noqa: E402
 # the spots as the numpy scene model does, so the sweep's model matches the scene exactly).
 KERNEL = sys.argv[1] if len(sys.argv) > 1 else "auto"
 
-MV = dict(object_distance_m=0.5, lens_focal_m=0.025, sensor_distance_m=0.020,
-          wavelength_m=530e-9, pixel_pitch_m=3.45e-6, pinhole_m=115e-6, sensor_cols=512,
-          sensor_rows=512)
+MV = ds.MACHINE_VISION
 ROWS = [("mv", [0.45], 0.4, 2.0), ("mv", [1.5], 0.4, 2.0), ("mv", [0.45, 0.7, 1.5], 0.4, 2.0),
         ("paper", [2.0], 1.0, 10.0), ("paper", [5.0], 1.0, 10.0),
         ("paper", [1.5, 3.0, 8.0], 1.0, 10.0)]

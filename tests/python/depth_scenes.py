@@ -14,6 +14,12 @@ import json
 
 import numpy as np
 
+# The close-range camera of the depthmap tests, table and axial figure (docs/depth.md): a
+# machine-vision sensor behind a 25 mm lens, u = 0.5 m (20 f), 512 x 512 pixels.
+MACHINE_VISION = dict(object_distance_m=0.5, lens_focal_m=0.025, sensor_distance_m=0.020,
+                      wavelength_m=530e-9, pixel_pitch_m=3.45e-6, pinhole_m=115e-6,
+                      sensor_cols=512, sensor_rows=512)
+
 
 def magnification(cam, u):
     return 1.0 - cam["sensor_distance_m"] / cam["lens_focal_m"] + cam["sensor_distance_m"] / u

@@ -15,9 +15,7 @@ import pinmask
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 import depth_scenes as ds  # noqa: E402
 
-MV = dict(object_distance_m=0.5, lens_focal_m=0.025, sensor_distance_m=0.020,
-          wavelength_m=530e-9, pixel_pitch_m=3.45e-6, pinhole_m=115e-6, sensor_cols=512,
-          sensor_rows=512)
+MV = ds.MACHINE_VISION
 
 
 def _mask(tmp_path, camera):
