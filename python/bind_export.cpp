@@ -14,6 +14,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/field_names.hpp"
+#include "core/output_set.hpp"
 #include "core/units.hpp"
 #include "design/psf.hpp"
 #include "export/drc.hpp"
@@ -230,6 +231,22 @@ void bind_export(py::module_& m) {
             // The input recorded in the sidecar: the path as given, as the command records it.
             if (!py::isinstance<Mask>(mask_obj)) f.input = py::str(mask_obj).cast<std::string>();
             const ExportOptions o = export_options_from(f, mk, stem);
+            // No output may replace the mask file read (as the command's plan_outputs refuses;
+            // the module leaves the process-wide input protection off, so it checks here).
+            if (!f.input.empty()) {
+                std::vector<std::string> names{stem + ".export.json"};
+                for (FabFormat ff : o.formats) names.push_back(stem + fab_extension(ff));
+                if (psf) {
+                    names.push_back(stem + ".psf.tiff");
+                    names.push_back(
+                        io::psf_sidecar_path(fs::path(stem + ".psf.tiff")).filename().string());
+                    if (npy) names.push_back(stem + ".psf.npy");
+                }
+                for (const std::string& n : names)
+                    if (same_file(fs::path(out_dir) / n, f.input))
+                        throw invalid_field(field_ref("stem"), stem,
+                                            "would write " + n + " over the mask file " + f.input);
+            }
             py::list files;
             std::vector<fs::path> psf_written;
             ExportSummary summary;

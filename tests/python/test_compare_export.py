@@ -175,3 +175,15 @@ def test_export_psf_files_equal_cli(cli, tmp_path, mask7, monkeypatch):
     np.testing.assert_allclose(np.load("py/m.psf.npy"), pinmask.psf(mask7), rtol=1e-6, atol=0)
     with pytest.raises(ValueError, match="npy writes the PSF as .npy: it needs psf=True"):
         pinmask.export_mask("m.mask.json", "py2", formats=["gds"], psf=False, npy=True)
+
+
+def test_export_never_writes_over_its_mask_file(tmp_path, mask7, monkeypatch):
+    """A mask file whose name an output takes (m.psf.json: the PSF sidecar of stem m) is
+    refused before any file is written, as the command's output plan refuses it."""
+    monkeypatch.chdir(tmp_path)
+    mask7.save("m.psf.json")
+    before = (tmp_path / "m.psf.json").read_bytes()
+    with pytest.raises(ValueError, match="stem = m: would write m.psf.json over the mask file"):
+        pinmask.export_mask("m.psf.json", ".", formats=["svg"], stem="m")
+    assert (tmp_path / "m.psf.json").read_bytes() == before
+    assert not (tmp_path / "m.svg").exists()
