@@ -43,13 +43,14 @@ void bind_decode_batch(py::module_& m) {
                 options["mask"] = py::none();
             }
             const py::object decode = py::module_::import("pinmask").attr("decode");
+            const py::object fspath = py::module_::import("os").attr("fspath");
             py::list results;
             int index = 0;
             for (const py::handle& c : captures) {
                 py::object capture = py::reinterpret_borrow<py::object>(c);
                 std::string source = "capture " + std::to_string(index);
                 if (py::isinstance<py::str>(c) || py::hasattr(c, "__fspath__")) {
-                    source = py::str(py::module_::import("os").attr("fspath")(c));
+                    source = py::str(fspath(c));
                     LoadedImage li;
                     {
                         py::gil_scoped_release release;
