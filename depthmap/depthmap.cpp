@@ -25,9 +25,9 @@ constexpr std::size_t kMaxPlanes = 1000;
 template <class CostAt>
 DepthmapResult run(const Plane& capture, const std::vector<double>& u, const DepthmapOptions& o,
                    CostAt cost_at) {
-    // Costs and estimates of every plane, the smoothing's two volumes, plus the working set of
-    // one plane.
-    const double volumes = o.smooth > 0.0 ? 5.0 : 2.0;
+    // Costs and estimates of every plane, the smoothing's four volumes (the costs by pixel, the
+    // path costs, the sums, the aggregate returned), plus the working set of one plane.
+    const double volumes = o.smooth > 0.0 ? 6.0 : 2.0;
     check_memory((volumes * double(u.size()) + 12.0) * double(capture.size()) * 8.0,
                  "the depth map's " + std::to_string(u.size()) + " planes");
     std::vector<Plane> costs, estimates;
