@@ -277,7 +277,7 @@ void setup(CLI::App& app) {
             ->capture_default_str();
     cmd->add_option("--smooth", o->smooth,
                     "Smoothness weight of the depth labels (>= 0; 0: lowest-cost plane per "
-                    "pixel). A one-plane step between neighbours costs LAMBDA times the mean "
+                    "pixel). A one-plane step between neighbours costs the weight times the mean "
                     "depth of the pixels' cost wells, a larger jump twice that")
         ->capture_default_str();
     cmd->add_option("--nsr", o->nsr, "Wiener noise-to-signal ratio of every decode (> 0)")
