@@ -232,7 +232,7 @@ constexpr const char* kFooter =
     "exact-geometry PSF at u over the whole frame, cyclic). Cost: the local energy (box of "
     "--window px) of the residual capture - PSF (*) estimate, which light from another distance "
     "raises. Labels: the plane per pixel that minimises the cost plus --smooth times a penalty "
-    "on neighbouring pixels' planes (a one-plane step costs LAMBDA times the mean depth of the "
+    "on neighbouring pixels' planes (a one-plane step costs the weight times the mean depth of the "
     "pixels' cost wells, a larger jump twice that; semi-global dynamic programming along 8 "
     "paths; 0: the lowest-cost plane per pixel), refined by a parabola in 1/u; confidence "
     "(median cost - chosen cost) / median cost in [0, 1]; the all-in-focus image takes each "
