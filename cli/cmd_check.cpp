@@ -3,7 +3,8 @@
 // compared with its design (export/file_check, export/read_back). The layout settings come from
 // the export sidecar <stem>.export.json beside the file when there is one (explicit flags must
 // agree with it), else from the flags.
-// Exit codes: 0 clean, 1 violations (or an XOR mismatch), 2 bad input.
+// Exit codes: 0 clean, 1 violations (or an XOR mismatch), 2 bad input, 3 the time limit
+// PINMASK_TIME_LIMIT was spent (no verdict printed: check writes only stdout, at the end).
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -19,6 +20,7 @@
 #include "cli/outputs/check_report.hpp"
 #include "core/error.hpp"
 #include "core/input_file.hpp"
+#include "core/resource_limits.hpp"
 #include "core/units.hpp"
 #include "design/fab_grid.hpp"
 #include "export/drc.hpp"
@@ -36,8 +38,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Between the stages of a check: the time budget (PINMASK_TIME_LIMIT), if spent, stops it.
+void poll_time(const std::string& stage) { check_time_limit("check stopped " + stage); }
+
 // Returns the exit code: 0 clean, 1 violations found.
 int run(const CheckOptions& o) {
+    const TimeLimitScope time_limited;  // the readers and the DRC poll it too
+    poll_time("before reading " + o.input);
     if (fs::exists(o.input)) {
         if (const auto problem = input_file_problem(o.input))
             throw invalid_field("input", o.input, *problem);
@@ -72,6 +79,7 @@ int run(const CheckOptions& o) {
         rep.kind = "mask";
         const Mask mask = io::read_mask_file(o.input, {.allow_spacing_violations = true});
         c.layout = make_layout(mask, design_options(o, nullptr));
+        poll_time("after building the layout of " + o.input);
         rep.rules = resolve_rules(o, rules_for_mask(mask, vendor, c.layout.grid_nm));
         if (!o.min_spacing)
             rep.spacing = spacing_rule_text(mask.pattern.min_spacing_cells, c.layout.pitch_nm,
@@ -81,6 +89,7 @@ int run(const CheckOptions& o) {
     } else {
         rep.kind = fs::path(o.input).extension().string().substr(1);
         const FileGeometry file = read_fabrication_file(o.input);
+        poll_time("after reading " + o.input);
         if (side) {
             rep.settings = "from " + side_path.string();
             if (rep.mask.empty()) rep.mask = io::sidecar_mask(*side, side_path);
@@ -125,6 +134,7 @@ int run(const CheckOptions& o) {
             }
         }
         fo.rules = rep.rules;
+        poll_time("before the design-rule check of " + o.input);
         c = check_file_geometry(file, fo);
         if (mask) add_pattern_spacing(c.drc, *mask, design->pitch_nm, rep.rules);
         if (auto it = file.info.find("unit_assumed"); it != file.info.end() && !side) {
@@ -136,6 +146,7 @@ int run(const CheckOptions& o) {
             rep.note = rep.note.empty() ? w : rep.note + "; " + w;
         }
     }
+    poll_time("before printing the verdict on " + o.input);
     rep.check = &c;
     if (o.json)
         print_check_json(rep);
@@ -159,7 +170,9 @@ constexpr const char* kFooter =
     "design-rule checked.\n"
     "Rules (exact, integer nm): ring, vertices, self_intersection, orientation (CCW), area, "
     "feature, gap, touching, overlap, spacing (pinhole centroids on the tiled mask).\n"
-    "Exit codes: 0 clean, 1 violations or a mismatch with the design, 2 bad input.\n"
+    "Exit codes: 0 clean, 1 violations or a mismatch with the design, 2 bad input, 3 the time "
+    "limit PINMASK_TIME_LIMIT was spent (a duration: 90s, 2m, 1.5h; off unless set; counted "
+    "from the start of the run): the check stops where it is and prints no verdict.\n"
     "Example: pinmask export m.mask.json -o fab/ && pinmask check fab/m.gds";
 
 void setup(CLI::App& app, int& exit_code) {
@@ -213,7 +226,13 @@ void setup(CLI::App& app, int& exit_code) {
                   "Print {clean, input, kind, vendor, tone, polygons, annotations, rules, "
                   "measured, counts, truncated, violations: [{rule, message, x_um, y_um, "
                   "polygon_a, polygon_b, value, limit, unit}], comparison} on stdout");
-    cmd->callback([o, &exit_code] { exit_code = run(*o); });
+    cmd->callback([o, &exit_code] {
+        try {
+            exit_code = run(*o);
+        } catch (const TimeLimitSpent& e) {
+            throw TimeLimitSpent(std::string(e.what()) + "; no verdict (exit code 3)");
+        }
+    });
 }
 
 }  // namespace

@@ -193,7 +193,10 @@ void setup(CLI::App& app) {
                     ".tiff, .png, .npy, .jpg, .jpeg and camera RAW files) or a text file of paths, "
                     "one a line; -o is then a "
                     "directory (STEM.EXT per capture, batch-summary.json). Under mpirun the "
-                    "captures are shared among the ranks");
+                    "captures are shared among the ranks. With PINMASK_TIME_LIMIT set (a "
+                    "duration from the start of the run, e.g. 2h) the batch stops between "
+                    "captures once it is spent: the captures finished are written, the others "
+                    "are listed in batch-summary.json as not done, exit code 3");
     cmd->add_option("--batch-format", batch->format, "--batch outputs: tiff | png | npy")
         ->capture_default_str();
     cmd->add_flag("--batch-stats", batch->stats, "--batch: also write STEM.stats.json per capture");

@@ -20,6 +20,7 @@
 #include "cli/outputs/progress.hpp"
 #include "cli/outputs/robust_decoder_files.hpp"
 #include "cli/outputs/search_outputs.hpp"
+#include "cli/outputs/search_snapshot.hpp"
 #include "cli/search_cluster.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
@@ -42,7 +43,8 @@ SearchPipelineOptions make_options(const SearchCliOptions& o, const CLI::App& cm
         std::vector<NamedPath> outs{{"-o (run log)", dir / "run-log.csv", true},
                                     {"-o (summary)", dir / "summary.md", true},
                                     {"-o (timing)", dir / "timing.csv", true},
-                                    {"-o (config)", dir / "search.config.json", true}};
+                                    {"-o (config)", dir / "search.config.json", true},
+                                    {"-o (best so far)", dir / kBestSoFarName, true}};
         if (p.max_holes > 0)
             for (const char* f : {"holes.csv", "holes.svg", "holes.png"})
                 outs.push_back({"-o (per-K table and plot)", dir / f, true});
@@ -64,6 +66,32 @@ void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd,
                   << ": the chains and islands differ, so this is not the same search\n";
     ProgressLine bar("pinmask search");
     const auto& interrupted = install_interrupt_flag();
+    // Rank 0 keeps its best so far on disk while the run lasts (cli/outputs/search_snapshot):
+    // what its chains find, and every chain's best at each checkpoint.
+    std::optional<BestSoFarSnapshot> snapshot;
+    if (root) {
+        Mask tmpl = p.tmpl;
+        tmpl.provenance.seed = p.search.seed;
+        tmpl.provenance.generator = p.generator;
+        tmpl.provenance.family =
+            std::string("search:") +
+            (p.search.strategy == SearchStrategy::kRandom ? "random" : "anneal");
+        snapshot.emplace(std::filesystem::path(o.output) / kBestSoFarName, std::move(tmpl),
+                         &interrupted);
+        p.search.on_improvement = [&snap = *snapshot](const Pattern& pattern, double objective) {
+            snap.offer(pattern, objective);
+        };
+        if (p.islands.checkpoint) {
+            p.islands.checkpoint = [write = p.islands.checkpoint, &snap = *snapshot](
+                                       std::int64_t segment, std::int64_t every,
+                                       const std::vector<ChainState>& states) {
+                write(segment, every, states);
+                for (const ChainState& s : states)
+                    if (!s.top.items().empty())
+                        snap.offer(s.top.items().front().pattern, s.top.items().front().objective);
+            };
+        }
+    }
     const SearchPipelineSummary s = run_search_pipeline(
         p, &interrupted,
         [&](const std::string& phase, double fraction, const std::string& text) {
@@ -97,6 +125,7 @@ void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd,
                                              s.ranked.front().mask, paths.front().string(),
                                              p.robust, make_scene_prior(p.prior, m), p.noise);
     }
+    snapshot->finish();  // the final files supersede best-so-far.mask.json
     if (!o.json) {
         std::cout << search_summary_markdown(s) << "wrote " << paths.size()
                   << " masks, run-log.csv, timing.csv, summary.md and search.config.json"

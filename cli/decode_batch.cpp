@@ -13,6 +13,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/output_set.hpp"
+#include "core/resource_limits.hpp"
 #include "decode/batch.hpp"
 #include "decode/decode_method.hpp"
 #include "io/capture_list.hpp"
@@ -153,10 +154,19 @@ void run_decode_batch(const DecodeCommand& given, const BatchRequest& b, BayerMo
         load_shared_inputs(r, bayer, options.background == BackgroundMode::kCorner, shared_stats),
         options);
 
-    // This rank's captures; the first error stops this rank's work.
+    // This rank's captures; the first error stops this rank's work. A spent time budget
+    // (PINMASK_TIME_LIMIT) stops it between captures: each rank decodes at least its first one,
+    // and keeps every capture it finished.
     StagedFiles files;
-    json mine = {{"entries", json::array()}};
+    const TimeLimitScope time_limited;
+    json mine = {{"entries", json::array()}, {"time_limit", false}};
+    bool first = true;
     for (std::size_t i : batch_share(requests.size(), comm.rank(), comm.size())) {
+        if (!first && time_limit_spent()) {
+            mine["time_limit"] = true;
+            break;
+        }
+        first = false;
         try {
             json entry = decode_one(decoder, requests[i], bayer, files);
             mine["entries"].push_back({{"index", i}, {"entry", entry}});
@@ -169,18 +179,30 @@ void run_decode_batch(const DecodeCommand& given, const BatchRequest& b, BayerMo
     }
     // Rank 0 gathers, decides and stages the summary; every rank learns the verdict.
     const std::vector<Bytes> all = comm.gather(to_bytes(mine.dump()), 0);
-    json verdict = {{"ok", true}};
+    json verdict = {{"ok", true}, {"not_done", 0}};
     json summary;
     if (comm.rank() == 0) {
         std::vector<json> entries(requests.size());
+        bool time_limit = false;
         for (const Bytes& bytes : all) {
             const json part = json::parse(from_bytes(bytes));
             for (const json& e : part["entries"])
                 entries[e["index"].get<std::size_t>()] = e["entry"];
+            time_limit = time_limit || part["time_limit"].get<bool>();
             if (part.contains("error") &&
                 (verdict["ok"] || part["error"]["index"] < verdict["error"]["index"])) {
                 verdict = {{"ok", false}, {"error", part["error"]}};
             }
+        }
+        // A capture no rank reached (the time budget was spent first) is listed with the reason
+        // and no output.
+        std::size_t not_done = 0;
+        const std::string reason = time_limit ? time_limit_spent_text() : "";
+        for (std::size_t i = 0; i < entries.size(); ++i) {
+            if (!entries[i].is_null()) continue;
+            ++not_done;
+            entries[i] = {
+                {"input", requests[i].capture}, {"output", nullptr}, {"not_done", reason}};
         }
         summary = {{"format", "pinmask-decode-batch"},
                    {"version", 1},
@@ -191,7 +213,14 @@ void run_decode_batch(const DecodeCommand& given, const BatchRequest& b, BayerMo
         summary["config"].erase("capture");
         summary["config"].erase("output");
         summary["config"].erase("stats");
-        if (verdict["ok"]) files.stage_bytes(summary_path, summary.dump(2) + "\n");
+        if (not_done > 0) {
+            summary["stopped"] = {
+                {"reason", reason}, {"done", requests.size() - not_done}, {"not_done", not_done}};
+        }
+        if (verdict["ok"]) {
+            verdict["not_done"] = not_done;
+            files.stage_bytes(summary_path, summary.dump(2) + "\n");
+        }
     }
     Bytes verdict_bytes = to_bytes(verdict.dump());
     comm.broadcast(verdict_bytes, 0);
@@ -207,17 +236,35 @@ void run_decode_batch(const DecodeCommand& given, const BatchRequest& b, BayerMo
     }
     files.commit();
     comm.barrier();
-    if (comm.rank() != 0) return;
-    if (r.json) {
-        std::cout << summary.dump(2) << "\n";
-        return;
+    const auto not_done = verdict["not_done"].get<std::size_t>();
+    if (comm.rank() == 0) {
+        if (r.json) {
+            std::cout << summary.dump(2) << "\n";
+        } else {
+            for (std::size_t i = 0; i < requests.size(); ++i) {
+                if (summary["captures"][i]["output"].is_null()) continue;  // not done
+                std::cout << "decode " << requests[i].capture << " -> " << requests[i].output
+                          << "\n";
+            }
+            std::cout << "batch    " << requests.size() << " captures"
+                      << (not_done > 0 ? " (" + std::to_string(not_done) + " not done)" : "")
+                      << " on " << comm.size() << " rank(s), " << decoder.plans().filters_built()
+                      << " filter(s) and " << decoder.plans().operators_built()
+                      << " operator(s) built on rank 0\n"
+                      << "  wrote    " << summary_path << "\n";
+        }
     }
-    for (const DecodeCommand& rc : requests)
-        std::cout << "decode " << rc.capture << " -> " << rc.output << "\n";
-    std::cout << "batch    " << requests.size() << " captures on " << comm.size() << " rank(s), "
-              << decoder.plans().filters_built() << " filter(s) and "
-              << decoder.plans().operators_built() << " operator(s) built on rank 0\n"
-              << "  wrote    " << summary_path << "\n";
+    if (not_done == 0) return;
+    // The time budget left captures undone: exit code 3 on every rank.
+    const std::string message =
+        time_limit_spent_text() + ": decode --batch stopped after " +
+        std::to_string(requests.size() - not_done) + " of " + std::to_string(requests.size()) +
+        " captures; the others are listed in " + summary_path + " as not done";
+    if (comm.size() == 1) throw TimeLimitSpent(message);
+    // Under mpirun the first rank to exit non-zero ends the job: rank 0 says why first.
+    if (comm.rank() == 0) std::cout.flush(), std::cerr << "pinmask: stopped: " << message << "\n";
+    comm.barrier();
+    throw BatchQuietExit{3};
 }
 
 }  // namespace pinmask::cli

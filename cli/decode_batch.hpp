@@ -8,6 +8,13 @@
 // Ranks (RankComm): capture i is decoded by rank i % size; each rank stages its own files, rank 0
 // gathers the per-capture results and stages the summary, and every rank commits only when no
 // rank failed: an error anywhere leaves no file. The bytes do not depend on the rank count.
+//
+// Time budget (PINMASK_TIME_LIMIT, core/resource_limits): each rank checks it between its
+// captures (its first capture always runs). Once it is spent the rank stops; the captures
+// finished on every rank are written as usual, the summary lists the others with "output": null
+// and "not_done" (the reason), plus "stopped": {reason, done, not_done}. Then one process throws
+// TimeLimitSpent (exit 3); under mpirun rank 0 prints why and every rank throws
+// BatchQuietExit{3}.
 #pragma once
 
 #include <string>

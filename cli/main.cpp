@@ -121,7 +121,9 @@ int main(int argc, char** argv) {
     CLI::App app{
         "pinmask: design, simulate, export and decode coded pinhole-array masks for a coded "
         "pinhole lens camera.\nUnits take suffixes (440um, 55mm, 6m, 550nm); plain numbers are "
-        "SI. Exit codes: 0 ok, 1 runtime failure, 2 usage or invalid input.",
+        "SI. Exit codes: 0 ok, 1 runtime failure, 2 usage or invalid input, 3 the time limit "
+        "PINMASK_TIME_LIMIT (e.g. 90s, 2m, 1.5h; off unless set) was spent: decode --batch "
+        "keeps the captures it finished, check gives no verdict.",
         "pinmask"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "pinmask 0.1.0");
@@ -154,6 +156,8 @@ int main(int argc, char** argv) {
     enable_input_protection();           // no output may replace a file this run read
     try {
         memory_limit_bytes();  // a bad PINMASK_MEMORY_LIMIT is refused by every command
+        // The time budget starts here, once for the whole run (a bad value: every command).
+        if (const auto seconds = time_limit_from_environment()) start_time_limit(*seconds);
         cli::configure_fft_for_process();
         app.parse(argc, argv);
         cli::print_fft_warnings();
@@ -163,6 +167,9 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
         return report_input_error([&] { app.exit(e); });
+    } catch (const TimeLimitSpent& e) {
+        std::cerr << "pinmask: stopped: " << cli::spell_flags(readable_numbers(e.what())) << "\n";
+        return 3;
     } catch (const InvalidInput& e) {
         return report_input_error([&] {
             std::cerr << "pinmask: error: " << cli::spell_flags(readable_numbers(e.what())) << "\n";

@@ -55,7 +55,8 @@ void setup_cluster(const ClusterFlags& f, RankComm& comm, const nlohmann::ordere
         if (std::filesystem::weakly_canonical(path).parent_path() == out) {
             const std::string name = path.filename().string();
             if (name == "run-log.csv" || name == "summary.md" || name == "timing.csv" ||
-                name == "search.config.json" || name.rfind("rank-", 0) == 0)
+                name == "search.config.json" || name == "best-so-far.mask.json" ||
+                name.rfind("rank-", 0) == 0)
                 throw invalid_field("--checkpoint", f.checkpoint,
                                     "is one of the output files of -o " + output);
         }

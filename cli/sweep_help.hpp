@@ -27,7 +27,8 @@ inline constexpr const char* kSweepFooter =
     "Writes into -o: sweep.csv and sweep.md (one row per point), points/point-NNNN.mask.json\n"
     "(the best mask) and points/point-NNNN.search.config.json (repeat a point with pinmask search\n"
     "--config), sweep.config.json, and psnr-vs-holes, psnr-vs-pinhole-size, psnr-vs-light (.svg\n"
-    "and .png) for the axes the sweep varies. All or nothing.\n"
+    "and .png) for the axes the sweep varies. All or nothing. PINMASK_TIME_LIMIT does not\n"
+    "apply: the points' evaluations_per_chain are the sweep's budget.\n"
     "Example: pinmask sweep sweep.json -o runs/sweep/   (mpirun -n 4 pinmask sweep ... on MPI)";
 
 }  // namespace pinmask::cli

@@ -12,6 +12,7 @@
 
 #include "core/error.hpp"
 #include "core/field_names.hpp"
+#include "core/resource_limits.hpp"
 #include "layout/segment_predicates.hpp"
 #include "layout/xor_area.hpp"
 
@@ -407,7 +408,14 @@ DrcReport Checker::run() {
     const std::size_t n = in_.size();
     report_.polygons_checked = n;
     info_.assign(n, {});
-    for (std::size_t i = 0; i < n; ++i) check_ring(i);
+    // The time budget (PINMASK_TIME_LIMIT) inside `check`: a no-op elsewhere.
+    TimeLimitPoll poll_rings("the design-rule check (rings)");
+    for (std::size_t i = 0; i < n; ++i) {
+        poll_rings();
+        check_ring(i);
+    }
+    check_time_limit("the design-rule check (after the rings)");
+    TimeLimitPoll poll_pairs("the design-rule check (pairs)");
     pair_stage_ = true;
     try {
         const double half = 0.5 * double(rules_.min_gap_nm);
@@ -420,6 +428,7 @@ DrcReport Checker::run() {
                                i);
         }
         CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& u, const Box& v) {
+            poll_pairs();
             if (!pair_checked(in_[u.info()].group, in_[v.info()].group)) return;
             check_pair(std::min(u.info(), v.info()), std::max(u.info(), v.info()));
         });

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/resource_limits.hpp"
 #include "formats/decimal.hpp"
 #include "layout/geometry.hpp"
 #include "layout/rings.hpp"
@@ -324,7 +325,9 @@ FileGeometry read_dxf(std::string_view text) {
     std::string section;
     DrawingUnit unit;
     HiddenLayers hidden;
+    TimeLimitPoll poll_time("reading the DXF file");
     for (;;) {
+        poll_time();
         const Pair p = rd.take();
         if (p.code == 999) {
             for (const auto& [k, v] : parse_info(p.value)) g.info[k] = v;

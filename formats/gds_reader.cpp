@@ -182,7 +182,9 @@ FileGeometry read_gds(std::string_view bytes) {
     int structures = 0;
     bool in_structure = false, ended = false;
     std::string layers;
+    TimeLimitPoll poll_time("reading the GDSII file");
     while (!ended) {
+        poll_time();
         if (rd.at_end()) throw bad(rd.offset(), "stream ends before ENDLIB: truncated");
         r = rd.next();
         switch (r.type) {

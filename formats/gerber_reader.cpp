@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/resource_limits.hpp"
 #include "formats/decimal.hpp"
 #include "layout/geometry.hpp"
 
@@ -20,7 +21,9 @@ class GerberParser {
     explicit GerberParser(std::string_view t) : t_(t) {}
 
     FileGeometry run() {
+        TimeLimitPoll poll_time("reading the Gerber file");
         while (!ended_) {
+            poll_time();
             skip_space();
             if (pos_ >= t_.size()) throw bad(pos_, "file ends without M02: truncated");
             if (t_[pos_] == '%') {

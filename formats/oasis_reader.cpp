@@ -287,6 +287,7 @@ class OasisParser {
         // rings' bytes: the design-rule check makes a canonical copy of the geometry.
         expanded_bytes_ += double(offsets.size()) * (double(shape.size()) * 16.0 + 56.0);
         check_memory(2.0 * expanded_bytes_, "OASIS elements (repetitions expanded)");
+        check_time_limit("reading the OASIS file (at byte " + std::to_string(at) + ")");
         for (const PointNm& o : offsets) {
             Ring ring;
             ring.reserve(shape.size());

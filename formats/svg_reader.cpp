@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/resource_limits.hpp"
 #include "formats/decimal.hpp"
 #include "formats/svg_writer.hpp"
 #include "layout/geometry.hpp"
@@ -344,7 +345,9 @@ FileGeometry read_svg(std::string_view text) {
     const auto tone_it = g.info.find("tone");
     const bool film_clear = draw_it != g.info.end() && draw_it->second == "film" &&
                             tone_it != g.info.end() && tone_it->second == "clear";
+    TimeLimitPoll poll_time("reading the SVG file");
     for (std::size_t pos = root; (pos = text.find('<', pos)) != std::string_view::npos; ++pos) {
+        poll_time();
         if (text.substr(pos, 4) == "<!--") {  // comments may contain anything
             // The comment's end, "-" "-" ">", as characters: no string literal here starts
             // like a command-line flag (the libraries are checked for those).

@@ -176,6 +176,7 @@ class Chain {
 
     void record(const PatternState& s, double value) {
         ++st_.evaluations;
+        const bool improved = value < st_.best_objective;
         st_.best_objective = std::min(st_.best_objective, value);
         if (st_.evaluations == st_.next_checkpoint) {
             st_.checkpoints.push_back({st_.evaluations, st_.best_objective});
@@ -190,6 +191,7 @@ class Chain {
         if (value < shared_->best.load(std::memory_order_relaxed)) {
             shared_->best.store(value, std::memory_order_relaxed);
         }
+        if (improved && o_.on_improvement) o_.on_improvement(s.pattern(), value);
     }
 
     bool blocked(Cell c) const {

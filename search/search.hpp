@@ -55,6 +55,11 @@ struct SearchOptions {
     int min_holes = 0, max_holes = 0;
     double resize_probability = 0.2;
     bool holes_range() const { return max_holes > 0; }
+    // Called from a chain's thread each time that chain's best objective improves, with the
+    // pattern (several chains call it at once: it must be thread-safe, and quick). It only
+    // watches: the search's results do not depend on it. The command line keeps the best so far
+    // on disk with it (cli/outputs/search_snapshot). Empty: not called.
+    std::function<void(const Pattern& pattern, double objective)> on_improvement;
 
     // The bounds every face shares: evaluations per chain and candidates kept.
     static constexpr std::int64_t kMaxEvaluations = 1'000'000'000;

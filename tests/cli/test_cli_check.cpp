@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "formats/gds_writer.hpp"
-#include "layout/geometry.hpp"
 #include "io/mask_json.hpp"
+#include "layout/geometry.hpp"
 #include "tests/support/cli_run.hpp"
 
 using namespace pinmask;
@@ -261,4 +261,37 @@ TEST_CASE("check FILE takes the export sidecar: clean on every format export wri
     fs::remove(dir.path / "clear" / "m.export.json");
     const auto none = run_cli("check '" + (dir / "clear") + "/m.gds' --json");
     CHECK(none.exit_code == 0);
+}
+
+// PINMASK_TIME_LIMIT: a budget that is not spent changes nothing; a spent one (1 us, the
+// smallest accepted: spent before the first poll on any machine) stops the check of a mask
+// and of a fabrication file with exit code 3 and no verdict, text or JSON, naming the limit.
+TEST_CASE("check: a spent PINMASK_TIME_LIMIT stops with exit code 3 and prints no verdict") {
+    TempDir dir("check-time");
+    const std::string mask =
+        write_mask(dir, "m.mask.json", make_mask(16, {{0, 0}, {3, 5}, {8, 2}, {12, 12}}, 2));
+    REQUIRE(run_cli("export '" + mask + "' --format gds --no-psf -o '" + (dir / "fab") + "'")
+                .exit_code == 0);
+    const std::string gds = dir / "fab/m.gds";
+    const auto free = run_cli("check --json " + gds);
+    ::setenv("PINMASK_TIME_LIMIT", "2m", 1);
+    const auto roomy = run_cli("check --json " + gds);
+    ::setenv("PINMASK_TIME_LIMIT", "1e-6", 1);
+    std::vector<test::CliResult> spent;
+    for (const std::string& input : {mask, gds})
+        for (const std::string json : {"", "--json "})
+            spent.push_back(run_cli("check " + json + input));
+    ::unsetenv("PINMASK_TIME_LIMIT");
+    INFO(free.err);
+    REQUIRE(free.exit_code == 0);
+    CHECK(roomy.exit_code == 0);
+    CHECK(roomy.out == free.out);
+    for (const auto& r : spent) {
+        INFO(r.err);
+        CHECK(r.exit_code == 3);
+        CHECK(r.out.empty());
+        CHECK(r.err.find("pinmask: stopped: the time limit PINMASK_TIME_LIMIT = 1e-06 s was "
+                         "spent: check stopped") != std::string::npos);
+        CHECK(r.err.find("no verdict (exit code 3)") != std::string::npos);
+    }
 }

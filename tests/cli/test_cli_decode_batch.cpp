@@ -194,3 +194,69 @@ TEST_CASE("decode --batch: bad inputs exit 2 naming the flag, nothing written") 
     CHECK(fs::is_empty(dir.path / "out"));
     CHECK(run_cli("decode" + m + "-o out/x.tiff", dir.path).exit_code == 2);
 }
+
+// PINMASK_TIME_LIMIT: the budget is checked between captures and each run decodes at least its
+// first capture, so a budget of 1 us (the smallest accepted; spent before the first check on any
+// machine) keeps exactly c1: its files are those of a run without a budget, the others are
+// listed as not done, nothing else is written, exit code 3. No wall-clock figure is asserted.
+TEST_CASE("decode --batch: a spent time budget keeps the captures finished, lists the others") {
+    TempDir dir("cli-decode-batch-time");
+    make_captures(dir);
+    // Each run in its own folder with the same relative paths (the files record them).
+    const auto run_in = [&](const std::string& name, const std::string& extra = "") {
+        fs::create_directories(dir.path / name / "out");
+        return run_cli(
+            "decode --batch ../caps --mask ../m.mask.json --method wiener --nsr 1e-3 "
+            "--batch-stats " +
+                extra + "-o out",
+            dir.path / name);
+    };
+    const auto free = run_in("free");
+    REQUIRE(free.exit_code == 0);
+    // A budget that is not spent changes nothing: the same bytes, no "stopped".
+    ::setenv("PINMASK_TIME_LIMIT", "1h", 1);
+    const auto roomy = run_in("roomy");
+    ::setenv("PINMASK_TIME_LIMIT", "1e-6", 1);
+    const auto tight = run_in("tight");
+    const auto tight_json = run_in("tight-json", "--json ");
+    ::unsetenv("PINMASK_TIME_LIMIT");
+
+    INFO(roomy.err);
+    REQUIRE(roomy.exit_code == 0);
+    for (const std::string name :
+         {"batch-summary.json", "c1.tiff", "c2.tiff", "c3.tiff", "c3.tiff.config.json"})
+        CHECK(slurp(dir.path / "roomy/out" / name) == slurp(dir.path / "free/out" / name));
+
+    INFO(tight.err);
+    REQUIRE(tight.exit_code == 3);
+    CHECK(tight.err.find("PINMASK_TIME_LIMIT = 1e-06 s was spent") != std::string::npos);
+    CHECK(tight.err.find("stopped after 1 of 3 captures") != std::string::npos);
+    CHECK(tight.out.find("decode ../caps/c1.tiff") != std::string::npos);
+    CHECK(tight.out.find("caps/c2.tiff") == std::string::npos);
+    CHECK(tight.out.find("3 captures (2 not done)") != std::string::npos);
+    const fs::path out = dir.path / "tight/out";
+    CHECK(file_count(out) == 3 + 1);  // c1's image, config and stats; the summary
+    for (const std::string name : {"c1.tiff", "c1.tiff.config.json"})
+        CHECK(slurp(out / name) == slurp(dir.path / "free/out" / name));
+    CHECK(fs::exists(out / "c1.stats.json"));
+    const auto summary = nlohmann::json::parse(slurp(out / "batch-summary.json"));
+    const auto full = nlohmann::json::parse(slurp(dir.path / "free/out/batch-summary.json"));
+    REQUIRE(summary["captures"].size() == 3);
+    CHECK(summary["captures"][0] == full["captures"][0]);
+    for (int i = 1; i < 3; ++i) {
+        const auto& e = summary["captures"][i];
+        CHECK(e["input"] == "../caps/c" + std::to_string(i + 1) + ".tiff");
+        CHECK(e["output"].is_null());
+        CHECK(e["not_done"].get<std::string>().find("PINMASK_TIME_LIMIT") != std::string::npos);
+    }
+    CHECK(summary["stopped"]["done"] == 1);
+    CHECK(summary["stopped"]["not_done"] == 2);
+    CHECK(!full.contains("stopped"));
+
+    // --json prints the same summary before exit code 3.
+    INFO(tight_json.err);
+    REQUIRE(tight_json.exit_code == 3);
+    const auto printed = nlohmann::json::parse(tight_json.out);
+    CHECK(printed["stopped"] == summary["stopped"]);
+    CHECK(file_count(dir.path / "tight-json/out") == 3 + 1);
+}

@@ -115,6 +115,56 @@ TEST_CASE("PINMASK_MEMORY_LIMIT: nonsense, zero, negative, overflowing values ar
     }
 }
 
+TEST_CASE("PINMASK_TIME_LIMIT: durations with units or plain seconds, within 1 us .. 1e7 s") {
+    // Independent references: the units' definitions written out.
+    CHECK(parse_time_limit_s("90s") == 90.0);
+    CHECK(parse_time_limit_s("90") == 90.0);
+    CHECK(parse_time_limit_s("2m") == 120.0);
+    CHECK(parse_time_limit_s("2min") == 120.0);
+    CHECK(parse_time_limit_s("1.5h") == 5400.0);
+    CHECK(parse_time_limit_s("500ms") == 0.5);
+    CHECK(parse_time_limit_s("1e-6") == 1e-6);
+    CHECK(parse_time_limit_s("1e7") == 1e7);
+    for (const char* bad : {"", "0", "0s", "-1", "-5m", "nan", "inf", "1e400", "1e307h", "1e-9",
+                            "1e8", "200000m", "2y", "2mm", "m", "soon", "5 parsecs"}) {
+        INFO(bad);
+        try {
+            (void)parse_time_limit_s(bad);
+            FAIL("accepted");
+        } catch (const InvalidInput& e) {
+            CHECK(std::string(e.what()).find("PINMASK_TIME_LIMIT") != std::string::npos);
+        }
+    }
+}
+
+TEST_CASE("the time budget applies inside a TimeLimitScope only, and then stops polls") {
+    start_time_limit(1e-6);
+    REQUIRE(time_limit_s() == 1e-6);
+    {
+        const TimeLimitScope scope;
+        while (!time_limit_spent()) {
+        }  // 1 us: spent at once on any machine; no figure asserted
+        CHECK_THROWS_AS(check_time_limit("the test's loop"), TimeLimitSpent);
+        try {
+            check_time_limit("the test's loop");
+        } catch (const TimeLimitSpent& e) {
+            CHECK(std::string(e.what()) ==
+                  "the time limit PINMASK_TIME_LIMIT = 1e-06 s was spent: the test's loop");
+        }
+        // Not an input error: the command line gives it its own exit code.
+        CHECK_THROWS_AS(check_time_limit("x"), Error);
+        TimeLimitPoll poll("the poll");
+        for (int i = 0; i < 4095; ++i) poll();  // reads the clock at the 4096th call only
+        CHECK_THROWS_AS(poll(), TimeLimitSpent);
+    }
+    // Without a scope (export, the Python module) a spent budget changes nothing.
+    CHECK_FALSE(time_limit_spent());
+    CHECK_NOTHROW(check_time_limit("outside"));
+    start_time_limit(1e7);  // leave the process with a budget that no later test can spend
+    const TimeLimitScope scope;
+    CHECK_FALSE(time_limit_spent());
+}
+
 TEST_CASE("check_memory refuses above the bound with both figures, accepts up to it") {
     MemoryLimit limit("64M");
     CHECK_NOTHROW(check_memory(64.0 * kMiB, "exactly the bound"));

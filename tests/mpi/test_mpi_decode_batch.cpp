@@ -73,6 +73,24 @@ TEST_CASE("decode --batch under mpirun: the plain run's bytes on 1, 2 and 3 rank
         const auto got = strip_stats(outputs(d / name / "out"));
         CHECK(got == plain);
     }
+    // A spent time budget (1 us): each rank decodes its first capture (c1 on rank 0, c2 on
+    // rank 1) and stops; c3 (rank 0's second) is not done; mpirun's exit code is 3, the ranks'.
+    {
+        const std::string mpirun2 =
+            std::string(PINMASK_MPIEXEC) + " -n 2 --oversubscribe " + PINMASK_EXE;
+        CHECK(run_in("spent", "PINMASK_TIME_LIMIT=1e-6 " + mpirun2) == 3);
+        const auto got = strip_stats(outputs(d / "spent/out"));
+        std::vector<std::pair<std::string, std::string>> want;
+        for (const auto& f : plain)
+            if (f.first.rfind("c3.", 0) != 0 && f.first != "batch-summary.json") want.push_back(f);
+        auto without_summary = got;
+        std::erase_if(without_summary,
+                      [](const auto& f) { return f.first == "batch-summary.json"; });
+        CHECK(without_summary == want);
+        const std::string summary = slurp(d / "spent/out/batch-summary.json");
+        CHECK(summary.find("\"not_done\": 1") != std::string::npos);
+        CHECK(summary.find("\"done\": 2") != std::string::npos);
+    }
     // A capture no rank can read (the second of three, rank 1's on 2 ranks): exit 2, no file.
     std::ofstream(d / "caps/c2.tiff") << "not a tiff";
     const std::string mpirun2 =

@@ -168,3 +168,104 @@ TEST_CASE(
     CHECK(WEXITSTATUS(rc) == 2);
     CHECK(slurp(err).find("differing keys: checkpoint_every, seed") != std::string::npos);
 }
+
+namespace {
+
+// Starts `cmd` (exec'd by sh, so the pid is mpirun's) as the leader of a new session.
+pid_t start_session(const std::string& cmd) {
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        ::setsid();
+        ::execl("/bin/sh", "sh", "-c", ("exec " + cmd + " >/dev/null 2>&1").c_str(),
+                static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    return pid;
+}
+
+// Polls (1 ms steps, up to 120 s) until `file` exists; false when the process ended first.
+bool wait_for_file(const fs::path& file, pid_t pid) {
+    for (int i = 0; i < 120000; ++i) {
+        if (fs::exists(file)) return true;
+        int status;
+        if (::waitpid(pid, &status, WNOHANG) == pid) return fs::exists(file);
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    return false;
+}
+
+// True when `pid` ended within 60 s (polled); the caller kills the session anyway.
+bool wait_for_exit(pid_t pid) {
+    for (int i = 0; i < 60000; ++i) {
+        int status;
+        if (::waitpid(pid, &status, WNOHANG) == pid) return true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    return false;
+}
+
+// No *.tmp-* file in `dir`.
+bool no_temporaries(const fs::path& dir) {
+    for (const auto& e : fs::directory_iterator(dir))
+        if (e.path().filename().string().find(".tmp-") != std::string::npos) return false;
+    return true;
+}
+
+}  // namespace
+
+// Open MPI's mpirun forwards a first SIGINT to the ranks and kills them on a second, before
+// rank 0 has gathered and written the chains: a 60 s run given two Ctrl-C 0.1 s apart, and one
+// killed with SIGKILL, each still leave a mask usable by the next command. Rank 0 writes
+// best-so-far.mask.json as soon as its chains have a best (the test waits for that file, never
+// for a time) and at once on the first signal.
+TEST_CASE("mpirun search: two Ctrl-C to mpirun, or SIGKILL, leave the best so far") {
+    TempDir dir("mpi-snapshot");
+    const std::string args =
+        " search --grid 12 --holes 8 --pixels-per-cell 4 --tiles 1 --prior-scenes 2 --threads 1 "
+        "--seed 2 --no-rerank --quiet --time 60s -o ";
+    // SIGKILL to mpirun and the ranks once the snapshot exists: it is a whole mask file.
+    {
+        const fs::path out = dir.path / "killed";
+        const pid_t pid = start_session(mpirun(2) + args + out.string());
+        REQUIRE(pid > 0);
+        const bool seen = wait_for_file(out / "best-so-far.mask.json", pid);
+        kill_session(pid);
+        ::waitpid(pid, nullptr, 0);
+        REQUIRE(seen);
+        CHECK_FALSE(fs::exists(out / "summary.md"));
+        const auto psf = run_cli("psf " + (out / "best-so-far.mask.json").string() + " -o " +
+                                 (dir / "killed.tiff"));
+        CAPTURE(psf.err);
+        CHECK(psf.exit_code == 0);
+        const std::string text = slurp(out / "best-so-far.mask.json");
+        CHECK(text.find("search:anneal (best so far)") != std::string::npos);
+        CHECK(text.find("search_objective") != std::string::npos);
+    }
+    // Two SIGINTs 0.1 s apart to mpirun (the reproduction of docs/reliability.md): whichever
+    // way the race between rank 0's final write and mpirun's kill ends, the folder holds a usable
+    // mask: the final files (rank-1.mask.json, best-so-far.mask.json removed) or the snapshot.
+    {
+        const fs::path out = dir.path / "twice";
+        const pid_t pid = start_session(mpirun(2) + args + out.string());
+        REQUIRE(pid > 0);
+        const bool seen = wait_for_file(out / "best-so-far.mask.json", pid);
+        ::kill(pid, SIGINT);
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        ::kill(pid, SIGINT);
+        const bool ended = wait_for_exit(pid);
+        kill_session(pid);
+        if (!ended) ::waitpid(pid, nullptr, 0);
+        REQUIRE(seen);
+        CHECK(ended);
+        const bool final_files = fs::exists(out / "summary.md");
+        const fs::path mask = out / (final_files ? "rank-1.mask.json" : "best-so-far.mask.json");
+        const std::string outcome = final_files ? "final files written" : "snapshot kept";
+        MESSAGE("two SIGINTs: ", outcome);
+        REQUIRE(fs::exists(mask));
+        if (final_files) CHECK_FALSE(fs::exists(out / "best-so-far.mask.json"));
+        CHECK(no_temporaries(out));
+        const auto psf = run_cli("psf " + mask.string() + " -o " + (dir / "twice.tiff"));
+        CAPTURE(psf.err);
+        CHECK(psf.exit_code == 0);
+    }
+}

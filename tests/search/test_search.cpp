@@ -1,7 +1,10 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <mutex>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include "core/error.hpp"
 #include "design/pattern.hpp"
@@ -152,4 +155,47 @@ TEST_CASE("a pinhole-count range: K moves inside it, best pattern per K, reprodu
     o.min_holes = 9;
     o.max_holes = 8;
     CHECK_THROWS_AS(run_search(objective, o, sample), InvalidInput);
+}
+
+// SearchOptions::on_improvement (what `pinmask search` keeps on disk as best-so-far.mask.json):
+// it sees every improvement of every chain, its last call is the run's best, the pattern it is
+// handed has the objective it is told (evaluated again here), and it changes nothing in the run.
+TEST_CASE("on_improvement watches every chain's improvements without changing the search") {
+    for (auto strategy : {SearchStrategy::kRandom, SearchStrategy::kAnneal}) {
+        const SearchSummary plain = run(strategy, 2, 7);
+        SearchOptions o;
+        o.strategy = strategy;
+        o.threads = 2;
+        o.seed = 7;
+        o.time_budget_s = 0.0;
+        o.max_evaluations = 3000;
+        o.anneal_restart_moves = 1000;
+        o.top = 4;
+        std::mutex mutex;
+        std::vector<std::pair<Pattern, double>> seen;
+        o.on_improvement = [&](const Pattern& p, double objective) {
+            const std::lock_guard<std::mutex> lock(mutex);
+            seen.emplace_back(p, objective);
+        };
+        const SidelobeObjective objective;
+        const SearchSummary watched = run_search(objective, o, [&](std::mt19937_64& rng) {
+            return sample_pattern(rng, 16, 20, 2.0, {});
+        });
+        REQUIRE(watched.ranked.size() == plain.ranked.size());
+        for (std::size_t i = 0; i < plain.ranked.size(); ++i) {
+            CHECK(watched.ranked[i].objective == plain.ranked[i].objective);
+            CHECK(sorted_pinholes(watched.ranked[i].pattern) ==
+                  sorted_pinholes(plain.ranked[i].pattern));
+        }
+        REQUIRE(!seen.empty());
+        double best = INFINITY;
+        for (const auto& [p, value] : seen) {
+            CHECK(value == doctest::Approx(objective.evaluate(PatternState(p))));
+            best = std::min(best, value);
+        }
+        CHECK(best == plain.ranked.front().objective);
+        // At least one call per chain (its first evaluation), at most one per evaluation.
+        CHECK(seen.size() >= 2);
+        CHECK(seen.size() <= 6000);
+    }
 }
