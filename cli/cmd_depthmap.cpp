@@ -1,10 +1,12 @@
-// `pinmask depthmap CAPTURE --mask M --from U1 --to U2 [--steps N]`: a depth map, its confidence
-// and an all-in-focus image from one capture, by a plane sweep over object distance
-// (depthmap/depthmap.hpp). Writes into -o DIR, together: depth.tif (float32, metres),
-// confidence.tif (float32, [0, 1]), all_in_focus.tif (float32), depthmap.png (depth in colour and
-// confidence in grey scaled to its maximum, side by side, a colour bar from near (dark) to far
-// (bright) at the right), depthmap.json (the summary, also on stdout with --json). Ctrl-C stops
-// after the current plane and writes the sweep over the planes finished.
+// `pinmask depthmap CAPTURE --mask M --from U1 --to U2 [--steps N] [--smooth L]` (or
+// `--psf-stack STACK` instead of --mask/--from/--to/--steps): a depth map, its confidence and an
+// all-in-focus image from one capture, by a plane sweep over object distance
+// (depthmap/depthmap.hpp; the stack's format: io/psf_stack.hpp). Writes into -o DIR, together:
+// depth.tif (float32, metres), confidence.tif (float32, [0, 1]), all_in_focus.tif (float32),
+// depthmap.png (depth in colour and confidence in grey scaled to its maximum, side by side, a
+// colour bar from near (dark) to far (bright) at the right), depthmap.json (the summary, also on
+// stdout with --json). Ctrl-C stops after the current plane and writes the sweep over the planes
+// finished.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -25,6 +27,7 @@
 #include "core/units.hpp"
 #include "depthmap/depthmap.hpp"
 #include "io/mask_json.hpp"
+#include "io/psf_stack.hpp"
 #include "metrics/depth_loss.hpp"
 
 namespace pinmask::cli {
@@ -39,8 +42,11 @@ constexpr const char* kOutputFiles[] = {"depth.tif", "confidence.tif", "all_in_f
 struct DepthmapCommandOptions {
     std::string capture;
     std::string mask;
+    std::string psf_stack;
     std::string from, to;
     int steps = 16;
+    bool steps_given = false;
+    double smooth = kDepthmapDefaultSmooth;
     double nsr = 0.01;
     int window = 121;
     std::string output_dir = "depthmap_out";
@@ -101,7 +107,8 @@ json summary(const DepthmapResult& r, const DepthmapCommandOptions& o, std::size
     }
     return json{
         {"capture", o.capture},
-        {"mask", o.mask},
+        {"mask", o.mask.empty() ? json(nullptr) : json(o.mask)},
+        {"psf_stack", o.psf_stack.empty() ? json(nullptr) : json(o.psf_stack)},
         {"rows", r.depth_m.rows()},
         {"cols", r.depth_m.cols()},
         {"planes_planned", planned},
@@ -109,6 +116,7 @@ json summary(const DepthmapResult& r, const DepthmapCommandOptions& o, std::size
         {"interrupted", r.interrupted},
         {"wiener_nsr", o.nsr},
         {"window_px", o.window},
+        {"smooth", o.smooth},
         {"capture_depth_m", finite_or_null(r.capture_depth_m)},
         {"capture_confidence", r.capture_confidence},
         {"depth_min_m", finite_or_null(r.depth_min_m)},
@@ -124,11 +132,36 @@ void run(const DepthmapCommandOptions& o) {
     if (fs::exists(dir) && !fs::is_directory(dir)) {
         throw invalid_field("-o", o.output_dir, "is a file; give a folder (created when missing)");
     }
+    // Exactly one source of PSFs: the mask's exact geometry over --from/--to/--steps, or a
+    // given stack whose distances are the planes.
+    if (o.mask.empty() == o.psf_stack.empty()) {
+        throw invalid_field(
+            "--mask", o.mask,
+            "give either --mask (with --from and --to) or --psf-stack, one of them");
+    }
+    if (!o.psf_stack.empty()) {
+        for (const auto& [flag, given] : {std::pair<const char*, bool>{"--from", !o.from.empty()},
+                                          {"--to", !o.to.empty()},
+                                          {"--steps", o.steps_given}}) {
+            if (given)
+                throw invalid_field(flag, "",
+                                    "not with --psf-stack: the stack's distances are the planes");
+        }
+    } else {
+        if (o.from.empty()) throw invalid_field("--from", "", "required with --mask");
+        if (o.to.empty()) throw invalid_field("--to", "", "required with --mask");
+    }
+    // The stack's files are read first so that the outputs can be checked against them too.
+    io::PsfStack stack;
+    if (!o.psf_stack.empty()) stack = io::read_psf_stack(o.psf_stack);
     // Before any work: no output may replace an input or another output (core/output_set).
     std::vector<NamedPath> outputs;
     for (const char* name : kOutputFiles) outputs.push_back({"-o", dir / name, true});
-    plan_outputs({{"CAPTURE", o.capture}, {"--mask", o.mask}}, outputs);
-    const Mask mask = io::read_mask_file(o.mask);
+    std::vector<NamedPath> inputs{{"CAPTURE", o.capture}, {"--mask", o.mask}};
+    for (const fs::path& p : stack.files) inputs.push_back({"--psf-stack", p});
+    plan_outputs(inputs, outputs);
+    Mask mask;
+    if (!o.mask.empty()) mask = io::read_mask_file(o.mask);
     LoadedImage loaded = read_image(o.capture);
     Plane grey = Plane::Zero(loaded.image.rows(), loaded.image.cols());
     for (const Plane& ch : loaded.image.channels) grey += ch;
@@ -139,8 +172,17 @@ void run(const DepthmapCommandOptions& o) {
                             "must be odd, >= 3 and at most the capture's smaller side");
     }
     DepthmapOptions d;
-    d.distances_m = depth_range(parse_length_m(o.from, "--from"),
-                                parse_length_m(o.to, "--to", AllowInfinity::kYes), o.steps);
+    std::vector<PsfStackPlane> planes;
+    if (o.psf_stack.empty()) {
+        d.distances_m = depth_range(parse_length_m(o.from, "--from"),
+                                    parse_length_m(o.to, "--to", AllowInfinity::kYes), o.steps);
+    } else {
+        for (std::size_t k = 0; k < stack.psfs.size(); ++k) {
+            planes.push_back({stack.distances_m[k], std::move(stack.psfs[k])});
+            d.distances_m.push_back(stack.distances_m[k]);
+        }
+    }
+    d.smooth = o.smooth;
     d.wiener_nsr = o.nsr;
     d.window = o.window;
     d.stop = &install_interrupt_flag();
@@ -150,7 +192,8 @@ void run(const DepthmapCommandOptions& o) {
         bar.update(double(done) / double(total),
                    std::to_string(done) + "/" + std::to_string(total) + " planes");
     };
-    const DepthmapResult r = depthmap(grey, mask, d);
+    const DepthmapResult r =
+        o.psf_stack.empty() ? depthmap(grey, mask, d) : depthmap(grey, planes, d);
     bar.finish();
     const json j = summary(r, o, d.distances_m.size());
     fs::create_directories(dir);
@@ -188,19 +231,30 @@ constexpr const char* kFooter =
     "axis the pattern's scale follows), the capture is decoded (Wiener, scalar --nsr, the "
     "exact-geometry PSF at u over the whole frame, cyclic). Cost: the local energy (box of "
     "--window px) of the residual capture - PSF (*) estimate, which light from another distance "
-    "raises. Per pixel the lowest-cost plane, refined by a parabola in 1/u; confidence (median "
-    "cost - best cost) / median cost in [0, 1]; the all-in-focus image takes each pixel from the "
-    "decode at its plane. capture_depth_m: the same for the frame-mean cost (the whole capture "
-    "as one plane). Light from one point spreads over the whole PSF, so the map resolves depth "
-    "only on regions about the PSF's size: measured accuracy in docs/depth.md. The capture is "
-    "read as grey (channels averaged). Outputs in -o DIR, written together: depth.tif (float32, "
-    "metres), confidence.tif, all_in_focus.tif, depthmap.png (depth | confidence scaled to its "
-    "maximum | colour bar: near dark at the top, far bright at the bottom), depthmap.json (also "
-    "on stdout with --json). Progress per plane on stderr; Ctrl-C stops after the current plane "
-    "and writes the sweep over the planes done.\n"
+    "raises. Labels: the plane per pixel that minimises the cost plus --smooth times a penalty "
+    "on neighbouring pixels' planes (a one-plane step costs the weight times the mean depth of the "
+    "pixels' cost wells, a larger jump twice that; semi-global dynamic programming along 8 "
+    "paths; 0: the lowest-cost plane per pixel), refined by a parabola in 1/u; confidence "
+    "(median cost - chosen cost) / median cost in [0, 1]; the all-in-focus image takes each "
+    "pixel from the decode at its plane. capture_depth_m: the lowest frame-mean cost (the whole "
+    "capture as one plane). Light from one point spreads over the whole PSF, so the map resolves "
+    "depth only on regions about the PSF's size: measured accuracy in docs/depth.md.\n"
+    "--psf-stack STACK replaces --mask/--from/--to/--steps with measured or computed PSFs: a JSON "
+    "file (or a folder holding psf_stack.json) {\"format\": \"pinmask-psf-stack\", "
+    "\"version\": 1, \"planes\": [{\"object_distance_m\": 0.5, \"psf\": \"psf_0.5m.tif\"}, "
+    "...]}: 2-1000 planes at distinct distances > 0 (metres), one-channel PSF images (float TIFF, "
+    ".npy, ...; paths relative to the JSON file) of one size, at most the capture's, finite, "
+    "non-negative, centred at element (rows/2, cols/2) rounded down; each is normalised to sum "
+    "1.\n"
+    "The capture is read as grey (channels averaged). Outputs in -o DIR, written together: "
+    "depth.tif (float32, metres), confidence.tif, all_in_focus.tif, depthmap.png (depth | "
+    "confidence scaled to its maximum | colour bar: near dark at the top, far bright at the "
+    "bottom), depthmap.json (also on stdout with --json). Progress per plane on stderr; Ctrl-C "
+    "stops after the current plane and writes the sweep over the planes done.\n"
     "Examples:\n"
     "  pinmask depthmap cap.tif --mask m.mask.json --from 0.3m --to 2m\n"
-    "  pinmask depthmap cap.tif --mask m.mask.json --from 1m --to inf --steps 8 -o dm --json";
+    "  pinmask depthmap cap.tif --mask m.mask.json --from 1m --to inf --steps 8 -o dm --json\n"
+    "  pinmask depthmap cap.tif --psf-stack measured/psf_stack.json --smooth 0";
 
 void setup(CLI::App& app) {
     auto o = std::make_shared<DepthmapCommandOptions>();
@@ -210,10 +264,21 @@ void setup(CLI::App& app) {
         "object distance).");
     cmd->footer(kFooter);
     cmd->add_option("capture", o->capture, "Capture image (TIFF, PNG, .npy, JPEG)")->required();
-    cmd->add_option("--mask", o->mask, "Mask file (*.mask.json) with its camera")->required();
-    cmd->add_option("--from", o->from, "Nearest distance of the sweep (e.g. 0.3m)")->required();
-    cmd->add_option("--to", o->to, "Farthest distance of the sweep (e.g. 2m or inf)")->required();
-    cmd->add_option("--steps", o->steps, "Planes of the sweep, equally spaced in 1/u (2..1000)")
+    cmd->add_option("--mask", o->mask,
+                    "Mask file (*.mask.json) with its camera: the PSFs from its exact geometry");
+    cmd->add_option("--psf-stack", o->psf_stack,
+                    "Instead of --mask/--from/--to/--steps: PSFs at given distances (a "
+                    "pinmask-psf-stack JSON file, or a folder holding psf_stack.json)");
+    cmd->add_option("--from", o->from, "Nearest distance of the sweep (e.g. 0.3m), with --mask");
+    cmd->add_option("--to", o->to, "Farthest distance of the sweep (e.g. 2m or inf), with --mask");
+    auto* steps =
+        cmd->add_option("--steps", o->steps,
+                        "Planes of the sweep, equally spaced in 1/u (2..1000), with --mask")
+            ->capture_default_str();
+    cmd->add_option("--smooth", o->smooth,
+                    "Smoothness weight of the depth labels (>= 0; 0: lowest-cost plane per "
+                    "pixel). A one-plane step between neighbours costs the weight times the mean "
+                    "depth of the pixels' cost wells, a larger jump twice that")
         ->capture_default_str();
     cmd->add_option("--nsr", o->nsr, "Wiener noise-to-signal ratio of every decode (> 0)")
         ->capture_default_str();
@@ -224,7 +289,10 @@ void setup(CLI::App& app) {
                     "Folder for the outputs (created when missing)")
         ->capture_default_str();
     cmd->add_flag("--json", o->json, "Print the summary as JSON on stdout");
-    cmd->callback([o] { run(*o); });
+    cmd->callback([o, steps] {
+        o->steps_given = steps->count() > 0;
+        run(*o);
+    });
 }
 
 }  // namespace

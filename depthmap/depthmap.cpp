@@ -7,39 +7,28 @@
 
 #include "core/error.hpp"
 #include "core/field_names.hpp"
+#include "core/number_format.hpp"
 #include "core/resource_limits.hpp"
 #include "core/units.hpp"
 #include "depthmap/refine.hpp"
+#include "depthmap/smooth_labels.hpp"
 #include "depthmap/sweep_cost.hpp"
 #include "design/working_distance.hpp"
 
 namespace pinmask {
+namespace {
 
-void DepthmapOptions::validate() const {
-    if (distances_m.size() < 2 || distances_m.size() > 1000) {
-        throw invalid_field(field_ref("distances_m"), std::to_string(distances_m.size()),
-                            "need between 2 and 1000 planes");
-    }
-    if (!(wiener_nsr > 0.0) || !std::isfinite(wiener_nsr)) {
-        throw invalid_field(field_ref("wiener_nsr"), std::to_string(wiener_nsr),
-                            "must be finite and > 0");
-    }
-    if (window < 3 || window % 2 == 0) {
-        throw invalid_field(field_ref("cost_window"), std::to_string(window),
-                            "must be odd and >= 3");
-    }
-}
+constexpr std::size_t kMaxPlanes = 1000;
 
-DepthmapResult depthmap(const Plane& capture, const Mask& mask, const DepthmapOptions& o) {
-    o.validate();
-    std::vector<double> u = o.distances_m;
-    for (double d : u) check_object_distance(mask.camera, d, "distances_m");
-    std::sort(u.begin(), u.end());
-    if (std::adjacent_find(u.begin(), u.end()) != u.end()) {
-        throw invalid_field(field_ref("distances_m"), "", "holds the same distance twice");
-    }
-    // Costs and estimates of every plane, plus the working set of one plane.
-    check_memory((2.0 * u.size() + 12.0) * double(capture.size()) * 8.0,
+// The sweep over sorted distances u, plane k's cost by cost_at(k), then the labelling and the
+// maps.
+template <class CostAt>
+DepthmapResult run(const Plane& capture, const std::vector<double>& u, const DepthmapOptions& o,
+                   CostAt cost_at) {
+    // Costs and estimates of every plane, the smoothing's four volumes (the costs by pixel, the
+    // path costs, the sums, the aggregate returned), plus the working set of one plane.
+    const double volumes = o.smooth > 0.0 ? 6.0 : 2.0;
+    check_memory((volumes * double(u.size()) + 12.0) * double(capture.size()) * 8.0,
                  "the depth map's " + std::to_string(u.size()) + " planes");
     std::vector<Plane> costs, estimates;
     DepthmapResult out;
@@ -48,7 +37,7 @@ DepthmapResult depthmap(const Plane& capture, const Mask& mask, const DepthmapOp
             out.interrupted = true;
             break;
         }
-        PlaneCost pc = sweep_cost(capture, mask, u[k], o.wiener_nsr, o.window);
+        PlaneCost pc = cost_at(k);
         costs.push_back(std::move(pc.cost));
         estimates.push_back(std::move(pc.estimate));
         out.distances_m.push_back(u[k]);
@@ -64,7 +53,16 @@ DepthmapResult depthmap(const Plane& capture, const Mask& mask, const DepthmapOp
     const RefinedDepth whole = refine_depth(means, inv);
     out.capture_depth_m = whole.depth_m(0, 0);
     out.capture_confidence = whole.confidence(0, 0);
-    RefinedDepth r = refine_depth(costs, inv);
+    const double scale = o.smooth > 0.0 ? o.smooth * cost_well_depth(costs) : 0.0;
+    RefinedDepth r;
+    if (scale > 0.0) {
+        // The labels and the sub-plane parabola from the aggregated costs; the confidence from
+        // the sweep's own costs at the chosen plane.
+        r = refine_depth(aggregate_paths(costs, scale, 2.0 * scale, 8), inv);
+        r.confidence = label_confidence(costs, r.label);
+    } else {
+        r = refine_depth(costs, inv);
+    }
     out.depth_m = std::move(r.depth_m);
     out.confidence = std::move(r.confidence);
     out.label = std::move(r.label);
@@ -87,6 +85,87 @@ DepthmapResult depthmap(const Plane& capture, const Mask& mask, const DepthmapOp
     out.depth_median_m = median(out.depth_m);
     out.confidence_median = median(out.confidence);
     return out;
+}
+
+}  // namespace
+
+void DepthmapOptions::validate_settings() const {
+    if (!(wiener_nsr > 0.0) || !std::isfinite(wiener_nsr)) {
+        throw invalid_field(field_ref("wiener_nsr"), std::to_string(wiener_nsr),
+                            "must be finite and > 0");
+    }
+    if (window < 3 || window % 2 == 0) {
+        throw invalid_field(field_ref("cost_window"), std::to_string(window),
+                            "must be odd and >= 3");
+    }
+    if (!(smooth >= 0.0) || !std::isfinite(smooth)) {
+        throw invalid_field(field_ref("smooth"), std::to_string(smooth),
+                            "must be finite and >= 0 (0: the lowest-cost plane per pixel)");
+    }
+}
+
+void DepthmapOptions::validate() const {
+    if (distances_m.size() < 2 || distances_m.size() > kMaxPlanes) {
+        throw invalid_field(field_ref("distances_m"), std::to_string(distances_m.size()),
+                            "need between 2 and 1000 planes");
+    }
+    validate_settings();
+}
+
+DepthmapResult depthmap(const Plane& capture, const Mask& mask, const DepthmapOptions& o) {
+    o.validate();
+    std::vector<double> u = o.distances_m;
+    for (double d : u) check_object_distance(mask.camera, d, "distances_m");
+    std::sort(u.begin(), u.end());
+    if (std::adjacent_find(u.begin(), u.end()) != u.end()) {
+        throw invalid_field(field_ref("distances_m"), "", "holds the same distance twice");
+    }
+    return run(capture, u, o, [&](std::size_t k) {
+        return sweep_cost(capture, mask, u[k], o.wiener_nsr, o.window);
+    });
+}
+
+DepthmapResult depthmap(const Plane& capture, const std::vector<PsfStackPlane>& stack,
+                        const DepthmapOptions& o) {
+    o.validate_settings();
+    if (stack.size() < 2 || stack.size() > kMaxPlanes) {
+        throw invalid_field(field_ref("psf_stack"), std::to_string(stack.size()) + " planes",
+                            "need between 2 and 1000 planes");
+    }
+    std::vector<std::size_t> order(stack.size());
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        const double d = stack[k].distance_m;
+        if (!(d > 0.0) || !std::isfinite(d)) {
+            throw invalid_field(field_ref("psf_stack"), format_number(d),
+                                "plane " + std::to_string(k) +
+                                    ": the object distance must be finite and > 0 (metres)");
+        }
+        const Plane& h = stack[k].psf;
+        if (h.rows() < 1 || h.cols() < 1 || h.rows() > capture.rows() ||
+            h.cols() > capture.cols()) {
+            throw invalid_field(
+                field_ref("psf_stack"), std::to_string(h.rows()) + "x" + std::to_string(h.cols()),
+                "plane " + std::to_string(k) + ": a PSF must be at most the capture's size (" +
+                    std::to_string(capture.rows()) + "x" + std::to_string(capture.cols()) + ")");
+        }
+        if (!is_all_finite(h) || h.minCoeff() < 0.0 || !(h.sum() > 0.0)) {
+            throw invalid_field(field_ref("psf_stack"), "",
+                                "plane " + std::to_string(k) +
+                                    ": a PSF must be finite, non-negative and hold some light");
+        }
+        order[k] = k;
+    }
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return stack[a].distance_m < stack[b].distance_m;
+    });
+    std::vector<double> u;
+    for (std::size_t k : order) u.push_back(stack[k].distance_m);
+    if (std::adjacent_find(u.begin(), u.end()) != u.end()) {
+        throw invalid_field(field_ref("psf_stack"), "", "holds the same distance twice");
+    }
+    return run(capture, u, o, [&](std::size_t k) {
+        return sweep_cost(capture, stack[order[k]].psf, o.wiener_nsr, o.window);
+    });
 }
 
 }  // namespace pinmask

@@ -51,4 +51,25 @@ RefinedDepth refine_depth(const std::vector<Plane>& costs, const std::vector<dou
     return out;
 }
 
+Plane label_confidence(const std::vector<Plane>& costs, const Plane& label) {
+    if (costs.empty()) throw invalid_field("planes", "0", "need at least one plane");
+    const std::size_t k_count = costs.size();
+    for (const Plane& c : costs) {
+        if (c.rows() != label.rows() || c.cols() != label.cols())
+            throw invalid_field("planes", "", "cost planes and labels differ in size");
+    }
+    Plane out(label.rows(), label.cols());
+    std::vector<double> sorted(k_count);
+    for (Eigen::Index p = 0; p < label.size(); ++p) {
+        for (std::size_t k = 0; k < k_count; ++k) sorted[k] = costs[k].data()[p];
+        const auto l = static_cast<std::size_t>(label.data()[p]);
+        if (l >= k_count) throw invalid_field("planes", std::to_string(l), "label out of range");
+        const double chosen = sorted[l];
+        std::nth_element(sorted.begin(), sorted.begin() + k_count / 2, sorted.end());
+        const double med = sorted[k_count / 2];
+        out.data()[p] = med > 0.0 ? std::clamp((med - chosen) / med, 0.0, 1.0) : 0.0;
+    }
+    return out;
+}
+
 }  // namespace pinmask

@@ -25,4 +25,9 @@ struct RefinedDepth {
 // size. InvalidInput naming the field otherwise.
 RefinedDepth refine_depth(const std::vector<Plane>& costs, const std::vector<double>& inverse_m);
 
+// The confidence formula above for a given plane per pixel (label: plane indices as numbers),
+// in place of the lowest-cost one: (median_k c - c[label]) / median_k c, clamped to [0, 1]; 0
+// when the median is 0. Equals refine_depth's confidence where label is the lowest-cost plane.
+Plane label_confidence(const std::vector<Plane>& costs, const Plane& label);
+
 }  // namespace pinmask

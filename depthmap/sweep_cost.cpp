@@ -1,5 +1,6 @@
 #include "depthmap/sweep_cost.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -37,8 +38,10 @@ Plane box_mean(const Plane& p, int window) {
     return box_rows(tt, window).transpose();
 }
 
-PlaneCost sweep_cost(const Plane& capture, const Mask& mask, double u, double nsr, int window) {
-    const int rows = static_cast<int>(capture.rows()), cols = static_cast<int>(capture.cols());
+namespace {
+
+void check_inputs(const Plane& capture, double nsr, int window) {
+    const Eigen::Index rows = capture.rows(), cols = capture.cols();
     if (rows < 8 || cols < 8) {
         throw invalid_field("capture", std::to_string(rows) + "x" + std::to_string(cols),
                             "must be at least 8 x 8 pixels");
@@ -52,11 +55,10 @@ PlaneCost sweep_cost(const Plane& capture, const Mask& mask, double u, double ns
                             "must be odd, >= 3 and at most the capture's smaller side (" +
                                 std::to_string(std::min(rows, cols)) + ")");
     }
-    ExactPsfOptions eo;
-    eo.object_distance_m = u;
-    eo.rows = rows;
-    eo.cols = cols;
-    const Plane psf = exact_psf(mask, eo);
+}
+
+PlaneCost cost_of(const Plane& capture, const Plane& psf, double nsr, int window) {
+    const int rows = static_cast<int>(capture.rows()), cols = static_cast<int>(capture.cols());
     const Fft2 fft(rows, cols);
     const ComplexPlane pf = fft.forward(capture);
     const ComplexPlane h = psf2otf(psf / psf.sum(), rows, cols);
@@ -67,6 +69,32 @@ PlaneCost sweep_cost(const Plane& capture, const Mask& mask, double u, double ns
     const ComplexPlane residual = pf * (nsr / (h.abs2() + nsr));
     out.cost = box_mean(fft.inverse(residual).square(), window);
     return out;
+}
+
+}  // namespace
+
+PlaneCost sweep_cost(const Plane& capture, const Mask& mask, double u, double nsr, int window) {
+    check_inputs(capture, nsr, window);
+    ExactPsfOptions eo;
+    eo.object_distance_m = u;
+    eo.rows = static_cast<int>(capture.rows());
+    eo.cols = static_cast<int>(capture.cols());
+    return cost_of(capture, exact_psf(mask, eo), nsr, window);
+}
+
+PlaneCost sweep_cost(const Plane& capture, const Plane& psf, double nsr, int window) {
+    check_inputs(capture, nsr, window);
+    if (psf.rows() < 1 || psf.cols() < 1 || psf.rows() > capture.rows() ||
+        psf.cols() > capture.cols()) {
+        throw invalid_field(
+            field_ref("psf_stack"), std::to_string(psf.rows()) + "x" + std::to_string(psf.cols()),
+            "a PSF must be at most the capture's size (" + std::to_string(capture.rows()) + "x" +
+                std::to_string(capture.cols()) + ")");
+    }
+    if (!is_all_finite(psf) || psf.minCoeff() < 0.0 || !(psf.sum() > 0.0))
+        throw invalid_field(field_ref("psf_stack"), "",
+                            "a PSF must be finite, non-negative and hold some light");
+    return cost_of(capture, psf, nsr, window);
 }
 
 }  // namespace pinmask

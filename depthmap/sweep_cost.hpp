@@ -32,6 +32,11 @@ struct PlaneCost {
 PlaneCost sweep_cost(const Plane& capture, const Mask& mask, double object_distance_m, double nsr,
                      int window);
 
+// The same cost for a given PSF of the plane (a measured or externally computed one): at most
+// the capture's size in each dimension, zero-padded and centred as decode/psf2otf does
+// (deconvwnr convention), non-negative with a positive sum (normalised here to sum 1).
+PlaneCost sweep_cost(const Plane& capture, const Plane& psf, double nsr, int window);
+
 // The cyclic box mean of p over a window x window box centred on each pixel (window odd).
 Plane box_mean(const Plane& p, int window);
 

@@ -2,9 +2,12 @@
 // `depthmap --json` plus the maps as numpy arrays (depth_m, confidence, all_in_focus, label).
 // The capture is an array (grey; a colour array's channels are averaged, as the command does) or
 // an image path; nothing is written.
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/error.hpp"
 #include "core/field_names.hpp"
@@ -33,8 +36,9 @@ Plane grey_of(const Image& im) {
 void bind_depthmap(py::module_& m) {
     m.def(
         "depthmap",
-        [](const py::handle& capture, const py::handle& mask, double from_m, double to_m, int steps,
-           double nsr, int window) {
+        [](const py::handle& capture, const py::object& mask, const py::object& from_m,
+           const py::object& to_m, const py::object& steps, double nsr, int window, double smooth,
+           const py::object& psf_stack) {
             const bool capture_is_path =
                 py::isinstance<py::str>(capture) || py::hasattr(capture, "__fspath__");
             const std::string capture_path =
@@ -42,24 +46,62 @@ void bind_depthmap(py::module_& m) {
             const Plane grey = grey_of(capture_is_path ? read_image(capture_path).image
                                                        : image_arg(capture, "capture"));
             if (!is_all_finite(grey)) throw invalid_field("capture", "", "holds NaN or Inf");
-            const bool mask_is_path =
-                py::isinstance<py::str>(mask) || py::hasattr(mask, "__fspath__");
-            const Mask mk = mask_arg(mask);
+            // Exactly one source of PSFs: the mask over from_m/to_m/steps, or the given stack.
+            if (mask.is_none() == psf_stack.is_none())
+                throw invalid_field("mask", "",
+                                    "give either mask (with from_m and to_m) or "
+                                    "psf_stack, one of them");
             DepthmapOptions d;
-            d.distances_m = depth_range(from_m, to_m, steps);
             d.wiener_nsr = nsr;
             d.window = window;
+            d.smooth = smooth;
             if (window > std::min(grey.rows(), grey.cols()))
                 throw invalid_field(field_ref("cost_window"), std::to_string(window),
                                     "must be at most the capture's smaller side");
+            Mask mk;
+            std::vector<PsfStackPlane> planes;
+            if (psf_stack.is_none()) {
+                if (from_m.is_none()) throw invalid_field("from_m", "", "required with mask");
+                if (to_m.is_none()) throw invalid_field("to_m", "", "required with mask");
+                mk = mask_arg(mask);
+                d.distances_m = depth_range(from_m.cast<double>(), to_m.cast<double>(),
+                                            steps.is_none() ? 16 : steps.cast<int>());
+            } else {
+                for (const auto& [name, given] :
+                     {std::pair<const char*, bool>{"from_m", !from_m.is_none()},
+                      {"to_m", !to_m.is_none()},
+                      {"steps", !steps.is_none()}}) {
+                    if (given)
+                        throw invalid_field(name, "",
+                                            "not with psf_stack: the stack's distances are the "
+                                            "planes");
+                }
+                if (!py::isinstance<py::sequence>(psf_stack) || py::isinstance<py::str>(psf_stack))
+                    throw invalid_field(field_ref("psf_stack"), "",
+                                        "must be a list of (distance_m, psf array) pairs");
+                const auto seq = psf_stack.cast<py::sequence>();
+                for (std::size_t k = 0; k < seq.size(); ++k) {
+                    const py::object item = seq[k];
+                    if (!py::isinstance<py::sequence>(item) || py::len(item) != 2)
+                        throw invalid_field(field_ref("psf_stack"), std::to_string(k),
+                                            "each plane must be a (distance_m, psf array) pair");
+                    const auto pair = item.cast<py::sequence>();
+                    const double u = py::float_(pair[0]).cast<double>();
+                    planes.push_back({u, plane_arg(pair[1], "psf_stack").take()});
+                    d.distances_m.push_back(u);
+                }
+            }
             DepthmapResult r;
             {
                 py::gil_scoped_release release;
-                r = depthmap(grey, mk, d);
+                r = psf_stack.is_none() ? depthmap(grey, mk, d) : depthmap(grey, planes, d);
             }
+            const bool mask_is_path = !mask.is_none() && (py::isinstance<py::str>(mask) ||
+                                                          py::hasattr(mask, "__fspath__"));
             py::dict out;
             out["capture"] = capture_is_path ? py::object(py::str(capture_path)) : py::none();
             out["mask"] = mask_is_path ? py::object(py::str(mask)) : py::none();
+            out["psf_stack"] = py::none();  // a list of arrays, not a file
             out["rows"] = r.depth_m.rows();
             out["cols"] = r.depth_m.cols();
             out["planes_planned"] = d.distances_m.size();
@@ -67,21 +109,22 @@ void bind_depthmap(py::module_& m) {
             out["interrupted"] = r.interrupted;
             out["wiener_nsr"] = nsr;
             out["window_px"] = window;
+            out["smooth"] = smooth;
             out["capture_depth_m"] = finite_or_none(r.capture_depth_m);
             out["capture_confidence"] = r.capture_confidence;
             out["depth_min_m"] = finite_or_none(r.depth_min_m);
             out["depth_median_m"] = finite_or_none(r.depth_median_m);
             out["depth_max_m"] = finite_or_none(r.depth_max_m);
             out["confidence_median"] = r.confidence_median;
-            py::list planes;
+            py::list planes_out;
             for (std::size_t k = 0; k < r.distances_m.size(); ++k) {
                 py::dict p;
                 p["object_distance_m"] = finite_or_none(r.distances_m[k]);
                 p["pixel_fraction"] = r.plane_fraction[k];
                 p["mean_cost"] = r.plane_cost[k];
-                planes.append(p);
+                planes_out.append(p);
             }
-            out["planes"] = planes;
+            out["planes"] = planes_out;
             out["files"] = py::list();
             out["depth_m"] = to_array(std::move(r.depth_m));
             out["confidence"] = to_array(std::move(r.confidence));
@@ -89,16 +132,21 @@ void bind_depthmap(py::module_& m) {
             out["label"] = to_array(std::move(r.label));
             return out;
         },
-        py::arg("capture"), py::arg("mask"), py::arg("from_m"), py::arg("to_m"),
-        py::arg("steps") = 16, py::arg("nsr") = 0.01, py::arg("window") = 121,
-        R"(Depth map of one capture as `pinmask depthmap`: a plane sweep over steps distances from
-from_m to to_m (metres, to_m may be inf; equally spaced in 1/u), Wiener decodes (scalar nsr) with
-the mask's exact-geometry PSF at each, cost the local energy (window x window px box) of the
-residual capture - PSF (*) estimate, per pixel the lowest-cost plane refined by a parabola in
-1/u. capture: a 2-D (or colour, averaged) array or an image path; mask: a Mask or *.mask.json
-path. Returns the keys of `pinmask depthmap --json` (files empty: nothing is written) plus the
-arrays depth_m (metres), confidence ([0, 1]), all_in_focus and label (plane index).
-Method and measured accuracy: docs/depth.md.)");
+        py::arg("capture"), py::arg("mask") = py::none(), py::arg("from_m") = py::none(),
+        py::arg("to_m") = py::none(), py::arg("steps") = py::none(), py::arg("nsr") = 0.01,
+        py::arg("window") = 121, py::arg("smooth") = kDepthmapDefaultSmooth,
+        py::arg("psf_stack") = py::none(),
+        R"(Depth map of one capture as `pinmask depthmap`: a plane sweep over steps (default 16)
+distances from from_m to to_m (metres, to_m may be inf; equally spaced in 1/u) with the mask's
+exact-geometry PSF at each, or over the planes of psf_stack (a list of (distance_m, psf array)
+pairs, measured or computed elsewhere; PSFs at most the capture's size, centred at (rows // 2,
+cols // 2); instead of mask, from_m, to_m and steps). Wiener decodes (scalar nsr), cost the local
+energy (window x window px box) of the residual capture - PSF (*) estimate; per pixel the plane
+minimising the cost plus smooth times a penalty on neighbouring planes' steps (0: the lowest-cost
+plane), refined by a parabola in 1/u. capture: a 2-D (or colour, averaged) array or an image
+path; mask: a Mask or *.mask.json path. Returns the keys of `pinmask depthmap --json` (files
+empty: nothing is written) plus the arrays depth_m (metres), confidence ([0, 1]), all_in_focus
+and label (plane index). Method and measured accuracy: docs/depth.md.)");
 
     m.def(
         "depth_fisher",

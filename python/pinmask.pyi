@@ -477,12 +477,14 @@ def depth(
 ) -> list[dict[str, Any]]: ...  # one dict per distance, the keys of `pinmask depth --json`
 def depthmap(
     capture: Union[PathLikeStr, ArrayLike],  # grey (colour: channels averaged) or an image path
-    mask: MaskLike,
-    from_m: float,  # nearest plane, m
-    to_m: float,  # farthest plane, m (inf allowed)
-    steps: int = 16,  # planes, equally spaced in 1/u
+    mask: Optional[MaskLike] = None,  # the PSFs from its exact geometry (or psf_stack)
+    from_m: Optional[float] = None,  # nearest plane, m (with mask)
+    to_m: Optional[float] = None,  # farthest plane, m (inf allowed; with mask)
+    steps: Optional[int] = None,  # planes, equally spaced in 1/u (with mask; default 16)
     nsr: float = 0.01,  # Wiener NSR of every decode
     window: int = 121,  # odd box side of the cost, px
+    smooth: float = 8.0,  # smoothness weight of the labels (0: lowest-cost plane per pixel)
+    psf_stack: Optional[Sequence[tuple[float, ArrayLike]]] = None,  # (distance m, PSF) pairs
 ) -> dict[str, Any]: ...  # the keys of `pinmask depthmap --json`; depth_m, confidence... arrays
 def depth_fisher(
     mask: MaskLike,

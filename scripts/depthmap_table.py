@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """The table of docs/depth.md: `pinmask depthmap` on scenes rendered by the independent numpy
 model of tests/python/depth_scenes.py, for the close-range machine-vision camera and the paper's
-camera. Run from the repository: PYTHONPATH=build/python /usr/bin/python3 scripts/depthmap_table.py [KERNEL]
-(build/cli/pinmask must exist)."""
+camera. Run from the repository:
+PYTHONPATH=build/python /usr/bin/python3 scripts/depthmap_table.py [KERNEL [SMOOTH]]
+(build/cli/pinmask must exist; SMOOTH is depthmap's --smooth, its default when absent)."""
 import json
 import pathlib
 import subprocess
@@ -19,6 +20,7 @@ import pinmask  # noqa: E402
 # The masks' kernel model: the first argument (default auto, the mask's own choice; "box" draws
 # the spots as the numpy scene model does, so the sweep's model matches the scene exactly).
 KERNEL = sys.argv[1] if len(sys.argv) > 1 else "auto"
+SMOOTH = ["--smooth", sys.argv[2]] if len(sys.argv) > 2 else []
 
 MV = ds.MACHINE_VISION
 ROWS = [("mv", [0.45], 0.4, 2.0), ("mv", [1.5], 0.4, 2.0), ("mv", [0.45, 0.7, 1.5], 0.4, 2.0),
@@ -38,7 +40,7 @@ with tempfile.TemporaryDirectory() as tmp:
             p = subprocess.run([str(ROOT / "build" / "cli" / "pinmask"), "depthmap",
                                 str(tmp / "cap.npy"), "--mask", str(mask), "--from", f"{frm}m",
                                 "--to", f"{to}m", "--steps", str(steps), "-o", str(tmp / "o"),
-                                "--json"], capture_output=True, text=True, check=True)
+                                "--json", *SMOOTH], capture_output=True, text=True, check=True)
             return tmp / "o", json.loads(p.stdout)
 
         read = lambda p: np.asarray(pinmask.read_image(str(p))[0]).squeeze()

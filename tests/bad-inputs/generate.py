@@ -749,3 +749,37 @@ write("raw-bps-32.dng", raw_dng(bps=32))
 write("raw-compression-99.dng", raw_dng(compression=99))
 write("raw-white-below-black.dng", raw_dng(black=3000, white=100))
 write("raw-huge-truncated.dng", raw_dng(width=6000, height=4000, data_fraction=0.0))
+
+# ---------------------------------------------------------------- PSF stacks (depthmap --psf-stack)
+
+
+def psf_stack(name, planes, fmt="pinmask-psf-stack"):
+    write(name, json.dumps({"format": fmt, "version": 1, "planes": [
+        {"object_distance_m": u, "psf": f} for u, f in planes]}, indent=2) + "\n")
+
+
+write("psf-stack-ok.tiff", tiff(28, 28, values=psf_ok))
+write("psf-stack-small.tiff", tiff(20, 20, values=[1.0 / 400] * 400))
+write("psf-stack-large.tiff", tiff(32, 32, values=[1.0 / 1024] * 1024))
+psf_negative = [1.0 / 784] * 784
+psf_negative[7] = -0.5
+write("psf-stack-negative.tiff", tiff(28, 28, values=psf_negative))
+write("psf-stack-dark.tiff", tiff(28, 28, values=[0.0] * 784))
+psf_stack("psf-stack-wrong-format.json", [(0.5, "psf-stack-ok.tiff"), (1.0, "psf-stack-ok.tiff")],
+          fmt="pinmask-mask")
+psf_stack("psf-stack-one-plane.json", [(0.5, "psf-stack-ok.tiff")])
+psf_stack("psf-stack-zero-distance.json", [(0.5, "psf-stack-ok.tiff"), (0, "psf-stack-ok.tiff")])
+psf_stack("psf-stack-same-distance.json", [(0.5, "psf-stack-ok.tiff"),
+                                           (0.5, "psf-stack-ok.tiff")])
+psf_stack("psf-stack-missing-psf.json", [(0.5, "psf-stack-ok.tiff"), (1.0, "no-such-psf.tiff")])
+psf_stack("psf-stack-nan.json", [(0.5, "psf-stack-ok.tiff"), (1.0, "psf-nan.tiff")])
+psf_stack("psf-stack-negative.json", [(0.5, "psf-stack-ok.tiff"), (1.0, "psf-stack-negative.tiff")])
+psf_stack("psf-stack-dark.json", [(0.5, "psf-stack-ok.tiff"), (1.0, "psf-stack-dark.tiff")])
+psf_stack("psf-stack-sizes-differ.json", [(0.5, "psf-stack-ok.tiff"),
+                                          (1.0, "psf-stack-small.tiff")])
+psf_stack("psf-stack-larger-than-capture.json", [(0.5, "psf-stack-large.tiff"),
+                                                 (1.0, "psf-stack-large.tiff")])
+write("psf-stack-string-distance.json", json.dumps({
+    "format": "pinmask-psf-stack", "version": 1,
+    "planes": [{"object_distance_m": "0.5m", "psf": "psf-stack-ok.tiff"},
+               {"object_distance_m": 1.0, "psf": "psf-stack-ok.tiff"}]}) + "\n")

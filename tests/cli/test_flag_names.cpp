@@ -25,7 +25,7 @@ namespace fs = std::filesystem;
 // The folders of the libraries (everything the faces cli/ and python/ link).
 const char* const kLibraryFolders[] = {"core",    "design", "decode", "calibrate", "layout",
                                        "formats", "export", "io",     "simulate",  "metrics",
-                                       "search",  "report", "bench"};
+                                       "search",  "report", "bench",  "depthmap"};
 
 std::vector<fs::path> library_sources() {
     std::vector<fs::path> out;
