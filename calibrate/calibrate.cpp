@@ -15,7 +15,7 @@ namespace pinmask::calibrate {
 
 namespace {
 
-void check_range(const char* field, double v, double lo, double hi, const char* rule) {
+void check_range(const std::string& field, double v, double lo, double hi, const char* rule) {
     if (!(v >= lo && v <= hi)) throw invalid_field(field, format_number(v), rule);
 }
 
@@ -131,11 +131,12 @@ std::vector<std::array<double, 3>> extra_light(const Plane& residual, const Forw
 }  // namespace
 
 void validate(const CalibrationOptions& o) {
-    check_range("max_rotation_deg", o.max_rotation_deg, 0.0, 45.0, "must be in [0, 45] degrees");
-    check_range("pitch_range", o.pitch_range, 0.0, 0.3, "must be in [0, 0.3]");
-    check_range("threshold_sigmas", o.threshold_sigmas, 1.0, 1e6, "must be in [1, 1e6]");
+    check_range(field_ref("max_rotation_deg"), o.max_rotation_deg, 0.0, 45.0,
+                "must be in [0, 45] degrees");
+    check_range(field_ref("pitch_range"), o.pitch_range, 0.0, 0.3, "must be in [0, 0.3]");
+    check_range(field_ref("threshold_sigmas"), o.threshold_sigmas, 1.0, 1e6, "must be in [1, 1e6]");
     if (std::isnan(o.saturation_level) || o.saturation_level <= 0)
-        throw invalid_field("saturation_level", format_number(o.saturation_level),
+        throw invalid_field(field_ref("saturation_level"), format_number(o.saturation_level),
                             "must be > 0 (or inf)");
     check_range("max_saturated_fraction", o.max_saturated_fraction, 0.0, 1.0, "must be in [0, 1]");
     check_range("min_spot_fraction", o.min_spot_fraction, 0.0, 1.0, "must be in [0, 1]");

@@ -18,6 +18,7 @@
 #include "cli/outputs/error_time_json.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/output_set.hpp"
 #include "core/units.hpp"
 #include "design/kernel_model.hpp"
 #include "io/mask_json.hpp"
@@ -109,9 +110,7 @@ void run(const Options& o) {
     for (const auto& s : scene_names) specs.push_back(scene_from_name(s));
     fs::path out_dir(o.output);
     if (!out_dir.has_filename()) out_dir = out_dir.parent_path();  // "out/" names "out"
-    if (fs::exists(out_dir) && !fs::is_directory(out_dir)) {
-        throw invalid_field("-o", o.output, "exists and is not a directory");
-    }
+    check_output_folder(out_dir, "-o");
     const fs::path parent = out_dir.parent_path();
     if (!parent.empty() && !fs::is_directory(parent)) {
         throw invalid_field("-o", o.output, "its parent directory does not exist");

@@ -22,6 +22,7 @@
 #include "core/error.hpp"
 #include "core/fft.hpp"
 #include "core/number_format.hpp"
+#include "core/output_set.hpp"
 #include "core/units.hpp"
 #include "io/mask_json.hpp"
 #include "metrics/depth_loss.hpp"
@@ -91,9 +92,7 @@ nlohmann::ordered_json record_json(const DepthRecord& r) {
 
 void run(const DepthCommandOptions& o, const CLI::App& cmd) {
     const std::vector<double> distances = resolve_distances(o);
-    if (!o.output_dir.empty() && fs::exists(o.output_dir) && !fs::is_directory(o.output_dir)) {
-        throw invalid_field("-o", o.output_dir, "is a file; give a folder (created when missing)");
-    }
+    if (!o.output_dir.empty()) check_output_folder(o.output_dir, "-o");
     DepthOptions d;
     d.scenes = split(o.scenes);
     std::string noise_text;

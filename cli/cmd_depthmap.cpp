@@ -129,9 +129,7 @@ json summary(const DepthmapResult& r, const DepthmapCommandOptions& o, std::size
 
 void run(const DepthmapCommandOptions& o) {
     const fs::path dir(o.output_dir);
-    if (fs::exists(dir) && !fs::is_directory(dir)) {
-        throw invalid_field("-o", o.output_dir, "is a file; give a folder (created when missing)");
-    }
+    check_output_folder(dir, "-o");
     // Exactly one source of PSFs: the mask's exact geometry over --from/--to/--steps, or a
     // given stack whose distances are the planes.
     if (o.mask.empty() == o.psf_stack.empty()) {

@@ -69,8 +69,7 @@ int run_export(const ExportFlags& f) {
                             "a mask file is required (only --vendor list needs none)");
     if (f.output.empty()) throw invalid_field("-o", "''", "an output directory is required");
     const fs::path out_dir = f.output;
-    if (fs::exists(out_dir) && !fs::is_directory(out_dir))
-        throw invalid_field("-o", f.output, "exists and is not a directory");
+    check_output_folder(out_dir, "-o");
     const Mask mask =
         io::read_mask_file(f.input, {.allow_spacing_violations = f.allow_spacing_violations});
     const string stem = f.stem.empty() ? default_stem(f.input) : f.stem;

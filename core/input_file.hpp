@@ -14,4 +14,8 @@ namespace pinmask {
 // pipe: ..."), or nullopt when it is a regular file.
 std::optional<std::string> input_file_problem(const std::filesystem::path& path);
 
+// What an existing path that is not a regular file or a directory is: "a named pipe", "a
+// character device", "a block device", "a socket", or "not a regular file".
+const char* special_file_kind(const std::filesystem::file_status& status);
+
 }  // namespace pinmask

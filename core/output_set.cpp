@@ -14,6 +14,7 @@
 #include <unordered_set>
 
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 
 namespace pinmask {
 namespace fs = std::filesystem;
@@ -155,14 +156,9 @@ void check_output_path(const fs::path& path, const std::string& flag) {
     // special file itself (as root, /dev/null) with a regular file. Only regular files (or new
     // names) are written.
     if (fs::exists(st) && !fs::is_regular_file(st)) {
-        const char* kind = fs::is_character_file(st) ? "a character device"
-                           : fs::is_block_file(st)   ? "a block device"
-                           : fs::is_fifo(st)         ? "a named pipe"
-                           : fs::is_socket(st)       ? "a socket"
-                                                     : "not a regular file";
-        throw bad_output(
-            flag, path,
-            std::string("is ") + kind + ": pinmask writes only regular files (give a file name)");
+        throw bad_output(flag, path,
+                         std::string("is ") + special_file_kind(st) +
+                             ": pinmask writes only regular files (give a file name)");
     }
     // The folder it goes into, when it exists, must take new files: probed once per process.
     const fs::path folder_now = fs::absolute(path, ec).lexically_normal().parent_path();
@@ -241,6 +237,17 @@ void plan_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedP
     }
     enable_input_protection();
     for (const NamedPath& in : inputs) protect_input(in.path);
+}
+
+void check_output_folder(const fs::path& path, const std::string& flag) {
+    if (path.empty()) throw invalid_field(flag, "''", "an output folder is required");
+    std::error_code ec;
+    const fs::file_status st = fs::status(path, ec);
+    if (!fs::exists(st) || fs::is_directory(st)) return;
+    throw invalid_field(flag, path.string(),
+                        std::string("is ") +
+                            (fs::is_regular_file(st) ? "a file" : special_file_kind(st)) +
+                            "; give a folder (created when missing)");
 }
 
 }  // namespace pinmask

@@ -54,6 +54,11 @@ void protect_input(const std::filesystem::path& path);
 // create and unlink) or a protected input.
 void check_output_path(const std::filesystem::path& path, const std::string& flag);
 
+// The check of an output folder (created when missing): throws InvalidInput naming `flag` when
+// `path` is empty or exists as anything but a directory (a file, a device, a pipe, a socket:
+// each named).
+void check_output_folder(const std::filesystem::path& path, const std::string& flag);
+
 // Keys of a path's identity: "i<device>:<inode>" when it exists, and its canonical path. Two
 // paths sharing a key name the same file (a hash set of keys finds duplicates among N paths in
 // O(N), where same_file on every pair would take N^2 / 2 canonicalisations).

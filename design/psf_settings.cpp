@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "core/field_names.hpp"
+#include "core/input_file.hpp"
 #include "core/units.hpp"
 #include "design/working_distance.hpp"
 
@@ -18,6 +19,12 @@ void check_kernel_settings(const std::string& kernel, const std::string& kernel_
     if (kernel != "measured" && !kernel_path.empty()) {
         throw invalid_field(field_ref("kernel_path"), kernel_path,
                             "only used with " + field_ref("kernel") + " measured");
+    }
+    // The kernel file is read only when a PSF is made: a path that cannot be read is refused
+    // here, not by the later command that reads it.
+    if (kernel == "measured") {
+        if (const auto problem = input_file_problem(kernel_path))
+            throw invalid_field(field_ref("kernel_path"), kernel_path, *problem);
     }
 }
 

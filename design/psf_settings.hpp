@@ -25,7 +25,8 @@ PsfSpec resolve_psf_spec(const PsfSettings& o, const Camera& c);
 
 // The kernel settings' consistency: kernel "measured" needs a kernel_path and only it takes one
 // (InvalidInput naming the field otherwise). An empty kernel means "not given" (the mask's own
-// model): then no path may be given either. The model name itself is the caller's to check.
+// model): then no path may be given either. With "measured", the path must name a regular file
+// (core/input_file). The model name itself is the caller's to check.
 void check_kernel_settings(const std::string& kernel, const std::string& kernel_path);
 
 }  // namespace pinmask

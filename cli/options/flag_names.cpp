@@ -84,6 +84,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"objective", "--objective"},
     {"optical_density", "--optical-density"},
     {"photons", "--photons"},
+    {"pitch_range", "--pitch-range"},
     {"pixels_per_cell", "--pixels-per-cell"},
     {"plate_m", "--vendor"},  // the plate size comes with the vendor preset
     {"png_dpi", "--dpi"},
@@ -98,6 +99,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"rerank_scenes", "--rerank-scenes"},
     {"resume", "--resume"},
     {"robust", "--robust"},
+    {"saturation_level", "--saturation"},
     {"scenes", "--scenes"},
     {"seed", "--seed"},
     {"sensor", "--sensor"},
@@ -108,6 +110,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"spacing", "--spacing"},
     {"steps", "--steps"},
     {"threads", "--threads"},
+    {"threshold_sigmas", "--threshold"},
     {"tiff_dpi", "--dpi"},
     {"tiles", "--tiles"},
     {"to_m", "--to"},
