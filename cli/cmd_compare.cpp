@@ -45,6 +45,8 @@ struct Options {
     std::string robust;
     int tv_iterations = 200;
     std::uint64_t seed = 1;
+    bool depth = false;
+    double depth_from = 0, depth_to = 0;
     bool allow_violations = false, json = false, quiet = false;
     std::string report;
 };
@@ -59,6 +61,15 @@ CompareRunOptions make_options(const Options& o, const CLI::App& cmd, std::strin
     m.simulation.seed = o.seed;
     set_decoder_settings(m.simulation, o.nsr, o.tv_lambda, o.tv_iterations);
     if (!o.robust.empty()) m.robust = parse_fabrication_errors(o.robust);
+    m.depth = o.depth;
+    m.depth_range.from_m = o.depth_from;
+    m.depth_range.to_m = o.depth_to;
+    if (!o.depth && (cmd.get_option("--depth-from")->count() > 0 ||
+                     cmd.get_option("--depth-to")->count() > 0)) {
+        throw InvalidInput(
+            "--depth-from/--depth-to: add --depth (the range is the depth "
+            "columns')");
+    }
     r.settings.seed = o.seed;
     r.baselines = o.baselines;
     r.baseline_count = o.baseline_count;
@@ -159,6 +170,10 @@ void run(const Options& o, const CLI::App& cmd) {
                      {"baselines", o.baselines},
                      {"baseline_count", o.baseline_count},
                      {"robust", mo.robust.description()}};
+    if (mo.depth) {
+        j["settings"]["depth_from_m"] = o.depth_from;  // 0: the working distance / 2
+        j["settings"]["depth_to_m"] = o.depth_to;      // 0: twice the working distance
+    }
     if (o.baselines) {
         nlohmann::ordered_json b;
         if (out.random) {
@@ -195,7 +210,14 @@ void run(const Options& o, const CLI::App& cmd) {
         std::cout << j.dump(2) << "\n";
         return;
     }
-    std::cout << compare_table_text(compare_table(out.results)) << psnr_legend
+    const std::string depth_legend =
+        mo.depth ? "depth columns: the worst Cramer-Rao bound on a point source's distance over " +
+                       std::string(o.depth_from > 0 ? "--depth-from .. --depth-to"
+                                                    : "the working distance / 2 .. x 2") +
+                       " (first level): sigma_u / u and the axial FWHM 2.355 sigma_u (score "
+                       "--metrics depth).\n"
+                 : "";
+    std::cout << compare_table_text(compare_table(out.results)) << psnr_legend << depth_legend
               << compare_holes_text(out.results);
     for (const auto& r : out.results) {
         if (r.row.metrics.spectral_zero->found)
@@ -238,6 +260,15 @@ void setup(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--tv-iters", o->tv_iterations, "TV-L2 maximum ADMM iterations (>= 1)")
         ->capture_default_str();
+    cmd->add_flag("--depth", o->depth,
+                  "Add the depth columns: score --metrics depth's Cramer-Rao bound on a point "
+                  "source's distance (needs --photons)");
+    cmd->add_option("--depth-from", o->depth_from,
+                    "With --depth: the nearest distance, metres (default with --depth-to unset: "
+                    "the working distance / 2)");
+    cmd->add_option("--depth-to", o->depth_to,
+                    "With --depth: the farthest distance, metres (default: twice the working "
+                    "distance)");
     cmd->add_option("--seed", o->seed, "Seed of the noise and of the baselines' random draws")
         ->capture_default_str();
     cmd->add_flag("--allow-violations", o->allow_violations,

@@ -31,6 +31,7 @@ struct ScoreOptions {
     std::string tv_lambda = "1e-3";
     std::string robust, robust_decoder;
     int tv_iterations = 200;
+    double depth_from = 0, depth_to = 0;
     int seeds = 1;
     std::uint64_t seed = 0;
     bool allow_violations = false, json = false, explain = false, quiet = false;
@@ -46,6 +47,14 @@ MaskMetricsOptions make_options(const ScoreOptions& o, const CLI::App& cmd, std:
     m.simulation.seed = o.seed;
     set_decoder_settings(m.simulation, o.nsr, o.tv_lambda, o.tv_iterations);
     if (!o.robust.empty()) m.robust = parse_fabrication_errors(o.robust);
+    m.depth_range.from_m = o.depth_from;
+    m.depth_range.to_m = o.depth_to;
+    if (!m.depth && (cmd.get_option("--depth-from")->count() > 0 ||
+                     cmd.get_option("--depth-to")->count() > 0)) {
+        throw InvalidInput(
+            "--depth-from/--depth-to: add depth to --metrics (the range is the "
+            "depth group's)");
+    }
     m.validate();
     return m;
 }
@@ -75,6 +84,11 @@ std::vector<std::string> explain_lines(const ScoreOptions& o, const MaskMetricsO
              "the analytic figure expected under fabrication errors (" + m.robust.description() +
                  "), decoded with the nominal PSF: closed form, no sampling");
     }
+    line(m.depth, "depth",
+         "Cramer-Rao bound on the distance of a point source on the axis (exact-geometry PSF over "
+         "the sensor, its derivative in 1/u, Poisson + read noise of the photon level), worst "
+         "over " +
+             std::to_string(kDepthSamples) + " distances equally spaced in 1/u");
     if (!m.tv) e.push_back("tv: add tv to --metrics to run TV-L2 decodes (slow)");
     if (!(m.wiener || m.tv)) e.push_back("scene rendering: skipped (no simulated metric)");
     e.push_back("full-sensor simulation: skipped (the cyclic model needs one period only)");
@@ -155,6 +169,10 @@ void run(const ScoreOptions& o, const CLI::App& cmd) {
                      {"seed", o.seed},
                      {"tv_iterations", o.tv_iterations},
                      {"robust", m.robust.description()}};
+    if (m.depth) {
+        j["settings"]["depth_from_m"] = o.depth_from;  // 0: the working distance / 2
+        j["settings"]["depth_to_m"] = o.depth_to;      // 0: twice the working distance
+    }
     if (o.noise.photons.empty()) {
         std::vector<double> snrs;
         for (const NoiseLevel& level : m.noise) snrs.push_back(level.model.snr_db);
@@ -178,8 +196,16 @@ void setup(CLI::App& app) {
     add_noise_flags(*cmd, o->noise, "20,30,40");
     add_prior_flags(*cmd, o->prior);
     cmd->add_option("--metrics", o->metrics,
-                    "Metrics to compute: sidelobes, spectrum, analytic, wiener, tv (see below)")
+                    "Metrics to compute: sidelobes, spectrum, analytic, wiener, tv, depth (see "
+                    "below; depth needs --photons)")
         ->capture_default_str();
+    cmd->add_option(
+        "--depth-from", o->depth_from,
+        "With --metrics depth: the nearest object distance of the depth range, "
+        "metres (> f'; default with --depth-to unset: each mask's working distance / 2)");
+    cmd->add_option("--depth-to", o->depth_to,
+                    "With --metrics depth: the farthest object distance, metres (>= --depth-from; "
+                    "default: twice the working distance)");
     cmd->add_option("--nsr", o->nsr,
                     "Wiener noise-to-signal ratio (> 0), or 'tuned' (per mask and noise level)")
         ->capture_default_str();

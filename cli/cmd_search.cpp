@@ -232,6 +232,18 @@ void add_search_flags(CLI::App* cmd, const std::shared_ptr<SearchCliOptions>& o)
         ->capture_default_str();
     cmd->add_option("--w-min-spectrum", o->w_min_spectrum, "Weight of -min|P^(k)|/sqrt(K), k != 0")
         ->capture_default_str();
+    cmd->add_option("--depth-weight", o->w_depth,
+                    "Weight W of the depth term: adds W x 20 log10(worst sigma_u / u) dB, the "
+                    "Cramer-Rao bound of score --metrics depth over --depth-from .. --depth-to "
+                    "(pinholes' Fisher information summed cell by cell), so W > 0 trades PSNR "
+                    "for depth resolution (needs --photons; 0 = the objective without it)")
+        ->capture_default_str();
+    cmd->add_option("--depth-from", o->depth_from,
+                    "With --depth-weight: the nearest distance of the depth term, metres (default "
+                    "with --depth-to unset: the working distance / 2)");
+    cmd->add_option("--depth-to", o->depth_to,
+                    "With --depth-weight: the farthest distance, metres (default: twice the "
+                    "working distance)");
     cmd->add_option("--objective", o->objective,
                     "nominal: the design's analytic Wiener PSNR; robust: its expectation under "
                     "the --robust fabrication errors, decoded with the nominal PSF (needs "

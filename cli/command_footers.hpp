@@ -22,6 +22,16 @@ inline constexpr const char* kScoreFooter =
     "  wiener     simulated: wiener_psnr_db_snrS, wiener_ssim_snrS, wiener_nsr_snrS (mean over\n"
     "             scenes; per_scene in --json)\n"
     "  tv         simulated TV-L2: tv_psnr_db_snrS, tv_ssim_snrS, tv_lambda_snrS (slow; opt-in)\n"
+    "  depth      how well one capture tells the distance u of a point source on the axis "
+    "(opt-in;\n"
+    "             needs --photons): the Cramer-Rao bound sigma_u from the Fisher information of\n"
+    "             the exact-geometry PSF's change with 1/u under Poisson + read noise, at 3\n"
+    "             distances equally spaced in 1/u over --depth-from .. --depth-to (default: the\n"
+    "             working distance / 2 .. x 2): depth_crb_rel_phP (worst sigma_u / u),\n"
+    "             depth_axial_fwhm_m_phP (worst 2.355 sigma_u, metres), "
+    "depth_worst_distance_m_phP\n"
+    "             (where), depth_from_m, depth_to_m. The point source is one scene pixel of value\n"
+    "             1: P K electrons in all. Lower is better\n"
     "Noise levels: --snr S (keys ...snrS): Gaussian, sigma^2 = mean(capture^2) / 10^(S/10) (the\n"
     "analytic error takes the prior's expected mean(capture^2)); or --photons P (keys ...phP):\n"
     "Poisson shot noise of P K electrons per pixel for a uniform scene of value 1 (K pinholes),\n"
@@ -34,7 +44,9 @@ inline constexpr const char* kScoreFooter =
     "no sidelobes, a condition number with a spectral zero) are null in --json, inf in the table.\n"
     "Examples: pinmask score a.mask.json b.mask.json --scenes letter-R,usaf,natural --snr 20,30 "
     "--metrics sidelobes,spectrum,analytic,wiener --nsr tuned --json\n"
-    "  pinmask score a.mask.json --photons 100,1000 --read-noise 3 --metrics analytic,wiener";
+    "  pinmask score a.mask.json --photons 100,1000 --read-noise 3 --metrics analytic,wiener\n"
+    "  pinmask score a.mask.json --photons 1000 --metrics analytic,depth --depth-from 0.4 "
+    "--depth-to 2";
 
 inline constexpr const char* kCompareFooter =
     "Table columns (also --json keys): K holes; n grid; spacing ok (spacing_ok); max SL "

@@ -38,8 +38,17 @@ void metrics_json(const MaskMetrics& m, nlohmann::ordered_json& row,
             row["spectral_zero"] = nullptr;
         }
     }
+    if (!m.levels.empty() && m.levels.front().depth) {
+        row["depth_from_m"] = m.levels.front().depth->from_m;
+        row["depth_to_m"] = m.levels.front().depth->to_m;
+    }
     for (const LevelMetrics& l : m.levels) {
         const std::string& k = l.level.key;
+        if (l.depth) {
+            row["depth_crb_rel_" + k] = finite_or_null(l.depth->crb_rel);
+            row["depth_axial_fwhm_m_" + k] = finite_or_null(l.depth->axial_fwhm_m);
+            row["depth_worst_distance_m_" + k] = l.depth->worst_distance_m;
+        }
         if (l.analytic) {
             row["analytic_wiener_psnr_db_" + k] = finite_or_null(l.analytic->psnr_db);
             row["analytic_wiener_nsr_" + k] = l.analytic->nsr;

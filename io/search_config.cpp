@@ -80,6 +80,7 @@ SearchConfig parse_search_config(const std::string& text) {
                     "filter",
                     "prior",
                     "weights",
+                    "depth_range",
                     "rerank_scenes",
                     "rerank_tv",
                     "allow_spectral_zeros",
@@ -186,13 +187,21 @@ SearchConfig parse_search_config(const std::string& text) {
                   [](const Json& v, const std::string& p) { return int_at_least(v, p, 1); });
     }
     if (const Json* weights = r.optional("weights")) {
-        ObjectReader w(*weights, "weights",
-                       {"analytic_wiener", "max_sidelobe", "sidelobe_energy", "min_spectrum"});
+        ObjectReader w(
+            *weights, "weights",
+            {"analytic_wiener", "max_sidelobe", "sidelobe_energy", "min_spectrum", "depth"});
         w.reject_unknown();
         read_into(w, "analytic_wiener", c.w_analytic, read_number);
         read_into(w, "max_sidelobe", c.w_max_sidelobe, read_number);
         read_into(w, "sidelobe_energy", c.w_sidelobe_energy, read_number);
         read_into(w, "min_spectrum", c.w_min_spectrum, read_number);
+        read_into(w, "depth", c.w_depth, read_number);
+    }
+    if (const Json* range = r.optional("depth_range")) {
+        ObjectReader d(*range, "depth_range", {"from_m", "to_m"});
+        d.reject_unknown();
+        read_into(d, "from_m", c.depth_from, read_number);
+        read_into(d, "to_m", c.depth_to, read_number);
     }
     read_into(r, "rerank_scenes", c.rerank_scenes, [](const Json& v, const std::string& p) {
         return read_strings(v, p, "scene names");

@@ -16,7 +16,10 @@
 //              "film_optical_density" (null: opaque)}, "filter": "optimal" | "nsr:VALUE",
 //    "prior": {"family": "natural" | "text" | "stars" | "files", "scenes": >= 1,
 //              "files": [paths]}, "allow_spectral_zeros": bool, "rank_by": "wiener" | "tv",
-//    "weights": {"analytic_wiener", "max_sidelobe", "sidelobe_energy", "min_spectrum"},
+//    "weights": {"analytic_wiener", "max_sidelobe", "sidelobe_energy", "min_spectrum",
+//                "depth" (written only when > 0)},
+//    "depth_range": {"from_m", "to_m"} (metres, 0 and 0: the working distance / 2 .. x 2;
+//                written only with a depth weight),
 //    "rerank_scenes": [names] ([]: no re-ranking), "rerank_tv": bool,
 //    "optics": the camera (cli/optics_json.hpp)}
 // Unknown keys, repeated keys, wrong types and out-of-range values are InvalidInput naming the
@@ -48,7 +51,8 @@ struct SearchConfig {
     std::optional<int> ranks;  // of the run that wrote the file (informational; checked)
     std::optional<std::uint64_t> seed;
     std::optional<double> min_spacing_cells, snr_db;
-    std::optional<double> w_analytic, w_max_sidelobe, w_sidelobe_energy, w_min_spectrum;
+    std::optional<double> w_analytic, w_max_sidelobe, w_sidelobe_energy, w_min_spectrum, w_depth;
+    std::optional<double> depth_from, depth_to;  // "depth_range"
     std::optional<std::vector<std::string>> rerank_scenes;
     std::optional<bool> rerank_tv;
     std::optional<Camera> optics;

@@ -24,6 +24,8 @@ struct SearchRunTexts {
     std::uint64_t seed = 1;
     int top = 5;
     double w_analytic = 1.0, w_max_sidelobe = 0.0, w_sidelobe_energy = 0.0, w_min_spectrum = 0.0;
+    double w_depth = 0.0;  // > 0: weights.depth and depth_range are written (else left out, so a
+                           // run without the term writes what it wrote before the term existed)
     std::vector<std::string> rerank_scenes;  // as given; empty: no re-ranking
 };
 

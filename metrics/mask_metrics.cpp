@@ -184,6 +184,10 @@ void MaskMetricsOptions::validate() const {
     }
     simulation.validate();
     robust.validate();
+    if (depth) {
+        depth_range.validate();
+        for (const NoiseLevel& l : noise) depth_fisher_noise(l.model, 1);
+    }
     if (!(spectral_zero_threshold > 0.0 && spectral_zero_threshold < 1.0)) {
         throw invalid_field("spectral_zero_threshold", format_number(spectral_zero_threshold),
                             "must be in (0, 1) (a fraction of the flat level sqrt(K))");
@@ -222,18 +226,24 @@ MaskMetrics compute_mask_metrics(const Mask& mask, MetricsContext& context) {
     const ComplexPlane spectrum = pattern_spectrum(mask.pattern);
     if (o.sidelobes) r.sidelobes = sidelobe_metrics_from_spectrum(spectrum);
     const bool simulated = o.wiener || o.tv;
-    if (!(o.spectrum || o.analytic || simulated)) return r;
-
-    check_psf_memory(n, ppc, 4, 3);  // PSF, kernel, two scene planes; kernel and OTF spectra
-    const Kernel kernel = mask_kernel(mask);
-    {
+    if (!(o.spectrum || o.analytic || simulated || o.depth)) return r;
+    std::vector<DepthSlope> depth_slopes;
+    if (o.depth) {
+        for (double u : depth_samples(mask, o.depth_range))
+            depth_slopes.push_back(depth_slope(mask, u, 0, 0));
+    }
+    Kernel kernel;
+    ComplexPlane kernel_otf;
+    if (o.spectrum || o.analytic || simulated) {
+        check_psf_memory(n, ppc, 4, 3);  // PSF, kernel, two scene planes; kernel and OTF spectra
+        kernel = mask_kernel(mask);
         std::ostringstream s;
         s << kernel_model_name(kernel.model) << " (" << kernel.model_reason << "), "
           << kernel.values.rows() << " x " << kernel.values.cols() << " px, enclosed energy "
           << kernel.enclosed_energy;
         r.kernel_description = s.str();
+        kernel_otf = expand_half_spectrum(kernel_spectrum(kernel, n, ppc), m);
     }
-    const ComplexPlane kernel_otf = expand_half_spectrum(kernel_spectrum(kernel, n, ppc), m);
     if (o.spectrum) {
         r.spectrum = pattern_spectrum_metrics(spectrum);
         r.otf = otf_condition(spectrum, kernel_otf);
@@ -267,6 +277,8 @@ MaskMetrics compute_mask_metrics(const Mask& mask, MetricsContext& context) {
             lm.tv = simulated_quality(psf, context.scenes(m), level.model, r.holes, n * n,
                                       SimulatedDecoder::kTv, o.simulation);
         }
+        if (o.depth)
+            lm.depth = depth_figures(depth_slopes, depth_fisher_noise(level.model, r.holes));
         r.levels.push_back(std::move(lm));
     }
     return r;

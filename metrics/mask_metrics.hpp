@@ -11,6 +11,9 @@
 //   robust      with `robust` errors: the analytic figure's expectation under fabrication
 //               errors, decoded with the nominal PSF (metrics/robust_wiener)
 //   wiener, tv  simulated one-period captures of the scenes, decoded (metrics/simulated_metrics)
+//   depth       the Cramer-Rao bound on the object distance of a point source on the axis over
+//               a range of distances, per photon-model level (metrics/depth_fisher): the worst
+//               relative bound and the worst axial resolution (FWHM) over the range
 // The analytic prior is make_scene_prior(options.prior, m): by default 16 natural 1/f textures
 // of seeds 1000 .. 1015 (apart from the scored "natural" scene, seed 0).
 #pragma once
@@ -26,12 +29,13 @@
 #include "design/mask.hpp"
 #include "metrics/analytic_error.hpp"
 #include "metrics/autocorrelation.hpp"
-#include "simulate/noise_model.hpp"
+#include "metrics/depth_fisher.hpp"
 #include "metrics/robust_errors.hpp"
-#include "simulate/scene_prior.hpp"
-#include "simulate/scenes.hpp"
 #include "metrics/simulated_metrics.hpp"
 #include "metrics/spectrum_metrics.hpp"
+#include "simulate/noise_model.hpp"
+#include "simulate/scene_prior.hpp"
+#include "simulate/scenes.hpp"
 
 namespace pinmask {
 
@@ -85,6 +89,8 @@ NoiseLevel noise_level(const NoiseModel& model);
 // ---- Metrics ----
 struct MaskMetricsOptions {
     bool sidelobes = true, spectrum = true, analytic = true, wiener = true, tv = false;
+    bool depth = false;  // needs every noise level to be the photon model
+    DepthRange depth_range;
     std::vector<NoiseLevel> noise{noise_level(NoiseModel{})};  // Gaussian 30 dB
     PriorSpec prior;
     std::vector<SceneSpec> scenes;       // simulated scenes (wiener, tv)
@@ -116,6 +122,7 @@ struct LevelMetrics {
     std::optional<AnalyticFigures> analytic;
     std::optional<RobustFigures> robust;  // analytic with options.robust errors
     std::optional<SimulatedQuality> wiener, tv;
+    std::optional<DepthFigures> depth;
 };
 
 struct MaskMetrics {

@@ -62,8 +62,8 @@ void set_decoder_settings(SimulatedMetricsOptions& sim, const std::string& nsr,
 }
 
 const std::vector<std::string>& metric_group_names() {
-    static const std::vector<std::string> names{"sidelobes", "spectrum", "analytic", "wiener",
-                                                "tv"};
+    static const std::vector<std::string> names{"sidelobes", "spectrum", "analytic",
+                                                "wiener",    "tv",       "depth"};
     return names;
 }
 
@@ -74,7 +74,7 @@ void select_metrics(MaskMetricsOptions& m, const std::vector<std::string>& names
         const auto& known = metric_group_names();
         if (std::find(known.begin(), known.end(), s) == known.end())
             throw invalid_field(field_ref("metrics"), s.empty() ? "''" : s,
-                                "must be one of sidelobes, spectrum, analytic, wiener, tv");
+                                "must be one of sidelobes, spectrum, analytic, wiener, tv, depth");
         wanted.insert(s);
     }
     m.sidelobes = wanted.count("sidelobes") > 0;
@@ -82,6 +82,7 @@ void select_metrics(MaskMetricsOptions& m, const std::vector<std::string>& names
     m.analytic = wanted.count("analytic") > 0;
     m.wiener = wanted.count("wiener") > 0;
     m.tv = wanted.count("tv") > 0;
+    m.depth = wanted.count("depth") > 0;
 }
 
 }  // namespace pinmask

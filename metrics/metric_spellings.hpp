@@ -37,7 +37,8 @@ std::vector<SceneSpec> scene_specs_from_names(const std::vector<std::string>& na
 void set_decoder_settings(SimulatedMetricsOptions& sim, const std::string& nsr,
                           const std::string& tv_lambda, int tv_iterations);
 
-// The metric groups of score's selection ("sidelobes", "spectrum", "analytic", "wiener", "tv"):
+// The metric groups of score's selection ("sidelobes", "spectrum", "analytic", "wiener", "tv",
+// "depth"):
 // each named group on, the others off. InvalidInput naming `metrics` for an unknown or empty
 // name, or an empty list.
 void select_metrics(MaskMetricsOptions& m, const std::vector<std::string>& names);

@@ -37,7 +37,8 @@ void bind_compare(py::module_& m) {
            std::optional<double> read_noise, std::optional<double> dark_current,
            std::optional<double> full_well, std::optional<int> bits,
            std::optional<double> optical_density, const py::object& prior,
-           const std::optional<std::string>& robust) {
+           const std::optional<std::string>& robust, bool depth, std::optional<double> depth_from,
+           std::optional<double> depth_to) {
             const SensorSettings sensor{read_noise, dark_current, full_well, optical_density, bits};
             std::string noise_text;
             CompareRunOptions options;
@@ -46,6 +47,13 @@ void bind_compare(py::module_& m) {
                 prior_arg(prior, prior_scenes), scenes, nsr, tv_lambda, tv_iterations, seed);
             // robust: as `compare --robust` (score's parser: InvalidInput naming `robust`).
             if (robust) options.settings.metrics.robust = parse_fabrication_errors(*robust);
+            if (!depth && (depth_from || depth_to)) {
+                throw InvalidInput(field_ref("depth_from_m") + "/" + field_ref("depth_to_m") +
+                                   ": give depth=True (the range is the depth columns')");
+            }
+            options.settings.metrics.depth = depth;
+            options.settings.metrics.depth_range.from_m = depth_from.value_or(0.0);
+            options.settings.metrics.depth_range.to_m = depth_to.value_or(0.0);
             options.baselines = baselines;
             options.baseline_count = baseline_count;
             options.validate();
@@ -131,7 +139,8 @@ void bind_compare(py::module_& m) {
         py::arg("read_noise") = py::none(), py::arg("dark_current") = py::none(),
         py::arg("full_well") = py::none(), py::arg("bits") = py::none(),
         py::arg("optical_density") = py::none(), py::arg("prior") = "natural",
-        py::arg("robust") = py::none(),
+        py::arg("robust") = py::none(), py::arg("depth") = false,
+        py::arg("depth_from") = py::none(), py::arg("depth_to") = py::none(),
         R"(Compares masks (Mask objects or *.mask.json paths; one camera) as `pinmask compare`:
 a metric row per mask (see metrics()), with baselines the median of baseline_count random
 valid masks, the paper-like geometry and a MURA; report: a .pdf, .svg or .png path for the
@@ -140,6 +149,8 @@ multi-page report (written atomically; SVG/PNG: one file per page). Returns {mas
 [paths written], warnings: [baselines left out and why], baselines: [what each baseline is]}.
 Noise (snr_db or photons with the sensor stages), prior and robust (fabrication errors, as
 --robust: 'size=44um,jitter=2um'; each row gains robust_wiener_psnr_db) as in metrics().
+depth=True (needs photons): each row gains score(metrics='depth')'s keys over depth_from ..
+depth_to metres (None, None: the working distance / 2 .. x 2).
 The run is metrics/compare's run_compare (one camera rule, baselines, metric rows).)");
 }
 

@@ -92,6 +92,13 @@ py::dict row_dict(const CompareRow& r) {
             d[py::str(name + "_ssim_" + k)] = (*q)->mean_ssim;
             d[py::str(name + (name == "wiener" ? "_nsr_" : "_lambda_") + k)] = (*q)->weight;
         }
+        if (l.depth) {
+            d["depth_from_m"] = l.depth->from_m;
+            d["depth_to_m"] = l.depth->to_m;
+            d[py::str("depth_crb_rel_" + k)] = l.depth->crb_rel;
+            d[py::str("depth_axial_fwhm_m_" + k)] = l.depth->axial_fwhm_m;
+            d[py::str("depth_worst_distance_m_" + k)] = l.depth->worst_distance_m;
+        }
     }
     return d;
 }

@@ -58,9 +58,16 @@ void bind_score(py::module_& m) {
            std::optional<int> bits, std::optional<double> optical_density, const py::object& prior,
            int prior_scenes, const std::string& nsr, const std::string& tv_lambda,
            int tv_iterations, int noise_seeds, std::uint64_t seed,
-           const std::optional<std::string>& robust, bool robust_decoder, bool allow_violations) {
+           const std::optional<std::string>& robust, bool robust_decoder, bool allow_violations,
+           std::optional<double> depth_from, std::optional<double> depth_to) {
             MaskMetricsOptions o;
             select_metrics(o, metric_names(metrics));
+            if (!o.depth && (depth_from || depth_to)) {
+                throw InvalidInput(field_ref("depth_from_m") + "/" + field_ref("depth_to_m") +
+                                   ": add 'depth' to metrics (the range is the depth group's)");
+            }
+            o.depth_range.from_m = depth_from.value_or(0.0);
+            o.depth_range.to_m = depth_to.value_or(0.0);
             const SensorSettings sensor{read_noise, dark_current, full_well, optical_density, bits};
             o.noise = noise_levels_arg(snr_db, photons, sensor, {20.0, 30.0, 40.0});
             o.prior = prior_arg(prior, prior_scenes);
@@ -143,6 +150,10 @@ void bind_score(py::module_& m) {
             settings["seed"] = seed;
             settings["tv_iterations"] = tv_iterations;
             settings["robust"] = o.robust.description();
+            if (o.depth) {
+                settings["depth_from_m"] = o.depth_range.from_m;  // 0: working distance / 2
+                settings["depth_to_m"] = o.depth_range.to_m;      // 0: twice the working distance
+            }
             py::dict d;
             d["masks"] = rows;
             d["settings"] = settings;
@@ -157,12 +168,17 @@ void bind_score(py::module_& m) {
         py::arg("prior_scenes") = 16, py::arg("nsr") = "0.01", py::arg("tv_lambda") = "1e-3",
         py::arg("tv_iterations") = 200, py::arg("noise_seeds") = 1, py::arg("seed") = 0,
         py::arg("robust") = py::none(), py::arg("robust_decoder") = false,
-        py::arg("allow_violations") = false,
+        py::arg("allow_violations") = false, py::arg("depth_from") = py::none(),
+        py::arg("depth_to") = py::none(),
         R"(Scores masks as `pinmask score` does: one row per mask with the keys of its --json, only
 the metric groups asked for computed, score's defaults and numbers.
 
 masks: a list of Mask objects or *.mask.json paths. metrics: 'sidelobes', 'spectrum',
-'analytic', 'wiener', 'tv' (a list or one comma-separated string; tv is slow). scenes: the
+'analytic', 'wiener', 'tv', 'depth' (a list or one comma-separated string; tv is slow; depth
+needs photons). depth: the Cramer-Rao bound on a point source's distance over depth_from ..
+depth_to metres (None, None: the working distance / 2 .. x 2), 3 distances equally spaced in
+1/u: depth_crb_rel_<level> (worst sigma_u / u), depth_axial_fwhm_m_<level> (worst 2.355 sigma_u,
+metres), depth_worst_distance_m_<level>, depth_from_m, depth_to_m. scenes: the
 simulated scenes (built-in names or image files). Noise: snr_db (Gaussian, dB; a number or a
 list; None: 20, 30, 40) or photons (electrons per pixel through one pinhole; a number or a list)
 with read_noise (rms electrons), dark_current (mean electrons per pixel), full_well (electrons),

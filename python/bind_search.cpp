@@ -90,7 +90,8 @@ void bind_search(py::module_& m) {
            std::optional<int> bits, std::optional<double> optical_density, const py::object& prior,
            const std::optional<std::string>& robust, const std::string& objective,
            const std::optional<std::string>& checkpoint, std::int64_t checkpoint_every,
-           const std::optional<std::string>& resume) {
+           const std::optional<std::string>& resume, double depth_weight,
+           std::optional<double> depth_from, std::optional<double> depth_to) {
             SearchPipelineOptions p;
             p.tmpl.camera = camera.value_or(paper_camera());
             validate(p.tmpl.camera);
@@ -139,7 +140,15 @@ void bind_search(py::module_& m) {
             p.noise = levels.front().model;
             p.prior = prior_arg(prior, prior_scenes);
             p.filter = parse_search_filter(filter, p.noise);
-            p.weights = {w_analytic, w_max_sidelobe, w_sidelobe_energy, w_min_spectrum};
+            p.weights = {w_analytic, w_max_sidelobe, w_sidelobe_energy, w_min_spectrum,
+                         depth_weight};
+            if (!(depth_weight > 0.0) && (depth_from || depth_to)) {
+                throw InvalidInput(field_ref("depth_from_m") + "/" + field_ref("depth_to_m") +
+                                   ": give " + field_ref("weights.depth") +
+                                   " > 0 (the range is the depth term's)");
+            }
+            p.depth_range.from_m = depth_from.value_or(0.0);
+            p.depth_range.to_m = depth_to.value_or(0.0);
             p.allow_spectral_zeros = allow_spectral_zeros;
             for (const auto& name : rerank_scenes) p.rerank_scenes.push_back(scene_from_name(name));
             p.rerank_tv = rerank_tv && !rerank_scenes.empty();
@@ -166,6 +175,7 @@ void bind_search(py::module_& m) {
             texts.w_max_sidelobe = w_max_sidelobe;
             texts.w_sidelobe_energy = w_sidelobe_energy;
             texts.w_min_spectrum = w_min_spectrum;
+            texts.w_depth = depth_weight;
             texts.rerank_scenes = rerank_scenes;
             set_checkpoints(p, texts, checkpoint, checkpoint_every, resume);
 
@@ -245,6 +255,8 @@ void bind_search(py::module_& m) {
         py::arg("prior") = "natural", py::arg("robust") = py::none(),
         py::arg("objective") = "nominal", py::arg("checkpoint") = py::none(),
         py::arg("checkpoint_every") = 0, py::arg("resume") = py::none(),
+        py::arg("depth_weight") = 0.0, py::arg("depth_from") = py::none(),
+        py::arg("depth_to") = py::none(),
         R"(Searches masks for a camera (grid n, holes K or a range 'A..B', tiles, spacing in cells) as
 `pinmask search` (the same pipeline, search/search_pipeline): strategy random | anneal, a
 time budget (time, '20s', '2min'; it covers the re-ranking too) or evals per chain (> 0:
@@ -252,7 +264,11 @@ deterministic for the same seed and threads), threads independent chains, top ca
 keep_out 'none' | 'border'; objective: the weighted sum of analytic_wiener (-expected Wiener PSNR
 at the noise level, filter 'auto' (tuned with photons, optimal with snr_db), 'optimal', 'tuned'
 or 'nsr:VALUE', prior as in metrics()),
-max_sidelobe, sidelobe_energy, min_spectrum; patterns with a spectral zero are rejected unless
+max_sidelobe, sidelobe_energy, min_spectrum, and with depth_weight W > 0 (needs photons) the
+depth term W x 20 log10(worst sigma_u / u) dB over depth_from .. depth_to metres (None, None:
+the working distance / 2 .. x 2; score's depth_crb_rel with the Fisher information summed
+pinhole by pinhole; terms depth_crb_rel, depth_crb_rel_db); patterns with a spectral zero are
+rejected unless
 allow_spectral_zeros. The top candidates are re-ranked by simulated decodes of rerank_scenes
 (empty list: no re-ranking, as --no-rerank) ranked by rank_by 'wiener' | 'tv'.
 progress(row) is called with {phase: 'search' | 'rerank', fraction, text}; returning False

@@ -14,6 +14,8 @@ namespace {
 constexpr auto kKeywords = std::to_array<std::pair<std::string_view, std::string_view>>({
     {"chord_tolerance_m", "chord_tol"},
     {"cost_window", "window"},
+    {"depth_from_m", "depth_from"},
+    {"depth_to_m", "depth_to"},
     {"distances_m", "from_m"},
     {"exact_geometry", "geometry='exact'"},
     {"frame_m", "frame"},
@@ -33,6 +35,7 @@ constexpr auto kKeywords = std::to_array<std::pair<std::string_view, std::string
     {"tiff_dpi", "dpi"},
     {"tolerance", "tol"},
     {"weights.analytic_wiener", "w_analytic"},
+    {"weights.depth", "depth_weight"},
     {"wiener_nsr", "nsr"},
     {"window", "size"},
 });

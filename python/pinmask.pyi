@@ -227,7 +227,7 @@ def metrics(
 ) -> dict[str, Any]: ...
 def score(
     masks: Sequence[MaskLike],
-    metrics: Union[str, Sequence[str]] = "sidelobes,spectrum,analytic,wiener",  # or tv
+    metrics: Union[str, Sequence[str]] = "sidelobes,spectrum,analytic,wiener",  # or tv, depth
     scenes: Sequence[str] = ("letter-R", "usaf", "natural"),  # as the score command
     snr_db: Optional[Levels] = None,  # dB; None: 20, 30, 40
     photons: Optional[Levels] = None,  # electrons per pixel through one pinhole (photon model)
@@ -246,6 +246,8 @@ def score(
     robust: Optional[str] = None,  # "size=5um,jitter=2um,missing=0.01"
     robust_decoder: bool = False,  # adds {psf, nsr_map, floored} arrays (needs robust)
     allow_violations: bool = False,
+    depth_from: Optional[float] = None,  # metres; None, None: working distance / 2 .. x 2
+    depth_to: Optional[float] = None,  # metres (depth needs photons)
 ) -> dict[str, Any]: ...
 def sidelobes(pattern: Pattern) -> dict[str, Any]: ...
 def autocorrelation(pattern: Pattern) -> npt.NDArray[np.int32]: ...
@@ -319,6 +321,9 @@ def search(
     checkpoint: Optional[str] = None,  # chains' state written here (needs evals)
     checkpoint_every: int = 0,  # evaluations per chain between checkpoints
     resume: Optional[str] = None,  # continue from a checkpoint of the same settings
+    depth_weight: float = 0.0,  # W of the depth term, dB per dB (needs photons)
+    depth_from: Optional[float] = None,  # metres; None, None: working distance / 2 .. x 2
+    depth_to: Optional[float] = None,  # metres
 ) -> dict[str, Any]: ...
 def sweep(
     *,
@@ -348,6 +353,9 @@ def compare(
     optical_density: Optional[float] = None,  # film OD (transmission 10^-OD)
     prior: Prior = "natural",
     robust: Optional[str] = None,  # as --robust: "size=44um,jitter=2um,missing=0.01"
+    depth: bool = False,  # the depth keys of score(metrics="depth") (needs photons)
+    depth_from: Optional[float] = None,  # metres; None, None: working distance / 2 .. x 2
+    depth_to: Optional[float] = None,  # metres
 ) -> dict[str, Any]: ...
 
 class Layout:

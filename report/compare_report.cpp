@@ -181,6 +181,20 @@ ReportTable compare_table(const std::vector<CompareResult>& results) {
         for (std::size_t i = 0; i < results.size(); ++i)
             t.rows[i].insert(t.rows[i].begin() + at, db(results[i].row.robust_wiener_psnr_db));
     }
+    // With the depth group: the worst Cramer-Rao bound on the distance, first level.
+    const auto depth = [](const CompareResult& r) -> const DepthFigures* {
+        const auto& levels = r.row.metrics.levels;
+        return levels.empty() || !levels.front().depth ? nullptr : &*levels.front().depth;
+    };
+    if (std::any_of(results.begin(), results.end(), depth)) {
+        t.headers.insert(t.headers.end(), {"depth", "axial FWHM"});
+        t.units.insert(t.units.end(), {"sigma_u/u", "m"});
+        for (std::size_t i = 0; i < results.size(); ++i) {
+            const DepthFigures* d = depth(results[i]);
+            t.rows[i].push_back(d ? fmt(d->crb_rel, "%.3g") : "-");
+            t.rows[i].push_back(d ? fmt(d->axial_fwhm_m, "%.3g") : "-");
+        }
+    }
     return t;
 }
 

@@ -40,7 +40,8 @@ void ObjectiveWeights::validate() const {
     const std::pair<const char*, double> all[] = {{"analytic_wiener", analytic_wiener},
                                                   {"max_sidelobe", max_sidelobe},
                                                   {"sidelobe_energy", sidelobe_energy},
-                                                  {"min_spectrum", min_spectrum}};
+                                                  {"min_spectrum", min_spectrum},
+                                                  {"depth", depth}};
     bool any = false;
     for (const auto& [name, w] : all) {
         if (!std::isfinite(w) || w < 0.0) {

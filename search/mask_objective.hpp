@@ -10,6 +10,8 @@
 //   min_spectrum      -min_{k != 0} |P^(k)| / sqrt(K)  (sqrt(K) is |P^| of a flat spectrum with
 //                     the same energy, so the term is about -1 for a good pattern)
 // Terms and their values are reported under these names (plus "analytic_wiener_psnr_db").
+// The depth weight is search/depth_term's (DepthTermObjective wraps this objective or the robust
+// one); MaskObjective itself does not evaluate it.
 #pragma once
 
 #include <memory>
@@ -26,6 +28,7 @@ struct ObjectiveWeights {
     double max_sidelobe = 0.0;
     double sidelobe_energy = 0.0;
     double min_spectrum = 0.0;
+    double depth = 0.0;  // search/depth_term: W x 20 log10(worst relative depth bound), dB
 
     // Throws InvalidInput for a negative or non-finite weight, or when all are zero.
     void validate() const;

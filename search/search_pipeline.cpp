@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "core/fft.hpp"
 #include "core/field_names.hpp"
+#include "core/number_format.hpp"
 #include "core/resource_limits.hpp"
 #include "design/kernel_model.hpp"
 #include "design/packing_bound.hpp"
@@ -19,6 +20,7 @@
 #include "metrics/robust_wiener.hpp"
 #include "metrics/simulated_metrics.hpp"
 #include "metrics/spectrum_metrics.hpp"
+#include "search/depth_term.hpp"
 #include "search/island_search.hpp"
 #include "search/objective_bound.hpp"
 #include "search/rerank_order.hpp"
@@ -219,6 +221,14 @@ void SearchPipelineOptions::validate() const {
     pinmask::validate(noise);
     prior.validate();
     weights.validate();
+    if (weights.depth > 0.0) {
+        depth_range.validate();
+        if (noise.kind != NoiseKind::kPhoton) {
+            throw invalid_field(field_ref("weights.depth"), format_number(weights.depth),
+                                "the depth term's Cramer-Rao bound needs the photon model (" +
+                                    field_ref("photons") + "), not Gaussian noise at an SNR");
+        }
+    }
     keep_out_cells(keep_out, tmpl.pattern.n);
     for (const SceneSpec& s : rerank_scenes) {
         if (s.kind == SceneKind::kNatural && prior.kind == PriorKind::kNatural) {
@@ -287,6 +297,13 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
                                                       : RobustObjectiveDecoder::kDesignFilter);
     else
         inner = std::make_unique<MaskObjective>(o.weights, model, o.filter);
+    if (o.weights.depth > 0.0) {
+        phase("building the depth term's per-cell Fisher information");
+        auto table = std::make_shared<const DepthCellTable>(o.tmpl, o.noise, o.depth_range,
+                                                            o.search.threads);
+        inner = std::make_unique<DepthTermObjective>(std::move(inner), std::move(table),
+                                                     o.weights.depth);
+    }
     const PipelineObjective objective(*inner, pattern_frequencies_passed(kernel_otf, n),
                                       !o.allow_spectral_zeros);
 

@@ -18,6 +18,7 @@
 
 #include "design/mask.hpp"
 #include "metrics/analytic_error.hpp"
+#include "metrics/depth_fisher.hpp"
 #include "metrics/mask_metrics.hpp"
 #include "metrics/robust_errors.hpp"
 #include "search/island_search.hpp"
@@ -53,6 +54,7 @@ struct SearchPipelineOptions {
     PriorSpec prior;                // the objective's scene prior
     WienerFilterSpec filter{WienerFilterKind::kOptimal, 0.0};
     ObjectiveWeights weights;
+    DepthRange depth_range;  // the depth term's distances (used when weights.depth > 0)
     // kRobust, kRobustFilter: the analytic Wiener term is the expected PSNR under `robust` (which
     // must have an
     // error); the re-ranking then reports its simulated figures without reordering (they are

@@ -45,6 +45,10 @@ std::string metrics_table_text(const std::vector<nlohmann::ordered_json>& rows,
         if (m.analytic && m.robust.any()) cols.push_back({"robust_wiener_psnr_db_" + k, "R" + k});
         if (m.wiener) cols.push_back({"wiener_psnr_db_" + k, "W" + k});
         if (m.tv) cols.push_back({"tv_psnr_db_" + k, "TV" + k});
+        if (m.depth) {
+            cols.push_back({"depth_crb_rel_" + k, "Du" + k});
+            cols.push_back({"depth_axial_fwhm_m_" + k, "Dfw" + k});
+        }
     }
     std::ostringstream s;
     s << std::left << std::setw(28) << "mask";
@@ -77,6 +81,13 @@ std::string metrics_table_text(const std::vector<nlohmann::ordered_json>& rows,
     s << "PSNR columns in dB over one period: A = analytic Wiener, W = simulated Wiener, TV = "
          "simulated TV-L2; suffix snrS = Gaussian noise at S dB, phP = the photon model at P "
          "electrons per pinhole. --json for every key.\n";
+    if (m.depth) {
+        s << "Du = the worst relative Cramer-Rao bound sigma_u / u of a point source's distance, "
+             "Dfw = the worst axial resolution 2.355 sigma_u in metres, over "
+          << (m.depth_range.from_m > 0 ? "the --depth-from/--depth-to range"
+                                       : "the working distance / 2 .. x 2")
+          << " (depth_from_m, depth_to_m in --json).\n";
+    }
     if (m.analytic && m.robust.any()) {
         s << "R = analytic Wiener expected under fabrication errors (" << m.robust.description()
           << "), decoded with the nominal PSF, same NSR as A.\n";

@@ -68,6 +68,9 @@ void apply_config(const io::SearchConfig& c, const CLI::App& cmd, SearchCliOptio
     set("--w-max-sidelobe", o.w_max_sidelobe, c.w_max_sidelobe);
     set("--w-sidelobe-energy", o.w_sidelobe_energy, c.w_sidelobe_energy);
     set("--w-min-spectrum", o.w_min_spectrum, c.w_min_spectrum);
+    set("--depth-weight", o.w_depth, c.w_depth);
+    set("--depth-from", o.depth_from, c.depth_from);
+    set("--depth-to", o.depth_to, c.depth_to);
     if (c.rerank_scenes && !given("--rerank-scenes") && !given("--no-rerank")) {
         if (c.rerank_scenes->empty())
             o.no_rerank = true;  // written for a run with --no-rerank
@@ -99,6 +102,7 @@ nlohmann::ordered_json resolved_config(const SearchCliOptions& o, const SearchPi
     t.w_max_sidelobe = o.w_max_sidelobe;
     t.w_sidelobe_energy = o.w_sidelobe_energy;
     t.w_min_spectrum = o.w_min_spectrum;
+    t.w_depth = o.w_depth;
     if (!o.no_rerank) t.rerank_scenes = o.rerank_scenes;
     return io::resolved_search_config(p, t, s.kernel_resolved, ranks);
 }
@@ -137,7 +141,15 @@ SearchPipelineOptions search_pipeline_options(const SearchCliOptions& o, const C
     p.noise = levels.front().model;
     p.prior = prior_spec(o.prior);
     p.filter = parse_search_filter(o.filter, p.noise);
-    p.weights = {o.w_analytic, o.w_max_sidelobe, o.w_sidelobe_energy, o.w_min_spectrum};
+    p.weights = {o.w_analytic, o.w_max_sidelobe, o.w_sidelobe_energy, o.w_min_spectrum, o.w_depth};
+    p.depth_range.from_m = o.depth_from;
+    p.depth_range.to_m = o.depth_to;
+    if (!(o.w_depth > 0.0) && (cmd.get_option("--depth-from")->count() > 0 ||
+                               cmd.get_option("--depth-to")->count() > 0)) {
+        throw InvalidInput(
+            "--depth-from/--depth-to: give --depth-weight > 0 (the range is the "
+            "depth term's)");
+    }
     p.allow_spectral_zeros = o.allow_spectral_zeros;
     if (!o.no_rerank)
         for (const auto& name : o.rerank_scenes) p.rerank_scenes.push_back(scene_from_name(name));

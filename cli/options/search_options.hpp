@@ -32,6 +32,7 @@ struct SearchCliOptions {
     NoiseFlags noise;
     PriorFlags prior;
     double w_analytic = 1.0, w_max_sidelobe = 0.0, w_sidelobe_energy = 0.0, w_min_spectrum = 0.0;
+    double w_depth = 0.0, depth_from = 0.0, depth_to = 0.0;  // --depth-weight, --depth-from/to
     std::vector<std::string> rerank_scenes{"letter-R", "usaf", "siemens-star"};
     bool rerank_tv = true, no_rerank = false, allow_spectral_zeros = false, json = false,
          quiet = false, explain = false;
