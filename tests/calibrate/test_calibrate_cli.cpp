@@ -117,7 +117,7 @@ TEST_CASE("pinmask calibrate: bad input exits 2 and writes nothing") {
          "saturation over most spots"},
         {"calibrate " + f.p("point.tiff") + " --mask " + f.p("m.mask.json") + " -o " + f.p("o5") +
              " --max-rotation -1",
-         "max_rotation_deg"},
+         "--max-rotation = -1"},
         {"calibrate " + f.p("point.tiff") + " --mask " + f.p("m.mask.json") + " -o " +
              f.p("point.tiff"),
          "-o"},
