@@ -15,6 +15,7 @@
 #include "cli/commands.hpp"
 #include "cli/options/analytic_setup.hpp"
 #include "cli/options/flag_names.hpp"
+#include "cli/options/length_option.hpp"
 #include "cli/options/noise_options.hpp"
 #include "cli/outputs/compare_report.hpp"
 #include "cli/outputs/progress.hpp"
@@ -263,12 +264,12 @@ void setup(CLI::App& app) {
     cmd->add_flag("--depth", o->depth,
                   "Add the depth columns: score --metrics depth's Cramer-Rao bound on a point "
                   "source's distance (needs --photons)");
-    cmd->add_option("--depth-from", o->depth_from,
-                    "With --depth: the nearest distance, metres (default with --depth-to unset: "
-                    "the working distance / 2)");
-    cmd->add_option("--depth-to", o->depth_to,
-                    "With --depth: the farthest distance, metres (default: twice the working "
-                    "distance)");
+    length_in_metres(cmd->add_option("--depth-from", o->depth_from,
+                                     "With --depth: the nearest distance (length, e.g. 0.4m; "
+                                     "default with --depth-to unset: the working distance / 2)"));
+    length_in_metres(cmd->add_option("--depth-to", o->depth_to,
+                                     "With --depth: the farthest distance (length, e.g. 2m; "
+                                     "default: twice the working distance)"));
     cmd->add_option("--seed", o->seed, "Seed of the noise and of the baselines' random draws")
         ->capture_default_str();
     cmd->add_flag("--allow-violations", o->allow_violations,

@@ -11,6 +11,7 @@
 #include "cli/command_footers.hpp"
 #include "cli/commands.hpp"
 #include "cli/options/analytic_setup.hpp"
+#include "cli/options/length_option.hpp"
 #include "cli/options/noise_options.hpp"
 #include "cli/outputs/robust_decoder_files.hpp"
 #include "core/error.hpp"
@@ -199,13 +200,14 @@ void setup(CLI::App& app) {
                     "Metrics to compute: sidelobes, spectrum, analytic, wiener, tv, depth (see "
                     "below; depth needs --photons)")
         ->capture_default_str();
-    cmd->add_option(
+    length_in_metres(cmd->add_option(
         "--depth-from", o->depth_from,
-        "With --metrics depth: the nearest object distance of the depth range, "
-        "metres (> f'; default with --depth-to unset: each mask's working distance / 2)");
-    cmd->add_option("--depth-to", o->depth_to,
-                    "With --metrics depth: the farthest object distance, metres (>= --depth-from; "
-                    "default: twice the working distance)");
+        "With --metrics depth: the nearest object distance of the depth range (length, e.g. "
+        "0.4m; > f'; default with --depth-to unset: each mask's working distance / 2)"));
+    length_in_metres(cmd->add_option(
+        "--depth-to", o->depth_to,
+        "With --metrics depth: the farthest object distance (length, e.g. 2m; >= --depth-from; "
+        "default: twice the working distance)"));
     cmd->add_option("--nsr", o->nsr,
                     "Wiener noise-to-signal ratio (> 0), or 'tuned' (per mask and noise level)")
         ->capture_default_str();

@@ -99,7 +99,7 @@ void DepthmapOptions::validate_settings() const {
                             "must be odd and >= 3");
     }
     if (!(smooth >= 0.0) || !std::isfinite(smooth)) {
-        throw invalid_field(field_ref("smooth"), std::to_string(smooth),
+        throw invalid_field(field_ref("smooth"), format_number(smooth),
                             "must be finite and >= 0 (0: the lowest-cost plane per pixel)");
     }
 }

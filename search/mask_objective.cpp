@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/field_names.hpp"
+#include "core/number_format.hpp"
 
 namespace pinmask {
 namespace {
@@ -44,9 +45,11 @@ void ObjectiveWeights::validate() const {
                                                   {"depth", depth}};
     bool any = false;
     for (const auto& [name, w] : all) {
-        if (!std::isfinite(w) || w < 0.0) {
-            throw invalid_field(field_ref(std::string("weights.") + name), std::to_string(w),
-                                "must be finite and >= 0");
+        // Above 1e6 one term is the whole objective whatever the others are, and a huge weight
+        // times a dB figure overflows to an infinite objective that ranks nothing.
+        if (!std::isfinite(w) || w < 0.0 || w > 1e6) {
+            throw invalid_field(field_ref(std::string("weights.") + name), format_number(w),
+                                "must be finite, >= 0 and <= 1e6");
         }
         any = any || w > 0.0;
     }

@@ -79,6 +79,20 @@ def test_score_depth_default_range_and_cli_parity(cli, tmp_path):
     assert c == p
 
 
+def test_depth_range_flags_take_lengths_with_units(cli, tmp_path):
+    # --depth-from/--depth-to read lengths as every other length flag does; a plain number is
+    # metres. The same range in millimetres, metres and plain numbers gives the same row.
+    _, path = _box_mask(tmp_path, MV, grid=8, holes=6)
+    rows = []
+    for lo, hi in (("400mm", "2m"), ("0.4m", "2000mm"), ("0.4", "2")):
+        rows.append(json.loads(cli.run("score", path, "--metrics", "depth", "--photons", "500",
+                                       "--depth-from", lo, "--depth-to", hi,
+                                       "--json").stdout)["masks"][0])
+    assert rows[0]["depth_from_m"] == pytest.approx(0.4, rel=1e-15)
+    assert rows[0]["depth_to_m"] == pytest.approx(2.0, rel=1e-15)
+    assert rows[0] == rows[1] == rows[2]
+
+
 def test_compare_depth_equals_score(tmp_path):
     m, path = _box_mask(tmp_path, MV, grid=8, holes=6)
     s = pinmask.score([m], metrics="depth", photons=300, depth_from=0.3, depth_to=1.0)
