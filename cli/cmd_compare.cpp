@@ -14,8 +14,8 @@
 #include "cli/command_footers.hpp"
 #include "cli/commands.hpp"
 #include "cli/options/analytic_setup.hpp"
+#include "cli/options/depth_range_flags.hpp"
 #include "cli/options/flag_names.hpp"
-#include "cli/options/length_option.hpp"
 #include "cli/options/noise_options.hpp"
 #include "cli/outputs/compare_report.hpp"
 #include "cli/outputs/progress.hpp"
@@ -63,14 +63,7 @@ CompareRunOptions make_options(const Options& o, const CLI::App& cmd, std::strin
     set_decoder_settings(m.simulation, o.nsr, o.tv_lambda, o.tv_iterations);
     if (!o.robust.empty()) m.robust = parse_fabrication_errors(o.robust);
     m.depth = o.depth;
-    m.depth_range.from_m = o.depth_from;
-    m.depth_range.to_m = o.depth_to;
-    if (!o.depth && (cmd.get_option("--depth-from")->count() > 0 ||
-                     cmd.get_option("--depth-to")->count() > 0)) {
-        throw InvalidInput(
-            "--depth-from/--depth-to: add --depth (the range is the depth "
-            "columns')");
-    }
+    m.depth_range = depth_range_of(cmd, o.depth_from, o.depth_to, o.depth, "add --depth");
     r.settings.seed = o.seed;
     r.baselines = o.baselines;
     r.baseline_count = o.baseline_count;
@@ -264,12 +257,7 @@ void setup(CLI::App& app) {
     cmd->add_flag("--depth", o->depth,
                   "Add the depth columns: score --metrics depth's Cramer-Rao bound on a point "
                   "source's distance (needs --photons)");
-    length_in_metres(cmd->add_option("--depth-from", o->depth_from,
-                                     "With --depth: the nearest distance (length, e.g. 0.4m; "
-                                     "default with --depth-to unset: the working distance / 2)"));
-    length_in_metres(cmd->add_option("--depth-to", o->depth_to,
-                                     "With --depth: the farthest distance (length, e.g. 2m; "
-                                     "default: twice the working distance)"));
+    add_depth_range_flags(*cmd, o->depth_from, o->depth_to, "--depth");
     cmd->add_option("--seed", o->seed, "Seed of the noise and of the baselines' random draws")
         ->capture_default_str();
     cmd->add_flag("--allow-violations", o->allow_violations,

@@ -11,7 +11,7 @@
 #include "cli/command_footers.hpp"
 #include "cli/commands.hpp"
 #include "cli/options/analytic_setup.hpp"
-#include "cli/options/length_option.hpp"
+#include "cli/options/depth_range_flags.hpp"
 #include "cli/options/noise_options.hpp"
 #include "cli/outputs/robust_decoder_files.hpp"
 #include "core/error.hpp"
@@ -48,14 +48,8 @@ MaskMetricsOptions make_options(const ScoreOptions& o, const CLI::App& cmd, std:
     m.simulation.seed = o.seed;
     set_decoder_settings(m.simulation, o.nsr, o.tv_lambda, o.tv_iterations);
     if (!o.robust.empty()) m.robust = parse_fabrication_errors(o.robust);
-    m.depth_range.from_m = o.depth_from;
-    m.depth_range.to_m = o.depth_to;
-    if (!m.depth && (cmd.get_option("--depth-from")->count() > 0 ||
-                     cmd.get_option("--depth-to")->count() > 0)) {
-        throw InvalidInput(
-            "--depth-from/--depth-to: add depth to --metrics (the range is the "
-            "depth group's)");
-    }
+    m.depth_range =
+        depth_range_of(cmd, o.depth_from, o.depth_to, m.depth, "add depth to --metrics");
     m.validate();
     return m;
 }
@@ -200,14 +194,7 @@ void setup(CLI::App& app) {
                     "Metrics to compute: sidelobes, spectrum, analytic, wiener, tv, depth (see "
                     "below; depth needs --photons)")
         ->capture_default_str();
-    length_in_metres(cmd->add_option(
-        "--depth-from", o->depth_from,
-        "With --metrics depth: the nearest object distance of the depth range (length, e.g. "
-        "0.4m; > f'; default with --depth-to unset: each mask's working distance / 2)"));
-    length_in_metres(cmd->add_option(
-        "--depth-to", o->depth_to,
-        "With --metrics depth: the farthest object distance (length, e.g. 2m; >= --depth-from; "
-        "default: twice the working distance)"));
+    add_depth_range_flags(*cmd, o->depth_from, o->depth_to, "--metrics depth");
     cmd->add_option("--nsr", o->nsr,
                     "Wiener noise-to-signal ratio (> 0), or 'tuned' (per mask and noise level)")
         ->capture_default_str();

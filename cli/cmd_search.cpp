@@ -12,8 +12,8 @@
 #include "cli/commands.hpp"
 #include "cli/options/analytic_setup.hpp"
 #include "cli/options/camera_options.hpp"
+#include "cli/options/depth_range_flags.hpp"
 #include "cli/options/flag_names.hpp"
-#include "cli/options/length_option.hpp"
 #include "cli/options/noise_options.hpp"
 #include "cli/options/psf_options.hpp"
 #include "cli/options/search_options.hpp"
@@ -239,14 +239,7 @@ void add_search_flags(CLI::App* cmd, const std::shared_ptr<SearchCliOptions>& o)
                     "(pinholes' Fisher information summed cell by cell), so W > 0 trades PSNR "
                     "for depth resolution (needs --photons; 0 = the objective without it)")
         ->capture_default_str();
-    length_in_metres(cmd->add_option(
-        "--depth-from", o->depth_from,
-        "With --depth-weight: the nearest distance of the depth term (length, e.g. 0.4m; default "
-        "with --depth-to unset: the working distance / 2)"));
-    length_in_metres(cmd->add_option(
-        "--depth-to", o->depth_to,
-        "With --depth-weight: the farthest distance (length, e.g. 2m; default: twice the "
-        "working distance)"));
+    add_depth_range_flags(*cmd, o->depth_from, o->depth_to, "--depth-weight");
     cmd->add_option("--objective", o->objective,
                     "nominal: the design's analytic Wiener PSNR; robust: its expectation under "
                     "the --robust fabrication errors, decoded with the nominal PSF (needs "

@@ -8,6 +8,7 @@
 
 #include "cli/options/analytic_setup.hpp"
 #include "cli/options/camera_options.hpp"
+#include "cli/options/depth_range_flags.hpp"
 #include "cli/options/noise_options.hpp"
 #include "cli/options/psf_options.hpp"
 #include "core/error.hpp"
@@ -142,14 +143,8 @@ SearchPipelineOptions search_pipeline_options(const SearchCliOptions& o, const C
     p.prior = prior_spec(o.prior);
     p.filter = parse_search_filter(o.filter, p.noise);
     p.weights = {o.w_analytic, o.w_max_sidelobe, o.w_sidelobe_energy, o.w_min_spectrum, o.w_depth};
-    p.depth_range.from_m = o.depth_from;
-    p.depth_range.to_m = o.depth_to;
-    if (!(o.w_depth > 0.0) && (cmd.get_option("--depth-from")->count() > 0 ||
-                               cmd.get_option("--depth-to")->count() > 0)) {
-        throw InvalidInput(
-            "--depth-from/--depth-to: give --depth-weight > 0 (the range is the "
-            "depth term's)");
-    }
+    p.depth_range =
+        depth_range_of(cmd, o.depth_from, o.depth_to, o.w_depth > 0.0, "give --depth-weight > 0");
     p.allow_spectral_zeros = o.allow_spectral_zeros;
     if (!o.no_rerank)
         for (const auto& name : o.rerank_scenes) p.rerank_scenes.push_back(scene_from_name(name));
