@@ -130,25 +130,8 @@ json summary(const DepthmapResult& r, const DepthmapCommandOptions& o, std::size
 void run(const DepthmapCommandOptions& o) {
     const fs::path dir(o.output_dir);
     check_output_folder(dir, "-o");
-    // Exactly one source of PSFs: the mask's exact geometry over --from/--to/--steps, or a
-    // given stack whose distances are the planes.
-    if (o.mask.empty() == o.psf_stack.empty()) {
-        throw invalid_field(
-            "--mask", o.mask,
-            "give either --mask (with --from and --to) or --psf-stack, one of them");
-    }
-    if (!o.psf_stack.empty()) {
-        for (const auto& [flag, given] : {std::pair<const char*, bool>{"--from", !o.from.empty()},
-                                          {"--to", !o.to.empty()},
-                                          {"--steps", o.steps_given}}) {
-            if (given)
-                throw invalid_field(flag, "",
-                                    "not with --psf-stack: the stack's distances are the planes");
-        }
-    } else {
-        if (o.from.empty()) throw invalid_field("--from", "", "required with --mask");
-        if (o.to.empty()) throw invalid_field("--to", "", "required with --mask");
-    }
+    check_plane_source(!o.mask.empty(), !o.psf_stack.empty(), !o.from.empty(), !o.to.empty(),
+                       o.steps_given);
     // The stack's files are read first so that the outputs can be checked against them too.
     io::PsfStack stack;
     if (!o.psf_stack.empty()) stack = io::read_psf_stack(o.psf_stack);

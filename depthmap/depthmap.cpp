@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.hpp"
@@ -101,6 +102,29 @@ void DepthmapOptions::validate_settings() const {
     if (!(smooth >= 0.0) || !std::isfinite(smooth)) {
         throw invalid_field(field_ref("smooth"), format_number(smooth),
                             "must be finite and >= 0 (0: the lowest-cost plane per pixel)");
+    }
+}
+
+void check_plane_source(bool mask, bool psf_stack, bool from, bool to, bool steps) {
+    if (mask == psf_stack) {
+        throw invalid_field(field_ref("mask"), mask ? "given" : "absent",
+                            "give either " + field_ref("mask") + " (with " + field_ref("from_m") +
+                                " and " + field_ref("to_m") + ") or " + field_ref("psf_stack") +
+                                ", one of them");
+    }
+    if (psf_stack) {
+        for (const auto& [name, given] :
+             {std::pair<const char*, bool>{"from_m", from}, {"to_m", to}, {"steps", steps}}) {
+            if (given) {
+                throw invalid_field(field_ref(name), "given",
+                                    "not with " + field_ref("psf_stack") +
+                                        ": the stack's distances are the planes");
+            }
+        }
+    } else {
+        if (!from)
+            throw invalid_field(field_ref("from_m"), "", "required with " + field_ref("mask"));
+        if (!to) throw invalid_field(field_ref("to_m"), "", "required with " + field_ref("mask"));
     }
 }
 

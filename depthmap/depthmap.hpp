@@ -66,6 +66,11 @@ struct DepthmapResult {
     bool interrupted = false;
 };
 
+// Where the planes come from, as a face's arguments give it: the mask with a distance range
+// (from and to required, steps optional) or a PSF stack, exactly one. InvalidInput naming the
+// field at fault (mask, psf_stack, from_m, to_m, steps) otherwise.
+void check_plane_source(bool mask, bool psf_stack, bool from, bool to, bool steps);
+
 // capture: one channel (grey), finite, at least window x window. Throws InvalidInput naming the
 // field; ResourceLimit when the planes' estimates do not fit the memory budget.
 DepthmapResult depthmap(const Plane& capture, const Mask& mask, const DepthmapOptions& options);

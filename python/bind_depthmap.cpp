@@ -46,11 +46,8 @@ void bind_depthmap(py::module_& m) {
             const Plane grey = grey_of(capture_is_path ? read_image(capture_path).image
                                                        : image_arg(capture, "capture"));
             if (!is_all_finite(grey)) throw invalid_field("capture", "", "holds NaN or Inf");
-            // Exactly one source of PSFs: the mask over from_m/to_m/steps, or the given stack.
-            if (mask.is_none() == psf_stack.is_none())
-                throw invalid_field("mask", "",
-                                    "give either mask (with from_m and to_m) or "
-                                    "psf_stack, one of them");
+            check_plane_source(!mask.is_none(), !psf_stack.is_none(), !from_m.is_none(),
+                               !to_m.is_none(), !steps.is_none());
             DepthmapOptions d;
             d.wiener_nsr = nsr;
             d.window = window;
@@ -61,21 +58,10 @@ void bind_depthmap(py::module_& m) {
             Mask mk;
             std::vector<PsfStackPlane> planes;
             if (psf_stack.is_none()) {
-                if (from_m.is_none()) throw invalid_field("from_m", "", "required with mask");
-                if (to_m.is_none()) throw invalid_field("to_m", "", "required with mask");
                 mk = mask_arg(mask);
                 d.distances_m = depth_range(from_m.cast<double>(), to_m.cast<double>(),
                                             steps.is_none() ? 16 : steps.cast<int>());
             } else {
-                for (const auto& [name, given] :
-                     {std::pair<const char*, bool>{"from_m", !from_m.is_none()},
-                      {"to_m", !to_m.is_none()},
-                      {"steps", !steps.is_none()}}) {
-                    if (given)
-                        throw invalid_field(name, "",
-                                            "not with psf_stack: the stack's distances are the "
-                                            "planes");
-                }
                 if (!py::isinstance<py::sequence>(psf_stack) || py::isinstance<py::str>(psf_stack))
                     throw invalid_field(field_ref("psf_stack"), "",
                                         "must be a list of (distance_m, psf array) pairs");

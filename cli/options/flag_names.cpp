@@ -63,6 +63,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"layer", "--layer"},
     {"margin", "--margin"},
     {"margin_m", "--margin"},
+    {"mask", "--mask"},
     {"max_evaluations", "--evals"},
     {"max_rotation_deg", "--max-rotation"},
     {"max_snap_error", "--max-snap-error"},
