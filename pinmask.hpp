@@ -1,92 +1,100 @@
 // The library's front door: one include for the main job, from a camera to a decoded scene.
-//   camera and optics       design/camera, design/optics, design/working_distance
-//   pattern and mask        design/pattern, design/families, design/generate_pattern, design/mask
-//   PSF                     design/kernel, design/psf_settings, design/psf
-//   simulation              simulate/scenes, simulate/noise_model, simulate/simulate,
-//                           simulate/simulate_pipeline, simulate/image_quality (MSE, PSNR, SSIM)
-//   metrics                 metrics/mask_metrics, metrics/analytic_error, metrics/compare, ...
-//   search                  search/search_pipeline, search/sweep
-//   decode                  decode/decoder, decode/wiener, decode/capture_pipeline, decode/batch
-//   calibration             calibrate/calibrate, calibrate/calibrated_psf
-//   fabrication export      export/export_pipeline, export/export_request, export/file_check
-//   files                   io/mask_json, io/camera_json, io/psf_files, core/image_io
+//   camera and optics       design/optics/camera, design/optics/optics,
+//   design/optics/working_distance pattern and mask        design/pattern/pattern,
+//   design/pattern/families, design/pattern/generate_pattern, design/pattern/mask PSF
+//   design/psf/kernel, design/psf/psf_settings, design/psf/psf simulation optimize/simulate/scenes,
+//   optimize/simulate/noise_model, optimize/simulate/simulate,
+//                           optimize/simulate/simulate_pipeline, optimize/simulate/image_quality
+//                           (MSE, PSNR, SSIM)
+//   metrics                 optimize/metrics/mask_metrics, optimize/metrics/analytic_error,
+//   optimize/metrics/compare, ... search                  optimize/search/search_pipeline,
+//   optimize/search/sweep decode                  decode/capture/decoder, decode/solvers/wiener,
+//   decode/capture/capture_pipeline, decode/capture/batch calibration decode/calibrate/calibrate,
+//   decode/calibrate/calibrated_psf depth from one capture  decode/depthmap/depthmap fabrication
+//   export      export/pipeline/export_pipeline, export/pipeline/export_request,
+//   export/pipeline/file_check files                   io/mask_json, io/camera_json, io/psf_files,
+//   core/image/image_io
 // Everything is in namespace pinmask (the file codecs in pinmask::io). The command (cli/) and the
 // Python module (python/) are faces over these libraries and are not part of it. Installed as
 // <prefix>/include/pinmask/pinmask.hpp beside the folders it includes, so with
 // <prefix>/include/pinmask on the include path (the pinmask::pinmask CMake target sets it) both
-// `#include "pinmask.hpp"` and `#include "core/fft.hpp"` work.
+// `#include "pinmask.hpp"` and `#include "core/fft/fft.hpp"` work.
 #pragma once
 
 // Errors, images and image files, FFT set-up.
-#include "core/error.hpp"
-#include "core/fft.hpp"
-#include "core/fft_environment.hpp"
-#include "core/image.hpp"
-#include "core/image_io.hpp"
-#include "core/raw_io.hpp"
-#include "core/resource_limits.hpp"
-#include "core/units.hpp"
+#include "core/errors/error.hpp"
+#include "core/fft/fft.hpp"
+#include "core/fft/fft_environment.hpp"
+#include "core/image/image.hpp"
+#include "core/image/image_io.hpp"
+#include "core/image/raw_io.hpp"
+#include "core/limits/resource_limits.hpp"
+#include "core/units/units.hpp"
+#include "core/version.hpp"
 
 // Camera, optics, patterns, masks and their PSF.
-#include "design/camera.hpp"
-#include "design/families.hpp"
-#include "design/generate_pattern.hpp"
-#include "design/kernel.hpp"
-#include "design/mask.hpp"
-#include "design/mura.hpp"
-#include "design/optics.hpp"
-#include "design/pattern.hpp"
-#include "design/psf.hpp"
-#include "design/psf_exact.hpp"
-#include "design/psf_settings.hpp"
-#include "design/random_sparse.hpp"
-#include "design/working_distance.hpp"
+#include "design/optics/camera.hpp"
+#include "design/optics/optics.hpp"
+#include "design/optics/working_distance.hpp"
+#include "design/pattern/families.hpp"
+#include "design/pattern/generate_pattern.hpp"
+#include "design/pattern/mask.hpp"
+#include "design/pattern/mura.hpp"
+#include "design/pattern/pattern.hpp"
+#include "design/pattern/random_sparse.hpp"
+#include "design/psf/kernel.hpp"
+#include "design/psf/psf.hpp"
+#include "design/psf/psf_exact.hpp"
+#include "design/psf/psf_settings.hpp"
 
 // Scenes, noise and the forward simulation of a capture; image quality.
-#include "simulate/image_quality.hpp"
-#include "simulate/noise_model.hpp"
-#include "simulate/scene_prior.hpp"
-#include "simulate/scenes.hpp"
-#include "simulate/simulate.hpp"
-#include "simulate/simulate_pipeline.hpp"
+#include "optimize/simulate/image_quality.hpp"
+#include "optimize/simulate/noise_model.hpp"
+#include "optimize/simulate/scene_prior.hpp"
+#include "optimize/simulate/scenes.hpp"
+#include "optimize/simulate/simulate.hpp"
+#include "optimize/simulate/simulate_pipeline.hpp"
 
 // Figures of merit of a mask.
-#include "metrics/analytic_error.hpp"
-#include "metrics/autocorrelation.hpp"
-#include "metrics/compare.hpp"
-#include "metrics/depth_loss.hpp"
-#include "metrics/mask_metrics.hpp"
-#include "metrics/metric_spellings.hpp"
-#include "metrics/noise_levels.hpp"
-#include "metrics/robust_errors.hpp"
-#include "metrics/simulated_metrics.hpp"
-#include "metrics/spectrum_metrics.hpp"
+#include "optimize/metrics/analytic_error.hpp"
+#include "optimize/metrics/autocorrelation.hpp"
+#include "optimize/metrics/compare.hpp"
+#include "optimize/metrics/depth_loss.hpp"
+#include "optimize/metrics/mask_metrics.hpp"
+#include "optimize/metrics/metric_spellings.hpp"
+#include "optimize/metrics/noise_levels.hpp"
+#include "optimize/metrics/robust_errors.hpp"
+#include "optimize/metrics/simulated_metrics.hpp"
+#include "optimize/metrics/spectrum_metrics.hpp"
 
 // Mask search and design sweeps.
-#include "search/search.hpp"
-#include "search/search_pipeline.hpp"
-#include "search/sweep.hpp"
+#include "optimize/search/search.hpp"
+#include "optimize/search/search_pipeline.hpp"
+#include "optimize/search/sweep.hpp"
 
 // Decoding captures.
-#include "decode/batch.hpp"
-#include "decode/capture.hpp"
-#include "decode/capture_pipeline.hpp"
-#include "decode/decode_request.hpp"
-#include "decode/decoder.hpp"
-#include "decode/wiener.hpp"
+#include "decode/capture/batch.hpp"
+#include "decode/capture/capture.hpp"
+#include "decode/capture/capture_pipeline.hpp"
+#include "decode/capture/decode_request.hpp"
+#include "decode/capture/decoder.hpp"
+#include "decode/solvers/wiener.hpp"
 
 // Calibration from a point-source capture.
-#include "calibrate/calibrate.hpp"
-#include "calibrate/calibrated_psf.hpp"
+#include "decode/calibrate/calibrate.hpp"
+#include "decode/calibrate/calibrated_psf.hpp"
+
+// Depth and an all-in-focus image from one capture.
+#include "decode/depthmap/depthmap.hpp"
 
 // Fabrication files: the export pipeline, its request, presets, design-rule and file checks.
-#include "export/drc.hpp"
-#include "export/export_pipeline.hpp"
-#include "export/export_request.hpp"
-#include "export/file_check.hpp"
-#include "export/vendor_presets.hpp"
-#include "formats/read_any.hpp"
-#include "formats/write_any.hpp"
+#include "export/formats/read_any.hpp"
+#include "export/formats/write_any.hpp"
+#include "export/pipeline/drc.hpp"
+#include "export/pipeline/export_pipeline.hpp"
+#include "export/pipeline/export_request.hpp"
+#include "export/pipeline/file_check.hpp"
+#include "export/pipeline/vendor_presets.hpp"
 
 // Mask, camera and PSF files.
 #include "io/camera_json.hpp"

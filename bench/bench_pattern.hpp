@@ -1,11 +1,12 @@
 // The pattern the depth and depthmap benches time: 20 pinholes on 16 x 16 cells under the
-// spacing rule s = 2, drawn by design/random_sparse from a fixed seed (the same pattern every run).
+// spacing rule s = 2, drawn by design/pattern/random_sparse from a fixed seed (the same pattern
+// every run).
 #pragma once
 
 #include <random>
 
-#include "design/pattern.hpp"
-#include "design/random_sparse.hpp"
+#include "design/pattern/pattern.hpp"
+#include "design/pattern/random_sparse.hpp"
 
 namespace pinmask {
 

@@ -11,13 +11,13 @@
 
 #include "bench/best_of.hpp"
 #include "bench/fft_pair.hpp"
-#include "calibrate/calibrate.hpp"
-#include "calibrate/forward_fit.hpp"
-#include "calibrate/profile_table.hpp"
-#include "core/error.hpp"
-#include "core/fft.hpp"
-#include "design/optics.hpp"
-#include "design/random_sparse.hpp"
+#include "core/errors/error.hpp"
+#include "core/fft/fft.hpp"
+#include "decode/calibrate/calibrate.hpp"
+#include "decode/calibrate/forward_fit.hpp"
+#include "decode/calibrate/profile_table.hpp"
+#include "design/optics/optics.hpp"
+#include "design/pattern/random_sparse.hpp"
 
 namespace pinmask {
 

@@ -6,7 +6,7 @@
 // behind it, u = 1.2 m, 850 nm, a 455.4 um pinhole: 34 px per cell, Fresnel number 0.59 with the
 // lens, spots one cell wide), a seeded random 10 x 10 mask with 15 pinholes tiled 6 x 6, rotated
 // 1.0 deg with the pitch +0.5 %, centred on a rows x cols sensor (default 1920 x 1200). It is
-// rendered with calibrate's own forward model (calibrate/forward_fit's fitted_psf: a timing
+// rendered with calibrate's own forward model (decode/calibrate/forward_fit's fitted_psf: a timing
 // input, not a test of the fit; the tests render with independent models), 5e5 counts per
 // pinhole, a background of 20, Poisson photons and 3 counts of read noise, seeded.
 // Figures (each the minimum over `repeat` runs): calibrate_point_source without a dark frame

@@ -12,15 +12,15 @@
 #include <string>
 #include <vector>
 
-#include "core/error.hpp"
-#include "core/fft.hpp"
-#include "core/fftw_api.hpp"
-#include "decode/convolution.hpp"
-#include "decode/richardson_lucy.hpp"
-#include "decode/tikhonov.hpp"
-#include "decode/tv_l2.hpp"
-#include "decode/tvqc.hpp"
-#include "decode/wiener.hpp"
+#include "core/errors/error.hpp"
+#include "core/fft/fft.hpp"
+#include "core/fft/fftw_api.hpp"
+#include "decode/solvers/convolution.hpp"
+#include "decode/solvers/richardson_lucy.hpp"
+#include "decode/solvers/tikhonov.hpp"
+#include "decode/solvers/tv_l2.hpp"
+#include "decode/solvers/tvqc.hpp"
+#include "decode/solvers/wiener.hpp"
 
 namespace pinmask {
 namespace {

@@ -50,7 +50,7 @@ struct DecodeBenchOptions {
     double min_batch_seconds = 0.02;  // > 0
     int tvqc_max_iterations = 300;    // >= 1
     std::uint64_t seed = 1;
-    // FFTW threads of the library's transforms during the run (core/fft's rule: only sizes from
+    // FFTW threads of the library's transforms during the run (core/fft/fft's rule: only sizes from
     // kFftThreadMinPixels up use them) and of the reference pairs of the same size, so both sides
     // run the same thread count. 1 by default: one core, the figure least disturbed by load.
     int threads = 1;  // 1..1024
@@ -88,7 +88,7 @@ struct TvConvergence {
 TvConvergence tv_l2_iterations_to_converged(int n, double lambda, double snr_db, double within_db,
                                             int max_iterations, std::uint64_t seed);
 
-// Runs every method at every size on the calling thread (sets core/fft's thread count to
+// Runs every method at every size on the calling thread (sets core/fft/fft's thread count to
 // options.threads for the run and restores it). Throws InvalidInput for options out of
 // range (naming the field).
 std::vector<DecodeBenchRecord> bench_decode(const DecodeBenchOptions& options);

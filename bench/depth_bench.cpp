@@ -10,10 +10,10 @@
 
 #include "bench/bench_pattern.hpp"
 #include "bench/fft_pair.hpp"
-#include "core/error.hpp"
-#include "core/fft.hpp"
-#include "design/mask.hpp"
-#include "metrics/depth_loss.hpp"
+#include "core/errors/error.hpp"
+#include "core/fft/fft.hpp"
+#include "design/pattern/mask.hpp"
+#include "optimize/metrics/depth_loss.hpp"
 
 namespace pinmask {
 namespace {

@@ -6,11 +6,11 @@
 // 75 mm, sensor 45 mm behind the lens, u = 1.2 m, 850 nm, d = 455.406 um: the pinhole solved
 // for 34 px per cell at u, on the 1 nm grid), a seeded 16 x 16 pattern of K = 20 pinholes at
 // least 2 cells apart on the torus, 2 x 2 tiles: a 544 px period.
-// The run: depth_analysis (metrics/depth_loss.hpp) at `distances` object distances from 0.9 m to
-// 2 m equally spaced in 1/u, letter-R and natural, the photon model at 20 electrons per pixel per
-// pinhole with 6 e- read noise, Wiener NSR tuned, with TV-L2.
-// Figures: the depth run (once: it takes seconds), and the forward + inverse real FFT of the
-// rows x cols sensor (the minimum over `repeat` runs), wall clock and process CPU time.
+// The run: depth_analysis (optimize/metrics/depth_loss.hpp) at `distances` object distances from
+// 0.9 m to 2 m equally spaced in 1/u, letter-R and natural, the photon model at 20 electrons per
+// pixel per pinhole with 6 e- read noise, Wiener NSR tuned, with TV-L2. Figures: the depth run
+// (once: it takes seconds), and the forward + inverse real FFT of the rows x cols sensor (the
+// minimum over `repeat` runs), wall clock and process CPU time.
 #pragma once
 
 namespace pinmask {

@@ -9,13 +9,13 @@
 
 #include "bench/bench_pattern.hpp"
 #include "bench/fft_pair.hpp"
-#include "core/error.hpp"
-#include "core/fft.hpp"
-#include "decode/psf2otf.hpp"
-#include "depthmap/depthmap.hpp"
-#include "design/mask.hpp"
-#include "design/psf_exact.hpp"
-#include "metrics/depth_loss.hpp"
+#include "core/errors/error.hpp"
+#include "core/fft/fft.hpp"
+#include "decode/depthmap/depthmap.hpp"
+#include "decode/solvers/psf2otf.hpp"
+#include "design/pattern/mask.hpp"
+#include "design/psf/psf_exact.hpp"
+#include "optimize/metrics/depth_loss.hpp"
 
 namespace pinmask {
 namespace {

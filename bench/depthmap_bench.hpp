@@ -6,7 +6,7 @@
 // sensor 20 mm behind the lens, 530 nm, d = 115 um), a seeded 16 x 16 pattern of K = 20 pinholes
 // at least 2 cells apart on the torus, 2 x 2 tiles. The capture: a seeded random scene (uniform
 // values) circularly convolved with the exact-geometry PSF at 0.7 m (the content does not change
-// the work). The run: depthmap (depthmap/depthmap.hpp) over 16 planes from 0.4 m to 2 m, the
+// the work). The run: depthmap (decode/depthmap/depthmap.hpp) over 16 planes from 0.4 m to 2 m, the
 // command's defaults (NSR 0.01, window 121 px, smoothing weight 8: semi-global labelling along 8
 // paths), best of `repeat` runs.
 #pragma once

@@ -8,13 +8,13 @@
 #include <limits>
 #include <sstream>
 
-#include "core/error.hpp"
-#include "core/number_format.hpp"
-#include "decode/decoder.hpp"
-#include "decode/tvqc.hpp"
-#include "simulate/image_quality.hpp"
-#include "simulate/noise_model.hpp"
-#include "simulate/simulate.hpp"
+#include "core/errors/error.hpp"
+#include "core/units/number_format.hpp"
+#include "decode/capture/decoder.hpp"
+#include "decode/solvers/tvqc.hpp"
+#include "optimize/simulate/image_quality.hpp"
+#include "optimize/simulate/noise_model.hpp"
+#include "optimize/simulate/simulate.hpp"
 
 namespace pinmask {
 namespace {
@@ -119,7 +119,8 @@ void ErrorTimeOptions::validate() const {
     }
     if (repeats < 1) throw invalid_field("repeats", std::to_string(repeats), "must be >= 1");
     if (!(repeat_below_seconds >= 0.0)) {
-        throw invalid_field("repeat_below_seconds", format_number(repeat_below_seconds), "must be >= 0");
+        throw invalid_field("repeat_below_seconds", format_number(repeat_below_seconds),
+                            "must be >= 0");
     }
 }
 
@@ -138,7 +139,7 @@ std::vector<ErrorTimeRecord> run_error_time(const Plane& psf, const std::vector<
     using Clock = std::chrono::steady_clock;
     const std::vector<Setting> all = settings(options);
     const bool has_ssim = psf.rows() >= kSsimWindow && psf.cols() >= kSsimWindow;
-    // Warm-up, not timed: FFTW plans of this size are made once per process (core/fft.hpp),
+    // Warm-up, not timed: FFTW plans of this size are made once per process (core/fft/fft.hpp),
     // which would otherwise be charged to whichever point runs first.
     {
         const Plane& x = scenes[0].image.channels[0];

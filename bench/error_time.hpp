@@ -2,9 +2,9 @@
 // noise levels, each decoder setting is run on the same simulated captures and recorded as
 // (seconds, PSNR, SSIM). The curves show what an iteration budget buys.
 //
-// Captures: simulate/simulate.hpp, one period, Gaussian noise at each SNR (the seed stream of
-// scene s and SNR index k is mixed from options.seed, s and k), so every decoder sees the same
-// noisy capture. Decoders (decode/decoder.hpp, cyclic model):
+// Captures: optimize/simulate/simulate.hpp, one period, Gaussian noise at each SNR (the seed stream
+// of scene s and SNR index k is mixed from options.seed, s and k), so every decoder sees the same
+// noisy capture. Decoders (decode/capture/decoder.hpp, cyclic model):
 //   wiener            at each NSR of options.wiener_nsr (closed form)
 //   tikhonov          gradient regulariser at each lambda of options.tikhonov_lambda (closed form)
 //   tv-l2             ADMM at options.tv_lambda, stopped after exactly k iterations for each k of
@@ -21,7 +21,7 @@
 // untimed warm-up decode per closed-form setting and per iterative solver at 1 iteration (FFTW
 // plans are made once per process, not per decode). A point whose first run is shorter than
 // options.repeat_below_seconds is run options.repeats times and the median is recorded. Quality:
-// PSNR and SSIM (simulate/image_quality.hpp) of the estimate against the scene.
+// PSNR and SSIM (optimize/simulate/image_quality.hpp) of the estimate against the scene.
 #pragma once
 
 #include <cstdint>
@@ -29,8 +29,8 @@
 #include <string>
 #include <vector>
 
-#include "core/image.hpp"
-#include "metrics/simulated_metrics.hpp"
+#include "core/image/image.hpp"
+#include "optimize/metrics/simulated_metrics.hpp"
 
 namespace pinmask {
 

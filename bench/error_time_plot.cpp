@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <sstream>
 
-#include "core/cairo_handles.hpp"
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
+#include "core/image/cairo_handles.hpp"
 
 namespace pinmask {
 namespace {

@@ -4,8 +4,8 @@
 #include <random>
 
 #include "bench/error_time_report.hpp"
-#include "design/families.hpp"
-#include "design/psf.hpp"
+#include "design/pattern/families.hpp"
+#include "design/psf/psf.hpp"
 
 namespace pinmask {
 

@@ -8,9 +8,9 @@
 
 #include "bench/error_time.hpp"
 #include "bench/error_time_plot.hpp"
-#include "design/kernel.hpp"
-#include "design/mask.hpp"
-#include "simulate/scenes.hpp"
+#include "design/pattern/mask.hpp"
+#include "design/psf/kernel.hpp"
+#include "optimize/simulate/scenes.hpp"
 
 namespace pinmask {
 

@@ -8,18 +8,18 @@
 #include <numeric>
 #include <random>
 
-#include "core/error.hpp"
-#include "design/mask.hpp"
-#include "formats/dxf_writer.hpp"
-#include "formats/gds_writer.hpp"
-#include "layout/geometry.hpp"
-#include "formats/gerber_writer.hpp"
-#include "formats/pdf_writer.hpp"
-#include "formats/png_preview.hpp"
-#include "formats/read_any.hpp"
-#include "export/read_back.hpp"
-#include "formats/svg_writer.hpp"
-#include "formats/write_any.hpp"
+#include "core/errors/error.hpp"
+#include "design/pattern/mask.hpp"
+#include "export/formats/dxf_writer.hpp"
+#include "export/formats/gds_writer.hpp"
+#include "export/formats/gerber_writer.hpp"
+#include "export/formats/pdf_writer.hpp"
+#include "export/formats/png_preview.hpp"
+#include "export/formats/read_any.hpp"
+#include "export/formats/svg_writer.hpp"
+#include "export/formats/write_any.hpp"
+#include "export/layout/geometry.hpp"
+#include "export/pipeline/read_back.hpp"
 
 namespace pinmask {
 namespace {

@@ -9,16 +9,16 @@
 #include <limits>
 #include <string>
 
-#include "core/error.hpp"
-#include "core/fft.hpp"
-#include "core/fftw_api.hpp"
+#include "core/errors/error.hpp"
+#include "core/fft/fft.hpp"
+#include "core/fft/fftw_api.hpp"
 
 namespace pinmask {
 
 FftPairTime measured_fft_pair(int rows, int cols, int repeat, int threads) {
     if (rows < 1 || cols < 1 || repeat < 1 || threads < 1)
         throw InvalidInput("measured_fft_pair: rows, cols, repeat and threads must be >= 1");
-    (void)fft_threads();  // core/fft initialises FFTW's threads with its planner state
+    (void)fft_threads();  // core/fft/fft initialises FFTW's threads with its planner state
     using F = Fftw<double>;
     const std::size_t real = static_cast<std::size_t>(rows) * cols;
     const std::size_t half = static_cast<std::size_t>(rows) * (cols / 2 + 1);

@@ -6,14 +6,14 @@
 #include <string>
 
 #include "bench/error_time_run.hpp"
-#include "core/error.hpp"
-#include "core/fft.hpp"
-#include "core/image_io.hpp"
-#include "decode/convolution.hpp"
-#include "decode/preprocess.hpp"
-#include "design/psf_exact.hpp"
-#include "simulate/image_quality.hpp"
-#include "simulate/scenes.hpp"
+#include "core/errors/error.hpp"
+#include "core/fft/fft.hpp"
+#include "core/image/image_io.hpp"
+#include "decode/capture/preprocess.hpp"
+#include "decode/solvers/convolution.hpp"
+#include "design/psf/psf_exact.hpp"
+#include "optimize/simulate/image_quality.hpp"
+#include "optimize/simulate/scenes.hpp"
 
 namespace pinmask {
 namespace {

@@ -23,8 +23,8 @@
 #include <string>
 #include <vector>
 
-#include "core/image.hpp"
-#include "decode/tv_l2.hpp"
+#include "core/image/image.hpp"
+#include "decode/solvers/tv_l2.hpp"
 
 namespace pinmask {
 

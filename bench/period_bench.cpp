@@ -7,12 +7,12 @@
 #include <string>
 
 #include "bench/best_of.hpp"
-#include "core/error.hpp"
-#include "decode/decoder.hpp"
-#include "decode/period.hpp"
-#include "design/psf.hpp"
-#include "simulate/scenes.hpp"
-#include "simulate/simulate.hpp"
+#include "core/errors/error.hpp"
+#include "decode/capture/decoder.hpp"
+#include "decode/capture/period.hpp"
+#include "design/psf/psf.hpp"
+#include "optimize/simulate/scenes.hpp"
+#include "optimize/simulate/simulate.hpp"
 
 namespace pinmask {
 namespace {

@@ -1,4 +1,4 @@
-// Cost of the decoder's period check (decode/period.hpp) beside a Wiener decode of the same
+// Cost of the decoder's period check (decode/capture/period.hpp) beside a Wiener decode of the same
 // capture, timed in the same run (the check is meant to cost at most 10 % of the decode).
 // "A Wiener decode of the same capture" is reported both ways: the whole frame (crop none) and
 // the centred period (decode's default); the second is the bar the check is held to.
@@ -9,13 +9,14 @@
 // Figures (each the minimum over `repeat` runs):
 //   check_seconds         check_period of the whole frame against the 336 px PSF (the
 //                         early exit at the PSF's period on strips of the frame,
-//                         decode/period.hpp; the full search only if it doubts)
+//                         decode/capture/period.hpp; the full search only if it doubts)
 //   wiener_frame_seconds  decode_plane (Wiener, cyclic) of the whole frame, PSF zero-padded
 //   wiener_period_seconds decode_plane of the centred period only (what decode does by default)
 //   doubted_check_seconds check_period of a capture the early exit doubts: the same camera and
 //                         mask with the natural scene at 10 dB (a repeat at the noise), which
-//                         takes the full search over every line in both views (decode/period.hpp);
-//                         held beside the same two decodes of that capture's size
+//                         takes the full search over every line in both views
+//                         (decode/capture/period.hpp); held beside the same two decodes of that
+//                         capture's size
 // Each check also reports whether the early exit decided both axes.
 #pragma once
 

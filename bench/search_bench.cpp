@@ -5,12 +5,12 @@
 #include <memory>
 #include <random>
 
-#include "core/fft.hpp"
-#include "design/camera.hpp"
-#include "design/psf.hpp"
-#include "metrics/mask_metrics.hpp"
-#include "search/mask_objective.hpp"
-#include "search/pattern_state.hpp"
+#include "core/fft/fft.hpp"
+#include "design/optics/camera.hpp"
+#include "design/psf/psf.hpp"
+#include "optimize/metrics/mask_metrics.hpp"
+#include "optimize/search/mask_objective.hpp"
+#include "optimize/search/pattern_state.hpp"
 
 namespace pinmask {
 namespace {

@@ -1,7 +1,7 @@
-// Search throughput (the objective after one move reads metrics/aliased_wiener tables, O(n^2)):
-// incremental single-pinhole moves (two plane waves on P^, O(K) on the autocorrelation, O(1)
-// legality) against full re-evaluation of the same quantities from scratch (FFT of the occupancy
-// and inverse FFT of |P^|^2), timed in the same run.
+// Search throughput (the objective after one move reads optimize/metrics/aliased_wiener tables,
+// O(n^2)): incremental single-pinhole moves (two plane waves on P^, O(K) on the autocorrelation,
+// O(1) legality) against full re-evaluation of the same quantities from scratch (FFT of the
+// occupancy and inverse FFT of |P^|^2), timed in the same run.
 #pragma once
 
 #include <cstdint>
@@ -22,8 +22,8 @@ std::vector<SearchBenchRecord> bench_search(const std::vector<int>& sizes, doubl
                                             std::uint64_t seed);
 
 // The search objective after one move: a legal single-pinhole move plus the analytic
-// Wiener objective (search/mask_objective, optimal filter, natural prior, Gaussian 30 dB) on
-// an n x n pattern of ppc pixels per cell (paper camera, auto kernel), against the full
+// Wiener objective (optimize/search/mask_objective, optimal filter, natural prior, Gaussian 30 dB)
+// on an n x n pattern of ppc pixels per cell (paper camera, auto kernel), against the full
 // evaluation of the same pattern as a reference timed in the same run (PSF synthesis and an
 // m x m FFTW r2c transform, m = n ppc). per_cell_rate = moves/s x n^2: constant when the cost
 // scales as n^2 only.

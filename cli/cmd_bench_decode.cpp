@@ -7,8 +7,8 @@
 
 #include "bench/decode_bench.hpp"
 #include "cli/commands.hpp"
-#include "core/error.hpp"
-#include "core/units.hpp"
+#include "core/errors/error.hpp"
+#include "core/units/units.hpp"
 
 namespace pinmask::cli {
 namespace {

@@ -7,7 +7,7 @@
 
 #include "bench/depth_bench.hpp"
 #include "cli/commands.hpp"
-#include "core/fft.hpp"
+#include "core/fft/fft.hpp"
 
 namespace pinmask::cli {
 namespace {

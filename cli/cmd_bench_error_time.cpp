@@ -16,13 +16,13 @@
 #include "bench/error_time_run.hpp"
 #include "cli/commands.hpp"
 #include "cli/outputs/error_time_json.hpp"
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/output_set.hpp"
-#include "core/units.hpp"
-#include "design/kernel_model.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/atomic_file.hpp"
+#include "core/files/output_set.hpp"
+#include "core/units/units.hpp"
+#include "design/psf/kernel_model.hpp"
 #include "io/mask_json.hpp"
-#include "simulate/scenes.hpp"
+#include "optimize/simulate/scenes.hpp"
 
 namespace pinmask::cli {
 namespace {

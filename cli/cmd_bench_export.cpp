@@ -10,7 +10,7 @@
 
 #include "bench/export_bench.hpp"
 #include "cli/commands.hpp"
-#include "core/units.hpp"
+#include "core/units/units.hpp"
 
 namespace pinmask::cli {
 namespace {

@@ -9,10 +9,10 @@
 
 #include "cli/commands.hpp"
 #include "cli/options/fft_setup.hpp"
-#include "core/error.hpp"
-#include "core/fft.hpp"
-#include "core/units.hpp"
-#include "decode/convolution.hpp"
+#include "core/errors/error.hpp"
+#include "core/fft/fft.hpp"
+#include "core/units/units.hpp"
+#include "decode/solvers/convolution.hpp"
 
 namespace pinmask::cli {
 namespace {

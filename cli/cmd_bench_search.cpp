@@ -5,7 +5,7 @@
 
 #include "bench/search_bench.hpp"
 #include "cli/commands.hpp"
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
 
 namespace pinmask::cli {
 namespace {

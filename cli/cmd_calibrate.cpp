@@ -1,5 +1,5 @@
 // `pinmask calibrate`: a point-source capture through the whole mask -> measured geometry,
-// per-pinhole record, kernel and calibrated PSF (calibrate/calibrate.hpp), written to a new
+// per-pinhole record, kernel and calibrated PSF (decode/calibrate/calibrate.hpp), written to a new
 // folder whose files appear together or not at all (staged in a sibling folder, renamed last).
 #include <filesystem>
 #include <iostream>
@@ -7,19 +7,20 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "calibrate/calibrate.hpp"
-#include "calibrate/report.hpp"
 #include "cli/commands.hpp"
 #include "cli/options/camera_options.hpp"
 #include "cli/options/flag_names.hpp"
 #include "cli/outputs/calibrate_json.hpp"
 #include "cli/outputs/progress.hpp"
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/image_io.hpp"
-#include "core/raw_io.hpp"
-#include "core/units.hpp"
-#include "design/kernel_model.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/atomic_file.hpp"
+#include "core/image/image_io.hpp"
+#include "core/image/raw_io.hpp"
+#include "core/units/units.hpp"
+#include "core/version.hpp"
+#include "decode/calibrate/calibrate.hpp"
+#include "decode/calibrate/report.hpp"
+#include "design/psf/kernel_model.hpp"
 #include "io/mask_json.hpp"
 #include "io/psf_files.hpp"
 
@@ -69,7 +70,7 @@ void run(CalibrateCommandOptions& o) {
     Mask mask = io::read_mask_file(o.mask);
     o.camera.base = mask.camera;
     mask.camera = resolve_camera(o.camera);
-    // The fit's kernel family (calibrate/profile_table) is one wavelength's: a band is not
+    // The fit's kernel family (decode/calibrate/profile_table) is one wavelength's: a band is not
     // modelled there, so it is refused rather than silently dropped.
     if (mask.camera.bandwidth_m > 0.0)
         throw invalid_field("--bandwidth", format_length(mask.camera.bandwidth_m),
@@ -109,7 +110,7 @@ void run(CalibrateCommandOptions& o) {
     cal.psf.kernel = {"measured", (dir / "kernel.tiff").string(), {}};
     cal.psf.pixels_per_cell =
         std::max(1, static_cast<int>(std::lround(0.5 * (s.pitch_x_px + s.pitch_y_px))));
-    cal.provenance.generator = "pinmask calibrate 0.1.0";
+    cal.provenance.generator = PINMASK_GENERATOR("calibrate");
     auto& sc = cal.provenance.scores;
     sc["calibrated_rotation_deg"] = s.rotation_deg;
     sc["calibrated_pitch_x_px"] = s.pitch_x_px;

@@ -1,10 +1,10 @@
-// `pinmask check`: the design-rule check (export/drc) of a mask file, via the layout the export
-// builds from it, or of a fabrication file read back (GDSII, OASIS, DXF, Gerber, SVG) and
-// compared with its design (export/file_check, export/read_back). The layout settings come from
-// the export sidecar <stem>.export.json beside the file when there is one (explicit flags must
-// agree with it), else from the flags.
-// Exit codes: 0 clean, 1 violations (or an XOR mismatch), 2 bad input, 3 the time limit
-// PINMASK_TIME_LIMIT was spent (no verdict printed: check writes only stdout, at the end).
+// `pinmask check`: the design-rule check (export/pipeline/drc) of a mask file, via the layout the
+// export builds from it, or of a fabrication file read back (GDSII, OASIS, DXF, Gerber, SVG) and
+// compared with its design (export/pipeline/file_check, export/pipeline/read_back). The layout
+// settings come from the export sidecar <stem>.export.json beside the file when there is one
+// (explicit flags must agree with it), else from the flags. Exit codes: 0 clean, 1 violations (or
+// an XOR mismatch), 2 bad input, 3 the time limit PINMASK_TIME_LIMIT was spent (no verdict printed:
+// check writes only stdout, at the end).
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -18,20 +18,20 @@
 #include "cli/options/check_settings.hpp"
 #include "cli/outputs/check_picture.hpp"
 #include "cli/outputs/check_report.hpp"
-#include "core/error.hpp"
-#include "core/input_file.hpp"
-#include "core/resource_limits.hpp"
-#include "core/units.hpp"
-#include "design/fab_grid.hpp"
-#include "export/drc.hpp"
-#include "export/file_check.hpp"
-#include "formats/fab_units.hpp"
-#include "formats/read_any.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/input_file.hpp"
+#include "core/limits/resource_limits.hpp"
+#include "core/units/units.hpp"
+#include "design/optics/fab_grid.hpp"
+#include "export/formats/fab_units.hpp"
+#include "export/formats/read_any.hpp"
+#include "export/layout/geometry.hpp"
+#include "export/layout/vendor_rules.hpp"
+#include "export/pipeline/drc.hpp"
+#include "export/pipeline/file_check.hpp"
 #include "io/export_sidecar.hpp"
 #include "io/mask_json.hpp"
 #include "io/sidecar_layout.hpp"
-#include "layout/geometry.hpp"
-#include "layout/vendor_rules.hpp"
 
 namespace pinmask::cli {
 namespace {

@@ -1,8 +1,8 @@
 // `pinmask compare`: masks side by side (metrics table on stdout or as JSON) and, with --report,
 // a multi-page report (PDF, or SVG/PNG pages) with each mask's pictures. --baselines adds the
 // median of random valid masks, the paper-like geometry and a MURA. The figures come from
-// metrics/compare (the metric set of metrics/mask_metrics, as score prints it), the document
-// from cli/outputs/compare_report, the drawing from report/report.
+// optimize/metrics/compare (the metric set of optimize/metrics/mask_metrics, as score prints it),
+// the document from cli/outputs/compare_report, the drawing from report/report.
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -19,12 +19,12 @@
 #include "cli/options/noise_options.hpp"
 #include "cli/outputs/compare_report.hpp"
 #include "cli/outputs/progress.hpp"
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/output_set.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/atomic_file.hpp"
+#include "core/files/output_set.hpp"
 #include "io/json_strict.hpp"
 #include "io/mask_json.hpp"
-#include "metrics/compare.hpp"
+#include "optimize/metrics/compare.hpp"
 #include "report/report.hpp"
 
 namespace pinmask::cli {

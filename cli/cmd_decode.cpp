@@ -1,6 +1,6 @@
 // `pinmask decode`: capture + (mask | PSF file) -> image, with a resolved config and a stats file.
-// Parse -> load the files -> decode_capture (decode/capture_pipeline.hpp) -> render and write,
-// all files staged and committed together so a failure leaves no output.
+// Parse -> load the files -> decode_capture (decode/capture/capture_pipeline.hpp) -> render and
+// write, all files staged and committed together so a failure leaves no output.
 #include <unistd.h>
 
 #include <chrono>
@@ -19,13 +19,13 @@
 #include "cli/outputs/decode_output.hpp"
 #include "cli/outputs/image_output.hpp"
 #include "cli/outputs/interrupt.hpp"
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/output_set.hpp"
-#include "decode/capture_pipeline.hpp"
-#include "decode/decode_method.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/atomic_file.hpp"
+#include "core/files/output_set.hpp"
+#include "decode/capture/capture_pipeline.hpp"
+#include "decode/solvers/decode_method.hpp"
 #include "io/psf_files.hpp"
-#include "search/mpi/mpi_comm.hpp"
+#include "optimize/search/mpi/mpi_comm.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -185,7 +185,7 @@ void setup(CLI::App& app) {
     auto bayer = std::make_shared<std::string>("sum2x2");
     cmd->add_option("--bayer", *bayer,
                     "Camera RAW captures and dark frames: sum2x2 (half-resolution grey, the pixel "
-                    "pitch doubles) | green (alias g) | r | b; see core/raw_io.hpp")
+                    "pitch doubles) | green (alias g) | r | b; see core/image/raw_io.hpp")
         ->capture_default_str();
     auto batch = std::make_shared<BatchRequest>();
     cmd->add_option("--batch", batch->list,

@@ -1,7 +1,7 @@
 // `pinmask depth MASK`: pitch, period, shift-invariance mismatch and the PSNR lost by decoding
 // the exact-geometry capture with the mask's integer cyclic PSF, against object distance
-// (metrics/depth_loss.hpp). Table on stdout, --json (one record per distance), -o DIR (created
-// when missing) for the plot (depth.svg + depth.png, written together) and the resolved
+// (optimize/metrics/depth_loss.hpp). Table on stdout, --json (one record per distance), -o DIR
+// (created when missing) for the plot (depth.svg + depth.png, written together) and the resolved
 // configuration. Noise: the flags of score (--snr or --photons with the sensor flags), one
 // level; Wiener NSR tuned as score tunes it unless --nsr gives a value.
 #include <cmath>
@@ -18,15 +18,15 @@
 #include "cli/commands.hpp"
 #include "cli/options/noise_options.hpp"
 #include "cli/outputs/progress.hpp"
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/fft.hpp"
-#include "core/number_format.hpp"
-#include "core/output_set.hpp"
-#include "core/units.hpp"
+#include "core/errors/error.hpp"
+#include "core/fft/fft.hpp"
+#include "core/files/atomic_file.hpp"
+#include "core/files/output_set.hpp"
+#include "core/units/number_format.hpp"
+#include "core/units/units.hpp"
 #include "io/mask_json.hpp"
-#include "metrics/depth_loss.hpp"
-#include "metrics/metric_spellings.hpp"
+#include "optimize/metrics/depth_loss.hpp"
+#include "optimize/metrics/metric_spellings.hpp"
 #include "report/depth_plot.hpp"
 
 namespace pinmask::cli {

@@ -1,12 +1,12 @@
 // `pinmask depthmap CAPTURE --mask M --from U1 --to U2 [--steps N] [--smooth L]` (or
 // `--psf-stack STACK` instead of --mask/--from/--to/--steps): a depth map, its confidence and an
 // all-in-focus image from one capture, by a plane sweep over object distance
-// (depthmap/depthmap.hpp; the stack's format: io/psf_stack.hpp). Writes into -o DIR, together:
-// depth.tif (float32, metres), confidence.tif (float32, [0, 1]), all_in_focus.tif (float32),
-// depthmap.png (depth in colour and confidence in grey scaled to its maximum, side by side, a
-// colour bar from near (dark) to far (bright) at the right), depthmap.json (the summary, also on
-// stdout with --json). Ctrl-C stops after the current plane and writes the sweep over the planes
-// finished.
+// (decode/depthmap/depthmap.hpp; the stack's format: io/psf_stack.hpp). Writes into -o DIR,
+// together: depth.tif (float32, metres), confidence.tif (float32, [0, 1]), all_in_focus.tif
+// (float32), depthmap.png (depth in colour and confidence in grey scaled to its maximum, side by
+// side, a colour bar from near (dark) to far (bright) at the right), depthmap.json (the summary,
+// also on stdout with --json). Ctrl-C stops after the current plane and writes the sweep over the
+// planes finished.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -20,15 +20,15 @@
 #include "cli/commands.hpp"
 #include "cli/outputs/interrupt.hpp"
 #include "cli/outputs/progress.hpp"
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/image_io.hpp"
-#include "core/output_set.hpp"
-#include "core/units.hpp"
-#include "depthmap/depthmap.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/atomic_file.hpp"
+#include "core/files/output_set.hpp"
+#include "core/image/image_io.hpp"
+#include "core/units/units.hpp"
+#include "decode/depthmap/depthmap.hpp"
 #include "io/mask_json.hpp"
 #include "io/psf_stack.hpp"
-#include "metrics/depth_loss.hpp"
+#include "optimize/metrics/depth_loss.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -135,7 +135,7 @@ void run(const DepthmapCommandOptions& o) {
     // The stack's files are read first so that the outputs can be checked against them too.
     io::PsfStack stack;
     if (!o.psf_stack.empty()) stack = io::read_psf_stack(o.psf_stack);
-    // Before any work: no output may replace an input or another output (core/output_set).
+    // Before any work: no output may replace an input or another output (core/files/output_set).
     std::vector<NamedPath> outputs;
     for (const char* name : kOutputFiles) outputs.push_back({"-o", dir / name, true});
     std::vector<NamedPath> inputs{{"CAPTURE", o.capture}, {"--mask", o.mask}};

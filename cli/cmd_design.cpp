@@ -1,4 +1,4 @@
-// `pinmask design`: the optics report (DESIGN.md section 1) for a preset or explicit parameters,
+// `pinmask design`: the optics report (docs/design.md section 2) for a preset or explicit parameters,
 // as a table (quantity, value, note) or, with --json, one JSON object whose keys carry units.
 // Infinite values (z_eff at f = f', the pinhole for integer pixels when M = 0, u = inf) are
 // written as JSON null with the reason under "notes" (key -> text).
@@ -17,16 +17,16 @@
 #include "cli/options/camera_options.hpp"
 #include "cli/options/flag_names.hpp"
 #include "cli/outputs/design_report.hpp"
-#include "core/error.hpp"
-#include "core/units.hpp"
-#include "design/design_kernel.hpp"
-#include "design/fab_grid.hpp"
-#include "design/kernel.hpp"
-#include "design/kernel_validity.hpp"
-#include "design/optics.hpp"
-#include "design/packing_bound.hpp"
-#include "design/working_distance.hpp"
-#include "export/vendor_presets.hpp"
+#include "core/errors/error.hpp"
+#include "core/units/units.hpp"
+#include "design/optics/fab_grid.hpp"
+#include "design/optics/optics.hpp"
+#include "design/optics/working_distance.hpp"
+#include "design/pattern/packing_bound.hpp"
+#include "design/psf/design_kernel.hpp"
+#include "design/psf/kernel.hpp"
+#include "design/psf/kernel_validity.hpp"
+#include "export/pipeline/vendor_presets.hpp"
 #include "io/camera_json.hpp"
 #include "io/json_strict.hpp"
 
@@ -170,8 +170,9 @@ void run(const DesignOptions& o) {
     if (!solved.empty())
         inputs[0].source = "solved for N px per cell at u, on the " + std::to_string(snap.grid_nm) +
                            " nm fabrication grid";
-    // The spacing rule against the pinhole count: the proven packing bound (design/packing_bound),
-    // so a design that no search or generator can realise says so before any of them runs.
+    // The spacing rule against the pinhole count: the proven packing bound
+    // (design/pattern/packing_bound), so a design that no search or generator can realise says so
+    // before any of them runs.
     const PackingUpperBound most = packing_upper_bound(geometry.n, o.geometry.spacing);
     if (geometry.holes > most.count)
         std::cerr << "pinmask: warning: --holes " << geometry.holes

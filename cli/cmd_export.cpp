@@ -1,8 +1,8 @@
-// `pinmask export`: mask file -> fabrication files (export/export_pipeline), the PSF files (as
-// `pinmask psf` writes them) and the sidecar `<stem>.export.json` (io/export_sidecar). Every
+// `pinmask export`: mask file -> fabrication files (export/pipeline/export_pipeline), the PSF files
+// (as `pinmask psf` writes them) and the sidecar `<stem>.export.json` (io/export_sidecar). Every
 // readable file is read back from its staged temporary and compared with the design
-// (export/read_back); any difference, and any error, leaves no file. A --vendor preset
-// (export/vendor_presets) sets defaults that explicit flags override.
+// (export/pipeline/read_back); any difference, and any error, leaves no file. A --vendor preset
+// (export/pipeline/vendor_presets) sets defaults that explicit flags override.
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -13,16 +13,16 @@
 #include "cli/commands.hpp"
 #include "cli/options/export_options.hpp"
 #include "cli/options/flag_names.hpp"
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/output_set.hpp"
-#include "core/units.hpp"
-#include "design/fab_grid.hpp"
-#include "design/psf.hpp"
-#include "export/export_pipeline.hpp"
-#include "export/file_check.hpp"
-#include "export/read_back.hpp"
-#include "export/vendor_presets.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/atomic_file.hpp"
+#include "core/files/output_set.hpp"
+#include "core/units/units.hpp"
+#include "design/optics/fab_grid.hpp"
+#include "design/psf/psf.hpp"
+#include "export/pipeline/export_pipeline.hpp"
+#include "export/pipeline/file_check.hpp"
+#include "export/pipeline/read_back.hpp"
+#include "export/pipeline/vendor_presets.hpp"
 #include "io/export_sidecar.hpp"
 #include "io/export_sidecar_of.hpp"
 #include "io/mask_json.hpp"
@@ -76,7 +76,7 @@ int run_export(const ExportFlags& f) {
     if (stem.empty() || stem.find('/') != string::npos)
         throw invalid_field("--stem", stem, "must be a plain file name");
     const ExportOptions o = export_options_from(f, mask, stem);
-    {  // every output named and checked before any work (core/output_set)
+    {  // every output named and checked before any work (core/files/output_set)
         std::vector<NamedPath> outs{{"-o (export.json)", out_dir / (stem + ".export.json"), true}};
         for (FabFormat ff : o.formats)
             outs.push_back({"-o", out_dir / (stem + fab_extension(ff)), true});

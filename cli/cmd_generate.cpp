@@ -14,14 +14,15 @@
 #include "cli/commands.hpp"
 #include "cli/options/camera_options.hpp"
 #include "cli/options/psf_options.hpp"
-#include "core/error.hpp"
-#include "core/output_set.hpp"
-#include "core/units.hpp"
-#include "design/fab_grid.hpp"
-#include "design/families.hpp"
-#include "design/generate_pattern.hpp"
-#include "design/mask.hpp"
-#include "design/optics.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/output_set.hpp"
+#include "core/units/units.hpp"
+#include "core/version.hpp"
+#include "design/optics/fab_grid.hpp"
+#include "design/optics/optics.hpp"
+#include "design/pattern/families.hpp"
+#include "design/pattern/generate_pattern.hpp"
+#include "design/pattern/mask.hpp"
 #include "io/mask_json.hpp"
 
 namespace pinmask::cli {
@@ -29,7 +30,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kGenerator = "pinmask generate 0.1.0";
+constexpr const char* kGenerator = PINMASK_GENERATOR("generate");
 
 struct GenerateOptions {
     std::string family = "random";

@@ -1,5 +1,5 @@
 // `pinmask psf`: mask file -> PSF of one period (float32 TIFF, optionally .npy) plus a JSON
-// sidecar, written together (cli/psf_files.hpp). The PSF is design/psf's synthesis: the mask's
+// sidecar, written together (io/psf_files.hpp). The PSF is design/psf/psf's synthesis: the mask's
 // kernel placed at every pinhole's cell on the (n ppc)^2 torus, sum 1.
 #include <cmath>
 #include <iostream>
@@ -11,14 +11,14 @@
 
 #include "cli/commands.hpp"
 #include "cli/options/flag_names.hpp"
-#include "core/error.hpp"
-#include "core/output_set.hpp"
-#include "core/units.hpp"
-#include "design/kernel_validity.hpp"
-#include "design/psf.hpp"
-#include "design/psf_exact.hpp"
-#include "design/psf_settings.hpp"
-#include "design/working_distance.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/output_set.hpp"
+#include "core/units/units.hpp"
+#include "design/optics/working_distance.hpp"
+#include "design/psf/kernel_validity.hpp"
+#include "design/psf/psf.hpp"
+#include "design/psf/psf_exact.hpp"
+#include "design/psf/psf_settings.hpp"
 #include "io/mask_json.hpp"
 #include "io/psf_files.hpp"
 
@@ -38,7 +38,7 @@ struct PsfCommandOptions {
     bool json = false;
 };
 
-// The exact-geometry PSF for these options (design/psf_exact), with the distance used.
+// The exact-geometry PSF for these options (design/psf/psf_exact), with the distance used.
 Plane exact_for(const PsfCommandOptions& o, const Mask& mask, const KernelOptions& ko, double& u) {
     ExactPsfOptions eo;
     eo.kernel = ko;

@@ -1,6 +1,6 @@
 // `pinmask score`: metrics of one or more masks, one row per mask. Only what --metrics asks for
-// is computed; the numerics are metrics/mask_metrics (the same set compare and search use);
-// this file parses flags, calls it per mask, and prints.
+// is computed; the numerics are optimize/metrics/mask_metrics (the same set compare and search
+// use); this file parses flags, calls it per mask, and prints.
 #include <iomanip>
 #include <iostream>
 #include <set>
@@ -14,10 +14,10 @@
 #include "cli/options/depth_range_flags.hpp"
 #include "cli/options/noise_options.hpp"
 #include "cli/outputs/robust_decoder_files.hpp"
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
 #include "io/mask_json.hpp"
-#include "metrics/mask_metrics.hpp"
-#include "metrics/metric_spellings.hpp"
+#include "optimize/metrics/mask_metrics.hpp"
+#include "optimize/metrics/metric_spellings.hpp"
 
 namespace pinmask::cli {
 namespace {

@@ -1,5 +1,6 @@
 // `pinmask search`: find masks for a camera that decode better than random draws. Parses flags
-// (and --config), calls search/search_pipeline, writes the outputs (cli/outputs/search_outputs).
+// (and --config), calls optimize/search/search_pipeline, writes the outputs
+// (cli/outputs/search_outputs).
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -23,14 +24,14 @@
 #include "cli/outputs/search_outputs.hpp"
 #include "cli/outputs/search_snapshot.hpp"
 #include "cli/search_cluster.hpp"
-#include "core/error.hpp"
-#include "core/output_set.hpp"
-#include "core/units.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/output_set.hpp"
+#include "core/units/units.hpp"
 #include "io/optics_json.hpp"
 #include "io/search_config.hpp"
-#include "metrics/mask_metrics.hpp"
-#include "search/mpi/mpi_comm.hpp"
-#include "search/search_pipeline.hpp"
+#include "optimize/metrics/mask_metrics.hpp"
+#include "optimize/search/mpi/mpi_comm.hpp"
+#include "optimize/search/search_pipeline.hpp"
 
 namespace pinmask::cli {
 

@@ -1,6 +1,7 @@
-// `pinmask simulate`: mask + scene -> a simulated capture (simulate/simulate_pipeline.hpp),
-// optionally the whole sensor and a matching dark frame, with the resolved configuration written
-// next to the capture as OUT.config.json. All files are staged and appear together or not at all.
+// `pinmask simulate`: mask + scene -> a simulated capture
+// (optimize/simulate/simulate_pipeline.hpp), optionally the whole sensor and a matching dark frame,
+// with the resolved configuration written next to the capture as OUT.config.json. All files are
+// staged and appear together or not at all.
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
@@ -15,15 +16,15 @@
 #include "cli/options/noise_options.hpp"
 #include "cli/options/simulate_config.hpp"
 #include "cli/outputs/image_output.hpp"
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/fft.hpp"
-#include "core/output_set.hpp"
-#include "core/units.hpp"
-#include "design/working_distance.hpp"
+#include "core/errors/error.hpp"
+#include "core/fft/fft.hpp"
+#include "core/files/atomic_file.hpp"
+#include "core/files/output_set.hpp"
+#include "core/units/units.hpp"
+#include "design/optics/working_distance.hpp"
 #include "io/mask_json.hpp"
-#include "simulate/scenes.hpp"
-#include "simulate/simulate_pipeline.hpp"
+#include "optimize/simulate/scenes.hpp"
+#include "optimize/simulate/simulate_pipeline.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -39,7 +40,7 @@ struct SimulateOptions {
     SensorFlags sensor_flags;
     bool full_sensor = false;
     std::optional<std::string> sensor;
-    std::string geometry = "integer";            // exact: design/psf_exact over the sensor
+    std::string geometry = "integer";            // exact: design/psf/psf_exact over the sensor
     std::optional<std::string> object_distance;  // exact: u, default the mask's
     std::optional<std::string> size;             // exact: ROWSxCOLS window, default the sensor
     std::uint64_t seed = 1;
@@ -167,7 +168,7 @@ void run(const SimulateOptions& o, const CLI::App& cmd) {
 }
 
 constexpr const char* kFooter =
-    "Model: the cyclic forward model over one period (DESIGN.md section 1): capture = scene (*) "
+    "Model: the cyclic forward model over one period (docs/design.md section 2): capture = scene (*) "
     "PSF, circular convolution with the PSF centred as `pinmask decode` expects, so decoding "
     "the capture with the mask returns the scene unshifted. --full-sensor repeats the period "
     "over the sensor: the periodic extension of the one-period capture, which is exact for the "

@@ -1,22 +1,23 @@
 // `pinmask sweep SWEEP.json -o DIR`: one search per design point. Parses the sweep
 // file (io/sweep_config), turns every point into search pipeline options the way `pinmask search
-// --config` does (cli/options/search_options), runs search/sweep (over MPI ranks when under mpirun)
-// and writes the outputs on rank 0 (cli/outputs/sweep_outputs).
+// --config` does (cli/options/search_options), runs optimize/search/sweep (over MPI ranks when
+// under mpirun) and writes the outputs on rank 0 (cli/outputs/sweep_outputs).
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
-#include "cli/outputs/progress.hpp"
 #include "cli/options/search_options.hpp"
-#include "cli/sweep_help.hpp"
+#include "cli/outputs/progress.hpp"
 #include "cli/outputs/sweep_outputs.hpp"
-#include "core/error.hpp"
-#include "core/output_set.hpp"
-#include "design/packing_bound.hpp"
+#include "cli/sweep_help.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/output_set.hpp"
+#include "core/version.hpp"
+#include "design/pattern/packing_bound.hpp"
 #include "io/sweep_config.hpp"
-#include "search/mpi/mpi_comm.hpp"
-#include "search/sweep.hpp"
+#include "optimize/search/mpi/mpi_comm.hpp"
+#include "optimize/search/sweep.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -47,7 +48,7 @@ SearchPipelineOptions point_options(const io::SweepPoint& point, std::size_t ind
         SearchPipelineSummary kernel_only;
         kernel_only.kernel_resolved = p.tmpl.psf.kernel.model;
         resolved = resolved_config(*o, p, kernel_only);
-        resolved["generator"] = "pinmask sweep 0.1.0";
+        resolved["generator"] = PINMASK_GENERATOR("sweep");
         return p;
     } catch (const InvalidInput& e) {
         std::string label;

@@ -90,7 +90,7 @@ inline constexpr const char* kSearchFooter =
     "Repeat a run (byte-identical masks with --evals) or vary it: pinmask search --config "
     "runs/a/search.config.json --seed 2 -o runs/b/";
 
-// --robust (score, compare, search) and what its figures mean (metrics/robust_wiener.hpp).
+// --robust (score, compare, search) and what its figures mean (optimize/metrics/robust_wiener.hpp).
 inline constexpr const char* kRobustFlagHelp =
     "Fabrication errors, e.g. size=5um,jitter=2um,missing=0.01 (any subset): pinhole side bias "
     "+-size (both signs), position jitter sigma on the mask, probability a pinhole is missing; "

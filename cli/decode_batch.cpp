@@ -10,12 +10,12 @@
 #include <sstream>
 
 #include "cli/options/decode_inputs.hpp"
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/output_set.hpp"
-#include "core/resource_limits.hpp"
-#include "decode/batch.hpp"
-#include "decode/decode_method.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/atomic_file.hpp"
+#include "core/files/output_set.hpp"
+#include "core/limits/resource_limits.hpp"
+#include "decode/capture/batch.hpp"
+#include "decode/solvers/decode_method.hpp"
 #include "io/capture_list.hpp"
 
 namespace pinmask::cli {

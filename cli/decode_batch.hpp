@@ -9,7 +9,7 @@
 // gathers the per-capture results and stages the summary, and every rank commits only when no
 // rank failed: an error anywhere leaves no file. The bytes do not depend on the rank count.
 //
-// Time budget (PINMASK_TIME_LIMIT, core/resource_limits): each rank checks it between its
+// Time budget (PINMASK_TIME_LIMIT, core/limits/resource_limits): each rank checks it between its
 // captures (its first capture always runs). Once it is spent the rank stops; the captures
 // finished on every rank are written as usual, the summary lists the others with "output": null
 // and "not_done" (the reason), plus "stopped": {reason, done, not_done}. Then one process throws
@@ -21,8 +21,8 @@
 #include <vector>
 
 #include "cli/outputs/decode_output.hpp"
-#include "core/raw_io.hpp"
-#include "search/rank_comm.hpp"
+#include "core/image/raw_io.hpp"
+#include "optimize/search/rank_comm.hpp"
 
 namespace pinmask::cli {
 

@@ -11,12 +11,13 @@
 #include "cli/options/flag_names.hpp"
 #include "cli/options/option_checks.hpp"
 #include "cli/outputs/interrupt.hpp"
-#include "core/allocator.hpp"
-#include "core/error.hpp"
-#include "core/output_set.hpp"
-#include "core/resource_limits.hpp"
-#include "core/units.hpp"
-#include "search/mpi/mpi_comm.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/output_set.hpp"
+#include "core/limits/allocator.hpp"
+#include "core/limits/resource_limits.hpp"
+#include "core/units/units.hpp"
+#include "core/version.hpp"
+#include "optimize/search/mpi/mpi_comm.hpp"
 
 namespace {
 
@@ -111,7 +112,8 @@ std::string describe_extras(const CLI::App& app) {
 
 int main(int argc, char** argv) {
     using namespace pinmask;
-    keep_freed_memory();  // core/allocator.hpp: no page faults re-taken per decode or evaluation
+    keep_freed_memory();  // core/limits/allocator.hpp: no page faults re-taken per decode or
+                          // evaluation
     cli::install_cleanup_on_signal();  // a signal leaves no *.tmp-* file behind
     if (const std::string_view bad = empty_assigned_value(argc, argv); !bad.empty()) {
         std::cerr << "pinmask: error: " << bad.substr(0, bad.size() - 1)
@@ -126,7 +128,7 @@ int main(int argc, char** argv) {
         "keeps the captures it finished, check gives no verdict.",
         "pinmask"};
     app.require_subcommand(1);
-    app.set_version_flag("--version", "pinmask 0.1.0");
+    app.set_version_flag("--version", "pinmask " PINMASK_VERSION);
     int exit_code = 0;  // set by a command whose verdict is not "ok" (check: violations)
     cli::add_design(app);
     cli::add_generate(app);

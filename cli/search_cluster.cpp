@@ -2,11 +2,11 @@
 
 #include <filesystem>
 
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
 #include "io/checkpoint.hpp"
 #include "io/search_run_config.hpp"
-#include "search/byte_codec.hpp"
-#include "search/chain_codec.hpp"
+#include "optimize/search/byte_codec.hpp"
+#include "optimize/search/chain_codec.hpp"
 
 namespace pinmask::cli {
 

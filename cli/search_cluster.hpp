@@ -1,6 +1,6 @@
 // `pinmask search` over MPI ranks and with checkpoints: the flags --migrate-every,
 // --checkpoint, --checkpoint-every and --resume, and how they fill the pipeline's island options
-// (search/island_search) for the ranks of a RankComm (the executable passes the MPI world;
+// (optimize/search/island_search) for the ranks of a RankComm (the executable passes the MPI world;
 // this library never links MPI). Rank 0 reads --resume and broadcasts it, so every rank refuses
 // a checkpoint of another configuration together (InvalidInput naming the differing keys).
 #pragma once
@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "search/rank_comm.hpp"
-#include "search/search_pipeline.hpp"
+#include "optimize/search/rank_comm.hpp"
+#include "optimize/search/search_pipeline.hpp"
 
 namespace pinmask::cli {
 

@@ -1,11 +1,11 @@
 // Fuzzes the camera file reader (io/camera_json, `--camera FILE` of every command with camera
 // flags) through a scratch file: any bytes give a Camera or InvalidInput, never another exception.
-// An accepted camera obeys the camera's own rules (design/camera validate) and round-trips.
+// An accepted camera obeys the camera's own rules (design/optics/camera validate) and round-trips.
 #include <cstddef>
 #include <cstdint>
 
-#include "core/error.hpp"
-#include "design/camera.hpp"
+#include "core/errors/error.hpp"
+#include "design/optics/camera.hpp"
 #include "fuzz/fuzz_support.hpp"
 #include "io/camera_json.hpp"
 

@@ -1,9 +1,9 @@
-// Fuzzes the DXF reader (formats/dxf_reader read_dxf) and the design-rule check on what it
+// Fuzzes the DXF reader (export/formats/dxf_reader read_dxf) and the design-rule check on what it
 // returns (fuzz_fabrication.hpp).
 #include <cstddef>
 #include <cstdint>
 
-#include "formats/dxf_reader.hpp"
+#include "export/formats/dxf_reader.hpp"
 #include "fuzz/fuzz_fabrication.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {

@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
 #include "fuzz/fuzz_support.hpp"
 #include "io/export_sidecar.hpp"
 

@@ -10,9 +10,9 @@
 #include <cstdint>
 #include <string_view>
 
-#include "core/error.hpp"
-#include "export/drc.hpp"
-#include "layout/rings.hpp"
+#include "core/errors/error.hpp"
+#include "export/layout/rings.hpp"
+#include "export/pipeline/drc.hpp"
 #include "fuzz/fuzz_support.hpp"
 
 namespace pinmask::fuzz {

@@ -1,9 +1,9 @@
-// Fuzzes the GDSII reader (formats/gds_reader read_gds) and the design-rule check on what it
+// Fuzzes the GDSII reader (export/formats/gds_reader read_gds) and the design-rule check on what it
 // returns (fuzz_fabrication.hpp).
 #include <cstddef>
 #include <cstdint>
 
-#include "formats/gds_reader.hpp"
+#include "export/formats/gds_reader.hpp"
 #include "fuzz/fuzz_fabrication.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {

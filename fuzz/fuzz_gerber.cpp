@@ -1,9 +1,9 @@
-// Fuzzes the Gerber reader (formats/gerber_reader read_gerber) and the design-rule check on what it
-// returns (fuzz_fabrication.hpp).
+// Fuzzes the Gerber reader (export/formats/gerber_reader read_gerber) and the design-rule check on
+// what it returns (fuzz_fabrication.hpp).
 #include <cstddef>
 #include <cstdint>
 
-#include "formats/gerber_reader.hpp"
+#include "export/formats/gerber_reader.hpp"
 #include "fuzz/fuzz_fabrication.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {

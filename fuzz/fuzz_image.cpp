@@ -1,11 +1,11 @@
-// Fuzzes the image readers (core/image_io read_image: TIFF via libtiff, PNG via libpng, JPEG via
-// libjpeg-turbo, npy), chosen by magic bytes, through a scratch file. An accepted image must be
+// Fuzzes the image readers (core/image/image_io read_image: TIFF via libtiff, PNG via libpng, JPEG
+// via libjpeg-turbo, npy), chosen by magic bytes, through a scratch file. An accepted image must be
 // consistent: 1 or 3 channels, every channel of the declared size, within kMaxImageSamples.
 #include <cstddef>
 #include <cstdint>
 
-#include "core/error.hpp"
-#include "core/image_io.hpp"
+#include "core/errors/error.hpp"
+#include "core/image/image_io.hpp"
 #include "fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {

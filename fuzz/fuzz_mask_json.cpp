@@ -1,12 +1,12 @@
-// Fuzzes the mask-file reader (cli/mask_json read_mask_file: strict JSON with the streamed
+// Fuzzes the mask-file reader (io/mask_json read_mask_file: strict JSON with the streamed
 // pinhole array, then mask_from_json's validation). An accepted file must also round-trip:
 // mask_file_text of the result is accepted again and reproduces itself byte for byte.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/atomic_file.hpp"
 #include "fuzz/fuzz_support.hpp"
 #include "io/mask_json.hpp"
 

@@ -1,9 +1,9 @@
-// Fuzzes the OASIS reader (formats/oasis_reader read_oasis) and the design-rule check on what it
-// returns (fuzz_fabrication.hpp).
+// Fuzzes the OASIS reader (export/formats/oasis_reader read_oasis) and the design-rule check on
+// what it returns (fuzz_fabrication.hpp).
 #include <cstddef>
 #include <cstdint>
 
-#include "formats/oasis_reader.hpp"
+#include "export/formats/oasis_reader.hpp"
 #include "fuzz/fuzz_fabrication.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {

@@ -1,4 +1,4 @@
-// Fuzzes the PSF sidecar reader (cli/psf_files: parse_strict then psf_sidecar_from_json), the
+// Fuzzes the PSF sidecar reader (io/psf_files: parse_strict then psf_sidecar_from_json), the
 // JSON that comes with a PSF file (decode --psf). Syntax errors are
 // nlohmann exceptions from parse_strict (read_psf_file maps them to InvalidInput); the sidecar
 // reader itself may throw only InvalidInput. An accepted sidecar round-trips through
@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
 #include "fuzz/fuzz_support.hpp"
 #include "io/json_strict.hpp"
 #include "io/psf_files.hpp"

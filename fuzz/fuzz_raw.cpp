@@ -1,13 +1,13 @@
-// Fuzzes the camera RAW reader (core/raw_io read_raw through LibRaw) in every Bayer mode, through
-// a scratch .dng file. An accepted image must be consistent: one channel of a positive size
+// Fuzzes the camera RAW reader (core/image/raw_io read_raw through LibRaw) in every Bayer mode,
+// through a scratch .dng file. An accepted image must be consistent: one channel of a positive size
 // within kMaxImageSamples, finite values, a positive full scale. Seeds: fuzz/corpus/raw/
 // (tests/bad-inputs/generate.py writes the DNG seed).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 
-#include "core/error.hpp"
-#include "core/raw_io.hpp"
+#include "core/errors/error.hpp"
+#include "core/image/raw_io.hpp"
 #include "fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {

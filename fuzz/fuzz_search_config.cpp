@@ -1,4 +1,4 @@
-// Fuzzes the search configuration reader (cli/search_config, `pinmask search --config FILE`):
+// Fuzzes the search configuration reader (io/search_config, `pinmask search --config FILE`):
 // any bytes give a SearchConfig or InvalidInput, never another exception (syntax errors and
 // number overflow included). An accepted configuration's values obey the reader's rules.
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
 #include "fuzz/fuzz_support.hpp"
 #include "io/search_config.hpp"
 

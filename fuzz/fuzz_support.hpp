@@ -16,8 +16,8 @@
 
 namespace pinmask::fuzz {
 
-// Memory bound the targets run under (core/resource_limits): small, so a reader that checks its
-// declared sizes refuses them instead of allocating up to libFuzzer's -rss_limit_mb.
+// Memory bound the targets run under (core/limits/resource_limits): small, so a reader that checks
+// its declared sizes refuses them instead of allocating up to libFuzzer's -rss_limit_mb.
 inline constexpr const char* kFuzzMemoryLimit = "256M";
 
 inline void set_memory_limit() { ::setenv("PINMASK_MEMORY_LIMIT", kFuzzMemoryLimit, 1); }

@@ -1,9 +1,9 @@
-// Fuzzes the SVG reader (formats/svg_reader read_svg) and the design-rule check on what it
+// Fuzzes the SVG reader (export/formats/svg_reader read_svg) and the design-rule check on what it
 // returns (fuzz_fabrication.hpp).
 #include <cstddef>
 #include <cstdint>
 
-#include "formats/svg_reader.hpp"
+#include "export/formats/svg_reader.hpp"
 #include "fuzz/fuzz_fabrication.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {

@@ -1,4 +1,4 @@
-// Fuzzes unit parsing (core/units): the first byte picks the parser, the rest is the token.
+// Fuzzes unit parsing (core/units/units): the first byte picks the parser, the rest is the token.
 // Accepted values must be what the contract says (finite unless infinity was allowed, sizes
 // >= 1), and a length printed by format_length must parse back to within its 4 digits.
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <string_view>
 
-#include "core/error.hpp"
-#include "core/units.hpp"
+#include "core/errors/error.hpp"
+#include "core/units/units.hpp"
 #include "fuzz/fuzz_support.hpp"
 
 namespace {
@@ -47,7 +47,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                 break;
             case 2:
                 // "11e307h" once scaled a finite number to +inf (found by this target; now
-                // refused in core/units, regression test in tests/core/test_units.cpp).
+                // refused in core/units/units, regression test in tests/core/test_units.cpp).
                 if (!std::isfinite(parse_duration_s(token, "fuzz"))) {
                     fuzz::invariant_failed("non-finite duration accepted");
                 }

@@ -4,9 +4,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/input_file.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/atomic_file.hpp"
+#include "core/files/input_file.hpp"
 #include "io/json_strict.hpp"
 #include "io/optics_json.hpp"
 

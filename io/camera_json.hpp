@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include "design/camera.hpp"
+#include "design/optics/camera.hpp"
 
 namespace pinmask::io {
 

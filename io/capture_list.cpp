@@ -5,10 +5,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/error.hpp"
-#include "core/field_names.hpp"
-#include "core/input_file.hpp"
-#include "core/raw_io.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "core/files/input_file.hpp"
+#include "core/image/raw_io.hpp"
 
 namespace pinmask::io {
 namespace {

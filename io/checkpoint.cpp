@@ -5,9 +5,9 @@
 #include <set>
 #include <sstream>
 
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/field_names.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "core/files/atomic_file.hpp"
 #include "io/json_strict.hpp"
 
 namespace pinmask::io {

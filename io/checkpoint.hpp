@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "search/search.hpp"
+#include "optimize/search/search.hpp"
 
 namespace pinmask::io {
 
@@ -35,7 +35,7 @@ struct SearchCheckpointFile {
 std::string checkpoint_to_json(const SearchCheckpointFile& c);
 SearchCheckpointFile parse_checkpoint(const std::string& text);
 
-// Atomic write (core/atomic_file): a crash leaves the previous checkpoint in place.
+// Atomic write (core/files/atomic_file): a crash leaves the previous checkpoint in place.
 void write_checkpoint(const std::filesystem::path& path, const SearchCheckpointFile& c);
 // InvalidInput naming `resume` and the file when it cannot be read or parsed.
 SearchCheckpointFile read_checkpoint(const std::filesystem::path& path);

@@ -8,8 +8,8 @@
 #include <sstream>
 #include <type_traits>
 
-#include "core/error.hpp"
-#include "core/input_file.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/input_file.hpp"
 #include "io/json_strict.hpp"
 
 namespace pinmask::io {

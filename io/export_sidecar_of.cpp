@@ -4,10 +4,10 @@
 #include <cstdio>
 #include <string_view>
 
-#include "formats/fab_units.hpp"
-#include "formats/read_any.hpp"
-#include "layout/film_paint.hpp"
-#include "layout/geometry.hpp"
+#include "export/formats/fab_units.hpp"
+#include "export/formats/read_any.hpp"
+#include "export/layout/film_paint.hpp"
+#include "export/layout/geometry.hpp"
 
 namespace pinmask::io {
 
@@ -28,7 +28,7 @@ ExportSidecar export_sidecar_of(const ExportRequest& f, const Mask& mask, const 
     d.unit = fab_unit_name(o.write.unit);
     d.shape = f.shape;
     d.sides = d.drawn_sides = l.hole_sides;
-    // The pitch on the grid when the holes are the whole cell (layout/geometry).
+    // The pitch on the grid when the holes are the whole cell (export/layout/geometry).
     d.hole_side_m = o.layout.hole_side_m > 0 ? o.layout.hole_side_m : double(l.pitch_nm) * 1e-9;
     if (o.kerf_m > 0) d.hole_side_m -= o.kerf_m;
     d.chord_tolerance_m = o.layout.chord_tolerance_m;

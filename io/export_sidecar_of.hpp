@@ -1,12 +1,12 @@
 // The export sidecar's settings for one export: what `pinmask export` and Python's export_mask
 // record in <stem>.export.json beside the fabrication files (io/export_sidecar writes it, and
 // check reads its layout back through io/sidecar_layout). Notes are in the library's words
-// (fields as references, core/field_names): each face spells them.
+// (fields as references, core/errors/field_names): each face spells them.
 #pragma once
 
-#include "design/mask.hpp"
-#include "export/export_pipeline.hpp"
-#include "export/export_request.hpp"
+#include "design/pattern/mask.hpp"
+#include "export/pipeline/export_pipeline.hpp"
+#include "export/pipeline/export_request.hpp"
 #include "io/export_sidecar.hpp"
 
 namespace pinmask::io {

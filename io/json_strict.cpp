@@ -8,8 +8,8 @@
 #include <set>
 #include <sstream>
 
-#include "core/error.hpp"
-#include "core/input_file.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/input_file.hpp"
 
 namespace pinmask::io::json_strict {
 

@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
 
 namespace pinmask::io::json_strict {
 

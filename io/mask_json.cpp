@@ -1,4 +1,4 @@
-// The `*.mask.json` codec. Layout (DESIGN.md section 4; every key below is written, and every key
+// The `*.mask.json` codec. Layout (docs/design.md section 5; every key below is written, and every key
 // is required on reading unless marked optional):
 //   {"format": "pinmask-mask", "version": 1,
 //    "pattern": {"n", "pinholes": [[row, col], ...], "tiles": [rows, cols], "min_spacing_cells"},
@@ -24,12 +24,12 @@
 #include <string>
 #include <vector>
 
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/input_file.hpp"
-#include "core/output_set.hpp"
-#include "core/resource_limits.hpp"
-#include "design/kernel_model.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/atomic_file.hpp"
+#include "core/files/input_file.hpp"
+#include "core/files/output_set.hpp"
+#include "core/limits/resource_limits.hpp"
+#include "design/psf/kernel_model.hpp"
 #include "io/json_strict.hpp"
 #include "io/optics_json.hpp"
 
@@ -40,7 +40,8 @@ using namespace json_strict;
 
 constexpr const char* kFormat = "pinmask-mask";
 constexpr int kVersion = 1;
-// Kernel models named by design/mask.hpp's KernelSpec (design/kernel_model.hpp's table).
+// Kernel models named by design/pattern/mask.hpp's KernelSpec (design/psf/kernel_model.hpp's
+// table).
 const std::vector<std::string> kKernelModels = name_list(kKernelModelNames);
 // Reading holds the text twice (stream buffer and string), the pinholes (8 bytes per ~10 bytes
 // of text, streamed out of the parser) and their sorted copy: about this many bytes per byte of
@@ -312,7 +313,7 @@ Mask read_mask_file(const std::filesystem::path& path, const MaskReadOptions& op
     std::error_code ec;
     const auto size = std::filesystem::file_size(path, ec);
     if (ec) throw InvalidInput(name + ": cannot read mask file (" + ec.message() + ")");
-    protect_input(path);  // no output of this run may replace it (core/output_set)
+    protect_input(path);  // no output of this run may replace it (core/files/output_set)
     check_memory(static_cast<double>(size) * kParsedBytesPerTextByte, "parsing mask file " + name);
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InvalidInput(name + ": cannot open mask file for reading");

@@ -1,7 +1,7 @@
-// The `*.mask.json` codec (DESIGN.md section 4): the only place mask files are parsed or written.
+// The `*.mask.json` codec (docs/design.md section 5): the only place mask files are parsed or written.
 // Reading validates everything: JSON syntax, "format" == "pinmask-mask", "version" == 1, known
-// keys only (an unknown key is an error naming it), types, camera physics (design/camera), the
-// pattern structure and its spacing rule (design/pattern) unless the file records that
+// keys only (an unknown key is an error naming it), types, camera physics (design/optics/camera),
+// the pattern structure and its spacing rule (design/pattern/pattern) unless the file records that
 // violations were allowed. Every failure is InvalidInput naming the file, the key and the rule.
 #pragma once
 
@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "design/mask.hpp"
+#include "design/pattern/mask.hpp"
 
 namespace pinmask::io {
 

@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "metrics/mask_metrics.hpp"
+#include "optimize/metrics/mask_metrics.hpp"
 
 namespace pinmask::io {
 

@@ -9,11 +9,12 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "design/camera.hpp"
+#include "design/optics/camera.hpp"
 
 namespace pinmask::io {
 
-// Reads and validates (design/camera) the object; InvalidInput names "optics.<key>" and the rule.
+// Reads and validates (design/optics/camera) the object; InvalidInput names "optics.<key>" and the
+// rule.
 Camera optics_from_json(const nlohmann::json& j);
 
 // The object, keys in the order above (J: nlohmann::json or nlohmann::ordered_json).

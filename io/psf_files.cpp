@@ -7,15 +7,15 @@
 #include <sstream>
 #include <tuple>
 
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/image_io.hpp"
-#include "core/input_file.hpp"
-#include "core/number_format.hpp"
-#include "core/output_set.hpp"
-#include "design/kernel.hpp"
-#include "design/kernel_model.hpp"
-#include "design/pattern.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/atomic_file.hpp"
+#include "core/files/input_file.hpp"
+#include "core/files/output_set.hpp"
+#include "core/image/image_io.hpp"
+#include "core/units/number_format.hpp"
+#include "design/pattern/pattern.hpp"
+#include "design/psf/kernel.hpp"
+#include "design/psf/kernel_model.hpp"
 #include "io/json_strict.hpp"
 
 namespace pinmask::io {

@@ -1,4 +1,4 @@
-// PSF files (DESIGN.md section 4): a 32-bit float TIFF (optionally also a float32 .npy next to
+// PSF files (docs/design.md section 5): a 32-bit float TIFF (optionally also a float32 .npy next to
 // it) plus a JSON sidecar with the same stem and extension .json:
 //   {"format": "pinmask-psf", "version": 1, "mask_geometry_hash": "<16 hex>", "mask_file": "...",
 //    "grid_n": 16, "pixels_per_cell": 8, "pixel_pitch_m": 3e-05,
@@ -17,9 +17,9 @@
 #include <utility>
 #include <vector>
 
-#include "core/image.hpp"
-#include "design/kernel.hpp"
-#include "design/mask.hpp"
+#include "core/image/image.hpp"
+#include "design/pattern/mask.hpp"
+#include "design/psf/kernel.hpp"
 
 namespace pinmask::io {
 

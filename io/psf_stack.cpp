@@ -4,11 +4,11 @@
 #include <set>
 #include <string>
 
-#include "core/error.hpp"
-#include "core/field_names.hpp"
-#include "core/image_io.hpp"
-#include "core/number_format.hpp"
-#include "core/resource_limits.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "core/image/image_io.hpp"
+#include "core/limits/resource_limits.hpp"
+#include "core/units/number_format.hpp"
 #include "io/json_strict.hpp"
 
 namespace pinmask::io {

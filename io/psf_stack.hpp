@@ -7,16 +7,16 @@
 // 2 to 1000 planes, in any order; object_distance_m a finite number > 0 (metres), the planes'
 // distances distinct; psf the path of a one-channel image (float TIFF, .npy, PNG, ...; relative
 // paths are relative to the JSON file's folder). Every PSF has the same size, finite,
-// non-negative values and a positive sum; it is centred as decode/psf2otf expects (its central
-// element, 0-based (floor(rows / 2), floor(cols / 2)), is the point the capture's light comes
-// from) and is normalised to sum 1 by the sweep.
+// non-negative values and a positive sum; it is centred as decode/solvers/psf2otf expects (its
+// central element, 0-based (floor(rows / 2), floor(cols / 2)), is the point the capture's light
+// comes from) and is normalised to sum 1 by the sweep.
 #pragma once
 
 #include <filesystem>
 #include <string>
 #include <vector>
 
-#include "core/image.hpp"
+#include "core/image/image.hpp"
 
 namespace pinmask::io {
 

@@ -2,10 +2,10 @@
 
 #include <limits>
 
-#include "core/error.hpp"
-#include "core/field_names.hpp"
-#include "core/units.hpp"
-#include "design/kernel_model.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "core/units/units.hpp"
+#include "design/psf/kernel_model.hpp"
 #include "io/json_strict.hpp"
 #include "io/optics_json.hpp"
 
@@ -146,7 +146,7 @@ SearchConfig parse_search_config(const std::string& text) {
     });
     read_into(r, "kernel_requested", c.kernel, [](const Json& v, const std::string& p) {
         const std::string name = read_string(v, p);
-        parse_kernel_model(name, p);  // design/kernel_model names the models
+        parse_kernel_model(name, p);  // design/psf/kernel_model names the models
         return name;
     });
     read_into(r, "kernel_path", c.kernel_path, read_string);

@@ -21,7 +21,7 @@
 //    "depth_range": {"from_m", "to_m"} (metres, 0 and 0: the working distance / 2 .. x 2;
 //                written only with a depth weight),
 //    "rerank_scenes": [names] ([]: no re-ranking), "rerank_tv": bool,
-//    "optics": the camera (cli/optics_json.hpp)}
+//    "optics": the camera (io/optics_json.hpp)}
 // Unknown keys, repeated keys, wrong types and out-of-range values are InvalidInput naming the
 // key path; so is nesting deeper than json_strict allows.
 #pragma once
@@ -32,12 +32,13 @@
 #include <string>
 #include <vector>
 
-#include "design/camera.hpp"
+#include "core/version.hpp"
+#include "design/optics/camera.hpp"
 
 namespace pinmask::io {
 
 // The generator string of a search run (its masks' provenance and its resolved configuration).
-inline constexpr const char* kSearchGenerator = "pinmask search 0.1.0";
+inline constexpr const char* kSearchGenerator = PINMASK_GENERATOR("search");
 
 inline constexpr const char* kSearchConfigFormat = "pinmask-search-config";
 inline constexpr int kSearchConfigVersion = 1;
@@ -61,7 +62,7 @@ struct SearchConfig {
     std::optional<int> bits;
     std::optional<std::string> prior_family, rank_by;
     // The design objective: "objective": "nominal" | "robust", "robust": the fabrication
-    // errors in the text form of metrics/robust_errors (size=5um,jitter=2um,missing=0.01).
+    // errors in the text form of optimize/metrics/robust_errors (size=5um,jitter=2um,missing=0.01).
     std::optional<std::string> objective, robust;
     std::optional<std::vector<std::string>> prior_files;
     std::optional<bool> allow_spectral_zeros;

@@ -4,12 +4,12 @@
 #include <string>
 #include <vector>
 
-#include "core/error.hpp"
-#include "core/field_names.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
 #include "io/json_strict.hpp"
 #include "io/optics_json.hpp"
 #include "io/search_config.hpp"
-#include "metrics/mask_metrics.hpp"
+#include "optimize/metrics/mask_metrics.hpp"
 
 namespace pinmask::io {
 namespace {

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "io/checkpoint.hpp"
-#include "search/island_search.hpp"
-#include "search/search_pipeline.hpp"
+#include "optimize/search/island_search.hpp"
+#include "optimize/search/search_pipeline.hpp"
 
 namespace pinmask::io {
 

@@ -2,11 +2,11 @@
 
 #include <cmath>
 
-#include "core/error.hpp"
-#include "core/field_names.hpp"
-#include "core/units.hpp"
-#include "export/vendor_presets.hpp"
-#include "formats/fab_units.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "core/units/units.hpp"
+#include "export/formats/fab_units.hpp"
+#include "export/pipeline/vendor_presets.hpp"
 
 namespace pinmask::io {
 

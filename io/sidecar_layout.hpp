@@ -3,17 +3,17 @@
 // gives (as `pinmask check` flags: each must agree with the sidecar), or from the given settings
 // and what the file declares when there is no sidecar. Used by `pinmask check` (its flags) and
 // the Python module's check() (its arguments); errors name the settings' fields
-// (core/field_names.hpp).
+// (core/errors/field_names.hpp).
 #pragma once
 
 #include <filesystem>
 #include <optional>
 #include <string>
 
+#include "export/layout/geometry.hpp"
+#include "export/layout/rings.hpp"
+#include "export/layout/vendor_rules.hpp"
 #include "io/export_sidecar.hpp"
-#include "layout/geometry.hpp"
-#include "layout/rings.hpp"
-#include "layout/vendor_rules.hpp"
 
 namespace pinmask::io {
 
@@ -55,7 +55,7 @@ LayoutOptions check_layout(const CheckLayoutSettings& given, const ExportSidecar
 void apply_file_declarations(LayoutOptions& lo, const FileGeometry& file);
 
 // The design rules the export checked, as its sidecar records them (an older sidecar without
-// them: its vendor's rule preset, export/vendor_presets vendor_rules_for).
+// them: its vendor's rule preset, export/pipeline/vendor_presets vendor_rules_for).
 VendorRules sidecar_rules(const ExportSidecar& side);
 
 // InvalidInput when the file's declared unit disagrees with the sidecar's.

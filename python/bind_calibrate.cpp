@@ -1,16 +1,17 @@
-// calibrate() is `pinmask calibrate` on arrays: calibrate/calibrate_point_source with the CLI's
-// options and refusals (messages name the keywords through python/keyword_names), returning a
-// dict with the keys and values of `pinmask calibrate --json` (cli/outputs/calibrate_json) except
-// the written files' paths, and the PSFs, kernel and residual map as arrays instead.
+// calibrate() is `pinmask calibrate` on arrays: calibrate_point_source (decode/calibrate/calibrate)
+// with the CLI's options and refusals (messages name the keywords through python/keyword_names),
+// returning a dict with the keys and values of `pinmask calibrate --json`
+// (cli/outputs/calibrate_json) except the written files' paths, and the PSFs, kernel and residual
+// map as arrays instead.
 #include <cmath>
 #include <limits>
 #include <optional>
 
-#include "calibrate/calibrate.hpp"
-#include "core/error.hpp"
-#include "core/field_names.hpp"
-#include "core/units.hpp"
-#include "design/kernel_model.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "core/units/units.hpp"
+#include "decode/calibrate/calibrate.hpp"
+#include "design/psf/kernel_model.hpp"
 #include "python/common.hpp"
 #include "python/keyword_names.hpp"
 #include "python/values.hpp"

@@ -1,25 +1,25 @@
 // The design-rule check: check() follows `pinmask check` (cli/cmd_check.cpp) and returns what
-// its --json prints. A mask: export/drc on its layout; a fabrication file: export/file_check
-// (check_file_geometry: the DRC and the export/read_back comparison with the design). The
-// layout settings come from the export sidecar beside the file when there is one (as the CLI;
-// io/sidecar_layout), else from the arguments.
+// its --json prints. A mask: export/pipeline/drc on its layout; a fabrication file:
+// export/pipeline/file_check (check_file_geometry: the DRC and the export/pipeline/read_back
+// comparison with the design). The layout settings come from the export sidecar beside the file
+// when there is one (as the CLI; io/sidecar_layout), else from the arguments.
 #include <cmath>
 #include <filesystem>
 
-#include "core/error.hpp"
-#include "core/field_names.hpp"
-#include "core/units.hpp"
-#include "export/drc.hpp"
-#include "export/file_check.hpp"
-#include "export/vendor_presets.hpp"
-#include "formats/read_any.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "core/units/units.hpp"
+#include "export/formats/read_any.hpp"
+#include "export/layout/geometry.hpp"
+#include "export/layout/rings.hpp"
+#include "export/layout/vendor_rules.hpp"
+#include "export/layout/xor_area.hpp"
+#include "export/pipeline/drc.hpp"
+#include "export/pipeline/file_check.hpp"
+#include "export/pipeline/vendor_presets.hpp"
 #include "io/export_sidecar.hpp"
 #include "io/mask_json.hpp"
 #include "io/sidecar_layout.hpp"
-#include "layout/geometry.hpp"
-#include "layout/rings.hpp"
-#include "layout/vendor_rules.hpp"
-#include "layout/xor_area.hpp"
 #include "python/common.hpp"
 #include "python/values.hpp"
 
@@ -199,7 +199,8 @@ void bind_check(py::module_& m) {
                 FileCheck fc;
                 {
                     py::gil_scoped_release release;
-                    fc = check_file_geometry(file, fo);  // export/file_check: DRC + read_back
+                    fc = check_file_geometry(file,
+                                             fo);  // export/pipeline/file_check: DRC + read_back
                 }
                 l = fc.layout;
                 r = fc.drc;

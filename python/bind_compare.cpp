@@ -1,16 +1,16 @@
 // Comparison of masks and its report: compare() is `pinmask compare`'s library pipeline
-// (metrics/compare run_compare: baselines, metric rows) and its report pages
+// (optimize/metrics/compare run_compare: baselines, metric rows) and its report pages
 // (report/compare_report, report/report); the CLI's report.config.json and its table text are not
 // written here (the rows are returned instead).
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
 
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/field_names.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "core/files/atomic_file.hpp"
 #include "io/mask_json.hpp"
-#include "metrics/robust_errors.hpp"
+#include "optimize/metrics/robust_errors.hpp"
 #include "python/common.hpp"
 #include "python/keyword_names.hpp"
 #include "python/level_args.hpp"
@@ -151,7 +151,7 @@ Noise (snr_db or photons with the sensor stages), prior and robust (fabrication 
 --robust: 'size=44um,jitter=2um'; each row gains robust_wiener_psnr_db) as in metrics().
 depth=True (needs photons): each row gains score(metrics='depth')'s keys over depth_from ..
 depth_to metres (None, None: the working distance / 2 .. x 2).
-The run is metrics/compare's run_compare (one camera rule, baselines, metric rows).)");
+The run is optimize/metrics/compare's run_compare (one camera rule, baselines, metric rows).)");
 }
 
 }  // namespace pinmask::python

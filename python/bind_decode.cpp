@@ -1,24 +1,24 @@
-// Decoding: decode() is `pinmask decode` on arrays, one call of decode/capture_pipeline
-// (decode_capture) with the options of the library's DecodeRequest (decode/decode_request.hpp),
-// filled from the keyword arguments: names, defaults, refusals and numbers are the CLI's; the
-// messages name the keywords (python/keyword_names).
+// Decoding: decode() is `pinmask decode` on arrays, one call of decode/capture/capture_pipeline
+// (decode_capture) with the options of the library's DecodeRequest
+// (decode/capture/decode_request.hpp), filled from the keyword arguments: names, defaults, refusals
+// and numbers are the CLI's; the messages name the keywords (python/keyword_names).
 #include <atomic>
 #include <string>
 #include <vector>
 
-#include "core/error.hpp"
-#include "core/field_names.hpp"
-#include "core/units.hpp"
-#include "decode/capture.hpp"
-#include "decode/capture_pipeline.hpp"
-#include "decode/decode_method.hpp"
-#include "decode/decode_modes.hpp"
-#include "decode/decode_request.hpp"
-#include "decode/decoder.hpp"
-#include "decode/period.hpp"
-#include "design/psf.hpp"
-#include "design/psf_exact.hpp"
-#include "design/working_distance.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "core/units/units.hpp"
+#include "decode/capture/capture.hpp"
+#include "decode/capture/capture_pipeline.hpp"
+#include "decode/capture/decode_request.hpp"
+#include "decode/capture/decoder.hpp"
+#include "decode/capture/period.hpp"
+#include "decode/solvers/decode_method.hpp"
+#include "decode/solvers/decode_modes.hpp"
+#include "design/optics/working_distance.hpp"
+#include "design/psf/psf.hpp"
+#include "design/psf/psf_exact.hpp"
 #include "python/common.hpp"
 #include "python/values.hpp"
 
@@ -42,7 +42,7 @@ struct CaptureArg {
     int cols() const { return plane ? int(plane->cols()) : image.cols(); }
 };
 
-// `pinmask decode`'s library pipeline (decode/capture_pipeline decode_capture: dark frame,
+// `pinmask decode`'s library pipeline (decode/capture/capture_pipeline decode_capture: dark frame,
 // period check, crop, PSF to unit sum, precision, each channel decoded) with the CLI's own
 // options (capture_decode_options). The pipeline owns its inputs: a borrowed capture or PSF
 // is copied into it (a C++ copy, not a numpy conversion: input_copies() does not count it), a

@@ -5,10 +5,10 @@
 // bytes as single decodes.
 #include <string>
 
-#include "core/error.hpp"
-#include "core/field_names.hpp"
-#include "core/raw_io.hpp"
-#include "design/psf.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "core/image/raw_io.hpp"
+#include "design/psf/psf.hpp"
 #include "python/common.hpp"
 #include "python/values.hpp"
 

@@ -1,16 +1,16 @@
-// depth(): `pinmask depth`'s library pipeline (metrics/depth_loss depth_analysis) from Python,
-// one dict per distance with the keys of `depth --json`. Noise as metrics(): snr_db (one level;
-// inf: noiseless) or photons with the sensor stages; the Wiener NSR tuned as score tunes it unless
-// nsr gives a value.
+// depth(): `pinmask depth`'s library pipeline (optimize/metrics/depth_loss depth_analysis) from
+// Python, one dict per distance with the keys of `depth --json`. Noise as metrics(): snr_db (one
+// level; inf: noiseless) or photons with the sensor stages; the Wiener NSR tuned as score tunes it
+// unless nsr gives a value.
 #include <cmath>
 #include <limits>
 #include <optional>
 
-#include "core/error.hpp"
-#include "core/fft.hpp"
-#include "core/field_names.hpp"
-#include "metrics/depth_loss.hpp"
-#include "metrics/metric_spellings.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "core/fft/fft.hpp"
+#include "optimize/metrics/depth_loss.hpp"
+#include "optimize/metrics/metric_spellings.hpp"
 #include "python/common.hpp"
 #include "python/level_args.hpp"
 #include "python/values.hpp"

@@ -1,7 +1,7 @@
-// depthmap(): `pinmask depthmap`'s library pipeline (depthmap/depthmap) from Python: the dict of
-// `depthmap --json` plus the maps as numpy arrays (depth_m, confidence, all_in_focus, label).
-// The capture is an array (grey; a colour array's channels are averaged, as the command does) or
-// an image path; nothing is written.
+// depthmap(): `pinmask depthmap`'s library pipeline (decode/depthmap/depthmap) from Python: the
+// dict of `depthmap --json` plus the maps as numpy arrays (depth_m, confidence, all_in_focus,
+// label). The capture is an array (grey; a colour array's channels are averaged, as the command
+// does) or an image path; nothing is written.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -9,12 +9,12 @@
 #include <utility>
 #include <vector>
 
-#include "core/error.hpp"
-#include "core/field_names.hpp"
-#include "core/image_io.hpp"
-#include "depthmap/depthmap.hpp"
-#include "metrics/depth_fisher.hpp"
-#include "metrics/depth_loss.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "core/image/image_io.hpp"
+#include "decode/depthmap/depthmap.hpp"
+#include "optimize/metrics/depth_fisher.hpp"
+#include "optimize/metrics/depth_loss.hpp"
 #include "python/common.hpp"
 #include "python/values.hpp"
 
@@ -159,7 +159,7 @@ and label (plane index). Method and measured accuracy: docs/depth.md.)");
         },
         py::arg("mask"), py::arg("object_distance_m"), py::arg("photons") = 20000.0,
         py::arg("read_noise") = 0.0, py::arg("rows") = 0, py::arg("cols") = 0,
-        R"(Depth discriminability of a mask (metrics/depth_fisher): the Fisher information of
+        R"(Depth discriminability of a mask (optimize/metrics/depth_fisher): the Fisher information of
 t = 1/u in the capture of a point source on the axis at object_distance_m (photons electrons
 over one period, Poisson plus Gaussian read noise, variance mu + read_noise^2), over a
 rows x cols window (0: the sensor). Returns fisher_inverse_m2 (I(t), m^2), the Cramer-Rao bounds

@@ -1,21 +1,22 @@
-// Camera and optics numbers (design/camera.hpp, design/optics.hpp, design/kernel_model.hpp).
+// Camera and optics numbers (design/optics/camera.hpp, design/optics/optics.hpp,
+// design/psf/kernel_model.hpp).
 #include <cmath>
 #include <limits>
 
-#include "core/error.hpp"
-#include "core/field_names.hpp"
-#include "core/units.hpp"
-#include "design/camera.hpp"
-#include "design/design_kernel.hpp"
-#include "design/fab_grid.hpp"
-#include "design/kernel.hpp"
-#include "design/kernel_model.hpp"
-#include "design/kernel_validity.hpp"
-#include "design/optics.hpp"
-#include "design/packing_bound.hpp"
-#include "design/spectrum.hpp"
-#include "design/working_distance.hpp"
-#include "export/vendor_presets.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "core/units/units.hpp"
+#include "design/optics/camera.hpp"
+#include "design/optics/fab_grid.hpp"
+#include "design/optics/optics.hpp"
+#include "design/optics/spectrum.hpp"
+#include "design/optics/working_distance.hpp"
+#include "design/pattern/packing_bound.hpp"
+#include "design/psf/design_kernel.hpp"
+#include "design/psf/kernel.hpp"
+#include "design/psf/kernel_model.hpp"
+#include "design/psf/kernel_validity.hpp"
+#include "export/pipeline/vendor_presets.hpp"
 #include "io/camera_json.hpp"
 #include "python/common.hpp"
 #include "python/keyword_names.hpp"
@@ -83,7 +84,7 @@ py::dict optics_dict(const OpticsReport& r, const WorkingDistance& wd,
     d["light_gain"] = r.light_gain;
     d["kernel_model"] = kernel_model_name(r.kernel_model);
     d["kernel_reason"] = r.kernel_reason;
-    // The working distance (design/working_distance.hpp), under design --json's keys.
+    // The working distance (design/optics/working_distance.hpp), under design --json's keys.
     d["whole_pixels_per_cell_at_u"] = wd.pixels_per_cell;
     d["pinhole_for_pixels_per_cell_m"] = wd.pinhole_for_pixels_per_cell_m;
     d["period_at_u_px"] = wd.period_px;

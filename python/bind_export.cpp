@@ -1,9 +1,9 @@
 // Fabrication export. export_mask() is `pinmask export`'s library pipeline for the fabrication
-// files (cli/options/export_options turns the same flags into ExportOptions; export/export_pipeline
-// export_mask; each file read back from disk with export/read_back verify_written before it is
-// committed): same bytes, and the export sidecar (io/export_sidecar_of). The PSF files are the
-// CLI's (write_psf() writes the PSF). layout() builds the same layout (make_layout with the
-// pipeline's LayoutOptions).
+// files (cli/options/export_options turns the same flags into ExportOptions;
+// export/pipeline/export_pipeline export_mask; each file read back from disk with
+// export/pipeline/read_back verify_written before it is committed): same bytes, and the export
+// sidecar (io/export_sidecar_of). The PSF files are the CLI's (write_psf() writes the PSF).
+// layout() builds the same layout (make_layout with the pipeline's LayoutOptions).
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -11,26 +11,26 @@
 #include <iterator>
 #include <sstream>
 
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/field_names.hpp"
-#include "core/output_set.hpp"
-#include "core/units.hpp"
-#include "design/psf.hpp"
-#include "export/drc.hpp"
-#include "export/export_pipeline.hpp"
-#include "export/export_request.hpp"
-#include "export/read_back.hpp"
-#include "formats/read_any.hpp"
-#include "formats/write_any.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "core/files/atomic_file.hpp"
+#include "core/files/output_set.hpp"
+#include "core/units/units.hpp"
+#include "design/psf/psf.hpp"
+#include "export/formats/read_any.hpp"
+#include "export/formats/write_any.hpp"
+#include "export/layout/geometry.hpp"
+#include "export/layout/rings.hpp"
+#include "export/layout/vendor_rules.hpp"
+#include "export/layout/xor_area.hpp"
+#include "export/pipeline/drc.hpp"
+#include "export/pipeline/export_pipeline.hpp"
+#include "export/pipeline/export_request.hpp"
+#include "export/pipeline/read_back.hpp"
 #include "io/export_sidecar.hpp"
 #include "io/export_sidecar_of.hpp"
 #include "io/mask_json.hpp"
 #include "io/psf_files.hpp"
-#include "layout/geometry.hpp"
-#include "layout/rings.hpp"
-#include "layout/vendor_rules.hpp"
-#include "layout/xor_area.hpp"
 #include "python/common.hpp"
 #include "python/keyword_names.hpp"
 #include "python/values.hpp"
@@ -198,7 +198,7 @@ void bind_export(py::module_& m) {
             }
             if (stem.empty() || stem.find('/') != std::string::npos)
                 throw invalid_field(field_ref("stem"), stem, "must be a plain file name");
-            // `pinmask export`'s flags -> the library pipeline (export/export_pipeline).
+            // `pinmask export`'s flags -> the library pipeline (export/pipeline/export_pipeline).
             ExportRequest f =
                 layout_flags(tone, shape, sides, mirror, marks,
                              label ? std::optional<std::string>(label_id.empty() ? stem : label_id)
@@ -342,7 +342,7 @@ void bind_export(py::module_& m) {
         py::arg("hierarchy") = "auto", py::arg("kerf") = py::none(),
         py::arg("max_snap_error") = py::none(), py::arg("psf") = true, py::arg("npy") = false,
         R"(Writes the fabrication files of `pinmask export MASK -o out_dir` (same options, same
-bytes; export/export_pipeline): formats svg pdf gds oasis dxf gerber png tiff1 ->
+bytes; export/pipeline/export_pipeline): formats svg pdf gds oasis dxf gerber png tiff1 ->
 out_dir/<stem>.svg .pdf .gds .oas .dxf .gbr .png .tif, all or nothing; dpi: PNG/TIFF
 resolution (None: the CLI's default per format); each readable format is read back from disk and compared with the design (identical polygons or XOR area 0, and the mask
 hash), else RuntimeError and no file. The design-rule check (vendor: an export preset or rules

@@ -1,21 +1,21 @@
-// Patterns and masks: the pattern families (design/families, random_sparse, mura), the mask
+// Patterns and masks: the pattern families (design/pattern/families, random_sparse, mura), the mask
 // file codec (io/mask_json), the geometry hash. generate() follows `pinmask generate` step by
 // step (same checks, same messages, same file bytes for the same seed).
 #include <optional>
 #include <random>
 #include <sstream>
 
-#include "core/error.hpp"
-#include "core/field_names.hpp"
-#include "design/exclusion_grid.hpp"
-#include "design/families.hpp"
-#include "design/generate_pattern.hpp"
-#include "design/mask.hpp"
-#include "design/mura.hpp"
-#include "design/optics.hpp"
-#include "design/pattern.hpp"
-#include "design/psf_settings.hpp"
-#include "design/random_sparse.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "design/optics/optics.hpp"
+#include "design/pattern/exclusion_grid.hpp"
+#include "design/pattern/families.hpp"
+#include "design/pattern/generate_pattern.hpp"
+#include "design/pattern/mask.hpp"
+#include "design/pattern/mura.hpp"
+#include "design/pattern/pattern.hpp"
+#include "design/pattern/random_sparse.hpp"
+#include "design/psf/psf_settings.hpp"
 #include "io/json_strict.hpp"
 #include "io/mask_json.hpp"
 #include "python/common.hpp"
@@ -195,7 +195,8 @@ void bind_mask(py::module_& m) {
            std::optional<int> pixels_per_cell) {
             const Family fam = parse_family(family);
             // `pinmask generate`'s order: options, camera, PSF, PSF size, pattern
-            // (design/generate_pattern: the one pattern pipeline, same checks and messages).
+            // (design/pattern/generate_pattern: the one pattern pipeline, same checks and
+            // messages).
             GeneratePatternOptions go;
             go.family = fam;
             go.grid = grid.value_or(go.grid);

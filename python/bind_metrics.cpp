@@ -1,27 +1,27 @@
-// Mask metrics. metrics() is the metric row `pinmask compare` prints (metrics/compare
-// compare_mask over metrics/mask_metrics, the one metric set of score, compare and search).
-// The other functions bind the library metrics one by one (metrics/autocorrelation,
-// spectrum_metrics, analytic_error, simulated_metrics).
+// Mask metrics. metrics() is the metric row `pinmask compare` prints (optimize/metrics/compare
+// compare_mask over optimize/metrics/mask_metrics, the one metric set of score, compare and
+// search). The other functions bind the library metrics one by one
+// (optimize/metrics/autocorrelation, spectrum_metrics, analytic_error, simulated_metrics).
 #include <cmath>
 
-#include "core/error.hpp"
-#include "core/fft.hpp"
-#include "core/field_names.hpp"
-#include "design/psf.hpp"
-#include "metrics/analytic_error.hpp"
-#include "metrics/autocorrelation.hpp"
-#include "metrics/compare.hpp"
-#include "metrics/mask_metrics.hpp"
-#include "metrics/metric_spellings.hpp"
-#include "metrics/robust_errors.hpp"
-#include "metrics/simulated_metrics.hpp"
-#include "metrics/spectrum_metrics.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "core/fft/fft.hpp"
+#include "design/psf/psf.hpp"
+#include "optimize/metrics/analytic_error.hpp"
+#include "optimize/metrics/autocorrelation.hpp"
+#include "optimize/metrics/compare.hpp"
+#include "optimize/metrics/mask_metrics.hpp"
+#include "optimize/metrics/metric_spellings.hpp"
+#include "optimize/metrics/robust_errors.hpp"
+#include "optimize/metrics/simulated_metrics.hpp"
+#include "optimize/metrics/spectrum_metrics.hpp"
+#include "optimize/simulate/scene_prior.hpp"
+#include "optimize/simulate/scenes.hpp"
 #include "python/common.hpp"
 #include "python/level_args.hpp"
 #include "python/metrics_common.hpp"
 #include "python/values.hpp"
-#include "simulate/scene_prior.hpp"
-#include "simulate/scenes.hpp"
 
 namespace pinmask::python {
 
@@ -34,7 +34,7 @@ CompareSettings compare_settings(std::vector<NoiseLevel> levels, PriorSpec prior
     m.tv = true;
     m.noise = std::move(levels);
     m.prior = std::move(prior);
-    // The scene and decoder spellings of score and compare (metrics/metric_spellings).
+    // The scene and decoder spellings of score and compare (optimize/metrics/metric_spellings).
     m.scenes = scene_specs_from_names(scenes);
     m.simulation.seed = seed;
     set_decoder_settings(m.simulation, nsr, tv_lambda, tv_iterations);
@@ -147,8 +147,8 @@ void bind_metrics(py::module_& m) {
         py::arg("full_well") = py::none(), py::arg("bits") = py::none(),
         py::arg("optical_density") = py::none(), py::arg("prior") = "natural",
         py::arg("robust") = py::none(),
-        R"(The metric row of `pinmask compare` for one mask (metrics/compare over
-metrics/mask_metrics, the set score and search use; same settings, same numbers): sidelobes,
+        R"(The metric row of `pinmask compare` for one mask (optimize/metrics/compare over
+optimize/metrics/mask_metrics, the set score and search use; same settings, same numbers): sidelobes,
 spectrum, OTF condition, analytic Wiener PSNR (dB; the nsr filter and the per-frequency optimal
 bound), simulated Wiener and TV-L2 PSNR (dB) and SSIM over `scenes`.
 Noise (as --snr / --photons and the sensor flags): snr_db, Gaussian SNR in dB, a number or a
@@ -249,7 +249,7 @@ robust_loss_db_<level>, score's keys and numbers.)");
         py::arg("optical_density") = py::none(), py::arg("filter") = "optimal",
         py::arg("prior_scenes") = kDefaultPriorScenes,
         py::arg("prior_first_seed") = kPriorFirstSeed,
-        "Expected Wiener error in closed form (metrics/analytic_error): filter 'optimal' "
+        "Expected Wiener error in closed form (optimize/metrics/analytic_error): filter 'optimal' "
         "(per-frequency), 'nsr:VALUE' (deconvwnr's fixed NSR) or 'tuned' (the NSR minimising "
         "the expected MSE); prior: the mean |X^|^2 of prior_scenes natural 1/f textures (seeds "
         "prior_first_seed..); noise as simulate() (Gaussian snr_db, default 30, or photons ...). "
@@ -309,7 +309,8 @@ robust_loss_db_<level>, score's keys and numbers.)");
         py::arg("bits") = py::none(), py::arg("optical_density") = py::none(),
         py::arg("weight") = "tuned", py::arg("noise_seeds") = 1, py::arg("seed") = 0,
         py::arg("tv_iterations") = 200,
-        "Simulated reconstruction quality over one period (metrics/simulated_metrics): each "
+        "Simulated reconstruction quality over one period (optimize/metrics/simulated_metrics): "
+        "each "
         "scene through the mask's PSF with noise (as simulate()), decoded by wiener or tv with "
         "weight (NSR or lambda) 'tuned' or a number > 0, noise_seeds draws from seed. Returns "
         "{weight, mean_psnr_db, mean_ssim, scenes: {name: (psnr_db, ssim)}, decodes}.");

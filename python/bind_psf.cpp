@@ -1,16 +1,17 @@
-// Kernels and the PSF of a mask (design/kernel.hpp, design/psf.hpp), PSF files (io/psf_files),
-// image files (core/image_io). psf() and write_psf() follow `pinmask psf` (cli/cmd_psf.cpp).
+// Kernels and the PSF of a mask (design/psf/kernel.hpp, design/psf/psf.hpp), PSF files
+// (io/psf_files), image files (core/image/image_io). psf() and write_psf() follow `pinmask psf`
+// (cli/cmd_psf.cpp).
 #include <filesystem>
 
-#include "core/error.hpp"
-#include "core/field_names.hpp"
-#include "core/image_io.hpp"
-#include "core/raw_io.hpp"
-#include "design/kernel.hpp"
-#include "design/psf.hpp"
-#include "design/psf_exact.hpp"
-#include "design/psf_settings.hpp"
-#include "design/working_distance.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "core/image/image_io.hpp"
+#include "core/image/raw_io.hpp"
+#include "design/optics/working_distance.hpp"
+#include "design/psf/kernel.hpp"
+#include "design/psf/psf.hpp"
+#include "design/psf/psf_exact.hpp"
+#include "design/psf/psf_settings.hpp"
 #include "io/psf_files.hpp"
 #include "python/common.hpp"
 #include "python/values.hpp"
@@ -138,7 +139,7 @@ void bind_psf(py::module_& m) {
                 }
                 return to_array(std::move(psf));
             }
-            // design/psf_exact: what the sensor records from a point at object_distance
+            // design/psf/psf_exact: what the sensor records from a point at object_distance
             // (default the mask's u), over the sensor or size = (rows, cols).
             ExactPsfOptions eo;
             eo.kernel = ko;

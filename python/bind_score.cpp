@@ -1,22 +1,22 @@
 // Scoring: score() is `pinmask score` on masks (paths or Mask objects): only the metric groups
-// asked for are computed (metrics/mask_metrics compute_mask_metrics with the selection of
-// metrics/metric_spellings select_metrics), rows built by io/metrics_json as the command builds
-// them, with score's defaults (scenes letter-R, usaf,
-// natural; SNR 20, 30, 40 dB; NSR 0.01; noise seed 0), and the rows carry the keys of
-// `pinmask score --json`. robust_decoder=True adds score --robust-decoder's decoder as arrays
-// (the PSF and the per-frequency NSR map that decode(psf=, nsr_map=) reads) instead of files.
+// asked for are computed (optimize/metrics/mask_metrics compute_mask_metrics with the selection of
+// optimize/metrics/metric_spellings select_metrics), rows built by io/metrics_json as the command
+// builds them, with score's defaults (scenes letter-R, usaf, natural; SNR 20, 30, 40 dB; NSR 0.01;
+// noise seed 0), and the rows carry the keys of `pinmask score --json`. robust_decoder=True adds
+// score --robust-decoder's decoder as arrays (the PSF and the per-frequency NSR map that
+// decode(psf=, nsr_map=) reads) instead of files.
 #include <string>
 #include <vector>
 
-#include "core/error.hpp"
-#include "core/field_names.hpp"
-#include "design/psf.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "design/psf/psf.hpp"
 #include "io/mask_json.hpp"
 #include "io/metrics_json.hpp"
-#include "metrics/mask_metrics.hpp"
-#include "metrics/metric_spellings.hpp"
-#include "metrics/robust_errors.hpp"
-#include "metrics/robust_wiener.hpp"
+#include "optimize/metrics/mask_metrics.hpp"
+#include "optimize/metrics/metric_spellings.hpp"
+#include "optimize/metrics/robust_errors.hpp"
+#include "optimize/metrics/robust_wiener.hpp"
 #include "python/common.hpp"
 #include "python/level_args.hpp"
 #include "python/values.hpp"

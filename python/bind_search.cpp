@@ -1,26 +1,26 @@
 // Mask search: search() is `pinmask search` up to its ranked masks, one call of the library
-// pipeline search/search_pipeline (run_search_pipeline: sampling with keep-out cells, the
+// pipeline optimize/search/search_pipeline (run_search_pipeline: sampling with keep-out cells, the
 // search on the analytic objective, the spectral-zero rule, the simulated re-ranking, top-k).
 #include <atomic>
 #include <filesystem>
 #include <memory>
 #include <tuple>
 
-#include "core/error.hpp"
-#include "core/field_names.hpp"
-#include "core/units.hpp"
-#include "design/optics.hpp"
-#include "design/psf.hpp"
-#include "design/psf_settings.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "core/units/units.hpp"
+#include "design/optics/optics.hpp"
+#include "design/psf/psf.hpp"
+#include "design/psf/psf_settings.hpp"
 #include "io/checkpoint.hpp"
 #include "io/search_config.hpp"
 #include "io/search_run_config.hpp"
-#include "metrics/metric_spellings.hpp"
-#include "metrics/robust_errors.hpp"
+#include "optimize/metrics/metric_spellings.hpp"
+#include "optimize/metrics/robust_errors.hpp"
+#include "optimize/search/search_pipeline.hpp"
 #include "python/common.hpp"
 #include "python/level_args.hpp"
 #include "python/values.hpp"
-#include "search/search_pipeline.hpp"
 
 namespace pinmask::python {
 
@@ -258,7 +258,7 @@ void bind_search(py::module_& m) {
         py::arg("depth_weight") = 0.0, py::arg("depth_from") = py::none(),
         py::arg("depth_to") = py::none(),
         R"(Searches masks for a camera (grid n, holes K or a range 'A..B', tiles, spacing in cells) as
-`pinmask search` (the same pipeline, search/search_pipeline): strategy random | anneal, a
+`pinmask search` (the same pipeline, optimize/search/search_pipeline): strategy random | anneal, a
 time budget (time, '20s', '2min'; it covers the re-ranking too) or evals per chain (> 0:
 deterministic for the same seed and threads), threads independent chains, top candidates,
 keep_out 'none' | 'border'; objective: the weighted sum of analytic_wiener (-expected Wiener PSNR

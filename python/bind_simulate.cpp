@@ -1,24 +1,24 @@
-// Scenes and forward simulation (simulate/scenes.hpp, simulate/simulate.hpp): simulate() follows
-// `pinmask simulate` (cli/cmd_simulate.cpp) minus the file writing.
+// Scenes and forward simulation (optimize/simulate/scenes.hpp, optimize/simulate/simulate.hpp):
+// simulate() follows `pinmask simulate` (cli/cmd_simulate.cpp) minus the file writing.
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <thread>
 
-#include "core/error.hpp"
-#include "core/fft.hpp"
-#include "core/field_names.hpp"
-#include "core/resource_limits.hpp"
-#include "core/units.hpp"
-#include "design/psf.hpp"
-#include "design/working_distance.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "core/fft/fft.hpp"
+#include "core/limits/resource_limits.hpp"
+#include "core/units/units.hpp"
+#include "design/optics/working_distance.hpp"
+#include "design/psf/psf.hpp"
 #include "io/mask_json.hpp"
-#include "metrics/noise_levels.hpp"
+#include "optimize/metrics/noise_levels.hpp"
+#include "optimize/simulate/scenes.hpp"
+#include "optimize/simulate/simulate.hpp"
+#include "optimize/simulate/simulate_pipeline.hpp"
 #include "python/common.hpp"
 #include "python/values.hpp"
-#include "simulate/scenes.hpp"
-#include "simulate/simulate.hpp"
-#include "simulate/simulate_pipeline.hpp"
 
 namespace pinmask::python {
 
@@ -134,8 +134,8 @@ void bind_simulate(py::module_& m) {
             const Mask mask = mask_arg(mask_obj, allow_violations);
             py::dict out;
             if (geometry == "exact" || !object_distance.is_none() || size) {
-                // `simulate --geometry exact` (simulate/simulate_pipeline, as the command runs
-                // it): every pinhole of the tiled mask at its true position for an object at
+                // `simulate --geometry exact` (optimize/simulate/simulate_pipeline, as the command
+                // runs it): every pinhole of the tiled mask at its true position for an object at
                 // object_distance, over the sensor or a size = (rows, cols) window.
                 // object_distance and size need exact geometry (refused here); the pipeline
                 // refuses full_sensor and sensor with it, naming them.

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "core/error.hpp"
-#include "core/field_names.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
 #include "io/sweep_config.hpp"
 #include "python/common.hpp"
 

@@ -7,7 +7,7 @@
 #include <mutex>
 #include <thread>
 
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
 #include "python/keyword_names.hpp"
 
 namespace pinmask::python {

@@ -23,7 +23,7 @@
 #include <functional>
 #include <string>
 
-#include "core/image.hpp"
+#include "core/image/image.hpp"
 
 namespace pinmask::python {
 

@@ -2,8 +2,8 @@
 
 #include <sstream>
 
-#include "core/error.hpp"
-#include "core/field_names.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
 
 namespace pinmask::python {
 namespace {

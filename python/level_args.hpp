@@ -3,14 +3,15 @@
 // electrons per pixel per pinhole) with the sensor stages, each a number or a list of numbers;
 // prior 'natural' | 'text' | 'stars' or image files (a list of paths or one comma-separated
 // string) with prior_scenes sample scenes. Checks and messages are the library's
-// (metrics/noise_levels, metrics/mask_metrics parse_prior_spec), naming the CLI's flags.
+// (optimize/metrics/noise_levels, optimize/metrics/mask_metrics parse_prior_spec), naming the CLI's
+// flags.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "metrics/mask_metrics.hpp"
-#include "metrics/noise_levels.hpp"
+#include "optimize/metrics/mask_metrics.hpp"
+#include "optimize/metrics/noise_levels.hpp"
 #include "python/common.hpp"
 
 namespace pinmask::python {

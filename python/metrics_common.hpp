@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "metrics/compare.hpp"
+#include "optimize/metrics/compare.hpp"
 #include "python/common.hpp"
 
 namespace pinmask::python {

@@ -1,6 +1,7 @@
 // The pinmask Python module: entry point. Each bind_*.cpp adds one concept (python/common.hpp).
-#include "core/allocator.hpp"
-#include "core/fft_environment.hpp"
+#include "core/fft/fft_environment.hpp"
+#include "core/limits/allocator.hpp"
+#include "core/version.hpp"
 #include "python/common.hpp"
 
 namespace pinmask::python {
@@ -28,11 +29,11 @@ the input copies made.
 
 Errors: ValueError for invalid input (the message is the command line's: it names the flag or
 field, the value and the rule), RuntimeError for failures while doing valid work.)";
-    m.attr("__version__") = "0.1.0";
-    // core/allocator.hpp: freed planes stay on the heap (up to 32 MiB), so repeated decodes do
-    // not page-fault their memory in again; PINMASK_ALLOCATOR=default before import skips it.
+    m.attr("__version__") = kVersion;
+    // core/limits/allocator.hpp: freed planes stay on the heap (up to 32 MiB), so repeated decodes
+    // do not page-fault their memory in again; PINMASK_ALLOCATOR=default before import skips it.
     pinmask::keep_freed_memory();
-    // The command's FFT planning (core/fft_environment): measured plans from the same wisdom
+    // The command's FFT planning (core/fft/fft_environment): measured plans from the same wisdom
     // file ($PINMASK_WISDOM, $XDG_CACHE_HOME/pinmask/wisdom, ~/.cache/pinmask/wisdom), so the
     // module's transforms are the command's (same plans, same bits) and as fast. Its warnings
     // (a corrupt or foreign file, ignored and replaced) go to Python's warnings.

@@ -13,9 +13,9 @@ double length_value(const py::handle& v, const std::string& field, bool allow_in
 
 }  // namespace pinmask::python
 
-#include "design/mask.hpp"
-#include "metrics/noise_levels.hpp"
-#include "simulate/noise_model.hpp"
+#include "design/pattern/mask.hpp"
+#include "optimize/metrics/noise_levels.hpp"
+#include "optimize/simulate/noise_model.hpp"
 
 namespace pinmask::python {
 
@@ -26,7 +26,7 @@ struct NoiseArgs {
     std::optional<int> bits;
 };
 NoiseModel noise_model(const NoiseArgs& a);
-// The sensor stages of the args (metrics/noise_levels.hpp).
+// The sensor stages of the args (optimize/metrics/noise_levels.hpp).
 SensorSettings sensor_settings(const NoiseArgs& a);
 
 // A mask argument: a Mask, or a path to a *.mask.json.

@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <sstream>
 
-#include "core/units.hpp"
-#include "design/optics.hpp"
+#include "core/units/units.hpp"
+#include "design/optics/optics.hpp"
 
 namespace pinmask {
 namespace {

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "design/camera.hpp"
+#include "design/optics/camera.hpp"
+#include "optimize/metrics/compare.hpp"
 #include "report/report.hpp"
-#include "metrics/compare.hpp"
 
 namespace pinmask {
 

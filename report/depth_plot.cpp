@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <memory>
 
-#include "core/error.hpp"
-#include "core/units.hpp"
+#include "core/errors/error.hpp"
+#include "core/units/units.hpp"
 #include "report/plot_canvas.hpp"
 
 namespace pinmask {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "metrics/depth_loss.hpp"
+#include "optimize/metrics/depth_loss.hpp"
 
 namespace pinmask {
 

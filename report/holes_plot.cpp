@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <memory>
 
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
 #include "report/plot_canvas.hpp"
 
 namespace pinmask {

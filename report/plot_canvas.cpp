@@ -2,8 +2,8 @@
 
 #include <cairo-svg.h>
 
-#include "core/cairo_handles.hpp"
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
+#include "core/image/cairo_handles.hpp"
 
 namespace pinmask {
 namespace {

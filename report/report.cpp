@@ -11,16 +11,16 @@
 #include <map>
 #include <memory>
 
-#include "core/cairo_handles.hpp"
-#include "core/error.hpp"
-#include "layout/film_paint.hpp"
+#include "core/errors/error.hpp"
+#include "core/image/cairo_handles.hpp"
+#include "export/layout/film_paint.hpp"
 #include "report/report_draw.hpp"
 #include "report/report_pages.hpp"
 
 namespace pinmask {
 namespace {
 
-constexpr char kPinnedDate[] = "2000-01-01T00:00:00Z";  // as formats/pdf_writer
+constexpr char kPinnedDate[] = "2000-01-01T00:00:00Z";  // as export/formats/pdf_writer
 constexpr double kMaxPixelsPerPoint = 8.0;              // 576 dpi: 6736 x 4762 px pages
 const report_draw::Font kFooterFont{7.5, false, false};
 constexpr double kFooterBaselineFromBottom = 24.0;

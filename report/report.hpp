@@ -10,9 +10,9 @@
 // Image pixels are drawn as sharp squares (nearest-neighbour), row 0 at the top.
 //
 // Determinism: the same document gives the same bytes on one build and font set. PDF creation
-// and modification dates are pinned (as formats/pdf_writer does); Cairo's SVG surface numbers
-// images and surfaces with process-wide counters, so those ids are renumbered in order of first
-// appearance.
+// and modification dates are pinned (as export/formats/pdf_writer does); Cairo's SVG surface
+// numbers images and surfaces with process-wide counters, so those ids are renumbered in order of
+// first appearance.
 #pragma once
 
 #include <filesystem>
@@ -20,7 +20,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/image.hpp"
+#include "core/image/image.hpp"
 
 namespace pinmask {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/image.hpp"
+#include "core/image/image.hpp"
 
 namespace pinmask::report_draw {
 

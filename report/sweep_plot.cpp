@@ -8,7 +8,7 @@
 #include <limits>
 #include <memory>
 
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
 #include "report/plot_canvas.hpp"
 
 namespace pinmask {

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""How closely the camera's band sampling (design/spectrum: a Gaussian of FWHM B at 13
+"""How closely the camera's band sampling (design/optics/spectrum: a Gaussian of FWHM B at 13
 wavelengths over +-1.5 FWHM) follows the band: the L1 distance of the mask's PSF from the PSF of
 a 241-sample Gaussian over +-3 FWHM, beside that of 7 samples over +-1.5 FWHM and that of the
 one-wavelength PSF (the band's whole effect). Three cameras; the figures are quoted in docs/commands.md.

@@ -13,20 +13,20 @@
 //   demo-calibrate-forward --psnr ESTIMATE TRUTH
 //     prints the PSNR (dB) of ESTIMATE against TRUTH at the best integer shift within 12 px
 //     (a PSF's absolute position only shifts the decoded image).
-// The PSFs are the mask's kernel (design/psf mask_kernel) placed at sub-pixel spot positions by
-// calibrate/subpixel add_kernel; the lattice is centred in the frame.
+// The PSFs are the mask's kernel (design/psf/psf mask_kernel) placed at sub-pixel spot positions by
+// decode/calibrate/subpixel add_kernel; the lattice is centred in the frame.
 #include <cmath>
 #include <iostream>
 #include <random>
 #include <string>
 
-#include "calibrate/subpixel.hpp"
-#include "core/fft.hpp"
-#include "core/image_io.hpp"
-#include "design/psf.hpp"
+#include "core/fft/fft.hpp"
+#include "core/image/image_io.hpp"
+#include "decode/calibrate/subpixel.hpp"
+#include "design/psf/psf.hpp"
 #include "io/mask_json.hpp"
-#include "simulate/image_quality.hpp"
-#include "simulate/scenes.hpp"
+#include "optimize/simulate/image_quality.hpp"
+#include "optimize/simulate/scenes.hpp"
 
 using namespace pinmask;
 

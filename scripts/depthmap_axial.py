@@ -7,7 +7,7 @@ whole-capture figure capture_depth_m (the frame-mean cost's minimum, parabola-re
 DRAWS noise draws: the estimates' mean (bias against u0) and standard deviation; the FWHM of the
 estimate's profile is 2.355 sigma (a Gaussian's). Beside them the one-pixel figure: the
 pattern's extent N_t d grows by f N_t d |d(1/u)| / w pixels, one pixel at d(1/u) = w / (f N_t d),
-i.e. du = u0^2 w / (f N_t d), and the Cramer-Rao bound of metrics/depth_fisher
+i.e. du = u0^2 w / (f N_t d), and the Cramer-Rao bound of optimize/metrics/depth_fisher
 (pinmask.depth_fisher: the noise floor of any unbiased estimate, as a FWHM 2.355 sigma). Writes docs/depthmap_axial.png (with a kernel argument KERNEL:
 docs/depthmap_axial_KERNEL.png) and prints the table.
 Run from the repository: PYTHONPATH=build/python /usr/bin/python3 scripts/depthmap_axial.py [KERNEL]"""

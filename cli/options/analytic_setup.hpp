@@ -1,5 +1,6 @@
-// Shared by score, compare and search: the flags of the one metric set (metrics/mask_metrics)
-// and its JSON rendering, so every command names and prints the same numbers the same way.
+// Shared by score, compare and search: the flags of the one metric set
+// (optimize/metrics/mask_metrics) and its JSON rendering, so every command names and prints the
+// same numbers the same way.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -8,14 +9,14 @@
 #include <vector>
 
 #include "io/metrics_json.hpp"
-#include "metrics/analytic_error.hpp"
-#include "metrics/mask_metrics.hpp"
-#include "metrics/metric_spellings.hpp"
-#include "metrics/simulated_metrics.hpp"
+#include "optimize/metrics/analytic_error.hpp"
+#include "optimize/metrics/mask_metrics.hpp"
+#include "optimize/metrics/metric_spellings.hpp"
+#include "optimize/metrics/simulated_metrics.hpp"
 
 namespace pinmask::cli {
 
-// The filter, weight and decoder spellings (metrics/metric_spellings.hpp), under their old
+// The filter, weight and decoder spellings (optimize/metrics/metric_spellings.hpp), under their old
 // names.
 using pinmask::parse_weight_choice;
 using pinmask::parse_wiener_filter;

@@ -4,9 +4,9 @@
 #include <string>
 #include <utility>
 
-#include "core/error.hpp"
-#include "core/units.hpp"
-#include "design/working_distance.hpp"
+#include "core/errors/error.hpp"
+#include "core/units/units.hpp"
+#include "design/optics/working_distance.hpp"
 #include "io/camera_json.hpp"
 
 namespace pinmask::cli {
@@ -55,7 +55,8 @@ Camera resolve_camera(const CameraOptions& o) {
         c.sensor_cols = s.cols;
         c.sensor_rows = s.rows;
     }
-    // design/camera names Camera fields; on the command line the flag is what the user typed.
+    // design/optics/camera names Camera fields; on the command line the flag is what the user
+    // typed.
     static const std::pair<const char*, const char*> kFlagOf[] = {
         {"object_distance_m", "--object-distance"},
         {"lens_focal_m", "--lens-focal"},

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "design/camera.hpp"
+#include "design/optics/camera.hpp"
 
 namespace pinmask::cli {
 
@@ -45,7 +45,7 @@ struct GeometryOptions {
 
 // --grid, --holes, --tiles, --spacing (defaults: the paper's 16, 20, 2, 2.0). With
 // `holes_range` (search), --holes is read as text into it instead: K or a range A..B
-// (search/search_pipeline parse_holes_range), o.holes unused.
+// (optimize/search/search_pipeline parse_holes_range), o.holes unused.
 void add_geometry_options(CLI::App& cmd, GeometryOptions& o, std::string* holes_range = nullptr);
 
 }  // namespace pinmask::cli

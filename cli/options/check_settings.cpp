@@ -3,9 +3,9 @@
 #include <cmath>
 #include <string>
 
-#include "core/error.hpp"
-#include "core/units.hpp"
-#include "export/vendor_presets.hpp"
+#include "core/errors/error.hpp"
+#include "core/units/units.hpp"
+#include "export/pipeline/vendor_presets.hpp"
 #include "io/sidecar_layout.hpp"
 
 namespace pinmask::cli {

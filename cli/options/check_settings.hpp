@@ -6,10 +6,10 @@
 #include <optional>
 #include <string>
 
-#include "export/drc.hpp"
+#include "export/layout/geometry.hpp"
+#include "export/pipeline/drc.hpp"
 #include "io/export_sidecar.hpp"
 #include "io/sidecar_layout.hpp"
-#include "layout/geometry.hpp"
 
 namespace pinmask::cli {
 

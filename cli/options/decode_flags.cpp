@@ -3,10 +3,10 @@
 #include <cmath>
 #include <string>
 
-#include "core/error.hpp"
-#include "core/field_names.hpp"
-#include "core/units.hpp"
-#include "decode/decode_modes.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "core/units/units.hpp"
+#include "decode/solvers/decode_modes.hpp"
 
 namespace pinmask::cli {
 

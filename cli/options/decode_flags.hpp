@@ -1,7 +1,7 @@
 // The flags of `pinmask decode` (with their help texts), the command's settings they fill, and
 // the refusal of flags the chosen method does not read: a value given for a parameter the
 // method ignores is an error (exit 2 naming the flag), never silently dropped
-// (decode/decode_request.hpp write_method_parameter says which method's options struct each
+// (decode/capture/decode_request.hpp write_method_parameter says which method's options struct each
 // parameter writes to).
 #pragma once
 
@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "decode/decode_method.hpp"
-#include "decode/decode_request.hpp"
+#include "decode/capture/decode_request.hpp"
+#include "decode/solvers/decode_method.hpp"
 
 namespace pinmask::cli {
 
@@ -30,7 +30,7 @@ struct DecodeCommand {
     DecodeRequest request;
     // The text flags as given; OUT.config.json and the stats repeat them as given.
     std::string crop = "center";    // center | centre | none | X,Y
-    std::string method = "wiener";  // decode/decode_method.hpp names
+    std::string method = "wiener";  // decode/solvers/decode_method.hpp names
     std::string model = "cyclic";
     std::string regulariser = "identity";
     std::string background = "none";  // none | corner | VALUE

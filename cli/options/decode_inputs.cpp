@@ -6,13 +6,13 @@
 #include <utility>
 
 #include "cli/options/flag_names.hpp"
-#include "core/error.hpp"
-#include "core/image_io.hpp"
-#include "core/units.hpp"
-#include "design/mask.hpp"
-#include "design/psf.hpp"
-#include "design/psf_exact.hpp"
-#include "design/working_distance.hpp"
+#include "core/errors/error.hpp"
+#include "core/image/image_io.hpp"
+#include "core/units/units.hpp"
+#include "design/optics/working_distance.hpp"
+#include "design/pattern/mask.hpp"
+#include "design/psf/psf.hpp"
+#include "design/psf/psf_exact.hpp"
 #include "io/mask_json.hpp"
 #include "io/psf_files.hpp"
 
@@ -103,7 +103,7 @@ CaptureDecodeInputs load_shared_inputs(const DecodeCommand& r, BayerMode bayer, 
         }
         if (refocus && refocus->exact_geometry) {
             // The pitch at u is not whole: what the sensor records from a point at u, over the
-            // frame (design/psf_exact), for the linear model (apply_refocus set it).
+            // frame (design/psf/psf_exact), for the linear model (apply_refocus set it).
             ExactPsfOptions eo;
             eo.object_distance_m = u;
             eo.rows = frame_rows;

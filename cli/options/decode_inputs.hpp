@@ -8,9 +8,9 @@
 
 #include "cli/options/decode_flags.hpp"
 #include "cli/outputs/decode_output.hpp"
-#include "core/error.hpp"
-#include "core/raw_io.hpp"
-#include "decode/capture_pipeline.hpp"
+#include "core/errors/error.hpp"
+#include "core/image/raw_io.hpp"
+#include "decode/capture/capture_pipeline.hpp"
 
 namespace pinmask::cli {
 
@@ -18,8 +18,8 @@ namespace pinmask::cli {
 Image load_capture(const std::string& path, BayerMode bayer, nlohmann::json& stats);
 
 // Refocus (--object-distance with --mask): when the pitch at u is not a whole number of pixels
-// (design/working_distance refocus_geometry), the decode uses the exact-geometry PSF at u over
-// the whole frame: r.model becomes linear and r.crop none (a note on stderr says so when they
+// (design/optics/working_distance refocus_geometry), the decode uses the exact-geometry PSF at u
+// over the whole frame: r.model becomes linear and r.crop none (a note on stderr says so when they
 // were set otherwise). Returns true then; false (nothing changed) for a whole pitch or no
 // refocus. Call before resolve_request.
 bool apply_refocus(DecodeCommand& r);

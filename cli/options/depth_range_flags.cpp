@@ -2,8 +2,8 @@
 
 #include <cstdio>
 
-#include "core/error.hpp"
-#include "core/units.hpp"
+#include "core/errors/error.hpp"
+#include "core/units/units.hpp"
 
 namespace pinmask::cli {
 namespace {

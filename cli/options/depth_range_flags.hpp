@@ -1,6 +1,6 @@
 // The depth range flags --depth-from/--depth-to of score, compare and search: one registration
 // and one rule for the three commands. The values are lengths with units like every distance
-// flag ("0.4m", "400mm"; a plain number is metres, core/units), converted before CLI11 stores
+// flag ("0.4m", "400mm"; a plain number is metres, core/units/units), converted before CLI11 stores
 // them, so the variables stay doubles in metres and a config file's plain number still merges
 // into them (search --config).
 #pragma once
@@ -8,7 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "metrics/depth_fisher.hpp"
+#include "optimize/metrics/depth_fisher.hpp"
 
 namespace pinmask::cli {
 

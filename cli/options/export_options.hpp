@@ -1,14 +1,14 @@
-// `pinmask export`'s settings (export/export_request.hpp) and the sidecar's plain data.
+// `pinmask export`'s settings (export/pipeline/export_request.hpp) and the sidecar's plain data.
 #pragma once
 
-#include "design/mask.hpp"
-#include "export/export_pipeline.hpp"
-#include "export/export_request.hpp"
+#include "design/pattern/mask.hpp"
+#include "export/pipeline/export_pipeline.hpp"
+#include "export/pipeline/export_request.hpp"
 #include "io/export_sidecar.hpp"
 
 namespace pinmask::cli {
 
-// The settings as parsed (export/export_request.hpp).
+// The settings as parsed (export/pipeline/export_request.hpp).
 using ExportFlags = ExportRequest;
 using pinmask::export_options_from;
 

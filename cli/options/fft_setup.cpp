@@ -2,7 +2,7 @@
 
 #include <iostream>
 
-#include "core/fft.hpp"
+#include "core/fft/fft.hpp"
 
 namespace pinmask::cli {
 

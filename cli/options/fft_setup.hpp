@@ -1,8 +1,8 @@
-// FFT planning for the `pinmask` process: core/fft_environment (FFTW_MEASURE plans remembered in
-// a wisdom file, threads = all cores), its warnings on stderr.
+// FFT planning for the `pinmask` process: core/fft/fft_environment (FFTW_MEASURE plans remembered
+// in a wisdom file, threads = all cores), its warnings on stderr.
 #pragma once
 
-#include "core/fft_environment.hpp"
+#include "core/fft/fft_environment.hpp"
 
 namespace pinmask::cli {
 
@@ -10,11 +10,11 @@ using pinmask::default_thread_count;
 using pinmask::wisdom_choice_from_environment;
 using pinmask::WisdomChoice;
 
-// Configures core/fft for this process (configure_fft_from_environment) and prints wisdom
+// Configures core/fft/fft for this process (configure_fft_from_environment) and prints wisdom
 // warnings to stderr. Called once by main before any command runs.
 void configure_fft_for_process();
 
-// Prints warnings core/fft recorded since (failed wisdom exports) to stderr.
+// Prints warnings core/fft/fft recorded since (failed wisdom exports) to stderr.
 void print_fft_warnings();
 
 }  // namespace pinmask::cli

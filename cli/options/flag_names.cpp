@@ -4,7 +4,7 @@
 #include <array>
 #include <utility>
 
-#include "core/field_names.hpp"
+#include "core/errors/field_names.hpp"
 
 namespace pinmask::cli {
 namespace {

@@ -1,5 +1,5 @@
 // The command line's spelling of the libraries' settings fields: the one table that maps a field
-// name a library uses in its messages (core/field_names.hpp) to the flag that sets it.
+// name a library uses in its messages (core/errors/field_names.hpp) to the flag that sets it.
 #pragma once
 
 #include <optional>

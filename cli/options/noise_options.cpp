@@ -2,8 +2,8 @@
 
 #include <sstream>
 
-#include "core/error.hpp"
-#include "core/units.hpp"
+#include "core/errors/error.hpp"
+#include "core/units/units.hpp"
 #include "io/json_strict.hpp"
 
 namespace pinmask::cli {

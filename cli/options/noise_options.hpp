@@ -1,7 +1,7 @@
-// The sensor flags of the photon noise model (simulate/noise_model.hpp), shared by simulate and
-// score: --read-noise, --dark-current, --full-well, --bits, --optical-density. The photon level
-// itself (--photons) and the Gaussian --snr stay with each command, which may take one value or
-// a list.
+// The sensor flags of the photon noise model (optimize/simulate/noise_model.hpp), shared by
+// simulate and score: --read-noise, --dark-current, --full-well, --bits, --optical-density. The
+// photon level itself (--photons) and the Gaussian --snr stay with each command, which may take one
+// value or a list.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -10,13 +10,13 @@
 #include <string>
 #include <vector>
 
-#include "metrics/mask_metrics.hpp"
-#include "metrics/noise_levels.hpp"
-#include "simulate/noise_model.hpp"
+#include "optimize/metrics/mask_metrics.hpp"
+#include "optimize/metrics/noise_levels.hpp"
+#include "optimize/simulate/noise_model.hpp"
 
 namespace pinmask::cli {
 
-// The sensor settings as parsed (metrics/noise_levels.hpp).
+// The sensor settings as parsed (optimize/metrics/noise_levels.hpp).
 using SensorFlags = SensorSettings;
 
 // Registers the five flags on cmd.
@@ -39,8 +39,8 @@ struct NoiseFlags {
 // Registers --snr (default `default_snr`), --photons and the sensor flags on cmd.
 void add_noise_flags(CLI::App& cmd, NoiseFlags& flags, const std::string& default_snr);
 
-// The levels the flags give (metrics/noise_levels over the parsed lists; InvalidInput naming
-// the flag); `text`, when given, gets a phrase for --explain and reports ("Gaussian noise at
+// The levels the flags give (optimize/metrics/noise_levels over the parsed lists; InvalidInput
+// naming the flag); `text`, when given, gets a phrase for --explain and reports ("Gaussian noise at
 // SNR 20,30 dB" / "the photon model at ...").
 std::vector<NoiseLevel> noise_levels(const NoiseFlags& flags, const CLI::App& cmd,
                                      std::string* text = nullptr);

@@ -1,6 +1,6 @@
 #include "cli/options/psf_options.hpp"
 
-#include "design/kernel_model.hpp"
+#include "design/psf/kernel_model.hpp"
 
 namespace pinmask::cli {
 

@@ -4,11 +4,11 @@
 
 #include <CLI/CLI.hpp>
 
-#include "design/psf_settings.hpp"
+#include "design/psf/psf_settings.hpp"
 
 namespace pinmask::cli {
 
-// The settings as parsed (design/psf_settings.hpp).
+// The settings as parsed (design/psf/psf_settings.hpp).
 using PsfOptions = PsfSettings;
 
 // --kernel, --kernel-path, --pixels-per-cell.

@@ -14,7 +14,7 @@
 #include "cli/options/noise_options.hpp"
 #include "cli/options/psf_options.hpp"
 #include "io/search_config.hpp"
-#include "search/search_pipeline.hpp"
+#include "optimize/search/search_pipeline.hpp"
 
 namespace pinmask::cli {
 

@@ -1,8 +1,8 @@
 #include "cli/options/simulate_config.hpp"
 
 #include "cli/options/noise_options.hpp"
-#include "core/fft.hpp"
-#include "design/kernel_model.hpp"
+#include "core/fft/fft.hpp"
+#include "design/psf/kernel_model.hpp"
 #include "io/mask_json.hpp"
 
 namespace pinmask::cli {

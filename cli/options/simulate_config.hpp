@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "design/mask.hpp"
-#include "simulate/simulate_pipeline.hpp"
+#include "design/pattern/mask.hpp"
+#include "optimize/simulate/simulate_pipeline.hpp"
 
 namespace pinmask::cli {
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "design/kernel_model.hpp"
+#include "design/psf/kernel_model.hpp"
 
 namespace pinmask::cli {
 

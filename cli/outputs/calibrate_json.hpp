@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "calibrate/calibrate.hpp"
+#include "decode/calibrate/calibrate.hpp"
 
 namespace pinmask::cli {
 

@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
 #include "io/export_sidecar.hpp"
 #include "io/mask_json.hpp"
 #include "io/sidecar_layout.hpp"

@@ -1,12 +1,12 @@
 // `pinmask check` of a picture export wrote (PDF, PNG, 1-bit TIFF): the design is rebuilt from
 // the mask and the export sidecar (or --mask and the flags; a PNG needs the sidecar for its
-// dpi) and the picture compared with it (export/file_check check_picture_file).
+// dpi) and the picture compared with it (export/pipeline/file_check check_picture_file).
 #pragma once
 
-#include "cli/outputs/check_report.hpp"
 #include "cli/options/check_settings.hpp"
-#include "export/file_check.hpp"
-#include "layout/vendor_rules.hpp"
+#include "cli/outputs/check_report.hpp"
+#include "export/layout/vendor_rules.hpp"
+#include "export/pipeline/file_check.hpp"
 
 namespace pinmask::cli {
 

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "layout/geometry.hpp"
+#include "export/layout/geometry.hpp"
 
 namespace pinmask::cli {
 namespace {

@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "export/file_check.hpp"
-#include "layout/vendor_rules.hpp"
+#include "export/layout/vendor_rules.hpp"
+#include "export/pipeline/file_check.hpp"
 
 namespace pinmask::cli {
 
@@ -15,7 +15,7 @@ struct CheckReport {
     const FileCheck* check = nullptr;
     DrcRules rules;
     std::string rules_source;  // where the vendor rules came from (--vendor, sidecar, default)
-    std::string spacing;       // the spacing rule in words (design/fab_grid), "" without a mask
+    std::string spacing;  // the spacing rule in words (design/optics/fab_grid), "" without a mask
     std::string note;
 };
 

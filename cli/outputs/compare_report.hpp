@@ -5,9 +5,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "report/report.hpp"
-#include "metrics/compare.hpp"
+#include "optimize/metrics/compare.hpp"
 #include "report/compare_report.hpp"
+#include "report/report.hpp"
 
 namespace pinmask::cli {
 

@@ -2,12 +2,12 @@
 
 #include <cmath>
 
-#include "core/error.hpp"
-#include "core/image_io.hpp"
-#include "core/number_format.hpp"
-#include "core/units.hpp"
-#include "decode/decode_method.hpp"
-#include "decode/decode_modes.hpp"
+#include "core/errors/error.hpp"
+#include "core/image/image_io.hpp"
+#include "core/units/number_format.hpp"
+#include "core/units/units.hpp"
+#include "decode/solvers/decode_method.hpp"
+#include "decode/solvers/decode_modes.hpp"
 #include "io/json_strict.hpp"
 
 namespace pinmask::cli {
@@ -64,13 +64,13 @@ void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const Deco
     }
     json backgrounds = json::array();
     if (s.background) backgrounds.push_back(*s.background);
-    stats["preprocess"] = {{"background",
-                            {{"mode", background_mode_name(r.request.background.mode)},
-                             {"values", backgrounds}}},
-                           {"downsample_rounds", r.request.downsample},
-                           {"normalize", norm},
-                           {"decoded_rows", s.decoded_rows},
-                           {"decoded_cols", s.decoded_cols}};
+    stats["preprocess"] = {
+        {"background",
+         {{"mode", background_mode_name(r.request.background.mode)}, {"values", backgrounds}}},
+        {"downsample_rounds", r.request.downsample},
+        {"normalize", norm},
+        {"decoded_rows", s.decoded_rows},
+        {"decoded_cols", s.decoded_cols}};
     stats["method"] = r.method;
     stats["precision"] =
         precision_name(s.single_precision ? Precision::kSingle : Precision::kDouble);

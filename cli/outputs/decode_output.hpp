@@ -1,7 +1,7 @@
 // Output side of `pinmask decode`: the resolved configuration and the stats as JSON, the JSON
 // of the period check, and the warning text for a period mismatch. The command's settings are
 // cli/options/decode_flags.hpp's; the output image is the decode library's
-// (decode/estimate_output.hpp).
+// (decode/capture/estimate_output.hpp).
 #pragma once
 
 #include <filesystem>
@@ -11,18 +11,18 @@
 #include <vector>
 
 #include "cli/options/decode_flags.hpp"
-#include "core/image.hpp"
-#include "decode/capture.hpp"
-#include "decode/capture_pipeline.hpp"
-#include "decode/decode_request.hpp"
-#include "decode/decoder.hpp"
-#include "decode/estimate_output.hpp"
-#include "decode/period.hpp"
+#include "core/image/image.hpp"
+#include "decode/capture/capture.hpp"
+#include "decode/capture/capture_pipeline.hpp"
+#include "decode/capture/decode_request.hpp"
+#include "decode/capture/decoder.hpp"
+#include "decode/capture/estimate_output.hpp"
+#include "decode/capture/period.hpp"
 
 namespace pinmask::cli {
 
-// The request's options (decode/decode_request.hpp) and the estimate's output file
-// (decode/estimate_output.hpp), under their old names.
+// The request's options (decode/capture/decode_request.hpp) and the estimate's output file
+// (decode/capture/estimate_output.hpp), under their old names.
 using pinmask::capture_decode_options;
 using pinmask::check_output_range;
 using pinmask::output_kind;
@@ -35,8 +35,8 @@ using pinmask::write_output_image;
 // Adds the pipeline's results to the stats JSON and its timings to `timings`. Everything
 // outside "timings_s" is deterministic (same inputs and options: the same bytes); all
 // wall-clock figures (per stage, per channel, per iteration) go to `timings`.
-void add_summary_json(nlohmann::json& stats, nlohmann::json& timings,
-                      const DecodeCommand& command, const CaptureDecodeSummary& summary);
+void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const DecodeCommand& command,
+                      const CaptureDecodeSummary& summary);
 
 // The resolved configuration (every option with its value, defaults filled in), as written to
 // OUT.config.json and into the stats. The text flags appear as given.

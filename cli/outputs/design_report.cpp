@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "core/units.hpp"
-#include "design/spectrum.hpp"
+#include "core/units/units.hpp"
+#include "design/optics/spectrum.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -110,7 +110,7 @@ nlohmann::ordered_json design_json(const OpticsReport& r, const WorkingDistance&
     j["kernel_model"] = kernel_model_name(r.kernel_model);
     j["kernel_reason"] = r.kernel_reason;
     {
-        // The band the kernels sum (design/spectrum) and the kernel psf would build with it.
+        // The band the kernels sum (design/optics/spectrum) and the kernel psf would build with it.
         Json wl = Json::array();
         for (const auto& [lambda, weight] : band_wavelengths(c)) wl.push_back({lambda, weight});
         j["spectrum"] = {{"bandwidth_m", c.bandwidth_m}, {"wavelengths", wl}};

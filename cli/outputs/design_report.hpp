@@ -7,14 +7,14 @@
 #include <vector>
 
 #include "cli/options/camera_options.hpp"
-#include "design/design_kernel.hpp"
-#include "design/optics.hpp"
-#include "design/working_distance.hpp"
+#include "design/optics/optics.hpp"
+#include "design/optics/working_distance.hpp"
+#include "design/psf/design_kernel.hpp"
 
 namespace pinmask::cli {
 
 // A pinhole solved for N whole pixels per cell at u and snapped to the fabrication grid
-// (design/fab_grid): the exact solution, the side on the grid and how far the grid moves the
+// (design/optics/fab_grid): the exact solution, the side on the grid and how far the grid moves the
 // pitch at u (px per cell; n times that across one period).
 struct GridSnap {
     bool solved = false;

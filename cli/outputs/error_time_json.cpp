@@ -3,7 +3,7 @@
 #include <cmath>
 #include <thread>
 
-#include "design/kernel_model.hpp"
+#include "design/psf/kernel_model.hpp"
 #include "io/mask_json.hpp"
 
 namespace pinmask::cli {

@@ -4,8 +4,8 @@
 #include <cctype>
 #include <iostream>
 
-#include "core/error.hpp"
-#include "core/image_io.hpp"
+#include "core/errors/error.hpp"
+#include "core/image/image_io.hpp"
 
 namespace pinmask::cli {
 

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "core/image.hpp"
+#include "core/image/image.hpp"
 
 namespace pinmask::cli {
 

@@ -2,7 +2,7 @@
 
 #include <csignal>
 
-#include "core/atomic_file.hpp"
+#include "core/files/atomic_file.hpp"
 
 namespace pinmask::cli {
 namespace {

@@ -16,8 +16,8 @@ const std::atomic<bool>& install_interrupt_flag();
 int interrupt_count();
 
 // For the commands that do not poll the flag (export, psf, check, ...): SIGINT, SIGTERM, SIGHUP
-// and SIGQUIT unlink this process's pending temporary files (core/atomic_file) and then end it
-// as the signal would have, so an interrupted run leaves neither a final file nor a *.tmp-*
+// and SIGQUIT unlink this process's pending temporary files (core/files/atomic_file) and then end
+// it as the signal would have, so an interrupted run leaves neither a final file nor a *.tmp-*
 // file. install_interrupt_flag() later replaces the SIGINT/SIGTERM handlers for a command that
 // stops cleanly instead. cli/main.cpp installs this first.
 void install_cleanup_on_signal();

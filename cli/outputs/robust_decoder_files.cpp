@@ -2,14 +2,14 @@
 
 #include <filesystem>
 
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/image_io.hpp"
-#include "core/output_set.hpp"
-#include "design/psf.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/atomic_file.hpp"
+#include "core/files/output_set.hpp"
+#include "core/image/image_io.hpp"
+#include "design/psf/psf.hpp"
 #include "io/json_strict.hpp"
 #include "io/psf_files.hpp"
-#include "metrics/robust_wiener.hpp"
+#include "optimize/metrics/robust_wiener.hpp"
 
 namespace pinmask::cli {
 namespace {

@@ -1,6 +1,6 @@
 // `score MASK --robust SPEC --robust-decoder DIR`: the robust design's decoder (the filter
-// minimising the expected fabricated error, metrics/robust_wiener.hpp robust_decoder_inputs) as
-// files `pinmask decode` reads:
+// minimising the expected fabricated error, optimize/metrics/robust_wiener.hpp
+// robust_decoder_inputs) as files `pinmask decode` reads:
 //   DIR/robust-psf.tiff  the expected fabricated PSF (float32, sum 1), with DIR/robust-psf.npy
 //                        (float64, the exact values) and the sidecar DIR/robust-psf.json
 //   DIR/robust-nsr.npy   the per-frequency NSR (float64, period x period, fft2 order)
@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "design/mask.hpp"
-#include "simulate/noise_model.hpp"
-#include "metrics/robust_errors.hpp"
-#include "simulate/scene_prior.hpp"
+#include "design/pattern/mask.hpp"
+#include "optimize/metrics/robust_errors.hpp"
+#include "optimize/simulate/noise_model.hpp"
+#include "optimize/simulate/scene_prior.hpp"
 
 namespace pinmask::cli {
 

@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <sstream>
 
-#include "core/atomic_file.hpp"
-#include "core/number_format.hpp"
+#include "core/files/atomic_file.hpp"
+#include "core/units/number_format.hpp"
 #include "io/json_strict.hpp"
 #include "io/mask_json.hpp"
 #include "report/holes_plot.hpp"
@@ -20,7 +20,7 @@ double score_or_nan(const Mask& m, const char* key) {
     return it == m.provenance.scores.end() ? NAN : it->second;
 }
 
-// "Best possible for K holes <= X dB" (search/objective_bound): for rank 1's K, and with a
+// "Best possible for K holes <= X dB" (optimize/search/objective_bound): for rank 1's K, and with a
 // pinhole-count range the largest bound over the range's K.
 std::string bound_summary(const SearchPipelineSummary& summary) {
     if (summary.ranked.empty() || !std::isfinite(summary.ranked.front().upper_bound_psnr_db))

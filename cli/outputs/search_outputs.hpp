@@ -9,8 +9,8 @@
 // With --holes A..B also:
 //   holes.csv      K, light gain, objective, predicted (analytic) Wiener PSNR, spectral zero,
 //                  geometry hash of the best mask at each K, and the upper bound on the analytic
-//                  PSNR of any pattern with that K (search/objective_bound; summary.md holds
-//                  the same table and "best possible for K holes <= X dB")
+//                  PSNR of any pattern with that K (optimize/search/objective_bound; summary.md
+//                  holds the same table and "best possible for K holes <= X dB")
 //   holes.svg, holes.png   predicted PSNR against K, light gain K beside it (report/holes_plot)
 //   best-K<K>.mask.json    the best mask at each K
 #pragma once
@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "search/search_pipeline.hpp"
+#include "optimize/search/search_pipeline.hpp"
 
 namespace pinmask::cli {
 

@@ -4,7 +4,7 @@
 #include <iostream>
 #include <utility>
 
-#include "core/atomic_file.hpp"
+#include "core/files/atomic_file.hpp"
 #include "io/mask_json.hpp"
 
 namespace pinmask::cli {

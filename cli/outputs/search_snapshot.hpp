@@ -6,11 +6,11 @@
 // after one Ctrl-C) writes the final files and removes it; so does a run that fails.
 //
 // Rank 0 keeps it, from its own chains and the patterns the cluster exchanges with it (a
-// migration received): a thread of its own writes the best so far atomically (core/atomic_file)
-// when it improved and at least `period_s` have passed since the last write (the first best is
-// written at once), and at once after the first SIGINT/SIGTERM (the interrupt flag), before the
-// ranks gather. Writing costs the search nothing: the chains only hand over an improved pattern
-// under a mutex.
+// migration received): a thread of its own writes the best so far atomically
+// (core/files/atomic_file) when it improved and at least `period_s` have passed since the last
+// write (the first best is written at once), and at once after the first SIGINT/SIGTERM (the
+// interrupt flag), before the ranks gather. Writing costs the search nothing: the chains only hand
+// over an improved pattern under a mutex.
 #pragma once
 
 #include <atomic>
@@ -20,7 +20,7 @@
 #include <optional>
 #include <thread>
 
-#include "design/mask.hpp"
+#include "design/pattern/mask.hpp"
 
 namespace pinmask::cli {
 

@@ -6,8 +6,8 @@
 #include <set>
 #include <sstream>
 
-#include "core/atomic_file.hpp"
-#include "core/number_format.hpp"
+#include "core/files/atomic_file.hpp"
+#include "core/units/number_format.hpp"
 #include "io/json_strict.hpp"
 #include "io/mask_json.hpp"
 #include "report/sweep_plot.hpp"

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "io/sweep_config.hpp"
-#include "search/search_pipeline.hpp"
-#include "search/sweep.hpp"
+#include "optimize/search/search_pipeline.hpp"
+#include "optimize/search/sweep.hpp"
 
 namespace pinmask::cli {
 

@@ -584,7 +584,7 @@ def checkpoint_pattern(holes=None, n=16):
 
 
 def checkpoint_log(evaluations):
-    """The log a chain keeps: 1, 2, .., 16 evaluations, then ~19 % steps (search/search)."""
+    """The log a chain keeps: 1, 2, .., 16 evaluations, then ~19 % steps (optimize/search/search)."""
     log, e = [], 1
     while e <= evaluations:
         log.append([e, CHECKPOINT_BEST])
@@ -663,7 +663,7 @@ write("checkpoint-truncated.json", checkpoint(lambda c, ch: None)[:700])
 # ---------------------------------------------------------------- camera RAW (raw-*)
 # A minimal uncompressed DNG (32 x 24 pixels, 16-bit RGGB CFA, BlackLevel 64, WhiteLevel 4095,
 # values 64 + (10 r + c) mod 4000), broken one way per file; its valid form is the seed of
-# fuzz/corpus/raw/ (fuzz_raw). Read through LibRaw by extension (core/raw_io).
+# fuzz/corpus/raw/ (fuzz_raw). Read through LibRaw by extension (core/image/raw_io).
 RAW_SEEDS = HERE.parent.parent / "fuzz" / "corpus" / "raw"
 
 SHORT, LONG, ASCII, BYTE, SRATIONAL = 3, 4, 2, 1, 10
@@ -735,7 +735,7 @@ def raw_dng(width=32, height=24, bps=16, compression=1, photometric=32803, cfa=(
 
 RAW_SEEDS.mkdir(parents=True, exist_ok=True)
 (RAW_SEEDS / "small.dng").write_bytes(raw_dng())
-# Crashes Debian 12's LibRaw 0.20.2 (an abort in its Hasselblad model parsing; core/raw_io runs
+# Crashes Debian 12's LibRaw 0.20.2 (an abort in its Hasselblad model parsing; core/image/raw_io runs
 # LibRaw in a child process, so the file is refused): a seed, so every fuzz run takes that path.
 (RAW_SEEDS / "hasselblad-long-model.dng").write_bytes(raw_dng(make="Hasselblad", model="M" * 63))
 write("raw-empty.dng", b"")

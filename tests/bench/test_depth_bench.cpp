@@ -7,7 +7,7 @@
 #include <cstdlib>
 
 #include "bench/depth_bench.hpp"
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
 
 using namespace pinmask;
 

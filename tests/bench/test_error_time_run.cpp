@@ -5,9 +5,9 @@
 #include <random>
 
 #include "bench/error_time_run.hpp"
-#include "design/families.hpp"
-#include "design/psf.hpp"
-#include "design/random_sparse.hpp"
+#include "design/pattern/families.hpp"
+#include "design/pattern/random_sparse.hpp"
+#include "design/psf/psf.hpp"
 
 using namespace pinmask;
 

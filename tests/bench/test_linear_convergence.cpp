@@ -9,7 +9,7 @@
 #include <string>
 
 #include "bench/linear_convergence.hpp"
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
 #include "tests/decode/test_decode_support.hpp"
 
 using namespace pinmask;
@@ -96,9 +96,9 @@ TEST_CASE(
 }
 
 TEST_CASE("linear model: TV-L2 iterations to within 0.2 dB of converged, held per case") {
-    // Counts measured with the linear model's adaptation rule (decode/tv_l2.cpp: every 5, mu 3,
-    // tau 1.5); the cyclic rule (every 3, mu 2, tau 2) took 83 / 385 / 401+ here. "Converged" is
-    // the PSNR after 1500 iterations. A margin of 10 % allows for other compilers' rounding.
+    // Counts measured with the linear model's adaptation rule (decode/solvers/tv_l2.cpp: every 5,
+    // mu 3, tau 1.5); the cyclic rule (every 3, mu 2, tau 2) took 83 / 385 / 401+ here. "Converged"
+    // is the PSNR after 1500 iterations. A margin of 10 % allows for other compilers' rounding.
     struct Held {
         const char* name;
         int iterations;

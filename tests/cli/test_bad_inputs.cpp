@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
 #include "io/json_strict.hpp"
 #include "tests/support/cli_run.hpp"
 

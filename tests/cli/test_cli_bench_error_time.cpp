@@ -7,7 +7,7 @@
 #include <set>
 #include <string>
 
-#include "core/image_io.hpp"
+#include "core/image/image_io.hpp"
 #include "tests/support/cli_run.hpp"
 
 using pinmask::test::run_cli;

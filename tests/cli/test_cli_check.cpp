@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "formats/gds_writer.hpp"
+#include "export/formats/gds_writer.hpp"
+#include "export/layout/geometry.hpp"
 #include "io/mask_json.hpp"
-#include "layout/geometry.hpp"
 #include "tests/support/cli_run.hpp"
 
 using namespace pinmask;

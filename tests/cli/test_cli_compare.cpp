@@ -1,4 +1,4 @@
-// `pinmask compare` end to end on masks written with cli/mask_json (a small geometry so the
+// `pinmask compare` end to end on masks written with io/mask_json (a small geometry so the
 // simulated figures stay fast: 8 x 8 cells of 4 pixels, a 32 x 32 period, one scene, short TV).
 #include <doctest/doctest.h>
 
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "design/camera.hpp"
-#include "design/random_sparse.hpp"
+#include "design/optics/camera.hpp"
+#include "design/pattern/random_sparse.hpp"
 #include "io/mask_json.hpp"
 #include "tests/support/cli_run.hpp"
 
@@ -228,7 +228,7 @@ TEST_CASE("compare: bad input is exit 2 with a message, and no report files") {
 }
 
 // One metric set: the same masks and settings give the same analytic and simulated
-// numbers in score and compare (exact equality: both call metrics/mask_metrics), under the
+// numbers in score and compare (exact equality: both call optimize/metrics/mask_metrics), under the
 // Gaussian and the photon model; so compare ranks masks as score does.
 TEST_CASE("compare and score print the same analytic and simulated numbers, in the same order") {
     Masks m;

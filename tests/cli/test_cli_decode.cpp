@@ -13,10 +13,10 @@
 #include <random>
 
 #include "cli/options/flag_names.hpp"
-#include "core/fft.hpp"
-#include "core/image_io.hpp"
-#include "decode/decode_request.hpp"
-#include "decode/decoder.hpp"
+#include "core/fft/fft.hpp"
+#include "core/image/image_io.hpp"
+#include "decode/capture/decode_request.hpp"
+#include "decode/capture/decoder.hpp"
 #include "tests/support/cli_run.hpp"
 #include "tests/support/close.hpp"
 
@@ -369,8 +369,8 @@ TEST_CASE("--precision single applies to tvqc and richardson-lucy (no longer dou
 }
 
 TEST_CASE("decode's library fields are spelled as the flags that set them") {
-    // The decode library names its request's fields (decode/decode_request.hpp); the command
-    // line spells each one as its flag, so its messages name the flags as before.
+    // The decode library names its request's fields (decode/capture/decode_request.hpp); the
+    // command line spells each one as its flag, so its messages name the flags as before.
     const std::pair<MethodParameter, const char*> flags[] = {
         {MethodParameter::kNsr, "--nsr"},
         {MethodParameter::kLambda, "--lambda"},

@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/image_io.hpp"
+#include "core/image/image_io.hpp"
 #include "tests/core/dng_writer.hpp"
 #include "tests/core/jpeg_writer.hpp"
 #include "tests/support/cli_run.hpp"

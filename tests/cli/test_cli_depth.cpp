@@ -10,13 +10,13 @@
 #include <random>
 #include <string>
 
-#include "decode/decoder.hpp"
-#include "design/psf.hpp"
-#include "design/psf_exact.hpp"
+#include "decode/capture/decoder.hpp"
+#include "design/psf/psf.hpp"
+#include "design/psf/psf_exact.hpp"
 #include "io/mask_json.hpp"
-#include "simulate/noise_model.hpp"
-#include "simulate/scenes.hpp"
-#include "simulate/simulate.hpp"
+#include "optimize/simulate/noise_model.hpp"
+#include "optimize/simulate/scenes.hpp"
+#include "optimize/simulate/simulate.hpp"
 #include "tests/support/cli_run.hpp"
 
 using namespace pinmask;

@@ -15,7 +15,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A mask file in the format of cli/mask_json (written by hand so the test does not depend on
+// A mask file in the format of io/mask_json (written by hand so the test does not depend on
 // the codec's writer).
 std::string mask_json(int n, const std::vector<std::pair<int, int>>& holes, int tiles,
                       double spacing, bool violations_allowed) {

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "design/mask.hpp"
+#include "design/pattern/mask.hpp"
 #include "io/mask_json.hpp"
 #include "tests/support/cli_run.hpp"
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/image_io.hpp"
+#include "core/image/image_io.hpp"
 #include "tests/cli/generated_masks.hpp"
 #include "tests/core/jpeg_writer.hpp"
 #include "tests/support/cli_run.hpp"

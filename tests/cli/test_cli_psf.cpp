@@ -1,4 +1,4 @@
-// `pinmask psf` end to end, and the PSF file reader (cli/psf_files) the decoder uses.
+// `pinmask psf` end to end, and the PSF file reader (io/psf_files) the decoder uses.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -8,10 +8,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/error.hpp"
-#include "core/image_io.hpp"
-#include "design/psf.hpp"
-#include "design/working_distance.hpp"
+#include "core/errors/error.hpp"
+#include "core/image/image_io.hpp"
+#include "design/optics/working_distance.hpp"
+#include "design/psf/psf.hpp"
 #include "io/mask_json.hpp"
 #include "io/psf_files.hpp"
 #include "tests/support/cli_run.hpp"

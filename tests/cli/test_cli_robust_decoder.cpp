@@ -11,18 +11,18 @@
 #include <random>
 #include <string>
 
-#include "core/image_io.hpp"
-#include "decode/capture_pipeline.hpp"
-#include "decode/decode_request.hpp"
-#include "design/camera.hpp"
-#include "design/psf.hpp"
+#include "core/image/image_io.hpp"
+#include "decode/capture/capture_pipeline.hpp"
+#include "decode/capture/decode_request.hpp"
+#include "design/optics/camera.hpp"
+#include "design/psf/psf.hpp"
 #include "io/mask_json.hpp"
-#include "simulate/image_quality.hpp"
-#include "metrics/mask_metrics.hpp"
-#include "metrics/robust_wiener.hpp"
-#include "simulate/scenes.hpp"
-#include "search/search_pipeline.hpp"
-#include "simulate/simulate.hpp"
+#include "optimize/metrics/mask_metrics.hpp"
+#include "optimize/metrics/robust_wiener.hpp"
+#include "optimize/search/search_pipeline.hpp"
+#include "optimize/simulate/image_quality.hpp"
+#include "optimize/simulate/scenes.hpp"
+#include "optimize/simulate/simulate.hpp"
 #include "tests/research/fabricated_sample.hpp"
 #include "tests/support/cli_run.hpp"
 #include "tests/support/random_pattern.hpp"
@@ -185,8 +185,8 @@ TEST_CASE("score --robust-decoder: refusals and the files it writes") {
 }
 
 TEST_CASE("the robust decoder loop at 50 dB on the paper camera: CLI PSNR = library figure") {
-    // The library test's setting (tests/search/test_robust_search.cpp): paper camera, 16 x 16
-    // cells of 8 px, 20 pinholes, +-10 % side and 2 um jitter, 50 dB, held-out natural scene.
+    // The library test's setting (tests/optimize/search/test_robust_search.cpp): paper camera, 16 x
+    // 16 cells of 8 px, 20 pinholes, +-10 % side and 2 um jitter, 50 dB, held-out natural scene.
     TempDir dir{"robustloop"};
     const Mask mask = test::random_paper_mask(16, 20, 5);
     const std::string mask_path = dir / "r.mask.json";

@@ -166,7 +166,8 @@ TEST_CASE("search --holes A..B: best mask per K, table and plot; bad ranges name
         const auto mask =
             nlohmann::json::parse(slurp(run / ("best-K" + std::to_string(k) + ".mask.json")));
         CHECK(mask.dump().find("analytic_wiener_psnr_db") != std::string::npos);
-        // The bound on any K-pinhole pattern (search/objective_bound) is above the best found.
+        // The bound on any K-pinhole pattern (optimize/search/objective_bound) is above the best
+        // found.
         CHECK(row["upper_bound_psnr_db"].template get<double>() >=
               row["analytic_wiener_psnr_db"].template get<double>());
     }

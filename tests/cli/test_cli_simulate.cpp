@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/image_io.hpp"
+#include "core/image/image_io.hpp"
 #include "tests/support/cli_run.hpp"
 
 using pinmask::test::run_cli;
@@ -179,7 +179,7 @@ TEST_CASE("simulate --precision: double = the default bytes (128 px < 256), sing
     CHECK(nlohmann::json::parse(slurp(one + ".config.json"))["threads"] == 1);
     CHECK(slurp(one) == slurp(base));  // estimated plans in tests: the same bytes
     // The float32 convolution moves each value by float rounding of the capture's scale
-    // (tests/simulate/test_simulate_precision.cpp); the file stores float32 either way.
+    // (tests/optimize/simulate/test_simulate_precision.cpp); the file stores float32 either way.
     const pinmask::Plane a = read_plane(sgl), b = read_plane(dbl);
     CHECK(std::sqrt((a - b).square().sum() / b.square().sum()) <= 5e-6);
     const auto bad = run_cli(args + "--precision half -o " + (m.dir / "bad.tiff"));

@@ -1,7 +1,7 @@
 // The command line's table of field spellings (cli/options/flag_names): every field a library
-// names in a message (core/field_names.hpp: field_ref("...")) has a flag, the table is sorted and
-// unique (flag_spelling looks rows up by binary search), and spell_flags turns a library message
-// into what the command line prints. Also: no library source spells a flag itself.
+// names in a message (core/errors/field_names.hpp: field_ref("...")) has a flag, the table is
+// sorted and unique (flag_spelling looks rows up by binary search), and spell_flags turns a library
+// message into what the command line prints. Also: no library source spells a flag itself.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -15,17 +15,16 @@
 #include <vector>
 
 #include "cli/options/flag_names.hpp"
-#include "core/error.hpp"
-#include "core/field_names.hpp"
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
 // The folders of the libraries (everything the faces cli/ and python/ link).
-const char* const kLibraryFolders[] = {"core",    "design", "decode", "calibrate", "layout",
-                                       "formats", "export", "io",     "simulate",  "metrics",
-                                       "search",  "report", "bench",  "depthmap"};
+const char* const kLibraryFolders[] = {"core",     "design", "decode", "export",
+                                       "optimize", "io",     "report", "bench"};
 
 std::vector<fs::path> library_sources() {
     std::vector<fs::path> out;

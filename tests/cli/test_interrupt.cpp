@@ -21,7 +21,7 @@
 #include <string>
 
 #include "cli/outputs/interrupt.hpp"
-#include "core/atomic_file.hpp"
+#include "core/files/atomic_file.hpp"
 #include "io/mask_json.hpp"
 #include "tests/support/cli_run.hpp"
 

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
 #include "io/json_strict.hpp"
 #include "io/mask_json.hpp"
 #include "tests/support/cli_run.hpp"

@@ -12,7 +12,7 @@
 #include <thread>
 
 #include "cli/outputs/search_snapshot.hpp"
-#include "design/pattern.hpp"
+#include "design/pattern/pattern.hpp"
 #include "io/mask_json.hpp"
 #include "tests/support/cli_run.hpp"
 

@@ -13,9 +13,9 @@
 #include <string>
 #include <string_view>
 
-#include "core/error.hpp"
-#include "core/image.hpp"
-#include "core/image_io.hpp"
+#include "core/errors/error.hpp"
+#include "core/image/image.hpp"
+#include "core/image/image_io.hpp"
 
 namespace pinmask::test {
 

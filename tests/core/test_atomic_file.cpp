@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "core/atomic_file.hpp"
+#include "core/files/atomic_file.hpp"
 #include "tests/support/cli_run.hpp"
 
 using namespace pinmask;

@@ -6,8 +6,8 @@
 #include <thread>
 #include <vector>
 
-#include "core/error.hpp"
-#include "core/fft.hpp"
+#include "core/errors/error.hpp"
+#include "core/fft/fft.hpp"
 #include "tests/support/close.hpp"
 #include "tests/support/random_plane.hpp"
 

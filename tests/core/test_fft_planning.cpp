@@ -1,4 +1,4 @@
-// core/fft planning: single precision against double, FFTW_MEASURE plans remembered in a wisdom
+// core/fft/fft planning: single precision against double, FFTW_MEASURE plans remembered in a wisdom
 // file (written, re-read, refused when corrupt or foreign), threads, planning statistics.
 #include <doctest/doctest.h>
 #include <unistd.h>
@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "core/fft.hpp"
+#include "core/fft/fft.hpp"
 #include "tests/support/random_plane.hpp"
 
 using namespace pinmask;
@@ -87,9 +87,7 @@ TEST_CASE("wisdom: measured plans are written, trusted on re-read, and refused w
     { std::ofstream(path, std::ios::binary) << "(fftw-3.3.10 fftw_wisdom #x1 garbage"; }
     CHECK(set_fft_wisdom_file(path.string()).size() == 1);
     const std::string header = text.substr(0, text.find("[double]\n"));
-    {
-        std::ofstream(path, std::ios::binary) << header << "[double]\n(fftw-3.3 ((((\n[float]\n";
-    }
+    { std::ofstream(path, std::ios::binary) << header << "[double]\n(fftw-3.3 ((((\n[float]\n"; }
     w = set_fft_wisdom_file(path.string());
     REQUIRE(w.size() == 1);
     CHECK(w[0].find("corrupt") != std::string::npos);

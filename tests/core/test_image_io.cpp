@@ -11,7 +11,7 @@
 #include <functional>
 #include <vector>
 
-#include "core/image_io.hpp"
+#include "core/image/image_io.hpp"
 #include "tests/core/image_io_fixtures.hpp"
 
 using namespace pinmask;

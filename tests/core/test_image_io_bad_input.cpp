@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "core/image_io.hpp"
+#include "core/image/image_io.hpp"
 #include "tests/core/image_io_fixtures.hpp"
 
 using namespace pinmask;

@@ -1,4 +1,4 @@
-// core/isolated_call: answers cross from the child intact (values known by construction, a
+// core/files/isolated_call: answers cross from the child intact (values known by construction, a
 // payload larger than any pipe buffer), errors keep their class and message, and every way a
 // child can die (signal, abort, exit status, death mid-answer or after it) becomes IsolatedCrash
 // naming how; the caller's process survives and no child is left behind.
@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "core/error.hpp"
-#include "core/isolated_call.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/isolated_call.hpp"
 
 using namespace pinmask;
 

@@ -1,4 +1,4 @@
-// JPEG input (core/jpeg_io via read_image): files written here with libjpeg's compressor from
+// JPEG input (core/image/jpeg_io via read_image): files written here with libjpeg's compressor from
 // known 8-bit samples read back within the quality-100 round-trip bound; progressive and
 // arithmetic-coded files (the same quantised coefficients, another entropy coding) decode to
 // exactly the baseline file's samples; hostile files are refused by name. Bit-exact agreement
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "core/error.hpp"
-#include "core/image_io.hpp"
+#include "core/errors/error.hpp"
+#include "core/image/image_io.hpp"
 #include "tests/core/image_io_fixtures.hpp"
 #include "tests/core/jpeg_writer.hpp"
 

@@ -1,7 +1,7 @@
-// Output-set planning and the all-or-nothing commit (core/output_set, core/atomic_file):
-// outputs that are directories, inputs (by any spelling or a hard link) or each other are refused
-// before any work, naming the flag; a commit whose rename fails removes the files already
-// renamed, restores the files it replaced and says so.
+// Output-set planning and the all-or-nothing commit (core/files/output_set,
+// core/files/atomic_file): outputs that are directories, inputs (by any spelling or a hard link) or
+// each other are refused before any work, naming the flag; a commit whose rename fails removes the
+// files already renamed, restores the files it replaced and says so.
 #include <doctest/doctest.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "core/atomic_file.hpp"
-#include "core/error.hpp"
-#include "core/output_set.hpp"
+#include "core/errors/error.hpp"
+#include "core/files/atomic_file.hpp"
+#include "core/files/output_set.hpp"
 #include "tests/support/cli_run.hpp"
 
 using namespace pinmask;

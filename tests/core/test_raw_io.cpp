@@ -1,14 +1,15 @@
-// core/raw_io: DNG files written here with libtiff (known CFA values) read back through LibRaw;
-// the documented black-level subtraction and the Bayer binnings give the known values exactly.
+// core/image/raw_io: DNG files written here with libtiff (known CFA values) read back through
+// LibRaw; the documented black-level subtraction and the Bayer binnings give the known values
+// exactly.
 #include <doctest/doctest.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 
-#include "core/error.hpp"
-#include "core/image_io.hpp"
-#include "core/raw_io.hpp"
+#include "core/errors/error.hpp"
+#include "core/image/image_io.hpp"
+#include "core/image/raw_io.hpp"
 #include "tests/core/dng_writer.hpp"
 
 using namespace pinmask;

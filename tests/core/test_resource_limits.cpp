@@ -1,5 +1,5 @@
-// The memory bound (core/resource_limits) and the places that apply it: every large request of
-// the commands (a 4096-grid PSF, random placement on a 4096 grid, a full-sensor simulation, a
+// The memory bound (core/limits/resource_limits) and the places that apply it: every large request
+// of the commands (a 4096-grid PSF, random placement on a 4096 grid, a full-sensor simulation, a
 // huge declared image, decoding a large capture, a layout of many pinholes) is refused with
 // ResourceLimit, the figure in the message, under a small PINMASK_MEMORY_LIMIT.
 #include <doctest/doctest.h>
@@ -12,16 +12,16 @@
 #include <random>
 #include <string>
 
-#include "core/error.hpp"
-#include "core/fft.hpp"
-#include "core/image_io.hpp"
-#include "core/resource_limits.hpp"
-#include "decode/decoder.hpp"
-#include "design/mask.hpp"
-#include "design/psf.hpp"
-#include "design/random_sparse.hpp"
-#include "layout/geometry.hpp"
-#include "simulate/simulate.hpp"
+#include "core/errors/error.hpp"
+#include "core/fft/fft.hpp"
+#include "core/image/image_io.hpp"
+#include "core/limits/resource_limits.hpp"
+#include "decode/capture/decoder.hpp"
+#include "design/pattern/mask.hpp"
+#include "design/pattern/random_sparse.hpp"
+#include "design/psf/psf.hpp"
+#include "export/layout/geometry.hpp"
+#include "optimize/simulate/simulate.hpp"
 
 using namespace pinmask;
 

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <string>
 
-#include "core/error.hpp"
-#include "core/units.hpp"
+#include "core/errors/error.hpp"
+#include "core/units/units.hpp"
 #include "tests/support/close.hpp"
 
 using namespace pinmask;

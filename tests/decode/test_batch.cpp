@@ -1,15 +1,15 @@
-// decode/batch and decode/plan_cache (batch decode): a BatchDecoder makes the operator
-// and the closed-form filter once per PSF and grid and reuses them, and every capture decodes to
-// exactly the bytes of a fresh decode_capture on it alone (the second code path: no cache).
-// Round-robin shares of the captures among ranks cover every index once.
+// decode/capture/batch and decode/solvers/plan_cache (batch decode): a BatchDecoder makes the
+// operator and the closed-form filter once per PSF and grid and reuses them, and every capture
+// decodes to exactly the bytes of a fresh decode_capture on it alone (the second code path: no
+// cache). Round-robin shares of the captures among ranks cover every index once.
 #include <doctest/doctest.h>
 
 #include <vector>
 
-#include "core/error.hpp"
-#include "decode/batch.hpp"
-#include "decode/decode_method.hpp"
-#include "decode/plan_cache.hpp"
+#include "core/errors/error.hpp"
+#include "decode/capture/batch.hpp"
+#include "decode/solvers/decode_method.hpp"
+#include "decode/solvers/plan_cache.hpp"
 #include "tests/decode/test_decode_support.hpp"
 
 using namespace pinmask;

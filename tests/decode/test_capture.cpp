@@ -5,8 +5,8 @@
 #include <limits>
 #include <random>
 
-#include "core/error.hpp"
-#include "decode/capture.hpp"
+#include "core/errors/error.hpp"
+#include "decode/capture/capture.hpp"
 #include "tests/support/random_plane.hpp"
 
 using namespace pinmask;

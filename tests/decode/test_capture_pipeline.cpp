@@ -1,5 +1,5 @@
-// decode/capture_pipeline: the library call behind `pinmask decode` against decode_plane on the
-// window it must pick, its option checks (field, value, rule), precision choice, and results
+// decode/capture/capture_pipeline: the library call behind `pinmask decode` against decode_plane on
+// the window it must pick, its option checks (field, value, rule), precision choice, and results
 // that do not depend on the FFT thread count.
 #include <doctest/doctest.h>
 
@@ -7,10 +7,10 @@
 #include <cstdlib>
 #include <string>
 
-#include "core/error.hpp"
-#include "core/fft.hpp"
-#include "decode/capture_pipeline.hpp"
-#include "decode/decode_method.hpp"
+#include "core/errors/error.hpp"
+#include "core/fft/fft.hpp"
+#include "decode/capture/capture_pipeline.hpp"
+#include "decode/solvers/decode_method.hpp"
 #include "tests/decode/test_decode_support.hpp"
 
 using namespace pinmask;

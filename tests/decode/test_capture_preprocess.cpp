@@ -4,8 +4,8 @@
 #include <cmath>
 #include <random>
 
-#include "core/error.hpp"
-#include "decode/preprocess.hpp"
+#include "core/errors/error.hpp"
+#include "decode/capture/preprocess.hpp"
 #include "tests/support/close.hpp"
 #include "tests/support/random_plane.hpp"
 

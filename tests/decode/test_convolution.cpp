@@ -1,7 +1,7 @@
 #include <doctest/doctest.h>
 
-#include "core/error.hpp"
-#include "decode/convolution.hpp"
+#include "core/errors/error.hpp"
+#include "decode/solvers/convolution.hpp"
 #include "tests/decode/test_decode_support.hpp"
 #include "tests/support/close.hpp"
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "bench/decode_bench.hpp"
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
 
 using namespace pinmask;
 

@@ -1,14 +1,14 @@
-// The name tables of decode (decode/decode_method.hpp, decode/decode_modes.hpp): every entry
-// round-trips name -> value -> name, names are unique, an unknown name or an enum value outside
-// the table is an error naming the field (never a fall-through to some default).
+// The name tables of decode (decode/solvers/decode_method.hpp, decode/solvers/decode_modes.hpp):
+// every entry round-trips name -> value -> name, names are unique, an unknown name or an enum value
+// outside the table is an error naming the field (never a fall-through to some default).
 #include <doctest/doctest.h>
 
 #include <set>
 #include <string>
 
-#include "core/error.hpp"
-#include "decode/decode_method.hpp"
-#include "decode/decode_modes.hpp"
+#include "core/errors/error.hpp"
+#include "decode/solvers/decode_method.hpp"
+#include "decode/solvers/decode_modes.hpp"
 
 using namespace pinmask;
 

@@ -1,4 +1,4 @@
-// decode/decode_request: the typed request sorted into the chosen method's options, and the
+// decode/capture/decode_request: the typed request sorted into the chosen method's options, and the
 // refusal of a parameter the method does not read, naming the request's fields (field_ref) and
 // never a face's spelling.
 #include <doctest/doctest.h>
@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "core/error.hpp"
-#include "decode/decode_method.hpp"
-#include "decode/decode_request.hpp"
+#include "core/errors/error.hpp"
+#include "decode/capture/decode_request.hpp"
+#include "decode/solvers/decode_method.hpp"
 
 using namespace pinmask;
 
@@ -98,9 +98,9 @@ TEST_CASE("decode_request: a parameter the method ignores is refused by its fiel
           "`nsr` = 0.1: is not used by `method` tv (only by wiener); remove it or choose that "
           "method");
     r.method = DecodeMethod::kWiener;
-    CHECK(refusal(r, {{MethodParameter::kIterations, "5"}}).find(
-              "`iterations` = 5: is not used by `method` wiener (only by tv, tvqc, "
-              "richardson-lucy)") == 0);
+    CHECK(refusal(r, {{MethodParameter::kIterations, "5"}})
+              .find("`iterations` = 5: is not used by `method` wiener (only by tv, tvqc, "
+                    "richardson-lucy)") == 0);
     CHECK(refusal(r, {{MethodParameter::kLambda, "1"}}).find("(only by tikhonov, tv)") !=
           std::string::npos);
     CHECK(refusal(r, {{MethodParameter::kNsr, "0.1"}}) == "no error");

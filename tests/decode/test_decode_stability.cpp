@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "core/fft.hpp"
-#include "decode/convolution.hpp"
-#include "decode/decoder.hpp"
+#include "core/fft/fft.hpp"
+#include "decode/capture/decoder.hpp"
+#include "decode/solvers/convolution.hpp"
 #include "tests/decode/test_decode_support.hpp"
 #include "tests/support/close.hpp"
 

@@ -1,14 +1,14 @@
 // Shared references for the decode/ tests: seeded random planes and PSFs, and the dense
 // circulant matrix of a PSF built straight from the deconvwnr centring rule (independent of
-// decode/psf2otf.cpp).
+// decode/solvers/psf2otf.cpp).
 #pragma once
 
 #include <Eigen/Dense>
 #include <cmath>
 #include <random>
 
-#include "core/image.hpp"
-#include "decode/convolution.hpp"
+#include "core/image/image.hpp"
+#include "decode/solvers/convolution.hpp"
 #include "tests/support/random_plane.hpp"
 
 namespace pinmask::test {

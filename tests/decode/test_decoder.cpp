@@ -6,11 +6,11 @@
 #include <cmath>
 #include <limits>
 
-#include "core/error.hpp"
-#include "decode/convolution.hpp"
-#include "decode/decoder.hpp"
-#include "decode/tikhonov.hpp"
-#include "decode/wiener.hpp"
+#include "core/errors/error.hpp"
+#include "decode/capture/decoder.hpp"
+#include "decode/solvers/convolution.hpp"
+#include "decode/solvers/tikhonov.hpp"
+#include "decode/solvers/wiener.hpp"
 #include "tests/decode/test_decode_support.hpp"
 #include "tests/support/close.hpp"
 

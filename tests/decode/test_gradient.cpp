@@ -3,8 +3,8 @@
 #include <Eigen/Dense>
 #include <cmath>
 
-#include "core/fft.hpp"
-#include "decode/gradient.hpp"
+#include "core/fft/fft.hpp"
+#include "decode/solvers/gradient.hpp"
 #include "tests/decode/test_decode_support.hpp"
 #include "tests/support/close.hpp"
 

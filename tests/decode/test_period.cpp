@@ -5,8 +5,8 @@
 #include <numbers>
 #include <random>
 
-#include "core/error.hpp"
-#include "decode/period.hpp"
+#include "core/errors/error.hpp"
+#include "decode/capture/period.hpp"
 #include "tests/support/close.hpp"
 #include "tests/support/random_plane.hpp"
 

@@ -1,7 +1,7 @@
 // The period check on captures as pinmask simulate writes them, for three cameras, integer and
 // exact geometry, several scenes and SNRs: no false warning, and every one accepted by
-// the early exit (decode/period.hpp, kConfirmMinRise) so the check stays cheap; a pitch 1 % or
-// 2 % off, or a capture repeating with half or twice the PSF's period, falls through to the full
+// the early exit (decode/capture/period.hpp, kConfirmMinRise) so the check stays cheap; a pitch 1 %
+// or 2 % off, or a capture repeating with half or twice the PSF's period, falls through to the full
 // search and is reported with both figures.
 #include <doctest/doctest.h>
 
@@ -9,12 +9,12 @@
 #include <cmath>
 #include <string>
 
-#include "decode/period.hpp"
-#include "design/psf.hpp"
-#include "design/psf_exact.hpp"
-#include "design/working_distance.hpp"
-#include "simulate/scenes.hpp"
-#include "simulate/simulate.hpp"
+#include "decode/capture/period.hpp"
+#include "design/optics/working_distance.hpp"
+#include "design/psf/psf.hpp"
+#include "design/psf/psf_exact.hpp"
+#include "optimize/simulate/scenes.hpp"
+#include "optimize/simulate/simulate.hpp"
 #include "tests/support/random_pattern.hpp"
 
 using namespace pinmask;
@@ -203,7 +203,7 @@ TEST_CASE(
     // The 3.45 um camera's natural scene at 10 dB (a repeat at the noise) and the USAF chart at 30
     // dB (a sharp one), integer geometry: the true period is the PSF's, so the error of the
     // measured lag is known. The weak repeat's error stays within 4 times its uncertainty
-    // (decode/period.hpp, kUncertaintyGroups); the sharp repeat lies within the tolerance.
+    // (decode/capture/period.hpp, kUncertaintyGroups); the sharp repeat lies within the tolerance.
     for (const Case& k : cases()) {
         const Capture weak = capture_of(k, Geometry::kInteger, "natural", 10.0);
         const PeriodCheck w = check_period(weak.frame, weak.period, weak.period);

@@ -4,11 +4,11 @@
 
 #include <cmath>
 
-#include "core/error.hpp"
-#include "decode/convolution.hpp"
-#include "decode/decoder.hpp"
-#include "decode/tv_l2.hpp"
-#include "decode/tvqc.hpp"
+#include "core/errors/error.hpp"
+#include "decode/capture/decoder.hpp"
+#include "decode/solvers/convolution.hpp"
+#include "decode/solvers/tv_l2.hpp"
+#include "decode/solvers/tvqc.hpp"
 #include "tests/decode/test_decode_support.hpp"
 
 using namespace pinmask;

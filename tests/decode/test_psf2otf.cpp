@@ -4,9 +4,9 @@
 #include <complex>
 #include <numbers>
 
-#include "core/error.hpp"
-#include "core/fft.hpp"
-#include "decode/psf2otf.hpp"
+#include "core/errors/error.hpp"
+#include "core/fft/fft.hpp"
+#include "decode/solvers/psf2otf.hpp"
 #include "tests/decode/test_decode_support.hpp"
 #include "tests/support/close.hpp"
 

@@ -11,11 +11,11 @@
 #include <optional>
 #include <string>
 
-#include "core/image_io.hpp"
-#include "decode/capture.hpp"
-#include "decode/capture_pipeline.hpp"
-#include "decode/decoder.hpp"
-#include "decode/preprocess.hpp"
+#include "core/image/image_io.hpp"
+#include "decode/capture/capture.hpp"
+#include "decode/capture/capture_pipeline.hpp"
+#include "decode/capture/decoder.hpp"
+#include "decode/capture/preprocess.hpp"
 
 using namespace pinmask;
 namespace fs = std::filesystem;
@@ -30,9 +30,10 @@ const fs::path kRealDir = fs::path(PINMASK_SHARED_DIR) / "data" / "real";
 // 1/2 ||p||^2 (x = 0).
 constexpr double kAdmmObjectiveRiseTol = 2e-3;
 
-// The capture pipeline (decode/capture_pipeline.hpp) as `pinmask decode` and scripts/demo-real
-// run it: the whole frame (--crop none), the tutorial's background (corner patch of the PSF,
-// or the camera bias), `rounds` rounds of 2 x 2 averaging, L2 normalisation, linear model.
+// The capture pipeline (decode/capture/capture_pipeline.hpp) as `pinmask decode` and
+// scripts/demo-real run it: the whole frame (--crop none), the tutorial's background (corner patch
+// of the PSF, or the camera bias), `rounds` rounds of 2 x 2 averaging, L2 normalisation, linear
+// model.
 CaptureDecodeOptions pipeline_options(int rounds, std::optional<double> raw_bias) {
     CaptureDecodeOptions o;
     o.crop.mode = CropMode::kNone;

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "core/error.hpp"
-#include "decode/richardson_lucy.hpp"
+#include "core/errors/error.hpp"
+#include "decode/solvers/richardson_lucy.hpp"
 #include "tests/decode/test_decode_support.hpp"
 #include "tests/support/close.hpp"
 

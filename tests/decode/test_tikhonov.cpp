@@ -2,8 +2,8 @@
 
 #include <Eigen/Dense>
 
-#include "core/error.hpp"
-#include "decode/tikhonov.hpp"
+#include "core/errors/error.hpp"
+#include "decode/solvers/tikhonov.hpp"
 #include "tests/decode/test_decode_support.hpp"
 #include "tests/support/close.hpp"
 

@@ -5,9 +5,9 @@
 #include <utility>
 
 #include "bench/decode_bench.hpp"
-#include "core/error.hpp"
-#include "decode/gradient.hpp"
-#include "decode/tv_l2.hpp"
+#include "core/errors/error.hpp"
+#include "decode/solvers/gradient.hpp"
+#include "decode/solvers/tv_l2.hpp"
 #include "tests/decode/test_decode_support.hpp"
 #include "tests/support/close.hpp"
 
@@ -87,8 +87,8 @@ TEST_CASE("TV-L2 on the linear model reaches the Newton reference with the dense
 }
 
 TEST_CASE("TV-L2 on the linear model: the Newton reference on several geometries, in float32") {
-    // The crop split's state lives on the capture window only (decode/tv_l2.cpp): windows that
-    // touch the grid's edge on one side only (odd sizes), PSFs wider than the capture, and a
+    // The crop split's state lives on the capture window only (decode/solvers/tv_l2.cpp): windows
+    // that touch the grid's edge on one side only (odd sizes), PSFs wider than the capture, and a
     // float32 run held to the double run's objective.
     const std::tuple<int, int, int, int, unsigned> shapes[] = {
         {7, 10, 5, 3, 21}, {9, 6, 10, 7, 22}, {10, 11, 2, 9, 23}};

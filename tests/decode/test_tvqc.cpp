@@ -5,10 +5,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/error.hpp"
-#include "decode/gradient.hpp"
-#include "decode/tv_l2.hpp"
-#include "decode/tvqc.hpp"
+#include "core/errors/error.hpp"
+#include "decode/solvers/gradient.hpp"
+#include "decode/solvers/tv_l2.hpp"
+#include "decode/solvers/tvqc.hpp"
 #include "tests/decode/test_decode_support.hpp"
 #include "tests/support/close.hpp"
 
@@ -153,8 +153,8 @@ TEST_CASE("TVQC nonnegative, history and eps from the noise level") {
 
 namespace {
 
-// The iteration of decode/tvqc.hpp written again from its formulas with dense matrices (no FFT,
-// no fusion): K = (D, beta A, gamma I), M = D^T D + beta^2 Hc^T Hc + gamma^2 I with Hc the
+// The iteration of decode/solvers/tvqc.hpp written again from its formulas with dense matrices (no
+// FFT, no fusion): K = (D, beta A, gamma I), M = D^T D + beta^2 Hc^T Hc + gamma^2 I with Hc the
 // uncropped circulant (so M is the Fourier-diagonal preconditioner), the projections, the
 // adaptive step balance with the primal residual ||K^T y|| and the dual residual of the
 // previous step. Returns the records (TV(x_k), ||A x_k - p|| / eps) of iterations 1..K.

@@ -3,10 +3,10 @@
 #include <Eigen/Dense>
 #include <cmath>
 
-#include "core/error.hpp"
-#include "core/fft.hpp"
-#include "decode/psf2otf.hpp"
-#include "decode/wiener.hpp"
+#include "core/errors/error.hpp"
+#include "core/fft/fft.hpp"
+#include "decode/solvers/psf2otf.hpp"
+#include "decode/solvers/wiener.hpp"
 #include "tests/decode/test_decode_support.hpp"
 #include "tests/support/close.hpp"
 

@@ -1,9 +1,9 @@
 // Stiff and extreme physics: Fresnel numbers from 1e-4 to 1e4, the sensor approaching the focal
 // plane (f -> f', and f = f' exactly), the object approaching the sensor distance (u -> f), tiny
 // and huge pixel pitches. For every case: the optics report has no NaN (infinite only where
-// design/optics documents it), the kernel is finite and sums to 1 (or is refused with
+// design/optics/optics documents it), the kernel is finite and sums to 1 (or is refused with
 // InvalidInput naming the quantity), and every model used outside its accurate range, and every
-// support that loses more than 1 % of the energy, is said by design/kernel_validity.
+// support that loses more than 1 % of the energy, is said by design/psf/kernel_validity.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -13,11 +13,11 @@
 #include <utility>
 #include <vector>
 
-#include "core/error.hpp"
-#include "design/camera.hpp"
-#include "design/kernel.hpp"
-#include "design/kernel_validity.hpp"
-#include "design/optics.hpp"
+#include "core/errors/error.hpp"
+#include "design/optics/camera.hpp"
+#include "design/optics/optics.hpp"
+#include "design/psf/kernel.hpp"
+#include "design/psf/kernel_validity.hpp"
 
 using namespace pinmask;
 

@@ -1,5 +1,5 @@
-// The fabrication grid (design/fab_grid): the pitch rounded to whole grid steps, and the spacing
-// rule on that pitch against a brute-force reference over every pair of pinholes (torus
+// The fabrication grid (design/optics/fab_grid): the pitch rounded to whole grid steps, and the
+// spacing rule on that pitch against a brute-force reference over every pair of pinholes (torus
 // distances written out here).
 #include <doctest/doctest.h>
 
@@ -8,9 +8,9 @@
 #include <random>
 #include <vector>
 
-#include "core/error.hpp"
-#include "design/fab_grid.hpp"
-#include "design/pattern.hpp"
+#include "core/errors/error.hpp"
+#include "design/optics/fab_grid.hpp"
+#include "design/pattern/pattern.hpp"
 
 using namespace pinmask;
 

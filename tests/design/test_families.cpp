@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "core/error.hpp"
-#include "design/exclusion_grid.hpp"
-#include "design/families.hpp"
-#include "design/mura.hpp"
+#include "core/errors/error.hpp"
+#include "design/pattern/exclusion_grid.hpp"
+#include "design/pattern/families.hpp"
+#include "design/pattern/mura.hpp"
 
 using namespace pinmask;
 using doctest::Contains;

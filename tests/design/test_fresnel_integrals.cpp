@@ -3,8 +3,8 @@
 #include <cmath>
 #include <complex>
 
-#include "core/error.hpp"
-#include "design/fresnel_integrals.hpp"
+#include "core/errors/error.hpp"
+#include "design/psf/fresnel_integrals.hpp"
 #include "tests/design/test_kernel_reference.hpp"
 #include "tests/support/close.hpp"
 

@@ -1,14 +1,14 @@
-// design/generate_pattern against the family generators called directly, and its rules.
+// design/pattern/generate_pattern against the family generators called directly, and its rules.
 #include <doctest/doctest.h>
 
 #include <random>
 #include <string>
 
-#include "core/error.hpp"
-#include "design/exclusion_grid.hpp"
-#include "design/generate_pattern.hpp"
-#include "design/mura.hpp"
-#include "design/random_sparse.hpp"
+#include "core/errors/error.hpp"
+#include "design/pattern/exclusion_grid.hpp"
+#include "design/pattern/generate_pattern.hpp"
+#include "design/pattern/mura.hpp"
+#include "design/pattern/random_sparse.hpp"
 
 using namespace pinmask;
 

@@ -9,9 +9,9 @@
 #include <limits>
 #include <string>
 
-#include "core/error.hpp"
-#include "design/kernel.hpp"
-#include "design/optics.hpp"
+#include "core/errors/error.hpp"
+#include "design/optics/optics.hpp"
+#include "design/psf/kernel.hpp"
 #include "tests/support/close.hpp"
 
 using namespace pinmask;

@@ -3,10 +3,10 @@
 #include <cmath>
 #include <string>
 
-#include "core/error.hpp"
-#include "design/kernel_model.hpp"
-#include "design/kernel_profile.hpp"
-#include "design/kernel_quadrature.hpp"
+#include "core/errors/error.hpp"
+#include "design/psf/kernel_model.hpp"
+#include "design/psf/kernel_profile.hpp"
+#include "design/psf/kernel_quadrature.hpp"
 
 using namespace pinmask;
 

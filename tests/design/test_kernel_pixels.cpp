@@ -4,9 +4,9 @@
 #include <cmath>
 #include <numeric>
 
-#include "core/error.hpp"
-#include "design/kernel.hpp"
-#include "design/kernel_profile.hpp"
+#include "core/errors/error.hpp"
+#include "design/psf/kernel.hpp"
+#include "design/psf/kernel_profile.hpp"
 #include "tests/design/test_kernel_reference.hpp"
 #include "tests/support/close.hpp"
 

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <vector>
 
-#include "core/error.hpp"
-#include "design/kernel_profile.hpp"
-#include "design/kernel_quadrature.hpp"
+#include "core/errors/error.hpp"
+#include "design/psf/kernel_profile.hpp"
+#include "design/psf/kernel_quadrature.hpp"
 #include "tests/design/test_kernel_reference.hpp"
 #include "tests/support/close.hpp"
 

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "core/error.hpp"
-#include "design/kernel_quadrature.hpp"
+#include "core/errors/error.hpp"
+#include "design/psf/kernel_quadrature.hpp"
 #include "tests/support/close.hpp"
 
 using namespace pinmask;

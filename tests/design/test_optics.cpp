@@ -4,8 +4,8 @@
 #include <limits>
 #include <string>
 
-#include "core/error.hpp"
-#include "design/optics.hpp"
+#include "core/errors/error.hpp"
+#include "design/optics/optics.hpp"
 #include "tests/support/close.hpp"
 
 using namespace pinmask;

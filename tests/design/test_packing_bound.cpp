@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/error.hpp"
-#include "design/packing_bound.hpp"
+#include "core/errors/error.hpp"
+#include "design/pattern/packing_bound.hpp"
 
 using namespace pinmask;
 
@@ -17,7 +17,7 @@ namespace {
 // Pairs at least this close to the spacing count as meeting it (the rule's own tolerance).
 constexpr double kRuleTolerance = 1e-9;
 
-// Test-local torus distance (independent of design/pattern.cpp).
+// Test-local torus distance (independent of design/pattern/pattern.cpp).
 double torus_dist(int r1, int c1, int r2, int c2, int n) {
     int dr = std::abs(r1 - r2);
     int dc = std::abs(c1 - c2);

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "core/error.hpp"
-#include "design/kernel.hpp"
-#include "design/paper_kernel.hpp"
-#include "design/psf.hpp"
+#include "core/errors/error.hpp"
+#include "design/psf/kernel.hpp"
+#include "design/psf/paper_kernel.hpp"
+#include "design/psf/psf.hpp"
 #include "tests/support/random_pattern.hpp"
 
 using namespace pinmask;

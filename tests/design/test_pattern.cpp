@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "core/error.hpp"
-#include "design/pattern.hpp"
+#include "core/errors/error.hpp"
+#include "design/pattern/pattern.hpp"
 
 using namespace pinmask;
 

@@ -6,9 +6,9 @@
 #include <random>
 #include <vector>
 
-#include "core/error.hpp"
-#include "core/fft.hpp"
-#include "design/psf.hpp"
+#include "core/errors/error.hpp"
+#include "core/fft/fft.hpp"
+#include "design/psf/psf.hpp"
 #include "tests/support/close.hpp"
 #include "tests/support/random_pattern.hpp"
 

@@ -1,14 +1,14 @@
-// design/psf_exact: spot centroids against an independent Eq. (3) computation, area resampling
+// design/psf/psf_exact: spot centroids against an independent Eq. (3) computation, area resampling
 // keeps the sum, the integer model is reproduced when the pitch is a whole number, edge cases.
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <limits>
 
-#include "core/error.hpp"
-#include "core/image_io.hpp"
-#include "design/psf.hpp"
-#include "design/psf_exact.hpp"
+#include "core/errors/error.hpp"
+#include "core/image/image_io.hpp"
+#include "design/psf/psf.hpp"
+#include "design/psf/psf_exact.hpp"
 #include "tests/support/cli_run.hpp"
 #include "tests/support/close.hpp"
 
@@ -54,7 +54,7 @@ TEST_CASE("exact geometry at 6 m: every spot centroid within 0.05 px of Eq. (3)"
     REQUIRE(a.rows() == m.camera.sensor_rows);
     REQUIRE(a.cols() == m.camera.sensor_cols);
     CHECK(std::fabs(a.sum() - 4.0) <= kSumTol);  // 2 x 2 tiles, each period sums to 1
-    const double pitch = 8.08;                   // DESIGN.md, paper at 6 m (window half-size)
+    const double pitch = 8.08;                   // docs/design.md section 2, paper at 6 m (window half-size)
     int spots = 0;
     for (int tr = 0; tr < 2; ++tr) {
         for (int tc = 0; tc < 2; ++tc) {

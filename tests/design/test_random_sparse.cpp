@@ -8,9 +8,9 @@
 #include <set>
 #include <string>
 
-#include "core/error.hpp"
-#include "design/exclusion_grid.hpp"
-#include "design/random_sparse.hpp"
+#include "core/errors/error.hpp"
+#include "design/pattern/exclusion_grid.hpp"
+#include "design/pattern/random_sparse.hpp"
 
 using namespace pinmask;
 using doctest::Contains;

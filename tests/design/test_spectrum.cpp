@@ -1,6 +1,6 @@
-// The camera's band (design/spectrum) and what it does to the kernel and the PSF: the samples
-// follow the Gaussian's half-maximum rule, and the PSF of a camera with a band equals the weighted
-// sum of monochromatic PSFs computed here one wavelength at a time.
+// The camera's band (design/optics/spectrum) and what it does to the kernel and the PSF: the
+// samples follow the Gaussian's half-maximum rule, and the PSF of a camera with a band equals the
+// weighted sum of monochromatic PSFs computed here one wavelength at a time.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "core/error.hpp"
-#include "design/design_kernel.hpp"
-#include "design/kernel.hpp"
-#include "design/psf.hpp"
-#include "design/spectrum.hpp"
+#include "core/errors/error.hpp"
+#include "design/optics/spectrum.hpp"
+#include "design/psf/design_kernel.hpp"
+#include "design/psf/kernel.hpp"
+#include "design/psf/psf.hpp"
 
 using namespace pinmask;
 

@@ -1,13 +1,14 @@
-// design/working_distance: the pinhole for N whole pixels per cell AT u, the usable object-distance
-// range against a direct evaluation of the tolerance, both pinhole optima, and the edge cases.
+// design/optics/working_distance: the pinhole for N whole pixels per cell AT u, the usable
+// object-distance range against a direct evaluation of the tolerance, both pinhole optima, and the
+// edge cases.
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "core/error.hpp"
-#include "design/working_distance.hpp"
+#include "core/errors/error.hpp"
+#include "design/optics/working_distance.hpp"
 #include "tests/support/close.hpp"
 
 using namespace pinmask;
@@ -123,7 +124,7 @@ TEST_CASE("edge cases: f = f' at infinity, object inside the focal length, empty
 TEST_CASE("paper: 8 px at 6 m, mismatch against the 8-px model, near end clamps at f'") {
     const WorkingDistance wd = compute_working_distance(paper_camera(), {16, 20, 2, 2});
     CHECK(wd.pixels_per_cell == 8);
-    CHECK(std::fabs(wd.pixels_per_cell_at_u - 8.08) <= 0.005);  // DESIGN.md: 8.08 pixels
+    CHECK(std::fabs(wd.pixels_per_cell_at_u - 8.08) <= 0.005);  // docs/design.md section 2: 8.08 pixels
     CHECK_CLOSE(wd.lsi_mismatch_px, 16 * (wd.pixels_per_cell_at_u - 8.0), kExactRel);
     const WorkingDistance huge = compute_working_distance(paper_camera(), {16, 20, 2, 2}, {1e6, 0});
     CHECK(huge.range_near_clamped_to_focal);

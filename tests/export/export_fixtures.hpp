@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "design/mask.hpp"
-#include "layout/layout.hpp"
+#include "design/pattern/mask.hpp"
+#include "export/layout/layout.hpp"
 
 namespace pinmask::test {
 

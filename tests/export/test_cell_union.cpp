@@ -2,10 +2,10 @@
 
 #include <vector>
 
-#include "core/error.hpp"
-#include "layout/cell_union.hpp"
-#include "layout/geometry.hpp"
-#include "layout/rings.hpp"
+#include "core/errors/error.hpp"
+#include "export/layout/cell_union.hpp"
+#include "export/layout/geometry.hpp"
+#include "export/layout/rings.hpp"
 #include "tests/export/export_fixtures.hpp"
 
 using namespace pinmask;

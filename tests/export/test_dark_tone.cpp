@@ -2,11 +2,11 @@
 
 #include <vector>
 
-#include "core/error.hpp"
-#include "layout/dark_tone.hpp"
-#include "layout/geometry.hpp"
-#include "layout/rings.hpp"
-#include "layout/shapes.hpp"
+#include "core/errors/error.hpp"
+#include "export/layout/dark_tone.hpp"
+#include "export/layout/geometry.hpp"
+#include "export/layout/rings.hpp"
+#include "export/layout/shapes.hpp"
 #include "tests/export/export_fixtures.hpp"
 
 using namespace pinmask;

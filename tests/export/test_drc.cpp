@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/error.hpp"
-#include "export/drc.hpp"
+#include "core/errors/error.hpp"
+#include "export/pipeline/drc.hpp"
 
 using namespace pinmask;
 

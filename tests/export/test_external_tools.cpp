@@ -14,21 +14,21 @@
 #include <tuple>
 #include <vector>
 
-#include "core/image_io.hpp"
-#include "formats/dxf_writer.hpp"
-#include "formats/gds_writer.hpp"
-#include "layout/geometry.hpp"
-#include "formats/gerber_writer.hpp"
-#include "formats/pdf_writer.hpp"
-#include "layout/rings.hpp"
-#include "formats/svg_writer.hpp"
+#include "core/image/image_io.hpp"
+#include "export/formats/dxf_writer.hpp"
+#include "export/formats/gds_writer.hpp"
+#include "export/formats/gerber_writer.hpp"
+#include "export/formats/pdf_writer.hpp"
+#include "export/formats/svg_writer.hpp"
+#include "export/layout/geometry.hpp"
+#include "export/layout/rings.hpp"
 #include "tests/support/cli_run.hpp"
 #include "tests/support/external_tool.hpp"
 
 using namespace pinmask;
-using pinmask::test::slurp;
 using pinmask::test::have_tool;
 using pinmask::test::run_tool;
+using pinmask::test::slurp;
 using pinmask::test::TempDir;
 using pinmask::test::write_bytes;
 

@@ -4,12 +4,12 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/error.hpp"
-#include "export/drc.hpp"
-#include "layout/geometry.hpp"
-#include "layout/marks.hpp"
-#include "layout/rings.hpp"
-#include "layout/shapes.hpp"
+#include "core/errors/error.hpp"
+#include "export/layout/geometry.hpp"
+#include "export/layout/marks.hpp"
+#include "export/layout/rings.hpp"
+#include "export/layout/shapes.hpp"
+#include "export/pipeline/drc.hpp"
 #include "tests/export/export_fixtures.hpp"
 
 using namespace pinmask;

@@ -2,16 +2,16 @@
 
 #include <random>
 
-#include "core/error.hpp"
-#include "formats/decimal.hpp"
-#include "formats/dxf_writer.hpp"
-#include "formats/gds_writer.hpp"
-#include "layout/geometry.hpp"
-#include "formats/gerber_writer.hpp"
-#include "formats/read_any.hpp"
-#include "layout/rings.hpp"
-#include "formats/svg_writer.hpp"
-#include "formats/write_any.hpp"
+#include "core/errors/error.hpp"
+#include "export/formats/decimal.hpp"
+#include "export/formats/dxf_writer.hpp"
+#include "export/formats/gds_writer.hpp"
+#include "export/formats/gerber_writer.hpp"
+#include "export/formats/read_any.hpp"
+#include "export/formats/svg_writer.hpp"
+#include "export/formats/write_any.hpp"
+#include "export/layout/geometry.hpp"
+#include "export/layout/rings.hpp"
 #include "tests/export/export_fixtures.hpp"
 
 using namespace pinmask;

@@ -10,8 +10,8 @@
 #include <limits>
 #include <string>
 
-#include "core/error.hpp"
-#include "core/image_io.hpp"
+#include "core/errors/error.hpp"
+#include "core/image/image_io.hpp"
 #include "report/report.hpp"
 #include "report/report_draw.hpp"
 #include "report/report_pages.hpp"

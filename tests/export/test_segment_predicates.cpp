@@ -9,7 +9,7 @@
 #include <numbers>
 #include <random>
 
-#include "layout/segment_predicates.hpp"
+#include "export/layout/segment_predicates.hpp"
 
 using namespace pinmask;
 

@@ -5,14 +5,14 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/error.hpp"
-#include "formats/dxf_writer.hpp"
-#include "formats/gds_writer.hpp"
-#include "layout/geometry.hpp"
-#include "formats/gerber_writer.hpp"
-#include "formats/pdf_writer.hpp"
-#include "formats/png_preview.hpp"
-#include "formats/svg_writer.hpp"
+#include "core/errors/error.hpp"
+#include "export/formats/dxf_writer.hpp"
+#include "export/formats/gds_writer.hpp"
+#include "export/formats/gerber_writer.hpp"
+#include "export/formats/pdf_writer.hpp"
+#include "export/formats/png_preview.hpp"
+#include "export/formats/svg_writer.hpp"
+#include "export/layout/geometry.hpp"
 #include "tests/export/export_fixtures.hpp"
 
 using namespace pinmask;

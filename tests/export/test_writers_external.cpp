@@ -8,13 +8,13 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/image_io.hpp"
-#include "formats/dxf_writer.hpp"
-#include "formats/gds_writer.hpp"
-#include "layout/geometry.hpp"
-#include "formats/gerber_writer.hpp"
-#include "layout/rings.hpp"
-#include "formats/svg_writer.hpp"
+#include "core/image/image_io.hpp"
+#include "export/formats/dxf_writer.hpp"
+#include "export/formats/gds_writer.hpp"
+#include "export/formats/gerber_writer.hpp"
+#include "export/formats/svg_writer.hpp"
+#include "export/layout/geometry.hpp"
+#include "export/layout/rings.hpp"
 #include "tests/export/export_fixtures.hpp"
 #include "tests/support/cli_run.hpp"
 

@@ -1,6 +1,6 @@
-// PNG preview and PDF scale, checked on pixels: the PNG through core/image_io, the PDF through
-// poppler's pdftoppm when it is installed (an optional cross-check reader; skipped, and said so,
-// when absent).
+// PNG preview and PDF scale, checked on pixels: the PNG through core/image/image_io, the PDF
+// through poppler's pdftoppm when it is installed (an optional cross-check reader; skipped, and
+// said so, when absent).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -8,11 +8,11 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/error.hpp"
-#include "core/image_io.hpp"
-#include "layout/geometry.hpp"
-#include "formats/pdf_writer.hpp"
-#include "formats/png_preview.hpp"
+#include "core/errors/error.hpp"
+#include "core/image/image_io.hpp"
+#include "export/formats/pdf_writer.hpp"
+#include "export/formats/png_preview.hpp"
+#include "export/layout/geometry.hpp"
 #include "tests/export/export_fixtures.hpp"
 #include "tests/support/cli_run.hpp"
 

@@ -5,8 +5,8 @@
 #include <random>
 #include <vector>
 
-#include "core/error.hpp"
-#include "layout/xor_area.hpp"
+#include "core/errors/error.hpp"
+#include "export/layout/xor_area.hpp"
 #include "tests/support/close.hpp"
 
 using namespace pinmask;

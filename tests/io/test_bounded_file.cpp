@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
 #include "io/checkpoint.hpp"
 #include "io/json_strict.hpp"
 #include "io/search_config.hpp"
@@ -87,8 +87,9 @@ TEST_CASE("the configuration readers: their setting, kind and limit in every mes
     const std::string size = std::to_string((1 << 20) + 1);
     CHECK(refusal([&] { io::read_sweep_config(path); }) ==
           "SWEEP " + path + ": " + size + " bytes is not a sweep file (at most 1 MiB)");
-    CHECK(refusal([&] { io::read_search_config(path); }).find(
-              path + ": " + size + " bytes is not a search configuration (at most 1 MiB)") !=
+    CHECK(refusal([&] {
+              io::read_search_config(path);
+          }).find(path + ": " + size + " bytes is not a search configuration (at most 1 MiB)") !=
           std::string::npos);
     // Within its 1 GiB limit the checkpoint reader parses the text and prefixes the refusal.
     write_file(path, "{}");

@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
 #include "io/camera_json.hpp"
 #include "tests/support/cli_run.hpp"
 

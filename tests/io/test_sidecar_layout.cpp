@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "core/error.hpp"
+#include "core/errors/error.hpp"
 #include "io/sidecar_layout.hpp"
 
 using namespace pinmask;

@@ -1,5 +1,5 @@
-// The MPI collectives (search/mpi/mpi_comm) checked against what each rank can compute on its
-// own: run by CTest under `mpirun -n 3` (test "mpi") and as a plain process (test "mpi-plain",
+// The MPI collectives (optimize/search/mpi/mpi_comm) checked against what each rank can compute on
+// its own: run by CTest under `mpirun -n 3` (test "mpi") and as a plain process (test "mpi-plain",
 // where world_comm() is the single-rank LocalComm). Every rank runs the same cases in the same
 // order (CHECK, never REQUIRE, so no rank skips a collective).
 #include <doctest/doctest.h>
@@ -8,8 +8,8 @@
 #include <cmath>
 #include <numeric>
 
-#include "search/byte_codec.hpp"
-#include "search/mpi/mpi_comm.hpp"
+#include "optimize/search/byte_codec.hpp"
+#include "optimize/search/mpi/mpi_comm.hpp"
 
 using namespace pinmask;
 

@@ -10,7 +10,7 @@ import subprocess
 
 import pytest
 
-# FFTW_ESTIMATE plans, no wisdom file, for the module (read at import, core/fft_environment) and
+# FFTW_ESTIMATE plans, no wisdom file, for the module (read at import, core/fft/fft_environment) and
 # for every command the suite runs: the same plans, so the same rounding, whatever the user's
 # wisdom cache holds.
 os.environ["PINMASK_WISDOM"] = "off"

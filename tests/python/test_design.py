@@ -23,7 +23,7 @@ def test_optics_equals_cli_design_json(cli):
 
 def test_optics_paper_figures():
     d = pinmask.optics(pinmask.paper_camera())
-    # DESIGN.md section 1: 7.94 pixels per cell, N_F 1.6 without the lens, z_eff 101.5 mm.
+    # docs/design.md section 2: 7.94 pixels per cell, N_F 1.6 without the lens, z_eff 101.5 mm.
     assert d["pixels_per_cell_at_inf"] == pytest.approx(7.944, abs=1e-3)
     assert d["fresnel_number"] == pytest.approx(1.6, abs=0.01)
     assert d["effective_distance_at_inf_m"] == pytest.approx(0.1015, abs=1e-4)

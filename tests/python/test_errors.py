@@ -70,7 +70,7 @@ def test_bad_input_is_value_error(call, pattern):
      "formats", "--format"),
 ])
 def test_a_bad_keyword_value_names_the_keyword(call, keyword, flag):
-    # The libraries name the setting by its field (core/field_names.hpp); the module spells it
+    # The libraries name the setting by its field (core/errors/field_names.hpp); the module spells it
     # as its keyword argument (python/keyword_names.cpp), never as the command-line flag.
     with pytest.raises(ValueError) as e:
         call()
@@ -115,7 +115,7 @@ def test_bad_psf_files_same_message_as_cli(cli, bad_inputs, tmp_path):
 
 def test_a_raw_file_that_crashes_libraw_is_a_value_error(cli, source_dir, tmp_path):
     # Debian 12's LibRaw 0.20.2 aborts on this DNG (make "Hasselblad", a 63-character model):
-    # core/raw_io runs LibRaw in a child process, so the interpreter survives and gets the same
+    # core/image/raw_io runs LibRaw in a child process, so the interpreter survives and gets the same
     # message as the command line. A LibRaw without the bug reads it like any DNG.
     path = source_dir / "fuzz" / "corpus" / "raw" / "hasselblad-long-model.dng"
     try:

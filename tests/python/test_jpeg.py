@@ -1,4 +1,4 @@
-"""JPEG input (core/jpeg_io) against an independent reader: PIL decodes the same files with its own
+"""JPEG input (core/image/jpeg_io) against an independent reader: PIL decodes the same files with its own
 libjpeg calls (the same libjpeg-turbo, the exact integer IDCT and fancy upsampling by default), so
 every uint8 sample must be EQUAL, on real photographs (Debian's python3-skimage data set, PIL comes
 with it: scripts/install-deps --with-optional) and on files PIL writes here (grey, 4:2:0 and 4:4:4

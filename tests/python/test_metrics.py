@@ -50,7 +50,7 @@ def test_spectrum_metrics_against_numpy(mask7):
     occ = mask7.pattern.occupancy().astype(float)
     mag = np.abs(np.fft.fft2(occ)).ravel()[1:]
     s = pinmask.spectrum_metrics(mask7.pattern)
-    zero_tol = 1e-9 * 20  # metrics/spectrum_metrics.hpp: |P^| <= 1e-9 K counts as zero
+    zero_tol = 1e-9 * 20  # optimize/metrics/spectrum_metrics.hpp: |P^| <= 1e-9 K counts as zero
     expect_min = 0.0 if mag.min() <= zero_tol else mag.min()
     assert s["min_abs_pattern_spectrum"] == pytest.approx(expect_min, abs=1e-9)
     assert s["light_gain"] == 20 and s["open_fraction"] == pytest.approx(20 / 256)

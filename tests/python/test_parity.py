@@ -113,7 +113,7 @@ def test_metrics_text_prior_equals_cli_compare(cli, tmp_path, mask7):
 
 
 # The text prior draws the same pages whatever Cairo drew before in the process (a report
-# turns metric hinting off; simulate/scene_text sets every font option itself).
+# turns metric hinting off; optimize/simulate/scene_text sets every font option itself).
 def test_text_prior_same_after_a_report(tmp_path):
     import subprocess
     import sys
@@ -246,7 +246,7 @@ def test_optics_working_distance_equals_cli_design_json(cli, args, kwargs):
 
 def test_optics_working_distance_paper_numbers():
     d = pinmask.optics()
-    # design/working_distance.hpp: d(N, u) = N w / |1 - f/f' + f/u|, the optimum 1.56 sqrt(lambda f).
+    # design/optics/working_distance.hpp: d(N, u) = N w / |1 - f/f' + f/u|, the optimum 1.56 sqrt(lambda f).
     c = pinmask.paper_camera()
     m_u = abs(1 - c.sensor_distance_m / c.lens_focal_m + c.sensor_distance_m / c.object_distance_m)
     n = d["whole_pixels_per_cell_at_u"]

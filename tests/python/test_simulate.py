@@ -72,7 +72,7 @@ def test_unknown_scene_same_message_as_cli(cli, tmp_path, mask7):
 def test_simulate_precision_matches_cli_and_double(cli, tmp_path, mask7):
     """precision: double is the default's bytes below 256 x 256; single equals the CLI's
     --precision single and stays within float rounding of double (the 5e-6 relative l2 bound
-    of tests/simulate/test_simulate_precision.cpp); a bad name names the keyword."""
+    of tests/optimize/simulate/test_simulate_precision.cpp); a bad name names the keyword."""
     mask7.save(str(tmp_path / "m.mask.json"))
     d = pinmask.simulate(mask7, "usaf", snr_db=30, seed=2)["capture"]
     assert np.array_equal(d, pinmask.simulate(mask7, "usaf", snr_db=30, seed=2,

@@ -2,8 +2,8 @@
 
 #include <vector>
 
-#include "metrics/nsr_tuning.hpp"
-#include "simulate/image_quality.hpp"
+#include "optimize/metrics/nsr_tuning.hpp"
+#include "optimize/simulate/image_quality.hpp"
 
 namespace pinmask {
 namespace {
@@ -14,8 +14,7 @@ std::vector<ComplexPlane> nominal_cross(const RobustWienerModel& model) {
 }
 
 // The tuned NSR for the nominal capture decoded with D (noise variance sigma2).
-double tune_expected_psf_nsr(const RobustWienerModel& model, const ComplexPlane& p,
-                             double sigma2) {
+double tune_expected_psf_nsr(const RobustWienerModel& model, const ComplexPlane& p, double sigma2) {
     const Plane power = model.expected_transfer().abs2();
     const std::vector<ComplexPlane> cross = nominal_cross(model);
     return tune_log_weight([&](double nsr) {

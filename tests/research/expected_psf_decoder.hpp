@@ -2,8 +2,8 @@
 // D = E_s kappa_s J, the kernel OTF averaged over the bias signs times the jitter mean J (what a
 // designer who knows the error statistics but not the sign of one copy's bias would decode
 // with). The robust-design tests measure it against the nominal-PSF decoder and the robust
-// filter of metrics/robust_wiener; no product figure uses it. Test-only code (tests/research's
-// pinmask_research library, which no product target links).
+// filter of optimize/metrics/robust_wiener; no product figure uses it. Test-only code
+// (tests/research's pinmask_research library, which no product target links).
 //
 // Both figures of a RobustError change against RobustWienerModel::evaluate: `nominal` is the
 // NOMINAL capture decoded with D (|G H - 1|^2 S + |G|^2 N sigma^2, G = conj(P^ D / K) w), and
@@ -12,7 +12,7 @@
 // are the nominal figure.
 #pragma once
 
-#include "metrics/robust_wiener.hpp"
+#include "optimize/metrics/robust_wiener.hpp"
 
 namespace pinmask {
 

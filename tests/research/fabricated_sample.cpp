@@ -4,13 +4,13 @@
 #include <functional>
 #include <string>
 
-#include "core/error.hpp"
-#include "core/fft.hpp"
-#include "decode/psf2otf.hpp"
-#include "decode/wiener.hpp"
-#include "design/psf.hpp"
-#include "simulate/image_quality.hpp"
-#include "simulate/simulate.hpp"
+#include "core/errors/error.hpp"
+#include "core/fft/fft.hpp"
+#include "decode/solvers/psf2otf.hpp"
+#include "decode/solvers/wiener.hpp"
+#include "design/psf/psf.hpp"
+#include "optimize/simulate/image_quality.hpp"
+#include "optimize/simulate/simulate.hpp"
 
 namespace pinmask {
 
@@ -146,7 +146,7 @@ FabricatedQuality fabricated_filter_quality(const Mask& mask, const FabricationE
     }
     const FftC2 fft(m, m);
     // The captures are centred as the decoder's (psf2otf moves the PSF's central element to the
-    // origin): C^ = R X^ H with R that shift's transfer; G applies in design/psf's frame.
+    // origin): C^ = R X^ H with R that shift's transfer; G applies in design/psf/psf's frame.
     Plane delta = Plane::Zero(m, m);
     delta(0, 0) = 1.0;
     const ComplexPlane shift = fft.forward(psf_to_origin(delta, m, m).cast<std::complex<double>>());

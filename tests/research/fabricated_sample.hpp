@@ -1,8 +1,8 @@
-// Fabricated masks drawn at random (the error model of metrics/robust_errors.hpp): one draw is
-// the PSF a fabricated copy of the mask really has, on the m x m torus in design/psf's frame
-// (same kernel placement, same 1/K weights up to the missing-pinhole scaling), so the nominal PSF
-// decodes its captures exactly as an uncalibrated camera would. This is the fixed-seed
-// Monte-Carlo sample the closed form (metrics/robust_wiener) is tested against, and the
+// Fabricated masks drawn at random (the error model of optimize/metrics/robust_errors.hpp): one
+// draw is the PSF a fabricated copy of the mask really has, on the m x m torus in design/psf/psf's
+// frame (same kernel placement, same 1/K weights up to the missing-pinhole scaling), so the nominal
+// PSF decodes its captures exactly as an uncalibrated camera would. This is the fixed-seed
+// Monte-Carlo sample the closed form (optimize/metrics/robust_wiener) is tested against, and the
 // simulated robust figure of the robust-design tests. Test-only code (tests/research's
 // pinmask_research library, which no product target links).
 #pragma once
@@ -11,13 +11,13 @@
 #include <random>
 #include <vector>
 
-#include "core/image.hpp"
-#include "design/kernel.hpp"
-#include "design/mask.hpp"
-#include "metrics/robust_errors.hpp"
-#include "metrics/robust_sample.hpp"
-#include "metrics/simulated_metrics.hpp"
-#include "simulate/noise_model.hpp"
+#include "core/image/image.hpp"
+#include "design/pattern/mask.hpp"
+#include "design/psf/kernel.hpp"
+#include "optimize/metrics/robust_errors.hpp"
+#include "optimize/metrics/robust_sample.hpp"
+#include "optimize/metrics/simulated_metrics.hpp"
+#include "optimize/simulate/noise_model.hpp"
 
 namespace pinmask {
 
@@ -44,11 +44,11 @@ class FabricationSampler {
 };
 
 // Simulated Wiener decoding of fabricated masks: for draw i (std::mt19937_64 seeded with
-// (seed, i)), every scene channel is captured through the draw's PSF (simulate/simulate
-// cyclic_capture), noise added (simulate/noise_model, the pattern's K and n^2), and decoded by
-// the fixed-NSR Wiener filter of the NOMINAL PSF. PSNR per scene from the MSE averaged over
-// draws and channels; the figure is the mean over scenes. `nominal_psnr_db` is the same with the
-// nominal PSF in place of each draw (same noise draws), so nominal - fabricated is the loss.
+// (seed, i)), every scene channel is captured through the draw's PSF (optimize/simulate/simulate
+// cyclic_capture), noise added (optimize/simulate/noise_model, the pattern's K and n^2), and
+// decoded by the fixed-NSR Wiener filter of the NOMINAL PSF. PSNR per scene from the MSE averaged
+// over draws and channels; the figure is the mean over scenes. `nominal_psnr_db` is the same with
+// the nominal PSF in place of each draw (same noise draws), so nominal - fabricated is the loss.
 struct FabricatedQuality {
     double nominal_psnr_db = 0.0;
     double fabricated_psnr_db = 0.0;

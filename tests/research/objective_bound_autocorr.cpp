@@ -5,9 +5,9 @@
 #include <deque>
 #include <string>
 
-#include "core/error.hpp"
-#include "design/exclusion_grid.hpp"
-#include "simulate/image_quality.hpp"
+#include "core/errors/error.hpp"
+#include "design/pattern/exclusion_grid.hpp"
+#include "optimize/simulate/image_quality.hpp"
 
 namespace pinmask {
 namespace {

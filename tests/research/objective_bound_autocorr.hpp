@@ -1,5 +1,5 @@
 // A tighter upper bound on the analytic Wiener PSNR of any binary K-pinhole pattern than
-// search/objective_bound.hpp's: the same relaxation in x(a) = |P^(a)|^2 / K^2, plus the
+// optimize/search/objective_bound.hpp's: the same relaxation in x(a) = |P^(a)|^2 / K^2, plus the
 // constraints every binary pattern's cyclic autocorrelation satisfies (research: can the
 // dim-light 0.5 dB gain of search over random patterns be ruled out?). Test-only code: built
 // into tests/research's pinmask_research library, which no product target links.
@@ -9,11 +9,11 @@
 //     r(d) = sum_i p(i) p(i + d) = (K^2 / n^2) sum_a x(a) cos(2 pi a.d / n)
 // (x(a) = x(-a) for a real pattern, so the inverse DFT is the cosine sum) is LINEAR in x, and
 // for every binary pattern with K ones: r(0) = K (Parseval), r(d) >= 0 for every d, and, when
-// the pattern keeps the spacing rule (design/pattern.hpp: centres at least s cells apart on the
-// torus, design/exclusion_grid.hpp's rows), r(d) = 0 at every lag d != 0 with a representative
-// closer than s ("forbidden lags"). With x(0) = 1 fixed, multipliers mu (any sign) on
-// r(0) = K and l(d) on r(d) >= 0 (l >= 0; any sign at a forbidden lag), scaled by K^2 / n^2,
-// the Lagrangian stays separable per frequency:
+// the pattern keeps the spacing rule (design/pattern/pattern.hpp: centres at least s cells apart on
+// the torus, design/pattern/exclusion_grid.hpp's rows), r(d) = 0 at every lag d != 0 with a
+// representative closer than s ("forbidden lags"). With x(0) = 1 fixed, multipliers mu (any sign)
+// on r(0) = K and l(d) on r(d) >= 0 (l >= 0; any sign at a forbidden lag), scaled by K^2 / n^2, the
+// Lagrangian stays separable per frequency:
 //     D(mu, l) = g_0(1) - mu X - sum_{d != 0} l(d) + sum_{a != 0} min_{0<=x<=1} [g_a(x) + w_a x],
 //     w_a = mu - sum_{d != 0} l(d) cos(2 pi a.d / n),   X = n^2 / K - 1,
 // and D is a lower bound on N^2 MSE of every K-pattern (of the constrained set) for ANY such
@@ -34,12 +34,12 @@
 #include <memory>
 #include <vector>
 
-#include "search/objective_bound.hpp"
+#include "optimize/search/objective_bound.hpp"
 
 namespace pinmask {
 
 // Lags d != 0 (row-major n x n) that the spacing rule with s = min_spacing_cells forbids: some
-// representative (d_r + i n, d_c + j n) is closer than s (design/exclusion_grid.hpp's
+// representative (d_r + i n, d_c + j n) is closer than s (design/pattern/exclusion_grid.hpp's
 // exclusion_rows, tolerance included). s = 0: none.
 std::vector<char> forbidden_lags(int n, double min_spacing_cells);
 

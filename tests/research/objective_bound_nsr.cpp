@@ -5,8 +5,8 @@
 #include <queue>
 #include <string>
 
-#include "core/error.hpp"
-#include "simulate/image_quality.hpp"
+#include "core/errors/error.hpp"
+#include "optimize/simulate/image_quality.hpp"
 
 namespace pinmask {
 namespace {

@@ -1,4 +1,4 @@
-// The upper bound of search/objective_bound.hpp for the scalar-NSR Wiener filter with ANY
+// The upper bound of optimize/search/objective_bound.hpp for the scalar-NSR Wiener filter with ANY
 // NSR (so in particular the tuned NSR that decode, the simulation and `search --photons` use):
 // a provable upper bound on the expected PSNR that filter reaches with any K-pinhole pattern.
 // It is tighter than the optimal filter's bound wherever one scalar NSR cannot match the prior
@@ -27,7 +27,7 @@
 
 #include <memory>
 
-#include "search/objective_bound.hpp"
+#include "optimize/search/objective_bound.hpp"
 #include "tests/research/objective_bound_autocorr.hpp"
 
 namespace pinmask {

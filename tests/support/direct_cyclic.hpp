@@ -1,10 +1,10 @@
 // The cyclic capture written as its definition, a direct O(N^2) sum with the decoder's centring:
 //     c(r, c) = sum_{i, j} a(i, j) x((r - i + ci) mod R, (c - j + cj) mod C),
 // (ci, cj) = (R / 2, C / 2) the PSF's central element. The reference the FFT capture of
-// simulate/simulate is tested against.
+// optimize/simulate/simulate is tested against.
 #pragma once
 
-#include "core/image.hpp"
+#include "core/image/image.hpp"
 
 namespace pinmask::test {
 

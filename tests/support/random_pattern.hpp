@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "design/camera.hpp"
-#include "design/mask.hpp"
-#include "design/pattern.hpp"
+#include "design/optics/camera.hpp"
+#include "design/pattern/mask.hpp"
+#include "design/pattern/pattern.hpp"
 
 namespace pinmask::test {
 
@@ -27,8 +27,8 @@ inline Pattern random_pattern(int n, int holes, unsigned seed) {
     return p;
 }
 
-// The paper's camera (design/camera paper_camera) with random_pattern(n, holes, seed), 8 px per
-// cell and the given kernel model.
+// The paper's camera (design/optics/camera paper_camera) with random_pattern(n, holes, seed), 8 px
+// per cell and the given kernel model.
 inline Mask random_paper_mask(int n, int holes, unsigned seed, const std::string& kernel = "box") {
     Mask m;
     m.camera = paper_camera();

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <random>
 
-#include "core/image.hpp"
+#include "core/image/image.hpp"
 
 namespace pinmask::test {
 

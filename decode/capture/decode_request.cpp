@@ -1,0 +1,120 @@
+#include "decode/capture/decode_request.hpp"
+
+#include <string>
+
+#include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
+#include "decode/solvers/decode_method.hpp"
+#include "decode/solvers/decode_modes.hpp"
+
+namespace pinmask {
+
+const char* method_parameter_field(MethodParameter p) {
+    switch (p) {
+        case MethodParameter::kNsr:
+            return "nsr";
+        case MethodParameter::kLambda:
+            return "lambda";
+        case MethodParameter::kRegulariser:
+            return "regulariser";
+        case MethodParameter::kEps:
+            return "eps";
+        case MethodParameter::kNoiseSigma:
+            return "noise_sigma";
+        case MethodParameter::kNonnegative:
+            return "nonnegative";
+        case MethodParameter::kIterations:
+            return "iterations";
+        case MethodParameter::kTolerance:
+            return "tolerance";
+    }
+    return "?";
+}
+
+bool write_method_parameter(DecodeOptions& d, MethodParameter p, const DecodeRequest& r) {
+    const DecodeMethod m = d.method;
+    switch (p) {
+        case MethodParameter::kNsr:
+            if (m != DecodeMethod::kWiener) return false;
+            d.wiener.nsr = r.nsr;
+            return true;
+        case MethodParameter::kLambda:
+            if (m == DecodeMethod::kTikhonov) d.tikhonov.lambda = r.lambda;
+            if (m == DecodeMethod::kTv) d.tv.lambda = r.lambda;
+            return m == DecodeMethod::kTikhonov || m == DecodeMethod::kTv;
+        case MethodParameter::kRegulariser:
+            if (m != DecodeMethod::kTikhonov) return false;
+            d.tikhonov.regulariser = r.regulariser;
+            return true;
+        case MethodParameter::kEps:
+            if (m != DecodeMethod::kTvqc) return false;
+            d.tvqc.eps = r.eps;
+            return true;
+        case MethodParameter::kNoiseSigma:
+            if (m != DecodeMethod::kTvqc) return false;
+            d.tvqc.noise_sigma = r.noise_sigma;
+            return true;
+        case MethodParameter::kNonnegative:
+            if (m == DecodeMethod::kTv) d.tv.nonnegative = r.nonnegative;
+            if (m == DecodeMethod::kTvqc) d.tvqc.nonnegative = r.nonnegative;
+            return m == DecodeMethod::kTv || m == DecodeMethod::kTvqc;
+        case MethodParameter::kIterations:
+            if (!is_iterative(m)) return false;
+            d.iterative.max_iterations = r.iterations;
+            return true;
+        case MethodParameter::kTolerance:
+            if (!is_iterative(m)) return false;
+            d.iterative.tolerance = r.tolerance;
+            return true;
+    }
+    return false;
+}
+
+void refuse_unused_parameters(const DecodeRequest& r, const std::vector<GivenParameter>& given) {
+    const DecodeMethod m = r.method;
+    for (const GivenParameter& g : given) {
+        DecodeOptions probe;
+        probe.method = m;
+        if (write_method_parameter(probe, g.parameter, r)) continue;
+        std::string users;
+        for (DecodeMethod other : kDecodeMethods) {
+            probe.method = other;
+            if (write_method_parameter(probe, g.parameter, r))
+                users += (users.empty() ? "" : ", ") + std::string(decode_method_name(other));
+        }
+        throw invalid_field(field_ref(method_parameter_field(g.parameter)), g.value,
+                            "is not used by " + field_ref("method") + " " + decode_method_name(m) +
+                                " (only by " + users + "); remove it or choose that method");
+    }
+    if (m == DecodeMethod::kTikhonov && !(r.lambda > 0.0)) {
+        throw invalid_field(field_ref("lambda"), std::to_string(r.lambda),
+                            "must be > 0 for tikhonov: lambda 0 is the unregularised inverse "
+                            "filter, which multiplies noise by 1/|H| at the PSF's spectral "
+                            "near-zeros (use " +
+                                field_ref("method") + " wiener " + field_ref("nsr") +
+                                " 0 for the floored inverse)");
+    }
+}
+
+DecodeOptions decode_options(const DecodeRequest& r) {
+    DecodeOptions d;
+    d.method = r.method;
+    d.model = r.model;
+    for (MethodParameter p : kMethodParameters) write_method_parameter(d, p, r);
+    return d;
+}
+
+CaptureDecodeOptions capture_decode_options(const DecodeRequest& r) {
+    CaptureDecodeOptions o;
+    o.crop = r.crop;
+    o.background = r.background.mode;
+    o.background_value = r.background.value;
+    o.downsample = r.downsample;
+    o.normalize = r.normalize;
+    o.decode = decode_options(r);
+    o.precision = r.precision;
+    o.threads = r.threads;
+    return o;
+}
+
+}  // namespace pinmask

@@ -1,0 +1,90 @@
+// A decode as a user asks for it: the settings of the capture pipeline
+// (decode/capture/capture_pipeline.hpp) with every method's parameters side by side, typed, before
+// they are sorted into the options struct of the chosen method. Shared by the decode command and
+// the Python module, which parse their own text and arguments into it; errors name the fields of
+// this struct through field_ref (core/errors/field_names.hpp), which each face spells its own way.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "decode/capture/capture.hpp"
+#include "decode/capture/capture_pipeline.hpp"
+#include "decode/capture/decoder.hpp"
+#include "decode/solvers/decode_modes.hpp"
+
+namespace pinmask {
+
+// The background a request subtracts: none, the PSF's corner patch, or a value in counts.
+struct DecodeBackground {
+    BackgroundMode mode = BackgroundMode::kNone;
+    double value = 0.0;  // kValue only: counts off the capture
+};
+
+// Every setting of a decode, with its default. The method's parameters are all here, whatever
+// the method; decode_options keeps the ones the method reads.
+struct DecodeRequest {
+    CropSpec crop{};  // kCenter: the period centred in the frame
+    DecodeMethod method = DecodeMethod::kWiener;
+    ConvModel model = ConvModel::kCyclic;
+    double nsr = 0.01;     // wiener
+    double lambda = 1e-3;  // tikhonov (> 0), tv (>= 0)
+    TikhonovRegulariser regulariser = TikhonovRegulariser::kIdentity;
+    std::optional<double> eps, noise_sigma;  // tvqc: one of them
+    bool nonnegative = false;                // tv, tvqc
+    int iterations = 200;                    // tv, tvqc, richardson-lucy
+    double tolerance = 1e-4;                 // tv, tvqc, richardson-lucy
+    int downsample = 0;
+    DecodeBackground background{};
+    NormalizeMode normalize = NormalizeMode::kNone;
+    int threads = 0;  // 0: all cores
+    Precision precision = Precision::kAuto;
+};
+
+// The request's fields that set a parameter of one method's struct in DecodeOptions
+// (decode/capture/decoder.hpp).
+enum class MethodParameter {
+    kNsr,          // wiener.nsr
+    kLambda,       // tikhonov.lambda, tv.lambda
+    kRegulariser,  // tikhonov.regulariser
+    kEps,          // tvqc.eps
+    kNoiseSigma,   // tvqc.noise_sigma
+    kNonnegative,  // tv.nonnegative, tvqc.nonnegative
+    kIterations,   // iterative.max_iterations (tv, tvqc, richardson-lucy)
+    kTolerance,    // iterative.tolerance (tv, tvqc, richardson-lucy)
+};
+inline constexpr MethodParameter kMethodParameters[] = {
+    MethodParameter::kNsr,        MethodParameter::kLambda,     MethodParameter::kRegulariser,
+    MethodParameter::kEps,        MethodParameter::kNoiseSigma, MethodParameter::kNonnegative,
+    MethodParameter::kIterations, MethodParameter::kTolerance};
+// The DecodeRequest field of a parameter: "nsr", "lambda", "regulariser", "eps", "noise_sigma",
+// "nonnegative", "iterations", "tolerance" (for field_ref; the faces spell it).
+const char* method_parameter_field(MethodParameter parameter);
+
+// Writes the request's value for `parameter` into the options of d.method that hold that
+// parameter; false when that method has no such parameter (its value would be dropped). The one
+// place that says which parameter goes where: decode_options and the refusals below both use it.
+bool write_method_parameter(DecodeOptions& d, MethodParameter parameter,
+                            const DecodeRequest& request);
+
+// A parameter the user gave (the CLI's flags counted, Python's arguments not None), with its
+// value as the user wrote it (for the message).
+struct GivenParameter {
+    MethodParameter parameter;
+    std::string value;
+};
+// InvalidInput naming the first given parameter that the request's method does not read and
+// the methods that do; then the refusal of lambda <= 0 for tikhonov.
+void refuse_unused_parameters(const DecodeRequest& request,
+                              const std::vector<GivenParameter>& given);
+
+// The DecodeOptions of a request: method, model, and every parameter the chosen method reads
+// (write_method_parameter). Whether the iterations are recorded (iterative.record_history) is
+// left at its default: each face sets it by what it shows.
+DecodeOptions decode_options(const DecodeRequest& request);
+// The pipeline options of a request (crop, background, downsample, normalize, decode,
+// precision, threads).
+CaptureDecodeOptions capture_decode_options(const DecodeRequest& request);
+
+}  // namespace pinmask
