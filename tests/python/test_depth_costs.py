@@ -1,0 +1,59 @@
+"""The depth costs compared in docs/depth.md section 3b (depth_costs.py): the identity that ties
+the evidence's two forms, and rows of the comparison table held."""
+import pathlib
+import tempfile
+
+import numpy as np
+import pytest
+from scipy.ndimage import uniform_filter
+
+import depth_costs as dc
+import depth_scenes as ds
+import pinmask
+
+
+def _mask_json(camera):
+    with tempfile.TemporaryDirectory() as tmp:
+        path = pathlib.Path(tmp) / "m.mask.json"
+        pinmask.generate(family="random", grid=16, holes=20, spacing=2, tiles=2, seed=3,
+                         camera=pinmask.Camera(**camera), kernel="box").save(str(path))
+        return ds.load(path)
+
+
+def test_evidence_and_its_split_form_agree_over_the_frame():
+    # y^T (K S K^H + s^2)^-1 y = min_x |y - K x|^2 / s^2 + x^H S^-1 x: with a window of the whole
+    # (cyclic) frame both forms give the same cost at every pixel, for any PSF and capture.
+    rng = np.random.default_rng(4)
+    y = rng.random((33, 33))
+    psfs = [rng.random((33, 33)) ** 4 for _ in range(3)]
+    a = dc.costs(y, psfs, "evidence", window=33)
+    b = dc.costs(y, psfs, "split", window=33)
+    assert np.allclose(a, b, rtol=1e-9, atol=0)
+    assert not np.allclose(a[0], a[1], rtol=1e-6)  # the planes differ
+    # And the local form is the box mean of a per-pixel energy: with window 1 it is that energy.
+    c = dc.costs(y, psfs, "evidence", window=1)
+    assert np.allclose(uniform_filter(c[0], 33, mode="wrap"), a[0], rtol=1e-9)
+
+
+# camera, scene (a SCENE_KINDS name or one plane's range position) -> the fraction of the
+# scene's pixels within one plane spacing for residual, evidence, split, joint (384 x 384,
+# window 121, 16 planes; docs/depth.md section 3b).
+ROWS = {
+    ("phone", "two planes"): (0.49, 0.00, 0.00, 0.07),
+    ("paper", 0.5): (0.22, 0.96, 0.92, 0.03),
+}
+
+
+@pytest.mark.parametrize("camera,scene", list(ROWS))
+def test_comparison_row(camera, scene):
+    cam, near, far = ds.CAMERAS[camera]
+    mj = _mask_json(cam)
+    inv = ds.range_inverse(near, far, np.linspace(0, 1, 16))
+    spacing = abs(inv[1] - inv[0])
+    psfs = [ds.exact_psf(mj, 1 / v, 384, 384) for v in inv]
+    positions = [scene] if isinstance(scene, float) else ds.SCENE_KINDS[scene]
+    cap, truth, _, inside, _ = ds.kind_scene(mj, positions, near, far, 384, 2000.0, 1)
+    for kind, held in zip(("residual", "evidence", "split", "joint"), ROWS[(camera, scene)]):
+        label = dc.costs(cap, psfs, kind).argmin(0)
+        within = np.mean(abs(inv[label][inside] - 1 / truth[inside]) <= spacing)
+        assert within == pytest.approx(held, abs=0.03), kind
