@@ -57,3 +57,22 @@ def test_comparison_row(camera, scene):
         label = dc.costs(cap, psfs, kind).argmin(0)
         within = np.mean(abs(inv[label][inside] - 1 / truth[inside]) <= spacing)
         assert within == pytest.approx(held, abs=0.03), kind
+
+
+def test_real_tilted_target():
+    # docs/depth.md section 3b: on the measured stack the evidence's frame-mean minimum is plane
+    # 17 (the README's independent check: planes 16-20 decode the bars sharpest), the residual's
+    # plane 36; neither per-pixel map follows the tilt (|Spearman| < 0.5 along rows and columns).
+    import depth_real as dr
+    if not (dr.folder() / "example_raw.png").exists():
+        pytest.skip(f"real data not found at {dr.folder()}")
+    raw, psfs = dr.load(dr.folder())
+    held = {"residual": (36, 0.37, -0.30), "evidence": (17, 0.16, -0.20),
+            "split": (17, 0.46, 0.14)}
+    for kind, (plane, by_col, by_row) in held.items():
+        got = dr.figures(raw, psfs, kind)
+        assert got[0] == plane, kind
+        assert got[1:] == pytest.approx((by_col, by_row), abs=0.01), kind
+    capture, median, by_col, by_row = dr.depthmap_figures(raw, psfs)
+    assert (capture, median, by_col, by_row) == pytest.approx((35.96, 41.91, 0.30, -0.34),
+                                                              abs=0.01)
