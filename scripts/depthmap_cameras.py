@@ -26,8 +26,9 @@ def fmt(x, pattern):
 
 print("| camera | scene | within one spacing | RMS (spacings) | median error (spacings) | "
       "share at confidence >= 0.5 | within one spacing there | flat region's median "
-      "confidence | all-in-focus PSNR (dB) | true-PSF decode PSNR (dB) |")
-print("|---|---|---|---|---|---|---|---|---|---|")
+      "confidence | all-in-focus PSNR (dB) | true-PSF decode PSNR (dB) | whole capture: "
+      "cost, evidence (error, spacings) |")
+print("|---|---|---|---|---|---|---|---|---|---|---|")
 with tempfile.TemporaryDirectory() as tmp:
     for name, (cam, near, far) in ds.CAMERAS.items():
         mask = pathlib.Path(tmp) / "m.mask.json"
@@ -44,4 +45,6 @@ with tempfile.TemporaryDirectory() as tmp:
                   f"{100 * r['confident_share']:.0f} % | "
                   f"{fmt(r['within_when_confident'], '{:.0%}')} | "
                   f"{fmt(r['flat_confidence_median'], '{:.2f}')} | {r['aif_psnr_db']:.2f} | "
-                  f"{r['true_psf_psnr_db']:.2f} |", flush=True)
+                  f"{r['true_psf_psnr_db']:.2f} | "
+                  f"{fmt(r['capture_error_planes'], '{:.2f}')}, "
+                  f"{fmt(r['evidence_error_planes'], '{:.2f}')} |", flush=True)

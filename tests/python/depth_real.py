@@ -44,11 +44,13 @@ def figures(raw, psfs, kind, window=61):
 def depthmap_figures(raw, psfs, window=121):
     """pinmask.depthmap over the stack (plane k at a nominal 1/u = 1 + k per metre, monotonic as
     the stack's order), default smoothing: the whole-capture plane, the median plane over the
-    target's patch and the Spearman correlations of the refined plane with column and row."""
+    target's patch, the Spearman correlations of the refined plane with column and row, and the
+    whole-capture plane by the evidence."""
     stack = [(1.0 / (1.0 + k), p) for k, p in enumerate(psfs)]
     r = pinmask.depthmap(raw / raw.max(), psf_stack=stack, window=window)
     plane = (1.0 / r["depth_m"] - 1.0)[TARGET]
     rows, cols = np.mgrid[TARGET]
     return (float(1.0 / r["capture_depth_m"] - 1.0), float(np.median(plane)),
             float(spearmanr(plane.ravel(), cols.ravel())[0]),
-            float(spearmanr(plane.ravel(), rows.ravel())[0]))
+            float(spearmanr(plane.ravel(), rows.ravel())[0]),
+            float(1.0 / r["capture_evidence_depth_m"] - 1.0))

@@ -222,4 +222,17 @@ def measure_kind(run_depthmap, mask_path, kind, near, far, steps, size, photons,
         "aif_psnr_db": psnr_fitted(aif, tex, textured),
         "true_psf_psnr_db": psnr_fitted(region_decode(capture, truth, mj, nsr), tex, textured),
         "capture_depth_m": r["capture_depth_m"],
+        # One plane: the whole-capture estimates' errors in plane spacings (frame-mean cost,
+        # evidence).
+        "capture_error_planes": whole_error(r["capture_depth_m"], truth, inside, spacing),
+        "evidence_error_planes": whole_error(r["capture_evidence_depth_m"], truth, inside,
+                                             spacing),
     }
+
+
+def whole_error(estimate_m, truth, inside, spacing):
+    """|1/estimate - 1/truth| in plane spacings for a scene of one plane, else None."""
+    u = np.unique(truth[inside])
+    if len(u) != 1 or estimate_m is None:
+        return None
+    return float(abs(1.0 / estimate_m - 1.0 / u[0]) / spacing)

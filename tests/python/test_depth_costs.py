@@ -73,6 +73,36 @@ def test_real_tilted_target():
         got = dr.figures(raw, psfs, kind)
         assert got[0] == plane, kind
         assert got[1:] == pytest.approx((by_col, by_row), abs=0.01), kind
-    capture, median, by_col, by_row = dr.depthmap_figures(raw, psfs)
+    capture, median, by_col, by_row, evidence = dr.depthmap_figures(raw, psfs)
     assert (capture, median, by_col, by_row) == pytest.approx((35.96, 41.91, 0.30, -0.34),
                                                               abs=0.01)
+    # pinmask's own whole-capture estimate by the evidence: measured 17.26, within the README's
+    # planes 16-20.
+    assert evidence == pytest.approx(17.26, abs=0.01)
+
+
+def test_library_evidence_matches_numpy():
+    # pinmask's per-plane evidence (depthmap/sweep_cost, over the half spectrum) against the
+    # formula written here over the full spectrum: mean_f [P / D + log D], D = |H|^2 A /
+    # (lambda + eps) + s^2, s^2 the mean of P where lambda > 6, A = (sum P - s^2 N) / sum
+    # |H|^2 / (lambda + eps); odd and even sides, chosen with no lambda within 1e-3 of 6 (where
+    # the two paths' rounding of lambda could disagree on the noise band).
+    rng = np.random.default_rng(5)
+    for rows, cols in ((45, 50), (44, 51)):
+        assert np.min(abs(dc.laplacian_eigen(rows, cols) - 6.0)) > 1e-3
+        # Values exact in float32, so that any conversion on the way keeps them.
+        cap = (rng.random((rows, cols)) + 0.2).astype(np.float32).astype(float)
+        psfs = [((rng.random((rows, cols)) > 0.97) * rng.random((rows, cols)))
+                .astype(np.float32).astype(float) for _ in range(3)]
+        r = pinmask.depthmap(cap, psf_stack=[(1.0 + k, p) for k, p in enumerate(psfs)],
+                             window=15)
+        lam = dc.laplacian_eigen(rows, cols)
+        power = abs(np.fft.fft2(cap)) ** 2 / cap.size
+        s2 = power[lam > 6].mean()
+        for plane, psf in zip(r["planes"], psfs):
+            h2 = abs(np.fft.fft2(psf / psf.sum())) ** 2
+            a = (power.sum() - s2 * cap.size) / np.sum(h2 / (lam + dc.EPS))
+            d = h2 * a / (lam + dc.EPS) + s2
+            assert plane["evidence"] == pytest.approx(np.mean(power / d + np.log(d)), rel=1e-9)
+        best = int(np.argmin([p["evidence"] for p in r["planes"]]))
+        assert 1.0 / r["capture_evidence_depth_m"] == pytest.approx(1.0 / (1.0 + best), abs=0.5)

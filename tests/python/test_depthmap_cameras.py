@@ -63,50 +63,51 @@ def test_renderer_scene_layout(tmp_path):
 # Measured rows of docs/depth.md section 3a (scripts/depthmap_cameras.py): camera, scene (a
 # SCENE_KINDS name or one plane's range position) -> fraction of the textured pixels within one
 # plane spacing, RMS error in plane spacings, all-in-focus PSNR minus the true-PSF decode's (dB),
-# the flat region's median confidence (half flat only).
+# the flat region's median confidence (half flat only), the whole-capture estimates' errors in
+# plane spacings by the frame-mean cost and by the evidence (one plane only).
 ROWS = {
-    ("paper", "two planes"): (0.23, 4.94, 0.01, None),
-    ("paper", "three planes"): (0.20, 5.16, 0.00, None),
-    ("paper", "slanted plane"): (0.13, 4.74, 0.00, None),
-    ("paper", "half flat"): (0.00, 8.57, 0.11, 0.05),
-    ("paper", 0.1): (0.54, 4.76, -0.02, None),
-    ("paper", 0.3): (0.39, 4.23, 0.00, None),
-    ("paper", 0.5): (0.32, 3.53, 0.03, None),
-    ("paper", 0.7): (0.36, 2.54, 0.04, None),
-    ("paper", 0.9): (0.14, 1.42, 0.03, None),
-    ("machine vision", "two planes"): (0.30, 3.70, -0.15, None),
-    ("machine vision", "three planes"): (0.10, 2.38, -0.10, None),
-    ("machine vision", "slanted plane"): (0.32, 1.93, -0.13, None),
-    ("machine vision", "half flat"): (0.00, 4.95, 0.23, 0.16),
-    ("machine vision", 0.1): (1.00, 0.41, 0.02, None),
-    ("machine vision", 0.3): (1.00, 0.53, -0.01, None),
-    ("machine vision", 0.5): (1.00, 0.41, 0.00, None),
-    ("machine vision", 0.7): (1.00, 0.39, 0.01, None),
-    ("machine vision", 0.9): (1.00, 0.22, 0.00, None),
-    ("phone", "two planes"): (0.50, 4.21, -0.13, None),
-    ("phone", "three planes"): (0.50, 3.35, -0.23, None),
-    ("phone", "slanted plane"): (0.38, 2.26, -0.25, None),
-    ("phone", "half flat"): (0.00, 5.37, 1.09, 0.32),
-    ("phone", 0.1): (0.97, 0.49, -0.07, None),
-    ("phone", 0.3): (1.00, 0.38, 0.02, None),
-    ("phone", 0.5): (1.00, 0.36, -0.04, None),
-    ("phone", 0.7): (1.00, 0.34, -0.02, None),
-    ("phone", 0.9): (1.00, 0.32, -0.09, None),
-    ("visible 35 mm", "two planes"): (0.00, 4.23, -0.17, None),
-    ("visible 35 mm", "three planes"): (0.21, 4.48, -0.25, None),
-    ("visible 35 mm", "slanted plane"): (0.17, 3.57, -0.19, None),
-    ("visible 35 mm", "half flat"): (0.00, 4.50, 0.43, 0.14),
-    ("visible 35 mm", 0.1): (0.82, 0.99, -0.06, None),
-    ("visible 35 mm", 0.3): (0.78, 0.80, 0.02, None),
-    ("visible 35 mm", 0.5): (1.00, 0.43, 0.02, None),
-    ("visible 35 mm", 0.7): (1.00, 0.52, -0.02, None),
-    ("visible 35 mm", 0.9): (1.00, 0.46, 0.01, None),
+    ("paper", "two planes"): (0.23, 4.94, 0.01, None, None, None),
+    ("paper", "three planes"): (0.20, 5.16, 0.00, None, None, None),
+    ("paper", "slanted plane"): (0.13, 4.74, 0.00, None, None, None),
+    ("paper", "half flat"): (0.00, 8.57, 0.11, 0.05, None, None),
+    ("paper", 0.1): (0.54, 4.76, -0.02, None, 2.38, 1.5),
+    ("paper", 0.3): (0.39, 4.23, 0.00, None, 2.71, 0.55),
+    ("paper", 0.5): (0.32, 3.53, 0.03, None, 2.48, 0.63),
+    ("paper", 0.7): (0.36, 2.54, 0.04, None, 1.96, 0.76),
+    ("paper", 0.9): (0.14, 1.42, 0.03, None, 1.5, 2.47),
+    ("machine vision", "two planes"): (0.30, 3.70, -0.15, None, None, None),
+    ("machine vision", "three planes"): (0.10, 2.38, -0.10, None, None, None),
+    ("machine vision", "slanted plane"): (0.32, 1.93, -0.13, None, None, None),
+    ("machine vision", "half flat"): (0.00, 4.95, 0.23, 0.16, None, None),
+    ("machine vision", 0.1): (1.00, 0.41, 0.02, None, 0.39, 0.95),
+    ("machine vision", 0.3): (1.00, 0.53, -0.01, None, 0.47, 0.03),
+    ("machine vision", 0.5): (1.00, 0.41, 0.00, None, 0.38, 0.14),
+    ("machine vision", 0.7): (1.00, 0.39, 0.01, None, 0.32, 0.34),
+    ("machine vision", 0.9): (1.00, 0.22, 0.00, None, 0.08, 0.17),
+    ("phone", "two planes"): (0.50, 4.21, -0.13, None, None, None),
+    ("phone", "three planes"): (0.50, 3.35, -0.23, None, None, None),
+    ("phone", "slanted plane"): (0.38, 2.26, -0.25, None, None, None),
+    ("phone", "half flat"): (0.00, 5.37, 1.09, 0.32, None, None),
+    ("phone", 0.1): (0.97, 0.49, -0.07, None, 0.35, 0.03),
+    ("phone", 0.3): (1.00, 0.38, 0.02, None, 0.32, 0.13),
+    ("phone", 0.5): (1.00, 0.36, -0.04, None, 0.23, 0.12),
+    ("phone", 0.7): (1.00, 0.34, -0.02, None, 0.12, 0.1),
+    ("phone", 0.9): (1.00, 0.32, -0.09, None, 0.17, 0.09),
+    ("visible 35 mm", "two planes"): (0.00, 4.23, -0.17, None, None, None),
+    ("visible 35 mm", "three planes"): (0.21, 4.48, -0.25, None, None, None),
+    ("visible 35 mm", "slanted plane"): (0.17, 3.57, -0.19, None, None, None),
+    ("visible 35 mm", "half flat"): (0.00, 4.50, 0.43, 0.14, None, None),
+    ("visible 35 mm", 0.1): (0.82, 0.99, -0.06, None, 0.74, 0.11),
+    ("visible 35 mm", 0.3): (0.78, 0.80, 0.02, None, 0.72, 0.12),
+    ("visible 35 mm", 0.5): (1.00, 0.43, 0.02, None, 0.39, 0.74),
+    ("visible 35 mm", 0.7): (1.00, 0.52, -0.02, None, 0.48, 0.12),
+    ("visible 35 mm", 0.9): (1.00, 0.46, 0.01, None, 0.38, 0.0),
 }
 
 
 @pytest.mark.parametrize("camera,scene", list(ROWS))
 def test_table_row(camera, scene, tmp_path):
-    within, rms, aif_gap, flat_conf = ROWS[(camera, scene)]
+    within, rms, aif_gap, flat_conf, cost_error, evidence_error = ROWS[(camera, scene)]
     cam, near, far = CAMERAS[camera]
     mask = pinmask.load_mask(str(_mask(tmp_path, cam)))
     run = lambda c, a, b, n: pinmask.depthmap(c, mask, from_m=a, to_m=b, steps=n)
@@ -118,3 +119,6 @@ def test_table_row(camera, scene, tmp_path):
     assert r["aif_psnr_db"] - r["true_psf_psnr_db"] >= aif_gap - 0.05
     if flat_conf is not None:
         assert r["flat_confidence_median"] <= flat_conf + 0.02
+    if cost_error is not None:
+        assert r["capture_error_planes"] == pytest.approx(cost_error, abs=0.01)
+        assert r["evidence_error_planes"] == pytest.approx(evidence_error, abs=0.01)
