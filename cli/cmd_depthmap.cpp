@@ -103,7 +103,8 @@ json summary(const DepthmapResult& r, const DepthmapCommandOptions& o, std::size
     for (std::size_t k = 0; k < r.distances_m.size(); ++k) {
         planes.push_back({{"object_distance_m", finite_or_null(r.distances_m[k])},
                           {"pixel_fraction", r.plane_fraction[k]},
-                          {"mean_cost", r.plane_cost[k]}});
+                          {"mean_cost", r.plane_cost[k]},
+                          {"evidence", r.plane_evidence[k]}});
     }
     return json{
         {"capture", o.capture},
@@ -119,6 +120,7 @@ json summary(const DepthmapResult& r, const DepthmapCommandOptions& o, std::size
         {"smooth", o.smooth},
         {"capture_depth_m", finite_or_null(r.capture_depth_m)},
         {"capture_confidence", r.capture_confidence},
+        {"capture_evidence_depth_m", finite_or_null(r.capture_evidence_depth_m)},
         {"depth_min_m", finite_or_null(r.depth_min_m)},
         {"depth_median_m", finite_or_null(r.depth_median_m)},
         {"depth_max_m", finite_or_null(r.depth_max_m)},
@@ -218,7 +220,9 @@ constexpr const char* kFooter =
     "paths; 0: the lowest-cost plane per pixel), refined by a parabola in 1/u; confidence "
     "(median cost - chosen cost) / median cost in [0, 1]; the all-in-focus image takes each "
     "pixel from the decode at its plane. capture_depth_m: the lowest frame-mean cost (the whole "
-    "capture as one plane). Light from one point spreads over the whole PSF, so the map resolves "
+    "capture as one plane); capture_evidence_depth_m: the lowest evidence (the capture's "
+    "marginal likelihood under a 1/f^2 scene prior and white noise). Light from one point spreads "
+    "over the whole PSF, so the map resolves "
     "depth only on regions about the PSF's size: measured accuracy in docs/depth.md.\n"
     "--psf-stack STACK replaces --mask/--from/--to/--steps with measured or computed PSFs: a JSON "
     "file (or a folder holding psf_stack.json) {\"format\": \"pinmask-psf-stack\", "

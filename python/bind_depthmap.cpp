@@ -98,6 +98,7 @@ void bind_depthmap(py::module_& m) {
             out["smooth"] = smooth;
             out["capture_depth_m"] = finite_or_none(r.capture_depth_m);
             out["capture_confidence"] = r.capture_confidence;
+            out["capture_evidence_depth_m"] = finite_or_none(r.capture_evidence_depth_m);
             out["depth_min_m"] = finite_or_none(r.depth_min_m);
             out["depth_median_m"] = finite_or_none(r.depth_median_m);
             out["depth_max_m"] = finite_or_none(r.depth_max_m);
@@ -108,6 +109,7 @@ void bind_depthmap(py::module_& m) {
                 p["object_distance_m"] = finite_or_none(r.distances_m[k]);
                 p["pixel_fraction"] = r.plane_fraction[k];
                 p["mean_cost"] = r.plane_cost[k];
+                p["evidence"] = r.plane_evidence[k];
                 planes_out.append(p);
             }
             out["planes"] = planes_out;

@@ -39,6 +39,7 @@ DepthmapResult run(const Plane& capture, const std::vector<double>& u, const Dep
             break;
         }
         PlaneCost pc = cost_at(k);
+        out.plane_evidence.push_back(pc.evidence);
         costs.push_back(std::move(pc.cost));
         estimates.push_back(std::move(pc.estimate));
         out.distances_m.push_back(u[k]);
@@ -54,6 +55,9 @@ DepthmapResult run(const Plane& capture, const std::vector<double>& u, const Dep
     const RefinedDepth whole = refine_depth(means, inv);
     out.capture_depth_m = whole.depth_m(0, 0);
     out.capture_confidence = whole.confidence(0, 0);
+    std::vector<Plane> evidence;
+    for (double e : out.plane_evidence) evidence.push_back(Plane::Constant(1, 1, e));
+    out.capture_evidence_depth_m = refine_depth(evidence, inv).depth_m(0, 0);
     const double scale = o.smooth > 0.0 ? o.smooth * cost_well_depth(costs) : 0.0;
     RefinedDepth r;
     if (scale > 0.0) {

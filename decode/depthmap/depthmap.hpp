@@ -8,7 +8,8 @@
 //      Then decode/depthmap/refine: a parabola in 1/u between planes, and a confidence from the
 //      sweep's costs at the chosen plane.
 //   3. All-in-focus: each pixel from the estimate of its winning plane.
-//   4. The whole capture as one plane: the same refinement on the frame-mean costs.
+//   4. The whole capture as one plane: the same refinement on the frame-mean costs, and on the
+//      planes' evidence (the marginal likelihood of the capture).
 // Interruption: `stop` is polled between planes; the result then holds the planes finished so far
 // (interrupted = true), which is a complete sweep over a shorter list.
 #pragma once
@@ -62,6 +63,12 @@ struct DepthmapResult {
     std::vector<double> plane_cost;
     double capture_depth_m = 0;
     double capture_confidence = 0;
+    // The whole capture by the evidence instead (depthmap/sweep_cost: the marginal likelihood
+    // under a 1/f^2 scene prior): each plane's evidence, and the distance where it is lowest
+    // (refined by the same parabola). docs/depth.md section 3b: on the real tilted target it
+    // picks the plane that decodes the target, where the frame-mean cost picks the far end.
+    std::vector<double> plane_evidence;
+    double capture_evidence_depth_m = 0;
     // Summary of the maps: smallest, median (upper middle) and largest depth, median confidence.
     double depth_min_m = 0, depth_median_m = 0, depth_max_m = 0, confidence_median = 0;
     bool interrupted = false;

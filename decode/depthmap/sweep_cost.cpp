@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "core/errors/error.hpp"
@@ -57,6 +58,44 @@ void check_inputs(const Plane& capture, double nsr, int window) {
     }
 }
 
+constexpr double kPriorEps = 1e-4;
+constexpr double kPi = std::numbers::pi;
+
+// The evidence of the header for the capture's half spectrum pf and the plane's OTF h.
+double evidence_of(const ComplexPlane& pf, const ComplexPlane& h, int rows, int cols) {
+    const double n = double(rows) * double(cols);
+    const Eigen::Index half = pf.cols();
+    // Each half-spectrum column stands for itself and its mirror, except l = 0 and l = C/2.
+    auto weight = [&](Eigen::Index l) { return (l == 0 || 2 * l == cols) ? 1.0 : 2.0; };
+    auto lambda = [&](Eigen::Index k, Eigen::Index l) {
+        const double sy = std::sin(kPi * double(k) / rows), sx = std::sin(kPi * double(l) / cols);
+        return 4.0 * sy * sy + 4.0 * sx * sx;
+    };
+    double noise_sum = 0, noise_count = 0, power = 0, model = 0;
+    for (Eigen::Index k = 0; k < pf.rows(); ++k) {
+        for (Eigen::Index l = 0; l < half; ++l) {
+            const double w = weight(l), p = std::norm(pf(k, l)) / n, lam = lambda(k, l);
+            power += w * p;
+            model += w * std::norm(h(k, l)) / (lam + kPriorEps);
+            if (lam > 6.0) {
+                noise_sum += w * p;
+                noise_count += w;
+            }
+        }
+    }
+    const double s2 = noise_count > 0 ? noise_sum / noise_count : 0.0;
+    const double a = std::max(power - s2 * n, 1e-12) / model;
+    double total = 0;
+    for (Eigen::Index k = 0; k < pf.rows(); ++k) {
+        for (Eigen::Index l = 0; l < half; ++l) {
+            const double d =
+                std::norm(h(k, l)) * a / (lambda(k, l) + kPriorEps) + std::max(s2, 1e-300);
+            total += weight(l) * (std::norm(pf(k, l)) / n / d + std::log(d));
+        }
+    }
+    return total / n;
+}
+
 PlaneCost cost_of(const Plane& capture, const Plane& psf, double nsr, int window) {
     const int rows = static_cast<int>(capture.rows()), cols = static_cast<int>(capture.cols());
     const Fft2 fft(rows, cols);
@@ -68,6 +107,7 @@ PlaneCost cost_of(const Plane& capture, const Plane& psf, double nsr, int window
     // capture - h (*) estimate = ifft(nsr / (|H|^2 + nsr) P): what the plane cannot explain.
     const ComplexPlane residual = pf * (nsr / (h.abs2() + nsr));
     out.cost = box_mean(fft.inverse(residual).square(), window);
+    out.evidence = evidence_of(pf, h, rows, cols);
     return out;
 }
 

@@ -15,6 +15,14 @@
 // hundred pixels), so the residual of a region spreads as far; the cost map resolves depth only
 // on regions of about that size (the measured figures are in docs/depth.md).
 // The estimate x_u is returned too: the all-in-focus image takes each pixel from its plane.
+// Evidence (docs/depth.md section 3b): minus twice the log marginal likelihood of the whole
+// capture under plane u, per pixel, with a Gaussian scene prior S(f) = A / (lambda(f) + eps)
+// (lambda the cyclic discrete Laplacian's eigenvalue 4 sin^2(pi k/R) + 4 sin^2(pi l/C), the
+// 1/f^2 law; eps = 1e-4) and white noise s^2: with P(f) = |Y(f)|^2 / N and
+// D_u(f) = |H_u(f)|^2 S(f) + s^2, evidence = mean_f [P / D_u + log D_u]. s^2 is the mean of P
+// where lambda > 6 (near Nyquist), A = max(sum_f P - s^2 N, 1e-12) / sum_f |H_u|^2 / (lambda +
+// eps) (the capture's power matched by plane u's model). Lower is better; unlike the residual
+// energy it charges a model for the captures it could have explained (the log D term).
 #pragma once
 
 #include "core/image/image.hpp"
@@ -23,8 +31,9 @@
 namespace pinmask {
 
 struct PlaneCost {
-    Plane cost;      // capture's size, in [0, 2]
-    Plane estimate;  // Wiener decode of the whole capture with the full exact PSF at u
+    Plane cost;           // capture's size, in [0, 2]
+    Plane estimate;       // Wiener decode of the whole capture with the full exact PSF at u
+    double evidence = 0;  // of the whole capture (above); any sign
 };
 
 // capture: rows x cols (>= 8 each, finite); window odd, >= 3, at most the smaller side;

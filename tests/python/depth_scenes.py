@@ -128,3 +128,111 @@ def measure(run_depthmap, read_tiff, mask_path, planes, frm, to, steps, size, ph
         "capture_error_planes": float(abs(inv(summary["capture_depth_m"]) - inv(planes[0])) / spacing)
         if len(planes) == 1 else None,
     }
+
+
+# The four cameras of docs/depth.md's table, as pinmask.Camera keywords, with the range of
+# object distances each is meant for. The pinhole side gives 8 px per cell at the design distance
+# (d = 8 w / M(u0)). "paper" is the paper's prototype (design/camera.hpp's paper_camera).
+CAMERAS = {
+    "paper": (dict(object_distance_m=6.0, lens_focal_m=0.120, sensor_distance_m=0.055,
+                   wavelength_m=550e-9, pixel_pitch_m=30e-6, pinhole_m=440e-6,
+                   sensor_cols=720, sensor_rows=480), 2.0, 6.0),
+    "machine vision": (MACHINE_VISION, 0.45, 1.5),
+    "phone": (dict(object_distance_m=0.3, lens_focal_m=0.0044, sensor_distance_m=0.0042,
+                   wavelength_m=530e-9, pixel_pitch_m=1.12e-6, pinhole_m=150.6e-6,
+                   sensor_cols=512, sensor_rows=512), 0.2, 1.0),
+    "visible 35 mm": (dict(object_distance_m=0.5, lens_focal_m=0.035, sensor_distance_m=0.022,
+                           wavelength_m=530e-9, pixel_pitch_m=2.4e-6, pinhole_m=46.3e-6,
+                           sensor_cols=512, sensor_rows=512), 0.3, 1.2),
+}
+
+# Scene kinds, each as positions t in [0, 1] along the range in 1/u (0: the near end, 1: the
+# far end), left to right: two and three planes in bands, a slanted plane (1/u linear across the
+# columns, drawn as 24 strips), half textured (left) and half flat (right, a constant grey),
+# and one plane filling the scene.
+SCENE_KINDS = {
+    "two planes": [0.2, 0.8],
+    "three planes": [0.1, 0.5, 0.9],
+    "slanted plane": list(0.05 + 0.9 * (np.arange(24) + 0.5) / 24),
+    "half flat": [0.25, 0.75],
+}
+
+
+def range_inverse(near, far, t):
+    """1/u at position t of the range [near, far] in 1/u."""
+    return 1.0 / near + np.asarray(t, dtype=float) * (1.0 / far - 1.0 / near)
+
+
+def kind_scene(mask_json, positions, near, far, size, photons, seed, flat_right=False):
+    """Vertical bands at the given range positions (left to right) over a size x size frame with
+    a dark border of size/8. flat_right: the right half's texture is a constant 0.5 (no
+    structure: its depth cannot be read). Returns (capture, truth distance map with NaN in the
+    border, texture, inside, flat region)."""
+    rng = np.random.default_rng(seed)
+    tex = texture(size, size, rng)
+    border = size // 8
+    yy, xx = np.mgrid[0:size, 0:size]
+    inside = (yy >= border) & (yy < size - border) & (xx >= border) & (xx < size - border)
+    n = len(positions)
+    band = np.clip(((xx - border) * n) // (size - 2 * border), 0, n - 1)
+    flat = inside & (band >= n // 2) if flat_right else np.zeros_like(inside)
+    tex = np.where(flat, 0.5, tex)
+    u = 1.0 / range_inverse(near, far, positions)
+    clean = np.zeros((size, size))
+    for k in range(n):
+        clean += blur(tex * inside * (band == k), exact_psf(mask_json, u[k], size, size))
+    capture = rng.poisson(np.maximum(clean, 0) * photons) / photons
+    return capture, np.where(inside, u[band], np.nan), tex * inside, inside, flat
+
+
+def region_decode(capture, truth, mask_json, nsr):
+    """Each region decoded with its own true PSF (numpy Wiener): the reference the all-in-focus
+    image is compared with."""
+    out = np.zeros_like(capture)
+    for u in np.unique(truth[np.isfinite(truth)]):
+        region = truth == u
+        out[region] = wiener(capture, exact_psf(mask_json, u, *capture.shape), nsr)[region]
+    return out
+
+
+def measure_kind(run_depthmap, mask_path, kind, near, far, steps, size, photons, seed,
+                 nsr=0.01):
+    """One row of the four-camera table: the scene `kind` (a SCENE_KINDS name, or a float: one
+    plane at that range position), depthmap run by run_depthmap(capture, near, far, steps) ->
+    pinmask.depthmap's result over the camera's range, figures against the truth on the
+    textured pixels."""
+    mj = load(mask_path)
+    positions = [kind] if isinstance(kind, float) else SCENE_KINDS[kind]
+    capture, truth, tex, inside, flat = kind_scene(mj, positions, near, far, size, photons,
+                                                   seed, flat_right=(kind == "half flat"))
+    r = run_depthmap(capture, near, far, steps)
+    depth, conf, aif = r["depth_m"], r["confidence"], r["all_in_focus"]
+    spacing = (1.0 / near - 1.0 / far) / (steps - 1)
+    textured = inside & ~flat
+    err = 1.0 / depth[textured] - 1.0 / truth[textured]
+    within = abs(err) <= spacing
+    sure = conf[textured] >= 0.5
+    return {
+        "within_spacing": float(np.mean(within)),
+        "rms_planes": float(np.sqrt(np.mean(err ** 2)) / spacing),
+        "median_error_planes": float(np.median(err) / spacing),
+        "confident_share": float(np.mean(sure)),
+        "within_when_confident": float(np.mean(within[sure])) if sure.any() else None,
+        "flat_confidence_median": float(np.median(conf[flat])) if flat.any() else None,
+        "aif_psnr_db": psnr_fitted(aif, tex, textured),
+        "true_psf_psnr_db": psnr_fitted(region_decode(capture, truth, mj, nsr), tex, textured),
+        "capture_depth_m": r["capture_depth_m"],
+        # One plane: the whole-capture estimates' errors in plane spacings (frame-mean cost,
+        # evidence).
+        "capture_error_planes": whole_error(r["capture_depth_m"], truth, inside, spacing),
+        "evidence_error_planes": whole_error(r["capture_evidence_depth_m"], truth, inside,
+                                             spacing),
+    }
+
+
+def whole_error(estimate_m, truth, inside, spacing):
+    """|1/estimate - 1/truth| in plane spacings for a scene of one plane, else None."""
+    u = np.unique(truth[inside])
+    if len(u) != 1 or estimate_m is None:
+        return None
+    return float(abs(1.0 / estimate_m - 1.0 / u[0]) / spacing)
