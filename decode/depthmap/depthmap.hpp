@@ -63,9 +63,9 @@ struct DepthmapResult {
     std::vector<double> plane_cost;
     double capture_depth_m = 0;
     double capture_confidence = 0;
-    // The whole capture by the evidence instead (depthmap/sweep_cost: the marginal likelihood
-    // under a 1/f^2 scene prior): each plane's evidence, and the distance where it is lowest
-    // (refined by the same parabola). docs/depth.md section 3b: on the real tilted target it
+    // The whole capture by the evidence instead (decode/depthmap/sweep_cost: the marginal
+    // likelihood under a 1/f^2 scene prior): each plane's evidence, and the distance where it is
+    // lowest (refined by the same parabola). docs/depth.md section 3b: on the real tilted target it
     // picks the plane that decodes the target, where the frame-mean cost picks the far end.
     std::vector<double> plane_evidence;
     double capture_evidence_depth_m = 0;

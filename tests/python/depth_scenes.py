@@ -132,7 +132,7 @@ def measure(run_depthmap, read_tiff, mask_path, planes, frm, to, steps, size, ph
 
 # The four cameras of docs/depth.md's table, as pinmask.Camera keywords, with the range of
 # object distances each is meant for. The pinhole side gives 8 px per cell at the design distance
-# (d = 8 w / M(u0)). "paper" is the paper's prototype (design/camera.hpp's paper_camera).
+# (d = 8 w / M(u0)). "paper" is the paper's prototype (design/optics/camera.hpp's paper_camera).
 CAMERAS = {
     "paper": (dict(object_distance_m=6.0, lens_focal_m=0.120, sensor_distance_m=0.055,
                    wavelength_m=550e-9, pixel_pitch_m=30e-6, pinhole_m=440e-6,

@@ -82,7 +82,7 @@ def test_real_tilted_target():
 
 
 def test_library_evidence_matches_numpy():
-    # pinmask's per-plane evidence (depthmap/sweep_cost, over the half spectrum) against the
+    # pinmask's per-plane evidence (decode/depthmap/sweep_cost, over the half spectrum) against the
     # formula written here over the full spectrum: mean_f [P / D + log D], D = |H|^2 A /
     # (lambda + eps) + s^2, s^2 the mean of P where lambda > 6, A = (sum P - s^2 N) / sum
     # |H|^2 / (lambda + eps); odd and even sides, chosen with no lambda within 1e-3 of 6 (where
