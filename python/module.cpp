@@ -29,7 +29,7 @@ the input copies made.
 
 Errors: ValueError for invalid input (the message is the command line's: it names the flag or
 field, the value and the rule), RuntimeError for failures while doing valid work.)";
-    m.attr("__version__") = kVersion;
+    m.attr("__version__") = pinmask::kVersion;
     // core/limits/allocator.hpp: freed planes stay on the heap (up to 32 MiB), so repeated decodes
     // do not page-fault their memory in again; PINMASK_ALLOCATOR=default before import skips it.
     pinmask::keep_freed_memory();
