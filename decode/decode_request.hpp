@@ -30,6 +30,9 @@ struct DecodeRequest {
     ConvModel model = ConvModel::kCyclic;
     double nsr = 0.01;     // wiener
     double lambda = 1e-3;  // tikhonov (> 0), tv (>= 0)
+    // "auto": the weight chosen from the capture (decode/auto_weight.hpp) in place of the number
+    // above: wiener's nsr, tikhonov's and tv's lambda.
+    bool nsr_auto = false, lambda_auto = false;
     TikhonovRegulariser regulariser = TikhonovRegulariser::kIdentity;
     std::optional<double> eps, noise_sigma;  // tvqc: one of them
     bool nonnegative = false;                // tv, tvqc
@@ -55,9 +58,9 @@ enum class MethodParameter {
     kTolerance,    // iterative.tolerance (tv, tvqc, richardson-lucy)
 };
 inline constexpr MethodParameter kMethodParameters[] = {
-    MethodParameter::kNsr,         MethodParameter::kLambda,     MethodParameter::kRegulariser,
-    MethodParameter::kEps,         MethodParameter::kNoiseSigma, MethodParameter::kNonnegative,
-    MethodParameter::kIterations,  MethodParameter::kTolerance};
+    MethodParameter::kNsr,        MethodParameter::kLambda,     MethodParameter::kRegulariser,
+    MethodParameter::kEps,        MethodParameter::kNoiseSigma, MethodParameter::kNonnegative,
+    MethodParameter::kIterations, MethodParameter::kTolerance};
 // The DecodeRequest field of a parameter: "nsr", "lambda", "regulariser", "eps", "noise_sigma",
 // "nonnegative", "iterations", "tolerance" (for field_ref; the faces spell it).
 const char* method_parameter_field(MethodParameter parameter);
