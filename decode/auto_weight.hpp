@@ -19,8 +19,8 @@
 // light that would fall beyond the sensor, which the filter reads as zero, is an error of the
 // same kind as noise: the power per frequency is (sigma^2 n + m (N - n)) / N, n the capture's
 // pixels, N the grid's, m the mean square of the capture's border band (1/16 of its smaller
-// side wide), the level of the light at the sensor's edges. Counting noise alone chose NSRs
-// 100x too small on frame-filling lensless captures (9-14 dB below the best).
+// side wide), the level of the light at the sensor's edges (counting the noise alone chooses
+// far too small an NSR on a frame-filling lensless capture).
 // Units: the weight is dimensionless and the same for the capture times any factor (both
 // S and sigma^2 scale by its square).
 #pragma once
