@@ -89,6 +89,8 @@ void run_decode(DecodeCommand& r, BayerMode bayer) {
     std::istringstream warnings(period_warning(sum.period));
     for (std::string line; std::getline(warnings, line);)
         std::cerr << "pinmask: warning: " << line << "\n";
+    for (const std::string& w : sum.warnings)
+        std::cerr << "pinmask: warning: " << spell_flags(w) << "\n";
     add_summary_json(stats, timings, r, sum);
     if (sum.interrupted) {
         std::cerr << "pinmask: interrupted: writing the estimate after "

@@ -20,6 +20,7 @@
 #include "design/psf/psf.hpp"
 #include "design/psf/psf_exact.hpp"
 #include "python/common.hpp"
+#include "python/keyword_names.hpp"
 #include "python/values.hpp"
 
 namespace pinmask::python {
@@ -30,6 +31,7 @@ struct DecodeOutput {
     std::vector<DecodeResult> results;
     CropWindow window;
     PeriodCheck period;
+    std::vector<std::string> warnings;  // CaptureDecodeSummary::warnings
 };
 
 // The capture: a borrowed library plane (mono, no copy) or an owned image.
@@ -63,6 +65,7 @@ DecodeOutput decode_pipeline(CaptureArg& cap, PlaneArg& psf_in, bool measured_ps
     out.window = res.summary.window;
     out.period = res.summary.period;
     out.results = std::move(res.summary.channels);
+    out.warnings = std::move(res.summary.warnings);
     for (std::size_t i = 0; i < out.results.size() && i < res.estimate.channels.size(); ++i)
         out.results[i].image = std::move(res.estimate.channels[i]);
     return out;
@@ -103,6 +106,7 @@ py::dict period_dict(const PeriodCheck& p) {
 // The method's own arguments as given: None means "not given" (the request's default).
 struct MethodArgs {
     std::optional<double> nsr, lambda, eps, noise_sigma, tol;
+    bool nsr_auto = false, lambda_auto = false;  // nsr / lambda_ given as "auto"
     std::optional<std::string> regulariser;
     std::optional<bool> nonneg;
     std::optional<int> iters;
@@ -110,6 +114,29 @@ struct MethodArgs {
 
 // A given argument's value as Python writes it (for the refusal's message).
 std::string python_text(const py::object& value) { return py::repr(value).cast<std::string>(); }
+
+// nsr / lambda_: None (not given), a number, or "auto" (sets `automatic`; the value is then 0).
+std::optional<double> weight_arg(const py::object& v, const char* name, bool& automatic) {
+    automatic = false;
+    if (v.is_none()) return std::nullopt;
+    if (py::isinstance<py::str>(v)) {
+        if (v.cast<std::string>() != "auto")
+            throw invalid_field(field_ref(name), python_text(v), "must be a number or 'auto'");
+        automatic = true;
+        return 0.0;
+    }
+    const auto refuse = [&] {
+        return py::type_error(py_names::spell_keywords(field_ref(name)) +
+                              " must be a number or 'auto', not " +
+                              std::string(py::str(v.get_type().attr("__name__"))));
+    };
+    if (py::isinstance<py::bool_>(v)) throw refuse();
+    try {
+        return py::float_(v).cast<double>();  // any real number (numpy scalars too)
+    } catch (const py::error_already_set&) {
+        throw refuse();
+    }
+}
 
 // Writes the given method arguments into `r` (the others keep the request's defaults) and lists
 // them, so that refuse_unused_parameters refuses one the method does not read, as the CLI
@@ -119,8 +146,14 @@ std::vector<GivenParameter> set_method_args(DecodeRequest& r, const MethodArgs& 
     const auto give = [&](MethodParameter p, const py::object& v) {
         given.push_back({p, python_text(v)});
     };
-    if (a.nsr) give(MethodParameter::kNsr, py::float_(r.nsr = *a.nsr));
-    if (a.lambda) give(MethodParameter::kLambda, py::float_(r.lambda = *a.lambda));
+    const auto weight = [](double v, bool automatic) -> py::object {
+        if (automatic) return py::str("auto");
+        return py::float_(v);
+    };
+    r.nsr_auto = a.nsr_auto;
+    r.lambda_auto = a.lambda_auto;
+    if (a.nsr) give(MethodParameter::kNsr, weight(r.nsr = *a.nsr, a.nsr_auto));
+    if (a.lambda) give(MethodParameter::kLambda, weight(r.lambda = *a.lambda, a.lambda_auto));
     if (a.regulariser) {
         r.regulariser = parse_regulariser(*a.regulariser, field_ref("regulariser"));
         give(MethodParameter::kRegulariser, py::str(*a.regulariser));
@@ -174,8 +207,8 @@ void bind_decode(py::module_& m) {
     m.def(
         "decode",
         [](const py::handle& capture, const py::handle& psf, const py::handle& mask,
-           const std::string& method, const std::string& model, std::optional<double> nsr,
-           std::optional<double> lambda_, std::optional<std::string> regulariser,
+           const std::string& method, const std::string& model, const py::object& nsr_arg,
+           const py::object& lambda_arg, std::optional<std::string> regulariser,
            std::optional<double> eps, std::optional<double> noise_sigma, std::optional<bool> nonneg,
            std::optional<int> iters, std::optional<double> tol, const py::handle& crop,
            const py::handle& dark, const py::handle& background, int downsample,
@@ -184,8 +217,12 @@ void bind_decode(py::module_& m) {
            const py::object& object_distance) {
             DecodeRequest r;
             r.model = parse_conv_model(model, field_ref("model"));
-            const std::vector<GivenParameter> given = set_method_args(
-                r, {nsr, lambda_, eps, noise_sigma, tol, regulariser, nonneg, iters});
+            MethodArgs args{{},    {},    eps,         noise_sigma, tol,
+                            false, false, regulariser, nonneg,      iters};
+            args.nsr = weight_arg(nsr_arg, "nsr", args.nsr_auto);
+            args.lambda = weight_arg(lambda_arg, "lambda", args.lambda_auto);
+            const std::optional<double> nsr = args.nsr;
+            const std::vector<GivenParameter> given = set_method_args(r, args);
             r.normalize = parse_normalize_mode(normalize, field_ref("normalize"));
             if (threads < 0 || threads > 1024)
                 throw invalid_field(field_ref("threads"), std::to_string(threads),
@@ -336,6 +373,13 @@ void bind_decode(py::module_& m) {
                 py::dict c;
                 c["iterations"] = res.iterations;
                 c["objective"] = res.objective;
+                if (res.auto_weight) {
+                    py::dict w;
+                    w["weight"] = res.auto_weight->weight;
+                    w["noise_sigma"] = res.auto_weight->noise_sigma;
+                    w["scene_spectrum_exponent"] = res.auto_weight->alpha;
+                    c["auto_weight"] = w;
+                }
                 c["residual"] = res.residual;
                 c["converged"] = res.converged;
                 c["interrupted"] = res.interrupted;
@@ -355,6 +399,12 @@ void bind_decode(py::module_& m) {
                 py::make_tuple(out.window.row, out.window.col, out.window.rows, out.window.cols);
             d["period_check"] = period_dict(out.period);
             if (!refocus_info.is_none()) d["refocus"] = refocus_info;
+            // The CLI's "pinmask: warning:" lines, as Python warnings.
+            for (const std::string& w : out.warnings) {
+                const std::string text = "pinmask: " + py_names::spell_keywords(w);
+                if (PyErr_WarnEx(PyExc_UserWarning, text.c_str(), 1) < 0)
+                    throw py::error_already_set();
+            }
             return d;
         },
         py::arg("capture"), py::arg("psf") = py::none(), py::arg("mask") = py::none(),
@@ -379,7 +429,10 @@ s.t. ||Ax - p||_2 <= eps, or eps from noise_sigma) | richardson-lucy. model: cyc
 tv/tvqc. iters, tol: iterative methods (relative change of x). Method arguments left None take
 the CLI's defaults (nsr 0.01, lambda_ 1e-3, regulariser identity, nonneg False, iters 200,
 tol 1e-4); one given for a method that does not read it raises ValueError naming it and the
-methods that do (as the CLI refuses --nsr with --method tv). crop: 'center' | 'none' |
+methods that do (as the CLI refuses --nsr with --method tv). nsr='auto' (wiener) and
+lambda_='auto' (tikhonov): the weight of least expected error for the noise and scene
+spectrum read from the capture (docs/decoding.md); each channel's auto_weight then says
+{weight, noise_sigma, scene_spectrum_exponent}. crop: 'center' | 'none' |
 (row, col) of the period's top-left pixel. dark: dark frame, same size (1 or the capture's
 channels). background: 'none' | 'corner' (mean of the PSF's rows/cols 5..14, off PSF and
 capture; needs psf=) | a number of counts off the capture. downsample: K rounds of 2x2 box

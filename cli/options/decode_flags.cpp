@@ -88,9 +88,11 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeCommand& o) {
                    "convolution then crop: lensless captures, non-cyclic masks)")
         ->check(CLI::IsMember(name_list(kConvModelNames)))
         ->capture_default_str();
-    method_flag(cmd.add_option("--nsr", q.nsr,
+    method_flag(cmd.add_option("--nsr", o.nsr,
                                "wiener: noise-to-signal power ratio, dimensionless (>= 0); "
-                               "relative to |H|^2 of the PSF as normalised (sum 1: |H(0)| = 1)")
+                               "relative to |H|^2 of the PSF as normalised (sum 1: |H(0)| = 1); "
+                               "auto: the NSR of least expected error for the noise and scene "
+                               "spectrum read from the capture (docs/decoding.md)")
                     ->capture_default_str(),
                 MethodParameter::kNsr);
     cmd.add_option("--nsr-map", o.nsr_map,
@@ -98,9 +100,10 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeCommand& o) {
                    "working grid's full spectrum (fft2 layout: row k, column l is frequency "
                    "(k/R, l/C)), finite, >= 0, same units as --nsr (e.g. score --robust-decoder's "
                    "robust-nsr.npy)");
-    method_flag(cmd.add_option("--lambda", q.lambda,
+    method_flag(cmd.add_option("--lambda", o.lambda,
                                "tikhonov (> 0, dimensionless) / tv (>= 0, capture units) "
-                               "regularisation weight")
+                               "regularisation weight; auto (tikhonov): chosen from the capture "
+                               "as for --nsr auto")
                     ->capture_default_str(),
                 MethodParameter::kLambda);
     method_flag(cmd.add_option("--regulariser", o.regulariser, "tikhonov: identity | gradient")
@@ -173,7 +176,24 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeCommand& o) {
     return f;
 }
 
+namespace {
+
+// --nsr / --lambda: "auto" or a number (its range is the library's to refuse).
+double parse_weight(const std::string& text, const char* flag, bool& automatic) {
+    automatic = text == "auto";
+    if (automatic) return 0.0;
+    try {
+        return parse_number(text, flag);
+    } catch (const InvalidInput&) {
+        throw invalid_field(flag, text, "must be a finite number or auto");
+    }
+}
+
+}  // namespace
+
 void resolve_method(DecodeCommand& c, const DecodeFlags& flags) {
+    c.request.nsr = parse_weight(c.nsr, "--nsr", c.request.nsr_auto);
+    c.request.lambda = parse_weight(c.lambda, "--lambda", c.request.lambda_auto);
     std::vector<GivenParameter> given;
     for (const auto& [opt, parameter] : flags.method_flags) {
         if (opt->count() == 0) continue;

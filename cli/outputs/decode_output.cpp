@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "cli/options/flag_names.hpp"
 #include "core/errors/error.hpp"
 #include "core/image/image_io.hpp"
 #include "core/units/number_format.hpp"
@@ -92,10 +93,20 @@ void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const Deco
                             {"constraint_met", d.constraint_met},
                             {"interrupted", d.interrupted},
                             {"history", history}});
+        if (d.auto_weight) {
+            channels.back()["auto_weight"] = {{"weight", d.auto_weight->weight},
+                                              {"noise_sigma", d.auto_weight->noise_sigma},
+                                              {"scene_spectrum_exponent", d.auto_weight->alpha}};
+        }
         per_channel.push_back(d.seconds);
         history_seconds.push_back(hs);
     }
     stats["channels"] = channels;
+    if (!s.warnings.empty()) {
+        json warnings = json::array();
+        for (const std::string& w : s.warnings) warnings.push_back(spell_flags(w));
+        stats["warnings"] = warnings;
+    }
     if (s.interrupted) stats["interrupted"] = true;
     timings["decode_channels"] = per_channel;
     timings["history_seconds"] = history_seconds;
@@ -118,9 +129,9 @@ nlohmann::json config_json(const DecodeCommand& c) {
             {"crop", c.crop},
             {"method", c.method},
             {"model", c.model},
-            {"nsr", r.nsr},
+            {"nsr", r.nsr_auto ? nlohmann::json("auto") : nlohmann::json(r.nsr)},
             {"nsr_map", path(c.nsr_map)},
-            {"lambda", r.lambda},
+            {"lambda", r.lambda_auto ? nlohmann::json("auto") : nlohmann::json(r.lambda)},
             {"regulariser", c.regulariser},
             {"eps", opt(r.eps)},
             {"noise_sigma", opt(r.noise_sigma)},

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
 #include "core/fft/fft.hpp"
 #include "core/units/number_format.hpp"
 #include "decode/capture/preprocess.hpp"
@@ -190,6 +191,21 @@ CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOp
     s.channels = decode_channels(capture, psf.channels, d);
     s.seconds.decode = seconds_since(t0);
     s.seconds.fft_planning = fft_plan_stats().planning_seconds - planning_before;
+    for (std::size_t ch = 0; ch < s.channels.size(); ++ch) {
+        const std::optional<AutoWeight>& w = s.channels[ch].auto_weight;
+        if (!w) continue;
+        s.notes.push_back("channel " + std::to_string(ch) + ": " +
+                          field_ref(d.method == DecodeMethod::kWiener ? "nsr" : "lambda") + " " +
+                          format_number(w->weight, 4) + " chosen from the capture (noise sigma " +
+                          format_number(w->noise_sigma, 4) +
+                          (d.method == DecodeMethod::kTv
+                               ? std::string(")")
+                               : ", scene spectrum |f|^-" + format_number(w->alpha, 3) + ")"));
+    }
+    for (const DecodeResult& r : s.channels)
+        for (const std::string& w : r.warnings)
+            if (std::find(s.warnings.begin(), s.warnings.end(), w) == s.warnings.end())
+                s.warnings.push_back(w);
     for (DecodeResult& r : s.channels) {
         out.estimate.channels.push_back(std::move(r.image));
         r.image = Plane();

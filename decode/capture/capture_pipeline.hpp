@@ -64,6 +64,8 @@ struct CaptureDecodeSummary {
     bool interrupted = false;
     bool constraint_met = true;      // tvqc: every channel met ||A x - p|| <= eps
     std::vector<std::string> notes;  // what each step decided, one line each (--explain)
+    // The channels' DecodeResult::warnings, each once: the faces always show them.
+    std::vector<std::string> warnings;
     struct Seconds {
         double dark = 0, preprocess = 0, period_check = 0, crop = 0, decode = 0;
         double fft_planning = 0;  // FFT planning during the decode (measuring, or wisdom)

@@ -37,10 +37,13 @@ bool write_method_parameter(DecodeOptions& d, MethodParameter p, const DecodeReq
         case MethodParameter::kNsr:
             if (m != DecodeMethod::kWiener) return false;
             d.wiener.nsr = r.nsr;
+            d.wiener.automatic = r.nsr_auto;
             return true;
         case MethodParameter::kLambda:
             if (m == DecodeMethod::kTikhonov) d.tikhonov.lambda = r.lambda;
+            if (m == DecodeMethod::kTikhonov) d.tikhonov.automatic = r.lambda_auto;
             if (m == DecodeMethod::kTv) d.tv.lambda = r.lambda;
+            if (m == DecodeMethod::kTv) d.tv.automatic = r.lambda_auto;
             return m == DecodeMethod::kTikhonov || m == DecodeMethod::kTv;
         case MethodParameter::kRegulariser:
             if (m != DecodeMethod::kTikhonov) return false;
@@ -86,7 +89,7 @@ void refuse_unused_parameters(const DecodeRequest& r, const std::vector<GivenPar
                             "is not used by " + field_ref("method") + " " + decode_method_name(m) +
                                 " (only by " + users + "); remove it or choose that method");
     }
-    if (m == DecodeMethod::kTikhonov && !(r.lambda > 0.0)) {
+    if (m == DecodeMethod::kTikhonov && !r.lambda_auto && !(r.lambda > 0.0)) {
         throw invalid_field(field_ref("lambda"), std::to_string(r.lambda),
                             "must be > 0 for tikhonov: lambda 0 is the unregularised inverse "
                             "filter, which multiplies noise by 1/|H| at the PSF's spectral "

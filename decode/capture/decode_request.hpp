@@ -30,6 +30,9 @@ struct DecodeRequest {
     ConvModel model = ConvModel::kCyclic;
     double nsr = 0.01;     // wiener
     double lambda = 1e-3;  // tikhonov (> 0), tv (>= 0)
+    // "auto": the weight chosen from the capture (decode/solvers/auto_weight.hpp) in place of the
+    // number above: wiener's nsr, tikhonov's and tv's lambda.
+    bool nsr_auto = false, lambda_auto = false;
     TikhonovRegulariser regulariser = TikhonovRegulariser::kIdentity;
     std::optional<double> eps, noise_sigma;  // tvqc: one of them
     bool nonnegative = false;                // tv, tvqc

@@ -3,6 +3,7 @@
 // capture window of the estimate.
 #include "decode/capture/decoder.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -12,6 +13,7 @@
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
 #include "core/units/number_format.hpp"
+#include "decode/solvers/auto_weight.hpp"
 #include "decode/solvers/convolution.hpp"
 #include "decode/solvers/decode_method.hpp"
 #include "decode/solvers/plan_cache.hpp"
@@ -121,10 +123,27 @@ void set_closed_form_penalty(const ConvGeometry& g, const DecodeOptions& o, Spec
 // The capture is decoded as it is: the filter is linear, so its range is handled by an exact
 // power-of-two scale inside the filter's own conversions (float32 always; double only outside
 // 2^-100..2^100, where the squared sums could leave the range), not by a scaled copy.
-DecodeResult decode_closed_form(const Plane& capture, const Plane& psf, const DecodeOptions& o,
+DecodeResult decode_closed_form(const Plane& capture, const Plane& psf, const DecodeOptions& given,
                                 const ConvGeometry& g, double peak) {
-    const auto op_ptr = operator_for(psf, g, o);
+    const auto op_ptr = operator_for(psf, g, given);
     const ConvolutionOperator& op = *op_ptr;
+    // An automatic weight is chosen here and the decode runs as with that weight given.
+    DecodeOptions o = given;
+    std::optional<AutoWeight> chosen;
+    if (given.method == DecodeMethod::kWiener ? given.wiener.automatic : given.tikhonov.automatic) {
+        const bool wiener = given.method == DecodeMethod::kWiener;
+        const Plane symbol =
+            tikhonov_symbol(g.work_rows, g.work_cols,
+                            wiener ? TikhonovRegulariser::kIdentity : given.tikhonov.regulariser);
+        chosen = choose_closed_form_weight(capture, op.otf(), symbol, g.work_rows, g.work_cols);
+        if (wiener) {
+            o.wiener.nsr = chosen->weight;
+            o.wiener.automatic = false;
+        } else {
+            o.tikhonov.lambda = chosen->weight;
+            o.tikhonov.automatic = false;
+        }
+    }
     const bool cyclic = g.model == ConvModel::kCyclic;
     const bool cacheable =
         !(o.method == DecodeMethod::kWiener && o.wiener.nsr_per_frequency.has_value());
@@ -147,6 +166,7 @@ DecodeResult decode_closed_form(const Plane& capture, const Plane& psf, const De
     r.objective = (res2 + sums.penalty) * scale * scale;
     // The cyclic model's working grid is the capture: nothing to crop.
     r.image = cyclic ? std::move(x) : crop_to_capture(g, x);
+    r.auto_weight = chosen;
     return r;
 }
 
@@ -201,6 +221,36 @@ DecodeResult decode_iterative(const Plane& capture, const Plane& psf, const Deco
     return r;
 }
 
+// The warning for a given TV weight more than 10 times from the automatic one, else "".
+std::string tv_weight_warning(double lambda, const AutoWeight& a) {
+    if (!(a.weight > 0.0)) return "";
+    const double ratio = lambda / a.weight;
+    if (ratio <= 10.0 && ratio >= 0.1) return "";
+    return field_ref("lambda") + " " + format_number(lambda, 4) + " is " + format_number(ratio, 2) +
+           " times the automatic weight " + format_number(a.weight, 4) +
+           " for this capture's noise (sigma " + format_number(a.noise_sigma, 4) + "): " +
+           (ratio > 1 ? "the estimate is over-smoothed" : "the noise is barely regularised") +
+           "; " + field_ref("lambda") + " auto chooses it";
+}
+
+// The warning for a closed form on the linear model with a capture that fills the frame.
+std::string frame_filling_warning(const Plane& capture, DecodeMethod method) {
+    const Eigen::Index rows = capture.rows(), cols = capture.cols();
+    const Eigen::Index b = std::max<Eigen::Index>(1, std::min(rows, cols) / 16);
+    if (2 * b >= rows || 2 * b >= cols) return "";
+    const double all = capture.abs().sum();
+    const double inner = capture.block(b, b, rows - 2 * b, cols - 2 * b).abs().sum();
+    const double border_pixels = static_cast<double>(rows * cols - (rows - 2 * b) * (cols - 2 * b));
+    const double mean = all / static_cast<double>(rows * cols);
+    if (!(mean > 0.0)) return "";
+    const double fill = (all - inner) / border_pixels / mean;
+    if (fill < 0.5) return "";
+    return std::string(decode_method_name(method)) + " on the linear model reads the light " +
+           "beyond the sensor as zero, and this capture fills the frame (its border averages " +
+           format_number(100 * fill, 3) + " % of its mean): expect ringing from the edges; " +
+           field_ref("method") + " tv solves the linear model exactly";
+}
+
 }  // namespace
 
 WienerFilter closed_form_filter(const ConvolutionOperator& op, const DecodeOptions& o) {
@@ -237,6 +287,8 @@ void WienerParams::validate() const {
         throw invalid_field(field_ref("nsr_map"), "negative or non-finite values",
                             "every value must be finite and >= 0");
     }
+    if (automatic && nsr_per_frequency)
+        throw invalid_field(field_ref("nsr_map"), "given", "excludes the automatic NSR");
 }
 
 void TikhonovParams::validate() const {
@@ -248,7 +300,9 @@ void TikhonovParams::validate() const {
     }
 }
 
-void TvParams::validate() const { check_nonnegative(field_ref("lambda"), lambda); }
+void TvParams::validate() const {
+    if (!automatic) check_nonnegative(field_ref("lambda"), lambda);
+}
 
 void TvqcParams::validate() const {
     if (eps) check_nonnegative(field_ref("eps"), *eps);
@@ -308,6 +362,10 @@ DecodeResult decode_plane(const Plane& capture, const Plane& psf, const DecodeOp
         case DecodeMethod::kWiener:
         case DecodeMethod::kTikhonov:
             r = decode_closed_form(capture, psf, options, g, peak);
+            if (g.model == ConvModel::kLinear) {
+                const std::string w = frame_filling_warning(capture, options.method);
+                if (!w.empty()) r.warnings.push_back(w);
+            }
             break;
         case DecodeMethod::kTv:
         case DecodeMethod::kTvqc:
@@ -316,11 +374,24 @@ DecodeResult decode_plane(const Plane& capture, const Plane& psf, const DecodeOp
             s = peak > 0.0 ? peak : 1.0;
             const Plane p = capture / s;
             DecodeOptions o = options;
+            std::optional<AutoWeight> tv_auto;
+            std::string tv_warning;
+            if (o.method == DecodeMethod::kTv) {
+                const AutoWeight a = choose_tv_weight(capture, psf);
+                if (o.tv.automatic) {
+                    tv_auto = a;
+                    o.tv.lambda = a.weight;
+                } else {
+                    tv_warning = tv_weight_warning(o.tv.lambda, a);
+                }
+            }
             o.tv.lambda /= s;
             if (o.tvqc.eps) *o.tvqc.eps /= s;
             if (o.tvqc.noise_sigma) *o.tvqc.noise_sigma /= s;
             if (o.iterative.warm_start) *o.iterative.warm_start /= s;
             r = decode_iterative(p, psf, o, g);
+            r.auto_weight = tv_auto;
+            if (!tv_warning.empty()) r.warnings.push_back(tv_warning);
             break;
         }
         default:

@@ -9,9 +9,11 @@
 
 #include <atomic>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/image/image.hpp"
+#include "decode/solvers/auto_weight.hpp"
 
 namespace pinmask {
 
@@ -50,19 +52,23 @@ struct IterativeParams {
 };
 
 struct WienerParams {
-    double nsr = 0.01;                       // scalar noise-to-signal power ratio (>= 0)
+    double nsr = 0.01;  // scalar noise-to-signal power ratio (>= 0)
+    // Chooses nsr from the capture (decode/solvers/auto_weight.hpp) in place of the value above.
+    bool automatic = false;
     std::optional<Plane> nsr_per_frequency;  // per-frequency NSR (working size), replaces nsr
     void validate() const;
 };
 
 struct TikhonovParams {
-    double lambda = 1e-3;  // >= 0 (0: the unregularised inverse filter)
+    double lambda = 1e-3;    // >= 0 (0: the unregularised inverse filter)
+    bool automatic = false;  // chooses lambda from the capture (decode/solvers/auto_weight.hpp)
     TikhonovRegulariser regulariser = TikhonovRegulariser::kIdentity;
     void validate() const;
 };
 
 struct TvParams {
-    double lambda = 1e-3;  // >= 0, capture units
+    double lambda = 1e-3;    // >= 0, capture units
+    bool automatic = false;  // chooses lambda from the capture (decode/solvers/auto_weight.hpp)
     bool nonnegative = false;
     void validate() const;
 };
@@ -108,6 +114,12 @@ struct DecodeResult {
     bool converged = true;
     bool constraint_met = true;  // tvqc: ||A x - p||_2 <= eps at exit (to kTvqcFeasibilityTol)
     bool interrupted = false;    // ended early by IterativeOptions::stop (DecodeOptions::stop)
+    // An automatic weight: the weight chosen, the noise sigma it used (capture units) and the
+    // fitted scene spectrum's exponent; unset for a weight the caller gave.
+    std::optional<AutoWeight> auto_weight;
+    // One line each, field references in backquotes (core/errors/field_names.hpp): a method the
+    // input makes poor (see decode_plane). The faces show them (CLI stderr, Python warnings.warn).
+    std::vector<std::string> warnings;
     double seconds = 0.0;
 };
 
@@ -127,6 +139,13 @@ struct DecodeResult {
 // magnitude (1e-300 .. 1e300) meets the same numbers inside the solvers; image, residual,
 // objective and history are reported in the capture's units (an objective quadratic in p is +inf
 // beyond |p| ~ 1e154: it left the double range).
+// Automatic weight (wiener.automatic, tikhonov.automatic): choose_closed_form_weight on the
+// capture, the operator's OTF and the regulariser's symbol, then the decode with that weight;
+// tv.automatic: choose_tv_weight. Either is recorded in DecodeResult::auto_weight.
+// Warnings (DecodeResult::warnings): tv with a given lambda more than 10 times from the
+// automatic one either way; wiener or tikhonov on the linear model with a capture that fills
+// the frame (its border band, 1/16 of the smaller side wide, averages at least half the
+// capture's mean magnitude): the filter reads the light beyond the sensor as zero.
 // Result check: an estimate or residual that is not finite (or a NaN objective) throws
 // RuntimeFailure naming the method (never a NaN/Inf image returned as a success).
 DecodeResult decode_plane(const Plane& capture, const Plane& psf, const DecodeOptions& options);
