@@ -150,8 +150,8 @@ std::vector<GivenParameter> set_method_args(DecodeRequest& r, const MethodArgs& 
         if (automatic) return py::str("auto");
         return py::float_(v);
     };
-    r.nsr_auto = a.nsr_auto;
-    r.lambda_auto = a.lambda_auto;
+    if (a.nsr) r.nsr_auto = a.nsr_auto;  // not given: the request's default (auto)
+    if (a.lambda) r.lambda_auto = a.lambda_auto;
     if (a.nsr) give(MethodParameter::kNsr, weight(r.nsr = *a.nsr, a.nsr_auto));
     if (a.lambda) give(MethodParameter::kLambda, weight(r.lambda = *a.lambda, a.lambda_auto));
     if (a.regulariser) {
@@ -295,6 +295,7 @@ void bind_decode(py::module_& m) {
             }
             std::optional<Image> dark_img;
             if (!dark.is_none()) dark_img = image_arg(dark, "dark");
+            if (!nsr_map.is_none()) r.nsr_auto = false;  // the map replaces the scalar NSR
             CaptureDecodeOptions options = capture_decode_options(r);
             if (!nsr_map.is_none()) {
                 // `decode --nsr-map`: a per-frequency NSR on the working grid (Wiener only, in
@@ -427,12 +428,12 @@ tikhonov (lambda_, regulariser identity|gradient) | tv (TV-L2 ADMM, lambda_) | t
 s.t. ||Ax - p||_2 <= eps, or eps from noise_sigma) | richardson-lucy. model: cyclic
 (circular convolution over one period) | linear (zero-padded, then cropped). nonneg: x >= 0 for
 tv/tvqc. iters, tol: iterative methods (relative change of x). Method arguments left None take
-the CLI's defaults (nsr 0.01, lambda_ 1e-3, regulariser identity, nonneg False, iters 200,
-tol 1e-4); one given for a method that does not read it raises ValueError naming it and the
-methods that do (as the CLI refuses --nsr with --method tv). nsr='auto' (wiener) and
-lambda_='auto' (tikhonov): the weight of least expected error for the noise and scene
-spectrum read from the capture (docs/decoding.md); each channel's auto_weight then says
-{weight, noise_sigma, scene_spectrum_exponent}. crop: 'center' | 'none' |
+the CLI's defaults (nsr 'auto', lambda_ 'auto', regulariser identity, nonneg False, iters
+200, tol 1e-4); one given for a method that does not read it raises ValueError naming it and
+the methods that do (as the CLI refuses --nsr with --method tv). nsr='auto' (wiener) and
+lambda_='auto' (tikhonov: the weight of least expected error for the noise and scene spectrum
+read from the capture; tv: a rule scaled by the noise and the PSF, docs/decoding.md) are the
+defaults; each channel's auto_weight then says {weight, noise_sigma, scene_spectrum_exponent}. crop: 'center' | 'none' |
 (row, col) of the period's top-left pixel. dark: dark frame, same size (1 or the capture's
 channels). background: 'none' | 'corner' (mean of the PSF's rows/cols 5..14, off PSF and
 capture; needs psf=) | a number of counts off the capture. downsample: K rounds of 2x2 box

@@ -205,6 +205,9 @@ void resolve_method(DecodeCommand& c, const DecodeFlags& flags) {
         }
     }
     c.request.method = parse_decode_method(c.method, "--method");
+    // A per-frequency NSR map replaces the scalar NSR, automatic or given (a given --nsr is
+    // refused above).
+    if (!c.nsr_map.empty()) c.request.nsr_auto = false;
     if (!c.nsr_map.empty() && c.request.method != DecodeMethod::kWiener) {
         throw invalid_field("--nsr-map", c.nsr_map,
                             "is not used by --method " + c.method +

@@ -36,8 +36,8 @@ struct DecodeCommand {
     std::string background = "none";  // none | corner | VALUE
     std::string normalize = "none";   // none | l2
     std::string precision = "auto";   // auto | single | double
-    std::string nsr = "0.01";         // a number | auto
-    std::string lambda = "0.001";     // a number | auto
+    std::string nsr = "auto";         // a number | auto
+    std::string lambda = "auto";      // a number | auto
     // The command's output settings.
     std::string output;
     int bits = 8;

@@ -28,11 +28,12 @@ struct DecodeRequest {
     CropSpec crop{};  // kCenter: the period centred in the frame
     DecodeMethod method = DecodeMethod::kWiener;
     ConvModel model = ConvModel::kCyclic;
-    double nsr = 0.01;     // wiener
-    double lambda = 1e-3;  // tikhonov (> 0), tv (>= 0)
-    // "auto": the weight chosen from the capture (decode/solvers/auto_weight.hpp) in place of the
-    // number above: wiener's nsr, tikhonov's and tv's lambda.
-    bool nsr_auto = false, lambda_auto = false;
+    double nsr = 0.01;     // wiener, when nsr_auto is false
+    double lambda = 1e-3;  // tikhonov (> 0), tv (>= 0), when lambda_auto is false
+    // "auto", the default: the weight chosen from the capture (decode/solvers/auto_weight.hpp) in
+    // place of the number above: wiener's nsr, tikhonov's and tv's lambda. A face sets them false
+    // when the user gives a number (or, for wiener, a per-frequency NSR map).
+    bool nsr_auto = true, lambda_auto = true;
     TikhonovRegulariser regulariser = TikhonovRegulariser::kIdentity;
     std::optional<double> eps, noise_sigma;  // tvqc: one of them
     bool nonnegative = false;                // tv, tvqc
