@@ -146,4 +146,5 @@ def od_by_definition(od, pitch_scale, side_scale):
 
 def noisy(clean, seed, background=20.0, read_noise=3.0):
     rng = np.random.default_rng(seed)
-    return rng.poisson(np.clip(clean + background, 0, None)) + rng.normal(0, read_noise, clean.shape)
+    photons = rng.poisson(np.clip(clean + background, 0, None))
+    return photons + rng.normal(0, read_noise, clean.shape)
