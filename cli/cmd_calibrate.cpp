@@ -70,12 +70,6 @@ void run(CalibrateCommandOptions& o) {
     Mask mask = io::read_mask_file(o.mask);
     o.camera.base = mask.camera;
     mask.camera = resolve_camera(o.camera);
-    // The fit's kernel family (decode/calibrate/profile_table) is one wavelength's: a band is not
-    // modelled there, so it is refused rather than silently dropped.
-    if (mask.camera.bandwidth_m > 0.0)
-        throw invalid_field("--bandwidth", format_length(mask.camera.bandwidth_m),
-                            "calibrate fits one wavelength's kernel and does not model a band "
-                            "yet: give --bandwidth 0 to fit at the centre wavelength");
     double full_scale = 1.0;
     RawInfo raw, raw_dark;
     const Plane capture = read_grey(o.capture, "capture", bayer, &full_scale, raw);
@@ -186,6 +180,7 @@ void run(CalibrateCommandOptions& o) {
               << s.optical_density << (s.optical_density_is_bound ? "" : " +- ")
               << (s.optical_density_is_bound ? "" : std::to_string(s.optical_density_sigma))
               << "), dark level " << s.dark_level << " (" << s.dark_source << ")\n"
+              << "  band       " << s.band << "\n"
               << "  fit        chi2/dof " << s.fit.chi2_reduced << ", " << s.fit.iterations
               << " iterations\n"
               << "  period PSF " << s.psfs.period_reason << "\n"

@@ -80,6 +80,7 @@ py::dict result_dict(calibrate::CalibrationSummary&& s) {
     j["optical_density_is_lower_bound"] = s.optical_density_is_bound;
     j["dark_level"] = finite_or_none(s.dark_level);
     j["dark_source"] = py_names::spell_keywords(s.dark_source);
+    j["band"] = s.band;
     j["noise_sigma"] = s.noise_sigma;
     py::dict noise;
     noise["alpha"] = f.noise_alpha;
@@ -118,13 +119,6 @@ void bind_calibrate(py::module_& m) {
            double max_rotation, double pitch_range, double threshold, const py::handle& saturation,
            int pixel_binning) {
             const Mask mask = mask_arg(mask_obj);
-            // As `pinmask calibrate`: the fit's kernel family is one wavelength's.
-            if (mask.camera.bandwidth_m > 0.0)
-                throw invalid_field(field_ref("bandwidth_m"),
-                                    format_length(mask.camera.bandwidth_m),
-                                    "calibrate fits one wavelength's kernel and does not model a "
-                                    "band yet: set the mask's camera bandwidth_m to 0 to fit at "
-                                    "the centre wavelength");
             PlaneArg cap = plane_arg(point, "point");
             std::optional<Plane> dark;
             if (!dark_obj.is_none()) dark = plane_arg(dark_obj, "dark").take();

@@ -65,6 +65,7 @@ Json calibration_result_json(const calibrate::CalibrationSummary& s, const fs::p
     j["optical_density_is_lower_bound"] = s.optical_density_is_bound;
     j["dark_level"] = std::isfinite(s.dark_level) ? Json(s.dark_level) : Json();
     j["dark_source"] = s.dark_source;
+    j["band"] = s.band;
     j["noise_sigma"] = s.noise_sigma;
     j["noise_model"] = {{"alpha", f.noise_alpha}, {"beta", f.noise_beta}};
     j["chi2_reduced"] = f.chi2_reduced;

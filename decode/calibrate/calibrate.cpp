@@ -8,6 +8,7 @@
 #include "core/errors/field_names.hpp"
 #include "core/limits/resource_limits.hpp"
 #include "core/units/number_format.hpp"
+#include "core/units/units.hpp"
 #include "decode/calibrate/profile_table.hpp"
 #include "design/optics/optics.hpp"
 
@@ -128,6 +129,16 @@ std::vector<std::array<double, 3>> extra_light(const Plane& residual, const Forw
     return out;
 }
 
+// The fit's kernel is one wavelength's (decode/calibrate/profile_table: separable, which a band's
+// sum over wavelengths is not): a band is fitted at its centre, where its blur of the kernel's
+// fringes goes into the fitted side (docs/calibration.md measures what that costs).
+std::string band_treatment(const Camera& c) {
+    if (!(c.bandwidth_m > 0)) return "one wavelength, " + format_length(c.wavelength_m);
+    return "fitted at the band's centre " + format_length(c.wavelength_m) + " (the band's FWHM " +
+           format_length(c.bandwidth_m) +
+           " is not modelled: its blur of the kernel's fringes enters the fitted pinhole side)";
+}
+
 }  // namespace
 
 void validate(const CalibrationOptions& o) {
@@ -194,6 +205,7 @@ CalibrationSummary calibrate_point_source(const Plane& capture, const std::optio
             s.fft_start = fft_lattice_start(frame, mask.pattern, so);
         }
     }
+    s.band = band_treatment(mask.camera);
     const LatticeStart start = s.fft_start.lattice;
     ForwardFitOptions fo;
     fo.dark_subtracted = dark.has_value();

@@ -78,6 +78,9 @@ struct CalibrationSummary {
     std::vector<int> saturated_spots;                              // indices into spots
     double dark_level = std::numeric_limits<double>::quiet_NaN();  // counts, NaN: not measured
     std::string dark_source;  // "dark frame", "fitted background", "not measured"
+    // The light's band as the fit treats it: the kernel is one wavelength's, the band's centre;
+    // a camera with a band (bandwidth_m > 0) is fitted there and this says so and what it does.
+    std::string band;
     double background = 0.0, background_sigma = 0.0;  // leak per pixel inside the footprint
     // -log10(leak per cell / median pinhole flux) with its standard error; when the leak is not
     // significant (below 2 sigma) the value is a lower bound (from leak + 2 sigma) and

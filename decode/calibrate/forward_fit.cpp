@@ -98,11 +98,25 @@ double halo_half_px(const Problem& pb, double scale) {
                               pb.o.halo_cap_px);
 }
 
-// Footprint of the tiled mask (anti-aliased over one pixel along each mask axis).
-Plane footprint(const Problem& pb, const double* v) {
+// Length of [a - 1/2, a + 1/2] (a pixel along one axis) inside [lo, hi].
+double overlap(double a, double lo, double hi) {
+    return std::clamp(std::min(a + 0.5, hi) - std::max(a - 0.5, lo), 0.0, 1.0);
+}
+
+// The film's area on the sensor: the footprint of the tiled mask without the open cells' clear
+// pinholes (each the fitted side's geometric image, centred on its cell), anti-aliased over one
+// pixel along each mask axis. The leak L is per pixel of opaque film, so L x cell area / gain is
+// the fraction of one pinhole's flux a closed cell passes: the film transmission as the project
+// defines it (optimize/simulate/noise_model.hpp). With `opaque_only` false, the whole footprint.
+Plane footprint(const Problem& pb, const double* v, bool opaque_only = true) {
     const double ct = std::cos(v[kRot]), st = std::sin(v[kRot]);
-    const double ncol = pb.mask.pattern.n * pb.mask.pattern.tiles_cols;
-    const double nrow = pb.mask.pattern.n * pb.mask.pattern.tiles_rows;
+    const int n = pb.mask.pattern.n;
+    const int ncol = n * pb.mask.pattern.tiles_cols, nrow = n * pb.mask.pattern.tiles_rows;
+    std::vector<char> open(static_cast<std::size_t>(n) * n, 0);
+    for (const Cell& c : pb.mask.pattern.pinholes) open[c.row * n + c.col] = 1;
+    // Half the geometric image of the fitted pinhole (pixels), as the kernel's own scale.
+    const double h = 0.5 * std::abs(magnification_at_u(pb.mask.camera)) * side_m(pb, v[kSide]) /
+                     pb.mask.camera.pixel_pitch_m;
     Plane f(pb.rows, pb.cols);
     for (int r = 0; r < pb.rows; ++r)
         for (int c = 0; c < pb.cols; ++c) {
@@ -110,21 +124,35 @@ Plane footprint(const Problem& pb, const double* v) {
             // Pixels along the axes from cell (0, 0)'s spot centre ((x0, y0) is the pivot's).
             const double a = ct * dx - st * dy + pb.ref_col * v[kPx];
             const double b = st * dx + ct * dy + pb.ref_row * v[kPy];
-            const double fa = std::clamp(a + 0.5 * v[kPx] + 0.5, 0.0, 1.0) *
-                              std::clamp((ncol - 0.5) * v[kPx] - a + 0.5, 0.0, 1.0);
-            const double fb = std::clamp(b + 0.5 * v[kPy] + 0.5, 0.0, 1.0) *
-                              std::clamp((nrow - 0.5) * v[kPy] - b + 0.5, 0.0, 1.0);
-            f(r, c) = fa * fb;
+            const double fa = overlap(a, -0.5 * v[kPx], (ncol - 0.5) * v[kPx]);
+            const double fb = overlap(b, -0.5 * v[kPy], (nrow - 0.5) * v[kPy]);
+            double clear = 0.0;
+            if (opaque_only && fa * fb > 0) {
+                const int kc = static_cast<int>(std::floor(a / v[kPx] + 0.5));
+                const int kr = static_cast<int>(std::floor(b / v[kPy] + 0.5));
+                for (int i = kr - 1; i <= kr + 1; ++i)
+                    for (int j = kc - 1; j <= kc + 1; ++j) {
+                        if (i < 0 || j < 0 || i >= nrow || j >= ncol || !open[(i % n) * n + j % n])
+                            continue;
+                        clear += overlap(a, j * v[kPx] - h, j * v[kPx] + h) *
+                                 overlap(b, i * v[kPy] - h, i * v[kPy] + h);
+                    }
+            }
+            f(r, c) = std::max(0.0, fa * fb - std::min(clear, 1.0));
         }
     return f;
 }
 
-// The halo: each spot's kernel beyond its core window, the spot on its nearest pixel (the tail
-// then starts exactly where its core window ends) and its tail evaluated along the pixel axes.
-// The kernel is separable, so the spots' full kernels over the frame are one matrix product
-// A diag(g) B^T (column k of A holds q(r - r_k), of B q(c - c_k)), from which each spot's core
-// square is then subtracted: exact, and far cheaper than an FFT convolution on a grid padded by
-// the halo's reach (the padding made the FFTs three times the frame).
+// The halo: each spot's kernel beyond its core window, with the kernel's rotation. It is made on
+// a grid along the mask's axes (u, v) = (cos t x - sin t y, sin t x + cos t y) with nodes one
+// pixel apart, covering the frame: there the kernel is separable, so the spots' full kernels are
+// one matrix product A diag(g) B^T (column k of A holds q(v - v_k), of B q(u - u_k), each spot on
+// its nearest node), from which each spot's core square is then subtracted; each pixel then
+// reads the grid bilinearly at its (u, v). At t = 0 the nodes are the pixels and the read is
+// exact. Along the pixel axes instead (the kernel unrotated), the tails' long arms (sinc^2 along
+// each axis) missed their rows by t x at x pixels from the spot: 7 px at 500 px for 0.8 deg, and
+// the leak and the pinhole side took up the difference (docs/calibration.md). Far cheaper than an
+// FFT convolution on a grid padded by the halo's reach.
 Plane halo(const Problem& pb, const Params& p, double median_gain) {
     const double rh = halo_half_px(pb, p.v[kSide]);
     const int H = core_window_px(pb, p.v[kSide]);
@@ -133,39 +161,68 @@ Plane halo(const Problem& pb, const Params& p, double median_gain) {
     const int h = static_cast<int>(std::floor(rh));
     std::vector<double> q(2 * h + 1);
     for (int k = -h; k <= h; ++k) q[k + h] = table.value(k);
+    const double ct = std::cos(p.v[kRot]), st = std::sin(p.v[kRot]);
+    auto to_grid = [&](double x, double y) {
+        return Eigen::Vector2d(ct * x - st * y, st * x + ct * y);
+    };
+    // The grid's nodes: the (u, v) box of the frame's corners, one node beyond.
+    double u_lo = 1e300, u_hi = -1e300, v_lo = 1e300, v_hi = -1e300;
+    for (const double y : {0.0, pb.rows - 1.0})
+        for (const double x : {0.0, pb.cols - 1.0}) {
+            const Eigen::Vector2d g = to_grid(x, y);
+            u_lo = std::min(u_lo, g.x());
+            u_hi = std::max(u_hi, g.x());
+            v_lo = std::min(v_lo, g.y());
+            v_hi = std::max(v_hi, g.y());
+        }
+    const long u0 = static_cast<long>(std::floor(u_lo)) - 1,
+               v0 = static_cast<long>(std::floor(v_lo)) - 1;
+    const long nu = static_cast<long>(std::ceil(u_hi)) + 2 - u0,
+               nv = static_cast<long>(std::ceil(v_hi)) + 2 - v0;
     struct Site {
-        long r, c;
+        long v, u;  // nearest node, grid indices
         double g;
     };
     std::vector<Site> sites;
     auto add = [&](const Eigen::Vector2d& z, double g) {
-        const long r = std::lround(z.y()), c = std::lround(z.x());
-        if (r < -h || c < -h || r > pb.rows - 1 + h || c > pb.cols - 1 + h || g == 0.0) return;
-        sites.push_back({r, c, g});
+        const Eigen::Vector2d w = to_grid(z.x(), z.y());
+        const long v = std::lround(w.y()) - v0, u = std::lround(w.x()) - u0;
+        if (v < -h || u < -h || v > nv - 1 + h || u > nu - 1 + h || g == 0.0) return;
+        sites.push_back({v, u, g});
     };
     for (std::size_t k = 0; k < pb.cells.size(); ++k) add(centre_of(pb, p.v, pb.cells[k]), p.g[k]);
     for (const Cell& c : pb.outside) add(centre_of(pb, p.v, c), median_gain);
     const Eigen::Index K = static_cast<Eigen::Index>(sites.size());
-    check_memory(double(K) * (pb.rows + pb.cols) * sizeof(double),
+    check_memory(double(K) * (nu + nv) * sizeof(double) + 2.0 * double(nu) * nv * sizeof(float),
                  "the calibration model's diffraction halo");
     // In single precision (twice the SIMD width): the halo holds a few percent of the light, so
     // its relative rounding of 1e-7 is far below any capture's noise.
-    Eigen::MatrixXf A = Eigen::MatrixXf::Zero(pb.rows, K), B = Eigen::MatrixXf::Zero(pb.cols, K);
+    Eigen::MatrixXf A = Eigen::MatrixXf::Zero(nv, K), B = Eigen::MatrixXf::Zero(nu, K);
     for (Eigen::Index k = 0; k < K; ++k) {
         const Site& s = sites[static_cast<std::size_t>(k)];
-        for (long r = std::max(0L, s.r - h); r <= std::min<long>(pb.rows - 1, s.r + h); ++r)
-            A(r, k) = static_cast<float>(s.g * q[r - s.r + h]);
-        for (long c = std::max(0L, s.c - h); c <= std::min<long>(pb.cols - 1, s.c + h); ++c)
-            B(c, k) = static_cast<float>(q[c - s.c + h]);
+        for (long v = std::max(0L, s.v - h); v <= std::min(nv - 1, s.v + h); ++v)
+            A(v, k) = static_cast<float>(s.g * q[v - s.v + h]);
+        for (long u = std::max(0L, s.u - h); u <= std::min(nu - 1, s.u + h); ++u)
+            B(u, k) = static_cast<float>(q[u - s.u + h]);
     }
-    Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> full(pb.rows, pb.cols);
+    Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> full(nv, nu);
     full.noalias() = A * B.transpose();
-    Plane out = full.array().cast<double>();
     for (const Site& s : sites)
-        for (long r = std::max(0L, s.r - H); r <= std::min<long>(pb.rows - 1, s.r + H); ++r) {
-            const double a = s.g * q[r - s.r + h];
-            for (long c = std::max(0L, s.c - H); c <= std::min<long>(pb.cols - 1, s.c + H); ++c)
-                out(r, c) -= a * q[c - s.c + h];
+        for (long v = std::max(0L, s.v - H); v <= std::min(nv - 1, s.v + H); ++v) {
+            const double a = s.g * q[v - s.v + h];
+            for (long u = std::max(0L, s.u - H); u <= std::min(nu - 1, s.u + H); ++u)
+                full(v, u) -= static_cast<float>(a * q[u - s.u + h]);
+        }
+    Plane out(pb.rows, pb.cols);
+    for (int r = 0; r < pb.rows; ++r)
+        for (int c = 0; c < pb.cols; ++c) {
+            const Eigen::Vector2d g = to_grid(c, r);
+            const double fu = g.x() - u0, fv = g.y() - v0;
+            const long iu = std::clamp(static_cast<long>(std::floor(fu)), 0L, nu - 2);
+            const long iv = std::clamp(static_cast<long>(std::floor(fv)), 0L, nv - 2);
+            const double du = fu - iu, dv = fv - iv;
+            out(r, c) = (1 - dv) * ((1 - du) * full(iv, iu) + du * full(iv, iu + 1)) +
+                        dv * ((1 - du) * full(iv + 1, iu) + du * full(iv + 1, iu + 1));
         }
     return out;
 }
@@ -580,7 +637,7 @@ ForwardFit fit_from(const Plane& frame, const Mask& mask, const LatticeStart& st
     Plane foot = footprint(pb, p.v);
     Plane halo_plane = Plane::Zero(rows, cols);
     // Leak and background apart only with enough pixels outside the footprint.
-    const double outside_px = (foot < 0.5).count();
+    const double outside_px = (footprint(pb, p.v, false) < 0.5).count();
     if (outside_px < std::max<double>(o.min_outside_px, o.min_outside_fraction * foot.size())) {
         const int held = o.dark_subtracted ? iB : iL;
         if (o.dark_subtracted) p.background = 0.0;

@@ -10,21 +10,23 @@
 //   m = B + L F + sum over the tiled mask's open cells k of g_k K_d(x - x_k, y - y_k)
 // where K_d(u, v) = q_d(u') q_d(v') is the pinhole kernel of the mask's family (box, fraunhofer,
 // fresnel; decode/calibrate/profile_table) at the pinhole side d = s d_design, (u', v') the offsets
-// along the mask's axes; g_k the flux of pinhole k (its gain), L the leak through the opaque film
-// per pixel inside the mask's footprint F (the tiled mask's cells imaged by the same lattice,
-// anti-aliased over one pixel), B the background. Each spot is evaluated in a window of
+// along the mask's axes; g_k the flux of pinhole k (its gain), L the leak per pixel of opaque film,
+// F the film's area (the tiled mask's cells imaged by the same lattice without the open cells'
+// clear pinholes, anti-aliased over one pixel), B the background. Each spot is evaluated in a
+// window of
 // +- core_cells cells, or wider to hold the kernel's central lobes (out to v = 2N + 2); the
-// diffraction tails beyond it (sinc^2 falls as 1/v^2) enter as a halo, the same kernel's tail
-// with each spot on its nearest pixel (the separable kernel makes all the tails over the frame
-// one matrix product), made from the current parameters before each round and held fixed inside
-// it (a fixed point: the tail carries a few percent of the energy).
-// Solver: Levenberg-Marquardt on (x0, y0, t, px, py, s, g_1..g_G, L, B) with the analytic
-// Jacobian (s by a forward difference of the table), weights 1 / var with the Poisson-Gaussian
-// variance var = alpha max(m, 0) + beta fitted to the residuals (first an unweighted fit, then
-// two weighted rounds). Covariance: the inverse Fisher information (J^T W J)^-1 scaled by the
-// reduced chi^2 (1 when the noise model holds). The leak is non-negative: a negative estimate is
-// refitted with L = 0. When the footprint covers the frame, L and B are one constant: with a dark
-// frame subtracted B is held at 0 and L fitted, without one L is held at 0 (not measured).
+// diffraction tails beyond it (sinc^2 falls as 1/v^2) enter as a halo, the same kernel's tail with
+// each spot on its nearest node of a grid along the mask's axes (the separable kernel makes all the
+// tails one matrix product there; pixels read the grid bilinearly), made from the current
+// parameters before each round and held fixed inside it (a fixed point: the tail carries a few
+// percent of the energy). Solver: Levenberg-Marquardt on (x0, y0, t, px, py, s, g_1..g_G, L, B)
+// with the analytic Jacobian (s by a forward difference of the table), weights 1 / var with the
+// Poisson-Gaussian variance var = alpha max(m, 0) + beta fitted to the residuals (first an
+// unweighted fit, then two weighted rounds). Covariance: the inverse Fisher information (J^T W
+// J)^-1 scaled by the reduced chi^2 (1 when the noise model holds). The leak is non-negative: a
+// negative estimate is refitted with L = 0. When the footprint covers the frame, L and B are one
+// constant: with a dark frame subtracted B is held at 0 and L fitted, without one L is held at 0
+// (not measured).
 #pragma once
 
 #include <Eigen/Core>
@@ -45,10 +47,16 @@ struct LatticeStart {
 };
 
 struct ForwardFitOptions {
-    double core_cells = 2.5;     // half width of each spot's window for diffraction kernels (cells)
-    double halo_energy = 0.999;  // per-axis energy of the kernel the halo reaches out to
-    int halo_cap_px = 512;       // largest halo half width (pixels)
-    int max_iterations = 40;     // Levenberg-Marquardt iterations per round
+    double core_cells = 2.5;  // half width of each spot's window for diffraction kernels (cells)
+    // The halo reaches out to this per-axis energy of the kernel, at most halo_cap_px. Light
+    // beyond it is in the capture but not in the model, and the leak and background take it up:
+    // sinc^2 keeps ~2 / (pi^2 a x) of its energy beyond x pixels, so a reach of 512 px left
+    // 1.1 % of every spot (NIR camera) against a film leak of 0.1 % of a pinhole per cell, and
+    // the optical density came out 0.1 low (docs/calibration.md). The halo is one matrix product
+    // over the frame whatever its reach; a longer reach adds only the sites beyond the frame.
+    double halo_energy = 0.99999;
+    int halo_cap_px = 4096;
+    int max_iterations = 40;  // Levenberg-Marquardt iterations per round
     // A pinhole is missing when its gain's upper one-sided bound at this false-alarm rate
     // (z sigma above the estimate) is below half the median gain of the in-frame pinholes: an open
     // pinhole passing at least half the median flux is called missing with probability below it.
