@@ -331,9 +331,9 @@ Mask read_mask_file(const std::filesystem::path& path, const MaskReadOptions& op
         });
     } catch (const Json::parse_error& e) {
         throw InvalidInput(name + ": invalid JSON (byte " + std::to_string(e.byte) +
-                           "): " + e.what());
+                           "): " + json_error_words(e));
     } catch (const Json::exception& e) {  // e.g. out_of_range.406: a number too large
-        throw InvalidInput(name + ": invalid JSON: " + e.what());
+        throw InvalidInput(name + ": invalid JSON: " + json_error_words(e));
     } catch (const InvalidInput& e) {
         throw InvalidInput(name + ": " + e.what());
     }
