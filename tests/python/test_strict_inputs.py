@@ -25,6 +25,11 @@ def test_non_numeric_captures_are_type_errors(mask7, dtype):
     assert "is not an image" in str(e.value) and "Unable to cast" not in str(e.value)
 
 
+def test_a_string_is_not_a_capture():
+    with pytest.raises(TypeError, match="capture: an array of dtype <U3 is not an image"):
+        pinmask.decode("abc", psf=np.ones((3, 3)))
+
+
 def test_bool_capture_refused_by_calibrate(mask7):
     cap = pinmask.simulate(mask7, "letter-R", snr_db=30)["capture"]
     with pytest.raises(TypeError, match="dtype bool is not an image"):
