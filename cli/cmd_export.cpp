@@ -3,6 +3,8 @@
 // readable file is read back from its staged temporary and compared with the design
 // (export/pipeline/read_back); any difference, and any error, leaves no file. A --vendor preset
 // (export/pipeline/vendor_presets) sets defaults that explicit flags override.
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -106,17 +108,20 @@ int run_export(const ExportFlags& f) {
             {
                 std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
                 out.write(e.bytes.data(), std::streamsize(e.bytes.size()));
-                if (!out) throw RuntimeFailure("cannot write " + tmp.string());
+                out.close();  // a failed flush (disk full, file-size limit) shows here
+                if (!out)
+                    throw RuntimeFailure("cannot write " + tmp.string() + ": " +
+                                         std::strerror(errno));
             }
             if (is_readable(e.format)) check = verify_written(file_bytes(tmp), e.format, s.layout);
             if (is_picture(e.format)) check = verify_picture(tmp, e.format, s.layout, o.write);
         });
         side.files.push_back(io::sidecar_file_entry(path.filename().string(), e, check, f, o));
     }
-    std::vector<fs::path> psf_written;
+    std::vector<fs::path> psf_written;  // staged with the others: all appear, or none
     if (psf) {
-        psf_written =
-            io::write_psf_files(out_dir / (stem + ".psf.tiff"), psf->first, psf->second, f.psf_npy);
+        psf_written = io::stage_psf_files(staged, out_dir / (stem + ".psf.tiff"), psf->first,
+                                          psf->second, f.psf_npy);
         for (const fs::path& p : psf_written) side.psf_files.push_back(p.filename().string());
         side.psf_kernel = psf->second.kernel_model;
         side.psf_pixels_per_cell = psf->second.pixels_per_cell;
@@ -124,14 +129,8 @@ int run_export(const ExportFlags& f) {
         side.psf_cols = int(psf->first.cols());
     }
     const string side_text = io::export_sidecar_text(side);
-    try {
-        staged.stage_bytes(out_dir / (stem + ".export.json"), side_text);
-        staged.commit();
-    } catch (...) {
-        std::error_code ec;
-        for (const fs::path& p : psf_written) fs::remove(p, ec);
-        throw;
-    }
+    staged.stage_bytes(out_dir / (stem + ".export.json"), side_text);
+    staged.commit();
     const bool clean = s.drc.clean();
     auto verdict = [&] {
         if (clean) return 0;

@@ -1,6 +1,7 @@
 // pinmask: the command-line tool. Wires the subcommands (cli/commands.hpp) and maps errors to exit
 // codes.
 #include <cerrno>
+#include <csignal>
 #include <filesystem>
 #include <functional>
 #include <iostream>
@@ -114,6 +115,10 @@ int main(int argc, char** argv) {
     using namespace pinmask;
     keep_freed_memory();  // core/limits/allocator.hpp: no page faults re-taken per decode or
                           // evaluation
+    // A write past the file-size limit (ulimit -f) then fails with EFBIG, which the writers
+    // report ("could not write '<path>': File too large", exit 1, temporaries removed), instead
+    // of killing the process mid-write with SIGXFSZ.
+    std::signal(SIGXFSZ, SIG_IGN);
     cli::install_cleanup_on_signal();  // a signal leaves no *.tmp-* file behind
     if (const std::string_view bad = empty_assigned_value(argc, argv); !bad.empty()) {
         std::cerr << "pinmask: error: " << bad.substr(0, bad.size() - 1)

@@ -74,7 +74,8 @@ void setup_cluster(const ClusterFlags& f, RankComm& comm, const nlohmann::ordere
     if (comm.rank() == 0) {
         ByteWriter w;
         try {
-            const io::SearchCheckpointFile c = io::checkpoint_to_resume(f.resume, config);
+            const io::SearchCheckpointFile c =
+                io::checkpoint_to_resume(f.resume, config, f.checkpoint);
             w.u64(1);
             w.i64(c.segment);
             const Bytes chains = encode_chain_states(c.chains);

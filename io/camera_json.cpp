@@ -61,9 +61,9 @@ Camera read_camera_file(const std::filesystem::path& path) {
         return optics_from_json(r.required("optics"));
     } catch (const Json::parse_error& e) {
         throw InvalidInput(name + ": invalid JSON (byte " + std::to_string(e.byte) +
-                           "): " + e.what());
+                           "): " + json_error_words(e));
     } catch (const Json::exception& e) {
-        throw InvalidInput(name + ": invalid JSON: " + e.what());
+        throw InvalidInput(name + ": invalid JSON: " + json_error_words(e));
     } catch (const InvalidInput& e) {
         throw InvalidInput(name + ": " + e.what());
     }

@@ -1,6 +1,8 @@
 #include "io/checkpoint.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -8,6 +10,7 @@
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
 #include "core/files/atomic_file.hpp"
+#include "io/fnv1a.hpp"
 #include "io/json_strict.hpp"
 
 namespace pinmask::io {
@@ -91,13 +94,60 @@ OrderedJson chain_json(const ChainState& s) {
             {"best_per_holes", per_holes}};
 }
 
+// Why `text` is not the text form of a std::mt19937_64 state, or "": 312 words of 0..2^64-1
+// and an index of 0..312, each in plain decimal digits. The stream reader alone would take
+// "-5" as 2^64 - 5 and read a wrapped state.
+std::string rng_state_problem(const std::string& text) {
+    constexpr std::size_t kWords = std::mt19937_64::state_size;
+    std::istringstream in(text);
+    std::string token;
+    std::size_t count = 0;
+    while (in >> token) {
+        ++count;
+        if (count > kWords + 1) return "more than " + std::to_string(kWords + 1) + " numbers";
+        std::uint64_t v = 0;
+        const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
+        if (token.empty() || token[0] == '-' || token[0] == '+' || ec != std::errc() ||
+            end != token.data() + token.size())
+            return "number " + std::to_string(count) + " ('" + token.substr(0, 24) +
+                   "') is not an integer of 0..2^64-1";
+        if (count == kWords + 1 && v > kWords)
+            return "its index " + token + " is beyond " + std::to_string(kWords);
+    }
+    if (count != kWords + 1)
+        return std::to_string(count) + " numbers, not " + std::to_string(kWords + 1);
+    return "";
+}
+
+// The checksum covers the file's every byte: the text as written with the checksum's own value
+// set to 16 zeros. Its value is the string after the last "checksum" key (any JSON spacing).
+constexpr const char* kChecksumZero = "0000000000000000";
+
+std::size_t checksum_value_at(const std::string& text) {
+    std::size_t at = text.rfind("\"checksum\"");
+    if (at == std::string::npos) return at;
+    at += 10;
+    const auto skip_space = [&] {
+        while (at < text.size() && std::isspace(static_cast<unsigned char>(text[at]))) ++at;
+    };
+    skip_space();
+    if (at >= text.size() || text[at] != ':') return std::string::npos;
+    ++at;
+    skip_space();
+    if (at + 18 > text.size() || text[at] != '"' || text[at + 17] != '"') return std::string::npos;
+    return at + 1;
+}
+
 ChainState read_chain(const Json& j, const std::string& path) {
     ObjectReader r(j, path,
                    {"rng", "evaluations", "best_objective", "next_log_at", "log", "top_capacity",
                     "top", "start", "best_per_holes"});
     r.reject_unknown();
     ChainState s;
-    std::istringstream rng(read_string(r.required("rng"), r.path("rng")));
+    const std::string rng_text = read_string(r.required("rng"), r.path("rng"));
+    if (const std::string why = rng_state_problem(rng_text); !why.empty())
+        fail(r.path("rng"), "is not a std::mt19937_64 state (312 words and an index): " + why);
+    std::istringstream rng(rng_text);
     rng >> s.rng;
     if (!rng) fail(r.path("rng"), "is not a std::mt19937_64 state (312 words and an index)");
     s.evaluations = read_count(r.required("evaluations"), r.path("evaluations"));
@@ -169,8 +219,11 @@ std::string checkpoint_to_json(const SearchCheckpointFile& c) {
                         {"config", c.config},
                         {"segment", c.segment},
                         {"evaluations_between_boundaries", c.every},
-                        {"chains", chains}};
-    return pretty(j) + "\n";
+                        {"chains", chains},
+                        {"checksum", kChecksumZero}};
+    std::string text = pretty(j) + "\n";
+    text.replace(checksum_value_at(text), 16, fnv1a64_hex(text));
+    return text;
 }
 
 SearchCheckpointFile parse_checkpoint(const std::string& text) {
@@ -178,16 +231,34 @@ SearchCheckpointFile parse_checkpoint(const std::string& text) {
     try {
         j = parse_strict(text);
     } catch (const nlohmann::json::exception& e) {
-        fail("(root)", std::string("not valid JSON: ") + e.what());
+        fail("(root)", std::string("not valid JSON: ") + json_error_words(e));
     }
-    ObjectReader r(
-        j, "",
-        {"format", "version", "config", "segment", "evaluations_between_boundaries", "chains"});
+    ObjectReader r(j, "",
+                   {"format", "version", "config", "segment", "evaluations_between_boundaries",
+                    "chains", "checksum"});
     r.reject_unknown();
     if (read_string(r.required("format"), "format") != kCheckpointFormat)
         fail("format", std::string("must be \"") + kCheckpointFormat + "\"");
-    if (read_int(r.required("version"), "version") != kCheckpointVersion)
-        fail("version", "must be " + std::to_string(kCheckpointVersion));
+    if (const int version = read_int(r.required("version"), "version");
+        version != kCheckpointVersion) {
+        fail("version",
+             "must be " + std::to_string(kCheckpointVersion) +
+                 (version == 1 ? " (version 1 checkpoints carry no checksum: resume with the "
+                                 "pinmask that wrote it, or start the run again)"
+                               : ""));
+    }
+    {  // the checksum first: an edited file is refused as such, whatever field was edited
+        const std::string claimed = read_string(r.required("checksum"), "checksum");
+        const std::size_t at = checksum_value_at(text);
+        if (claimed.size() != 16 || at == std::string::npos || text.compare(at, 16, claimed) != 0)
+            fail("checksum", "must be the 16 hex digits pinmask wrote");
+        std::string zeroed = text;
+        zeroed.replace(at, 16, kChecksumZero);
+        if (fnv1a64_hex(zeroed) != claimed) {
+            fail("checksum", claimed + " is not the file's (" + fnv1a64_hex(zeroed) +
+                                 "): the checkpoint was changed after it was written");
+        }
+    }
     SearchCheckpointFile c;
     const Json& config = r.required("config");
     if (!config.is_object()) fail("config", "must be an object");

@@ -1,15 +1,19 @@
 // The search checkpoint file, written by `pinmask search --checkpoint FILE` every
 // --checkpoint-every evaluations per chain and read by --resume FILE:
-//   {"format": "pinmask-search-checkpoint", "version": 1,
+//   {"format": "pinmask-search-checkpoint", "version": 2,
 //    "config": {the settings that decide the chains' work: compared key by key on resume},
 //    "segment": boundaries passed (>= 1), "evaluations_between_boundaries": >= 1,
 //    "chains": [every chain of every rank in global order:
 //      {"rng": the generator's state (std::mt19937_64 text form), "evaluations",
 //       "best_objective" (null: none yet), "next_log_at", "log": [[evaluations, best], ...],
-//       "top_capacity", "top": [{"objective", "pattern"}], "start": null | pattern}]}
+//       "top_capacity", "top": [{"objective", "pattern"}], "start": null | pattern}],
+//    "checksum": FNV-1a 64 (io/fnv1a) of the file's text with this value as 16 zeros}
 // pattern: {"n", "tiles_rows", "tiles_cols", "min_spacing_cells", "pinholes": [[row, col], ...]}
 // in the chain's own pinhole order. Numbers are written in their shortest round-trip form, so
-// a resumed chain continues bit for bit. Errors are InvalidInput naming the key path.
+// a resumed chain continues bit for bit. Errors are InvalidInput naming the key path. The
+// checksum is checked before any field: an edited checkpoint is refused as edited; the fields
+// are then checked one by one (and against the run, io/search_run_config and
+// optimize/search/search).
 #pragma once
 
 #include <cstdint>
@@ -23,7 +27,7 @@
 namespace pinmask::io {
 
 inline constexpr const char* kCheckpointFormat = "pinmask-search-checkpoint";
-inline constexpr int kCheckpointVersion = 1;
+inline constexpr int kCheckpointVersion = 2;
 
 struct SearchCheckpointFile {
     nlohmann::ordered_json config = nlohmann::ordered_json::object();

@@ -156,7 +156,7 @@ ExportSidecar read_export_sidecar(const std::filesystem::path& p) {
     try {
         j = json_strict::parse_strict(text.str());  // nesting bounded, repeated keys refused
     } catch (const json::exception& e) {
-        throw bad(p, "(root)", std::string("is not JSON: ") + e.what());
+        throw bad(p, "(root)", std::string("is not JSON: ") + json_strict::json_error_words(e));
     }
     if (!j.is_object() || !j.contains("format") || !j["format"].is_string() ||
         j["format"].get<std::string>() != "pinmask-export")

@@ -1,13 +1,10 @@
 #include "io/export_sidecar_of.hpp"
 
-#include <cstdint>
-#include <cstdio>
-#include <string_view>
-
 #include "export/formats/fab_units.hpp"
 #include "export/formats/read_any.hpp"
 #include "export/layout/film_paint.hpp"
 #include "export/layout/geometry.hpp"
+#include "io/fnv1a.hpp"
 
 namespace pinmask::io {
 
@@ -59,18 +56,6 @@ ExportSidecar export_sidecar_of(const ExportRequest& f, const Mask& mask, const 
     return d;
 }
 
-namespace {
-
-std::string fnv1a64(std::string_view bytes) {
-    std::uint64_t h = 14695981039346656037ULL;
-    for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ULL;
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-    return buf;
-}
-
-}  // namespace
-
 ExportSidecarFile sidecar_file_entry(const std::string& name, const ExportedFile& e,
                                      const std::string& verification, const ExportRequest& f,
                                      const ExportOptions& o) {
@@ -81,7 +66,7 @@ ExportSidecarFile sidecar_file_entry(const std::string& name, const ExportedFile
     if (e.format == FabFormat::kPng) detail = std::to_string(o.write.png_dpi) + " dpi";
     if (e.format == FabFormat::kTiff1) detail = std::to_string(o.write.tiff_dpi) + " dpi";
     return {name,           fab_format_name(e.format), e.units,
-            e.bytes.size(), fnv1a64(e.bytes),          verification,
+            e.bytes.size(), fnv1a64_hex(e.bytes),      verification,
             detail};
 }
 

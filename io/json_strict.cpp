@@ -272,4 +272,13 @@ std::string pretty(const OrderedJson& j, const std::string& raw_path, const RawW
     return out;
 }
 
+std::string json_error_words(const nlohmann::json::exception& e) {
+    std::string what = e.what();
+    if (what.rfind("[json.exception.", 0) == 0) {
+        const std::size_t end = what.find("] ");
+        if (end != std::string::npos) what.erase(0, end + 2);
+    }
+    return what;
+}
+
 }  // namespace pinmask::io::json_strict

@@ -65,6 +65,11 @@ bool small_int(const Json& j, int& out);
 Json parse_strict(const std::string& text, const std::string& streamed_path = "",
                   const std::function<void(const Json&, std::size_t)>& on_element = {});
 
+// A JSON library error in the project's words: nlohmann's "[json.exception.parse_error.101]
+// parse error at line 1, column 3: syntax error ..." without its bracketed id (which means
+// nothing to a user), first letter as it was.
+std::string json_error_words(const nlohmann::json::exception& e);
+
 // Writes the value at key path `raw_path` in place of the tree's: called with the output and
 // the indent (spaces) of the line where the value starts.
 using RawWriter = std::function<void(std::string& out, int indent)>;

@@ -1,5 +1,5 @@
-// The `*.mask.json` codec. Layout (docs/design.md section 5; every key below is written, and every key
-// is required on reading unless marked optional):
+// The `*.mask.json` codec. Layout (docs/design.md section 5; every key below is written, and every
+// key is required on reading unless marked optional):
 //   {"format": "pinmask-mask", "version": 1,
 //    "pattern": {"n", "pinholes": [[row, col], ...], "tiles": [rows, cols], "min_spacing_cells"},
 //    "optics": {"object_distance_m" (number or "inf"), "lens_focal_m" (number or "inf"),
@@ -332,9 +332,9 @@ Mask read_mask_file(const std::filesystem::path& path, const MaskReadOptions& op
         });
     } catch (const Json::parse_error& e) {
         throw InvalidInput(name + ": invalid JSON (byte " + std::to_string(e.byte) +
-                           "): " + e.what());
+                           "): " + json_error_words(e));
     } catch (const Json::exception& e) {  // e.g. out_of_range.406: a number too large
-        throw InvalidInput(name + ": invalid JSON: " + e.what());
+        throw InvalidInput(name + ": invalid JSON: " + json_error_words(e));
     } catch (const InvalidInput& e) {
         throw InvalidInput(name + ": " + e.what());
     }

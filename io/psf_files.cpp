@@ -194,6 +194,15 @@ PsfSidecar psf_sidecar_from_json(const nlohmann::json& j, const std::string& whe
 
 std::vector<fs::path> write_psf_files(const fs::path& tiff_path, const Plane& psf,
                                       PsfSidecar sidecar, bool write_npy) {
+    StagedFiles files;
+    std::vector<fs::path> paths =
+        stage_psf_files(files, tiff_path, psf, std::move(sidecar), write_npy);
+    files.commit();
+    return paths;
+}
+
+std::vector<fs::path> stage_psf_files(StagedFiles& files, const fs::path& tiff_path,
+                                      const Plane& psf, PsfSidecar sidecar, bool write_npy) {
     const std::string ext = tiff_path.extension().string();
     if (ext != ".tif" && ext != ".tiff") {
         throw invalid_field("-o", tiff_path.string(), "must end in .tif or .tiff");
@@ -213,17 +222,18 @@ std::vector<fs::path> write_psf_files(const fs::path& tiff_path, const Plane& ps
     sidecar.tiff_file = tiff_path.filename().string();
     sidecar.npy_file = write_npy ? npy_path.filename().string() : "";
     const Image image(psf);
-    StagedFiles files;
+    std::vector<fs::path> paths{tiff_path};
     files.stage(tiff_path,
                 [&](const fs::path& tmp) { write_tiff(tmp, image, SampleFormat::kFloat32); });
     if (write_npy) {
         files.stage(npy_path, [&](const fs::path& tmp) {
             pinmask::write_npy(tmp, image, SampleFormat::kFloat32);
         });
+        paths.push_back(npy_path);
     }
     files.stage_bytes(json_path, json_strict::pretty(psf_sidecar_to_json(sidecar)) + "\n");
-    files.commit();
-    return files.final_paths();
+    paths.push_back(json_path);
+    return paths;
 }
 
 PsfFile read_psf_file(const fs::path& image_path) {
@@ -261,7 +271,8 @@ PsfFile read_psf_file(const fs::path& image_path) {
         } catch (const InvalidInput& e) {
             throw InvalidInput(side.string() + ": " + e.what());
         } catch (const nlohmann::json::exception& e) {
-            throw InvalidInput(side.string() + ": not valid JSON (" + e.what() + ")");
+            throw InvalidInput(side.string() + ": not valid JSON (" +
+                               json_strict::json_error_words(e) + ")");
         }
         out.sidecar = psf_sidecar_from_json(j, side.string());
         if (out.sidecar->rows != out.psf.rows() || out.sidecar->cols != out.psf.cols()) {

@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/files/atomic_file.hpp"
 #include "core/image/image.hpp"
 #include "design/pattern/mask.hpp"
 #include "design/psf/kernel.hpp"
@@ -63,6 +64,13 @@ PsfSidecar psf_sidecar_from_json(const nlohmann::json& j, const std::string& whe
 // nothing. Fills sidecar.rows/cols/tiff_file/npy_file. Returns the paths written. Throws
 // InvalidInput for a wrong extension, a missing folder, or a non-finite PSF.
 std::vector<std::filesystem::path> write_psf_files(const std::filesystem::path& tiff_path,
+                                                   const Plane& psf, PsfSidecar sidecar,
+                                                   bool write_npy);
+
+// The same files staged into `files` (core/files/atomic_file), to appear with the group's other
+// files or not at all (export's PSF beside its fabrication files). Returns their final paths.
+std::vector<std::filesystem::path> stage_psf_files(StagedFiles& files,
+                                                   const std::filesystem::path& tiff_path,
                                                    const Plane& psf, PsfSidecar sidecar,
                                                    bool write_npy);
 

@@ -30,7 +30,7 @@ Listing parse_listing(const std::string& text) {
     try {
         j = parse_strict(text);
     } catch (const nlohmann::json::exception& e) {
-        throw InvalidInput(std::string("invalid JSON: ") + e.what());
+        throw InvalidInput(std::string("invalid JSON: ") + json_error_words(e));
     }
     ObjectReader r(j, "", {"format", "version", "planes"});
     if (read_string(r.required("format"), "format") != kPsfStackFormat)

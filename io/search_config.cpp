@@ -54,7 +54,7 @@ SearchConfig parse_search_config(const std::string& text) {
     try {
         j = parse_strict(text);
     } catch (const nlohmann::json::exception& e) {
-        throw InvalidInput(std::string("invalid JSON: ") + e.what());
+        throw InvalidInput(std::string("invalid JSON: ") + json_error_words(e));
     }
     ObjectReader r(j, "",
                    {"format",

@@ -1,11 +1,13 @@
 #include "io/search_run_config.hpp"
 
 #include <cmath>
+#include <numeric>
 #include <string>
 #include <vector>
 
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
+#include "core/files/output_set.hpp"
 #include "io/json_strict.hpp"
 #include "io/optics_json.hpp"
 #include "io/search_config.hpp"
@@ -94,6 +96,9 @@ nlohmann::ordered_json checkpoint_config(nlohmann::ordered_json resolved, int ra
 
 decltype(IslandOptions::checkpoint) checkpoint_writer(const std::filesystem::path& path,
                                                       const nlohmann::ordered_json& config) {
+    // Checked now like every output (not a device, a pipe, a folder or a file this run read),
+    // not at the first boundary, after the work.
+    check_output_path(path, field_ref("checkpoint"));
     return [path, config](std::int64_t segment, std::int64_t every,
                           const std::vector<ChainState>& states) {
         SearchCheckpointFile c;
@@ -106,14 +111,44 @@ decltype(IslandOptions::checkpoint) checkpoint_writer(const std::filesystem::pat
 }
 
 SearchCheckpointFile checkpoint_to_resume(const std::filesystem::path& path,
-                                          const nlohmann::ordered_json& config) {
+                                          const nlohmann::ordered_json& config,
+                                          const std::filesystem::path& checkpoint) {
     SearchCheckpointFile c = read_checkpoint(path);
+    // A run that resumes from its own checkpoint file (a job requeued with the same command)
+    // supersedes it at its next boundary, atomically: that one input may be replaced.
+    if (!checkpoint.empty() && same_file(path, checkpoint)) release_input(path);
     const std::vector<std::string> diff = differing_keys(config, c.config);
     if (!diff.empty()) {
         std::string keys;
         for (const std::string& k : diff) keys += (keys.empty() ? "" : ", ") + k;
         throw invalid_field(field_ref("resume"), path.string(),
                             "the checkpoint is of another configuration; differing keys: " + keys);
+    }
+    // The boundaries of this run: every gcd(migrate_every, checkpoint_every) evaluations per
+    // chain, written only while some chain has budget left, each chain at or past the boundary.
+    const auto count = [&](const char* key) { return config.value(key, std::int64_t{0}); };
+    const std::int64_t every = std::gcd(count("migrate_every"), count("checkpoint_every"));
+    const std::int64_t budget = count("evaluations_per_chain");
+    const auto refuse = [&](const std::string& what) {
+        throw invalid_field(field_ref("resume"), path.string(), what);
+    };
+    if (c.every != every) {
+        refuse("evaluations_between_boundaries = " + std::to_string(c.every) +
+               ": this run's boundaries fall every " + std::to_string(every) +
+               " evaluations per chain");
+    }
+    if (every > 0 && budget > 0 && c.segment > (budget - 1) / every) {
+        refuse("segment = " + std::to_string(c.segment) + ": this run's last boundary is " +
+               std::to_string((budget - 1) / every) + " (" + std::to_string(budget) +
+               " evaluations per chain, a boundary every " + std::to_string(every) + ")");
+    }
+    for (std::size_t i = 0; budget > 0 && i < c.chains.size(); ++i) {
+        if (c.chains[i].evaluations < c.segment * every) {
+            refuse("chains[" + std::to_string(i) +
+                   "].evaluations = " + std::to_string(c.chains[i].evaluations) + ": at boundary " +
+                   std::to_string(c.segment) + " every chain has made at least " +
+                   std::to_string(c.segment * every));
+        }
     }
     return c;
 }

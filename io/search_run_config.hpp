@@ -42,13 +42,17 @@ nlohmann::ordered_json checkpoint_config(nlohmann::ordered_json resolved, int ra
                                          std::int64_t migrate_every, std::int64_t checkpoint_every);
 
 // The island options' checkpoint callback: at each boundary, `config` and every chain's state
-// written atomically to `path` (io/checkpoint).
+// written atomically to `path` (io/checkpoint). `path` is checked at once like any output
+// (core/files/output_set check_output_path): InvalidInput naming `checkpoint`.
 decltype(IslandOptions::checkpoint) checkpoint_writer(const std::filesystem::path& path,
                                                       const nlohmann::ordered_json& config);
 
 // The checkpoint at `path` for resuming a run of `config`: InvalidInput naming `resume` when it
-// cannot be read or is of another configuration (the differing keys named).
+// cannot be read or is of another configuration (the differing keys named), or holds counts
+// this run cannot have written. When it is `checkpoint`, the file this run writes its own
+// checkpoints to, it stops being a protected input (core/files/output_set): the run supersedes it.
 SearchCheckpointFile checkpoint_to_resume(const std::filesystem::path& path,
-                                          const nlohmann::ordered_json& config);
+                                          const nlohmann::ordered_json& config,
+                                          const std::filesystem::path& checkpoint = {});
 
 }  // namespace pinmask::io

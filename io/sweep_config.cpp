@@ -126,7 +126,7 @@ SweepConfig parse_sweep_config(const std::string& text) {
     try {
         j = parse_strict(text);
     } catch (const nlohmann::json::exception& e) {
-        throw InvalidInput(std::string("invalid JSON: ") + e.what());
+        throw InvalidInput(std::string("invalid JSON: ") + json_error_words(e));
     }
     ObjectReader r(j, "", {"format", "version", "base", "grid", "points"});
     if (read_string(r.required("format"), "format") != kSweepFormat)

@@ -390,8 +390,9 @@ void bind_decode(py::module_& m) {
                 any_interrupted = any_interrupted || res.interrupted;
                 estimate.channels.push_back(std::move(res.image));
             }
-            // Ctrl-C that cut nothing short (closed form, or already finished) is not swallowed.
-            if (poll == Poll::kKeyboardInterrupt && !any_interrupted) raise_keyboard_interrupt();
+            // Ctrl-C is Python's KeyboardInterrupt, as for any call; the solvers stopped at it.
+            // (A progress callback returning False stops them and returns the estimate so far.)
+            if (poll == Poll::kKeyboardInterrupt) raise_keyboard_interrupt();
             // Finite: decode_plane refuses a non-finite estimate (RuntimeFailure).
             d["image"] = image_to_array(std::move(estimate));
             d["channels"] = channels;
@@ -451,9 +452,9 @@ model='linear' and crop='none'; the result's refocus says which {object_distance
 whole_pixels_per_cell, mismatch_px, geometry}.
 progress: called every poll_s seconds while the decode runs with {iteration (the iterations
 each channel has finished), max_iterations (iters; 0 for the closed-form wiener and tikhonov),
-seconds (elapsed)}; return False to stop. Ctrl-C (KeyboardInterrupt) or False ends an iterative method after its current
-iteration and returns the estimate so far with interrupted = True (as the CLI writes it); a
-Ctrl-C that cut nothing short (a closed-form method, or one that had finished) is raised.
+seconds (elapsed)}; return False to stop: an iterative method ends after its current
+iteration and returns the estimate so far with interrupted = True (as the CLI writes it).
+Ctrl-C stops it the same way and raises KeyboardInterrupt.
 Returns {image, channels: [{iterations, objective, residual, converged, interrupted, seconds,
 history: (n, 4) array of iteration, seconds, objective, residual}], interrupted,
 window: (row, col, rows, cols), period_check}. A mono `image` owns the library's buffer; a

@@ -59,7 +59,8 @@ void bind_depthmap(py::module_& m) {
             std::vector<PsfStackPlane> planes;
             if (psf_stack.is_none()) {
                 mk = mask_arg(mask);
-                d.distances_m = depth_range(from_m.cast<double>(), to_m.cast<double>(),
+                d.distances_m = depth_range(length_value(from_m, field_ref("from_m"), false),
+                                            length_value(to_m, field_ref("to_m"), true),
                                             steps.is_none() ? 16 : steps.cast<int>());
             } else {
                 if (!py::isinstance<py::sequence>(psf_stack) || py::isinstance<py::str>(psf_stack))
@@ -72,7 +73,7 @@ void bind_depthmap(py::module_& m) {
                         throw invalid_field(field_ref("psf_stack"), std::to_string(k),
                                             "each plane must be a (distance_m, psf array) pair");
                     const auto pair = item.cast<py::sequence>();
-                    const double u = py::float_(pair[0]).cast<double>();
+                    const double u = length_value(pair[0], field_ref("psf_stack"), false);
                     planes.push_back({u, plane_arg(pair[1], "psf_stack").take()});
                     d.distances_m.push_back(u);
                 }
@@ -125,8 +126,9 @@ void bind_depthmap(py::module_& m) {
         py::arg("window") = 121, py::arg("smooth") = kDepthmapDefaultSmooth,
         py::arg("psf_stack") = py::none(),
         R"(Depth map of one capture as `pinmask depthmap`: a plane sweep over steps (default 16)
-distances from from_m to to_m (metres, to_m may be inf; equally spaced in 1/u) with the mask's
-exact-geometry PSF at each, or over the planes of psf_stack (a list of (distance_m, psf array)
+distances from from_m to to_m (metres, or strings with a unit as "40cm"; to_m may be inf;
+equally spaced in 1/u) with the mask's exact-geometry PSF at each, or over the planes of
+psf_stack (a list of (distance_m, psf array)
 pairs, measured or computed elsewhere; PSFs at most the capture's size, centred at (rows // 2,
 cols // 2); instead of mask, from_m, to_m and steps). Wiener decodes (scalar nsr), cost the local
 energy (window x window px box) of the residual capture - PSF (*) estimate; per pixel the plane

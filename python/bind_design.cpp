@@ -29,7 +29,16 @@ double length_value(const py::handle& v, const std::string& field, bool allow_in
         return parse_length_m(v.cast<std::string>(), field,
                               allow_inf ? AllowInfinity::kYes : AllowInfinity::kNo);
     }
-    const double x = v.cast<double>();
+    if (py::isinstance<py::bool_>(v) ||
+        !(py::isinstance<py::float_>(v) || py::isinstance<py::int_>(v) ||
+          PyNumber_Check(v.ptr()) == 1)) {
+        throw py::type_error(py_names::spell_keywords(
+            field +
+            ": a length is a number of metres or a string with a unit such as '440um', "
+            "not a value of type " +
+            py::str(py::type::of(v).attr("__name__")).cast<std::string>()));
+    }
+    const double x = py::reinterpret_borrow<py::object>(v).cast<double>();
     if (std::isnan(x) || (std::isinf(x) && !(allow_inf && x > 0)))
         throw invalid_field(field, py::str(v).cast<std::string>(),
                             allow_inf ? "must be finite or +inf" : "must be finite");

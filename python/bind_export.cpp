@@ -5,7 +5,9 @@
 // sidecar (io/export_sidecar_of). The PSF files are the CLI's (write_psf() writes the PSF).
 // layout() builds the same layout (make_layout with the pipeline's LayoutOptions).
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -277,7 +279,10 @@ void bind_export(py::module_& m) {
                         {
                             std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
                             out.write(e.bytes.data(), std::streamsize(e.bytes.size()));
-                            if (!out) throw RuntimeFailure("cannot write " + tmp.string());
+                            out.close();  // a failed flush (disk full, size limit) shows here
+                            if (!out)
+                                throw RuntimeFailure("cannot write " + tmp.string() + ": " +
+                                                     std::strerror(errno));
                         }
                         if (is_readable(e.format)) {
                             std::ifstream in(tmp, std::ios::binary);
@@ -292,8 +297,10 @@ void bind_export(py::module_& m) {
                         io::sidecar_file_entry(path.filename().string(), e, check, f, o));
                 }
                 if (psf_files) {
-                    psf_written = io::write_psf_files(fs::path(out_dir) / (stem + ".psf.tiff"),
-                                                      psf_files->first, psf_files->second, npy);
+                    // staged with the fabrication files: all appear, or none
+                    psf_written =
+                        io::stage_psf_files(staged, fs::path(out_dir) / (stem + ".psf.tiff"),
+                                            psf_files->first, psf_files->second, npy);
                     for (const fs::path& p : psf_written)
                         side.psf_files.push_back(p.filename().string());
                     side.psf_kernel = psf_files->second.kernel_model;

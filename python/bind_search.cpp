@@ -67,7 +67,8 @@ void set_checkpoints(SearchPipelineOptions& p, const io::SearchRunTexts& texts,
     }
     p.islands.validate();
     if (!resume) return;
-    const io::SearchCheckpointFile c = io::checkpoint_to_resume(*resume, config);
+    const io::SearchCheckpointFile c =
+        io::checkpoint_to_resume(*resume, config, checkpoint.value_or(""));
     p.islands.resume_segment = c.segment;
     p.islands.resume = c.chains;
 }
@@ -204,10 +205,9 @@ void bind_search(py::module_& m) {
                     });
             }
             if (py_error) std::rethrow_exception(py_error);
-            // Ctrl-C that cut nothing short (the search had finished) is not swallowed.
-            if (poll == Poll::kKeyboardInterrupt &&
-                summary.termination != SearchTermination::kInterrupted)
-                raise_keyboard_interrupt();
+            // Ctrl-C is Python's KeyboardInterrupt, as for any call; the search stopped at it.
+            // (A progress callback returning False stops it and returns the best so far.)
+            if (poll == Poll::kKeyboardInterrupt) raise_keyboard_interrupt();
             py::list candidates;
             for (const RankedMask& c : summary.ranked) {
                 py::dict d;
@@ -272,8 +272,8 @@ rejected unless
 allow_spectral_zeros. The top candidates are re-ranked by simulated decodes of rerank_scenes
 (empty list: no re-ranking, as --no-rerank) ranked by rank_by 'wiener' | 'tv'.
 progress(row) is called with {phase: 'search' | 'rerank', fraction, text}; returning False
-stops the search. Ctrl-C (KeyboardInterrupt) stops it too: the best candidates so far are
-returned, termination 'interrupted'.
+stops the search: the best candidates so far are returned, termination 'interrupted'. Ctrl-C
+stops it and raises KeyboardInterrupt.
 Noise: ONE level, snr_db (Gaussian, dB; None: 30) or photons (electrons per pixel per pinhole)
 with read_noise, dark_current, full_well, bits, optical_density, as metrics().
 robust (as --robust, e.g. 'size=44um,jitter=2um'): every candidate's terms gain

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "core/errors/error.hpp"
+#include "core/limits/resource_limits.hpp"
 #include "python/keyword_names.hpp"
 
 namespace pinmask::python {
@@ -59,10 +60,25 @@ py::array as_float_array(const py::handle& obj, const std::string& what) {
         throw invalid_field(what, py::str(py::type::of(obj)).cast<std::string>(),
                             "must be a numpy array (or array-like) of numbers");
     }
+    // Charged from its shape before anything is copied (a view of 200000 x 200000 owns no
+    // memory, but its float64 copy would): the process's memory budget refuses it here.
+    double elements = 1.0;
+    for (py::ssize_t k = 0; k < arr.ndim(); ++k) elements *= static_cast<double>(arr.shape(k));
+    check_memory(elements * sizeof(double), what + " (an array of " +
+                                                std::to_string(static_cast<long long>(elements)) +
+                                                " values as float64)");
     if (arr.dtype().is(py::dtype::of<float>()) || arr.dtype().is(py::dtype::of<double>()))
         return arr;
-    if (arr.dtype().kind() == 'c')
+    const char kind = arr.dtype().kind();
+    if (kind == 'c')
         throw invalid_field(what, "complex array", "must be real (float32 or float64)");
+    // Numbers only: a bool mask, strings or objects are not light values (numpy would turn
+    // True into 1.0 without a word).
+    if (kind != 'f' && kind != 'i' && kind != 'u') {
+        throw py::type_error(py_names::spell_keywords(
+            what + ": an array of dtype " + py::str(arr.dtype()).cast<std::string>() +
+            " is not an image: give numbers (float32 or float64; integers are converted)"));
+    }
     auto conv = py::array_t<double, py::array::forcecast>::ensure(arr);
     if (!conv) {
         PyErr_Clear();
@@ -235,6 +251,33 @@ void raise_keyboard_interrupt() {
     throw py::error_already_set();
 }
 
+namespace {
+
+// "Unable to cast Python instance of type <class 'str'> to C++ type 'double'" (or the short
+// form of a release build) -> "a value of type str was given where a number is expected".
+std::string cast_error_words(const std::string& what) {
+    std::string given = "another type";
+    if (const auto at = what.find("<class '"); at != std::string::npos) {
+        const auto end = what.find('\'', at + 8);
+        if (end != std::string::npos) given = "type " + what.substr(at + 8, end - at - 8);
+    }
+    std::string wanted = "a value of another type";
+    const auto cpp = what.find("C++ type '");
+    const std::string type = cpp == std::string::npos
+                                 ? std::string()
+                                 : what.substr(cpp + 10, what.find('\'', cpp + 10) - cpp - 10);
+    if (type == "double" || type == "float") wanted = "a number";
+    if (type == "int" || type == "long" || type.find("int64") != std::string::npos ||
+        type.find("uint") != std::string::npos)
+        wanted = "an integer";
+    if (type.find("string") != std::string::npos) wanted = "a string";
+    if (type == "bool") wanted = "True or False";
+    return "a value of " + given + " was given where " + wanted +
+           " is expected (see the function's help for each keyword's type)";
+}
+
+}  // namespace
+
 void bind_errors(py::module_& m) {
     (void)m;
     py::register_exception_translator([](std::exception_ptr p) {
@@ -242,6 +285,10 @@ void bind_errors(py::module_& m) {
             if (p) std::rethrow_exception(p);
         } catch (const py::error_already_set&) {
             throw;
+        } catch (const py::cast_error& e) {
+            // A value of the wrong type met a conversion inside a call: said as a TypeError in
+            // the module's words, not pybind11's "Unable to cast ... to C++ type ...".
+            PyErr_SetString(PyExc_TypeError, cast_error_words(e.what()).c_str());
         } catch (const py::builtin_exception&) {
             throw;
         } catch (const std::bad_alloc&) {

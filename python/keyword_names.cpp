@@ -33,6 +33,7 @@ constexpr auto kKeywords = std::to_array<std::pair<std::string_view, std::string
     {"polygon_sides", "sides"},
     {"prior.count", "prior_scenes"},
     {"tiff_dpi", "dpi"},
+    {"time_budget_s", "time"},
     {"tolerance", "tol"},
     {"weights.analytic_wiener", "w_analytic"},
     {"weights.depth", "depth_weight"},

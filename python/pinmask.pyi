@@ -486,13 +486,13 @@ def depth(
 def depthmap(
     capture: Union[PathLikeStr, ArrayLike],  # grey (colour: channels averaged) or an image path
     mask: Optional[MaskLike] = None,  # the PSFs from its exact geometry (or psf_stack)
-    from_m: Optional[float] = None,  # nearest plane, m (with mask)
-    to_m: Optional[float] = None,  # farthest plane, m (inf allowed; with mask)
+    from_m: Optional[Union[float, str]] = None,  # nearest plane, m or "40cm" (with mask)
+    to_m: Optional[Union[float, str]] = None,  # farthest plane, m or "2m" (inf allowed; with mask)
     steps: Optional[int] = None,  # planes, equally spaced in 1/u (with mask; default 16)
     nsr: float = 0.01,  # Wiener NSR of every decode
     window: int = 121,  # odd box side of the cost, px
     smooth: float = 8.0,  # smoothness weight of the labels (0: lowest-cost plane per pixel)
-    psf_stack: Optional[Sequence[tuple[float, ArrayLike]]] = None,  # (distance m, PSF) pairs
+    psf_stack: Optional[Sequence[tuple[Union[float, str], ArrayLike]]] = None,  # (distance, PSF)
 ) -> dict[str, Any]: ...  # the keys of `pinmask depthmap --json`; depth_m, confidence... arrays
 def depth_fisher(
     mask: MaskLike,

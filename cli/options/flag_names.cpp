@@ -116,6 +116,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"threshold_sigmas", "--threshold"},
     {"tiff_dpi", "--dpi"},
     {"tiles", "--tiles"},
+    {"time_budget_s", "--time"},
     {"to_m", "--to"},
     {"tolerance", "--tol"},
     {"tone", "--tone"},

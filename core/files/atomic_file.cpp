@@ -1,11 +1,15 @@
 #include "core/files/atomic_file.hpp"
 
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <string>
+#include <system_error>
 
 #include "core/errors/error.hpp"
 #include "core/files/output_set.hpp"
@@ -76,12 +80,77 @@ class TempGuard {
     TempSlot* slot_;
 };
 
+// Plain POSIX writes, so a failure names the system's reason (no space left on device, file
+// too large, disk quota exceeded).
 void write_bytes(const fs::path& p, std::string_view bytes) {
-    std::ofstream out(p, std::ios::binary | std::ios::trunc);
-    if (!out) throw RuntimeFailure("cannot open " + p.string() + " for writing");
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.close();
-    if (!out) throw RuntimeFailure("failed writing " + p.string());
+    const int fd = ::open(p.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (fd < 0) throw RuntimeFailure("cannot open " + p.string() + ": " + std::strerror(errno));
+    std::size_t done = 0;
+    while (done < bytes.size()) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            const int err = n < 0 ? errno : EIO;
+            ::close(fd);
+            throw RuntimeFailure("failed writing " + p.string() + ": " + std::strerror(err));
+        }
+        done += static_cast<std::size_t>(n);
+    }
+    if (::close(fd) != 0)
+        throw RuntimeFailure("failed writing " + p.string() + ": " + std::strerror(errno));
+}
+
+// Why a temporary is incomplete, or "": it reached the process's file-size limit (`ulimit -f`;
+// with SIGXFSZ ignored, the write past it failed with EFBIG, which a writer library may ignore
+// or report without the reason), whatever its writer said; or, when its writer failed, its file
+// system has no block left (ENOSPC, the reason the writer's message may lack). A file exactly at
+// the limit counts as cut: it cannot be told from one.
+std::string cut_reason(const fs::path& tmp, bool writer_failed) {
+    struct rlimit lim {};
+    std::error_code ec;
+    const std::uintmax_t size = fs::file_size(tmp, ec);
+    if (!ec && ::getrlimit(RLIMIT_FSIZE, &lim) == 0 && lim.rlim_cur != RLIM_INFINITY &&
+        size >= lim.rlim_cur) {
+        return std::string(std::strerror(EFBIG)) + " (the file-size limit of this process, " +
+               "ulimit -f, is " + std::to_string(lim.rlim_cur) + " bytes)";
+    }
+    struct statvfs fsys {};
+    const fs::path folder = tmp.has_parent_path() ? tmp.parent_path() : fs::path(".");
+    if (writer_failed && ::statvfs(folder.c_str(), &fsys) == 0 && fsys.f_blocks > 0 &&
+        fsys.f_bavail == 0)
+        return std::strerror(ENOSPC);
+    return "";
+}
+
+// Replaces every occurrence of the temporary's name in a message by the final name: the user
+// never asked for "*.tmp-*" files.
+std::string with_final_name(std::string what, const fs::path& tmp, const fs::path& path) {
+    const std::string from = tmp.string(), to = path.string();
+    for (std::size_t at = 0; (at = what.find(from, at)) != std::string::npos; at += to.size())
+        what.replace(at, from.size(), to);
+    return what;
+}
+
+// Runs a writer on a temporary and checks the result is whole. A runtime failure (the disk
+// full, a quota, the file-size limit, a library's write error) becomes RuntimeFailure "could not
+// write '<path>': <reason>", the final name in place of the temporary's; other errors (input,
+// memory and time bounds) pass unchanged.
+void write_whole(const fs::path& tmp, const fs::path& path,
+                 const std::function<void(const fs::path&)>& write) {
+    const std::string prefix = "could not write '" + path.string() + "': ";
+    try {
+        write(tmp);
+    } catch (const fs::filesystem_error& e) {
+        const std::string cut = cut_reason(tmp, true);
+        throw RuntimeFailure(prefix + (cut.empty() ? e.code().message() : cut));
+    } catch (const RuntimeFailure& e) {
+        const std::string what = with_final_name(e.what(), tmp, path);
+        if (what.rfind(prefix, 0) == 0) throw RuntimeFailure(what);  // a nested writer's
+        const std::string cut = cut_reason(tmp, true);
+        throw RuntimeFailure(prefix + (cut.empty() ? what : cut + " (" + what + ")"));
+    }
+    if (const std::string cut = cut_reason(tmp, false); !cut.empty())
+        throw RuntimeFailure(prefix + cut);
 }
 
 }  // namespace
@@ -97,7 +166,7 @@ void write_file_atomic(const fs::path& path, const std::function<void(const fs::
     const fs::path tmp = temp_sibling(path);
     const TempGuard guard(tmp);
     try {
-        write(tmp);
+        write_whole(tmp, path, write);
         fs::rename(tmp, path);
     } catch (...) {
         std::error_code ec;
@@ -147,7 +216,7 @@ void StagedFiles::stage(const fs::path& path, const std::function<void(const fs:
     temps_.push_back(tmp);
     finals_.push_back(path);
     slots_.push_back(register_temp(tmp));
-    write(tmp);
+    write_whole(tmp, path, write);
 }
 
 void StagedFiles::stage_bytes(const fs::path& path, std::string_view bytes) {

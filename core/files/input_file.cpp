@@ -2,6 +2,8 @@
 
 #include <system_error>
 
+#include "core/files/output_set.hpp"
+
 namespace pinmask {
 
 std::optional<std::string> input_file_problem(const std::filesystem::path& path) {
@@ -9,7 +11,10 @@ std::optional<std::string> input_file_problem(const std::filesystem::path& path)
     std::error_code ec;
     const fs::file_status st = fs::status(path, ec);
     if (!fs::exists(st)) return std::string("file does not exist");
-    if (fs::is_regular_file(st)) return std::nullopt;
+    if (fs::is_regular_file(st)) {
+        protect_input(path);  // about to be read: no output of this run may replace it
+        return std::nullopt;
+    }
     if (fs::is_directory(st)) return std::string("is a directory");
     return std::string("is ") + special_file_kind(st) +
            ": pinmask reads only regular files (save it to a file)";

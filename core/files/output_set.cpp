@@ -130,6 +130,11 @@ void protect_input(const fs::path& path) {
     map.emplace(path_key(path), canonical);
 }
 
+void release_input(const fs::path& path) {
+    std::lock_guard lock(registry_mutex());
+    for (const std::string& key : same_file_keys(path)) protected_inputs().by_key.erase(key);
+}
+
 void check_output_path(const fs::path& path, const std::string& flag) {
     if (path.empty()) throw invalid_field(flag, "''", "an output name must not be empty");
     std::error_code ec;

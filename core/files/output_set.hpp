@@ -47,6 +47,10 @@ void reset_input_protection();
 // does not exist is ignored.
 void protect_input(const std::filesystem::path& path);
 
+// Forgets one protected input: a file the run is meant to supersede (a search checkpoint that
+// the run resumed from and checkpoints to again). A path that is not protected is ignored.
+void release_input(const std::filesystem::path& path);
+
 // The one-output check StagedFiles and write_file_atomic run on every final name: throws
 // InvalidInput("<flag>: '<path>': <rule>") for an existing directory, an existing special file
 // (device, pipe, socket: renaming over it would replace it), a name with no room for the

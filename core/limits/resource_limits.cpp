@@ -40,6 +40,11 @@ std::size_t parse_limit(const char* text) {
         }
     }
     if (!(v > 0.0)) throw invalid_field("PINMASK_MEMORY_LIMIT", text, "must be > 0");
+    // A fraction of a byte would be a bound of 0 bytes (0 itself is refused just above).
+    if (!(v * scale >= 1.0)) {
+        throw invalid_field("PINMASK_MEMORY_LIMIT", text,
+                            "must be at least 1 byte (a size such as 512M or 8G)");
+    }
     // Converting an infinite or too large double to size_t is undefined behaviour.
     if (!(v * scale < 0x1p64)) {
         throw invalid_field("PINMASK_MEMORY_LIMIT", text, "must be below 2^64 bytes");

@@ -50,7 +50,7 @@ std::string prior_kind_name(PriorKind kind);
 
 inline constexpr int kDefaultPriorScenes = 16;
 inline constexpr std::uint64_t kPriorFirstSeed = 1000;
-inline constexpr int kMaxPriorScenes = 4096;
+inline constexpr int kMaxPriorScenes = kMaxPriorSceneCount;  // optimize/simulate/scene_prior
 
 struct PriorSpec {
     PriorKind kind = PriorKind::kNatural;

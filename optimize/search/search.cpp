@@ -6,10 +6,12 @@
 #include <condition_variable>
 #include <memory>
 #include <mutex>
+#include <system_error>
 #include <thread>
 
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
+#include "core/limits/resource_limits.hpp"
 
 namespace pinmask {
 namespace {
@@ -65,6 +67,26 @@ void check_resumed_state(const ChainState& s, std::size_t chain, const SearchOpt
     }
     if (s.best_objective > previous_best) {
         refuse("its best objective is worse than its log's last entry");
+    }
+    // The log is the chain's own: an entry at each of 1, 2, .., 16 and then ~19 % steps up to
+    // its evaluations (and one at its evaluations when it finished), the next step its
+    // next_log_at.
+    std::int64_t step = 1;
+    for (std::size_t k = 0; k < s.checkpoints.size(); ++k) {
+        const std::int64_t e = s.checkpoints[k].first;
+        if (e == step) {
+            step = next_checkpoint(step);
+        } else if (k + 1 != s.checkpoints.size() || e != s.evaluations) {
+            refuse("its log has an entry at " + std::to_string(e) + " evaluations where the " +
+                   "chain logs at " + std::to_string(step));
+        }
+    }
+    if (step <= s.evaluations)
+        refuse("its log lacks the entry at " + std::to_string(step) + " evaluations");
+    if (s.next_checkpoint != step) {
+        refuse("its next log entry is at " + std::to_string(s.next_checkpoint) +
+               " evaluations; after " + std::to_string(s.evaluations) + " the chain logs at " +
+               std::to_string(step));
     }
     const auto check_pattern = [&](const Pattern& p, const std::string& what) {
         const bool holes_ok = o.holes_range()
@@ -341,8 +363,11 @@ void SearchOptions::validate() const {
         throw invalid_field(field_ref("threads"), std::to_string(threads),
                             "must be between 1 and 1024");
     }
-    if (!(time_budget_s >= 0.0) || !std::isfinite(time_budget_s)) {
-        throw invalid_field("time_budget_s", std::to_string(time_budget_s), "must be >= 0");
+    // The same bound as the process's time budget (core/limits/resource_limits): a longer search
+    // cannot be told from a hang.
+    if (!(time_budget_s >= 0.0) || !(time_budget_s <= kMaxTimeLimitS)) {
+        throw invalid_field(field_ref("time_budget_s"), std::to_string(time_budget_s),
+                            "must be between 0 and 1e7 s (116 days)");
     }
     // 1e9 evaluations a chain is more than a day at the fastest rate `bench search` measures; a
     // longer search is a time budget (it always ends, with the best so far).
@@ -439,18 +464,31 @@ SearchSummary run_search(const SearchObjective& objective, const SearchOptions& 
         std::condition_variable cv;
         int running = options.threads;
         std::vector<std::thread> workers;
-        for (std::size_t c = 0; c < chains.size(); ++c) {
-            workers.emplace_back([&, c] {
-                try {
-                    finished[c] = chains[c]->run(pause_at) ? 1 : 0;
-                } catch (...) {
-                    errors[c] = std::current_exception();
-                    time_up = true;  // stop the others too
-                }
-                const std::lock_guard<std::mutex> lock(mutex);
-                --running;
-                cv.notify_all();
-            });
+        workers.reserve(chains.size());
+        try {
+            for (std::size_t c = 0; c < chains.size(); ++c) {
+                workers.emplace_back([&, c] {
+                    try {
+                        finished[c] = chains[c]->run(pause_at) ? 1 : 0;
+                    } catch (...) {
+                        errors[c] = std::current_exception();
+                        time_up = true;  // stop the others too
+                    }
+                    const std::lock_guard<std::mutex> lock(mutex);
+                    --running;
+                    cv.notify_all();
+                });
+            }
+        } catch (const std::system_error& e) {
+            // The system refused a thread (a process or memory limit): the chains started are
+            // stopped and joined (a joinable thread destroyed would abort the process), and the
+            // request is refused.
+            time_up = true;
+            for (std::thread& w : workers) w.join();
+            throw ResourceLimit(field_ref("threads") + " = " + std::to_string(options.threads) +
+                                ": the system could not start chain " +
+                                std::to_string(workers.size() + 1) + "'s thread (" + e.what() +
+                                "); use fewer threads");
         }
         for (;;) {
             {

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
 #include "core/fft/fft.hpp"
 #include "optimize/simulate/scenes.hpp"
 
@@ -26,7 +27,12 @@ void accumulate_power(const Fft2& fft, const Plane& x, Plane& acc, ComplexPlane&
 
 ScenePrior natural_scene_prior(int rows, int cols, int count, std::uint64_t first_seed,
                                double alpha) {
-    if (count < 1) throw invalid_field("prior_scene_count", std::to_string(count), "must be >= 1");
+    if (count < 1 || count > kMaxPriorSceneCount) {
+        throw invalid_field(field_ref("prior.count"), std::to_string(count),
+                            "must be between 1 and " + std::to_string(kMaxPriorSceneCount) +
+                                " (sample scenes averaged for the prior; the average settles "
+                                "long before)");
+    }
     if (rows < 1 || cols < 1) {
         throw InvalidInput("prior size " + std::to_string(rows) + " x " + std::to_string(cols) +
                            ": both dimensions must be >= 1");

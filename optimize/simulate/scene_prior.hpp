@@ -23,8 +23,12 @@ struct ScenePrior {
     int cols() const { return static_cast<int>(power.cols()); }
 };
 
+// The most sample scenes a prior averages: the average settles long before, and every face
+// (the command's --prior-scenes, Python's prior_scenes) meets this one bound.
+inline constexpr int kMaxPriorSceneCount = 4096;
+
 // Average |X^|^2 over natural_scene(rows, cols, first_seed + i, alpha), i = 0 .. count-1
-// (count >= 1, InvalidInput otherwise).
+// (count in 1..kMaxPriorSceneCount, InvalidInput naming prior.count otherwise).
 ScenePrior natural_scene_prior(int rows, int cols, int count, std::uint64_t first_seed = 0,
                                double alpha = 1.0);
 

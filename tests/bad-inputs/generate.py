@@ -592,18 +592,41 @@ def checkpoint_log(evaluations):
     return log, e
 
 
-def checkpoint(edit):
+def fnv1a64(data):
+    h = 0xcbf29ce484222325
+    for b in data:
+        h = ((h ^ b) * 0x100000001b3) & 0xFFFFFFFFFFFFFFFF
+    return "%016x" % h
+
+
+def sealed(c):
+    """The file's text with its checksum: FNV-1a 64 of the text with the value as 16 zeros."""
+    c["checksum"] = "0" * 16
+    text = json.dumps(c) + "\n"
+    key = '"checksum": "' + "0" * 16
+    at = text.rindex(key) + len(key) - 16
+    return text[:at] + fnv1a64(text.encode()) + text[at + 16:]
+
+
+def checkpoint(edit, seal=True):
+    """A checkpoint broken by `edit`: sealed after the edit (a forger's file: its fields must be
+    checked one by one), or, with seal=False, edited after sealing (refused by the checksum)."""
     log, next_at = checkpoint_log(2000)
     chain = {"rng": " ".join(str(i) for i in range(1, 313)) + " 312",
              "evaluations": 2000, "best_objective": CHECKPOINT_BEST, "next_log_at": next_at,
              "log": log, "top_capacity": 5,
              "top": [{"objective": CHECKPOINT_BEST, "pattern": checkpoint_pattern()}],
              "start": None, "best_per_holes": []}
-    c = {"format": "pinmask-search-checkpoint", "version": 1,
+    c = {"format": "pinmask-search-checkpoint", "version": 2,
          "config": json.loads(json.dumps(CHECKPOINT_CONFIG)), "segment": 2,
          "evaluations_between_boundaries": 1000, "chains": [chain]}
+    if not seal:
+        text = sealed(c)
+        c = json.loads(text)
+        edit(c, c["chains"][0])
+        return json.dumps(c) + "\n"
     edit(c, chain)
-    return json.dumps(c) + "\n"
+    return sealed(c)
 
 
 def shifted_holes(dc):
@@ -648,16 +671,61 @@ CHECKPOINT_EDITS = {
     "log-not-pairs": lambda c, ch: ch["log"].append([2000]),
     # the file itself
     "wrong-format": lambda c, ch: c.update(format="pinmask-search-config"),
-    "version-2": lambda c, ch: c.update(version=2),
+    "version-1": lambda c, ch: c.update(version=1),
+    "version-3": lambda c, ch: c.update(version=3),
     "rng-garbage": set_keys(rng="not a generator state"),
     "segment-0": lambda c, ch: c.update(segment=0),
     "every-0": lambda c, ch: c.update(evaluations_between_boundaries=0),
     "two-chains": lambda c, ch: c["chains"].append(json.loads(json.dumps(ch))),
     "other-config": lambda c, ch: c["config"].update(grid=12),
     "unknown-key": set_keys(evaluations_total=2000),
+    # generator states the stream reader would wrap or misread
+    "rng-negative": set_keys(rng="-5 " + " ".join(str(i) for i in range(2, 313)) + " 312"),
+    "rng-2-64": set_keys(rng="18446744073709551616 " + " ".join(str(i) for i in range(2, 313))
+                         + " 312"),
+    "rng-index-313": set_keys(rng=" ".join(str(i) for i in range(1, 313)) + " 313"),
+    "rng-short": set_keys(rng=" ".join(str(i) for i in range(1, 300))),
+    "rng-long": set_keys(rng=" ".join(str(i) for i in range(1, 313)) + " 312 5"),
+    "rng-float": set_keys(rng="1.5 " + " ".join(str(i) for i in range(2, 313)) + " 312"),
+    "rng-hex": set_keys(rng="0x10 " + " ".join(str(i) for i in range(2, 313)) + " 312"),
+    # a segment, a boundary interval and counts this run cannot have written
+    "segment-huge": lambda c, ch: c.update(segment=10**15),
+    "segment-3": lambda c, ch: c.update(segment=3),
+    "segment-negative": lambda c, ch: c.update(segment=-2),
+    "every-500": lambda c, ch: c.update(evaluations_between_boundaries=500),
+    "evals-below-boundary": lambda c, ch: ch.update(
+        evaluations=1500, log=checkpoint_log(1500)[0], next_log_at=checkpoint_log(1500)[1]),
+    # the log is the chain's own: its steps and its next step
+    "log-entry-missing": lambda c, ch: ch["log"].pop(4),
+    "log-entry-shifted": lambda c, ch: ch["log"][20].__setitem__(0, ch["log"][20][0] + 1),
+    "log-next-wrong": set_keys(next_log_at=2100),
+    "log-truncated": lambda c, ch: ch["log"].pop(),
+}
+# edited after it was written: each field a user or a fault might change, refused by the checksum
+CHECKPOINT_TAMPERED = {
+    "evaluations": set_keys(evaluations=1999),
+    "rng": set_keys(rng=" ".join(str(i) for i in range(2, 314)) + " 312"),
+    "segment": lambda c, ch: c.update(segment=1),
+    "log-entry": lambda c, ch: ch["log"][3].__setitem__(1, -22.0),
+    "objective": lambda c, ch: ch["top"][0].update(objective=-21.9),
+    "best": set_keys(best_objective=-21.9),
+    "config": lambda c, ch: c["config"].update(seed=2),
+    "next-log-at": set_keys(next_log_at=2001),
+    "pinhole": lambda c, ch: ch["top"][0]["pattern"]["pinholes"][0].__setitem__(1, 2),
+    "checksum-missing": lambda c, ch: c.pop("checksum"),
+    "checksum-short": lambda c, ch: c.update(checksum="abc"),
+    "checksum-number": lambda c, ch: c.update(checksum=12),
+    "checksum-digit": lambda c, ch: c.update(
+        checksum=c["checksum"][:-1] + ("0" if c["checksum"][-1] != "0" else "1")),
 }
 for name, edit in CHECKPOINT_EDITS.items():
     write("checkpoint-%s.json" % name, checkpoint(edit))
+for name, edit in CHECKPOINT_TAMPERED.items():
+    write("checkpoint-tampered-%s.json" % name, checkpoint(edit, seal=False))
+
+# A valid camera file: the input that outputs of the same run (a checkpoint, a saved camera) are
+# aimed at, and must not replace.
+write("camera-valid.camera.json", seed("camera_json/paper.camera.json"))
 write("checkpoint-truncated.json", checkpoint(lambda c, ch: None)[:700])
 
 # ---------------------------------------------------------------- camera RAW (raw-*)

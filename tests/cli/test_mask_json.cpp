@@ -215,10 +215,8 @@ TEST_CASE("file-level errors name the file: syntax with position, duplicate keys
     const auto pos = big.find("\"pixel_pitch_m\": ") + 17;
     big.replace(pos, big.find(',', pos) - pos, "1e999");
     write_text(dir / "big.mask.json", big);
-    CHECK_THROWS_WITH_AS(
-        read_mask_file(dir / "big.mask.json"),
-        Contains("big.mask.json: invalid JSON: [json.exception.out_of_range.406] number overflow"),
-        InvalidInput);
+    CHECK_THROWS_WITH_AS(read_mask_file(dir / "big.mask.json"),
+                         Contains("big.mask.json: invalid JSON: number overflow"), InvalidInput);
 
     // Pinholes are checked as they stream out of the parser: same key paths and rules.
     const auto with_pinhole = [&](const std::string& name, const std::string& element) {

@@ -5,6 +5,7 @@ counter-clockwise on screen with rows running down), with Poisson photons and re
 module and the command line must report the same results, and the rotation's sign must be
 scipy's."""
 import json
+import subprocess
 
 import numpy as np
 import pytest
@@ -117,3 +118,21 @@ def test_untrustworthy_capture_is_refused(capture):
     dim = np.round(rng.poisson(np.clip(point * 0.0005, 0, None) + 20.0)).astype(float)
     with pytest.raises(ValueError):
         pinmask.calibrate(dim, mask)
+
+
+def test_command_under_a_file_size_limit_leaves_nothing(capture, cli, tmp_path):
+    """`ulimit -f 8`: the write past 8 KiB fails (SIGXFSZ ignored); the command exits 1 naming
+    the file and the reason, and leaves no file in its output folder."""
+    mask, point, pitch, missing = capture
+    mask.save(tmp_path / "m.mask.json")
+    np.save(tmp_path / "point.npy", point)
+    script = 'ulimit -f 8 && exec "$0" "$@"'
+    p = subprocess.run(["bash", "-c", script, cli.exe, "calibrate", str(tmp_path / "point.npy"),
+                        "--mask", str(tmp_path / "m.mask.json"), "-o", str(tmp_path / "cal")],
+                       capture_output=True, text=True)
+    assert p.returncode == 1, p.stderr
+    assert "could not write '" + str(tmp_path / "cal") in p.stderr
+    assert "File too large" in p.stderr
+    left = [f for f in (tmp_path / "cal").rglob("*") if f.is_file()] if (
+        tmp_path / "cal").exists() else []
+    assert left == []

@@ -2,6 +2,8 @@
 and Ctrl-C, zero-copy inputs, and errors."""
 import os
 import signal
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -105,15 +107,37 @@ def test_progress_gets_the_iteration_and_false_stops_with_estimate(mask7):
     assert np.all(np.isfinite(out["image"]))
 
 
-def test_ctrl_c_keeps_the_estimate_so_far(mask7):
+def test_progress_false_keeps_the_estimate_so_far(mask7):
     cap = pinmask.simulate(mask7, "letter-R", snr_db=30)["capture"]
 
     def progress(info):
-        os.kill(os.getpid(), signal.SIGINT)  # as if the user pressed Ctrl-C
+        return False  # stop now, keep what was done
 
-    out = pinmask.decode(cap, mask=mask7, method="richardson-lucy", iters=1000000, tol=0, progress=progress,
-                         poll_s=0.01)
+    out = pinmask.decode(cap, mask=mask7, method="richardson-lucy", iters=1000000, tol=0,
+                         progress=progress, poll_s=0.01)
     assert out["interrupted"] and out["channels"][0]["iterations"] < 1000000
+
+
+def test_ctrl_c_during_tv_raises_keyboard_interrupt():
+    """Ctrl-C one second into a 1000-iteration TV decode is Python's KeyboardInterrupt, raised
+    at once, not a result returned later."""
+    rng = np.random.default_rng(2)
+    cap = rng.random((768, 768))  # 1000 iterations: seconds on any machine
+    sent = []
+
+    def interrupt():
+        sent.append(time.monotonic())
+        os.kill(os.getpid(), signal.SIGINT)
+
+    timer = threading.Timer(1.0, interrupt)
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            pinmask.decode(cap, psf=rng.random((768, 768)), method="tv", iters=1000, tol=0,
+                           crop="none")
+    finally:
+        timer.cancel()
+    assert sent  # raised by the signal, not by anything before it
 
 
 def test_progress_exception_propagates(mask7):

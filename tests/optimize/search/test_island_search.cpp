@@ -5,8 +5,13 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <functional>
 #include <random>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/errors/error.hpp"
 #include "io/checkpoint.hpp"
@@ -127,6 +132,47 @@ TEST_CASE(
     }
 }
 
+// A checkpoint's checksum recomputed after an edit, as a forger would (FNV-1a 64 written out
+// here, not the library's): the fields must still be checked one by one.
+std::string resealed(std::string text) {
+    const std::string key = "\"checksum\": \"";
+    const std::size_t at = text.rfind(key) + key.size();
+    text.replace(at, 16, "0000000000000000");
+    unsigned long long h = 0xcbf29ce484222325ULL;
+    for (const unsigned char c : text) h = (h ^ c) * 0x100000001b3ULL;
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", h);
+    text.replace(at, 16, hex);
+    return text;
+}
+
+TEST_CASE("checkpoint codec: an edited file is refused by its checksum") {
+    io::SearchCheckpointFile file;
+    file.segment = 1;
+    file.every = 10;
+    file.chains.resize(1);
+    const std::string good = io::checkpoint_to_json(file);
+    CHECK(resealed(good) == good);  // the writer's checksum is the FNV-1a 64 of its zeroed text
+    for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+             {"\"segment\": 1", "\"segment\": 2"},
+             {"\"evaluations\": 0", "\"evaluations\": 1"},
+             {"\"rng\": \"", "\"rng\": \" "},
+             {"\"checksum\": \"", "\"checksum\":\""}}) {
+        std::string text = good;
+        text.replace(text.find(from), from.size(), to);
+        CHECK_THROWS_WITH_AS(io::parse_checkpoint(text),
+                             doctest::Contains(to.find("checksum") == std::string::npos
+                                                   ? "the checkpoint was changed after it was "
+                                                     "written"
+                                                   : "checksum"),
+                             InvalidInput);
+    }
+    std::string unsealed = good;
+    unsealed.replace(unsealed.rfind("\"checksum\""), 10, "\"checksun\"");
+    CHECK_THROWS_WITH_AS(io::parse_checkpoint(unsealed), doctest::Contains("checksun"),
+                         InvalidInput);
+}
+
 TEST_CASE("checkpoint codec: hostile files are refused naming the key") {
     io::SearchCheckpointFile file;
     file.segment = 1;
@@ -139,10 +185,12 @@ TEST_CASE("checkpoint codec: hostile files are refused naming the key") {
         const auto at = text.find(from);
         REQUIRE(at != std::string::npos);
         text.replace(at, from.size(), to);
+        if (text.rfind("\"checksum\": \"") != std::string::npos) text = resealed(text);
         try {
             io::parse_checkpoint(text);
             FAIL("accepted: " << to);
         } catch (const InvalidInput& e) {
+            INFO(e.what());
             CHECK(std::string(e.what()).find(key) != std::string::npos);
         }
     };
@@ -151,7 +199,20 @@ TEST_CASE("checkpoint codec: hostile files are refused naming the key") {
     refused("\"rng\": \"", "\"rng\": \"x", "chains[0].rng");
     refused("\"top_capacity\": 1", "\"top_capacity\": 0", "chains[0].top_capacity");
     refused("\"evaluations\": 0", "\"evaluations\": 1e400", "(root)");
-    refused("\"version\": 1", "\"version\": 2", "version");
+    refused("\"version\": 2", "\"version\": 1", "version 1 checkpoints carry no checksum");
+    refused("\"version\": 2", "\"version\": 3", "version");
+    // generator states the stream reader would wrap or misread
+    const std::string state = [] {
+        std::ostringstream s;
+        s << std::mt19937_64{};
+        return s.str();
+    }();
+    const std::string first_word = state.substr(0, state.find(' '));
+    refused("\"rng\": \"" + first_word, "\"rng\": \"-5", "is not an integer of 0..2^64-1");
+    refused("\"rng\": \"" + first_word, "\"rng\": \"18446744073709551616",
+            "is not an integer of 0..2^64-1");
+    refused(" 312\"", " 312 5\"", "more than 313 numbers");
+    refused(" 312\"", " 313\"", "its index 313 is beyond 312");
     refused("\"segment\": 1", "\"segment\": 1, \"segment\": 1", "segment");
     CHECK(io::differing_keys({{"a", 1}, {"b", {{"x", 1}, {"y", 2}}}},
                              {{"b", {{"y", 2}, {"x", 1}}}, {"a", 2}, {"c", 0}}) ==
@@ -212,6 +273,11 @@ TEST_CASE("a resumed state is checked against the run: counts, log, patterns, ob
         "its log must count evaluations upwards");
     refused([](ChainState& s) { s.checkpoints.back().second = s.checkpoints.front().second + 1; },
             "best objective rises");
+    // the log and its next step are the chain's own: 1, 2, .., 16, then ~19 % steps
+    refused([](ChainState& s) { s.checkpoints.erase(s.checkpoints.begin() + 1); },
+            "its log has an entry at 3 evaluations where the chain logs at 2");
+    refused([](ChainState& s) { s.next_checkpoint += 1; }, "its next log entry is at");
+    refused([](ChainState& s) { s.checkpoints.pop_back(); }, "its log lacks the entry at");
     refused(
         [](ChainState& s) {
             Pattern p = s.top.items().front().pattern;
