@@ -36,6 +36,7 @@ struct DecodeCommand {
     std::string background = "none";  // none | corner | VALUE
     std::string normalize = "none";   // none | l2
     std::string precision = "auto";   // auto | single | double
+    std::string bayer = "sum2x2";     // camera RAW demosaic: sum2x2 | green | r | b
     // The command's output settings.
     std::string output;
     int bits = 8;

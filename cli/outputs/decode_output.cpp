@@ -64,13 +64,14 @@ void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const Deco
     }
     json backgrounds = json::array();
     if (s.background) backgrounds.push_back(*s.background);
-    stats["preprocess"] = {{"background",
-                            {{"mode", background_mode_name(r.request.background.mode)},
-                             {"values", backgrounds}}},
-                           {"downsample_rounds", r.request.downsample},
-                           {"normalize", norm},
-                           {"decoded_rows", s.decoded_rows},
-                           {"decoded_cols", s.decoded_cols}};
+    stats["preprocess"] = {
+        {"background",
+         {{"mode", background_mode_name(r.request.background.mode)}, {"values", backgrounds}}},
+        {"downsample_rounds", r.request.downsample},
+        {"normalize", norm},
+        {"bayer", r.bayer},
+        {"decoded_rows", s.decoded_rows},
+        {"decoded_cols", s.decoded_cols}};
     stats["method"] = r.method;
     stats["precision"] =
         precision_name(s.single_precision ? Precision::kSingle : Precision::kDouble);
@@ -130,6 +131,7 @@ nlohmann::json config_json(const DecodeCommand& c) {
             {"downsample", r.downsample},
             {"background", c.background},
             {"normalize", c.normalize},
+            {"bayer", c.bayer},
             {"output", c.output},
             {"bits", c.bits},
             {"scale", c.scale},
