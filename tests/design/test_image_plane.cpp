@@ -61,6 +61,7 @@ TEST_CASE("diffraction first zero: lambda f / (d w) px, the same at every u and 
     for (const Camera& c : cameras) {
         CAPTURE(c.lens_focal_m);
         CAPTURE(c.object_distance_m);
-        CHECK(diffraction_first_zero_px(c) == doctest::Approx(first_zero_via_z_eff(c)).epsilon(1e-12));
+        CHECK(diffraction_first_zero_px(c) ==
+              doctest::Approx(first_zero_via_z_eff(c)).epsilon(1e-12));
     }
 }
