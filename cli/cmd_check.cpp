@@ -223,7 +223,8 @@ void setup(CLI::App& app, int& exit_code) {
     cmd->add_option("--list", o->list, "Violations listed per rule (all are counted)")
         ->capture_default_str();
     cmd->add_flag("--json", o->json,
-                  "Print {clean, input, kind, vendor, tone, polygons, annotations, rules, "
+                  "Print {clean, design_rules_checked (false for vendor none), input, kind, "
+                  "vendor, tone, polygons, annotations, rules, "
                   "measured, counts, truncated, violations: [{rule, message, x_um, y_um, "
                   "polygon_a, polygon_b, value, limit, unit}], comparison} on stdout");
     cmd->callback([o, &exit_code] {

@@ -184,8 +184,7 @@ void setup(CLI::App& app) {
         "the image, OUT.config.json and optionally a stats file.");
     cmd->footer(kDecodeFooter);
     auto flags = std::make_shared<DecodeFlags>(add_decode_flags(*cmd, *o));
-    auto bayer = std::make_shared<std::string>("sum2x2");
-    cmd->add_option("--bayer", *bayer,
+    cmd->add_option("--bayer", o->bayer,
                     "Camera RAW captures and dark frames: sum2x2 (half-resolution grey, the pixel "
                     "pitch doubles) | green (alias g) | r | b; see core/image/raw_io.hpp")
         ->capture_default_str();
@@ -202,12 +201,12 @@ void setup(CLI::App& app) {
     cmd->add_option("--batch-format", batch->format, "--batch outputs: tiff | png | npy")
         ->capture_default_str();
     cmd->add_flag("--batch-stats", batch->stats, "--batch: also write STEM.stats.json per capture");
-    cmd->callback([o, flags, bayer, batch] {
+    cmd->callback([o, flags, batch] {
         resolve_method(*o, *flags);
-        if (!batch->list.empty()) return run_batch_on_ranks(*o, *batch, parse_bayer_mode(*bayer));
+        if (!batch->list.empty()) return run_batch_on_ranks(*o, *batch, parse_bayer_mode(o->bayer));
         if (o->capture.empty())
             throw InvalidInput("decode needs a capture file (or --batch LIST_OR_DIR)");
-        run_decode(*o, parse_bayer_mode(*bayer));
+        run_decode(*o, parse_bayer_mode(o->bayer));
     });
 }
 

@@ -1,6 +1,6 @@
-// `pinmask design`: the optics report (docs/design.md section 2) for a preset or explicit parameters,
-// as a table (quantity, value, note) or, with --json, one JSON object whose keys carry units.
-// Infinite values (z_eff at f = f', the pinhole for integer pixels when M = 0, u = inf) are
+// `pinmask design`: the optics report (docs/design.md section 2) for a preset or explicit
+// parameters, as a table (quantity, value, note) or, with --json, one JSON object whose keys carry
+// units. Infinite values (z_eff at f = f', the pinhole for integer pixels when M = 0, u = inf) are
 // written as JSON null with the reason under "notes" (key -> text).
 #include <cmath>
 #include <cstdio>
@@ -15,10 +15,12 @@
 
 #include "cli/commands.hpp"
 #include "cli/options/camera_options.hpp"
+#include "cli/options/command_flags.hpp"
 #include "cli/options/flag_names.hpp"
 #include "cli/outputs/design_report.hpp"
 #include "core/errors/error.hpp"
 #include "core/units/units.hpp"
+#include "design/optics/default_pinhole.hpp"
 #include "design/optics/fab_grid.hpp"
 #include "design/optics/optics.hpp"
 #include "design/optics/working_distance.hpp"
@@ -94,8 +96,11 @@ PatternGeometry resolve_geometry(const GeometryOptions& g) {
     return {g.grid, g.holes, g.tiles, g.tiles};
 }
 
-void run(const DesignOptions& o) {
-    Camera camera = resolve_camera(o.camera);
+void run(const DesignOptions& o, const CLI::App& command) {
+    // --pixels-per-cell solves the pinhole itself: no default pinhole is chosen (or said) first.
+    CameraOptions camera_options = o.camera;
+    camera_options.default_pinhole = !o.pixels_per_cell;
+    Camera camera = resolve_camera(camera_options);
     const PatternGeometry geometry = resolve_geometry(o.geometry);
     const KernelModel kernel = parse_kernel_model(o.kernel, "--kernel");
     if (!(o.lsi_tolerance_px > 0) || !(o.lsi_tolerance_px <= kMaxLsiTolerancePx)) {
@@ -136,6 +141,13 @@ void run(const DesignOptions& o) {
     WorkingDistanceOptions wo{o.lsi_tolerance_px, o.pixels_per_cell.value_or(0)};
     std::string solved;
     if (o.pixels_per_cell || !o.solve.empty()) {
+        // --solve pinhole keeps the whole pitch of the pinhole it starts from: a start far from
+        // the optimum gives a solution as far from it, so the optimum is said.
+        if (!o.pixels_per_cell) {
+            const std::string far = far_from_optimum_note(camera);
+            if (!far.empty())
+                std::cerr << "pinmask: warning: " << spell_flags(far, command) << "\n";
+        }
         const WorkingDistance start = compute_working_distance(camera, geometry, wo);
         if (start.pixels_per_cell > kMaxPixelsPerCell) {
             throw invalid_field("--solve", "pinhole",
@@ -145,6 +157,11 @@ void run(const DesignOptions& o) {
         }
         // d for exactly N at u, then on the fabrication grid (what export draws).
         snap.exact_m = pinhole_for_pixels_per_cell(camera, start.pixels_per_cell);
+        if (const std::string big = solved_pinhole_too_large(snap.exact_m, start.pixels_per_cell);
+            !big.empty())
+            throw invalid_field(o.pixels_per_cell ? "--pixels-per-cell" : "--solve",
+                                o.pixels_per_cell ? std::to_string(*o.pixels_per_cell) : "pinhole",
+                                big);
         snap.on_grid_m = pinhole_on_grid_m(snap.exact_m, snap.grid_nm);
         snap.solved = true;
         camera.pinhole_m = snap.on_grid_m;
@@ -163,10 +180,10 @@ void run(const DesignOptions& o) {
         r.kernel_reason = dk.kernel->model_reason;
     }
     KernelValidity& validity = dk.validity;
-    for (auto& w : validity.warnings) w = spell_flags(w);
+    for (auto& w : validity.warnings) w = spell_flags(w, command);
     if (!validity.model_accurate) r.kernel_reason = "NOT accurate: " + validity.warnings.front();
     for (const auto& w : validity.warnings) std::cerr << "pinmask: warning: " << w << "\n";
-    std::vector<CameraInput> inputs = camera_inputs(o.camera, camera);
+    std::vector<CameraInput> inputs = camera_inputs(camera_options, camera);
     if (!solved.empty())
         inputs[0].source = "solved for N px per cell at u, on the " + std::to_string(snap.grid_nm) +
                            " nm fabrication grid";
@@ -249,7 +266,7 @@ void setup(CLI::App& app) {
                     "Export preset whose grid a solved pinhole lands on (e.g. film-plotter: "
                     "1 um; `pinmask export --vendor list`)");
     cmd->add_flag("--json", o->json, "Print the report as one JSON object on stdout");
-    cmd->callback([o] { run(*o); });
+    cmd->callback([o, cmd] { run(*o, *cmd); });
 }
 
 }  // namespace

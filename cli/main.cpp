@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "cli/commands.hpp"
+#include "cli/options/command_flags.hpp"
 #include "cli/options/fft_setup.hpp"
 #include "cli/options/flag_names.hpp"
 #include "cli/options/option_checks.hpp"
@@ -178,8 +179,15 @@ int main(int argc, char** argv) {
         std::cerr << "pinmask: stopped: " << cli::spell_flags(readable_numbers(e.what())) << "\n";
         return 3;
     } catch (const InvalidInput& e) {
+        // Spelled for the command that ran (the deepest parsed subcommand): a field whose flag
+        // that command lacks is named with the commands that have it.
+        const CLI::App* ran = nullptr;
+        for (auto subs = app.get_subcommands(); !subs.empty(); subs = ran->get_subcommands())
+            ran = subs.back();
+        const std::string what = readable_numbers(e.what());
         return report_input_error([&] {
-            std::cerr << "pinmask: error: " << cli::spell_flags(readable_numbers(e.what())) << "\n";
+            std::cerr << "pinmask: error: "
+                      << (ran ? cli::spell_flags(what, *ran) : cli::spell_flags(what)) << "\n";
         });
     } catch (const std::filesystem::filesystem_error& e) {
         if (is_path_error(e)) {

@@ -239,6 +239,7 @@ void bind_check(py::module_& m) {
             }
             py::dict j;
             j["clean"] = clean;
+            j["design_rules_checked"] = vendor_name != "none";  // as check --json
             j["input"] = input_text;
             j["kind"] = kind;
             j["vendor"] = vendor_name;

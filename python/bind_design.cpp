@@ -7,7 +7,9 @@
 #include "core/errors/field_names.hpp"
 #include "core/units/units.hpp"
 #include "design/optics/camera.hpp"
+#include "design/optics/default_pinhole.hpp"
 #include "design/optics/fab_grid.hpp"
+#include "design/optics/image_plane.hpp"
 #include "design/optics/optics.hpp"
 #include "design/optics/spectrum.hpp"
 #include "design/optics/working_distance.hpp"
@@ -45,6 +47,15 @@ double length_value(const py::handle& v, const std::string& field, bool allow_in
     return x;
 }
 
+// optics()'s spelling of a field in its kernel warnings: as every function, except a keyword
+// optics() lacks, which names the functions that take it (as design's flags,
+// cli/options/flag_names).
+std::optional<std::string> optics_keyword(std::string_view field) {
+    if (field == "energy_fraction")
+        return "energy_fraction (a keyword of kernel(), psf() and write_psf(), not of optics())";
+    return py_names::keyword_spelling(field);
+}
+
 py::dict optics_dict(const OpticsReport& r, const WorkingDistance& wd,
                      const std::vector<std::string>& kernel_warnings) {
     py::dict d;
@@ -75,6 +86,8 @@ py::dict optics_dict(const OpticsReport& r, const WorkingDistance& wd,
     d["integer_pixels_per_cell_at_inf"] = r.integer_pixels_per_cell;
     d["pinhole_for_integer_pixels_m"] = wd.pinhole_for_pixels_per_cell_m;
     d["pinhole_for_integer_pixels_at_inf_m"] = r.pinhole_for_integer_pixels_m;
+    d["image_distance_at_u_m"] = image_distance_at_u_m(r.camera);
+    d["diffraction_first_zero_px"] = diffraction_first_zero_px(r.camera);
     d["max_separation_m"] = r.max_separation_m;
     d["lsi_tolerance_px"] = r.options.lsi_tolerance_px;
     d["lsi_mismatch_px"] = wd.lsi_mismatch_px;
@@ -111,27 +124,52 @@ void bind_design(py::module_& m) {
     py::class_<Camera>(m, "Camera",
                        "The coded-pinhole-lens camera; lengths in metres (a float) or a string "
                        "with a unit ('440um', '55mm', '6m'; object_distance_m and lens_focal_m "
-                       "also 'inf'). Defaults: the paper's prototype.")
+                       "also 'inf'). Defaults (None): the paper's prototype; with other optics "
+                       "(lens_focal_m, sensor_distance_m, wavelength_m or pixel_pitch_m given) "
+                       "and no pinhole_m, the pinhole for whole pixels per cell nearest the "
+                       "diffraction optimum, with a UserWarning (as the command line without "
+                       "--pinhole). A length above its quantity's range (pinhole over 10 mm, "
+                       "pixel over 1 mm, wavelength over 100 um, ...) is a ValueError naming the "
+                       "unit it probably meant.")
         .def(py::init([](const py::object& object_distance_m, const py::object& lens_focal_m,
                          const py::object& sensor_distance_m, const py::object& wavelength_m,
                          const py::object& pixel_pitch_m, const py::object& pinhole_m,
                          int sensor_cols, int sensor_rows, const py::object& bandwidth_m) {
+                 // None: the paper's value. Other optics than the paper's without pinhole_m get
+                 // the whole-pixel pinhole nearest the diffraction optimum, as the command
+                 // line does without --pinhole (design/optics/default_pinhole), with a UserWarning.
                  Camera c;
-                 c.object_distance_m = length_value(object_distance_m, "object_distance_m", true);
-                 c.lens_focal_m = length_value(lens_focal_m, "lens_focal_m", true);
-                 c.sensor_distance_m = length_value(sensor_distance_m, "sensor_distance_m", false);
-                 c.wavelength_m = length_value(wavelength_m, "wavelength_m", false);
-                 c.pixel_pitch_m = length_value(pixel_pitch_m, "pixel_pitch_m", false);
-                 c.pinhole_m = length_value(pinhole_m, "pinhole_m", false);
+                 const auto set = [](double& to, const py::object& v, const char* field,
+                                     bool allow_inf) {
+                     if (!v.is_none()) to = length_value(v, field, allow_inf);
+                 };
+                 set(c.object_distance_m, object_distance_m, "object_distance_m", true);
+                 set(c.lens_focal_m, lens_focal_m, "lens_focal_m", true);
+                 set(c.sensor_distance_m, sensor_distance_m, "sensor_distance_m", false);
+                 set(c.wavelength_m, wavelength_m, "wavelength_m", false);
+                 set(c.pixel_pitch_m, pixel_pitch_m, "pixel_pitch_m", false);
+                 set(c.pinhole_m, pinhole_m, "pinhole_m", false);
                  c.sensor_cols = sensor_cols;
                  c.sensor_rows = sensor_rows;
                  c.bandwidth_m = length_value(bandwidth_m, "bandwidth_m", false);
                  validate(c);
+                 const bool other_optics = !lens_focal_m.is_none() ||
+                                           !sensor_distance_m.is_none() ||
+                                           !wavelength_m.is_none() || !pixel_pitch_m.is_none();
+                 if (pinhole_m.is_none() && other_optics) {
+                     const DefaultPinhole chosen = default_pinhole(c);
+                     c.pinhole_m = chosen.pinhole_m;
+                     validate(c);
+                     if (PyErr_WarnEx(PyExc_UserWarning,
+                                      ("pinmask: " + py_names::spell_keywords(chosen.note)).c_str(),
+                                      1) < 0)
+                         throw py::error_already_set();
+                 }
                  return c;
              }),
-             py::arg("object_distance_m") = 6.0, py::arg("lens_focal_m") = 0.120,
-             py::arg("sensor_distance_m") = 0.055, py::arg("wavelength_m") = 550e-9,
-             py::arg("pixel_pitch_m") = 30e-6, py::arg("pinhole_m") = 440e-6,
+             py::arg("object_distance_m") = 6.0, py::arg("lens_focal_m") = py::none(),
+             py::arg("sensor_distance_m") = py::none(), py::arg("wavelength_m") = py::none(),
+             py::arg("pixel_pitch_m") = py::none(), py::arg("pinhole_m") = py::none(),
              py::arg("sensor_cols") = 720, py::arg("sensor_rows") = 480,
              py::arg("bandwidth_m") = 0.0)
         .def_readwrite("object_distance_m", &Camera::object_distance_m,
@@ -254,6 +292,15 @@ void bind_design(py::module_& m) {
                                       static_cast<int>(pixels_per_cell.value_or(0))};
             py::dict solved;
             if (solving) {
+                // As design: --solve pinhole keeps the start's pitch, so a start far from the
+                // optimum says where the optimum is.
+                if (!pixels_per_cell) {
+                    const std::string far = far_from_optimum_note(c);
+                    if (!far.empty() &&
+                        PyErr_WarnEx(PyExc_UserWarning,
+                                     ("pinmask: " + py_names::spell_keywords(far)).c_str(), 1) < 0)
+                        throw py::error_already_set();
+                }
                 const WorkingDistance start = compute_working_distance(c, g, wo);
                 if (start.pixels_per_cell > kMaxPixelsPerCell)
                     throw invalid_field(field_ref("solve"), "pinhole",
@@ -263,6 +310,12 @@ void bind_design(py::module_& m) {
                                             std::to_string(kMaxPixelsPerCell) + " px limit");
                 // d for exactly N at u, then on the fabrication grid (what export draws).
                 const double exact_m = pinhole_for_pixels_per_cell(c, start.pixels_per_cell);
+                if (const std::string big =
+                        solved_pinhole_too_large(exact_m, start.pixels_per_cell);
+                    !big.empty())
+                    throw invalid_field(
+                        field_ref(pixels_per_cell ? "pixels_per_cell" : "solve"),
+                        pixels_per_cell ? std::to_string(*pixels_per_cell) : "pinhole", big);
                 c.pinhole_m = pinhole_on_grid_m(exact_m, grid_nm);
                 const double shift = pixels_per_cell_at(c, c.object_distance_m) -
                                      static_cast<double>(start.pixels_per_cell);
@@ -284,7 +337,7 @@ void bind_design(py::module_& m) {
                 r.kernel_reason = dk.kernel->model_reason;
             }
             KernelValidity& validity = dk.validity;
-            for (auto& w : validity.warnings) w = py_names::spell_keywords(w);
+            for (auto& w : validity.warnings) w = spell_fields(w, &optics_keyword);
             if (!validity.model_accurate)
                 r.kernel_reason = "NOT accurate: " + validity.warnings.front();
             py::dict d = optics_dict(r, wd, validity.warnings);
@@ -322,7 +375,10 @@ void bind_design(py::module_& m) {
         "pinhole_for_pixels_per_cell_m, period_at_u_px, lsi_mismatch_at_u_px, "
         "object_distance_range_m (near, far; far inf when shift invariant to infinity), "
         "optimum_pinhole_lensless_m, optimum_pinhole_with_lens_m, spot_spread_cells (cells), "
-        "spot_spreads_beyond_cell, kernel_warnings (psf's warnings for the kernel it would build), "
+        "spot_spreads_beyond_cell, image_distance_at_u_m (1/v = 1/f' - 1/u; inf without a lens), "
+        "diffraction_first_zero_px (lambda f / (d w)), kernel_warnings (psf's warnings for the "
+        "kernel it would build; a keyword optics() lacks is named with the functions that take "
+        "it), "
         "spectrum (bandwidth_m, wavelengths [(m, weight)]: the camera's band as the kernels "
         "sample it), kernel (support_px, enclosed_energy, support_capped; or not_built). grid n "
         "(cells per side), holes K, tiles per "

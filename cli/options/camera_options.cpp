@@ -4,8 +4,10 @@
 #include <string>
 #include <utility>
 
+#include "cli/options/flag_names.hpp"
 #include "core/errors/error.hpp"
 #include "core/units/units.hpp"
+#include "design/optics/default_pinhole.hpp"
 #include "design/optics/working_distance.hpp"
 #include "io/camera_json.hpp"
 
@@ -15,11 +17,16 @@ void add_camera_options(CLI::App& cmd, CameraOptions& o) {
     cmd.add_option("--camera", o.camera_file,
                    "Camera file (*.camera.json, e.g. from design --save-camera) used instead of "
                    "the preset; camera flags given beside it override its values");
-    cmd.add_option("--preset", o.preset,
-                   "Camera preset: paper (u 6m, f' 120mm, f 55mm, d 440um, "
-                   "w 30um, 720x480, 550nm)")
+    cmd.add_option_function<std::string>(
+           "--preset",
+           [&o](const std::string& name) {
+               o.preset = name;
+               o.preset_given = true;
+           },
+           "Camera preset: paper (u 6m, f' 120mm, f 55mm, d 440um, w 30um, 720x480, 550nm); "
+           "given, its pinhole is kept when other optics flags change the camera")
         ->check(CLI::IsMember({"paper"}))
-        ->capture_default_str();
+        ->default_str("paper");
     cmd.add_option("--lens-focal", o.lens_focal,
                    "Lens focal length f' (e.g. 120mm; inf = no lens)");
     cmd.add_option("--sensor-distance", o.sensor_distance, "Lens-to-sensor distance f (e.g. 55mm)");
@@ -31,7 +38,11 @@ void add_camera_options(CLI::App& cmd, CameraOptions& o) {
                    "default 0 = one wavelength, at most half the wavelength): the kernels sum a "
                    "Gaussian band sampled at 13 wavelengths over +-1.5 FWHM (docs/commands.md)");
     cmd.add_option("--pixel-pitch", o.pixel_pitch, "Sensor pixel pitch w (e.g. 30um)");
-    cmd.add_option("--pinhole", o.pinhole, "Pinhole side d = cell side (e.g. 440um)");
+    cmd.add_option("--pinhole", o.pinhole,
+                   "Pinhole side d = cell side (e.g. 440um). Default: the preset's 440um; for "
+                   "other optics (--lens-focal, --sensor-distance, --wavelength or --pixel-pitch "
+                   "given, without --preset or --camera) the pinhole for whole pixels per cell "
+                   "nearest the diffraction optimum 1.56 sqrt(lambda |z_eff(u)|), said on stderr");
     cmd.add_option("--sensor", o.sensor, "Sensor size in pixels, WIDTHxHEIGHT (e.g. 720x480)");
 }
 
@@ -66,16 +77,25 @@ Camera resolve_camera(const CameraOptions& o) {
         {"pixel_pitch_m", "--pixel-pitch"},
         {"pinhole_m", "--pinhole"},
         {"sensor", "--sensor"}};
-    try {
-        validate(c);
-    } catch (const InvalidInput& e) {
-        const std::string what = e.what();
-        for (const auto& [field, flag] : kFlagOf) {
-            if (what.rfind(std::string(field) + " ", 0) == 0) {
-                throw InvalidInput(std::string(flag) + ": " + what);
+    const auto validated = [&](const Camera& cam) {
+        try {
+            validate(cam);
+        } catch (const InvalidInput& e) {
+            const std::string what = e.what();
+            for (const auto& [field, flag] : kFlagOf) {
+                if (what.rfind(std::string(field) + " ", 0) == 0) {
+                    throw InvalidInput(std::string(flag) + ": " + what);
+                }
             }
+            throw;
         }
-        throw;
+    };
+    validated(c);
+    if (pinhole_defaulted(o)) {
+        const DefaultPinhole chosen = default_pinhole(c);
+        c.pinhole_m = chosen.pinhole_m;
+        validated(c);
+        std::cerr << "pinmask: note: " << spell_flags(chosen.note) << "\n";
     }
     // Cells under half a pixel would be silently modelled as 1 px: said for every command that
     // builds its camera here (design, generate, search, calibrate), with the flags spelled.
@@ -90,12 +110,18 @@ Camera resolve_camera(const CameraOptions& o) {
     return c;
 }
 
+bool pinhole_defaulted(const CameraOptions& o) {
+    return o.default_pinhole && !o.preset_given && !o.camera_file && !o.base && !o.pinhole &&
+           (o.lens_focal || o.sensor_distance || o.wavelength || o.pixel_pitch);
+}
+
 std::vector<CameraInput> camera_inputs(const CameraOptions& o, const Camera& c) {
     const std::string base =
         o.camera_file ? "camera file" : (o.base ? "config" : "paper preset default");
     auto from = [&](const std::optional<std::string>& flag) { return flag ? "flag" : base; };
     return {
-        {"d (pinhole)", format_length(c.pinhole_m), from(o.pinhole)},
+        {"d (pinhole)", format_length(c.pinhole_m),
+         pinhole_defaulted(o) ? "whole-pixel optimum (no --pinhole given)" : from(o.pinhole)},
         {"lambda (wavelength)", format_length(c.wavelength_m), from(o.wavelength)},
         {"B (bandwidth, FWHM)",
          c.bandwidth_m == 0.0 ? "0 (one wavelength)" : format_length(c.bandwidth_m),

@@ -13,7 +13,9 @@ namespace pinmask::cli {
 
 struct CameraOptions {
     std::string preset = "paper";
-    std::optional<Camera> base;  // used instead of the preset (search --config's "optics")
+    bool preset_given = false;    // --preset on the command line (its pinhole is then kept)
+    bool default_pinhole = true;  // false: the command solves the pinhole itself
+    std::optional<Camera> base;   // used instead of the preset (search --config's "optics")
     std::optional<std::string> camera_file;  // --camera FILE (*.camera.json): replaces the preset
     std::optional<std::string> lens_focal, sensor_distance, object_distance, wavelength, bandwidth,
         pixel_pitch, pinhole, sensor;
@@ -24,8 +26,15 @@ struct CameraOptions {
 void add_camera_options(CLI::App& cmd, CameraOptions& o);
 
 // The preset (or --camera FILE, or `base`) with the flag overrides applied, validated
-// (InvalidInput naming the flag).
+// (InvalidInput naming the flag). A camera of other optics than the paper's (--lens-focal,
+// --sensor-distance, --wavelength or --pixel-pitch given, no --preset, --camera or config) without
+// --pinhole gets the whole-pixel
+// pinhole nearest its diffraction optimum (design/optics/default_pinhole), said on stderr, instead
+// of the paper's 440 um.
 Camera resolve_camera(const CameraOptions& o);
+
+// True when resolve_camera chose the pinhole (the rule above).
+bool pinhole_defaulted(const CameraOptions& o);
 
 // One input of the camera for reports: symbol, value as typed for people, and where it came
 // from: "flag", "camera file", "config" or "paper preset default".

@@ -38,6 +38,7 @@ struct DecodeCommand {
     std::string precision = "auto";   // auto | single | double
     std::string nsr = "auto";         // a number | auto
     std::string lambda = "auto";      // a number | auto
+    std::string bayer = "sum2x2";     // camera RAW demosaic: sum2x2 | green | r | b
     // The command's output settings.
     std::string output;
     int bits = 8;

@@ -87,6 +87,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"objective", "--objective"},
     {"optical_density", "--optical-density"},
     {"photons", "--photons"},
+    {"pinhole_m", "--pinhole"},
     {"pitch_range", "--pitch-range"},
     {"pixels_per_cell", "--pixels-per-cell"},
     {"plate_m", "--vendor"},  // the plate size comes with the vendor preset

@@ -45,6 +45,7 @@ void print_check_json(const CheckReport& rep) {
     }
     nlohmann::ordered_json j = {
         {"clean", clean},
+        {"design_rules_checked", rep.vendor != "none"},
         {"input", rep.input},
         {"kind", rep.kind},
         {"vendor", rep.vendor},
@@ -132,7 +133,13 @@ void print_check_text(const CheckReport& rep, const VendorRules& vendor) {
             s << "    " << drc_rule_name(v.rule) << ": " << v.message << "\n";
         }
     }
-    s << "  result      " << (clean ? "clean" : "FAILED") << "\n";
+    // Vendor "none" has no process limits: a clean result there checked geometry only, and
+    // says so rather than "clean".
+    if (clean && vendor.name == "none")
+        s << "  result      no design rules given: none checked (geometry only: "
+          << (spacing ? "centre spacing, " : "") << "no touching polygons); give --vendor\n";
+    else
+        s << "  result      " << (clean ? "clean" : "FAILED") << "\n";
     std::cout << s.str();
 }
 

@@ -70,6 +70,7 @@ void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const Deco
          {{"mode", background_mode_name(r.request.background.mode)}, {"values", backgrounds}}},
         {"downsample_rounds", r.request.downsample},
         {"normalize", norm},
+        {"bayer", r.bayer},
         {"decoded_rows", s.decoded_rows},
         {"decoded_cols", s.decoded_cols}};
     stats["method"] = r.method;
@@ -141,6 +142,7 @@ nlohmann::json config_json(const DecodeCommand& c) {
             {"downsample", r.downsample},
             {"background", c.background},
             {"normalize", c.normalize},
+            {"bayer", c.bayer},
             {"output", c.output},
             {"bits", c.bits},
             {"scale", c.scale},

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/units/units.hpp"
+#include "design/optics/image_plane.hpp"
 #include "design/optics/spectrum.hpp"
 
 namespace pinmask::cli {
@@ -92,6 +93,9 @@ nlohmann::ordered_json design_json(const OpticsReport& r, const WorkingDistance&
         "1 - f/f' + f/u = 0: every pinhole images to the same spot");
     put(j, notes, "pinhole_for_integer_pixels_at_inf_m", r.pinhole_for_integer_pixels_m,
         "magnification 1 - f/f' = 0: every pinhole images to the same spot");
+    put(j, notes, "image_distance_at_u_m", image_distance_at_u_m(c),
+        "no lens (f' = inf): the object at u forms no image");
+    j["diffraction_first_zero_px"] = diffraction_first_zero_px(c);
     j["max_separation_m"] = r.max_separation_m;
     j["lsi_tolerance_px"] = r.options.lsi_tolerance_px;
     j["lsi_mismatch_px"] = wd.lsi_mismatch_px;
@@ -241,6 +245,10 @@ std::string design_table(const OpticsReport& r, const WorkingDistance& wd,
         {"usable object distances", range_text(wd),
          "pitch within " + num(r.options.lsi_tolerance_px) +
              " px of u's across s_max: f s_max |1/u' - 1/u| / w"},
+        {"image distance v at u", length(image_distance_at_u_m(c)),
+         "1/v = 1/f' - 1/u (Eq. (2)): a lens camera's sensor plane; this one sits at f"},
+        {"diffraction first zero", num(diffraction_first_zero_px(c), 3) + " px",
+         "lambda f / (d w): centre to first zero of one pinhole's sinc^2 spot, at any u"},
         {"largest separation s_max", length(r.max_separation_m), "n d"},
         {"effective distance z_eff(u)", length(r.effective_distance_at_u_m),
          "1/z = 1/f - 1/f' + 1/u"},

@@ -1,11 +1,15 @@
 #include "export/pipeline/export_pipeline.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <optional>
 
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
 #include "design/optics/working_distance.hpp"
+#include "export/formats/klayout_open.hpp"
 #include "export/formats/png_preview.hpp"
 #include "export/layout/rings.hpp"
 #include "export/layout/shapes.hpp"
@@ -18,6 +22,20 @@ void check_length(double v_m, const std::string& field, bool zero_ok) {
         throw invalid_field(field, nm_text(v_m * 1e9),
                             zero_ok ? "must be finite, >= 0 and at most 1 m"
                                     : "must be finite, > 0 and at most 1 m");
+}
+
+// The drawn width of one pinhole, as the file has it: a native circle's diameter, else the
+// width of the first clear pinhole polygon (all pinholes are one shape moved by whole
+// pitches, export/layout/geometry). Dark tone draws opaque pieces around the holes: nullopt.
+std::optional<std::int64_t> drawn_hole_nm(const Layout& layout) {
+    if (!layout.circles.empty()) return layout.circles.front().diameter_nm;
+    if (layout.tone != Tone::kClear || layout.polygons.empty()) return std::nullopt;
+    std::int64_t x0 = layout.polygons.front().front().x, x1 = x0;
+    for (const PointNm& p : layout.polygons.front()) {
+        x0 = std::min(x0, p.x);
+        x1 = std::max(x1, p.x);
+    }
+    return x1 - x0;
 }
 
 }  // namespace
@@ -70,11 +88,27 @@ ExportSummary export_mask(const Mask& mask, const ExportOptions& o) {
             throw invalid_field(field_ref("kerf_m"), nm_text(o.kerf_m * 1e9),
                                 "must be smaller than the hole side " + nm_text(side * 1e9));
         lo.hole_side_m = side - o.kerf_m;
-        s.notes.push_back("kerf " + nm_text(o.kerf_m * 1e9) + ": holes drawn " +
-                          nm_text(lo.hole_side_m * 1e9) + " (design " + nm_text(side * 1e9) +
-                          ") so the cut comes out at the design size");
     }
     s.layout = make_layout(mask, lo);
+    if (o.kerf_m > 0) {
+        // The note states the hole as the file draws it (on the grid), not the side asked for.
+        const double side = o.layout.hole_side_m > 0 ? o.layout.hole_side_m : mask.camera.pinhole_m;
+        const double asked_nm = lo.hole_side_m * 1e9;
+        const std::optional<std::int64_t> drawn = drawn_hole_nm(s.layout);
+        std::string note = "kerf " + nm_text(o.kerf_m * 1e9) + ": holes drawn ";
+        if (drawn) {
+            note += nm_text(double(*drawn));
+            if (std::fabs(double(*drawn) - asked_nm) > 1e-6)
+                note += " (" + nm_text(asked_nm) + " before the " +
+                        nm_text(double(s.layout.grid_nm)) + " grid)";
+            note += " (design " + nm_text(side * 1e9) + ") so the cut comes out at " +
+                    nm_text(double(*drawn) + o.kerf_m * 1e9);
+        } else {
+            note += nm_text(asked_nm) + " on the " + nm_text(double(s.layout.grid_nm)) +
+                    " grid (design " + nm_text(side * 1e9) + ")";
+        }
+        s.notes.push_back(note);
+    }
     if (const double d_nm = mask.camera.pinhole_m * 1e9;
         std::fabs(double(s.layout.pitch_nm) - d_nm) > 1e-6) {
         // The cells are drawn at the pitch on the grid: say how far that moves the image.
@@ -121,9 +155,13 @@ ExportSummary export_mask(const Mask& mask, const ExportOptions& o) {
         const double side = lo.hole_side_m > 0 ? lo.hole_side_m : mask.camera.pinhole_m;
         w.max_snap_error_nm = kDefaultSnapFraction * side * 1e9;
     }
-    for (FabFormat f : o.formats)
+    for (FabFormat f : o.formats) {
         s.files.push_back({f, fab_extension(f), write_fabrication_bytes(s.layout, f, w),
                            units_of(f, o.write.unit)});
+        // Each file's drawing unit and how to open it at scale in KLayout.
+        s.notes.push_back("the " + fab_format_name(f) + " file (" + fab_extension(f) +
+                          "): " + klayout_open_text(f, o.write.unit));
+    }
     return s;
 }
 

@@ -295,3 +295,20 @@ TEST_CASE("check: a spent PINMASK_TIME_LIMIT stops with exit code 3 and prints n
         CHECK(r.err.find("no verdict (exit code 3)") != std::string::npos);
     }
 }
+
+TEST_CASE("check with vendor none: no design rules given, none checked, not \"clean\"") {
+    TempDir dir("check-none");
+    const auto mask =
+        write_mask(dir, "m.mask.json", make_mask(16, {{0, 0}, {0, 2}, {3, 5}, {8, 8}}, 2));
+    const auto text = run_cli("check --vendor none " + mask);
+    INFO(text.err);
+    CHECK(text.exit_code == 0);
+    CHECK(text.out.find("result      no design rules given: none checked") != std::string::npos);
+    CHECK(text.out.find("result      clean") == std::string::npos);
+    const auto r = run_cli("check --json --vendor none " + mask);
+    REQUIRE(r.exit_code == 0);
+    CHECK(json_of(r)["design_rules_checked"] == false);
+    const auto film = run_cli("check --json --vendor film " + mask);
+    REQUIRE(film.exit_code == 0);
+    CHECK(json_of(film)["design_rules_checked"] == true);
+}

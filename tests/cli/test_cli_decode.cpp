@@ -146,6 +146,16 @@ TEST_CASE("decode of one period returns the scene (Wiener, float TIFF out, stats
     CHECK(cfg["method"] == "wiener");
     CHECK(cfg["crop"] == "center");
     CHECK(cfg["model"] == "cyclic");
+    // Every choice is recorded, defaults included: the RAW demosaic and the normalisation.
+    CHECK(cfg["bayer"] == "sum2x2");
+    CHECK(cfg["normalize"] == "none");
+    CHECK(s["config"]["bayer"] == "sum2x2");
+    CHECK(s["preprocess"]["bayer"] == "sum2x2");
+    CHECK(s["preprocess"]["normalize"]["mode"] == "none");
+    const auto g = run_cli("decode " + dir / "cap.tiff" + " --psf " + dir / "psf.tiff" +
+                           " --nsr 1e-9 --bayer green -o " + dir / "x3.tiff");
+    REQUIRE(g.exit_code == 0);
+    CHECK(read_json(dir / "x3.tiff.config.json")["bayer"] == "green");
 }
 
 TEST_CASE("decode crops the centred period of a tiled RGB frame and checks the period") {

@@ -97,7 +97,9 @@ TEST_CASE("generate: infeasible and invalid requests exit 2, name the rule, writ
     refused("--family mura --grid 13 --holes 20 --allow-violations", "84 pinholes");
     refused("--family paper --grid 32", "the paper family fixes");
     refused("--pixels-per-cell 0", "--pixels-per-cell = 0: must be >= 1");
-    refused("--lens-focal 55mm", "give --pixels-per-cell explicitly");  // f = f'
+    // f = f' with the paper's 440 um (--preset keeps it; without it the camera would get the
+    // whole-pixel optimum, 3.27 mm for 1 px per cell, and be legal).
+    refused("--preset paper --lens-focal 55mm", "give --pixels-per-cell explicitly");
     refused("--kernel measured", "needs --kernel-path");
     refused("--kernel gauss", "gauss");
     refused("--pinhole -1mm", "pinhole_m = -1 mm: must be finite and > 0");

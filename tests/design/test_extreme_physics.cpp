@@ -30,10 +30,13 @@ constexpr double kSumTolerance = 1e-9;
 bool sanitized() { return std::getenv("PINMASK_SANITIZED") != nullptr; }
 
 // A lensless camera (f' = inf, u = inf) whose Fresnel number N = d^2 / (4 lambda f) is `n`.
+// Below N = 1e-2 the pinhole shrinks with sqrt(N) (to 80 wavelengths at 1e-4) so f stays at
+// 8.8 m, inside the largest lens-to-sensor distance validate accepts (10 m).
 Camera camera_with_fresnel_number(double n) {
     Camera c = paper_camera();
     c.lens_focal_m = kInf;
     c.object_distance_m = kInf;
+    if (n < 1e-2) c.pinhole_m *= std::sqrt(n / 1e-2);
     c.sensor_distance_m = c.pinhole_m * c.pinhole_m / (4.0 * c.wavelength_m * n);
     return c;
 }
@@ -90,7 +93,7 @@ TEST_CASE("Fresnel numbers 1e-4 .. 1e4: finite outputs, every out-of-range model
         const KernelValidity fresnel = kernel_validity(c, KernelModel::kFresnel);
         CHECK(fraunhofer.model_accurate == (n <= kAutoFraunhoferMaxN));
         CHECK(box.model_accurate == (n >= kAutoBoxMinN));
-        CHECK(fresnel.model_accurate);  // d = 800 wavelengths: scalar optics hold
+        CHECK(fresnel.model_accurate);  // d >= 80 wavelengths: scalar optics hold
         CHECK(fraunhofer.ok() == fraunhofer.model_accurate);
         CHECK(box.ok() == box.model_accurate);
         if (!fraunhofer.ok()) CHECK(fraunhofer.warnings.front().find("fraunhofer") == 0);
@@ -123,10 +126,10 @@ TEST_CASE("a wavelength beyond the pinhole is outside every model, 1e300 m inclu
         CAPTURE(lambda);
         Camera c = paper_camera();
         c.wavelength_m = lambda;
-        if (lambda > 1e6) {
-            // Beyond any camera: validate refuses it, naming the field and the range; the
-            // query still says no model holds (it is asked before validation by nobody, but
-            // must not call such a wavelength "far field, accurate").
+        if (lambda > 100e-6) {
+            // Beyond any design wavelength: validate refuses it, naming the field and the
+            // range; the query still says no model holds (it is asked before validation by
+            // nobody, but must not call such a wavelength "far field, accurate").
             CHECK_THROWS_WITH_AS(validate(c), doctest::Contains("wavelength_m"), InvalidInput);
         } else {
             validate(c);
@@ -194,6 +197,11 @@ TEST_CASE("tiny and huge pixel pitches: finite report and kernels, or refused na
         CAPTURE(w);
         Camera c = paper_camera();
         c.pixel_pitch_m = w;
+        if (w > 1e-3) {
+            // Larger than any sensor pixel: a unit left off (10 = 10 m), refused naming why.
+            CHECK_THROWS_WITH_AS(validate(c), doctest::Contains("pixel_pitch_m"), InvalidInput);
+            continue;
+        }
         validate(c);
         check_report_has_no_nan(c);
         for (const char* model : {"auto", "box", "fresnel"}) {

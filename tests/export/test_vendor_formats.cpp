@@ -28,6 +28,7 @@
 #include "export/formats/png_preview.hpp"
 #include "export/layout/geometry.hpp"
 #include "export/layout/repetition.hpp"
+#include "export/layout/shapes.hpp"
 #include "export/pipeline/export_pipeline.hpp"
 #include "export/pipeline/read_back.hpp"
 #include "export/pipeline/vendor_presets.hpp"
@@ -233,6 +234,34 @@ TEST_CASE("vendor presets, tone aliases and nonsense options") {
     const ExportSummary s = export_mask(golden_mask(), k);
     const BoxNm b = bounding_box({s.layout.polygons[0]});
     CHECK(b.x1 - b.x0 == 400000);
+}
+
+TEST_CASE("the kerf note states the hole as drawn on the grid, not the side asked for") {
+    // A 301.407 um pinhole on the laser cutter's 1 um grid with its 20 um kerf: the side asked
+    // for is 281.407 um; the file draws the polygon's edges on the grid.
+    Mask m = golden_mask();
+    m.camera.pinhole_m = 301.407e-6;
+    ExportOptions k;
+    k.formats = {FabFormat::kDxf};
+    k.kerf_m = 20e-6;
+    k.layout.grid_m = 1e-6;
+    const ExportSummary s = export_mask(m, k);
+    const BoxNm b = bounding_box({s.layout.polygons[0]});
+    const std::int64_t drawn = b.x1 - b.x0;
+    CHECK(drawn % 1000 == 0);
+    std::string kerf_note;
+    for (const std::string& n : s.notes)
+        if (n.rfind("kerf ", 0) == 0) kerf_note = n;
+    INFO(kerf_note);
+    const std::string drawn_text = "holes drawn " + nm_text(double(drawn));
+    CHECK(kerf_note.find(drawn_text + " (281407 nm before the 1000 nm grid)") != std::string::npos);
+    CHECK(kerf_note.find("cut comes out at " + nm_text(double(drawn) + 20000.0)) !=
+          std::string::npos);
+    // On the grid already: no "before the grid" clause.
+    m.camera.pinhole_m = 300e-6;
+    const ExportSummary on = export_mask(m, k);
+    for (const std::string& n : on.notes)
+        if (n.rfind("kerf ", 0) == 0) CHECK(n.find("before the") == std::string::npos);
 }
 
 TEST_CASE("1-bit TIFF at 25400 dpi: physical size from its tags and the pinhole count") {
