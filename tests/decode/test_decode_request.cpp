@@ -120,6 +120,7 @@ TEST_CASE("decode_request: a parameter the method ignores is refused by its fiel
 
     r.method = DecodeMethod::kTikhonov;
     r.lambda = 0.0;
+    r.lambda_auto = false;  // a weight given (the default chooses one from the capture)
     const std::string m = refusal(r, {});
     CHECK(m.find("`lambda` = ") == 0);
     CHECK(m.find("use `method` wiener `nsr` 0 for the floored inverse") != std::string::npos);

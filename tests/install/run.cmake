@@ -28,7 +28,8 @@ file(REMOVE_RECURSE ${WORK_DIR})
 file(MAKE_DIRECTORY ${WORK_DIR})
 
 step("install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --component development --prefix ${prefix})
-foreach(f include/pinmask/pinmask.hpp include/pinmask/core/fft.hpp)
+foreach(f include/pinmask/pinmask.hpp include/pinmask/core/fft/fft.hpp include/pinmask/core/version.hpp
+          include/pinmask/decode/depthmap/depthmap.hpp)
   if(NOT EXISTS ${prefix}/${f})
     message(FATAL_ERROR "install: ${prefix}/${f} is missing")
   endif()
