@@ -7,6 +7,7 @@
 
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
+#include "core/version.hpp"
 #include "design/optics/optics.hpp"
 #include "design/pattern/exclusion_grid.hpp"
 #include "design/pattern/families.hpp"
@@ -24,7 +25,7 @@ namespace pinmask::python {
 
 namespace {
 
-constexpr const char* kGenerator = "pinmask generate 0.1.0";
+constexpr const char* kGenerator = PINMASK_GENERATOR("generate");
 
 py::list cells_to_list(const std::vector<Cell>& cells) {
     py::list l;

@@ -13,6 +13,7 @@
 
 #include "core/errors/error.hpp"
 #include "core/image/cairo_handles.hpp"
+#include "core/version.hpp"
 #include "export/layout/film_paint.hpp"
 #include "report/report_draw.hpp"
 #include "report/report_pages.hpp"
@@ -148,7 +149,8 @@ std::string report_pdf(const ReportDocument& doc) {
                                                                kReportPageHeightPt));
         check_cairo_surface(surface.get(), "report PDF surface");
         cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_TITLE, doc.title.c_str());
-        cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATOR, "pinmask 0.1.0");
+        cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATOR,
+                                       "pinmask " PINMASK_VERSION);
         cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATE_DATE, kPinnedDate);
         cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_MOD_DATE, kPinnedDate);
         ContextPtr cr(cairo_create(surface.get()));

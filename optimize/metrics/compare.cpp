@@ -10,6 +10,7 @@
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
 #include "core/fft/fft.hpp"
+#include "core/version.hpp"
 #include "decode/capture/decoder.hpp"
 #include "design/pattern/families.hpp"
 #include "design/pattern/mura.hpp"
@@ -206,7 +207,7 @@ RandomMedian random_median_baseline(const Mask& tmpl, int count, const CompareSe
     mask.provenance = {};
     mask.provenance.seed = out.median_seed;
     mask.provenance.family = "random";
-    mask.provenance.generator = "pinmask compare 0.1.0 (random baseline)";
+    mask.provenance.generator = PINMASK_GENERATOR("compare") " (random baseline)";
     std::ostringstream src;
     src << "median of " << count << " random valid masks by simulated Wiener PSNR (draw i from "
         << "seed " << s.seed << " + i, i = 0.." << count - 1 << "); this is seed "
@@ -224,7 +225,7 @@ CompareEntry paper_like_baseline(const Mask& tmpl, std::uint64_t seed) {
     mask.provenance = {};
     mask.provenance.seed = seed;
     mask.provenance.family = "paper";
-    mask.provenance.generator = "pinmask compare 0.1.0 (paper-like baseline)";
+    mask.provenance.generator = PINMASK_GENERATOR("compare") " (paper-like baseline)";
     return {"paper-like (seed " + std::to_string(seed) + ")", "paper-like",
             "the paper's geometry (16 x 16 cells, K = 20, 2 x 2 tiles, spacing 2) placed by "
             "random sequential choice, seed " +
@@ -244,7 +245,7 @@ CompareEntry mura_baseline(const Mask& tmpl, int p) {
                                 tmpl.pattern.tiles_cols);
     mask.provenance = {};
     mask.provenance.family = "mura";
-    mask.provenance.generator = "pinmask compare 0.1.0 (MURA baseline)";
+    mask.provenance.generator = PINMASK_GENERATOR("compare") " (MURA baseline)";
     mask.provenance.spacing_violations_allowed = true;
     std::ostringstream src;
     src << "MURA of order p = " << p << " (largest prime 4m + 1 <= n = " << tmpl.pattern.n << "), "
