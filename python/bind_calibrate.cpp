@@ -14,6 +14,7 @@
 #include "design/psf/kernel_model.hpp"
 #include "python/common.hpp"
 #include "python/keyword_names.hpp"
+#include "python/result.hpp"
 #include "python/values.hpp"
 
 namespace pinmask::python {
@@ -136,7 +137,7 @@ void bind_calibrate(py::module_& m) {
                 py::gil_scoped_release release;
                 s = calibrate::calibrate_point_source(cap.get(), dark, binned, o);
             }
-            return result_dict(std::move(s));
+            return as_result(result_dict(std::move(s)));
         },
         py::arg("point"), py::arg("mask"), py::arg("dark") = py::none(),
         py::arg("max_rotation_deg") = 5.0, py::arg("pitch_range") = 0.05,

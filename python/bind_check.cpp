@@ -21,6 +21,7 @@
 #include "io/mask_json.hpp"
 #include "io/sidecar_layout.hpp"
 #include "python/common.hpp"
+#include "python/result.hpp"
 #include "python/values.hpp"
 
 namespace pinmask::python {
@@ -261,7 +262,7 @@ void bind_check(py::module_& m) {
             j["truncated"] = r.truncated;
             j["violations"] = v;
             if (comparison) j["comparison"] = *comparison;
-            return j;
+            return as_result(j);
         },
         py::arg("input"), py::arg("mask") = py::none(), py::arg("vendor") = py::none(),
         py::arg("min_gap") = py::none(), py::arg("min_space") = py::none(),

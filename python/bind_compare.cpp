@@ -15,6 +15,7 @@
 #include "python/keyword_names.hpp"
 #include "python/level_args.hpp"
 #include "python/metrics_common.hpp"
+#include "python/result.hpp"
 #include "python/values.hpp"
 #include "report/compare_report.hpp"
 #include "report/report.hpp"
@@ -128,7 +129,7 @@ void bind_compare(py::module_& m) {
             out["report"] = written;
             out["warnings"] = warnings;
             out["baselines"] = outcome.baseline_lines;
-            return out;
+            return as_result(out);
         },
         py::arg("masks"), py::arg("report") = py::none(), py::arg("baselines") = false,
         py::arg("baseline_count") = 100, py::arg("snr_db") = py::none(),

@@ -21,6 +21,7 @@
 #include "design/psf/psf_exact.hpp"
 #include "python/common.hpp"
 #include "python/keyword_names.hpp"
+#include "python/result.hpp"
 #include "python/values.hpp"
 
 namespace pinmask::python {
@@ -407,7 +408,7 @@ void bind_decode(py::module_& m) {
                 if (PyErr_WarnEx(PyExc_UserWarning, text.c_str(), 1) < 0)
                     throw py::error_already_set();
             }
-            return d;
+            return as_result(d);
         },
         py::arg("capture"), py::arg("psf") = py::none(), py::arg("mask") = py::none(),
         py::arg("method") = "wiener", py::arg("model") = "cyclic", py::arg("nsr") = py::none(),

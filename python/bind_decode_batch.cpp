@@ -10,6 +10,7 @@
 #include "core/image/raw_io.hpp"
 #include "design/psf/psf.hpp"
 #include "python/common.hpp"
+#include "python/result.hpp"
 #include "python/values.hpp"
 
 namespace pinmask::python {
@@ -76,7 +77,7 @@ void bind_decode_batch(py::module_& m) {
                 ++index;
             }
             if (index == 0) throw InvalidInput(field_ref("captures") + ": the list is empty");
-            return results;
+            return as_result(results);
         },
         py::arg("captures"), py::arg("bayer") = "sum2x2",
         R"(Decodes many captures with one PSF and the same settings, as `pinmask decode --batch`:

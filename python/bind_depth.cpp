@@ -13,6 +13,7 @@
 #include "optimize/metrics/metric_spellings.hpp"
 #include "python/common.hpp"
 #include "python/level_args.hpp"
+#include "python/result.hpp"
 #include "python/values.hpp"
 
 namespace pinmask::python {
@@ -89,7 +90,7 @@ void bind_depth(py::module_& m) {
                 rec["wiener_nsr"] = r.wiener_nsr;
                 out.append(rec);
             }
-            return out;
+            return as_result(out);
         },
         py::arg("mask"), py::arg("distances") = py::none(), py::arg("from_m") = py::none(),
         py::arg("to_m") = py::none(), py::arg("steps") = 8, py::arg("snr_db") = py::none(),

@@ -16,6 +16,7 @@
 #include "optimize/metrics/depth_fisher.hpp"
 #include "optimize/metrics/depth_loss.hpp"
 #include "python/common.hpp"
+#include "python/result.hpp"
 #include "python/values.hpp"
 
 namespace pinmask::python {
@@ -119,7 +120,7 @@ void bind_depthmap(py::module_& m) {
             out["confidence"] = to_array(std::move(r.confidence));
             out["all_in_focus"] = to_array(std::move(r.all_in_focus));
             out["label"] = to_array(std::move(r.label));
-            return out;
+            return as_result(out);
         },
         py::arg("capture"), py::arg("mask") = py::none(), py::arg("from_m") = py::none(),
         py::arg("to_m") = py::none(), py::arg("steps") = py::none(), py::arg("nsr") = 0.01,
@@ -159,7 +160,7 @@ and label (plane index). Method and measured accuracy: docs/depth.md.)");
             out["crb_inverse_per_m"] = f.crb_inverse_per_m;
             out["crb_distance_m"] = f.crb_distance_m;
             out["one_pixel_inverse_per_m"] = f.one_pixel_inverse_per_m;
-            return out;
+            return as_result(out);
         },
         py::arg("mask"), py::arg("object_distance_m"), py::arg("photons") = 20000.0,
         py::arg("read_noise") = 0.0, py::arg("rows") = 0, py::arg("cols") = 0,

@@ -22,6 +22,7 @@
 #include "io/camera_json.hpp"
 #include "python/common.hpp"
 #include "python/keyword_names.hpp"
+#include "python/result.hpp"
 #include "python/values.hpp"
 
 namespace pinmask::python {
@@ -361,7 +362,7 @@ void bind_design(py::module_& m) {
             d["spacing_cells"] = spacing;
             d["max_holes_at_spacing"] = most.count;
             d["max_holes_reason"] = most.reason;
-            return d;
+            return as_result(d);
         },
         py::arg("camera") = py::none(), py::arg("grid") = 16, py::arg("holes") = 20,
         py::arg("tiles") = 2, py::arg("kernel") = "auto", py::arg("lsi_tolerance_px") = 1.0,

@@ -35,6 +35,7 @@
 #include "io/psf_files.hpp"
 #include "python/common.hpp"
 #include "python/keyword_names.hpp"
+#include "python/result.hpp"
 #include "python/values.hpp"
 
 namespace pinmask::python {
@@ -331,7 +332,7 @@ void bind_export(py::module_& m) {
             py::list psf_paths;
             for (const fs::path& p : psf_written) psf_paths.append(p.string());
             out["psf_files"] = psf_paths;
-            return out;
+            return as_result(out);
         },
         py::arg("mask"), py::arg("out_dir"),
         py::arg("formats") = std::vector<std::string>{"svg", "pdf", "gds", "dxf", "gerber", "png"},

@@ -21,6 +21,7 @@
 #include "python/common.hpp"
 #include "python/level_args.hpp"
 #include "python/metrics_common.hpp"
+#include "python/result.hpp"
 #include "python/values.hpp"
 
 namespace pinmask::python {
@@ -136,7 +137,7 @@ void bind_metrics(py::module_& m) {
                 MetricsContext context(s.metrics);
                 r = compare_mask(e, s, context);
             }
-            return row_dict(r.row);
+            return as_result(row_dict(r.row));
         },
         py::arg("mask"), py::arg("snr_db") = py::none(),
         py::arg("scenes") = std::vector<std::string>{"letter-R", "usaf", "siemens-star"},
@@ -176,7 +177,7 @@ robust_loss_db_<level>, score's keys and numbers.)");
             d["mean_sidelobe"] = s.mean_sidelobe;
             d["integrated_sidelobe_level"] = s.integrated_sidelobe_level;
             d["peak_to_sidelobe_ratio"] = s.peak_to_sidelobe_ratio;
-            return d;
+            return as_result(d);
         },
         py::arg("pattern"),
         "Torus autocorrelation sidelobes of a pattern: peak R(0) = K, max sidelobe (counts), "
@@ -201,7 +202,7 @@ robust_loss_db_<level>, score's keys and numbers.)");
             d["spectral_flatness"] = s.spectral_flatness;
             d["open_fraction"] = s.open_fraction;
             d["light_gain"] = s.light_gain;
-            return d;
+            return as_result(d);
         },
         py::arg("pattern"),
         "Spectrum of the n x n pattern DFT P^: min |P^(k)| over k != 0, spectral flatness "
@@ -241,7 +242,7 @@ robust_loss_db_<level>, score's keys and numbers.)");
             d["noise_variance"] = e.noise_variance;
             d["mean_square_capture"] = e.mean_square_capture;
             d["nsr"] = e.nsr;
-            return d;
+            return as_result(d);
         },
         py::arg("mask"), py::arg("snr_db") = py::none(), py::arg("photons") = py::none(),
         py::arg("read_noise") = py::none(), py::arg("dark_current") = py::none(),
@@ -300,7 +301,7 @@ robust_loss_db_<level>, score's keys and numbers.)");
                 per[py::str(s.scene)] = py::make_tuple(s.psnr_db, s.ssim);
             d["scenes"] = per;
             d["decodes"] = q.decodes;
-            return d;
+            return as_result(d);
         },
         py::arg("mask"), py::arg("scenes") = std::vector<std::string>{"letter-R", "usaf"},
         py::arg("decoder") = "wiener", py::arg("snr_db") = py::none(),

@@ -14,6 +14,7 @@
 #include "design/psf/psf_settings.hpp"
 #include "io/psf_files.hpp"
 #include "python/common.hpp"
+#include "python/result.hpp"
 #include "python/values.hpp"
 
 namespace pinmask::python {
@@ -200,7 +201,8 @@ void bind_psf(py::module_& m) {
         "read_psf",
         [](const std::filesystem::path& path) {
             io::PsfFile f = io::read_psf_file(path);
-            py::object side = f.sidecar ? py::object(sidecar_dict(*f.sidecar)) : py::none();
+            py::object side =
+                f.sidecar ? py::object(as_result(sidecar_dict(*f.sidecar))) : py::none();
             return py::make_tuple(to_array(std::move(f.psf)), side);
         },
         py::arg("path"),

@@ -19,6 +19,7 @@
 #include "optimize/metrics/robust_wiener.hpp"
 #include "python/common.hpp"
 #include "python/level_args.hpp"
+#include "python/result.hpp"
 #include "python/values.hpp"
 
 namespace pinmask::python {
@@ -157,7 +158,7 @@ void bind_score(py::module_& m) {
             py::dict d;
             d["masks"] = rows;
             d["settings"] = settings;
-            return d;
+            return as_result(d);
         },
         py::arg("masks"), py::arg("metrics") = "sidelobes,spectrum,analytic,wiener",
         py::arg("scenes") = std::vector<std::string>{"letter-R", "usaf", "natural"},

@@ -20,6 +20,7 @@
 #include "optimize/search/search_pipeline.hpp"
 #include "python/common.hpp"
 #include "python/level_args.hpp"
+#include "python/result.hpp"
 #include "python/values.hpp"
 
 namespace pinmask::python {
@@ -235,7 +236,7 @@ void bind_search(py::module_& m) {
             out["termination"] = search_termination_name(summary.termination);
             out["kernel"] = summary.kernel_resolved;
             out["log"] = log;
-            return out;
+            return as_result(out);
         },
         py::arg("camera") = py::none(), py::arg("grid") = 16, py::arg("holes") = 20,
         py::arg("tiles") = 2, py::arg("spacing") = 2.0, py::arg("kernel") = "auto",

@@ -18,6 +18,7 @@
 #include "optimize/simulate/simulate.hpp"
 #include "optimize/simulate/simulate_pipeline.hpp"
 #include "python/common.hpp"
+#include "python/result.hpp"
 #include "python/values.hpp"
 
 namespace pinmask::python {
@@ -176,7 +177,7 @@ void bind_simulate(py::module_& m) {
                 out["whole_period_on_sensor"] = c.whole_period_on_sensor;
                 out["psf"] = py::none();  // psf(mask, geometry='exact', ...) gives it
                 out["object_distance_m"] = r.summary.object_distance_m;
-                return out;
+                return as_result(out);
             }
             SimulatedCapture s;
             Plane psf;
@@ -206,7 +207,7 @@ void bind_simulate(py::module_& m) {
             out["origin"] = py::make_tuple(s.origin.row, s.origin.col);
             out["whole_period_on_sensor"] = s.whole_period_on_sensor;
             out["psf"] = to_array(std::move(psf));
-            return out;
+            return as_result(out);
         },
         py::arg("mask"), py::arg("scene") = "letter-R", py::arg("snr_db") = py::none(),
         py::arg("photons") = py::none(), py::arg("read_noise") = py::none(),

@@ -12,6 +12,7 @@
 #include "core/errors/field_names.hpp"
 #include "io/sweep_config.hpp"
 #include "python/common.hpp"
+#include "python/result.hpp"
 
 namespace pinmask::python {
 
@@ -185,7 +186,7 @@ void bind_sweep(py::module_& m) {
             d["points"] = rows.size();
             d["rows"] = rows;
             d["masks"] = masks;
-            return d;
+            return as_result(d);
         },
         py::kw_only(), py::arg("product") = py::none(), py::arg("points") = py::none(),
         py::arg("progress") = py::none(),

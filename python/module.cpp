@@ -3,6 +3,7 @@
 #include "core/limits/allocator.hpp"
 #include "core/version.hpp"
 #include "python/common.hpp"
+#include "python/result.hpp"
 
 namespace pinmask::python {
 void bind_depth(py::module_& m);         // python/bind_depth.cpp
@@ -41,6 +42,7 @@ field, the value and the rule), RuntimeError for failures while doing valid work
         if (PyErr_WarnEx(PyExc_RuntimeWarning, ("pinmask: " + w).c_str(), 1) < 0)
             throw pybind11::error_already_set();
     bind_errors(m);
+    bind_result(m);
     bind_arrays(m);
     bind_design(m);
     bind_mask(m);

@@ -17,6 +17,13 @@ MaskLike = Union["Mask", PathLikeStr]
 Levels = Union[float, Sequence[float]]  # one noise level or a list (score's keys per level)
 Prior = Union[str, Sequence[PathLikeStr]]  # natural | text | stars, or image files
 
+class Result(dict[str, Any]):
+    """A function's result: a dict whose keys also read as attributes (r.image is r["image"]);
+    nested dicts are Results too. to_dict() gives plain dicts and lists all the way down."""
+
+    def __getattr__(self, name: str) -> Any: ...
+    def to_dict(self) -> dict[str, Any]: ...
+
 class Camera:
     object_distance_m: float  # u, +inf: distant object
     lens_focal_m: float  # f', +inf: no lens
@@ -58,7 +65,7 @@ def optics(
     fab_grid: Optional[Length] = None,  # the solved d lands on this grid (default 1 nm)
     vendor: Optional[str] = None,  # ... or on this export preset's grid
     spacing: float = 2.0,  # cells: reports the packing bound on holes
-) -> dict[str, Any]: ...
+) -> Result: ...
 def kernel_models() -> list[str]: ...
 def choose_kernel_model(fresnel_number: float) -> tuple[str, str]: ...
 
@@ -146,7 +153,7 @@ def write_psf(
     kernel_path: str = "",
     energy_fraction: float = 0.999,
 ) -> list[str]: ...
-def read_psf(path: PathLikeStr) -> tuple[FloatArray, Optional[dict[str, Any]]]: ...
+def read_psf(path: PathLikeStr) -> tuple[FloatArray, Optional[Result]]: ...
 def read_image(
     path: PathLikeStr,
     bayer: Literal["sum2x2", "green", "g", "r", "b"] = "sum2x2",  # camera RAW only
@@ -174,7 +181,7 @@ def simulate(
     object_distance: Optional[Length] = None,  # exact: default the mask's u
     size: Optional[tuple[int, int]] = None,  # exact: (rows, cols), default the sensor
     threads: int = 0,  # FFTW threads for >= 512 x 512 (0: all cores)
-) -> dict[str, Any]: ...
+) -> Result: ...
 def decode(
     capture: ArrayLike,
     psf: Optional[ArrayLike] = None,
@@ -200,12 +207,12 @@ def decode(
     poll_s: float = 0.05,
     nsr_map: Optional[ArrayLike] = None,
     object_distance: Optional[Length] = None,  # refocus (with mask=)
-) -> dict[str, Any]: ...
+) -> Result: ...
 def decode_batch(
     captures: Iterable[Union[ArrayLike, PathLikeStr]],  # arrays and/or image or RAW paths
     bayer: Literal["sum2x2", "green", "g", "r", "b"] = "sum2x2",  # RAW paths only
     **kwargs: Any,  # decode()'s keywords: psf= or mask=, method, nsr, iters, ...
-) -> list[dict[str, Any]]: ...
+) -> list[Result]: ...
 def metrics(
     mask: MaskLike,
     snr_db: Optional[Levels] = None,  # dB; None: 30
@@ -224,7 +231,7 @@ def metrics(
     optical_density: Optional[float] = None,  # film OD (transmission 10^-OD)
     prior: Prior = "natural",
     robust: Optional[str] = None,  # as --robust: "size=44um,jitter=2um,missing=0.01"
-) -> dict[str, Any]: ...
+) -> Result: ...
 def score(
     masks: Sequence[MaskLike],
     metrics: Union[str, Sequence[str]] = "sidelobes,spectrum,analytic,wiener",  # or tv, depth
@@ -248,10 +255,10 @@ def score(
     allow_violations: bool = False,
     depth_from: Optional[float] = None,  # metres; None, None: working distance / 2 .. x 2
     depth_to: Optional[float] = None,  # metres (depth needs photons)
-) -> dict[str, Any]: ...
-def sidelobes(pattern: Pattern) -> dict[str, Any]: ...
+) -> Result: ...
+def sidelobes(pattern: Pattern) -> Result: ...
 def autocorrelation(pattern: Pattern) -> npt.NDArray[np.int32]: ...
-def spectrum_metrics(pattern: Pattern) -> dict[str, float]: ...
+def spectrum_metrics(pattern: Pattern) -> Result: ...
 def analytic_error(
     mask: MaskLike,
     snr_db: Optional[float] = None,
@@ -264,7 +271,7 @@ def analytic_error(
     filter: str = "optimal",
     prior_scenes: int = 16,
     prior_first_seed: int = 1000,
-) -> dict[str, float]: ...
+) -> Result: ...
 def simulated_quality(
     mask: MaskLike,
     scenes: Sequence[str] = ("letter-R", "usaf"),
@@ -280,7 +287,7 @@ def simulated_quality(
     noise_seeds: int = 1,
     seed: int = 0,
     tv_iterations: int = 200,
-) -> dict[str, Any]: ...
+) -> Result: ...
 def search(
     camera: Optional[Camera] = None,
     grid: int = 16,
@@ -324,14 +331,14 @@ def search(
     depth_weight: float = 0.0,  # W of the depth term, dB per dB (needs photons)
     depth_from: Optional[float] = None,  # metres; None, None: working distance / 2 .. x 2
     depth_to: Optional[float] = None,  # metres
-) -> dict[str, Any]: ...
+) -> Result: ...
 def sweep(
     *,
     product: Optional[dict[str, Sequence[Any]]] = None,  # {keyword: [values]} (file's "grid")
     points: Optional[Sequence[dict[str, Any]]] = None,  # or a list of points
     progress: Optional[Callable[[dict[str, Any]], Optional[bool]]] = None,
     **kwargs: Any,  # search()'s keywords: the base of every point (evals required)
-) -> dict[str, Any]: ...
+) -> Result: ...
 def compare(
     masks: Sequence[MaskLike],
     report: Optional[str] = None,
@@ -356,7 +363,7 @@ def compare(
     depth: bool = False,  # the depth keys of score(metrics="depth") (needs photons)
     depth_from: Optional[float] = None,  # metres; None, None: working distance / 2 .. x 2
     depth_to: Optional[float] = None,  # metres
-) -> dict[str, Any]: ...
+) -> Result: ...
 
 class Layout:
     @property
@@ -433,7 +440,7 @@ def export_mask(
     max_snap_error: Optional[Length] = None,  # tiff1
     psf: bool = True,  # also <stem>.psf.tiff + sidecar, as the command (unless --no-psf)
     npy: bool = False,  # also <stem>.psf.npy
-) -> dict[str, Any]: ...
+) -> Result: ...
 def check(
     input: Union[Mask, PathLikeStr],
     mask: Optional[MaskLike] = None,
@@ -454,7 +461,7 @@ def check(
     units: Optional[str] = None,
     mirror: bool = False,
     no_sidecar: bool = False,  # ignore NAME.export.json beside a fabrication file
-) -> dict[str, Any]: ...
+) -> Result: ...
 def calibrate(
     point: ArrayLike,
     mask: MaskLike,
@@ -464,7 +471,7 @@ def calibrate(
     threshold_sigmas: float = 6.0,
     saturation_level: Optional[float] = None,
     pixel_binning: int = 1,
-) -> dict[str, Any]: ...  # the keys of `pinmask calibrate --json`; psf, kernel... as arrays
+) -> Result: ...  # the keys of `pinmask calibrate --json`; psf, kernel... as arrays
 def depth(
     mask: MaskLike,
     distances: Optional[Sequence[float]] = None,  # object distances, m (inf allowed)
@@ -482,7 +489,7 @@ def depth(
     scenes: Sequence[str] = ("letter-R", "natural"),
     tv: bool = True,
     seed: int = 1,
-) -> list[dict[str, Any]]: ...  # one dict per distance, the keys of `pinmask depth --json`
+) -> list[Result]: ...  # one dict per distance, the keys of `pinmask depth --json`
 def depthmap(
     capture: Union[PathLikeStr, ArrayLike],  # grey (colour: channels averaged) or an image path
     mask: Optional[MaskLike] = None,  # the PSFs from its exact geometry (or psf_stack)
@@ -493,7 +500,7 @@ def depthmap(
     window: int = 121,  # odd box side of the cost, px
     smooth: float = 8.0,  # smoothness weight of the labels (0: lowest-cost plane per pixel)
     psf_stack: Optional[Sequence[tuple[Union[float, str], ArrayLike]]] = None,  # (distance, PSF)
-) -> dict[str, Any]: ...  # the keys of `pinmask depthmap --json`; depth_m, confidence... arrays
+) -> Result: ...  # the keys of `pinmask depthmap --json`; depth_m, confidence... arrays
 def depth_fisher(
     mask: MaskLike,
     object_distance_m: float,  # u, m (finite)
@@ -501,6 +508,6 @@ def depth_fisher(
     read_noise: float = 0.0,  # rms electrons
     rows: int = 0,  # window; 0: the sensor
     cols: int = 0,
-) -> dict[str, float]: ...  # fisher_inverse_m2, crb_inverse_per_m, crb_distance_m, ...
+) -> Result: ...  # fisher_inverse_m2, crb_inverse_per_m, crb_distance_m, ...
 def is_library_buffer(array: object) -> bool: ...
 def input_copies() -> int: ...

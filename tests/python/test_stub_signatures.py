@@ -92,7 +92,9 @@ RUNTIME_FAMILY = [(r"^None$", "None"), (r"^dict", "dict"), (r"^list", "list"),
                   (r"^tuple", "tuple"), (r"^numpy\.ndarray", "array"), (r"^str$", "str"),
                   (r"^float$", "float"), (r"^int$", "int"), (r"^bool$", "bool"),
                   (r"^bytes$", "bytes"), (r"^pinmask\.(\w+)$", r"\1")]
-STUB_FAMILY = [(r"^None$", "None"), (r"^dict", "dict"), (r"^list", "list"), (r"^tuple", "tuple"),
+# pinmask.Result is a dict subclass (python/result.cpp): the bindings' signatures say dict.
+STUB_FAMILY = [(r"^None$", "None"), (r"^(dict|Result$)", "dict"), (r"^list", "list"),
+               (r"^tuple", "tuple"),
                (r"^(FloatArray|npt\.NDArray)", "array"), (r"^str$", "str"),
                (r"^float$", "float"), (r"^int$", "int"), (r"^bool$", "bool"),
                (r"^bytes$", "bytes"), (r"^(\w+)$", r"\1")]
@@ -113,7 +115,9 @@ def stub_functions():
     for node in tree.body:
         if isinstance(node, ast.FunctionDef):
             out.append((node.name, getattr(pinmask, node.name), node.name, node, False))
-        elif isinstance(node, ast.ClassDef):
+        elif isinstance(node, ast.ClassDef) and node.name != "Result":
+            # Result is a Python class (python/result.cpp), tested in test_result.py; its
+            # methods carry no pybind11 signature.
             cls = getattr(pinmask, node.name)
             for b in node.body:
                 if isinstance(b, ast.FunctionDef) and not any(
