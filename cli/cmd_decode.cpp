@@ -3,11 +3,13 @@
 // write, all files staged and committed together so a failure leaves no output.
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -17,6 +19,7 @@
 #include "cli/options/decode_inputs.hpp"
 #include "cli/options/flag_names.hpp"
 #include "cli/outputs/decode_output.hpp"
+#include "cli/outputs/decode_progress.hpp"
 #include "cli/outputs/image_output.hpp"
 #include "cli/outputs/interrupt.hpp"
 #include "core/errors/error.hpp"
@@ -81,8 +84,18 @@ void run_decode(DecodeCommand& r, BayerMode bayer) {
                       << options.decode.iterative.max_iterations
                       << " iterations; Ctrl-C stops and writes the estimate so far\n";
     }
-    const CaptureDecodeResult result =
-        naming_nsr_map(r, [&] { return decode_capture(std::move(inputs), options); });
+    // Iterations finished over all channels, counted by the solvers: the progress lines.
+    std::atomic<long long> iterations_done{0};
+    options.decode.iterative.iterations_done = &iterations_done;
+    const long long most_iterations =
+        static_cast<long long>(options.decode.iterative.max_iterations) *
+        inputs.capture.n_channels();
+    std::optional<CaptureDecodeResult> decoded;
+    run_with_decode_progress(
+        most_iterations, is_iterative(options.decode.method) && !r.quiet, iterations_done, [&] {
+            decoded = naming_nsr_map(r, [&] { return decode_capture(std::move(inputs), options); });
+        });
+    const CaptureDecodeResult& result = *decoded;
     const CaptureDecodeSummary& sum = result.summary;
     for (const std::string& note : sum.notes) explain(spell_flags(note));
     explain("FFT planning " + std::to_string(sum.seconds.fft_planning) + " s during the decode");

@@ -173,6 +173,9 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeCommand& o) {
     cmd.add_flag("--explain", o.explain,
                  "Say on stderr what each step decided (window, background, period check, "
                  "precision, threads, FFT planning time)");
+    cmd.add_flag("--quiet", o.quiet,
+                 "No progress lines on stderr (an iterative decode that runs over 2 s reports "
+                 "its iterations and the time left)");
     return f;
 }
 

@@ -46,6 +46,7 @@ struct DecodeCommand {
     std::string stats;
     bool json = false;
     bool explain = false;
+    bool quiet = false;  // no progress lines
 };
 
 // The method-specific flags as parsed, each with the parameter it sets.
