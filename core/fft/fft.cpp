@@ -7,15 +7,18 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <tuple>
+#include <utility>
 
 #include "core/errors/error.hpp"
 #include "core/fft/fftw_api.hpp"
+#include "core/fft/planning_notice.hpp"
 #include "core/files/atomic_file.hpp"
 #include "core/limits/resource_limits.hpp"
 
@@ -44,6 +47,7 @@ struct PlanCache {
     FftPlanner planner = FftPlanner::kEstimate;
     int threads = 1;
     std::string wisdom_path;
+    std::function<void(int, int)> planning_notice;  // set_fft_planning_notice
     std::vector<std::string> warnings;
     FftPlanStats stats;
     PlanCache() {
@@ -254,7 +258,10 @@ void* cached_plan(Kind kind, int rows, int cols) {
     if (measure) {
         plan = make_plan(kind, rows, cols, FFTW_MEASURE | FFTW_WISDOM_ONLY);
         from_wisdom = plan != nullptr;
-        if (!plan) plan = make_plan(kind, rows, cols, FFTW_MEASURE);
+        if (!plan) {
+            if (c.planning_notice) c.planning_notice(rows, cols);
+            plan = make_plan(kind, rows, cols, FFTW_MEASURE);
+        }
     } else {
         plan = make_plan(kind, rows, cols, FFTW_ESTIMATE);
     }
@@ -338,6 +345,12 @@ void real_inverse_destroy(void* plan, int rows, int cols, CPlaneT& spectrum, Pla
 }
 
 }  // namespace
+
+void set_fft_planning_notice(std::function<void(int rows, int cols)> notice) {
+    PlanCache& c = cache_state();
+    std::lock_guard<std::mutex> lock(planner_mutex());
+    c.planning_notice = std::move(notice);
+}
 
 void set_fft_planner(FftPlanner planner) {
     PlanCache& c = cache_state();

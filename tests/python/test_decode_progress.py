@@ -50,3 +50,26 @@ def test_quiet_says_nothing(cli):
     out, err = p.communicate(timeout=300)
     assert p.returncode == 0, err
     assert not [l for l in err.splitlines() if l.startswith(PROGRESS)], err
+
+
+def test_fft_planning_is_announced_once_per_size(cli):
+    """With a wisdom file, the first run measures its plans and says so once per size; the next
+    run finds them in the file and says nothing (core/fft/planning_notice.hpp)."""
+    rng = np.random.default_rng(4)
+    np.save(cli.cwd / "small.npy", rng.random((48, 40)))
+    psf = np.zeros((48, 40))
+    psf[0, 0] = psf[5, 7] = 1.0
+    np.save(cli.cwd / "small_psf.npy", psf)
+    env = dict(os.environ, PINMASK_WISDOM=str(cli.cwd / "wisdom"))
+
+    def run(out):
+        p = subprocess.run([cli.exe, "decode", "small.npy", "--psf", "small_psf.npy",
+                            "--crop", "none", "-o", out], cwd=cli.cwd, env=env,
+                           capture_output=True, text=True, timeout=300)
+        assert p.returncode == 0, p.stderr
+        return [l for l in p.stderr.splitlines() if "planning FFTs" in l]
+
+    first = run("a.npy")
+    assert len(first) == 1, first
+    assert "48 x 40" in first[0] and "kept in" in first[0], first
+    assert run("b.npy") == []
