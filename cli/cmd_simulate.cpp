@@ -168,7 +168,8 @@ void run(const SimulateOptions& o, const CLI::App& cmd) {
 }
 
 constexpr const char* kFooter =
-    "Model: the cyclic forward model over one period (docs/design.md section 2): capture = scene (*) "
+    "Model: the cyclic forward model over one period (docs/design.md section 2): capture = "
+    "scene (*) "
     "PSF, circular convolution with the PSF centred as `pinmask decode` expects, so decoding "
     "the capture with the mask returns the scene unshifted. --full-sensor repeats the period "
     "over the sensor: the periodic extension of the one-period capture, which is exact for the "

@@ -54,7 +54,7 @@ TEST_CASE("exact geometry at 6 m: every spot centroid within 0.05 px of Eq. (3)"
     REQUIRE(a.rows() == m.camera.sensor_rows);
     REQUIRE(a.cols() == m.camera.sensor_cols);
     CHECK(std::fabs(a.sum() - 4.0) <= kSumTol);  // 2 x 2 tiles, each period sums to 1
-    const double pitch = 8.08;                   // docs/design.md section 2, paper at 6 m (window half-size)
+    const double pitch = 8.08;  // docs/design.md 2: paper at 6 m (window half-size)
     int spots = 0;
     for (int tr = 0; tr < 2; ++tr) {
         for (int tc = 0; tc < 2; ++tc) {
