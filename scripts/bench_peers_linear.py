@@ -292,6 +292,10 @@ def run(pinmask, path, admm_iters, only=None, out=print):
         x, t_own, res = pinmask_decode(pinmask, prob, pm["weight"], max(SCHEDULE), tol=None)
         own = {"psnr": fit_psnr(x, prob["truth"])[0], "cpu_s": t_own,
                "iters": int(res["channels"][0]["iterations"])}
+        # The ADMM's curve at its chosen tau, every 50 iterations: whether its best is a plateau
+        # or the crest of an oscillation (an oracle stop picks either).
+        out(f"{prob['name']:<38} ADMM PSNR every 50 iterations: " +
+            " ".join(f"{q:.2f}" for q in admm["curve"][49::50]))
         for label, b in (("LenslessPiCam ADMM", admm), ("pinmask TV", pm)):
             out(f"{prob['name']:<38} {label:<22} {b['weight']:7.1e} {b['ms_iter']:8.2f} "
                 f"{b['psnr']:9.2f} {b['iters']:7d} {b['cpu_s']:13.2f} {b['final']:9.2f}")
