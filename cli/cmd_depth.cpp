@@ -25,6 +25,7 @@
 #include "core/units/number_format.hpp"
 #include "core/units/units.hpp"
 #include "io/mask_json.hpp"
+#include "io/noise_json.hpp"
 #include "optimize/metrics/depth_loss.hpp"
 #include "optimize/metrics/metric_spellings.hpp"
 #include "report/depth_plot.hpp"
@@ -139,7 +140,7 @@ void run(const DepthCommandOptions& o, const CLI::App& cmd) {
         files.stage(dir / "depth.png", [&](const fs::path& tmp) {
             write_depth_png(tmp, records, mask.camera.object_distance_m, title);
         });
-        nlohmann::ordered_json config{{"mask", o.mask},     {"noise", noise_json(d.noise)},
+        nlohmann::ordered_json config{{"mask", o.mask},     {"noise", io::noise_json(d.noise)},
                                       {"nsr", o.nsr},       {"seed", o.seed},
                                       {"scenes", o.scenes}, {"tv", !o.no_tv},
                                       {"records", j}};

@@ -16,6 +16,7 @@
 #include "cli/outputs/robust_decoder_files.hpp"
 #include "core/errors/error.hpp"
 #include "io/mask_json.hpp"
+#include "io/noise_json.hpp"
 #include "optimize/metrics/mask_metrics.hpp"
 #include "optimize/metrics/metric_spellings.hpp"
 
@@ -150,7 +151,7 @@ void run(const ScoreOptions& o, const CLI::App& cmd) {
     j["masks"] = rows;
     nlohmann::ordered_json levels = nlohmann::ordered_json::array();
     for (const NoiseLevel& level : m.noise) {
-        nlohmann::ordered_json l = noise_json(level.model);
+        nlohmann::ordered_json l = io::noise_json(level.model);
         l["key"] = level.key;
         levels.push_back(l);
     }

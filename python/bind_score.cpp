@@ -18,6 +18,7 @@
 #include "optimize/metrics/robust_errors.hpp"
 #include "optimize/metrics/robust_wiener.hpp"
 #include "python/common.hpp"
+#include "python/json_value.hpp"
 #include "python/level_args.hpp"
 #include "python/result.hpp"
 #include "python/values.hpp"
@@ -25,11 +26,6 @@
 namespace pinmask::python {
 
 namespace {
-
-// A JSON value of the library's as the Python value json.loads gives (null: None).
-py::object json_value(const nlohmann::ordered_json& j) {
-    return py::module_::import("json").attr("loads")(j.dump());
-}
 
 // metrics= as a list of names or one comma-separated string (as --metrics).
 std::vector<std::string> metric_names(const py::handle& metrics) {

@@ -100,6 +100,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"rank_by", "--rank-by"},
     {"read_noise", "--read-noise"},
     {"regulariser", "--regulariser"},
+    {"report", "--report"},
     {"rerank_scenes", "--rerank-scenes"},
     {"resume", "--resume"},
     {"robust", "--robust"},

@@ -4,12 +4,9 @@
 
 #include "core/errors/error.hpp"
 #include "core/units/units.hpp"
-#include "io/json_strict.hpp"
 
 namespace pinmask::cli {
 namespace {
-
-using io::json_strict::finite_or_null;
 
 constexpr const char* kSensorFlags[] = {"--read-noise", "--dark-current", "--bits", "--full-well",
                                         "--optical-density"};
@@ -86,27 +83,6 @@ void refuse_sensor_flags_without_photons(const CLI::App& cmd) {
                                "(the --snr model is Gaussian noise at a fixed SNR)");
         }
     }
-}
-
-nlohmann::ordered_json noise_json(const NoiseModel& m) {
-    switch (m.kind) {
-        case NoiseKind::kNone:
-            return {{"kind", "none"}};
-        case NoiseKind::kGaussianSnr:
-            return {{"kind", "gaussian-snr"},
-                    {"snr_db", m.snr_db},
-                    {"definition", "10 log10(mean(c^2) / sigma^2) over the noiseless capture"}};
-        case NoiseKind::kPhoton:
-            break;
-    }
-    return {{"kind", "photon"},
-            {"photons_per_pinhole", m.photons_per_pinhole},
-            {"read_noise_e", m.read_noise_e},
-            {"dark_current_e", m.dark_current_e},
-            {"full_well_e", finite_or_null(m.full_well_e)},
-            {"adc_bits", m.adc_bits},
-            {"film_optical_density", finite_or_null(m.film_optical_density)},
-            {"film_transmission", film_transmission(m)}};
 }
 
 }  // namespace pinmask::cli

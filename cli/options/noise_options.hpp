@@ -48,7 +48,4 @@ std::vector<NoiseLevel> noise_levels(const NoiseFlags& flags, const CLI::App& cm
 // Comma-separated items, none empty (InvalidInput naming flag otherwise).
 std::vector<std::string> split_list(const std::string& text, const std::string& flag);
 
-// {"kind": "none" | "gaussian-snr" | "photon", and the model's parameters}.
-nlohmann::ordered_json noise_json(const NoiseModel& model);
-
 }  // namespace pinmask::cli
