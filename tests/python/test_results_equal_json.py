@@ -3,6 +3,8 @@ rendering, so `result.to_dict()` equals what the command prints for the same set
 library's words that name a setting are in each face's own spelling)."""
 import json
 
+import numpy as np
+
 import pinmask
 
 
@@ -34,3 +36,26 @@ def test_compare_baselines_equal_cli_json(cli, tmp_path, mask7):
     j["masks"][0]["source"] = str(tmp_path / "m.mask.json")
     assert out.to_dict() == j
     assert out.baselines.mura.order == j["baselines"]["mura"]["order"]
+
+
+MAPS = ("depth_m", "confidence", "all_in_focus", "label")
+
+
+def test_depthmap_equals_cli_json(cli, tmp_path, mask7, monkeypatch):
+    """The summary of depthmap() is `depthmap --json`, and with output_dir the same files."""
+    mask7.save(str(tmp_path / "m.mask.json"))
+    rng = np.random.default_rng(5)
+    np.save(tmp_path / "cap.npy", rng.random((48, 40)).astype(np.float32))
+    args = ["--from", "2m", "--to", "inf", "--steps", "3", "--window", "9", "--smooth", "2"]
+    j = json.loads(cli.run("depthmap", "cap.npy", "--mask", "m.mask.json", *args, "-o", "cli",
+                           "--json").stdout)
+    monkeypatch.chdir(tmp_path)
+    out = pinmask.depthmap("cap.npy", mask="m.mask.json", from_m=2.0, to_m="inf", steps=3,
+                           window=9, smooth=2, output_dir="py")
+    assert {k: v for k, v in out.to_dict().items() if k not in MAPS} == j
+    for name in j["files"]:
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
+    # Nothing written: the same summary with no files.
+    bare = pinmask.depthmap("cap.npy", mask="m.mask.json", from_m=2.0, to_m="inf", steps=3,
+                            window=9, smooth=2)
+    assert bare.files == [] and bare.planes == j["planes"]
