@@ -59,3 +59,22 @@ def test_depthmap_equals_cli_json(cli, tmp_path, mask7, monkeypatch):
     bare = pinmask.depthmap("cap.npy", mask="m.mask.json", from_m=2.0, to_m="inf", steps=3,
                             window=9, smooth=2)
     assert bare.files == [] and bare.planes == j["planes"]
+
+
+def test_score_equals_cli_json(cli, tmp_path, mask7):
+    mask7.save(str(tmp_path / "m.mask.json"))
+    pinmask.generate(seed=8).save(str(tmp_path / "o.mask.json"))
+    j = json.loads(cli.run("score", "m.mask.json", "o.mask.json", "--metrics",
+                           "sidelobes,spectrum,analytic,wiener", "--scenes", "letter-R,usaf",
+                           "--snr", "20,30", "--robust", "size=44um,jitter=2um", "--json").stdout)
+    out = pinmask.score([str(tmp_path / "m.mask.json"), str(tmp_path / "o.mask.json")],
+                        metrics="sidelobes,spectrum,analytic,wiener", scenes=["letter-R", "usaf"],
+                        snr_db=[20, 30], robust="size=44um,jitter=2um")
+    for row in j["masks"]:
+        row["mask"] = str(tmp_path / row["mask"])
+    assert out.to_dict() == j
+    photons = json.loads(cli.run("score", "m.mask.json", "--metrics", "analytic", "--photons",
+                                 "300", "--read-noise", "2", "--json").stdout)
+    p = pinmask.score([mask7], metrics="analytic", photons=300, read_noise=2)
+    photons["masks"][0]["mask"] = "mask 1"
+    assert p.to_dict() == photons
