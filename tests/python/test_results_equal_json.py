@@ -78,3 +78,13 @@ def test_score_equals_cli_json(cli, tmp_path, mask7):
     p = pinmask.score([mask7], metrics="analytic", photons=300, read_noise=2)
     photons["masks"][0]["mask"] = "mask 1"
     assert p.to_dict() == photons
+
+
+def test_depth_equals_cli_json(cli, tmp_path, mask7):
+    mask7.save(str(tmp_path / "m.mask.json"))
+    j = json.loads(cli.run("depth", "m.mask.json", "--distances", "2m,6m,inf", "--photons", "50",
+                           "--scenes", "letter-R", "--no-tv", "--json").stdout)
+    out = pinmask.depth(mask7, distances=[2.0, 6.0, float("inf")], photons=50,
+                        scenes=["letter-R"], tv=False)
+    assert [r.to_dict() for r in out] == j
+    assert out[2].object_distance_m is None  # inf, as null in the JSON
