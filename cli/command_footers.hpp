@@ -1,5 +1,5 @@
-// The --help footers of score, compare and search (long teaching text kept out of the command
-// files so each stays parse -> call -> render).
+// The --help footers of score, compare, search and simulate (long teaching text kept out of the
+// command files so each stays parse -> call -> render).
 #pragma once
 
 namespace pinmask::cli {
@@ -105,5 +105,25 @@ inline constexpr const char* kRobustFooter =
     "(and NSR) as the nominal figure. Closed form (no sampling); no errors give exactly the "
     "nominal figure. Keys robust_wiener_psnr_db_snrS and robust_loss_db_snrS (nominal - robust); "
     "table column R.";
+
+inline constexpr const char* kSimulateFooter =
+    "Model: the cyclic forward model over one period (docs/design.md section 2): capture = "
+    "scene (*) "
+    "PSF, circular convolution with the PSF centred as `pinmask decode` expects, so decoding "
+    "the capture with the mask returns the scene unshifted. --full-sensor repeats the period "
+    "over the sensor: the periodic extension of the one-period capture, which is exact for the "
+    "cyclic model; the period sits where the decoder's centred crop takes it. Noise is drawn per "
+    "sensor pixel.\n"
+    "Units: a uniform noiseless scene of value v gives v. Photon model: electrons / (N K), K the "
+    "pinholes, plus a background (film leak + dark current) that the dark frame removes: "
+    "`pinmask decode capture.tiff --dark dark.tiff ...`.\n"
+    "Files: the capture (-o: .tif/.tiff float32, .png 16-bit clipped to [0, 1], .npy float32), "
+    "OUT.config.json (the resolved configuration: mask, kernel, scene, noise, seed, tiling, "
+    "units), and the dark frame when asked. All appear together or none does.\n"
+    "Examples:\n"
+    "  pinmask simulate m.mask.json --scene usaf --snr 30 -o capture.tiff\n"
+    "  pinmask simulate m.mask.json --scene natural --photons 500 --read-noise 3 "
+    "--dark-current 10 --optical-density 2 --full-sensor --dark-frame dark.tiff "
+    "-o capture.tiff --explain";
 
 }  // namespace pinmask::cli

@@ -85,4 +85,24 @@ void refuse_sensor_flags_without_photons(const CLI::App& cmd) {
     }
 }
 
+NoiseModel one_noise_model(const std::string& snr, const std::optional<double>& photons,
+                           const SensorFlags& sensor, const CLI::App& cmd,
+                           std::vector<std::string>& notes) {
+    if (photons) {
+        if (cmd.count("--snr") > 0)
+            throw invalid_field("--snr", snr, "cannot be combined with --photons");
+        return photon_model(*photons, sensor, &notes);
+    }
+    refuse_sensor_flags_without_photons(cmd);
+    NoiseModel m;
+    if (snr == "inf" || snr == "+inf") {
+        m.kind = NoiseKind::kNone;
+        notes.push_back("noise skipped: --snr inf (noiseless capture)");
+        return m;
+    }
+    m.kind = NoiseKind::kGaussianSnr;
+    m.snr_db = parse_number(snr, "--snr");
+    return m;
+}
+
 }  // namespace pinmask::cli

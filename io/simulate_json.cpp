@@ -1,12 +1,11 @@
-#include "cli/options/simulate_config.hpp"
+#include "io/simulate_json.hpp"
 
-#include "cli/options/noise_options.hpp"
 #include "core/fft/fft.hpp"
 #include "design/psf/kernel_model.hpp"
 #include "io/mask_json.hpp"
 #include "io/noise_json.hpp"
 
-namespace pinmask::cli {
+namespace pinmask::io {
 
 using nlohmann::ordered_json;
 
@@ -83,4 +82,4 @@ ordered_json simulate_summary_json(const SimulateConfigInputs& in, const Simulat
         {"background_per_channel", background_json(s)}};
 }
 
-}  // namespace pinmask::cli
+}  // namespace pinmask::io
