@@ -30,7 +30,8 @@ void add_sensor_flags(CLI::App& cmd, SensorFlags& f) {
                    "perfectly opaque)");
 }
 
-std::vector<std::string> split_list(const std::string& text, const std::string& flag) {
+std::vector<std::string> split_list(const std::string& text, const std::string& flag,
+                                    std::size_t max_items) {
     std::vector<std::string> out;
     std::string item;
     std::istringstream in(text);
@@ -39,8 +40,9 @@ std::vector<std::string> split_list(const std::string& text, const std::string& 
         out.push_back(item);
     }
     if (out.empty()) throw invalid_field(flag, "''", "needs at least one item");
-    if (out.size() > kMaxNoiseLevels) {
-        throw invalid_field(flag, "'" + text + "'", "has more than 64 items");
+    if (out.size() > max_items) {
+        throw invalid_field(flag, "'" + text + "'",
+                            "has more than " + std::to_string(max_items) + " items");
     }
     return out;
 }

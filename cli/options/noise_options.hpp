@@ -51,7 +51,8 @@ void add_noise_flags(CLI::App& cmd, NoiseFlags& flags, const std::string& defaul
 std::vector<NoiseLevel> noise_levels(const NoiseFlags& flags, const CLI::App& cmd,
                                      std::string* text = nullptr);
 
-// Comma-separated items, none empty (InvalidInput naming flag otherwise).
-std::vector<std::string> split_list(const std::string& text, const std::string& flag);
+// Comma-separated items, none empty, at most max_items (InvalidInput naming flag otherwise).
+std::vector<std::string> split_list(const std::string& text, const std::string& flag,
+                                    std::size_t max_items = kMaxNoiseLevels);
 
 }  // namespace pinmask::cli
