@@ -1,5 +1,5 @@
-// The --help footers of score, compare, search and simulate (long teaching text kept out of the
-// command files so each stays parse -> call -> render).
+// The --help footers of score, compare, search, simulate and design (long teaching text kept out of
+// the command files so each stays parse -> call -> render).
 #pragma once
 
 namespace pinmask::cli {
@@ -125,5 +125,24 @@ inline constexpr const char* kSimulateFooter =
     "  pinmask simulate m.mask.json --scene natural --photons 500 --read-noise 3 "
     "--dark-current 10 --optical-density 2 --full-sensor --dark-frame dark.tiff "
     "-o capture.tiff --explain";
+
+inline constexpr const char* kDesignFooter =
+    "Every figure is at the working distance u (--object-distance; a point source at u: "
+    "1/z_eff = 1/f - 1/f' + 1/u): pitch, whole pixels per cell N, PSF size n N, periods on the "
+    "sensor, LSI mismatch against N; the indented \"u = inf\" lines are the distant-object "
+    "values the paper quotes. A solved pinhole (--solve pinhole, --pixels-per-cell) lands on the "
+    "fabrication grid (--fab-grid, or the --vendor preset's, default 1nm) and the table says how "
+    "far that moves the pitch at u. --json prints one object with unit-suffixed keys (_m = "
+    "metres, _px = pixels): keys without a suffix and \"_at_u\" keys are at u, \"_at_inf\" "
+    "keys at u = inf; infinite values are null, with the reason under \"notes\". The kernel row "
+    "is the kernel psf would build at N px per cell over the band (--bandwidth: a Gaussian of "
+    "that FWHM at 13 wavelengths), with the energy its support keeps; its warnings are psf's.\n"
+    "Examples:\n"
+    "  pinmask design --preset paper\n"
+    "  pinmask design --lens-focal 55mm --object-distance inf --json   (f = f': Fraunhofer)\n"
+    "  pinmask design --pixel-pitch 3.45um --sensor 2448x2048 --lens-focal 25mm \\\n"
+    "      --sensor-distance 20mm --object-distance 2m --wavelength 530nm --pixels-per-cell 21\n"
+    "      (solves d = 345 um for 21 whole pixels per cell at 2 m)\n"
+    "  pinmask design --wavelength 850nm --bandwidth 30nm   (an LED's 30 nm band around 850 nm)";
 
 }  // namespace pinmask::cli

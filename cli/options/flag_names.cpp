@@ -112,6 +112,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"sides", "--sides"},
     {"smooth", "--smooth"},
     {"snr_db", "--snr"},
+    {"solve", "--solve"},
     {"spacing", "--spacing"},
     {"steps", "--steps"},
     {"threads", "--threads"},
