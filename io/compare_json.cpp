@@ -36,8 +36,6 @@ nlohmann::ordered_json compare_json(const CompareReport& report) {
     const CompareRequest& q = report.request;
     const CompareOutcome& out = report.outcome;
     const MaskMetricsOptions& mo = report.options.settings.metrics;
-    std::string scenes;
-    for (const std::string& s : q.scenes) scenes += (scenes.empty() ? "" : ",") + s;
     nlohmann::ordered_json j;
     for (const auto& r : out.results) j["masks"].push_back(compare_row_json(r.row));
     j["psnr_columns"] = {{"analytic_wiener_psnr_db", report.analytic_basis},
@@ -46,7 +44,7 @@ nlohmann::ordered_json compare_json(const CompareReport& report) {
     nlohmann::ordered_json levels = nlohmann::ordered_json::array();
     for (const NoiseLevel& l : mo.noise) levels.push_back(noise_json(l.model));
     j["settings"] = {{"noise", levels},
-                     {"scenes", scenes},
+                     {"scenes", report.scenes},
                      {"prior", mo.prior.description()},
                      {"wiener_nsr", q.wiener_nsr},
                      {"tv_lambda", q.tv_lambda},

@@ -60,7 +60,7 @@ CompareReport run_compare_request(CompareRequest request, const CompareProgress&
     for (const std::string& w : {out.random_skipped, out.mura_skipped})
         if (!w.empty()) r.warnings.push_back(w);
 
-    std::string scenes;
+    std::string& scenes = r.scenes;
     for (const std::string& s : request.scenes) scenes += (scenes.empty() ? "" : ",") + s;
     const MaskMetricsOptions& mo = r.options.settings.metrics;
     const std::string& nsr = request.wiener_nsr;

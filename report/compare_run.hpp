@@ -52,6 +52,7 @@ struct CompareReport {
     CompareRequest request;                   // as given, without its masks
     std::vector<std::string> warnings;        // baselines left out and why
     std::vector<std::string> settings_lines;  // the report's settings paragraph
+    std::string scenes;                       // the request's scenes, comma-separated
     std::string nsr_words;                    // "NSR tuned per mask" or "NSR 0.01"
     std::string analytic_basis;               // what the analytic PSNR column is computed on
     std::string sim_basis;                    // what the simulated PSNR columns are computed on
