@@ -89,10 +89,11 @@ void bind_compare(py::module_& m) {
         R"(Compares masks (Mask objects or *.mask.json paths; one camera) as `pinmask compare`:
 a metric row per mask (see metrics()), with baselines the median of baseline_count random
 valid masks, the paper-like geometry and a MURA; report: a .pdf, .svg or .png path for the
-multi-page report (written atomically; SVG/PNG: one file per page). Returns what `pinmask compare --json` prints: {masks (one row per mask, infinite figures as
-None), psnr_columns (what each PSNR is computed on), settings, baselines (with baselines=True:
-random, paper_like, mura; a baseline left out says why under 'skipped') and, with a report,
-report: [paths written] and config: the NAME.config.json written beside it (this same dict)}.
+multi-page report (written atomically; SVG/PNG: one file per page). Returns what
+`pinmask compare --json` prints: {masks (one row per mask, infinite figures as None),
+psnr_columns (what each PSNR is computed on), settings, baselines (with baselines=True: random,
+paper_like, mura; a baseline left out says why under 'skipped') and, with a report, report:
+[paths written] and config: the NAME.config.json written beside it (this same dict)}.
 Noise (snr_db or photons with the sensor stages), prior and robust (fabrication errors, as
 --robust: 'size=44um,jitter=2um'; each row gains robust_wiener_psnr_db) as in metrics().
 depth=True (needs photons): each row gains score(metrics='depth')'s keys over depth_from ..

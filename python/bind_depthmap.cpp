@@ -95,7 +95,8 @@ plane), refined by a parabola in 1/u. capture: a 2-D (or colour, averaged) array
 path; mask: a Mask or *.mask.json path. output_dir: write the command's files there (depth.tif,
 confidence.tif, all_in_focus.tif, depthmap.png, depthmap.json; all or none); None writes nothing.
 Returns what `pinmask depthmap --json` prints (files: those written, [] without output_dir) plus
-the arrays depth_m (metres), confidence ([0, 1]), all_in_focus and label (plane index). Method and measured accuracy: docs/depth.md.)");
+the arrays depth_m (metres), confidence ([0, 1]), all_in_focus and label (plane index). Method
+and measured accuracy: docs/depth.md.)");
 
     m.def(
         "depth_fisher",
