@@ -1,23 +1,20 @@
 // `pinmask bench error-time`: PSNR against decode time of every decoder for one mask
-// (bench/error_time_run.hpp), written as CSV, a plot per SNR (SVG + PNG) and a Markdown table, with
-// the resolved configuration; all files are staged and appear together.
-#include <cmath>
+// (bench/error_time_run.hpp), written by bench/error_time_files as CSV, a plot per SNR (SVG + PNG)
+// and a Markdown table, with the resolved configuration; all files appear together.
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include "bench/error_time_plot.hpp"
-#include "bench/error_time_report.hpp"
+#include "bench/error_time_files.hpp"
 #include "bench/error_time_run.hpp"
 #include "cli/commands.hpp"
+#include "cli/options/number_lists.hpp"
 #include "cli/outputs/error_time_json.hpp"
 #include "core/errors/error.hpp"
-#include "core/files/atomic_file.hpp"
 #include "core/files/output_set.hpp"
 #include "core/units/units.hpp"
 #include "design/psf/kernel_model.hpp"
@@ -46,35 +43,6 @@ struct Options {
     bool json = false;
 };
 
-std::vector<std::string> split(const std::string& text, const std::string& flag) {
-    std::vector<std::string> out;
-    std::istringstream in(text);
-    for (std::string item; std::getline(in, item, ',');) {
-        if (item.empty()) throw invalid_field(flag, "'" + text + "'", "has an empty list item");
-        out.push_back(item);
-    }
-    if (out.empty()) throw invalid_field(flag, "''", "needs at least one item");
-    return out;
-}
-
-std::vector<double> numbers(const std::string& text, const std::string& flag) {
-    std::vector<double> out;
-    for (const auto& s : split(text, flag)) out.push_back(parse_number(s, flag));
-    return out;
-}
-
-std::vector<int> counts(const std::string& text, const std::string& flag) {
-    std::vector<int> out;
-    for (const auto& s : split(text, flag)) {
-        const double v = parse_number(s, flag);
-        if (v != std::floor(v) || v < 1 || v > 1e6) {
-            throw invalid_field(flag, s, "must be an integer in 1..1000000");
-        }
-        out.push_back(static_cast<int>(v));
-    }
-    return out;
-}
-
 // The mask: a file, or the paper preset = `pinmask generate --family paper --seed 1`.
 Mask load_mask(const Options& o, std::string& source) {
     if (o.mask && o.preset) {
@@ -91,10 +59,10 @@ Mask load_mask(const Options& o, std::string& source) {
 void run(const Options& o) {
     // Flags first, before any work.
     ErrorTimeOptions et;
-    et.snr_db = numbers(o.snr, "--snr");
-    et.iterations = counts(o.iters, "--iters");
-    et.wiener_nsr = numbers(o.nsr, "--nsr");
-    et.tikhonov_lambda = numbers(o.tikhonov_lambda, "--tikhonov-lambda");
+    et.snr_db = number_list(o.snr, "--snr");
+    et.iterations = count_list(o.iters, "--iters");
+    et.wiener_nsr = number_list(o.nsr, "--nsr");
+    et.tikhonov_lambda = number_list(o.tikhonov_lambda, "--tikhonov-lambda");
     et.tv_lambda = o.tv_lambda;
     et.repeats = o.repeats;
     et.seed = o.seed;
@@ -105,7 +73,7 @@ void run(const Options& o) {
         et.repeats = 1;
     }
     et.validate();
-    const std::vector<std::string> scene_names = split(o.scenes, "--scenes");
+    const std::vector<std::string> scene_names = item_list(o.scenes, "--scenes");
     std::vector<SceneSpec> specs;
     for (const auto& s : scene_names) specs.push_back(scene_from_name(s));
     fs::path out_dir(o.output);
@@ -134,31 +102,15 @@ void run(const Options& o) {
               << kernel_model_name(setup.kernel.model) << "; timing on one thread\n";
     const ErrorTimeResult r = run_error_time_bench(setup, et, source);
 
-    fs::create_directories(out_dir);
-    StagedFiles files;
-    files.stage_bytes(out_dir / "error_time.csv", error_time_csv(r.records));
-    files.stage_bytes(out_dir / "error_time_points.csv", error_time_points_csv(r.points));
-    files.stage_bytes(out_dir / "error_time.md", r.markdown);
-    std::vector<std::string> plots;
-    for (const ErrorTimeNamedPlot& p : r.plots) {
-        files.stage(out_dir / (p.stem + ".svg"),
-                    [&](const fs::path& tmp) { write_error_time_svg(tmp, p.plot); });
-        files.stage(out_dir / (p.stem + ".png"),
-                    [&](const fs::path& tmp) { write_error_time_png(tmp, p.plot); });
-        plots.push_back((out_dir / (p.stem + ".svg")).string());
-        plots.push_back((out_dir / (p.stem + ".png")).string());
-    }
     const ordered_json config =
         error_time_config_json(mask, source, setup, scene_names, et, o.quick);
-    files.stage_bytes(out_dir / "error_time.config.json", config.dump(2) + "\n");
-    files.commit();
-
+    const ErrorTimeFiles files = write_error_time_files(out_dir, r, config.dump(2) + "\n");
     if (o.json) {
-        std::cout << error_time_summary_json(r, out_dir, plots).dump() << "\n";
+        std::cout << error_time_summary_json(r, out_dir, files.plots).dump() << "\n";
         return;
     }
-    std::cout << r.markdown << "\nwrote " << files.final_paths().size() << " files to "
-              << out_dir.string() << "\n";
+    std::cout << r.markdown << "\nwrote " << files.count << " files to " << out_dir.string()
+              << "\n";
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // `pinmask calibrate`: a point-source capture through the whole mask -> measured geometry,
-// per-pinhole record, kernel and calibrated PSF (decode/calibrate/calibrate.hpp), written to a new
-// folder whose files appear together or not at all (staged in a sibling folder, renamed last).
+// per-pinhole record, kernel and calibrated PSF. Parses the flags, reads the inputs, runs the
+// transaction decode/calibrate/calibrate_run and writes io/calibrate_json's files into a new
+// folder, together or not at all; prints a summary or the JSON.
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -10,19 +11,14 @@
 #include "cli/commands.hpp"
 #include "cli/options/camera_options.hpp"
 #include "cli/options/flag_names.hpp"
-#include "cli/outputs/calibrate_json.hpp"
 #include "cli/outputs/progress.hpp"
 #include "core/errors/error.hpp"
-#include "core/files/atomic_file.hpp"
 #include "core/image/image_io.hpp"
 #include "core/image/raw_io.hpp"
-#include "core/units/units.hpp"
-#include "core/version.hpp"
-#include "decode/calibrate/calibrate.hpp"
-#include "decode/calibrate/report.hpp"
+#include "decode/calibrate/calibrate_run.hpp"
 #include "design/psf/kernel_model.hpp"
+#include "io/calibrate_json.hpp"
 #include "io/mask_json.hpp"
-#include "io/psf_files.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -67,22 +63,20 @@ void run(CalibrateCommandOptions& o) {
     }
     calibrate::validate(o.cal);
     const BayerMode bayer = parse_bayer_mode(o.bayer);
-    Mask mask = io::read_mask_file(o.mask);
-    o.camera.base = mask.camera;
-    mask.camera = resolve_camera(o.camera);
+    CalibrateRequest q;
+    q.mask = io::read_mask_file(o.mask);
+    o.camera.base = q.mask.camera;
+    q.mask.camera = resolve_camera(o.camera);
     double full_scale = 1.0;
     RawInfo raw, raw_dark;
-    const Plane capture = read_grey(o.capture, "capture", bayer, &full_scale, raw);
-    // A Bayer RAW read as 2 x 2 blocks: capture pixels are binning x binning sensor pixels.
-    o.cal.pixel_binning = raw.binning;
-    mask.camera.pixel_pitch_m *= raw.binning;
+    q.capture = read_grey(o.capture, "capture", bayer, &full_scale, raw);
+    o.cal.pixel_binning = raw.binning;  // a Bayer RAW read as 2 x 2 blocks
     // Integer files saturate at their largest count; float files have no known ceiling.
     if (o.saturation == "auto" && full_scale > 1.0) o.cal.saturation_level = full_scale;
-    std::optional<Plane> dark;
-    if (!o.dark.empty()) dark = read_grey(o.dark, "dark frame", bayer, nullptr, raw_dark);
-    std::cerr << "calibrate: registering " << capture.cols() << " x " << capture.rows()
-              << " px against " << mask.pattern.pinholes.size() << " pinholes x "
-              << mask.pattern.tiles_rows * mask.pattern.tiles_cols << " tiles\n";
+    if (!o.dark.empty()) q.dark = read_grey(o.dark, "dark frame", bayer, nullptr, raw_dark);
+    std::cerr << "calibrate: registering " << q.capture.cols() << " x " << q.capture.rows()
+              << " px against " << q.mask.pattern.pinholes.size() << " pinholes x "
+              << q.mask.pattern.tiles_rows * q.mask.pattern.tiles_cols << " tiles\n";
     // Progress: each phase, and the fit's iterations (a large frame fits for tens of seconds).
     ProgressLine bar("pinmask calibrate");
     o.cal.progress = [&](const std::string& phase, int it, int cap) {
@@ -95,30 +89,13 @@ void run(CalibrateCommandOptions& o) {
         bar.update(std::min(0.99, double(it) / (2.0 * cap)),
                    phase + ": " + std::to_string(it) + " iterations");
     };
-    auto s = calibrate::calibrate_point_source(capture, dark, mask, o.cal);
+    q.capture_name = o.capture;
+    q.options = o.cal;
+    q.kernel_file = (dir / "kernel.tiff").string();
+    q.spell = [](const std::string& w) { return spell_flags(w); };
+    const CalibrateReport report = run_calibrate_request(std::move(q));
     bar.finish();
-    s.dark_source = spell_flags(s.dark_source);
-
-    // The calibrated mask: the measured kernel and the measured geometry in its provenance.
-    Mask cal = mask;
-    cal.psf.kernel = {"measured", (dir / "kernel.tiff").string(), {}};
-    cal.psf.pixels_per_cell =
-        std::max(1, static_cast<int>(std::lround(0.5 * (s.pitch_x_px + s.pitch_y_px))));
-    cal.provenance.generator = PINMASK_GENERATOR("calibrate");
-    auto& sc = cal.provenance.scores;
-    sc["calibrated_rotation_deg"] = s.rotation_deg;
-    sc["calibrated_pitch_x_px"] = s.pitch_x_px;
-    sc["calibrated_pitch_y_px"] = s.pitch_y_px;
-    sc["calibrated_position_x_px"] = s.position_x_px;
-    sc["calibrated_position_y_px"] = s.position_y_px;
-    sc["calibrated_missing_pinholes"] = static_cast<double>(s.missing.size());
-    sc["calibrated_background"] = s.background;
-    sc["calibrated_pinhole_side_m"] = s.fit.side_m;
-    if (std::isfinite(s.optical_density)) sc["calibrated_optical_density"] = s.optical_density;
-    const Kernel kernel = measured_kernel(
-        s.kernel.values, cal.psf.pixels_per_cell,
-        "calibrate: fitted " + kernel_model_name(s.fit.family) + " kernel of " + o.capture);
-    Json j = calibration_result_json(s, dir);
+    const calibrate::CalibrationSummary& s = report.summary;
     const Json config = {{"capture", o.capture},
                          {"mask", o.mask},
                          {"dark", o.dark},
@@ -127,38 +104,9 @@ void run(CalibrateCommandOptions& o) {
                          {"pitch_range", o.cal.pitch_range},
                          {"threshold_sigmas", o.cal.threshold_sigmas},
                          {"saturation", o.saturation}};
-
-    // Stage everything in a sibling folder, then rename it into place.
-    fs::path stage = dir;
-    stage += ".tmp-calibrate";
-    fs::remove_all(stage);
-    fs::create_directory(stage);
-    try {
-        io::PsfSidecar side = io::psf_sidecar_for(cal, kernel, o.mask);
-        io::PsfSidecar full = side;
-        full.geometry = "full-frame";
-        io::write_psf_files(stage / "psf.tiff", s.psfs.full_frame, full, false);
-        if (s.psfs.period)
-            io::write_psf_files(stage / "psf-period.tiff", *s.psfs.period, side, false);
-        write_image(stage / "kernel.tiff", Image(s.kernel.values));
-        io::write_mask_file(stage / "calibrated.mask.json", cal);
-        write_bytes_atomic(stage / "report.pdf",
-                           calibrate::calibration_report_pdf(dark ? capture - *dark : capture, s,
-                                                             "pinmask calibrate " + o.capture));
-        write_bytes_atomic(stage / "calibration.json", Json{{"format", "pinmask-calibration"},
-                                                            {"version", 1},
-                                                            {"config", config},
-                                                            {"result", j}}
-                                                               .dump(2) +
-                                                           "\n");
-        if (fs::exists(dir)) fs::remove(dir);
-        fs::rename(stage, dir);
-    } catch (...) {
-        fs::remove_all(stage);
-        throw;
-    }
+    io::write_calibration_files(report, dir, config, o.mask, "pinmask calibrate " + o.capture);
     if (o.json) {
-        std::cout << j.dump(2) << "\n";
+        std::cout << io::calibration_result_json(s, dir).dump(2) << "\n";
         return;
     }
     std::cout << "calibrate " << o.capture << " -> " << o.output << "/\n"

@@ -1,10 +1,9 @@
 // `pinmask depth MASK`: pitch, period, shift-invariance mismatch and the PSNR lost by decoding
 // the exact-geometry capture with the mask's integer cyclic PSF, against object distance
-// (optimize/metrics/depth_loss.hpp). Table on stdout, --json (one record per distance), -o DIR
-// (created when missing) for the plot (depth.svg + depth.png, written together) and the resolved
-// configuration. Noise: the flags of score (--snr or --photons with the sensor flags), one
-// level; Wiener NSR tuned as score tunes it unless --nsr gives a value.
-#include <cmath>
+// (optimize/metrics/depth_loss.hpp). Table on stdout, --json (one record per distance,
+// io/depth_json), -o DIR (created when missing) for the plot (depth.svg + depth.png, written
+// together) and the resolved configuration. Noise: the flags of score (--snr or --photons with the
+// sensor flags), one level; Wiener NSR tuned as score tunes it unless --nsr gives a value.
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -20,14 +19,14 @@
 #include "cli/outputs/progress.hpp"
 #include "core/errors/error.hpp"
 #include "core/fft/fft.hpp"
-#include "core/files/atomic_file.hpp"
 #include "core/files/output_set.hpp"
 #include "core/units/number_format.hpp"
 #include "core/units/units.hpp"
+#include "io/depth_json.hpp"
 #include "io/mask_json.hpp"
+#include "io/noise_json.hpp"
 #include "optimize/metrics/depth_loss.hpp"
 #include "optimize/metrics/metric_spellings.hpp"
-#include "report/depth_plot.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -78,18 +77,6 @@ std::vector<double> resolve_distances(const DepthCommandOptions& o) {
                        parse_length_m(*o.to, "--to", AllowInfinity::kYes), o.steps);
 }
 
-nlohmann::ordered_json record_json(const DepthRecord& r) {
-    using J = nlohmann::ordered_json;
-    auto finite = [](double v) { return std::isfinite(v) ? J(v) : J(nullptr); };
-    return J{{"object_distance_m", finite(r.object_distance_m)},
-             {"pixels_per_cell", r.pixels_per_cell},
-             {"period_px", r.period_px},
-             {"lsi_mismatch_px", r.lsi_mismatch_px},
-             {"wiener_psnr_loss_db", finite(r.wiener_psnr_loss_db)},
-             {"tv_psnr_loss_db", finite(r.tv_psnr_loss_db)},
-             {"wiener_nsr", r.wiener_nsr}};
-}
-
 void run(const DepthCommandOptions& o, const CLI::App& cmd) {
     const std::vector<double> distances = resolve_distances(o);
     if (!o.output_dir.empty()) check_output_folder(o.output_dir, "-o");
@@ -125,32 +112,20 @@ void run(const DepthCommandOptions& o, const CLI::App& cmd) {
     const std::vector<DepthRecord> records = depth_analysis(mask, distances, d);
     bar.finish();
 
-    nlohmann::ordered_json j = nlohmann::ordered_json::array();
-    for (const auto& r : records) j.push_back(record_json(r));
     if (!o.output_dir.empty()) {
-        const fs::path dir(o.output_dir);
-        fs::create_directories(dir);
         const std::string title = "pinmask depth: " + fs::path(o.mask).filename().string() + " (" +
                                   noise_text + ", scenes " + o.scenes + ")";
-        StagedFiles files;
-        files.stage(dir / "depth.svg", [&](const fs::path& tmp) {
-            write_depth_svg(tmp, records, mask.camera.object_distance_m, title);
-        });
-        files.stage(dir / "depth.png", [&](const fs::path& tmp) {
-            write_depth_png(tmp, records, mask.camera.object_distance_m, title);
-        });
-        nlohmann::ordered_json config{{"mask", o.mask},     {"noise", noise_json(d.noise)},
-                                      {"nsr", o.nsr},       {"seed", o.seed},
-                                      {"scenes", o.scenes}, {"tv", !o.no_tv},
-                                      {"records", j}};
-        files.stage_bytes(dir / "depth.json", config.dump(2) + "\n");
-        files.commit();
-        if (!o.json) {
-            for (const auto& p : files.final_paths()) std::cerr << "wrote " << p.string() << "\n";
-        }
+        const nlohmann::ordered_json config{
+            {"mask", o.mask},     {"noise", io::noise_json(d.noise)},
+            {"nsr", o.nsr},       {"seed", o.seed},
+            {"scenes", o.scenes}, {"tv", !o.no_tv}};
+        const auto written = io::write_depth_files(o.output_dir, records,
+                                                   mask.camera.object_distance_m, title, config);
+        if (!o.json)
+            for (const auto& p : written) std::cerr << "wrote " << p.string() << "\n";
     }
     if (o.json) {
-        std::cout << j.dump(2) << "\n";
+        std::cout << io::depth_json(records).dump(2) << "\n";
         return;
     }
     std::printf("%s; Wiener NSR %s%s\n", noise_text.c_str(),

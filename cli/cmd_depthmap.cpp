@@ -1,133 +1,47 @@
 // `pinmask depthmap CAPTURE --mask M --from U1 --to U2 [--steps N] [--smooth L]` (or
 // `--psf-stack STACK` instead of --mask/--from/--to/--steps): a depth map, its confidence and an
-// all-in-focus image from one capture, by a plane sweep over object distance
-// (decode/depthmap/depthmap.hpp; the stack's format: io/psf_stack.hpp). Writes into -o DIR,
-// together: depth.tif (float32, metres), confidence.tif (float32, [0, 1]), all_in_focus.tif
-// (float32), depthmap.png (depth in colour and confidence in grey scaled to its maximum, side by
-// side, a colour bar from near (dark) to far (bright) at the right), depthmap.json (the summary,
-// also on stdout with --json). Ctrl-C stops after the current plane and writes the sweep over the
-// planes finished.
-#include <algorithm>
-#include <cmath>
+// all-in-focus image from one capture, by a plane sweep over object distance. Parses the flags,
+// reads the inputs (the stack's format: io/psf_stack.hpp), runs decode/depthmap/depthmap_run and
+// writes io/depthmap_json's files into -o DIR, together: depth.tif (float32, metres),
+// confidence.tif (float32, [0, 1]), all_in_focus.tif (float32), depthmap.png (depth in colour and
+// confidence in grey scaled to its maximum, side by side, a colour bar from near (dark) to far
+// (bright) at the right), depthmap.json (the summary, also on stdout with --json). Ctrl-C stops
+// after the current plane and writes the sweep over the planes finished.
 #include <filesystem>
 #include <iostream>
-#include <iterator>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "cli/commands.hpp"
 #include "cli/outputs/interrupt.hpp"
 #include "cli/outputs/progress.hpp"
-#include "core/errors/error.hpp"
-#include "core/files/atomic_file.hpp"
 #include "core/files/output_set.hpp"
 #include "core/image/image_io.hpp"
 #include "core/units/units.hpp"
-#include "decode/depthmap/depthmap.hpp"
+#include "decode/depthmap/depthmap_run.hpp"
+#include "io/depthmap_json.hpp"
 #include "io/mask_json.hpp"
 #include "io/psf_stack.hpp"
-#include "optimize/metrics/depth_loss.hpp"
 
 namespace pinmask::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using json = nlohmann::ordered_json;
-
-constexpr const char* kOutputFiles[] = {"depth.tif", "confidence.tif", "all_in_focus.tif",
-                                        "depthmap.png", "depthmap.json"};
 
 struct DepthmapCommandOptions {
     std::string capture;
     std::string mask;
     std::string psf_stack;
     std::string from, to;
-    int steps = 16;
+    int steps = DepthmapRequest{}.steps;
     bool steps_given = false;
-    double smooth = kDepthmapDefaultSmooth;
-    double nsr = 0.01;
-    int window = 121;
+    double smooth = DepthmapRequest{}.smooth;
+    double nsr = DepthmapRequest{}.wiener_nsr;
+    int window = DepthmapRequest{}.window;
     std::string output_dir = "depthmap_out";
     bool json = false;
 };
-
-// A blue-to-yellow ramp (dark near, bright far) for t in [0, 1].
-void ramp(double t, double& r, double& g, double& b) {
-    t = std::clamp(t, 0.0, 1.0);
-    r = std::clamp(1.5 * t - 0.25, 0.0, 1.0);
-    g = std::clamp(0.15 + 0.8 * t, 0.0, 1.0);
-    b = std::clamp(0.55 + 0.5 * t - 1.0 * t * t, 0.0, 1.0);
-}
-
-// Depth (colour, by 1/u between the first and last plane) | confidence (grey, scaled to its
-// maximum) | colour bar.
-Image picture(const DepthmapResult& r) {
-    const int rows = static_cast<int>(r.depth_m.rows()), cols = static_cast<int>(r.depth_m.cols());
-    const int gap = 8, bar = std::max(8, cols / 16);
-    Image out(rows, 2 * cols + 2 * gap + bar, 3);
-    for (auto& c : out.channels) c.setOnes();
-    auto inv = [](double u) { return std::isinf(u) ? 0.0 : 1.0 / u; };
-    const double near = inv(r.distances_m.front()), far = inv(r.distances_m.back());
-    // Confidence in grey from 0 (black) to its largest value (white): its values are small when
-    // the cost curves are shallow, and the picture shows where it is high.
-    const double cmax = r.confidence.maxCoeff() > 0.0 ? r.confidence.maxCoeff() : 1.0;
-    for (int i = 0; i < rows; ++i) {
-        for (int j = 0; j < cols; ++j) {
-            const double t = near == far ? 0.0 : (inv(r.depth_m(i, j)) - near) / (far - near);
-            double cr, cg, cb;
-            ramp(t, cr, cg, cb);
-            out.channels[0](i, j) = cr;
-            out.channels[1](i, j) = cg;
-            out.channels[2](i, j) = cb;
-            for (int k = 0; k < 3; ++k)
-                out.channels[k](i, cols + gap + j) = r.confidence(i, j) / cmax;
-        }
-        // The bar: near at the top, far at the bottom.
-        double cr, cg, cb;
-        ramp(rows > 1 ? double(i) / (rows - 1) : 0.0, cr, cg, cb);
-        for (int j = 2 * cols + 2 * gap; j < 2 * cols + 2 * gap + bar; ++j) {
-            out.channels[0](i, j) = cr;
-            out.channels[1](i, j) = cg;
-            out.channels[2](i, j) = cb;
-        }
-    }
-    return out;
-}
-
-json finite_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
-
-json summary(const DepthmapResult& r, const DepthmapCommandOptions& o, std::size_t planned) {
-    json planes = json::array();
-    for (std::size_t k = 0; k < r.distances_m.size(); ++k) {
-        planes.push_back({{"object_distance_m", finite_or_null(r.distances_m[k])},
-                          {"pixel_fraction", r.plane_fraction[k]},
-                          {"mean_cost", r.plane_cost[k]},
-                          {"evidence", r.plane_evidence[k]}});
-    }
-    return json{
-        {"capture", o.capture},
-        {"mask", o.mask.empty() ? json(nullptr) : json(o.mask)},
-        {"psf_stack", o.psf_stack.empty() ? json(nullptr) : json(o.psf_stack)},
-        {"rows", r.depth_m.rows()},
-        {"cols", r.depth_m.cols()},
-        {"planes_planned", planned},
-        {"planes_done", r.distances_m.size()},
-        {"interrupted", r.interrupted},
-        {"wiener_nsr", o.nsr},
-        {"window_px", o.window},
-        {"smooth", o.smooth},
-        {"capture_depth_m", finite_or_null(r.capture_depth_m)},
-        {"capture_confidence", r.capture_confidence},
-        {"capture_evidence_depth_m", finite_or_null(r.capture_evidence_depth_m)},
-        {"depth_min_m", finite_or_null(r.depth_min_m)},
-        {"depth_median_m", finite_or_null(r.depth_median_m)},
-        {"depth_max_m", finite_or_null(r.depth_max_m)},
-        {"confidence_median", r.confidence_median},
-        {"planes", planes},
-        {"files", std::vector<std::string>(std::begin(kOutputFiles), std::end(kOutputFiles))}};
-}
 
 void run(const DepthmapCommandOptions& o) {
     const fs::path dir(o.output_dir);
@@ -139,69 +53,50 @@ void run(const DepthmapCommandOptions& o) {
     if (!o.psf_stack.empty()) stack = io::read_psf_stack(o.psf_stack);
     // Before any work: no output may replace an input or another output (core/files/output_set).
     std::vector<NamedPath> outputs;
-    for (const char* name : kOutputFiles) outputs.push_back({"-o", dir / name, true});
+    for (const fs::path& p : io::depthmap_file_paths(dir)) outputs.push_back({"-o", p, true});
     std::vector<NamedPath> inputs{{"CAPTURE", o.capture}, {"--mask", o.mask}};
     for (const fs::path& p : stack.files) inputs.push_back({"--psf-stack", p});
     plan_outputs(inputs, outputs);
-    Mask mask;
-    if (!o.mask.empty()) mask = io::read_mask_file(o.mask);
-    LoadedImage loaded = read_image(o.capture);
-    Plane grey = Plane::Zero(loaded.image.rows(), loaded.image.cols());
-    for (const Plane& ch : loaded.image.channels) grey += ch;
-    grey /= static_cast<double>(loaded.image.n_channels());
-    if (!is_all_finite(grey)) throw invalid_field("CAPTURE", o.capture, "holds NaN or Inf");
-    if (o.window < 3 || o.window % 2 == 0 || o.window > std::min(grey.rows(), grey.cols())) {
-        throw invalid_field("--window", std::to_string(o.window),
-                            "must be odd, >= 3 and at most the capture's smaller side");
-    }
-    DepthmapOptions d;
-    std::vector<PsfStackPlane> planes;
+    DepthmapRequest q;
+    if (!o.mask.empty()) q.mask = io::read_mask_file(o.mask);
+    q.capture = read_image(o.capture).image;
+    q.capture_name = o.capture;
+    q.mask_name = o.mask;
+    q.psf_stack_name = o.psf_stack;
     if (o.psf_stack.empty()) {
-        d.distances_m = depth_range(parse_length_m(o.from, "--from"),
-                                    parse_length_m(o.to, "--to", AllowInfinity::kYes), o.steps);
+        q.from_m = parse_length_m(o.from, "--from");
+        q.to_m = parse_length_m(o.to, "--to", AllowInfinity::kYes);
+        q.steps = o.steps;
     } else {
-        for (std::size_t k = 0; k < stack.psfs.size(); ++k) {
-            planes.push_back({stack.distances_m[k], std::move(stack.psfs[k])});
-            d.distances_m.push_back(stack.distances_m[k]);
-        }
+        for (std::size_t k = 0; k < stack.psfs.size(); ++k)
+            q.psf_stack.push_back({stack.distances_m[k], std::move(stack.psfs[k])});
     }
-    d.smooth = o.smooth;
-    d.wiener_nsr = o.nsr;
-    d.window = o.window;
-    d.stop = &install_interrupt_flag();
+    q.smooth = o.smooth;
+    q.wiener_nsr = o.nsr;
+    q.window = o.window;
+    q.stop = &install_interrupt_flag();
     ProgressLine bar("pinmask depthmap");
-    bar.phase("plane sweep over " + std::to_string(d.distances_m.size()) + " distances");
-    d.progress = [&](std::size_t done, std::size_t total) {
+    q.progress = [&](std::size_t done, std::size_t total) {
+        if (done == 0) {
+            bar.phase("plane sweep over " + std::to_string(total) + " distances");
+            return;
+        }
         bar.update(double(done) / double(total),
                    std::to_string(done) + "/" + std::to_string(total) + " planes");
     };
-    const DepthmapResult r =
-        o.psf_stack.empty() ? depthmap(grey, mask, d) : depthmap(grey, planes, d);
+    DepthmapReport report = run_depthmap_request(std::move(q));
     bar.finish();
-    const json j = summary(r, o, d.distances_m.size());
-    fs::create_directories(dir);
-    StagedFiles files;
-    files.stage(dir / "depth.tif", [&](const fs::path& tmp) {
-        write_tiff(tmp, Image(r.depth_m), SampleFormat::kFloat32);
-    });
-    files.stage(dir / "confidence.tif", [&](const fs::path& tmp) {
-        write_tiff(tmp, Image(r.confidence), SampleFormat::kFloat32);
-    });
-    files.stage(dir / "all_in_focus.tif", [&](const fs::path& tmp) {
-        write_tiff(tmp, Image(r.all_in_focus), SampleFormat::kFloat32);
-    });
-    files.stage(dir / "depthmap.png", [&](const fs::path& tmp) { write_png(tmp, picture(r), 8); });
-    files.stage_bytes(dir / "depthmap.json", j.dump(2) + "\n");
-    files.commit();
+    io::write_depthmap_files(report, dir);
+    const DepthmapResult& r = report.result;
     if (r.interrupted) {
         std::cerr << "depthmap: interrupted after " << r.distances_m.size() << " of "
-                  << d.distances_m.size() << " planes: wrote the sweep over those\n";
+                  << report.planes_planned << " planes: wrote the sweep over those\n";
     }
     if (o.json) {
-        std::cout << j.dump(2) << "\n";
+        std::cout << io::depthmap_json(report).dump(2) << "\n";
         return;
     }
-    for (const auto& p : files.final_paths()) std::cerr << "wrote " << p.string() << "\n";
+    for (const auto& p : io::depthmap_file_paths(dir)) std::cerr << "wrote " << p.string() << "\n";
     std::cout << "depth " << format_length(r.depth_min_m) << " .. " << format_length(r.depth_max_m)
               << " (median " << format_length(r.depth_median_m) << "), median confidence "
               << r.confidence_median << "; whole capture " << format_length(r.capture_depth_m)

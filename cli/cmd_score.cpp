@@ -1,10 +1,4 @@
-// `pinmask score`: metrics of one or more masks, one row per mask. Only what --metrics asks for
-// is computed; the numerics are optimize/metrics/mask_metrics (the same set compare and search
-// use); this file parses flags, calls it per mask, and prints.
-#include <iomanip>
 #include <iostream>
-#include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -12,169 +6,91 @@
 #include "cli/commands.hpp"
 #include "cli/options/analytic_setup.hpp"
 #include "cli/options/depth_range_flags.hpp"
+#include "cli/options/flag_names.hpp"
 #include "cli/options/noise_options.hpp"
 #include "cli/outputs/robust_decoder_files.hpp"
-#include "core/errors/error.hpp"
 #include "io/mask_json.hpp"
-#include "optimize/metrics/mask_metrics.hpp"
+#include "io/score_json.hpp"
 #include "optimize/metrics/metric_spellings.hpp"
+#include "optimize/metrics/score_run.hpp"
 
 namespace pinmask::cli {
 namespace {
 
 struct ScoreOptions {
     std::vector<std::string> masks;
-    std::string scenes = "letter-R,usaf,natural";
+    std::string scenes = "letter-R,usaf,natural";  // ScoreRequest's scenes as one list
     NoiseFlags noise;
     PriorFlags prior;
-    std::string metrics = "sidelobes,spectrum,analytic,wiener";
-    std::string nsr = "0.01";
-    std::string tv_lambda = "1e-3";
+    std::string metrics = "sidelobes,spectrum,analytic,wiener";  // ScoreRequest's metrics
+    std::string nsr = ScoreRequest{}.wiener_nsr;
+    std::string tv_lambda = ScoreRequest{}.tv_lambda;
     std::string robust, robust_decoder;
-    int tv_iterations = 200;
+    int tv_iterations = ScoreRequest{}.tv_iterations;
     double depth_from = 0, depth_to = 0;
-    int seeds = 1;
-    std::uint64_t seed = 0;
+    int seeds = ScoreRequest{}.noise_seeds;
+    std::uint64_t seed = ScoreRequest{}.seed;
     bool allow_violations = false, json = false, explain = false, quiet = false;
 };
 
-MaskMetricsOptions make_options(const ScoreOptions& o, const CLI::App& cmd, std::string& noise) {
-    MaskMetricsOptions m;
-    select_metrics(m, split_list(o.metrics, "--metrics"));
-    m.noise = noise_levels(o.noise, cmd, &noise);
-    m.prior = prior_spec(o.prior);
-    m.scenes = scene_specs(o.scenes);
-    m.simulation.noise_seeds = o.seeds;
-    m.simulation.seed = o.seed;
-    set_decoder_settings(m.simulation, o.nsr, o.tv_lambda, o.tv_iterations);
-    if (!o.robust.empty()) m.robust = parse_fabrication_errors(o.robust);
-    m.depth_range =
-        depth_range_of(cmd, o.depth_from, o.depth_to, m.depth, "add depth to --metrics");
-    m.validate();
-    return m;
-}
-
-std::vector<std::string> explain_lines(const ScoreOptions& o, const MaskMetricsOptions& m,
-                                       const std::string& noise) {
-    std::vector<std::string> e;
-    const auto line = [&](bool on, const std::string& name, const std::string& what) {
-        e.push_back(name + ": " + (on ? what : "skipped (not in --metrics)"));
-    };
-    line(m.sidelobes, "sidelobes", "torus autocorrelation from the n x n pattern DFT");
-    line(m.spectrum, "spectrum",
-         "min |P^|, flatness, open fraction, light gain from the pattern DFT; OTF condition over "
-         "the kernel passband |K^| >= 0.1 max |K^|; spectral zeros |P^| < 1e-3 sqrt(K) there");
-    line(m.analytic, "analytic",
-         "closed-form expected Wiener MSE over one period, " + noise + ", NSR " + o.nsr +
-             ", plus the per-frequency optimal Wiener bound; prior " + m.prior.description());
-    for (const auto& [on, name] :
-         {std::pair{m.wiener, std::string("wiener")}, std::pair{m.tv, std::string("tv")}}) {
-        line(on, name,
-             "simulated one period (cyclic model: capture = scene (*) PSF, " + noise + "), " +
-                 std::to_string(m.scenes.size()) + " scene(s) x " + std::to_string(o.seeds) +
-                 " noise seed(s)");
-    }
-    if (m.robust.any()) {
-        line(m.analytic, "robust",
-             "the analytic figure expected under fabrication errors (" + m.robust.description() +
-                 "), decoded with the nominal PSF: closed form, no sampling");
-    }
-    line(m.depth, "depth",
-         "Cramer-Rao bound on the distance of a point source on the axis (exact-geometry PSF over "
-         "the sensor, its derivative in 1/u, Poisson + read noise of the photon level), worst "
-         "over " +
-             std::to_string(kDepthSamples) + " distances equally spaced in 1/u");
-    if (!m.tv) e.push_back("tv: add tv to --metrics to run TV-L2 decodes (slow)");
-    if (!(m.wiener || m.tv)) e.push_back("scene rendering: skipped (no simulated metric)");
-    e.push_back("full-sensor simulation: skipped (the cyclic model needs one period only)");
-    return e;
+ScoreRequest make_request(const ScoreOptions& o, const CLI::App& cmd) {
+    ScoreRequest q;
+    q.metrics = split_list(o.metrics, "--metrics");
+    MaskMetricsOptions chosen;
+    select_metrics(chosen, q.metrics);
+    q.noise = noise_levels(o.noise, cmd, &q.noise_text);
+    q.prior = prior_spec(o.prior);
+    q.scenes = split_list(o.scenes, "--scenes");
+    q.noise_seeds = o.seeds;
+    q.seed = o.seed;
+    q.wiener_nsr = o.nsr;
+    q.tv_lambda = o.tv_lambda;
+    q.tv_iterations = o.tv_iterations;
+    if (!o.robust.empty()) q.robust = o.robust;
+    const DepthRange range =
+        depth_range_of(cmd, o.depth_from, o.depth_to, chosen.depth, "add depth to --metrics");
+    q.depth_from_m = range.from_m;
+    q.depth_to_m = range.to_m;
+    q.explain = o.explain;
+    return q;
 }
 
 void run(const ScoreOptions& o, const CLI::App& cmd) {
-    std::string noise;
-    MetricsContext context(make_options(o, cmd, noise));
-    const MaskMetricsOptions& m = context.options();
+    ScoreRequest q = make_request(o, cmd);
+    const MaskMetricsOptions m = q.options();
     if (!o.robust_decoder.empty() || cmd.get_option("--robust-decoder")->count() > 0)
         check_robust_decoder_request(o.robust_decoder, o.masks, m.noise.size());
-    std::vector<std::string> explain = explain_lines(o, m, noise);
-    std::vector<nlohmann::ordered_json> rows;
-    std::string usage;  // --robust-decoder: how to decode with it
     io::MaskReadOptions ro;
     ro.allow_spacing_violations = o.allow_violations;
-    for (std::size_t i = 0; i < o.masks.size(); ++i) {
-        const std::string& path = o.masks[i];
-        if (!o.quiet && !o.json && (m.tv || o.masks.size() > 1)) {
-            std::cerr << "score: " << i + 1 << "/" << o.masks.size() << " " << path
+    for (const std::string& path : o.masks) q.masks.push_back(io::read_mask_file(path, ro));
+    const Mask first = q.masks.front();  // --robust-decoder's one mask
+    q.names = o.masks;
+    q.progress = [&](std::size_t i, std::size_t count) {
+        if (!o.quiet && !o.json && (m.tv || count > 1))
+            std::cerr << "score: " << i + 1 << "/" << count << " " << o.masks[i]
                       << (m.tv ? " (TV decodes)" : "") << "\n";
-        }
-        const Mask mask = io::read_mask_file(path, ro);
-        const MaskMetrics mm = compute_mask_metrics(mask, context);
-        nlohmann::ordered_json row;
-        row["mask"] = path;
-        row["geometry_hash"] = geometry_hash(mask);
-        row["n"] = mm.n;
-        row["holes"] = mm.holes;
-        row["pixels_per_cell"] = mm.pixels_per_cell;
-        row["period_px"] = mm.period_px;
-        nlohmann::ordered_json per_scene = nlohmann::ordered_json::object();
-        metrics_json(mm, row, &per_scene);
-        if (!per_scene.empty()) row["per_scene"] = per_scene;
-        if (!mm.kernel_description.empty())
-            explain.push_back("kernel of " + path + ": " + mm.kernel_description);
-        if (m.analytic && o.explain) {
-            const PriorRelevance pr = prior_relevance(context.prior(mm.period_px));
-            explain.push_back(
-                "prior at " + std::to_string(mm.period_px) +
-                " px: " + std::to_string(pr.irrelevant) + " of " + std::to_string(pr.total) +
-                " frequencies carry < 1e-6 of its peak power (irrelevant to the analytic error; "
-                "still summed, nothing skipped); relevant up to radius " +
-                std::to_string(pr.highest_relevant_radius) + " cycles per period");
-        }
-        if (!o.robust_decoder.empty()) {
-            const RobustDecoderFiles f =
-                write_robust_decoder_files(o.robust_decoder, mask, path, m.robust,
-                                           context.prior(mm.period_px), m.noise.front().model);
-            row["robust_decoder"] = {{"psf", f.psf_tiff},
-                                     {"psf_npy", f.psf_npy},
-                                     {"nsr_map", f.nsr_npy},
-                                     {"floored", f.floored}};
-            if (!o.json) usage = robust_decoder_usage(f, path);
-        }
-        rows.push_back(std::move(row));
+    };
+    ScoreReport r = run_score_request(std::move(q));
+    for (std::string& line : r.explain) line = spell_flags(line);
+    std::vector<nlohmann::ordered_json> rows;
+    std::string usage;  // --robust-decoder: how to decode with it
+    for (const ScoreRow& row : r.rows) {
+        rows.push_back(io::score_row_json(row));
+        if (o.robust_decoder.empty()) continue;
+        const RobustDecoderFiles f = write_robust_decoder_files(
+            o.robust_decoder, first, row.name, m.robust, r.context->prior(row.metrics.period_px),
+            m.noise.front().model);
+        rows.back()["robust_decoder"] = {{"psf", f.psf_tiff},
+                                         {"psf_npy", f.psf_npy},
+                                         {"nsr_map", f.nsr_npy},
+                                         {"floored", f.floored}};
+        if (!o.json) usage = robust_decoder_usage(f, row.name);
     }
     if (o.explain) {
-        for (const auto& line : explain) std::cerr << "explain: " << line << "\n";
+        for (const auto& line : r.explain) std::cerr << "explain: " << line << "\n";
     }
     if (!o.json) return void(std::cout << metrics_table_text(rows, m) << usage);
-    nlohmann::ordered_json j;
-    j["masks"] = rows;
-    nlohmann::ordered_json levels = nlohmann::ordered_json::array();
-    for (const NoiseLevel& level : m.noise) {
-        nlohmann::ordered_json l = noise_json(level.model);
-        l["key"] = level.key;
-        levels.push_back(l);
-    }
-    j["settings"] = {{"metrics", o.metrics},
-                     {"scenes", o.scenes},
-                     {"noise", levels},
-                     {"prior", m.prior.description()},
-                     {"nsr", o.nsr},
-                     {"tv_lambda", o.tv_lambda},
-                     {"seeds", o.seeds},
-                     {"seed", o.seed},
-                     {"tv_iterations", o.tv_iterations},
-                     {"robust", m.robust.description()}};
-    if (m.depth) {
-        j["settings"]["depth_from_m"] = o.depth_from;  // 0: the working distance / 2
-        j["settings"]["depth_to_m"] = o.depth_to;      // 0: twice the working distance
-    }
-    if (o.noise.photons.empty()) {
-        std::vector<double> snrs;
-        for (const NoiseLevel& level : m.noise) snrs.push_back(level.model.snr_db);
-        j["settings"]["snr_db"] = snrs;
-    }
-    if (o.explain) j["explain"] = explain;
-    std::cout << j.dump(2) << "\n";
+    std::cout << io::score_json(r, rows, o.explain).dump(2) << "\n";
 }
 
 void setup(CLI::App& app) {

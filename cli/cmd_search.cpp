@@ -1,20 +1,15 @@
 // `pinmask search`: find masks for a camera that decode better than random draws. Parses flags
 // (and --config), calls optimize/search/search_pipeline, writes the outputs
-// (cli/outputs/search_outputs).
-#include <cmath>
-#include <cstdlib>
+// (cli/outputs/search_outputs) and prints the summary or io/search_json's JSON.
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <optional>
-#include <thread>
 
 #include "cli/command_footers.hpp"
 #include "cli/commands.hpp"
 #include "cli/options/analytic_setup.hpp"
 #include "cli/options/camera_options.hpp"
 #include "cli/options/depth_range_flags.hpp"
-#include "cli/options/flag_names.hpp"
 #include "cli/options/noise_options.hpp"
 #include "cli/options/psf_options.hpp"
 #include "cli/options/search_options.hpp"
@@ -25,10 +20,8 @@
 #include "cli/outputs/search_snapshot.hpp"
 #include "cli/search_cluster.hpp"
 #include "core/errors/error.hpp"
-#include "core/files/output_set.hpp"
-#include "core/units/units.hpp"
-#include "io/optics_json.hpp"
 #include "io/search_config.hpp"
+#include "io/search_json.hpp"
 #include "optimize/metrics/mask_metrics.hpp"
 #include "optimize/search/mpi/mpi_comm.hpp"
 #include "optimize/search/search_pipeline.hpp"
@@ -40,18 +33,7 @@ namespace {
 SearchPipelineOptions make_options(const SearchCliOptions& o, const CLI::App& cmd) {
     SearchPipelineOptions p = search_pipeline_options(o, cmd);
     if (o.output.empty()) throw InvalidInput("-o/--output: an output folder is required");
-    {
-        const std::filesystem::path dir = o.output;  // rank-N.mask.json are checked when staged
-        std::vector<NamedPath> outs{{"-o (run log)", dir / "run-log.csv", true},
-                                    {"-o (summary)", dir / "summary.md", true},
-                                    {"-o (timing)", dir / "timing.csv", true},
-                                    {"-o (config)", dir / "search.config.json", true},
-                                    {"-o (best so far)", dir / kBestSoFarName, true}};
-        if (p.max_holes > 0)
-            for (const char* f : {"holes.csv", "holes.svg", "holes.png"})
-                outs.push_back({"-o (per-K table and plot)", dir / f, true});
-        plan_outputs({{"--config", o.config}}, outs);
-    }
+    plan_search_outputs(o.output, p.max_holes > 0, o.config);
     return p;
 }
 
@@ -68,32 +50,9 @@ void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd,
                   << ": the chains and islands differ, so this is not the same search\n";
     ProgressLine bar("pinmask search");
     const auto& interrupted = install_interrupt_flag();
-    // Rank 0 keeps its best so far on disk while the run lasts (cli/outputs/search_snapshot):
-    // what its chains find, and every chain's best at each checkpoint.
-    std::optional<BestSoFarSnapshot> snapshot;
-    if (root) {
-        Mask tmpl = p.tmpl;
-        tmpl.provenance.seed = p.search.seed;
-        tmpl.provenance.generator = p.generator;
-        tmpl.provenance.family =
-            std::string("search:") +
-            (p.search.strategy == SearchStrategy::kRandom ? "random" : "anneal");
-        snapshot.emplace(std::filesystem::path(o.output) / kBestSoFarName, std::move(tmpl),
-                         &interrupted);
-        p.search.on_improvement = [&snap = *snapshot](const Pattern& pattern, double objective) {
-            snap.offer(pattern, objective);
-        };
-        if (p.islands.checkpoint) {
-            p.islands.checkpoint = [write = p.islands.checkpoint, &snap = *snapshot](
-                                       std::int64_t segment, std::int64_t every,
-                                       const std::vector<ChainState>& states) {
-                write(segment, every, states);
-                for (const ChainState& s : states)
-                    if (!s.top.items().empty())
-                        snap.offer(s.top.items().front().pattern, s.top.items().front().objective);
-            };
-        }
-    }
+    // Rank 0 keeps its best so far on disk while the run lasts (cli/outputs/search_snapshot).
+    std::unique_ptr<BestSoFarSnapshot> snapshot;
+    if (root) snapshot = attach_best_so_far(p, o.output, &interrupted);
     const SearchPipelineSummary s = run_search_pipeline(
         p, &interrupted,
         [&](const std::string& phase, double fraction, const std::string& text) {
@@ -108,17 +67,7 @@ void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd,
         std::cerr << "pinmask search: interrupted; writing the best " << s.ranked.size()
                   << " candidate(s) found so far\n";
     }
-    if (o.explain) {
-        const PriorRelevance& pr = s.prior_relevance;
-        std::cerr << "explain: prior " << s.prior_description << ": " << pr.irrelevant << " of "
-                  << pr.total
-                  << " frequencies carry < 1e-6 of its peak power (irrelevant to the objective); "
-                     "relevant up to radius "
-                  << pr.highest_relevant_radius
-                  << " cycles per period. Skipped: nothing (the objective still sums every "
-                     "frequency; patterns with a spectral zero where the kernel passes light "
-                  << (p.allow_spectral_zeros ? "were kept, flagged" : "were rejected") << ")\n";
-    }
+    if (o.explain) std::cerr << search_explain_text(s, p.allow_spectral_zeros);
     const auto paths = write_search_outputs(o.output, s, resolved_config(o, p, s, comm.size()));
     std::optional<RobustDecoderFiles> decoder;  // robust-filter: rank 1's decoder beside it
     if (p.objective == ObjectiveKind::kRobustFilter && !paths.empty()) {
@@ -136,65 +85,15 @@ void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd,
                   << (decoder ? robust_decoder_usage(*decoder, paths.front().string()) : "");
         return;
     }
-    nlohmann::ordered_json j{{"output", o.output},
-                             {"evaluations", s.search.evaluations},
-                             {"evaluations_per_chain", s.search.evaluations_per_chain},
-                             {"stop_reason", search_termination_name(s.termination)},
-                             {"planned_s", s.planned_s},
-                             {"used_s", s.used_s},
-                             {"search_s", s.search_s},
-                             {"rerank_s", s.rerank_s},
-                             {"reranked", s.reranked}};
-    std::string scenes;
-    for (const std::string& n : s.rerank_scene_names) scenes += (scenes.empty() ? "" : ",") + n;
-    j["psnr_columns"] = {
-        {"analytic_wiener_psnr_db", "closed form over one period, prior " + s.prior_description},
-        {"sim_wiener_psnr_db", "simulated on scenes " + scenes +
-                                   " (cyclic model, the search's "
-                                   "noise, noise seed = --seed), Wiener NSR tuned per mask"},
-        {"sim_tv_psnr_db", "simulated on scenes " + scenes + ", TV-L2"}};
-    j["reordered"] = s.reordered;
-    for (std::size_t i = 0; i < s.ranked.size(); ++i) {
-        nlohmann::ordered_json r{{"rank", i + 1},
-                                 {"path", paths[i].string()},
-                                 {"geometry_hash", geometry_hash(s.ranked[i].mask)},
-                                 {"objective", s.ranked[i].objective},
-                                 {"reranked", s.ranked[i].reranked}};
-        for (const auto& [k, v] : s.ranked[i].mask.provenance.scores) r[k] = v;
-        if (std::isfinite(s.ranked[i].upper_bound_psnr_db))
-            r["upper_bound_psnr_db"] = s.ranked[i].upper_bound_psnr_db;
-        j["ranked"].push_back(r);
-    }
-    for (const RankedMask& r : s.best_per_holes) {
-        nlohmann::ordered_json row{{"holes", r.mask.pattern.pinholes.size()},
-                                   {"objective", r.objective},
-                                   {"spectral_zero", r.spectral_zero}};
-        for (const auto& [k, v] : r.mask.provenance.scores) row[k] = v;  // analytic PSNR, terms
-        if (std::isfinite(r.upper_bound_psnr_db))
-            row["upper_bound_psnr_db"] = r.upper_bound_psnr_db;
-        j["best_per_holes"].push_back(row);
-    }
-    if (decoder) j["robust_decoder"] = {{"psf", decoder->psf_npy}, {"nsr_map", decoder->nsr_npy}};
-    std::cout << j.dump(2) << "\n";
+    std::optional<std::pair<std::string, std::string>> decoder_files;
+    if (decoder) decoder_files = {{decoder->psf_npy, decoder->nsr_npy}};
+    std::cout << io::search_json(s, o.output, paths, decoder_files).dump(2) << "\n";
 }
 
-// Under mpirun every rank runs this. Set-up errors are every rank's alike: rank 0 reports, the
-// others leave silently with the same code. A later error may be one rank's: it ends the job.
-void run_on_ranks(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd) {
+void run_search(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd) {
     RankComm& comm = world_comm();  // MPI starts here, and only under a launcher
-    bool started = false;
-    try {
-        run(o, cf, cmd, comm, started);
-    } catch (const std::exception& e) {
-        if (comm.size() == 1) throw;
-        const int code = dynamic_cast<const InvalidInput*>(&e) ? 2 : 1;
-        if (!started && comm.rank() == 0) throw;
-        if (!started) std::exit(code);
-        std::cerr << "pinmask search: rank " << comm.rank() << ": " << spell_flags(e.what())
-                  << "\n";
-        abort_job_if_distributed(code);
-        throw;
-    }
+    run_on_ranks(comm, abort_job_if_distributed,
+                 [&](bool& started) { run(o, cf, cmd, comm, started); });
 }
 
 }  // namespace
@@ -294,7 +193,7 @@ void add_search(CLI::App& app) {
                 "reports robust_wiener_psnr_db beside the nominal figure.");
     cmd->callback([o, cf, cmd] {
         if (!o->config.empty()) apply_config(io::read_search_config(o->config), *cmd, *o);
-        run_on_ranks(*o, *cf, *cmd);
+        run_search(*o, *cf, *cmd);
     });
 }
 

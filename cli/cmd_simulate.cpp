@@ -1,8 +1,7 @@
 // `pinmask simulate`: mask + scene -> a simulated capture
 // (optimize/simulate/simulate_pipeline.hpp), optionally the whole sensor and a matching dark frame,
-// with the resolved configuration written next to the capture as OUT.config.json. All files are
-// staged and appear together or not at all.
-#include <cstdint>
+// with the resolved configuration (io/simulate_json) written next to the capture as
+// OUT.config.json. All files are staged and appear together or not at all.
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -11,18 +10,18 @@
 #include <string>
 #include <vector>
 
+#include "cli/command_footers.hpp"
 #include "cli/commands.hpp"
 #include "cli/options/flag_names.hpp"
 #include "cli/options/noise_options.hpp"
-#include "cli/options/simulate_config.hpp"
 #include "cli/outputs/image_output.hpp"
 #include "core/errors/error.hpp"
 #include "core/fft/fft.hpp"
 #include "core/files/atomic_file.hpp"
 #include "core/files/output_set.hpp"
 #include "core/units/units.hpp"
-#include "design/optics/working_distance.hpp"
 #include "io/mask_json.hpp"
+#include "io/simulate_json.hpp"
 #include "optimize/simulate/scenes.hpp"
 #include "optimize/simulate/simulate_pipeline.hpp"
 
@@ -53,27 +52,6 @@ struct SimulateOptions {
     std::string precision = "auto";
 };
 
-// The noise model from the flags; `notes` gets a line per noise stage that is not applied.
-NoiseModel noise_from_flags(const SimulateOptions& o, const CLI::App& cmd,
-                            std::vector<std::string>& notes) {
-    if (o.photons) {
-        if (cmd.count("--snr") > 0) {
-            throw invalid_field("--snr", o.snr, "cannot be combined with --photons");
-        }
-        return photon_model(*o.photons, o.sensor_flags, &notes);
-    }
-    refuse_sensor_flags_without_photons(cmd);
-    NoiseModel m;
-    if (o.snr == "inf" || o.snr == "+inf") {
-        m.kind = NoiseKind::kNone;
-        notes.push_back("noise skipped: --snr inf (noiseless capture)");
-        return m;
-    }
-    m.kind = NoiseKind::kGaussianSnr;
-    m.snr_db = parse_number(o.snr, "--snr");
-    return m;
-}
-
 void run(const SimulateOptions& o, const CLI::App& cmd) {
     if (o.threads > 0) set_fft_threads(o.threads);
     // Everything checkable before any work.
@@ -86,12 +64,9 @@ void run(const SimulateOptions& o, const CLI::App& cmd) {
                  {{"-o", o.output},
                   {"--dark-frame", o.dark_frame},
                   {"-o (config)", o.output + ".config.json"}});
-    if (o.sensor && !o.full_sensor) {
-        throw invalid_field("--sensor", *o.sensor, "only applies with --full-sensor");
-    }
     SimulatePipelineOptions po;
     SimulationOptions& sim = po.sim;
-    sim.noise = noise_from_flags(o, cmd, po.noise_notes);
+    sim.noise = one_noise_model(o.snr, o.photons, o.sensor_flags, cmd, po.noise_notes);
     po.photon_stages = {o.sensor_flags.optical_density.has_value(),
                         o.sensor_flags.dark_current.has_value(),
                         o.sensor_flags.read_noise.has_value(), o.sensor_flags.full_well.has_value(),
@@ -105,45 +80,34 @@ void run(const SimulateOptions& o, const CLI::App& cmd) {
                             "dark current or read noise to record");
     }
     po.scene = scene_from_name(o.scene);
-
     io::MaskReadOptions ro;
     ro.allow_spacing_violations = o.allow_violations;
     const Mask mask = io::read_mask_file(o.mask, ro);
     sim.full_sensor = o.full_sensor;
-    if (o.full_sensor && o.sensor) po.sensor = parse_size(*o.sensor, "--sensor");
+    // The pipeline refuses what does not go together (--sensor without --full-sensor, a
+    // distance or window without --geometry exact) and a distance the camera cannot focus.
+    if (o.sensor) po.sensor = parse_size(*o.sensor, "--sensor");
     po.exact_geometry = o.geometry == "exact";
-    if (po.exact_geometry) {
-        if (o.object_distance) {
-            po.object_distance_m =
-                parse_length_m(*o.object_distance, "--object-distance", AllowInfinity::kYes);
-        }
-        check_object_distance(mask.camera,
-                              po.object_distance_m.value_or(mask.camera.object_distance_m),
-                              "--object-distance");
-        if (o.size) po.window = parse_size(*o.size, "--size");  // typed ROWSxCOLS
-    } else if (o.object_distance || o.size) {
-        throw invalid_field(o.size ? "--size" : "--object-distance",
-                            o.size ? *o.size : *o.object_distance, "only with --geometry exact");
-    }
+    if (o.object_distance)
+        po.object_distance_m =
+            parse_length_m(*o.object_distance, "--object-distance", AllowInfinity::kYes);
+    if (o.size) po.window = parse_size(*o.size, "--size");  // typed ROWSxCOLS
     const SimulatePipelineResult r = run_simulate_pipeline(mask, po);
     const SimulatedCapture& s = r.capture;
-    const SimulatePipelineSummary& sum = r.summary;
-    const int m = sum.period_px;
+    const int m = r.summary.period_px;
     std::vector<std::string> explain;  // the library's lines, fields spelled as flags
-    for (const std::string& line : sum.explain) explain.push_back(spell_flags(line));
+    for (const std::string& line : r.summary.explain) explain.push_back(spell_flags(line));
     if (o.full_sensor && !s.whole_period_on_sensor) {
         std::cerr << "pinmask simulate: warning: the sensor is smaller than one " << m << " x " << m
                   << " period: no full period to decode\n";
     }
-
     warn_png_clipping("pinmask simulate", o.output, s.capture);
     warn_all_zero("pinmask simulate", "the capture", s.capture,
                   "no light counted, or every pixel saturated: check --photons and --full-well");
     if (!o.dark_frame.empty()) warn_png_clipping("pinmask simulate", o.dark_frame, s.dark);
-
     const std::string config_path = o.output + ".config.json";
-    SimulateConfigInputs ci{o.mask, o.output, o.dark_frame, o.geometry, o.full_sensor, o.seed};
-    const ordered_json config = simulate_config_json(ci, mask, po, r, explain);
+    io::SimulateConfigInputs ci{o.mask, o.output, o.dark_frame, o.geometry, o.full_sensor, o.seed};
+    const ordered_json config = io::simulate_config_json(ci, mask, po, r, explain);
 
     StagedFiles files;
     files.stage(o.output, [&](const fs::path& tmp) { write_image_as(tmp, o.output, s.capture); });
@@ -153,12 +117,11 @@ void run(const SimulateOptions& o, const CLI::App& cmd) {
     }
     files.stage_bytes(config_path, config.dump(2) + "\n");
     files.commit();
-
     if (o.explain) {
         for (const std::string& line : explain) std::cerr << "simulate: " << line << "\n";
     }
     if (o.json) {
-        std::cout << simulate_summary_json(ci, r, po.sim.noise).dump() << "\n";
+        std::cout << io::simulate_summary_json(ci, r, po.sim.noise).dump() << "\n";
         return;
     }
     std::cout << "wrote " << o.output << " (" << s.capture.cols() << " x " << s.capture.rows()
@@ -167,33 +130,13 @@ void run(const SimulateOptions& o, const CLI::App& cmd) {
     std::cout << "wrote " << config_path << "\n";
 }
 
-constexpr const char* kFooter =
-    "Model: the cyclic forward model over one period (docs/design.md section 2): capture = "
-    "scene (*) "
-    "PSF, circular convolution with the PSF centred as `pinmask decode` expects, so decoding "
-    "the capture with the mask returns the scene unshifted. --full-sensor repeats the period "
-    "over the sensor: the periodic extension of the one-period capture, which is exact for the "
-    "cyclic model; the period sits where the decoder's centred crop takes it. Noise is drawn per "
-    "sensor pixel.\n"
-    "Units: a uniform noiseless scene of value v gives v. Photon model: electrons / (N K), K the "
-    "pinholes, plus a background (film leak + dark current) that the dark frame removes: "
-    "`pinmask decode capture.tiff --dark dark.tiff ...`.\n"
-    "Files: the capture (-o: .tif/.tiff float32, .png 16-bit clipped to [0, 1], .npy float32), "
-    "OUT.config.json (the resolved configuration: mask, kernel, scene, noise, seed, tiling, "
-    "units), and the dark frame when asked. All appear together or none does.\n"
-    "Examples:\n"
-    "  pinmask simulate m.mask.json --scene usaf --snr 30 -o capture.tiff\n"
-    "  pinmask simulate m.mask.json --scene natural --photons 500 --read-noise 3 "
-    "--dark-current 10 --optical-density 2 --full-sensor --dark-frame dark.tiff "
-    "-o capture.tiff --explain";
-
 void setup(CLI::App& app) {
     auto o = std::make_shared<SimulateOptions>();
     auto* cmd = app.add_subcommand(
         "simulate",
         "Simulate a capture of a scene through a mask: one period (or the whole sensor), with "
         "Gaussian SNR noise or a photon/sensor noise model, seeded and deterministic.");
-    cmd->footer(kFooter);
+    cmd->footer(kSimulateFooter);
     cmd->add_option("mask", o->mask, "Mask file (*.mask.json); its PSF is synthesised")->required();
     cmd->add_option("--scene", o->scene,
                     "letter-R | usaf | siemens-star | checker | point | natural (seed 0) | an "

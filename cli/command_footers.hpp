@@ -1,5 +1,5 @@
-// The --help footers of score, compare and search (long teaching text kept out of the command
-// files so each stays parse -> call -> render).
+// The --help footers of score, compare, search, simulate and design (long teaching text kept out of
+// the command files so each stays parse -> call -> render).
 #pragma once
 
 namespace pinmask::cli {
@@ -105,5 +105,44 @@ inline constexpr const char* kRobustFooter =
     "(and NSR) as the nominal figure. Closed form (no sampling); no errors give exactly the "
     "nominal figure. Keys robust_wiener_psnr_db_snrS and robust_loss_db_snrS (nominal - robust); "
     "table column R.";
+
+inline constexpr const char* kSimulateFooter =
+    "Model: the cyclic forward model over one period (docs/design.md section 2): capture = "
+    "scene (*) "
+    "PSF, circular convolution with the PSF centred as `pinmask decode` expects, so decoding "
+    "the capture with the mask returns the scene unshifted. --full-sensor repeats the period "
+    "over the sensor: the periodic extension of the one-period capture, which is exact for the "
+    "cyclic model; the period sits where the decoder's centred crop takes it. Noise is drawn per "
+    "sensor pixel.\n"
+    "Units: a uniform noiseless scene of value v gives v. Photon model: electrons / (N K), K the "
+    "pinholes, plus a background (film leak + dark current) that the dark frame removes: "
+    "`pinmask decode capture.tiff --dark dark.tiff ...`.\n"
+    "Files: the capture (-o: .tif/.tiff float32, .png 16-bit clipped to [0, 1], .npy float32), "
+    "OUT.config.json (the resolved configuration: mask, kernel, scene, noise, seed, tiling, "
+    "units), and the dark frame when asked. All appear together or none does.\n"
+    "Examples:\n"
+    "  pinmask simulate m.mask.json --scene usaf --snr 30 -o capture.tiff\n"
+    "  pinmask simulate m.mask.json --scene natural --photons 500 --read-noise 3 "
+    "--dark-current 10 --optical-density 2 --full-sensor --dark-frame dark.tiff "
+    "-o capture.tiff --explain";
+
+inline constexpr const char* kDesignFooter =
+    "Every figure is at the working distance u (--object-distance; a point source at u: "
+    "1/z_eff = 1/f - 1/f' + 1/u): pitch, whole pixels per cell N, PSF size n N, periods on the "
+    "sensor, LSI mismatch against N; the indented \"u = inf\" lines are the distant-object "
+    "values the paper quotes. A solved pinhole (--solve pinhole, --pixels-per-cell) lands on the "
+    "fabrication grid (--fab-grid, or the --vendor preset's, default 1nm) and the table says how "
+    "far that moves the pitch at u. --json prints one object with unit-suffixed keys (_m = "
+    "metres, _px = pixels): keys without a suffix and \"_at_u\" keys are at u, \"_at_inf\" "
+    "keys at u = inf; infinite values are null, with the reason under \"notes\". The kernel row "
+    "is the kernel psf would build at N px per cell over the band (--bandwidth: a Gaussian of "
+    "that FWHM at 13 wavelengths), with the energy its support keeps; its warnings are psf's.\n"
+    "Examples:\n"
+    "  pinmask design --preset paper\n"
+    "  pinmask design --lens-focal 55mm --object-distance inf --json   (f = f': Fraunhofer)\n"
+    "  pinmask design --pixel-pitch 3.45um --sensor 2448x2048 --lens-focal 25mm \\\n"
+    "      --sensor-distance 20mm --object-distance 2m --wavelength 530nm --pixels-per-cell 21\n"
+    "      (solves d = 345 um for 21 whole pixels per cell at 2 m)\n"
+    "  pinmask design --wavelength 850nm --bandwidth 30nm   (an LED's 30 nm band around 850 nm)";
 
 }  // namespace pinmask::cli

@@ -1,7 +1,10 @@
 #include "cli/search_cluster.hpp"
 
+#include <cstdlib>
 #include <filesystem>
+#include <iostream>
 
+#include "cli/options/flag_names.hpp"
 #include "core/errors/error.hpp"
 #include "io/checkpoint.hpp"
 #include "io/search_run_config.hpp"
@@ -94,6 +97,23 @@ void setup_cluster(const ClusterFlags& f, RankComm& comm, const nlohmann::ordere
     p.islands.resume_segment = r.i64();
     const Bytes chains(message.begin() + 16, message.end());
     p.islands.resume = decode_chain_states(chains);
+}
+
+void run_on_ranks(RankComm& comm, const std::function<void(int)>& abort_job,
+                  const std::function<void(bool& started)>& work) {
+    bool started = false;
+    try {
+        work(started);
+    } catch (const std::exception& e) {
+        if (comm.size() == 1) throw;
+        const int code = dynamic_cast<const InvalidInput*>(&e) ? 2 : 1;
+        if (!started && comm.rank() == 0) throw;
+        if (!started) std::exit(code);
+        std::cerr << "pinmask search: rank " << comm.rank() << ": " << spell_flags(e.what())
+                  << "\n";
+        abort_job(code);
+        throw;
+    }
 }
 
 }  // namespace pinmask::cli

@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -32,5 +33,13 @@ nlohmann::ordered_json checkpoint_config(nlohmann::ordered_json resolved, int ra
 // `output` the -o folder (the checkpoint may not be one of its files).
 void setup_cluster(const ClusterFlags& f, RankComm& comm, const nlohmann::ordered_json& config,
                    const std::string& output, SearchPipelineOptions& p);
+
+// Runs work(started) on this rank; work sets `started` once its set-up is done. Set-up errors
+// are every rank's alike: rank 0 reports (the error is rethrown), the others leave silently with
+// the same code. A later error may be one rank's: it is said on stderr with the rank, and
+// abort_job(code) ends the job (the executable passes optimize/search/mpi's
+// abort_job_if_distributed). On one rank every error is rethrown.
+void run_on_ranks(RankComm& comm, const std::function<void(int)>& abort_job,
+                  const std::function<void(bool& started)>& work);
 
 }  // namespace pinmask::cli

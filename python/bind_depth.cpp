@@ -1,7 +1,7 @@
 // depth(): `pinmask depth`'s library pipeline (optimize/metrics/depth_loss depth_analysis) from
-// Python, one dict per distance with the keys of `depth --json`. Noise as metrics(): snr_db (one
-// level; inf: noiseless) or photons with the sensor stages; the Wiener NSR tuned as score tunes it
-// unless nsr gives a value.
+// Python, one dict per distance: io/depth_json's rendering, what `depth --json` prints. Noise as
+// metrics(): snr_db (one level; inf: noiseless) or photons with the sensor stages; the Wiener NSR
+// tuned as score tunes it unless nsr gives a value.
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -9,19 +9,17 @@
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
 #include "core/fft/fft.hpp"
+#include "io/depth_json.hpp"
 #include "optimize/metrics/depth_loss.hpp"
 #include "optimize/metrics/metric_spellings.hpp"
 #include "python/common.hpp"
+#include "python/json_value.hpp"
 #include "python/level_args.hpp"
 #include "python/result.hpp"
 #include "python/values.hpp"
 
 namespace pinmask::python {
 namespace {
-
-py::object finite_or_none(double v) {
-    return std::isfinite(v) ? py::object(py::float_(v)) : py::none();
-}
 
 // The one noise level: None for a noiseless run (snr_db = inf), else noise_levels_arg's.
 NoiseModel depth_noise(const py::object& snr_db, const py::object& photons,
@@ -78,18 +76,7 @@ void bind_depth(py::module_& m) {
                 py::gil_scoped_release release;
                 records = depth_analysis(mk, us, d);
             }
-            py::list out;
-            for (const DepthRecord& r : records) {
-                py::dict rec;
-                rec["object_distance_m"] = finite_or_none(r.object_distance_m);
-                rec["pixels_per_cell"] = r.pixels_per_cell;
-                rec["period_px"] = r.period_px;
-                rec["lsi_mismatch_px"] = r.lsi_mismatch_px;
-                rec["wiener_psnr_loss_db"] = finite_or_none(r.wiener_psnr_loss_db);
-                rec["tv_psnr_loss_db"] = finite_or_none(r.tv_psnr_loss_db);
-                rec["wiener_nsr"] = r.wiener_nsr;
-                out.append(rec);
-            }
+            const py::list out = json_value(io::depth_json(records));  // depth --json
             return as_result(out);
         },
         py::arg("mask"), py::arg("distances") = py::none(), py::arg("from_m") = py::none(),

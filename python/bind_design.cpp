@@ -8,6 +8,7 @@
 #include "core/units/units.hpp"
 #include "design/optics/camera.hpp"
 #include "design/optics/default_pinhole.hpp"
+#include "design/optics/design_run.hpp"
 #include "design/optics/fab_grid.hpp"
 #include "design/optics/image_plane.hpp"
 #include "design/optics/optics.hpp"
@@ -247,8 +248,6 @@ void bind_design(py::module_& m) {
             if (!std::isfinite(spacing) || spacing < 0)
                 throw invalid_field(field_ref("spacing"), std::to_string(spacing),
                                     "must be finite and >= 0");
-            OpticsOptions o;
-            o.lsi_tolerance_px = lsi_tolerance_px;
             Camera c = camera.value_or(paper_camera());
             const KernelModel model = parse_kernel_model(kernel, field_ref("kernel"));
             if (!(lsi_tolerance_px > 0) || !std::isfinite(lsi_tolerance_px)) {
@@ -289,79 +288,49 @@ void bind_design(py::module_& m) {
                                     "sets the grid a solved pinhole lands on: use it with " +
                                         field_ref("solve") + "='pinhole' or " +
                                         field_ref("pixels_per_cell"));
-            WorkingDistanceOptions wo{lsi_tolerance_px,
-                                      static_cast<int>(pixels_per_cell.value_or(0))};
-            py::dict solved;
-            if (solving) {
-                // As design: --solve pinhole keeps the start's pitch, so a start far from the
-                // optimum says where the optimum is.
-                if (!pixels_per_cell) {
-                    const std::string far = far_from_optimum_note(c);
-                    if (!far.empty() &&
-                        PyErr_WarnEx(PyExc_UserWarning,
-                                     ("pinmask: " + py_names::spell_keywords(far)).c_str(), 1) < 0)
-                        throw py::error_already_set();
-                }
-                const WorkingDistance start = compute_working_distance(c, g, wo);
-                if (start.pixels_per_cell > kMaxPixelsPerCell)
-                    throw invalid_field(field_ref("solve"), "pinhole",
-                                        "the pitch at u is " +
-                                            std::to_string(start.pixels_per_cell) +
-                                            " px per cell, above the " +
-                                            std::to_string(kMaxPixelsPerCell) + " px limit");
-                // d for exactly N at u, then on the fabrication grid (what export draws).
-                const double exact_m = pinhole_for_pixels_per_cell(c, start.pixels_per_cell);
-                if (const std::string big =
-                        solved_pinhole_too_large(exact_m, start.pixels_per_cell);
-                    !big.empty())
-                    throw invalid_field(
-                        field_ref(pixels_per_cell ? "pixels_per_cell" : "solve"),
-                        pixels_per_cell ? std::to_string(*pixels_per_cell) : "pinhole", big);
-                c.pinhole_m = pinhole_on_grid_m(exact_m, grid_nm);
-                const double shift = pixels_per_cell_at(c, c.object_distance_m) -
-                                     static_cast<double>(start.pixels_per_cell);
-                wo.pixels_per_cell = static_cast<int>(start.pixels_per_cell);
-                // The keys `design --json` adds for a solved pinhole.
-                solved["fab_grid_m"] = double(grid_nm) * 1e-9;
-                solved["pinhole_solved_m"] = exact_m;
-                solved["pinhole_on_grid_m"] = c.pinhole_m;
-                solved["grid_pitch_shift_px"] = shift;
-                solved["grid_period_shift_px"] = shift * g.n;
-            }
-            OpticsReport r = compute_optics(c, g, model, o);
-            const WorkingDistance wd = compute_working_distance(c, g, wo);
-            // As `pinmask design`: the kernel psf would build (band, model over the band, kept
-            // energy), and a kernel model outside its validity says so in the reason.
-            DesignKernel dk = design_kernel(c, g.n, wd.pixels_per_cell, kernel);
-            if (dk.kernel) {
-                r.kernel_model = dk.kernel->model;
-                r.kernel_reason = dk.kernel->model_reason;
-            }
-            KernelValidity& validity = dk.validity;
-            for (auto& w : validity.warnings) w = spell_fields(w, &optics_keyword);
-            if (!validity.model_accurate)
-                r.kernel_reason = "NOT accurate: " + validity.warnings.front();
-            py::dict d = optics_dict(r, wd, validity.warnings);
+            // The command's transaction (design/optics/design_run): the solve, the report, the
+            // kernel psf would build and the packing bound.
+            DesignRequest q;
+            q.camera = c;
+            q.geometry = g;
+            q.spacing_cells = spacing;
+            q.model = model;
+            q.kernel = kernel;
+            q.lsi_tolerance_px = lsi_tolerance_px;
+            if (pixels_per_cell) q.pixels_per_cell = static_cast<int>(*pixels_per_cell);
+            q.solve = solving && !pixels_per_cell;
+            q.grid.grid_nm = grid_nm;
+            q.spell = [](const std::string& w) { return spell_fields(w, &optics_keyword); };
+            const DesignReport r = run_design_request(q);
+            if (!r.far_from_optimum.empty() &&
+                PyErr_WarnEx(PyExc_UserWarning, ("pinmask: " + r.far_from_optimum).c_str(), 1) < 0)
+                throw py::error_already_set();
+            py::dict d = optics_dict(r.optics, r.working, r.kernel.validity.warnings);
             py::dict spectrum;
-            spectrum["bandwidth_m"] = c.bandwidth_m;
-            spectrum["wavelengths"] = band_wavelengths(c);
+            spectrum["bandwidth_m"] = r.camera.bandwidth_m;
+            spectrum["wavelengths"] = band_wavelengths(r.camera);
             d["spectrum"] = spectrum;
             py::dict k;
-            if (dk.kernel) {
+            if (r.kernel.kernel) {
                 k["support_px"] =
-                    py::make_tuple(dk.kernel->values.rows(), dk.kernel->values.cols());
-                k["enclosed_energy"] = dk.kernel->enclosed_energy;
-                k["support_capped"] = dk.kernel->support_capped;
+                    py::make_tuple(r.kernel.kernel->values.rows(), r.kernel.kernel->values.cols());
+                k["enclosed_energy"] = r.kernel.kernel->enclosed_energy;
+                k["support_capped"] = r.kernel.kernel->support_capped;
             } else {
-                k["not_built"] = dk.not_built;
+                k["not_built"] = r.kernel.not_built;
             }
             d["kernel"] = k;
-            for (auto item : solved) d[item.first] = item.second;
+            if (r.snap.solved) {  // the keys `design --json` adds for a solved pinhole
+                d["fab_grid_m"] = double(r.snap.grid_nm) * 1e-9;
+                d["pinhole_solved_m"] = r.snap.exact_m;
+                d["pinhole_on_grid_m"] = r.snap.on_grid_m;
+                d["grid_pitch_shift_px"] = r.snap.pitch_shift_px;
+                d["grid_period_shift_px"] = r.snap.pitch_shift_px * g.n;
+            }
             // As `design --json`: the spacing rule's packing bound on the pinhole count.
-            const PackingUpperBound most = packing_upper_bound(g.n, spacing);
             d["spacing_cells"] = spacing;
-            d["max_holes_at_spacing"] = most.count;
-            d["max_holes_reason"] = most.reason;
+            d["max_holes_at_spacing"] = r.packing.count;
+            d["max_holes_reason"] = r.packing.reason;
             return as_result(d);
         },
         py::arg("camera") = py::none(), py::arg("grid") = 16, py::arg("holes") = 20,

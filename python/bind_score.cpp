@@ -1,8 +1,7 @@
-// Scoring: score() is `pinmask score` on masks (paths or Mask objects): only the metric groups
-// asked for are computed (optimize/metrics/mask_metrics compute_mask_metrics with the selection of
-// optimize/metrics/metric_spellings select_metrics), rows built by io/metrics_json as the command
-// builds them, with score's defaults (scenes letter-R, usaf, natural; SNR 20, 30, 40 dB; NSR 0.01;
-// noise seed 0), and the rows carry the keys of `pinmask score --json`. robust_decoder=True adds
+// Scoring: score() is `pinmask score` on masks (paths or Mask objects): the command's transaction
+// optimize/metrics/score_run (only the metric groups asked for), with score's defaults (scenes
+// letter-R, usaf, natural; SNR 20, 30, 40 dB; NSR 0.01; noise seed 0), returned as io/score_json
+// renders it for `pinmask score --json`. robust_decoder=True adds
 // score --robust-decoder's decoder as arrays (the PSF and the per-frequency NSR map that
 // decode(psf=, nsr_map=) reads) instead of files.
 #include <string>
@@ -12,12 +11,14 @@
 #include "core/errors/field_names.hpp"
 #include "design/psf/psf.hpp"
 #include "io/mask_json.hpp"
-#include "io/metrics_json.hpp"
+#include "io/score_json.hpp"
 #include "optimize/metrics/mask_metrics.hpp"
 #include "optimize/metrics/metric_spellings.hpp"
 #include "optimize/metrics/robust_errors.hpp"
 #include "optimize/metrics/robust_wiener.hpp"
+#include "optimize/metrics/score_run.hpp"
 #include "python/common.hpp"
+#include "python/json_value.hpp"
 #include "python/level_args.hpp"
 #include "python/result.hpp"
 #include "python/values.hpp"
@@ -25,11 +26,6 @@
 namespace pinmask::python {
 
 namespace {
-
-// A JSON value of the library's as the Python value json.loads gives (null: None).
-py::object json_value(const nlohmann::ordered_json& j) {
-    return py::module_::import("json").attr("loads")(j.dump());
-}
 
 // metrics= as a list of names or one comma-separated string (as --metrics).
 std::vector<std::string> metric_names(const py::handle& metrics) {
@@ -61,24 +57,28 @@ void bind_score(py::module_& m) {
            int tv_iterations, int noise_seeds, std::uint64_t seed,
            const std::optional<std::string>& robust, bool robust_decoder, bool allow_violations,
            std::optional<double> depth_from, std::optional<double> depth_to) {
-            MaskMetricsOptions o;
-            select_metrics(o, metric_names(metrics));
-            if (!o.depth && (depth_from || depth_to)) {
+            ScoreRequest q;
+            q.metrics = metric_names(metrics);
+            MaskMetricsOptions chosen;
+            select_metrics(chosen, q.metrics);
+            if (!chosen.depth && (depth_from || depth_to)) {
                 throw InvalidInput(field_ref("depth_from_m") + "/" + field_ref("depth_to_m") +
                                    ": add 'depth' to metrics (the range is the depth group's)");
             }
-            o.depth_range.from_m = depth_from.value_or(0.0);
-            o.depth_range.to_m = depth_to.value_or(0.0);
+            q.depth_from_m = depth_from.value_or(0.0);
+            q.depth_to_m = depth_to.value_or(0.0);
             const SensorSettings sensor{read_noise, dark_current, full_well, optical_density, bits};
-            o.noise = noise_levels_arg(snr_db, photons, sensor, {20.0, 30.0, 40.0});
-            o.prior = prior_arg(prior, prior_scenes);
-            o.scenes = scene_specs_from_names(scenes);
-            o.simulation.noise_seeds = noise_seeds;
-            o.simulation.seed = seed;
-            set_decoder_settings(o.simulation, nsr, tv_lambda, tv_iterations);
-            if (robust) o.robust = parse_fabrication_errors(*robust);
-            o.validate();
-            if (masks.empty()) throw InvalidInput(field_ref("masks") + ": give at least one mask");
+            q.noise = noise_levels_arg(snr_db, photons, sensor, {20.0, 30.0, 40.0}, &q.noise_text);
+            q.prior = prior_arg(prior, prior_scenes);
+            q.scenes = scenes;
+            q.noise_seeds = noise_seeds;
+            q.seed = seed;
+            q.wiener_nsr = nsr;
+            q.tv_lambda = tv_lambda;
+            q.tv_iterations = tv_iterations;
+            q.robust = robust;
+            const MaskMetricsOptions o = q.options();
+            if (masks.empty()) throw InvalidInput("masks: give at least one mask");
             if (robust_decoder) {
                 if (!o.robust.any())
                     throw InvalidInput(field_ref("robust_decoder") + " needs " +
@@ -92,72 +92,37 @@ void bind_score(py::module_& m) {
                                         "needs one noise level (the filter depends on it), got " +
                                             std::to_string(o.noise.size()));
             }
-            std::vector<Mask> loaded;
-            std::vector<std::string> names;
             int index = 0;
             for (const py::handle& h : masks) {
                 ++index;
-                loaded.push_back(mask_arg(h, allow_violations));
-                names.push_back(py::isinstance<Mask>(h) ? "mask " + std::to_string(index)
-                                                        : py::str(h).cast<std::string>());
+                q.masks.push_back(mask_arg(h, allow_violations));
+                q.names.push_back(py::isinstance<Mask>(h) ? "mask " + std::to_string(index)
+                                                          : py::str(h).cast<std::string>());
             }
-            MetricsContext context(o);
-            py::list rows;
-            for (std::size_t i = 0; i < loaded.size(); ++i) {
-                MaskMetrics mm;
+            const Mask first = q.masks.front();  // robust_decoder's one mask
+            ScoreReport r;
+            {
+                py::gil_scoped_release release;
+                r = run_score_request(std::move(q));
+            }
+            std::vector<nlohmann::ordered_json> rows;
+            for (const ScoreRow& row : r.rows) rows.push_back(io::score_row_json(row));
+            py::dict d = json_value(io::score_json(r, rows, false));  // score --json's dict
+            if (robust_decoder) {  // the command writes these arrays as files
+                RobustDecoderInputs in;
                 {
                     py::gil_scoped_release release;
-                    mm = compute_mask_metrics(loaded[i], context);
+                    const RobustWienerModel model(first, o.robust,
+                                                  r.context->prior(r.rows[0].metrics.period_px),
+                                                  o.noise.front().model);
+                    in = model.robust_decoder_inputs(pattern_spectrum(first.pattern));
                 }
-                nlohmann::ordered_json row_json, per_scene = nlohmann::ordered_json::object();
-                row_json["mask"] = names[i];
-                row_json["geometry_hash"] = geometry_hash(loaded[i]);
-                row_json["n"] = mm.n;
-                row_json["holes"] = mm.holes;
-                row_json["pixels_per_cell"] = mm.pixels_per_cell;
-                row_json["period_px"] = mm.period_px;
-                io::metrics_json(mm, row_json, &per_scene);  // score --json's keys and values
-                if (!per_scene.empty()) row_json["per_scene"] = per_scene;
-                py::dict row = json_value(row_json);
-                if (robust_decoder) {
-                    RobustDecoderInputs in;
-                    {
-                        py::gil_scoped_release release;
-                        const RobustWienerModel model(loaded[i], o.robust,
-                                                      context.prior(mm.period_px),
-                                                      o.noise.front().model);
-                        in = model.robust_decoder_inputs(pattern_spectrum(loaded[i].pattern));
-                    }
-                    py::dict rd;
-                    rd["psf"] = to_array(std::move(in.psf));
-                    rd["nsr_map"] = to_array(std::move(in.nsr));
-                    rd["floored"] = in.floored;
-                    row["robust_decoder"] = rd;
-                }
-                rows.append(row);
+                py::dict rd;
+                rd["psf"] = to_array(std::move(in.psf));
+                rd["nsr_map"] = to_array(std::move(in.nsr));
+                rd["floored"] = in.floored;
+                d["masks"].cast<py::list>()[0]["robust_decoder"] = rd;
             }
-            py::list levels;
-            for (const NoiseLevel& level : o.noise) levels.append(py::str(level.key));
-            py::dict settings;
-            py::list chosen;
-            for (const std::string& n : metric_names(metrics)) chosen.append(n);
-            settings["metrics"] = chosen;
-            settings["scenes"] = scenes;
-            settings["noise"] = levels;
-            settings["prior"] = o.prior.description();
-            settings["nsr"] = nsr;
-            settings["tv_lambda"] = tv_lambda;
-            settings["seeds"] = noise_seeds;
-            settings["seed"] = seed;
-            settings["tv_iterations"] = tv_iterations;
-            settings["robust"] = o.robust.description();
-            if (o.depth) {
-                settings["depth_from_m"] = o.depth_range.from_m;  // 0: working distance / 2
-                settings["depth_to_m"] = o.depth_range.to_m;      // 0: twice the working distance
-            }
-            py::dict d;
-            d["masks"] = rows;
-            d["settings"] = settings;
             return as_result(d);
         },
         py::arg("masks"), py::arg("metrics") = "sidelobes,spectrum,analytic,wiener",
@@ -191,7 +156,9 @@ score --seeds); seed: the base seed of the noise. robust: fabrication errors
 robust_loss_db_<level>. robust_decoder=True (with robust, one mask, one noise level): adds the
 row's robust_decoder {psf, nsr_map (arrays; decode(psf=..., nsr_map=...) reads them), floored}
 that score --robust-decoder writes as files. allow_violations: score masks that break their
-spacing rule. Returns {masks: [rows], settings}; infinite figures are None (null in --json).)");
+spacing rule. Returns what `pinmask score --json` prints, {masks: [rows], settings} (infinite
+figures None), the one transaction optimize/metrics/score_run rendered by io/score_json;
+robust_decoder adds its arrays where the command writes files.)");
 }
 
 }  // namespace pinmask::python

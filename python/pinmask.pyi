@@ -500,7 +500,8 @@ def depthmap(
     window: int = 121,  # odd box side of the cost, px
     smooth: float = 8.0,  # smoothness weight of the labels (0: lowest-cost plane per pixel)
     psf_stack: Optional[Sequence[tuple[Union[float, str], ArrayLike]]] = None,  # (distance, PSF)
-) -> Result: ...  # the keys of `pinmask depthmap --json`; depth_m, confidence... arrays
+    output_dir: Optional[str] = None,  # write the command's files there (None: nothing written)
+) -> Result: ...  # `pinmask depthmap --json`'s dict; depth_m, confidence... arrays
 def depth_fisher(
     mask: MaskLike,
     object_distance_m: float,  # u, m (finite)

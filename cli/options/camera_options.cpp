@@ -1,5 +1,6 @@
 #include "cli/options/camera_options.hpp"
 
+#include <cmath>
 #include <iostream>
 #include <string>
 #include <utility>
@@ -9,6 +10,7 @@
 #include "core/units/units.hpp"
 #include "design/optics/default_pinhole.hpp"
 #include "design/optics/working_distance.hpp"
+#include "design/pattern/pattern.hpp"
 #include "io/camera_json.hpp"
 
 namespace pinmask::cli {
@@ -151,6 +153,25 @@ void add_geometry_options(CLI::App& cmd, GeometryOptions& o, std::string* holes_
                    "Minimum pinhole centre spacing in cells, on the torus (2 = no two pinholes in "
                    "each other's 8-neighbourhood)")
         ->capture_default_str();
+}
+
+PatternGeometry resolve_geometry(const GeometryOptions& g) {
+    if (g.grid < 1 || g.grid > kMaxGrid) {
+        throw invalid_field("--grid", std::to_string(g.grid),
+                            "must be between 1 and " + std::to_string(kMaxGrid));
+    }
+    const long long cells = static_cast<long long>(g.grid) * g.grid;
+    if (g.holes < 0 || g.holes > cells) {
+        throw invalid_field("--holes", std::to_string(g.holes),
+                            "must be between 0 and n^2 = " + std::to_string(cells));
+    }
+    if (g.tiles < 1 || g.tiles > kMaxTiles)
+        throw invalid_field("--tiles", std::to_string(g.tiles),
+                            "must be between 1 and " + std::to_string(kMaxTiles));
+    if (!std::isfinite(g.spacing) || g.spacing < 0) {
+        throw invalid_field("--spacing", std::to_string(g.spacing), "must be finite and >= 0");
+    }
+    return {g.grid, g.holes, g.tiles, g.tiles};
 }
 
 }  // namespace pinmask::cli

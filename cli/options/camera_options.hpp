@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "design/optics/camera.hpp"
+#include "design/optics/optics.hpp"
 
 namespace pinmask::cli {
 
@@ -56,5 +57,8 @@ struct GeometryOptions {
 // `holes_range` (search), --holes is read as text into it instead: K or a range A..B
 // (optimize/search/search_pipeline parse_holes_range), o.holes unused.
 void add_geometry_options(CLI::App& cmd, GeometryOptions& o, std::string* holes_range = nullptr);
+
+// The geometry the flags give, each in its range (InvalidInput naming the flag otherwise).
+PatternGeometry resolve_geometry(const GeometryOptions& g);
 
 }  // namespace pinmask::cli

@@ -4,12 +4,9 @@
 
 #include "core/errors/error.hpp"
 #include "core/units/units.hpp"
-#include "io/json_strict.hpp"
 
 namespace pinmask::cli {
 namespace {
-
-using io::json_strict::finite_or_null;
 
 constexpr const char* kSensorFlags[] = {"--read-noise", "--dark-current", "--bits", "--full-well",
                                         "--optical-density"};
@@ -33,7 +30,8 @@ void add_sensor_flags(CLI::App& cmd, SensorFlags& f) {
                    "perfectly opaque)");
 }
 
-std::vector<std::string> split_list(const std::string& text, const std::string& flag) {
+std::vector<std::string> split_list(const std::string& text, const std::string& flag,
+                                    std::size_t max_items) {
     std::vector<std::string> out;
     std::string item;
     std::istringstream in(text);
@@ -42,8 +40,9 @@ std::vector<std::string> split_list(const std::string& text, const std::string& 
         out.push_back(item);
     }
     if (out.empty()) throw invalid_field(flag, "''", "needs at least one item");
-    if (out.size() > kMaxNoiseLevels) {
-        throw invalid_field(flag, "'" + text + "'", "has more than 64 items");
+    if (out.size() > max_items) {
+        throw invalid_field(flag, "'" + text + "'",
+                            "has more than " + std::to_string(max_items) + " items");
     }
     return out;
 }
@@ -88,25 +87,24 @@ void refuse_sensor_flags_without_photons(const CLI::App& cmd) {
     }
 }
 
-nlohmann::ordered_json noise_json(const NoiseModel& m) {
-    switch (m.kind) {
-        case NoiseKind::kNone:
-            return {{"kind", "none"}};
-        case NoiseKind::kGaussianSnr:
-            return {{"kind", "gaussian-snr"},
-                    {"snr_db", m.snr_db},
-                    {"definition", "10 log10(mean(c^2) / sigma^2) over the noiseless capture"}};
-        case NoiseKind::kPhoton:
-            break;
+NoiseModel one_noise_model(const std::string& snr, const std::optional<double>& photons,
+                           const SensorFlags& sensor, const CLI::App& cmd,
+                           std::vector<std::string>& notes) {
+    if (photons) {
+        if (cmd.count("--snr") > 0)
+            throw invalid_field("--snr", snr, "cannot be combined with --photons");
+        return photon_model(*photons, sensor, &notes);
     }
-    return {{"kind", "photon"},
-            {"photons_per_pinhole", m.photons_per_pinhole},
-            {"read_noise_e", m.read_noise_e},
-            {"dark_current_e", m.dark_current_e},
-            {"full_well_e", finite_or_null(m.full_well_e)},
-            {"adc_bits", m.adc_bits},
-            {"film_optical_density", finite_or_null(m.film_optical_density)},
-            {"film_transmission", film_transmission(m)}};
+    refuse_sensor_flags_without_photons(cmd);
+    NoiseModel m;
+    if (snr == "inf" || snr == "+inf") {
+        m.kind = NoiseKind::kNone;
+        notes.push_back("noise skipped: --snr inf (noiseless capture)");
+        return m;
+    }
+    m.kind = NoiseKind::kGaussianSnr;
+    m.snr_db = parse_number(snr, "--snr");
+    return m;
 }
 
 }  // namespace pinmask::cli

@@ -28,6 +28,12 @@ using pinmask::validate_naming_fields;
 // InvalidInput when a sensor flag was given on cmd without the photon model.
 void refuse_sensor_flags_without_photons(const CLI::App& cmd);
 
+// One noise model from --snr (a number, or inf: noiseless) or --photons with the sensor flags (not
+// both); `notes` gets a line per noise stage that is not applied.
+NoiseModel one_noise_model(const std::string& snr, const std::optional<double>& photons,
+                           const SensorFlags& sensor, const CLI::App& cmd,
+                           std::vector<std::string>& notes);
+
 // The noise flags of score, compare and search: --snr LIST (Gaussian) or --photons LIST (the
 // photon model) with the sensor flags.
 struct NoiseFlags {
@@ -45,10 +51,8 @@ void add_noise_flags(CLI::App& cmd, NoiseFlags& flags, const std::string& defaul
 std::vector<NoiseLevel> noise_levels(const NoiseFlags& flags, const CLI::App& cmd,
                                      std::string* text = nullptr);
 
-// Comma-separated items, none empty (InvalidInput naming flag otherwise).
-std::vector<std::string> split_list(const std::string& text, const std::string& flag);
-
-// {"kind": "none" | "gaussian-snr" | "photon", and the model's parameters}.
-nlohmann::ordered_json noise_json(const NoiseModel& model);
+// Comma-separated items, none empty, at most max_items (InvalidInput naming flag otherwise).
+std::vector<std::string> split_list(const std::string& text, const std::string& flag,
+                                    std::size_t max_items = kMaxNoiseLevels);
 
 }  // namespace pinmask::cli

@@ -1,8 +1,7 @@
-// `pinmask compare`'s text and JSON renderings of its results (the report data itself is
+// `pinmask compare`'s text rendering of its table (its JSON is io/compare_json's, the report data
 // report/compare_report.hpp's).
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <string>
 
 #include "optimize/metrics/compare.hpp"
@@ -20,9 +19,5 @@ using pinmask::noise_caption;
 std::string compare_table_text(const ReportTable& table);
 
 using pinmask::compare_holes_text;
-
-// One row as JSON (compare --json and the report config): the table figures plus every noise
-// level under score's keys.
-nlohmann::ordered_json compare_row_json(const CompareRow& row);
 
 }  // namespace pinmask::cli

@@ -7,21 +7,12 @@
 #include <vector>
 
 #include "cli/options/camera_options.hpp"
+#include "design/optics/design_run.hpp"
 #include "design/optics/optics.hpp"
 #include "design/optics/working_distance.hpp"
 #include "design/psf/design_kernel.hpp"
 
 namespace pinmask::cli {
-
-// A pinhole solved for N whole pixels per cell at u and snapped to the fabrication grid
-// (design/optics/fab_grid): the exact solution, the side on the grid and how far the grid moves the
-// pitch at u (px per cell; n times that across one period).
-struct GridSnap {
-    bool solved = false;
-    std::int64_t grid_nm = 1;
-    std::string grid_source;  // "--fab-grid", "vendor NAME" or "default"
-    double exact_m = 0, on_grid_m = 0, pitch_shift_px = 0;
-};
 
 // One JSON object: camera, geometry, every OpticsReport and WorkingDistance figure (unit-suffixed
 // keys: plain and "_at_u" keys at the working distance u, "_at_inf" keys for a distant object),

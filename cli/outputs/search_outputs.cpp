@@ -4,7 +4,9 @@
 #include <cstdio>
 #include <sstream>
 
+#include "cli/outputs/search_snapshot.hpp"
 #include "core/files/atomic_file.hpp"
+#include "core/files/output_set.hpp"
 #include "core/units/number_format.hpp"
 #include "io/json_strict.hpp"
 #include "io/mask_json.hpp"
@@ -185,6 +187,32 @@ std::vector<fs::path> write_search_outputs(const fs::path& dir,
     files.stage_bytes(dir / "search.config.json", io::json_strict::pretty(config) + "\n");
     files.commit();
     return paths;
+}
+
+std::string search_explain_text(const SearchPipelineSummary& s, bool allow_spectral_zeros) {
+    const PriorRelevance& pr = s.prior_relevance;
+    std::ostringstream out;
+    out << "explain: prior " << s.prior_description << ": " << pr.irrelevant << " of " << pr.total
+        << " frequencies carry < 1e-6 of its peak power (irrelevant to the objective); "
+           "relevant up to radius "
+        << pr.highest_relevant_radius
+        << " cycles per period. Skipped: nothing (the objective still sums every "
+           "frequency; patterns with a spectral zero where the kernel passes light "
+        << (allow_spectral_zeros ? "were kept, flagged" : "were rejected") << ")\n";
+    return out.str();
+}
+
+void plan_search_outputs(const std::filesystem::path& dir, bool per_holes,
+                         const std::string& config) {
+    std::vector<NamedPath> outs{{"-o (run log)", dir / "run-log.csv", true},
+                                {"-o (summary)", dir / "summary.md", true},
+                                {"-o (timing)", dir / "timing.csv", true},
+                                {"-o (config)", dir / "search.config.json", true},
+                                {"-o (best so far)", dir / kBestSoFarName, true}};
+    if (per_holes)
+        for (const char* f : {"holes.csv", "holes.svg", "holes.png"})
+            outs.push_back({"-o (per-K table and plot)", dir / f, true});
+    plan_outputs({{"--config", config}}, outs);
 }
 
 }  // namespace pinmask::cli

@@ -32,4 +32,13 @@ std::vector<std::filesystem::path> write_search_outputs(const std::filesystem::p
 // The Markdown summary (also printed by the command).
 std::string search_summary_markdown(const SearchPipelineSummary& summary);
 
+// --explain's line: which frequencies the prior makes irrelevant, and what was skipped.
+std::string search_explain_text(const SearchPipelineSummary& s, bool allow_spectral_zeros);
+
+// Checks every file a search writes into dir before any work (core/files/output_set plan_outputs):
+// the run log, summary, timing, config and best-so-far snapshot, and with `per_holes` the per-K
+// table and plot; `config` is the --config input. (rank-N.mask.json are checked when staged.)
+void plan_search_outputs(const std::filesystem::path& dir, bool per_holes,
+                         const std::string& config);
+
 }  // namespace pinmask::cli

@@ -99,4 +99,30 @@ void BestSoFarSnapshot::loop() {
     }
 }
 
+std::unique_ptr<BestSoFarSnapshot> attach_best_so_far(SearchPipelineOptions& p,
+                                                      const std::filesystem::path& dir,
+                                                      const std::atomic<bool>* interrupted) {
+    Mask tmpl = p.tmpl;
+    tmpl.provenance.seed = p.search.seed;
+    tmpl.provenance.generator = p.generator;
+    tmpl.provenance.family = std::string("search:") +
+                             (p.search.strategy == SearchStrategy::kRandom ? "random" : "anneal");
+    auto snapshot =
+        std::make_unique<BestSoFarSnapshot>(dir / kBestSoFarName, std::move(tmpl), interrupted);
+    p.search.on_improvement = [&snap = *snapshot](const Pattern& pattern, double objective) {
+        snap.offer(pattern, objective);
+    };
+    if (p.islands.checkpoint) {
+        p.islands.checkpoint = [write = p.islands.checkpoint, &snap = *snapshot](
+                                   std::int64_t segment, std::int64_t every,
+                                   const std::vector<ChainState>& states) {
+            write(segment, every, states);
+            for (const ChainState& s : states)
+                if (!s.top.items().empty())
+                    snap.offer(s.top.items().front().pattern, s.top.items().front().objective);
+        };
+    }
+    return snapshot;
+}
+
 }  // namespace pinmask::cli

@@ -16,11 +16,13 @@
 #include <atomic>
 #include <condition_variable>
 #include <filesystem>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <thread>
 
 #include "design/pattern/mask.hpp"
+#include "optimize/search/search_pipeline.hpp"
 
 namespace pinmask::cli {
 
@@ -68,5 +70,12 @@ class BestSoFarSnapshot {
     std::atomic<int> writes_{0};
     std::thread thread_;
 };
+
+// A snapshot in dir/best-so-far.mask.json fed by the run `p` configures: what its chains find
+// (p.search.on_improvement) and every chain's best at each checkpoint (p.islands.checkpoint,
+// when the run keeps checkpoints). Its mask is p's template with the run's provenance.
+std::unique_ptr<BestSoFarSnapshot> attach_best_so_far(SearchPipelineOptions& p,
+                                                      const std::filesystem::path& dir,
+                                                      const std::atomic<bool>* interrupted);
 
 }  // namespace pinmask::cli

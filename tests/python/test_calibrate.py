@@ -110,6 +110,9 @@ def test_module_returns_the_command_lines_json(capture, cli, tmp_path):
     j["dark_source"] = j["dark_source"].replace("--dark", "dark")
     for key in sorted(set(j) - files):
         assert same(j[key], r[key]), (key, j[key], r[key])
+    # One transaction, one rendering: the same values exactly, as plain containers.
+    plain = r.to_dict()
+    assert {k: plain[k] for k in set(j) - files} == {k: j[k] for k in set(j) - files}
 
 
 def test_untrustworthy_capture_is_refused(capture):

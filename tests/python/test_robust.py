@@ -105,4 +105,4 @@ def test_compare_robust_equals_cli(cli, tmp_path, mask7):
             assert row[key] == cli_row[key], key
         assert row["robust_loss_db_snr30"] > 0  # the errors cost
     single = pinmask.metrics(str(tmp_path / "m.mask.json"), robust=spec, tv_iterations=10)
-    assert single["robust_wiener_psnr_db"] == out["masks"][0]["robust_wiener_psnr_db"]
+    assert single["robust_wiener_psnr_db"] == out["masks"][0]["robust_wiener_psnr_db_snr30"]

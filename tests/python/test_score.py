@@ -40,8 +40,8 @@ def test_score_defaults_are_the_commands(cli, tmp_path, mask7):
     mask7.save(str(tmp_path / "m.mask.json"))
     c = cli_rows(cli, "m.mask.json")
     p = pinmask.score([mask7])
-    assert p["settings"]["noise"] == ["snr20", "snr30", "snr40"]
-    assert p["settings"]["scenes"] == c["settings"]["scenes"].split(",")
+    assert [level["key"] for level in p["settings"]["noise"]] == ["snr20", "snr30", "snr40"]
+    assert p["settings"]["scenes"] == c["settings"]["scenes"]
     cr, pr = c["masks"][0], p["masks"][0]
     for k in ("wiener_psnr_db_snr30", "analytic_wiener_psnr_db_snr40", "max_sidelobe"):
         assert pr[k] == cr[k], k

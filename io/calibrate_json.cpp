@@ -1,10 +1,15 @@
-#include "cli/outputs/calibrate_json.hpp"
+#include "io/calibrate_json.hpp"
 
 #include <cmath>
 
+#include "core/files/atomic_file.hpp"
+#include "core/image/image_io.hpp"
+#include "decode/calibrate/report.hpp"
 #include "design/psf/kernel_model.hpp"
+#include "io/mask_json.hpp"
+#include "io/psf_files.hpp"
 
-namespace pinmask::cli {
+namespace pinmask::io {
 
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
@@ -91,4 +96,34 @@ Json calibration_result_json(const calibrate::CalibrationSummary& s, const fs::p
     return j;
 }
 
-}  // namespace pinmask::cli
+void write_calibration_files(const CalibrateReport& report, const fs::path& dir, const Json& config,
+                             const std::string& mask_file, const std::string& title) {
+    const calibrate::CalibrationSummary& s = report.summary;
+    fs::path stage = dir;
+    stage += ".tmp-calibrate";
+    fs::remove_all(stage);
+    fs::create_directory(stage);
+    try {
+        PsfSidecar side = psf_sidecar_for(report.calibrated, report.kernel, mask_file);
+        PsfSidecar full = side;
+        full.geometry = "full-frame";
+        write_psf_files(stage / "psf.tiff", s.psfs.full_frame, full, false);
+        if (s.psfs.period) write_psf_files(stage / "psf-period.tiff", *s.psfs.period, side, false);
+        write_image(stage / "kernel.tiff", Image(s.kernel.values));
+        write_mask_file(stage / "calibrated.mask.json", report.calibrated);
+        write_bytes_atomic(stage / "report.pdf",
+                           calibrate::calibration_report_pdf(report.corrected, s, title));
+        const Json file{{"format", "pinmask-calibration"},
+                        {"version", 1},
+                        {"config", config},
+                        {"result", calibration_result_json(s, dir)}};
+        write_bytes_atomic(stage / "calibration.json", file.dump(2) + "\n");
+        if (fs::exists(dir)) fs::remove(dir);
+        fs::rename(stage, dir);
+    } catch (...) {
+        fs::remove_all(stage);
+        throw;
+    }
+}
+
+}  // namespace pinmask::io

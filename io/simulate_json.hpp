@@ -10,7 +10,7 @@
 #include "design/pattern/mask.hpp"
 #include "optimize/simulate/simulate_pipeline.hpp"
 
-namespace pinmask::cli {
+namespace pinmask::io {
 
 struct SimulateConfigInputs {
     std::string mask_path, output, dark_frame;  // dark_frame empty: none
@@ -32,4 +32,4 @@ nlohmann::ordered_json simulate_summary_json(const SimulateConfigInputs& in,
                                              const SimulatePipelineResult& r,
                                              const NoiseModel& noise);
 
-}  // namespace pinmask::cli
+}  // namespace pinmask::io

@@ -1,11 +1,11 @@
-#include "cli/options/simulate_config.hpp"
+#include "io/simulate_json.hpp"
 
-#include "cli/options/noise_options.hpp"
 #include "core/fft/fft.hpp"
 #include "design/psf/kernel_model.hpp"
 #include "io/mask_json.hpp"
+#include "io/noise_json.hpp"
 
-namespace pinmask::cli {
+namespace pinmask::io {
 
 using nlohmann::ordered_json;
 
@@ -50,7 +50,7 @@ ordered_json simulate_config_json(const SimulateConfigInputs& in, const Mask& ma
           {"period_origin_row", s.origin.row},
           {"period_origin_col", s.origin.col},
           {"whole_period_on_sensor", s.whole_period_on_sensor}}},
-        {"noise", noise_json(po.sim.noise)},
+        {"noise", io::noise_json(po.sim.noise)},
         {"seed", in.seed},
         {"precision", sum.single_precision ? "single" : "double"},
         {"threads", fft_threads()},
@@ -78,8 +78,8 @@ ordered_json simulate_summary_json(const SimulateConfigInputs& in, const Simulat
         {"cols", s.capture.cols()},
         {"channels", s.capture.n_channels()},
         {"period_px", r.summary.period_px},
-        {"noise", noise_json(noise)},
+        {"noise", io::noise_json(noise)},
         {"background_per_channel", background_json(s)}};
 }
 
-}  // namespace pinmask::cli
+}  // namespace pinmask::io

@@ -1,0 +1,34 @@
+#include "cli/options/number_lists.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "cli/options/noise_options.hpp"
+#include "core/errors/error.hpp"
+#include "core/units/units.hpp"
+
+namespace pinmask::cli {
+
+std::vector<std::string> item_list(const std::string& text, const std::string& flag) {
+    return split_list(text, flag, std::numeric_limits<std::size_t>::max());
+}
+
+std::vector<double> number_list(const std::string& text, const std::string& flag) {
+    std::vector<double> out;
+    for (const auto& s : item_list(text, flag)) out.push_back(parse_number(s, flag));
+    return out;
+}
+
+std::vector<int> count_list(const std::string& text, const std::string& flag) {
+    std::vector<int> out;
+    for (const auto& s : item_list(text, flag)) {
+        const double v = parse_number(s, flag);
+        if (v != std::floor(v) || v < 1 || v > 1e6) {
+            throw invalid_field(flag, s, "must be an integer in 1..1000000");
+        }
+        out.push_back(static_cast<int>(v));
+    }
+    return out;
+}
+
+}  // namespace pinmask::cli

@@ -1,0 +1,61 @@
+// The design transaction: the optics report of a camera and pattern geometry at its working
+// distance, with the pinhole solved for whole pixels per cell when asked (then snapped to the
+// fabrication grid), the kernel psf would build and its validity, and the spacing rule's
+// packing bound. One call (run_design_request) for both faces; each face parses and checks its
+// settings (the grid from a length or an export preset) and renders the report.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "design/optics/camera.hpp"
+#include "design/optics/fab_grid.hpp"
+#include "design/optics/optics.hpp"
+#include "design/optics/working_distance.hpp"
+#include "design/pattern/packing_bound.hpp"
+#include "design/psf/design_kernel.hpp"
+#include "design/psf/kernel_model.hpp"
+
+namespace pinmask {
+
+// A pinhole solved for N whole pixels per cell at u and snapped to the fabrication grid
+// (design/optics/fab_grid): the exact solution, the side on the grid and how far the grid moves
+// the pitch at u (px per cell; n times that across one period).
+struct GridSnap {
+    bool solved = false;
+    std::int64_t grid_nm = 1;
+    std::string grid_source;  // where the grid came from, in the face's words
+    double exact_m = 0, on_grid_m = 0, pitch_shift_px = 0;
+};
+
+struct DesignRequest {
+    Camera camera;  // its pinhole is the start of a solve
+    PatternGeometry geometry;
+    double spacing_cells = 2.0;
+    KernelModel model = KernelModel::kAuto;  // the model reported
+    std::string kernel = "auto";             // the same as psf's spelling (design_kernel)
+    double lsi_tolerance_px = 1.0;
+    std::optional<int> pixels_per_cell;  // solve d for N whole pixels per cell at u
+    bool solve = false;                  // solve d for the whole N nearest the pitch at u
+    GridSnap grid{false, kDefaultFabGridNm, "default"};  // the grid a solved pinhole lands on
+    // The face's spelling of the field references in the warnings (identity when not given).
+    std::function<std::string(const std::string&)> spell;
+};
+
+struct DesignReport {
+    Camera camera;  // as reported: a solved pinhole on the grid
+    OpticsReport optics;
+    WorkingDistance working;
+    DesignKernel kernel;  // its validity warnings spelled by the face
+    GridSnap snap;
+    PackingUpperBound packing;  // on the pinhole count at the spacing rule
+    // A solve for the nearest N that starts far from the optimum pinhole says where it is.
+    std::string far_from_optimum;
+};
+
+DesignReport run_design_request(const DesignRequest& request);
+
+}  // namespace pinmask
