@@ -384,7 +384,7 @@ def layout(
     mask: MaskLike,
     tone: str = "clear",
     shape: str = "square",
-    sides: int = 8,
+    sides: Optional[int] = None,  # shape polygon only (default 8)
     mirror: bool = False,
     marks: bool = False,
     label: Optional[str] = None,
@@ -411,7 +411,7 @@ def export_mask(
     stem: Optional[str] = None,
     tone: str = "clear",
     shape: str = "square",
-    sides: int = 8,
+    sides: Optional[int] = None,  # shape polygon only (default 8)
     mirror: bool = False,
     marks: bool = False,
     label: bool = False,
@@ -440,6 +440,7 @@ def export_mask(
     max_snap_error: Optional[Length] = None,  # tiff1
     psf: bool = True,  # also <stem>.psf.tiff + sidecar, as the command (unless --no-psf)
     npy: bool = False,  # also <stem>.psf.npy
+    write_on_violations: bool = False,  # write the files of a failed design-rule check
 ) -> Result: ...
 def check(
     input: Union[Mask, PathLikeStr],

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -90,19 +91,23 @@ struct Reference {
 struct Structure {
     std::vector<Ring> rings;
     std::vector<Reference> refs;
+    double check_bytes = 0.0;  // its rings' cost through the check (ring_check_bytes)
 };
 
 // Appends the rings of `name` translated by `at`, references expanded (translation only).
 // Placements visited at most while flattening (bounds the time of nested arrays of empty cells).
 constexpr std::uint64_t kMaxPlacements = 100'000'000;
 
+// `bytes`: what the rings placed so far cost through the check, charged against the memory
+// budget as they are placed (references multiply a small file into millions of rings).
 void flatten(const std::map<std::string, Structure>& all, const std::string& name, PointNm at,
-             int depth, std::vector<Ring>& out, std::uint64_t& visits) {
+             int depth, std::vector<Ring>& out, std::uint64_t& visits, double& bytes) {
     if (depth > kMaxDepth)
         throw bad(0, "references nested deeper than " + std::to_string(kMaxDepth));
     if (++visits > kMaxPlacements) throw bad(0, "references expand to more than 10^8 placements");
     const Structure& s = all.at(name);
-    check_memory(double(out.size() + s.rings.size()) * 160.0, "GDSII flattening");
+    bytes += s.check_bytes;
+    check_memory(bytes, "GDSII flattening (references expanded)");
     for (const Ring& r : s.rings) {
         Ring t = r;
         for (PointNm& p : t) {
@@ -114,8 +119,8 @@ void flatten(const std::map<std::string, Structure>& all, const std::string& nam
     }
     for (const Reference& ref : s.refs) {
         if (!ref.array) {
-            flatten(all, ref.name, {at.x + ref.xy[0].x, at.y + ref.xy[0].y}, depth + 1, out,
-                    visits);
+            flatten(all, ref.name, {at.x + ref.xy[0].x, at.y + ref.xy[0].y}, depth + 1, out, visits,
+                    bytes);
             continue;
         }
         // AREF: xy[1] = origin + cols * column step, xy[2] = origin + rows * row step.
@@ -129,7 +134,7 @@ void flatten(const std::map<std::string, Structure>& all, const std::string& nam
                 flatten(all, ref.name,
                         {at.x + o.x + i * (c.x / ref.cols) + j * (r.x / ref.rows),
                          at.y + o.y + i * (c.y / ref.cols) + j * (r.y / ref.rows)},
-                        depth + 1, out, visits);
+                        depth + 1, out, visits, bytes);
     }
 }
 
@@ -182,6 +187,7 @@ FileGeometry read_gds(std::string_view bytes) {
     int structures = 0;
     bool in_structure = false, ended = false;
     std::string layers;
+    std::set<std::string> layer_seen;  // the layers of `layers`
     TimeLimitPoll poll_time("reading the GDSII file");
     while (!ended) {
         poll_time();
@@ -327,9 +333,12 @@ FileGeometry read_gds(std::string_view bytes) {
                                   "BOUNDARY must have >= 4 points and end at its "
                                   "first point");
                     ring.pop_back();
+                    current->check_bytes += ring_check_bytes(ring.size());
                     current->rings.push_back(std::move(ring));
-                    if ((" " + layers + " ").find(" " + layer_text + " ") == std::string::npos)
+                    if (layer_seen.insert(layer_text).second) {
                         layers += (layers.empty() ? "" : " ") + layer_text;
+                        g.layers.push_back(layer_text);
+                    }
                 }
                 break;
             }
@@ -367,7 +376,8 @@ FileGeometry read_gds(std::string_view bytes) {
     g.info["structure"] = top;
     if (order.size() > 1) g.info["hierarchy"] = "yes";
     std::uint64_t visits = 0;
-    flatten(structures_by_name, top, {0, 0}, 0, g.rings, visits);
+    double bytes = 0.0;
+    flatten(structures_by_name, top, {0, 0}, 0, g.rings, visits, bytes);
     return g;
 }
 
