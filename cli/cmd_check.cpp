@@ -140,10 +140,10 @@ int run(const CheckOptions& o) {
         poll_time("before the design-rule check of " + o.input);
         c = check_file_geometry(file, fo);
         if (mask) add_pattern_spacing(c.drc, *mask, design->pitch_nm, rep.rules);
-        c.identity =
-            check_film_identity(file, *readable_format_of(o.input),
-                                io::film_identity_expected(o.input, side ? &*side : nullptr,
-                                                           side_path, o.vendor, o.layout.tone));
+        c.identity = check_film_identity(
+            file, *readable_format_of(o.input),
+            io::film_identity_expected(o.input, side ? &*side : nullptr, side_path, o.no_sidecar,
+                                       o.vendor, o.layout.tone));
         if (auto it = file.info.find("unit_assumed"); it != file.info.end() && !side) {
             const std::string w =
                 "the file states no unit ($INSUNITS 0 or absent, no pinmask "

@@ -11,7 +11,7 @@ namespace pinmask::io {
 namespace fs = std::filesystem;
 
 FilmIdentityExpected film_identity_expected(const fs::path& file, const ExportSidecar* side,
-                                            const fs::path& sidecar_path,
+                                            const fs::path& sidecar_path, bool sidecar_ignored,
                                             const std::optional<std::string>& vendor,
                                             const std::optional<std::string>& tone) {
     FilmIdentityExpected e;
@@ -31,7 +31,10 @@ FilmIdentityExpected film_identity_expected(const fs::path& file, const ExportSi
         }
         return e;
     }
-    const std::string none = "no export sidecar " + sidecar_path.filename().string();
+    const std::string name_of_sidecar = sidecar_path.filename().string();
+    const std::string none = sidecar_ignored && fs::is_regular_file(sidecar_path)
+                                 ? "the export sidecar " + name_of_sidecar + " ignored as asked"
+                                 : "no export sidecar " + name_of_sidecar;
     const VendorPreset* preset = vendor ? find_vendor_preset(*vendor) : nullptr;
     if (preset) {
         const ExportRequest defaults;  // export's layers, which no preset changes

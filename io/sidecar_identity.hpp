@@ -16,12 +16,14 @@
 namespace pinmask::io {
 
 // `file`: the fabrication file checked; `side`: its sidecar (null: none read, `sidecar_path`
-// names where it was looked for); `vendor`: the vendor name given to check (nullopt: none);
-// `tone`: the tone given to check (nullopt: none). Throws InvalidInput for a vendor name that is
-// neither a preset nor a rule name (as check's vendor rules do).
+// names where it was looked for; `sidecar_ignored`: the user said to ignore it); `vendor`: the
+// vendor name given to check (nullopt: none); `tone`: the tone given to check (nullopt: none).
+// Throws InvalidInput for a vendor name that is neither a preset nor a rule name (as check's
+// vendor rules do).
 FilmIdentityExpected film_identity_expected(const std::filesystem::path& file,
                                             const ExportSidecar* side,
                                             const std::filesystem::path& sidecar_path,
+                                            bool sidecar_ignored,
                                             const std::optional<std::string>& vendor,
                                             const std::optional<std::string>& tone);
 

@@ -211,7 +211,7 @@ void bind_check(py::module_& m) {
                 identity = check_film_identity(
                     file, *readable_format_of(input_text),
                     io::film_identity_expected(input_text, side ? &*side : nullptr, side_path,
-                                               vendor_arg, tone));
+                                               no_sidecar, vendor_arg, tone));
                 if (design_mask && design)
                     add_pattern_spacing(r, *design_mask, design->pitch_nm, rules);
                 if (fc.comparison) {
