@@ -38,3 +38,15 @@ def test_lsi_tolerance_outside_its_range_is_refused_like_the_command_line(cli, t
 def test_the_ends_of_the_lsi_tolerance_range_are_accepted():
     for t in (1e-6, 1000.0):
         assert pinmask.optics(lsi_tolerance_px=t)["lsi_tolerance_px"] == t
+
+
+@pytest.mark.parametrize("vendor", ["none", "film-plotter", "gerber-film", "chrome-photomask"])
+def test_formats_default_to_the_vendor_presets_as_the_command(tmp_path, cli, vendor):
+    out = pinmask.export_mask(MASK, str(tmp_path / "py"), vendor=vendor)
+    cli.run("export", MASK, "--vendor", vendor, "-o", "cli")
+    py_names = sorted(p.name for p in (tmp_path / "py").iterdir())
+    assert py_names == sorted(p.name for p in (tmp_path / "cli").iterdir())
+    for name in py_names:
+        if not name.endswith(".export.json"):  # the sidecar records the call's own input
+            assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
+    assert len(out["files"]) == len([n for n in py_names if ".psf." not in n]) - 1
