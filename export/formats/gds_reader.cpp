@@ -298,6 +298,9 @@ FileGeometry read_gds(std::string_view bytes) {
                 const bool boundary = r.type == BOUNDARY;
                 Ring ring;
                 std::string layer_text;
+                // What identifies the film: one LAYER and one DATATYPE per BOUNDARY, each in
+                // 0..32767 (a second record, or none, leaves the layer to the reading tool).
+                int layer = -1, datatype = -1;
                 bool have_xy = false;
                 for (;;) {
                     if (rd.at_end()) throw bad(rd.offset(), "element not ended: truncated");
@@ -305,9 +308,17 @@ FileGeometry read_gds(std::string_view bytes) {
                     if (e.type == ENDEL) break;
                     if (e.type == LAYER || e.type == DATATYPE || e.type == TEXTTYPE) {
                         expect(e, 2, 2, "LAYER/DATATYPE");
-                        if (e.type != TEXTTYPE)
-                            layer_text +=
-                                (e.type == LAYER ? "" : "/") + std::to_string(be(e.data, 0, 2));
+                        if (e.type != TEXTTYPE) {
+                            const char* what = e.type == LAYER ? "LAYER" : "DATATYPE";
+                            int& v = e.type == LAYER ? layer : datatype;
+                            if (v >= 0)
+                                throw bad(e.offset,
+                                          std::string("second ") + what + " record in one element");
+                            v = int(be(e.data, 0, 2));
+                            if (v < 0)
+                                throw bad(e.offset, std::string(what) + " " + std::to_string(v) +
+                                                        " is negative (0..32767)");
+                        }
                     } else if (e.type == XY) {
                         expect(e, 3, 8, "XY");
                         if (have_xy) throw bad(e.offset, "second XY record in one element");
@@ -327,6 +338,11 @@ FileGeometry read_gds(std::string_view bytes) {
                     // Other element records (PROPATTR, PRESENTATION, STRANS, ...) are ignored.
                 }
                 if (!have_xy) throw bad(r.offset, "element without XY");
+                if (boundary && (layer < 0 || datatype < 0))
+                    throw bad(r.offset, std::string("BOUNDARY without a ") +
+                                            (layer < 0 ? "LAYER" : "DATATYPE") +
+                                            " record: its layer is the reading tool's guess");
+                if (boundary) layer_text = std::to_string(layer) + "/" + std::to_string(datatype);
                 if (boundary) {
                     if (ring.size() < 4 || !(ring.front() == ring.back()))
                         throw bad(r.offset,

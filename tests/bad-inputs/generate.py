@@ -980,3 +980,37 @@ write("layout-gds-aref-expands.gds", gds_bytes(gds_head + [
     bgnstr, (0x06, 6, b"TOP\0"), (0x0B, 0, b""), (0x12, 6, b"HOLE"),
     (0x13, 2, struct.pack(">2h", 1000, 1000)), (0x10, 3, aref_xy), (0x11, 0, b""),
     (0x07, 0, b""), (0x04, 0, b"")]))
+
+# ---------------------------------------------------------------- layer records the readers refuse
+# A BOUNDARY's layer must be stated once (GDSII LAYER and DATATYPE, DXF group 8): a missing,
+# repeated, negative or empty one leaves the film's layer to the reading tool.
+
+
+def gds_layer_variant(name, edit):
+    out, done = [], False
+    for r in gds_records(GDS):
+        if r[0] in (GDS_LAYER, GDS_DATATYPE) and not done:
+            replaced = edit(r)
+            if replaced is not None:
+                done = True
+                out.extend(replaced)
+                continue
+        out.append(r)
+    assert done, name
+    write(name, gds_bytes(out))
+
+
+gds_layer_variant("layout-gds-no-layer.gds", lambda r: [] if r[0] == GDS_LAYER else None)
+gds_layer_variant("layout-gds-no-datatype.gds", lambda r: [] if r[0] == GDS_DATATYPE else None)
+gds_layer_variant("layout-gds-layer-twice.gds",
+                  lambda r: [r, (GDS_LAYER, 2, b"\0\2")] if r[0] == GDS_LAYER else None)
+gds_layer_variant("layout-gds-datatype-twice.gds",
+                  lambda r: [r, (GDS_DATATYPE, 2, b"\0\1")] if r[0] == GDS_DATATYPE else None)
+gds_layer_variant("layout-gds-negative-layer.gds",
+                  lambda r: [(GDS_LAYER, 2, b"\xff\xff")] if r[0] == GDS_LAYER else None)
+gds_layer_variant("layout-gds-negative-datatype.gds",
+                  lambda r: [(GDS_DATATYPE, 2, b"\x80\x00")] if r[0] == GDS_DATATYPE else None)
+write("layout-dxf-layer-twice.dxf",
+      DXF.replace("POLYLINE\n" + DXF_ENTITY_LAYER, "POLYLINE\n" + DXF_ENTITY_LAYER + "  8\nOTHER\n", 1))
+write("layout-dxf-empty-layer.dxf", DXF.replace(DXF_ENTITY_LAYER, "  8\n\n", 1))
+write("layout-dxf-blank-layer.dxf", DXF.replace(DXF_ENTITY_LAYER, "  8\n   \n", 1))
