@@ -30,6 +30,8 @@ FilmIdentityItem layer_item(const FileGeometry& file, FabFormat format,
         it.ok = false;
         it.message = "geometry on layer " + it.found + ", not " + *e.layer + " (" + e.layer_source +
                      "): the shop would image an empty layer";
+    } else if (file.layers.empty()) {
+        it.message = "no geometry whose layer could be compared";
     } else if (e.layer) {
         it.message = it.found + " as " + e.layer_source + " says";
     } else {

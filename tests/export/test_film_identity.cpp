@@ -69,3 +69,12 @@ TEST_CASE("film identity: Gerber polarity against the tone and the file's own co
     e.tone = Tone::kClear;
     CHECK_FALSE(check_film_identity(g, FabFormat::kGerber, e).ok());
 }
+
+TEST_CASE("film identity: a file without geometry has no layer to compare, and says so") {
+    const FileGeometry empty;
+    const FilmIdentity id = check_film_identity(
+        empty, FabFormat::kGds, FilmIdentityExpected{.layer = "1/0", .layer_source = "sidecar"});
+    REQUIRE(id.items.size() == 1);
+    CHECK(id.items[0].found == "none");
+    CHECK(id.items[0].message == "no geometry whose layer could be compared");
+}
