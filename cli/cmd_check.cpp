@@ -2,8 +2,10 @@
 // export builds from it, or of a fabrication file read back (GDSII, OASIS, DXF, Gerber, SVG) and
 // compared with its design (export/pipeline/file_check, export/pipeline/read_back). The layout
 // settings come from the export sidecar <stem>.export.json beside the file when there is one
-// (explicit flags must agree with it), else from the flags. Exit codes: 0 clean, 1 violations (or
-// an XOR mismatch), 2 bad input, 3 the time limit PINMASK_TIME_LIMIT was spent (no verdict printed:
+// (explicit flags must agree with it), else from the flags. What identifies the film (layer,
+// datatype, DXF layer name, Gerber polarity) is compared with the sidecar or the vendor preset
+// (export/pipeline/film_identity). Exit codes: 0 clean, 1 violations (or an XOR or film identity
+// mismatch), 2 bad input, 3 the time limit PINMASK_TIME_LIMIT was spent (no verdict printed:
 // check writes only stdout, at the end).
 #include <cmath>
 #include <filesystem>
@@ -31,6 +33,7 @@
 #include "export/pipeline/file_check.hpp"
 #include "io/export_sidecar.hpp"
 #include "io/mask_json.hpp"
+#include "io/sidecar_identity.hpp"
 #include "io/sidecar_layout.hpp"
 
 namespace pinmask::cli {
@@ -137,6 +140,10 @@ int run(const CheckOptions& o) {
         poll_time("before the design-rule check of " + o.input);
         c = check_file_geometry(file, fo);
         if (mask) add_pattern_spacing(c.drc, *mask, design->pitch_nm, rep.rules);
+        c.identity = check_film_identity(
+            file, *readable_format_of(o.input),
+            io::film_identity_expected(o.input, side ? &*side : nullptr, side_path, o.no_sidecar,
+                                       o.vendor, o.layout.tone));
         if (auto it = file.info.find("unit_assumed"); it != file.info.end() && !side) {
             const std::string w =
                 "the file states no unit ($INSUNITS 0 or absent, no pinmask "
@@ -170,7 +177,13 @@ constexpr const char* kFooter =
     "design-rule checked.\n"
     "Rules (exact, integer nm): ring, vertices, self_intersection, orientation (CCW), area, "
     "feature, gap, touching, overlap, spacing (pinhole centroids on the tiled mask).\n"
-    "Exit codes: 0 clean, 1 violations or a mismatch with the design, 2 bad input, 3 the time "
+    "What identifies the film is compared with the sidecar's entry for the file, else with a "
+    "--vendor preset (export's default layers 1/0 and PINMASK, the preset's tone) and --tone: "
+    "GDSII/OASIS layer and datatype, DXF layer name (geometry on two layers always fails: the "
+    "shop images one), Gerber polarity (%TF.FilePolarity, also against the file's own tone "
+    "comment); what nothing says is listed as not compared.\n"
+    "Exit codes: 0 clean, 1 violations or a mismatch with the design or the film's identity, 2 "
+    "bad input, 3 the time "
     "limit PINMASK_TIME_LIMIT was spent (a duration: 90s, 2m, 1.5h; off unless set; counted "
     "from the start of the run): the check stops where it is and prints no verdict.\n"
     "Example: pinmask export m.mask.json -o fab/ && pinmask check fab/m.gds";

@@ -66,9 +66,6 @@ GridSnap fab_grid_of(const DesignOptions& o) {
     return g;
 }
 
-// The largest --lsi-tolerance: the mismatch is in pixels of one period, and no sensor's period
-// reaches 1000 px per cell.
-constexpr double kMaxLsiTolerancePx = 1000.0;
 
 void run(const DesignOptions& o, const CLI::App& command) {
     // --pixels-per-cell solves the pinhole itself: no default pinhole is chosen (or said) first.
@@ -77,12 +74,7 @@ void run(const DesignOptions& o, const CLI::App& command) {
     Camera camera = resolve_camera(camera_options);
     const PatternGeometry geometry = resolve_geometry(o.geometry);
     const KernelModel kernel = parse_kernel_model(o.kernel, "--kernel");
-    if (!(o.lsi_tolerance_px > 0) || !(o.lsi_tolerance_px <= kMaxLsiTolerancePx)) {
-        throw invalid_field("--lsi-tolerance", std::to_string(o.lsi_tolerance_px),
-                            "must be > 0 and <= 1000 px (0 or less gives an empty "
-                            "object-distance range; a mismatch of more than a whole period "
-                            "of any real sensor says nothing)");
-    }
+    validate_lsi_tolerance(o.lsi_tolerance_px);  // design/optics/optics: the range, both faces
     if (!o.save_camera.empty()) {
         const std::filesystem::path out(o.save_camera), dir = out.parent_path();
         if (!dir.empty() && !std::filesystem::is_directory(dir)) {

@@ -1,7 +1,8 @@
 // `pinmask export`: mask file -> fabrication files (export/pipeline/export_pipeline), the PSF files
 // (as `pinmask psf` writes them) and the sidecar `<stem>.export.json` (io/export_sidecar). Every
 // readable file is read back from its staged temporary and compared with the design
-// (export/pipeline/read_back); any difference, and any error, leaves no file. A --vendor preset
+// (export/pipeline/read_back); any difference, any error and any design-rule violation (unless
+// --write-on-violations) leaves no file. A --vendor preset
 // (export/pipeline/vendor_presets) sets defaults that explicit flags override.
 #include <cerrno>
 #include <cstring>
@@ -59,8 +60,9 @@ string rules_line(const ExportOptions& o, const Mask& mask, const Layout& l) {
            spacing_rule_text(mask.pattern.min_spacing_cells, l.pitch_nm, l.grid_nm);
 }
 
-// Returns the exit code: 0 clean, 1 the design-rule check found violations (the files are
-// written all the same, for inspection; --require-drc-clean writes none).
+// Returns the exit code: 0 clean, 1 the design-rule check found violations (a RuntimeFailure
+// from export_mask naming the rules, nothing written; with --write-on-violations the files are
+// written for inspection and the exit code is 1 all the same).
 int run_export(const ExportFlags& f) {
     if (f.vendor == "list") {
         std::cout << spell_flags(vendor_list_text());
@@ -136,9 +138,10 @@ int run_export(const ExportFlags& f) {
         if (clean) return 0;
         std::cerr
             << "pinmask export: the design-rule check (" << rules_line(o, mask, s.layout)
-            << ") found violations; the files are written for inspection (`pinmask check "
+            << ") found violations; the files are written for inspection (--write-on-violations; "
+               "`pinmask check "
             << (out_dir / (stem + (s.files.empty() ? "" : s.files.front().extension))).string()
-            << "` lists them, --require-drc-clean writes none): exit 1\n";
+            << "` lists them): exit 1\n";
         return 1;
     };
     if (f.json) {
@@ -231,8 +234,11 @@ void setup(CLI::App& app, int& exit_code) {
                   "tiff1: refuse when snapping to the plotter grid moves an edge more (length)");
     c->add_option("--margin", f->margin, "PDF page margin (length; default 10mm)");
     c->add_flag("--require-drc-clean", f->require_drc_clean,
-                "Fail (exit 1, no files) when the design-rule check finds violations "
-                "(without it: the files are written, the violations listed, exit 1)");
+                "Fail (exit 1, no files) when the design-rule check finds violations: the "
+                "default, kept for scripts that give it");
+    c->add_flag("--write-on-violations", f->write_on_violations,
+                "Write the files even when the design-rule check finds violations, for "
+                "inspection (the violations are listed and the exit code is 1 all the same)");
     c->add_flag("--allow-spacing-violations", f->allow_spacing_violations,
                 "Read masks that break their spacing rule (touching pinholes are merged)");
     c->add_flag("--no-psf", f->no_psf, "Do not write the PSF files");

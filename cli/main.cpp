@@ -160,8 +160,9 @@ int main(int argc, char** argv) {
     cli::add_bench_depth(bench);
     cli::add_bench_depthmap(bench);
     cli::add_bench_calibrate(bench);
-    cli::refuse_negative_unsigned(app);  // --seed -1 must not wrap to 2^64 - 1
-    enable_input_protection();           // no output may replace a file this run read
+    cli::refuse_negative_unsigned(app);     // --seed -1 must not wrap to 2^64 - 1
+    cli::refuse_non_decimal_integers(app);  // --sides 0x8, --layer 010 (octal 8)
+    enable_input_protection();              // no output may replace a file this run read
     try {
         memory_limit_bytes();  // a bad PINMASK_MEMORY_LIMIT is refused by every command
         // The time budget starts here, once for the whole run (a bad value: every command).

@@ -222,6 +222,8 @@ ExportSidecar read_export_sidecar(const std::filesystem::path& p) {
             e.name = get<std::string>(f, "name", p, "files[]");
             e.format = get<std::string>(f, "format", p, "files[]");
             e.fnv1a64 = get_or<std::string>(f, "fnv1a64", "", p, "files[]");
+            // What identifies the film (the layer check compares, export/pipeline/film_identity).
+            e.detail = get_or<std::string>(f, "detail", "", p, "files[]");
             s.files.push_back(e);
         }
     return s;

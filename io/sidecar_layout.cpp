@@ -6,6 +6,7 @@
 #include "core/errors/field_names.hpp"
 #include "core/units/units.hpp"
 #include "export/formats/fab_units.hpp"
+#include "export/layout/shapes.hpp"
 #include "export/pipeline/vendor_presets.hpp"
 
 namespace pinmask::io {
@@ -20,6 +21,9 @@ CheckLayoutSettings check_layout_settings(const CheckLayoutText& given) {
     };
     CheckLayoutSettings g;
     g.shape = given.shape;
+    if (given.sides && (*given.sides < 3 || *given.sides > kMaxPolygonSides))
+        throw invalid_field(field_ref("sides"), std::to_string(*given.sides),
+                            "must be in 3.." + std::to_string(kMaxPolygonSides));
     g.sides = given.sides;
     g.hole_side = length(given.hole_side, field_ref("hole_side"));
     g.frame = length(given.frame, field_ref("frame"));
@@ -68,7 +72,15 @@ LayoutOptions check_layout(const CheckLayoutSettings& o, const ExportSidecar* si
         lo.shape = s;
     }
     if (o.sides) {
-        if (side && lo.shape == HoleShape::kPolygon)
+        // A shape without sides to set would ignore the value: refused, as export refuses it.
+        if (lo.shape != HoleShape::kPolygon)
+            throw invalid_field(field_ref("sides"), std::to_string(*o.sides),
+                                "sets the sides of " + field_ref("shape") +
+                                    " polygon; the design's shape is " +
+                                    (side ? side->shape + " (the export sidecar)"
+                                          : std::string(o.shape ? *o.shape : "square")) +
+                                    ", which it would not change");
+        if (side)
             agree(field_ref("sides"), std::to_string(*o.sides), std::to_string(side->drawn_sides),
                   *o.sides == side->drawn_sides);
         lo.polygon_sides = *o.sides;

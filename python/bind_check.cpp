@@ -16,9 +16,11 @@
 #include "export/layout/xor_area.hpp"
 #include "export/pipeline/drc.hpp"
 #include "export/pipeline/file_check.hpp"
+#include "export/pipeline/film_identity.hpp"
 #include "export/pipeline/vendor_presets.hpp"
 #include "io/export_sidecar.hpp"
 #include "io/mask_json.hpp"
+#include "io/sidecar_identity.hpp"
 #include "io/sidecar_layout.hpp"
 #include "python/common.hpp"
 #include "python/result.hpp"
@@ -140,6 +142,7 @@ void bind_check(py::module_& m) {
             bool comparison_ok = true;
             std::string settings;
             DrcReport r;
+            FilmIdentity identity;  // a fabrication file's layer / polarity (none for a mask)
             if (input_is_mask || io::is_mask_file(input_text)) {
                 if (!mask.is_none())
                     throw invalid_field(field_ref("mask"), py::str(mask).cast<std::string>(),
@@ -205,6 +208,10 @@ void bind_check(py::module_& m) {
                 }
                 l = fc.layout;
                 r = fc.drc;
+                identity = check_film_identity(
+                    file, *readable_format_of(input_text),
+                    io::film_identity_expected(input_text, side ? &*side : nullptr, side_path,
+                                               no_sidecar, vendor_arg, tone));
                 if (design_mask && design)
                     add_pattern_spacing(r, *design_mask, design->pitch_nm, rules);
                 if (fc.comparison) {
@@ -223,7 +230,7 @@ void bind_check(py::module_& m) {
                     comparison = cd;
                 }
             }
-            const bool clean = r.clean() && comparison_ok;
+            const bool clean = r.clean() && comparison_ok && identity.ok();
             py::list v;
             for (const DrcViolation& x : r.violations) {
                 py::dict d;
@@ -262,6 +269,22 @@ void bind_check(py::module_& m) {
             j["truncated"] = r.truncated;
             j["violations"] = v;
             if (comparison) j["comparison"] = *comparison;
+            if (!identity.items.empty()) {  // as check --json
+                py::list items;
+                for (const FilmIdentityItem& i : identity.items) {
+                    py::dict d;
+                    d["what"] = i.what;
+                    d["found"] = i.found;
+                    d["expected"] = i.expected.empty() ? py::object(py::none())
+                                                       : py::object(py::str(i.expected));
+                    d["source"] = i.source;
+                    d["ok"] = i.ok;
+                    d["message"] = i.message;
+                    items.append(d);
+                }
+                j["film_identity"] =
+                    py::dict(py::arg("ok") = identity.ok(), py::arg("items") = items);
+            }
             return as_result(j);
         },
         py::arg("input"), py::arg("mask") = py::none(), py::arg("vendor") = py::none(),
@@ -284,7 +307,11 @@ grid as the file declares them). vendor: an export preset (chrome-photomask, fil
 or rules film | chrome | none; None: the rules the export sidecar records (vendor and any
 min_feature / min_space given to export), else film. min_space (alias min_gap), min_feature,
 min_spacing override them (lengths). The spacing rule is min_spacing_cells x the pinhole side on
-the fabrication grid. Distances in the result are in um.)");
+the fabrication grid. What identifies the film (GDSII/OASIS layer and datatype, DXF layer name,
+Gerber polarity) is compared with the sidecar's entry for the file, else with a vendor preset
+(export's default layers, the preset's tone) and tone: film_identity {ok, items: [{what, found,
+expected (None: not known), source, ok, message}]}; a mismatch makes clean False. Distances in
+the result are in um.)");
 }
 
 }  // namespace pinmask::python

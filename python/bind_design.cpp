@@ -250,11 +250,7 @@ void bind_design(py::module_& m) {
                                     "must be finite and >= 0");
             Camera c = camera.value_or(paper_camera());
             const KernelModel model = parse_kernel_model(kernel, field_ref("kernel"));
-            if (!(lsi_tolerance_px > 0) || !std::isfinite(lsi_tolerance_px)) {
-                throw invalid_field(field_ref("lsi_tolerance_px"), std::to_string(lsi_tolerance_px),
-                                    "must be finite and > 0 (0 or less gives an empty "
-                                    "object-distance range)");
-            }
+            validate_lsi_tolerance(lsi_tolerance_px);  // the command line's range
             // Solving the pinhole, as `pinmask design --solve pinhole / --pixels-per-cell N`
             // (the same checks in the same order, the same library calls).
             if (solve && *solve != "pinhole")

@@ -63,11 +63,13 @@ py::list rings_list(const std::vector<Ring>& rings) {
 py::tuple box_tuple(const BoxNm& b) { return py::make_tuple(b.x0, b.y0, b.x1, b.y1); }
 
 // `pinmask export`'s layout flags (cli/options/export_options: the same checks and defaults).
-ExportRequest layout_flags(const std::string& tone, const std::string& shape, int sides,
-                           bool mirror, bool marks, const std::optional<std::string>& label,
-                           const py::object& frame, const py::object& chord_tol,
-                           const py::object& grid, const py::object& hole_side,
-                           std::size_t max_vertices) {
+// None (tone, frame, grid, max_vertices) is "not given": the vendor preset's value, else the
+// default, as the command leaves a flag out.
+ExportRequest layout_flags(const std::optional<std::string>& tone, const std::string& shape,
+                           std::optional<int> sides, bool mirror, bool marks,
+                           const std::optional<std::string>& label, const py::object& frame,
+                           const py::object& chord_tol, const py::object& grid,
+                           const py::object& hole_side, std::optional<std::size_t> max_vertices) {
     ExportRequest f;
     f.tone = tone;
     f.shape = shape;
@@ -76,9 +78,9 @@ ExportRequest layout_flags(const std::string& tone, const std::string& shape, in
     f.marks = marks;
     f.label = label.has_value();
     f.label_id = label.value_or("");
-    f.frame = py::str(frame).cast<std::string>();
+    if (!frame.is_none()) f.frame = py::str(frame).cast<std::string>();
     f.chord_tol = py::str(chord_tol).cast<std::string>();
-    f.grid = py::str(grid).cast<std::string>();
+    if (!grid.is_none()) f.grid = py::str(grid).cast<std::string>();
     if (!hole_side.is_none()) f.hole_side = py::str(hole_side).cast<std::string>();
     f.max_vertices = max_vertices;
     f.no_psf = true;
@@ -113,21 +115,22 @@ void bind_export(py::module_& m) {
         .def_readonly("grid_nm", &Layout::grid_nm)
         .def_readonly("mask_hash", &Layout::mask_hash);
 
-    auto layout_fn =
-        [](const py::handle& mask_obj, const std::string& tone, const std::string& shape, int sides,
-           bool mirror, bool marks, const std::optional<std::string>& label,
-           const py::object& frame, const py::object& chord_tol, const py::object& grid,
-           const py::object& hole_side, std::size_t max_vertices, bool allow_spacing_violations) {
-            const Mask mk = mask_arg(mask_obj, allow_spacing_violations);
-            ExportRequest f = layout_flags(tone, shape, sides, mirror, marks, label, frame,
-                                           chord_tol, grid, hole_side, max_vertices);
-            f.allow_spacing_violations = allow_spacing_violations;
-            const LayoutOptions lo = export_options_from(f, mk, label.value_or("mask")).layout;
-            py::gil_scoped_release release;
-            return make_layout(mk, lo);
-        };
+    auto layout_fn = [](const py::handle& mask_obj, const std::string& tone,
+                        const std::string& shape, std::optional<int> sides, bool mirror, bool marks,
+                        const std::optional<std::string>& label, const py::object& frame,
+                        const py::object& chord_tol, const py::object& grid,
+                        const py::object& hole_side, std::size_t max_vertices,
+                        bool allow_spacing_violations) {
+        const Mask mk = mask_arg(mask_obj, allow_spacing_violations);
+        ExportRequest f = layout_flags(tone, shape, sides, mirror, marks, label, frame, chord_tol,
+                                       grid, hole_side, max_vertices);
+        f.allow_spacing_violations = allow_spacing_violations;
+        const LayoutOptions lo = export_options_from(f, mk, label.value_or("mask")).layout;
+        py::gil_scoped_release release;
+        return make_layout(mk, lo);
+    };
     m.def("layout", layout_fn, py::arg("mask"), py::arg("tone") = "clear",
-          py::arg("shape") = "square", py::arg("sides") = 8, py::arg("mirror") = false,
+          py::arg("shape") = "square", py::arg("sides") = py::none(), py::arg("mirror") = false,
           py::arg("marks") = false, py::arg("label") = py::none(), py::arg("frame") = "0",
           py::arg("chord_tol") = "auto", py::arg("grid") = "1nm", py::arg("hole_side") = py::none(),
           py::arg("max_vertices") = kGdsFriendlyMaxVertices,
@@ -163,19 +166,21 @@ void bind_export(py::module_& m) {
     m.def(
         "export_mask",
         [](const py::handle& mask_obj, const std::string& out_dir,
-           const std::vector<std::string>& formats, const std::optional<std::string>& stem_opt,
-           const std::string& tone, const std::string& shape, int sides, bool mirror, bool marks,
-           bool label, const std::string& label_id, const py::object& frame,
-           const py::object& chord_tol, const py::object& grid, const py::object& hole_side,
-           std::size_t max_vertices, int layer, int datatype, const std::string& dxf_layer,
-           std::optional<double> dpi, const py::object& margin, const std::string& vendor,
-           bool require_drc_clean, bool allow_spacing_violations,
+           const std::optional<std::vector<std::string>>& formats,
+           const std::optional<std::string>& stem_opt, const std::optional<std::string>& tone,
+           const std::string& shape, std::optional<int> sides, bool mirror, bool marks, bool label,
+           const std::string& label_id, const py::object& frame, const py::object& chord_tol,
+           const py::object& grid, const py::object& hole_side,
+           std::optional<std::size_t> max_vertices, int layer, int datatype,
+           const std::string& dxf_layer, std::optional<double> dpi, const py::object& margin,
+           const std::string& vendor, bool require_drc_clean, bool allow_spacing_violations,
            const std::optional<std::string>& min_feature,
            const std::optional<std::string>& min_space, const std::optional<std::string>& units,
            const std::optional<std::string>& emulsion, const std::optional<std::string>& draw,
            const std::optional<std::string>& circles, const std::string& hierarchy,
-           const py::object& kerf, const py::object& max_snap_error, bool psf, bool npy) {
-            const std::vector<FabFormat> fmts = parse_formats(formats);
+           const py::object& kerf, const py::object& max_snap_error, bool psf, bool npy,
+           bool write_on_violations) {
+            if (formats) parse_formats(*formats);  // None: the vendor preset's, as the command
             if (npy && !psf)
                 throw InvalidInput(field_ref("npy") + " writes the PSF as .npy: it needs " +
                                    field_ref("psf") + "=True");
@@ -207,8 +212,11 @@ void bind_export(py::module_& m) {
                              label ? std::optional<std::string>(label_id.empty() ? stem : label_id)
                                    : std::nullopt,
                              frame, chord_tol, grid, hole_side, max_vertices);
-            f.formats = "";
-            for (const std::string& x : formats) *f.formats += (f.formats->empty() ? "" : ",") + x;
+            if (formats) {
+                f.formats = "";
+                for (const std::string& x : *formats)
+                    *f.formats += (f.formats->empty() ? "" : ",") + x;
+            }
             f.layer = layer;
             f.datatype = datatype;
             f.dxf_layer = dxf_layer;
@@ -218,6 +226,7 @@ void bind_export(py::module_& m) {
             f.min_feature = min_feature;
             f.min_space = min_space;
             f.require_drc_clean = require_drc_clean;
+            f.write_on_violations = write_on_violations;
             f.allow_spacing_violations = allow_spacing_violations;
             // The command's --units, --emulsion, --draw, --circles, --hierarchy, --kerf and
             // --max-snap-error, as typed (lengths: metres or a string with a unit).
@@ -334,28 +343,31 @@ void bind_export(py::module_& m) {
             out["psf_files"] = psf_paths;
             return as_result(out);
         },
-        py::arg("mask"), py::arg("out_dir"),
-        py::arg("formats") = std::vector<std::string>{"svg", "pdf", "gds", "dxf", "gerber", "png"},
-        py::arg("stem") = py::none(), py::arg("tone") = "clear", py::arg("shape") = "square",
-        py::arg("sides") = 8, py::arg("mirror") = false, py::arg("marks") = false,
-        py::arg("label") = false, py::arg("label_id") = "", py::arg("frame") = "0",
-        py::arg("chord_tol") = "auto", py::arg("grid") = "1nm", py::arg("hole_side") = py::none(),
-        py::arg("max_vertices") = kGdsFriendlyMaxVertices, py::arg("layer") = 1,
-        py::arg("datatype") = 0, py::arg("dxf_layer") = "PINMASK", py::arg("dpi") = py::none(),
-        py::arg("margin") = "10mm", py::arg("vendor") = "none",
+        py::arg("mask"), py::arg("out_dir"), py::arg("formats") = py::none(),
+        py::arg("stem") = py::none(), py::arg("tone") = py::none(), py::arg("shape") = "square",
+        py::arg("sides") = py::none(), py::arg("mirror") = false, py::arg("marks") = false,
+        py::arg("label") = false, py::arg("label_id") = "", py::arg("frame") = py::none(),
+        py::arg("chord_tol") = "auto", py::arg("grid") = py::none(),
+        py::arg("hole_side") = py::none(), py::arg("max_vertices") = py::none(),
+        py::arg("layer") = 1, py::arg("datatype") = 0, py::arg("dxf_layer") = "PINMASK",
+        py::arg("dpi") = py::none(), py::arg("margin") = "10mm", py::arg("vendor") = "none",
         py::arg("require_drc_clean") = false, py::arg("allow_spacing_violations") = false,
         py::arg("min_feature") = py::none(), py::arg("min_space") = py::none(),
         py::arg("units") = py::none(), py::arg("emulsion") = py::none(),
         py::arg("draw") = py::none(), py::arg("circles") = py::none(),
         py::arg("hierarchy") = "auto", py::arg("kerf") = py::none(),
         py::arg("max_snap_error") = py::none(), py::arg("psf") = true, py::arg("npy") = false,
+        py::arg("write_on_violations") = false,
         R"(Writes the fabrication files of `pinmask export MASK -o out_dir` (same options, same
 bytes; export/pipeline/export_pipeline): formats svg pdf gds oasis dxf gerber png tiff1 ->
-out_dir/<stem>.svg .pdf .gds .oas .dxf .gbr .png .tif, all or nothing; dpi: PNG/TIFF
+out_dir/<stem>.svg .pdf .gds .oas .dxf .gbr .png .tif, all or nothing (None: the vendor
+preset's formats, else svg pdf gds dxf gerber png, as the command); dpi: PNG/TIFF
 resolution (None: the CLI's default per format); each readable format is read back from disk and compared with the design (identical polygons or XOR area 0, and the mask
 hash), else RuntimeError and no file. The design-rule check (vendor: an export preset or rules
 film | chrome | none; min_feature / min_space: the shop's own limits over them, lengths) is
-reported (require_drc_clean: RuntimeError on violations); the spacing rule is evaluated on the
+checked: a violation is a RuntimeError naming every failed rule and no file is written
+(require_drc_clean, the default, kept for scripts; write_on_violations=True writes the files for
+inspection and reports drc.clean False); the spacing rule is evaluated on the
 pinhole side snapped to the grid, the pitch every cell edge is drawn at. stem: default the mask file's name
 ('mask' for a Mask object). Beside the files, <stem>.export.json: the export sidecar of
 `pinmask export` (settings, rules, each file's hash; check() of these files reads it). units: DXF unit and GDSII/OASIS user unit um | mm | in (default um;

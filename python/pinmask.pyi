@@ -384,7 +384,7 @@ def layout(
     mask: MaskLike,
     tone: str = "clear",
     shape: str = "square",
-    sides: int = 8,
+    sides: Optional[int] = None,  # shape polygon only (default 8)
     mirror: bool = False,
     marks: bool = False,
     label: Optional[str] = None,
@@ -407,20 +407,20 @@ def fabrication_bytes(
 def export_mask(
     mask: MaskLike,
     out_dir: str,
-    formats: Sequence[str] = ("svg", "pdf", "gds", "dxf", "gerber", "png"),
+    formats: Optional[Sequence[str]] = None,  # None: the vendor preset's, as the command
     stem: Optional[str] = None,
-    tone: str = "clear",
+    tone: Optional[str] = None,  # None: the vendor preset's, else clear
     shape: str = "square",
-    sides: int = 8,
+    sides: Optional[int] = None,  # shape polygon only (default 8)
     mirror: bool = False,
     marks: bool = False,
     label: bool = False,
     label_id: str = "",
-    frame: Length = "0",
+    frame: Optional[Length] = None,  # None: the vendor preset's, else 0
     chord_tol: Length = "auto",
-    grid: Length = "1nm",
+    grid: Optional[Length] = None,  # None: the vendor preset's, else 1nm
     hole_side: Optional[Length] = None,
-    max_vertices: int = 199,
+    max_vertices: Optional[int] = None,  # None: the vendor preset's, else 199
     layer: int = 1,
     datatype: int = 0,
     dxf_layer: str = "PINMASK",
@@ -440,6 +440,7 @@ def export_mask(
     max_snap_error: Optional[Length] = None,  # tiff1
     psf: bool = True,  # also <stem>.psf.tiff + sidecar, as the command (unless --no-psf)
     npy: bool = False,  # also <stem>.psf.npy
+    write_on_violations: bool = False,  # write the files of a failed design-rule check
 ) -> Result: ...
 def check(
     input: Union[Mask, PathLikeStr],

@@ -61,6 +61,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"kernel_path", "--kernel-path"},
     {"lambda", "--lambda"},
     {"layer", "--layer"},
+    {"lsi_tolerance_px", "--lsi-tolerance"},
     {"margin", "--margin"},
     {"margin_m", "--margin"},
     {"mask", "--mask"},
@@ -101,6 +102,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"read_noise", "--read-noise"},
     {"regulariser", "--regulariser"},
     {"report", "--report"},
+    {"require_drc_clean", "--require-drc-clean"},
     {"rerank_scenes", "--rerank-scenes"},
     {"resume", "--resume"},
     {"robust", "--robust"},
@@ -135,6 +137,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"weights.sidelobe_energy", "--w-sidelobe-energy"},
     {"wiener_nsr", "--nsr"},
     {"window", "--size"},
+    {"write_on_violations", "--write-on-violations"},
 });
 
 }  // namespace

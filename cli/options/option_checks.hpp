@@ -10,4 +10,10 @@ namespace pinmask::cli {
 // and the rule. Applied recursively to the subcommands.
 void refuse_negative_unsigned(CLI::App& app);
 
+// Every option stored in an integer (CLI11 type names "INT" and "UINT": counts, seeds, layers,
+// sides) takes decimal digits only, with an optional sign: CLI11 reads "0x8" as hexadecimal 8
+// and "010" as octal 8, so `--layer 010` wrote layer 8 without a word. Such a value is refused
+// naming the option and what it would have been read as. Applied recursively to the subcommands.
+void refuse_non_decimal_integers(CLI::App& app);
+
 }  // namespace pinmask::cli

@@ -78,6 +78,18 @@ void print_check_json(const CheckReport& rep) {
             {"rings_only_in_design", k.only_design},
             {"ok", k.xor_area_nm2 <= c.max_xor_nm2 && (k.file_hash.empty() || k.hash_ok())}};
     }
+    if (!c.identity.items.empty()) {
+        nlohmann::ordered_json items = nlohmann::ordered_json::array();
+        for (const FilmIdentityItem& i : c.identity.items)
+            items.push_back({{"what", i.what},
+                             {"found", i.found},
+                             {"expected", i.expected.empty() ? nlohmann::ordered_json()
+                                                             : nlohmann::ordered_json(i.expected)},
+                             {"source", i.source},
+                             {"ok", i.ok},
+                             {"message", i.message}});
+        j["film_identity"] = {{"ok", c.identity.ok()}, {"items", items}};
+    }
     if (c.picture)
         j["picture"] = {
             {"method", c.picture->method}, {"result", c.picture->result}, {"ok", c.picture->ok}};
@@ -116,6 +128,8 @@ void print_check_text(const CheckReport& rep, const VendorRules& vendor) {
     if (c.picture)
         s << "  vs design   " << rep.mask << ": " << c.picture->method << ": " << c.picture->result
           << (c.picture->ok ? "" : "  MISMATCH") << "\n";
+    for (const FilmIdentityItem& i : c.identity.items)
+        s << "  film        " << i.what << ": " << i.message << (i.ok ? "" : "  MISMATCH") << "\n";
     if (!rep.note.empty()) s << "  note        " << rep.note << "\n";
     if (r.clean()) {
         s << "  violations  none\n";

@@ -1,10 +1,12 @@
 #include "design/optics/optics.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
 #include "core/errors/error.hpp"
+#include "core/errors/field_names.hpp"
 
 namespace pinmask {
 namespace {
@@ -64,14 +66,23 @@ double fresnel_number_at_u(const Camera& c) {
            (4.0 * c.wavelength_m);
 }
 
+void validate_lsi_tolerance(double t_px) {
+    if (!(t_px >= kMinLsiTolerancePx) || !(t_px <= kMaxLsiTolerancePx)) {
+        char value[32];
+        std::snprintf(value, sizeof value, "%g", t_px);
+        throw invalid_field(field_ref("lsi_tolerance_px"), value,
+                            "must be between 1e-6 and 1000 px (0 or less gives an empty "
+                            "object-distance range, a millionth of a pixel is below what any "
+                            "sensor or PSF model resolves, and a mismatch of more than a whole "
+                            "period of any real sensor says nothing)");
+    }
+}
+
 OpticsReport compute_optics(const Camera& c, const PatternGeometry& g, KernelModel requested,
                             const OpticsOptions& options) {
     validate(c);
     validate(g);
-    if (!(options.lsi_tolerance_px > 0.0) || std::isinf(options.lsi_tolerance_px)) {
-        throw invalid_field("lsi_tolerance_px", std::to_string(options.lsi_tolerance_px),
-                            "must be finite and > 0");
-    }
+    validate_lsi_tolerance(options.lsi_tolerance_px);
     OpticsReport r;
     r.camera = c;
     r.geometry = g;

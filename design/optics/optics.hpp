@@ -37,6 +37,17 @@ struct OpticsOptions {
     double lsi_tolerance_px = 1.0;
 };
 
+// The LSI tolerance's range, for every face. Below a millionth of a pixel no sensor or PSF
+// model resolves the mismatch, and the object-distance bound f s_max / (t w) only grows
+// towards infinity (1e-320, a denormal, overflows it); above 1000 px the mismatch exceeds a
+// whole period of any real sensor and says nothing.
+inline constexpr double kMinLsiTolerancePx = 1e-6;
+inline constexpr double kMaxLsiTolerancePx = 1000.0;
+
+// Throws InvalidInput naming `lsi_tolerance_px` unless kMinLsiTolerancePx <= t <=
+// kMaxLsiTolerancePx.
+void validate_lsi_tolerance(double t_px);
+
 struct OpticsReport {
     Camera camera;
     PatternGeometry geometry;

@@ -27,15 +27,7 @@ double magnification_at(const Camera& c, double u) {
 }  // namespace
 
 void validate(const WorkingDistanceOptions& o) {
-    if (std::isnan(o.lsi_tolerance_px) || std::isinf(o.lsi_tolerance_px)) {
-        throw invalid_field("lsi_tolerance_px", std::to_string(o.lsi_tolerance_px),
-                            "must be finite and > 0");
-    }
-    if (!(o.lsi_tolerance_px > 0.0)) {
-        throw invalid_field("lsi_tolerance_px", std::to_string(o.lsi_tolerance_px),
-                            "must be > 0: a tolerance of 0 or less gives an empty object-distance "
-                            "range (not even u itself is usable)");
-    }
+    validate_lsi_tolerance(o.lsi_tolerance_px);
     if (o.pixels_per_cell < 0) {
         throw invalid_field("pixels_per_cell", std::to_string(o.pixels_per_cell),
                             "must be >= 1 (or 0: the nearest whole number at u)");

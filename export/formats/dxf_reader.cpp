@@ -5,6 +5,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "core/errors/error.hpp"
@@ -230,6 +231,15 @@ void check_entity_group(const Pair& p, const HiddenLayers& hidden, std::string_v
     }
 }
 
+// An entity's layer (group 8), which identifies the film: one, and not empty (a second one or
+// an empty name leaves the layer to the reading tool). `layer` is empty until it is given.
+void take_layer(const Pair& p, std::string& layer) {
+    if (!layer.empty()) throw bad(p.line, "entity with a second layer (group 8)");
+    if (p.value.find_first_not_of(" \t") == std::string_view::npos)
+        throw bad(p.line, "entity with an empty layer name (group 8)");
+    layer = std::string(p.value);
+}
+
 // A LAYER table entry: its name and whether a viewer draws it.
 void read_layer(PairReader& rd, HiddenLayers& hidden) {
     std::string name;
@@ -249,11 +259,12 @@ void read_layer(PairReader& rd, HiddenLayers& hidden) {
 
 // A POLYLINE entity: its own groups, then VERTEX entities, then SEQEND.
 void read_polyline(PairReader& rd, std::size_t line, DrawingUnit& u, const HiddenLayers& hidden,
-                   std::vector<Ring>& out) {
+                   std::vector<Ring>& out, std::string& layer) {
     bool closed = false;
     Pair p;
     while ((p = rd.take()).code != 0) {
         check_entity_group(p, hidden, "POLYLINE");
+        if (p.code == 8) take_layer(p, layer);
         if (p.code == 70) {
             const int flags = integer(p);
             if (flags & ~(1 | 128)) throw bad(p.line, "only plain 2D polylines are supported");
@@ -281,12 +292,13 @@ void read_polyline(PairReader& rd, std::size_t line, DrawingUnit& u, const Hidde
 }
 
 void read_lwpolyline(PairReader& rd, std::size_t line, DrawingUnit& u, const HiddenLayers& hidden,
-                     std::vector<Ring>& out) {
+                     std::vector<Ring>& out, std::string& layer) {
     bool closed = false;
     Ring ring;
     Pair p;
     while ((p = rd.take()).code != 0) {
         check_entity_group(p, hidden, "LWPOLYLINE");
+        if (p.code == 8) take_layer(p, layer);
         if (p.code == 70) closed = integer(p) & 1;
         if (p.code == 10) ring.push_back({coordinate(p, u), 0});
         if (p.code == 20) {
@@ -301,12 +313,13 @@ void read_lwpolyline(PairReader& rd, std::size_t line, DrawingUnit& u, const Hid
 
 // A CIRCLE entity: centre 10/20, radius 40 (a true circle, FileGeometry circles).
 void read_circle(PairReader& rd, std::size_t line, DrawingUnit& u, const HiddenLayers& hidden,
-                 std::vector<CircleNm>& out) {
+                 std::vector<CircleNm>& out, std::string& layer) {
     CircleNm c;
     bool has_x = false, has_y = false, has_r = false;
     Pair p;
     while ((p = rd.take()).code != 0) {
         if (p.code != 40) check_entity_group(p, hidden, "CIRCLE");  // 40: a circle's radius
+        if (p.code == 8) take_layer(p, layer);
         if (p.code == 10) c.centre.x = coordinate(p, u), has_x = true;
         if (p.code == 20) c.centre.y = coordinate(p, u), has_y = true;
         if (p.code == 40) c.diameter_nm = 2 * coordinate(p, u), has_r = true;
@@ -325,6 +338,7 @@ FileGeometry read_dxf(std::string_view text) {
     std::string section;
     DrawingUnit unit;
     HiddenLayers hidden;
+    std::set<std::string, std::less<>> layers_seen;  // g.layers
     TimeLimitPoll poll_time("reading the DXF file");
     for (;;) {
         poll_time();
@@ -383,15 +397,18 @@ FileGeometry read_dxf(std::string_view text) {
             continue;
         }
         if (section != "ENTITIES") continue;
+        std::string layer;  // set by group 8
         if (p.value == "POLYLINE")
-            read_polyline(rd, p.line, unit, hidden, g.rings);
+            read_polyline(rd, p.line, unit, hidden, g.rings, layer);
         else if (p.value == "CIRCLE")
-            read_circle(rd, p.line, unit, hidden, g.circles);
+            read_circle(rd, p.line, unit, hidden, g.circles, layer);
         else if (p.value == "LWPOLYLINE")
-            read_lwpolyline(rd, p.line, unit, hidden, g.rings);
+            read_lwpolyline(rd, p.line, unit, hidden, g.rings, layer);
         else
             throw bad(p.line, "unsupported entity " + std::string(p.value.substr(0, 20)) +
                                   " (pinmask reads closed POLYLINE, LWPOLYLINE and CIRCLE only)");
+        if (layer.empty()) layer = "0";  // an entity without group 8 is on layer 0
+        if (layers_seen.insert(layer).second) g.layers.push_back(layer);
     }
     if (unit.nm != 0) g.info["unit_nm"] = std::to_string(unit.nm);
     // The file states no unit: the coordinates were read as micrometres (pinmask's historical

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -90,19 +91,23 @@ struct Reference {
 struct Structure {
     std::vector<Ring> rings;
     std::vector<Reference> refs;
+    double check_bytes = 0.0;  // its rings' cost through the check (ring_check_bytes)
 };
 
 // Appends the rings of `name` translated by `at`, references expanded (translation only).
 // Placements visited at most while flattening (bounds the time of nested arrays of empty cells).
 constexpr std::uint64_t kMaxPlacements = 100'000'000;
 
+// `bytes`: what the rings placed so far cost through the check, charged against the memory
+// budget as they are placed (references multiply a small file into millions of rings).
 void flatten(const std::map<std::string, Structure>& all, const std::string& name, PointNm at,
-             int depth, std::vector<Ring>& out, std::uint64_t& visits) {
+             int depth, std::vector<Ring>& out, std::uint64_t& visits, double& bytes) {
     if (depth > kMaxDepth)
         throw bad(0, "references nested deeper than " + std::to_string(kMaxDepth));
     if (++visits > kMaxPlacements) throw bad(0, "references expand to more than 10^8 placements");
     const Structure& s = all.at(name);
-    check_memory(double(out.size() + s.rings.size()) * 160.0, "GDSII flattening");
+    bytes += s.check_bytes;
+    check_memory(bytes, "GDSII flattening (references expanded)");
     for (const Ring& r : s.rings) {
         Ring t = r;
         for (PointNm& p : t) {
@@ -114,8 +119,8 @@ void flatten(const std::map<std::string, Structure>& all, const std::string& nam
     }
     for (const Reference& ref : s.refs) {
         if (!ref.array) {
-            flatten(all, ref.name, {at.x + ref.xy[0].x, at.y + ref.xy[0].y}, depth + 1, out,
-                    visits);
+            flatten(all, ref.name, {at.x + ref.xy[0].x, at.y + ref.xy[0].y}, depth + 1, out, visits,
+                    bytes);
             continue;
         }
         // AREF: xy[1] = origin + cols * column step, xy[2] = origin + rows * row step.
@@ -129,7 +134,7 @@ void flatten(const std::map<std::string, Structure>& all, const std::string& nam
                 flatten(all, ref.name,
                         {at.x + o.x + i * (c.x / ref.cols) + j * (r.x / ref.rows),
                          at.y + o.y + i * (c.y / ref.cols) + j * (r.y / ref.rows)},
-                        depth + 1, out, visits);
+                        depth + 1, out, visits, bytes);
     }
 }
 
@@ -182,6 +187,7 @@ FileGeometry read_gds(std::string_view bytes) {
     int structures = 0;
     bool in_structure = false, ended = false;
     std::string layers;
+    std::set<std::string> layer_seen;  // the layers of `layers`
     TimeLimitPoll poll_time("reading the GDSII file");
     while (!ended) {
         poll_time();
@@ -292,6 +298,9 @@ FileGeometry read_gds(std::string_view bytes) {
                 const bool boundary = r.type == BOUNDARY;
                 Ring ring;
                 std::string layer_text;
+                // What identifies the film: one LAYER and one DATATYPE per BOUNDARY, each in
+                // 0..32767 (a second record, or none, leaves the layer to the reading tool).
+                int layer = -1, datatype = -1;
                 bool have_xy = false;
                 for (;;) {
                     if (rd.at_end()) throw bad(rd.offset(), "element not ended: truncated");
@@ -299,9 +308,17 @@ FileGeometry read_gds(std::string_view bytes) {
                     if (e.type == ENDEL) break;
                     if (e.type == LAYER || e.type == DATATYPE || e.type == TEXTTYPE) {
                         expect(e, 2, 2, "LAYER/DATATYPE");
-                        if (e.type != TEXTTYPE)
-                            layer_text +=
-                                (e.type == LAYER ? "" : "/") + std::to_string(be(e.data, 0, 2));
+                        if (e.type != TEXTTYPE) {
+                            const char* what = e.type == LAYER ? "LAYER" : "DATATYPE";
+                            int& v = e.type == LAYER ? layer : datatype;
+                            if (v >= 0)
+                                throw bad(e.offset,
+                                          std::string("second ") + what + " record in one element");
+                            v = int(be(e.data, 0, 2));
+                            if (v < 0)
+                                throw bad(e.offset, std::string(what) + " " + std::to_string(v) +
+                                                        " is negative (0..32767)");
+                        }
                     } else if (e.type == XY) {
                         expect(e, 3, 8, "XY");
                         if (have_xy) throw bad(e.offset, "second XY record in one element");
@@ -321,15 +338,23 @@ FileGeometry read_gds(std::string_view bytes) {
                     // Other element records (PROPATTR, PRESENTATION, STRANS, ...) are ignored.
                 }
                 if (!have_xy) throw bad(r.offset, "element without XY");
+                if (boundary && (layer < 0 || datatype < 0))
+                    throw bad(r.offset, std::string("BOUNDARY without a ") +
+                                            (layer < 0 ? "LAYER" : "DATATYPE") +
+                                            " record: its layer is the reading tool's guess");
+                if (boundary) layer_text = std::to_string(layer) + "/" + std::to_string(datatype);
                 if (boundary) {
                     if (ring.size() < 4 || !(ring.front() == ring.back()))
                         throw bad(r.offset,
                                   "BOUNDARY must have >= 4 points and end at its "
                                   "first point");
                     ring.pop_back();
+                    current->check_bytes += ring_check_bytes(ring.size());
                     current->rings.push_back(std::move(ring));
-                    if ((" " + layers + " ").find(" " + layer_text + " ") == std::string::npos)
+                    if (layer_seen.insert(layer_text).second) {
                         layers += (layers.empty() ? "" : " ") + layer_text;
+                        g.layers.push_back(layer_text);
+                    }
                 }
                 break;
             }
@@ -367,7 +392,8 @@ FileGeometry read_gds(std::string_view bytes) {
     g.info["structure"] = top;
     if (order.size() > 1) g.info["hierarchy"] = "yes";
     std::uint64_t visits = 0;
-    flatten(structures_by_name, top, {0, 0}, 0, g.rings, visits);
+    double bytes = 0.0;
+    flatten(structures_by_name, top, {0, 0}, 0, g.rings, visits, bytes);
     return g;
 }
 

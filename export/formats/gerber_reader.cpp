@@ -73,8 +73,17 @@ class GerberParser {
             } else if (c == "LPD") {
             } else if (c.starts_with("TF")) {
                 const std::string_view a = c.substr(2);
-                if (a.starts_with(".FilePolarity,"))
-                    g_.info["polarity"] = std::string(a.substr(14));
+                if (a.starts_with(".FilePolarity,")) {
+                    // One film, one polarity: a second statement leaves the plotter to choose.
+                    const std::string p(a.substr(14));
+                    if (const auto it = g_.info.find("polarity"); it != g_.info.end())
+                        throw bad(at, "file polarity stated twice (" + it->second + ", then " +
+                                          p.substr(0, 20) + ")");
+                    if (p != "Positive" && p != "Negative")
+                        throw bad(at, "file polarity '" + p.substr(0, 20) +
+                                          "' is neither Positive nor Negative");
+                    g_.info["polarity"] = p;
+                }
             } else if (c.starts_with("TA") || c.starts_with("TO") || c.starts_with("TD")) {
             } else {
                 throw bad(at, "unsupported extended command '" + std::string(c.substr(0, 20)) +

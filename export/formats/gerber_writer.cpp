@@ -25,6 +25,10 @@ void append_point(std::string& out, const PointNm& p, const char* op) {
 
 }  // namespace
 
+std::string gerber_file_polarity(Tone tone) {
+    return tone == Tone::kClear ? "Negative" : "Positive";
+}
+
 std::string gerber_document(const Layout& layout, bool native_circles) {
     const bool clear = layout.tone == Tone::kClear;
     std::string out;
@@ -37,7 +41,7 @@ std::string gerber_document(const Layout& layout, bool native_circles) {
                  : "G04 Regions are the opaque (chrome) areas: file polarity Positive*\n";
     out += "%TF.GenerationSoftware,pinmask,pinmask," PINMASK_VERSION "*%\n";
     out += "%TF.FileFunction,Other,Photomask*%\n";
-    out += clear ? "%TF.FilePolarity,Negative*%\n" : "%TF.FilePolarity,Positive*%\n";
+    out += "%TF.FilePolarity," + gerber_file_polarity(layout.tone) + "*%\n";
     out += "%FSLAX46Y46*%\n";
     out += "%MOMM*%\n";
     out += "%LPD*%\n";

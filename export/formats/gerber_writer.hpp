@@ -14,6 +14,10 @@
 
 namespace pinmask {
 
+// The .FilePolarity attribute of a tone: "Negative" for clear (the regions are where the chrome
+// is absent), "Positive" for dark (the regions are the chrome).
+std::string gerber_file_polarity(Tone tone);
+
 // The complete file. Throws InvalidInput for a coordinate beyond the 4.6 format (|x| >= 10 m).
 // native_circles: round pinholes (layout.circles non-empty) as flashes of one circular aperture
 // (%ADD10C,<diameter mm>*%, D10, X..Y..D03) instead of regions.

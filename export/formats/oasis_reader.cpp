@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <optional>
+#include <set>
+#include <string>
+#include <utility>
 
 #include "core/errors/error.hpp"
 #include "core/limits/resource_limits.hpp"
@@ -151,6 +154,8 @@ class OasisParser {
         if (info & kL) layer_ = rd_.uint();
         if (info & kD) datatype_ = rd_.uint();
         if (!layer_ || !datatype_) throw bad(at, "layer or datatype used before it is set");
+        if (layer_seen_.insert({*layer_, *datatype_}).second)
+            g_.layers.push_back(std::to_string(*layer_) + "/" + std::to_string(*datatype_));
     }
 
     void position(std::uint8_t info, std::size_t at) {
@@ -283,10 +288,10 @@ class OasisParser {
         static const std::vector<PointNm> kOnce{{0, 0}};
         const std::vector<PointNm>& offsets = repeated ? repetition_ : kOnce;
         // Every ring made so far is charged, not only this record's: a repetition reused by
-        // many records (type 0) multiplies a small file into millions of rings. Twice the
-        // rings' bytes: the design-rule check makes a canonical copy of the geometry.
-        expanded_bytes_ += double(offsets.size()) * (double(shape.size()) * 16.0 + 56.0);
-        check_memory(2.0 * expanded_bytes_, "OASIS elements (repetitions expanded)");
+        // many records (type 0) multiplies a small file into millions of rings. Each at what
+        // it costs through the whole check (export/layout/rings ring_check_bytes).
+        expanded_bytes_ += double(offsets.size()) * ring_check_bytes(shape.size());
+        check_memory(expanded_bytes_, "OASIS elements (repetitions expanded)");
         check_time_limit("reading the OASIS file (at byte " + std::to_string(at) + ")");
         for (const PointNm& o : offsets) {
             Ring ring;
@@ -407,6 +412,7 @@ class OasisParser {
     std::vector<PointNm> repetition_;
     bool have_repetition_ = false;
     double expanded_bytes_ = 0.0;  // rings made so far (bytes, estimated), see emit()
+    std::set<std::pair<std::uint64_t, std::uint64_t>> layer_seen_;  // g_.layers as numbers
 };
 
 }  // namespace

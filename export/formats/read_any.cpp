@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <fstream>
+#include <optional>
 
 #include "core/errors/error.hpp"
 #include "core/files/output_set.hpp"
@@ -79,25 +80,25 @@ FileGeometry read_fabrication_bytes(std::string_view bytes, FabFormat format) {
     }
 }
 
-FileGeometry read_fabrication_file(const std::filesystem::path& path) {
-    protect_input(path);  // no output of this run may replace it (core/files/output_set)
+std::optional<FabFormat> readable_format_of(const std::filesystem::path& path) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
-    FabFormat f;
-    if (ext == ".gds" || ext == ".gds2" || ext == ".gdsii")
-        f = FabFormat::kGds;
-    else if (ext == ".oas" || ext == ".oasis")
-        f = FabFormat::kOasis;
-    else if (ext == ".dxf")
-        f = FabFormat::kDxf;
-    else if (ext == ".gbr" || ext == ".ger" || ext == ".gerber")
-        f = FabFormat::kGerber;
-    else if (ext == ".svg")
-        f = FabFormat::kSvg;
-    else
+    if (ext == ".gds" || ext == ".gds2" || ext == ".gdsii") return FabFormat::kGds;
+    if (ext == ".oas" || ext == ".oasis") return FabFormat::kOasis;
+    if (ext == ".dxf") return FabFormat::kDxf;
+    if (ext == ".gbr" || ext == ".ger" || ext == ".gerber") return FabFormat::kGerber;
+    if (ext == ".svg") return FabFormat::kSvg;
+    return std::nullopt;
+}
+
+FileGeometry read_fabrication_file(const std::filesystem::path& path) {
+    protect_input(path);  // no output of this run may replace it (core/files/output_set)
+    const std::optional<FabFormat> format = readable_format_of(path);
+    if (!format)
         throw invalid_field("file", path.string(),
                             "extension must be .gds, .oas, .dxf, .gbr or .svg to be read back");
+    const FabFormat f = *format;
     std::error_code ec;
     const auto size = std::filesystem::file_size(path, ec);
     if (ec) throw RuntimeFailure("cannot read " + path.string() + ": " + ec.message());

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -25,6 +26,10 @@ bool is_readable(FabFormat f);
 
 // Geometry of a file's bytes in a readable format.
 FileGeometry read_fabrication_bytes(std::string_view bytes, FabFormat format);
+
+// The readable format of a file name's extension (.gds .gds2 .gdsii .oas .oasis .dxf .gbr .ger
+// .gerber .svg, case-insensitive), or nullopt.
+std::optional<FabFormat> readable_format_of(const std::filesystem::path& path);
 
 // Reads a file, choosing the reader by extension (.gds .gds2 .gdsii .oas .oasis .dxf .gbr .ger
 // .gerber .svg, case-insensitive). Throws InvalidInput for an unknown extension, RuntimeFailure

@@ -8,11 +8,13 @@
 
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
+#include "design/optics/fab_grid.hpp"
 #include "design/optics/working_distance.hpp"
 #include "export/formats/klayout_open.hpp"
 #include "export/formats/png_preview.hpp"
 #include "export/layout/rings.hpp"
 #include "export/layout/shapes.hpp"
+#include "export/pipeline/vendor_presets.hpp"
 
 namespace pinmask {
 namespace {
@@ -145,10 +147,22 @@ ExportSummary export_mask(const Mask& mask, const ExportOptions& o) {
     s.drc = run_drc(s.layout, rules);
     add_pattern_spacing(s.drc, mask, s.layout.pitch_nm, rules);  // pinholes before merging
     if (o.require_drc_clean && !s.drc.clean()) {
+        // Every rule that failed with its count, and the first violation of each in the check's
+        // words: the message alone says what to change.
         std::string what;
-        for (const auto& [rule, n] : s.drc.counts) what += " " + rule + "=" + std::to_string(n);
-        throw RuntimeFailure("design-rule check (" + o.drc.name + ") found violations:" + what +
-                             "; run `pinmask check` for details");
+        for (const auto& [rule, n] : s.drc.counts) {
+            what += (what.empty() ? "" : "; ") + rule + " " + std::to_string(n);
+            for (const DrcViolation& v : s.drc.violations)
+                if (drc_rule_name(v.rule) == rule) {
+                    what += " (first: " + v.message + ")";
+                    break;
+                }
+        }
+        throw RuntimeFailure(
+            "the design-rule check (" + o.drc.name + ": " + vendor_rules_text(o.drc) + ", " +
+            spacing_rule_text(mask.pattern.min_spacing_cells, s.layout.pitch_nm, s.layout.grid_nm) +
+            ") found violations: " + what + "; nothing is written (" +
+            field_ref("write_on_violations") + " writes the files for inspection)");
     }
     WriteOptions w = o.write;
     if (w.max_snap_error_nm == 0) {  // default: 5 % of the drawn pinhole side or diameter

@@ -28,7 +28,9 @@ struct ExportOptions {
     LayoutOptions layout;  // shape, size, tone, mirror, frame, marks, label, grid, vertex limit
     WriteOptions write;    // per-format options, unit, draw mode, native circles
     VendorRules drc = vendor_rules("none");  // design-rule preset checked on the layout
-    bool require_drc_clean = false;          // violations: RuntimeFailure, no files
+    // Violations: RuntimeFailure naming every failed rule, no files. Both faces set it unless
+    // the user asks for the files for inspection (export_request's write_on_violations).
+    bool require_drc_clean = false;
     // Laser cutting: the beam removes kerf_m of material around its path, so each hole is drawn
     // kerf_m smaller (side or diameter) and comes out at the design size. 0: none.
     double kerf_m = 0.0;

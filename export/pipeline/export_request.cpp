@@ -71,11 +71,16 @@ ExportOptions export_options_from(const ExportRequest& f, const Mask& mask, cons
         o.write.max_snap_error_nm =
             parse_length_m(*f.max_snap_error, field_ref("max_snap_error")) * 1e9;
     l.shape = parse_hole_shape(f.shape, field_ref("shape"));
-    // Checked whatever the shape, so a bad value is never silently ignored.
-    if (f.sides < 3 || f.sides > kMaxPolygonSides)
-        throw invalid_field(field_ref("sides"), std::to_string(f.sides),
+    // Checked whatever the shape, and refused with a shape that has no sides to set, so a
+    // value is never silently ignored.
+    if (f.sides && (*f.sides < 3 || *f.sides > kMaxPolygonSides))
+        throw invalid_field(field_ref("sides"), std::to_string(*f.sides),
                             "must be in 3.." + std::to_string(kMaxPolygonSides));
-    l.polygon_sides = f.sides;
+    if (f.sides && l.shape != HoleShape::kPolygon)
+        throw invalid_field(field_ref("sides"), std::to_string(*f.sides),
+                            "sets the sides of " + field_ref("shape") + " polygon; the shape is " +
+                                f.shape + ", which it would not change");
+    if (f.sides) l.polygon_sides = *f.sides;
     l.marks = f.marks;
     if (f.chord_tol != "auto")
         l.chord_tolerance_m = parse_length_m(f.chord_tol, field_ref("chord_tol"));
@@ -101,7 +106,12 @@ ExportOptions export_options_from(const ExportRequest& f, const Mask& mask, cons
     o.write.gds = {.layer = f.layer, .datatype = f.datatype};
     o.write.dxf = {.layer = f.dxf_layer};
     o.write.pdf.margin_m = parse_length_m(f.margin, field_ref("margin"));
-    o.require_drc_clean = f.require_drc_clean;
+    if (f.require_drc_clean && f.write_on_violations)
+        throw InvalidInput(field_ref("write_on_violations") +
+                           " writes the files of a failed "
+                           "design-rule check, " +
+                           field_ref("require_drc_clean") + " writes none: give one of them");
+    o.require_drc_clean = !f.write_on_violations;
     return o;
 }
 

@@ -23,9 +23,16 @@ struct ExportRequest {
     std::optional<std::string> min_feature, min_space;
     std::optional<std::size_t> max_vertices;
     std::optional<double> dpi;
-    int sides = 8, layer = 1, datatype = 0;
+    // Sides of shape polygon (default 8); refused with any other shape, where it would be
+    // silently ignored.
+    std::optional<int> sides;
+    int layer = 1, datatype = 0;
     bool mirror = false, marks = false, label = false, require_drc_clean = false,
          allow_spacing_violations = false, json = false, no_psf = false, psf_npy = false;
+    // A design-rule violation fails the export and nothing is written (require_drc_clean, kept
+    // for scripts that give it, is that default); write_on_violations writes the files for
+    // inspection all the same (the faces still report the violations and fail).
+    bool write_on_violations = false;
 };
 
 // Settings over the `vendor` preset over the defaults; InvalidInput names the field.

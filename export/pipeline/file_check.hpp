@@ -23,6 +23,7 @@
 #include "export/layout/layout.hpp"
 #include "export/layout/rings.hpp"
 #include "export/pipeline/drc.hpp"
+#include "export/pipeline/film_identity.hpp"
 #include "export/pipeline/read_back.hpp"
 
 namespace pinmask {
@@ -47,9 +48,12 @@ struct FileCheck {
     std::optional<ReadBack> comparison;  // with a design
     std::optional<PictureComparison> picture;
     DrcReport drc;
+    // What identifies the film (export/pipeline/film_identity): set by the caller, which knows
+    // what the export wrote; a mismatch fails the check.
+    FilmIdentity identity;
     bool clean() const {
         // (a foreign file without a mask hash is compared by geometry alone)
-        return drc.clean() && (!picture || picture->ok) &&
+        return drc.clean() && identity.ok() && (!picture || picture->ok) &&
                (!comparison || (comparison->xor_area_nm2 <= max_xor_nm2 &&
                                 (comparison->file_hash.empty() || comparison->hash_ok())));
     }

@@ -851,3 +851,166 @@ write("psf-stack-string-distance.json", json.dumps({
     "format": "pinmask-psf-stack", "version": 1,
     "planes": [{"object_distance_m": "0.5m", "psf": "psf-stack-ok.tiff"},
                {"object_distance_m": 1.0, "psf": "psf-stack-ok.tiff"}]}) + "\n")
+
+# ---------------------------------------------------------------- film identity (check)
+# What identifies the film: GDSII/OASIS layer and datatype, DXF layer names, Gerber polarity.
+# Each file is a corpus export edited one way, beside a copy of its export's sidecar (listing
+# the file under its new name, the mask given relative to the sidecar) unless the name says
+# "no-sidecar": check compares the file with the sidecar's entry, else with --vendor / --tone.
+FILM_MASK = "../../fuzz/corpus/mask_json/small.mask.json"
+
+
+def film_sidecar(seed_name, file_name, edit=None):
+    side = json.loads(seed("export_sidecar/" + seed_name))
+    side["mask"]["path"] = FILM_MASK
+    ext = file_name.rsplit(".", 1)[1]
+    for f in side["files"]:
+        if f["name"].endswith("." + ext):
+            f["name"] = file_name
+            if edit:
+                edit(f)
+    write(file_name.rsplit(".", 1)[0] + ".export.json",
+          json.dumps(side, indent=2, sort_keys=True) + "\n")
+
+
+def film(name, data, seed_name=None, edit=None):
+    write(name, data)
+    if seed_name:
+        film_sidecar(seed_name, name, edit)
+
+
+def gds_edit(kind, value, first_only=False):
+    out, done = [], False
+    for k, t, d in gds_records(GDS):
+        if k == kind and not (first_only and done):
+            d, done = struct.pack(">h", value), True
+        out.append((k, t, d))
+    return gds_bytes(out) + b"\0" * (len(GDS) - len(gds_bytes(gds_records(GDS))))
+
+
+GDS_LAYER, GDS_DATATYPE = 0x0D, 0x0E
+film("film-gds-one-on-layer2.gds", gds_edit(GDS_LAYER, 2, first_only=True), "clear.export.json")
+film("film-gds-all-on-layer5.gds", gds_edit(GDS_LAYER, 5), "clear.export.json")
+film("film-gds-datatype3.gds", gds_edit(GDS_DATATYPE, 3), "clear.export.json")
+film("film-gds-one-on-layer2-no-sidecar.gds", gds_edit(GDS_LAYER, 2, first_only=True))
+film("film-gds-all-on-layer5-no-sidecar.gds", gds_edit(GDS_LAYER, 5))
+# the file as exported, its sidecar saying another layer, or none (an older sidecar)
+film("film-gds-sidecar-layer7.gds", GDS, "clear.export.json",
+     lambda f: f.__setitem__("detail", "layer 7/0"))
+film("film-gds-sidecar-datatype1.gds", GDS, "clear.export.json",
+     lambda f: f.__setitem__("detail", "layer 1/1"))
+film("film-gds-sidecar-no-detail.gds", GDS, "clear.export.json", lambda f: f.pop("detail"))
+
+# OASIS: the first element sets the modal layer and datatype every later element uses
+OAS_FIRST = OAS.index(b"\x10\x14") + 1  # RECTANGLE, info byte, layer, datatype
+assert OAS[OAS_FIRST + 2:OAS_FIRST + 4] == b"\x01\x00"
+film("film-oas-all-on-layer5.oas", OAS[:OAS_FIRST + 2] + b"\x05" + OAS[OAS_FIRST + 3:],
+     "oasis.export.json")
+film("film-oas-datatype3.oas", OAS[:OAS_FIRST + 3] + b"\x03" + OAS[OAS_FIRST + 4:],
+     "oasis.export.json")
+film("film-oas-sidecar-layer2.oas", OAS, "oasis.export.json",
+     lambda f: f.__setitem__("detail", "layer 2/0"))
+film("film-oas-all-on-layer5-no-sidecar.oas", OAS[:OAS_FIRST + 2] + b"\x05" + OAS[OAS_FIRST + 3:])
+# two 10-unit squares, the second on layer 2 (its info byte sets L again) or datatype 1
+square1 = b"\x14\xdb\x01\x00\x0a\x00\x00"
+film("film-oas-two-layers-no-sidecar.oas", start + cell + square1 + b"\x14\xdb\x02\x00\x0a\x28\x00"
+     + end)
+film("film-oas-two-datatypes-no-sidecar.oas",
+     start + cell + square1 + b"\x14\xdb\x01\x01\x0a\x28\x00" + end)
+
+# DXF: every entity's layer (group 8) and the LAYER table entry
+DXF_ENTITY_LAYER = "  8\nPINMASK\n"
+assert DXF.count(DXF_ENTITY_LAYER) > 3
+renamed = DXF.replace(DXF_ENTITY_LAYER, "  8\nMASK\n").replace("  2\nPINMASK\n", "  2\nMASK\n")
+film("film-dxf-renamed-layer.dxf", renamed, "clear.export.json")
+film("film-dxf-renamed-layer-no-sidecar.dxf", renamed)
+film("film-dxf-one-on-layer-0.dxf", DXF.replace("POLYLINE\n" + DXF_ENTITY_LAYER, "POLYLINE\n", 1),
+     "clear.export.json")
+film("film-dxf-one-on-other-layer.dxf",
+     DXF.replace("POLYLINE\n" + DXF_ENTITY_LAYER, "POLYLINE\n  8\nHOLES\n", 1), "clear.export.json")
+film("film-dxf-one-on-other-layer-no-sidecar.dxf",
+     DXF.replace("POLYLINE\n" + DXF_ENTITY_LAYER, "POLYLINE\n  8\nHOLES\n", 1))
+film("film-dxf-lower-case-layer.dxf",
+     DXF.replace(DXF_ENTITY_LAYER, "  8\npinmask\n").replace("  2\nPINMASK\n", "  2\npinmask\n"),
+     "clear.export.json")
+film("film-dxf-sidecar-other-layer.dxf", DXF, "clear.export.json",
+     lambda f: f.__setitem__("detail", "layer FILM"))
+
+# Gerber: the file polarity attribute, against the sidecar's tone and the file's own comment
+GBR_DARK = seed("gerber/dark.gbr").decode()
+NEGATIVE, POSITIVE = "%TF.FilePolarity,Negative*%\n", "%TF.FilePolarity,Positive*%\n"
+assert NEGATIVE in GBR and POSITIVE in GBR_DARK
+film("film-gbr-positive.gbr", GBR.replace(NEGATIVE, POSITIVE), "clear.export.json")
+film("film-gbr-no-polarity.gbr", GBR.replace(NEGATIVE, ""), "clear.export.json")
+film("film-gbr-dark-negative.gbr", GBR_DARK.replace(POSITIVE, NEGATIVE), "dark.export.json")
+film("film-gbr-dark-no-polarity.gbr", GBR_DARK.replace(POSITIVE, ""), "dark.export.json")
+film("film-gbr-positive-no-sidecar.gbr", GBR.replace(NEGATIVE, POSITIVE))
+film("film-gbr-clear-no-sidecar.gbr", GBR)
+film("film-gbr-sidecar-dark.gbr", GBR, "clear.export.json")
+# (its sidecar says dark: the geometry of the clear export cannot be the dark design either)
+side = json.loads((HERE / "film-gbr-sidecar-dark.export.json").read_text())
+side["geometry"]["tone"] = "dark"
+write("film-gbr-sidecar-dark.export.json", json.dumps(side, indent=2, sort_keys=True) + "\n")
+# image and level polarity commands (the writer draws dark level only): refused by the reader
+LPD = "%LPD*%\n"
+assert LPD in GBR
+film("film-gbr-level-clear.gbr", GBR.replace(LPD, "%LPC*%\n"), "clear.export.json")
+film("film-gbr-level-clear-later.gbr", GBR.replace("G36*", "%LPC*%\nG36*", 1), "clear.export.json")
+film("film-gbr-image-negative.gbr", GBR.replace(LPD, "%IPNEG*%\n" + LPD), "clear.export.json")
+film("film-gbr-image-positive.gbr", GBR.replace(LPD, "%IPPOS*%\n" + LPD), "clear.export.json")
+film("film-gbr-polarity-twice.gbr", GBR.replace(NEGATIVE, NEGATIVE + POSITIVE), "clear.export.json")
+film("film-gbr-polarity-unknown.gbr", GBR.replace(NEGATIVE, "%TF.FilePolarity,Inverted*%\n"),
+     "clear.export.json")
+
+# ---------------------------------------------------------------- files that expand in check
+# 300,000 explicit offsets (repetition type 4) reused by 10 more records: 3.3 million squares
+# from a 300 KB file, charged at what each ring costs through the check
+rep_300k = b"\x04" + oas_uint(300000 - 2) + oas_uint(20) * (300000 - 1)
+write("layout-repetition-300k-entries.oas",
+      start + cell + RECT_HEAD + rep_300k + b"\x14\x04\x00" * 10 + end)
+# GDSII: one square cell placed by a 1000 x 1000 AREF (a million rings from 200 bytes)
+gds_head = [r for r in gds_records(GDS)[:4]]  # HEADER, BGNLIB, LIBNAME, UNITS
+assert [r[0] for r in gds_head] == [0x00, 0x01, 0x02, 0x03]
+bgnstr = next(r for r in gds_records(GDS) if r[0] == 0x05)
+square = struct.pack(">10i", 0, 0, 1000, 0, 1000, 1000, 0, 1000, 0, 0)
+aref_xy = struct.pack(">6i", 0, 0, 2000 * 1000, 0, 0, 2000 * 1000)
+write("layout-gds-aref-expands.gds", gds_bytes(gds_head + [
+    bgnstr, (0x06, 6, b"HOLE"), (0x08, 0, b""), (0x0D, 2, b"\0\1"), (0x0E, 2, b"\0\0"),
+    (0x10, 3, square), (0x11, 0, b""), (0x07, 0, b""),
+    bgnstr, (0x06, 6, b"TOP\0"), (0x0B, 0, b""), (0x12, 6, b"HOLE"),
+    (0x13, 2, struct.pack(">2h", 1000, 1000)), (0x10, 3, aref_xy), (0x11, 0, b""),
+    (0x07, 0, b""), (0x04, 0, b"")]))
+
+# ---------------------------------------------------------------- layer records the readers refuse
+# A BOUNDARY's layer must be stated once (GDSII LAYER and DATATYPE, DXF group 8): a missing,
+# repeated, negative or empty one leaves the film's layer to the reading tool.
+
+
+def gds_layer_variant(name, edit):
+    out, done = [], False
+    for r in gds_records(GDS):
+        if r[0] in (GDS_LAYER, GDS_DATATYPE) and not done:
+            replaced = edit(r)
+            if replaced is not None:
+                done = True
+                out.extend(replaced)
+                continue
+        out.append(r)
+    assert done, name
+    write(name, gds_bytes(out))
+
+
+gds_layer_variant("layout-gds-no-layer.gds", lambda r: [] if r[0] == GDS_LAYER else None)
+gds_layer_variant("layout-gds-no-datatype.gds", lambda r: [] if r[0] == GDS_DATATYPE else None)
+gds_layer_variant("layout-gds-layer-twice.gds",
+                  lambda r: [r, (GDS_LAYER, 2, b"\0\2")] if r[0] == GDS_LAYER else None)
+gds_layer_variant("layout-gds-datatype-twice.gds",
+                  lambda r: [r, (GDS_DATATYPE, 2, b"\0\1")] if r[0] == GDS_DATATYPE else None)
+gds_layer_variant("layout-gds-negative-layer.gds",
+                  lambda r: [(GDS_LAYER, 2, b"\xff\xff")] if r[0] == GDS_LAYER else None)
+gds_layer_variant("layout-gds-negative-datatype.gds",
+                  lambda r: [(GDS_DATATYPE, 2, b"\x80\x00")] if r[0] == GDS_DATATYPE else None)
+write("layout-dxf-layer-twice.dxf",
+      DXF.replace("POLYLINE\n" + DXF_ENTITY_LAYER, "POLYLINE\n" + DXF_ENTITY_LAYER + "  8\nOTHER\n", 1))
+write("layout-dxf-empty-layer.dxf", DXF.replace(DXF_ENTITY_LAYER, "  8\n\n", 1))
+write("layout-dxf-blank-layer.dxf", DXF.replace(DXF_ENTITY_LAYER, "  8\n   \n", 1))

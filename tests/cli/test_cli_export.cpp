@@ -110,14 +110,25 @@ TEST_CASE("export is deterministic and every option combination reads back exact
     }
 }
 
-TEST_CASE("touching pinholes (spacing rule off) are merged; --require-drc-clean refuses") {
+TEST_CASE("touching pinholes (spacing rule off) are merged; a failed check writes nothing") {
     TempDir dir("export-mura");
     const std::string mask = dir / "dense.mask.json";
     std::ofstream(mask) << mask_json(5, {{0, 0}, {0, 1}, {1, 1}, {3, 3}, {4, 4}}, 2, 0.0, true);
-    // Diagonal neighbours touch at a corner: the files are written for inspection, the
-    // violations said, and the exit code is 1, as check's.
-    const auto r =
-        run_cli("export '" + mask + "' --format gds,svg --no-psf --json -o '" + (dir / "o") + "'");
+    // Diagonal neighbours touch at a corner: the export fails (exit 1, as check's), names the
+    // rule and writes nothing, with or without --require-drc-clean (the default).
+    for (const std::string flags : {"", " --require-drc-clean"}) {
+        const std::string out = dir / ("strict" + std::to_string(flags.size()));
+        const auto strict = run_cli("export '" + mask + "'" + flags + " -o '" + out + "'");
+        INFO(flags << ": " << strict.err);
+        CHECK(strict.exit_code == 1);
+        CHECK(strict.err.find("found violations: touching ") != std::string::npos);
+        CHECK(strict.err.find("nothing is written (--write-on-violations") != std::string::npos);
+        CHECK(names_in(out).empty());
+    }
+    // --write-on-violations: the files are written for inspection, the violations said, and the
+    // exit code is 1 all the same.
+    const auto r = run_cli("export '" + mask + "' --format gds,svg --no-psf --json " +
+                           "--write-on-violations -o '" + (dir / "o") + "'");
     INFO(r.err);
     REQUIRE(r.exit_code == 1);
     CHECK(r.err.find("found violations") != std::string::npos);
@@ -125,10 +136,12 @@ TEST_CASE("touching pinholes (spacing rule off) are merged; --require-drc-clean 
     CHECK(side["geometry"]["polygons"].get<int>() < 5 * 4);
     CHECK(names_in(dir.path / "o") ==
           std::vector<std::string>{"dense.export.json", "dense.gds", "dense.svg"});
-    const auto strict =
-        run_cli("export '" + mask + "' --require-drc-clean -o '" + (dir / "strict") + "'");
-    CHECK(strict.exit_code == 1);
-    CHECK(names_in(dir.path / "strict").empty());
+    // The two contradict each other: refused before any work.
+    const auto both = run_cli("export '" + mask + "' --require-drc-clean --write-on-violations " +
+                              "-o '" + (dir / "both") + "'");
+    CHECK(both.exit_code == 2);
+    CHECK(both.err.find("--write-on-violations") != std::string::npos);
+    CHECK(names_in(dir.path / "both").empty());
 }
 
 TEST_CASE("touching pinholes that break the spacing rule fail export and check, merged or not") {
@@ -137,7 +150,9 @@ TEST_CASE("touching pinholes that break the spacing rule fail export and check, 
     TempDir dir("export-merged-spacing");
     const std::string mask = dir / "close.mask.json";
     std::ofstream(mask) << mask_json(5, {{0, 0}, {0, 1}, {3, 3}}, 2, 2.0, true);
-    const auto e = run_cli("export '" + mask + "' --format gds --no-psf -o '" + (dir / "o") + "'");
+    const auto e =
+        run_cli("export '" + mask + "' --format gds --no-psf --write-on-violations -o '" +
+                (dir / "o") + "'");
     CHECK(e.exit_code == 1);
     CHECK((e.out + e.err).find("pinholes (0, 0) and (0, 1) of the design") != std::string::npos);
     for (const std::string& input : {mask, (dir.path / "o" / "close.gds").string()}) {

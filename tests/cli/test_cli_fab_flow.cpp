@@ -116,7 +116,7 @@ void one_step_too_close(const Flow& f, const TempDir& dir) {
     const std::string fab = (dir.path / "fab-mura").string();
     const CliResult ex = run_cli("export " + mask + " --vendor " + f.vendor + " " + f.export_flags +
                                  " --hole-side " + std::to_string(p / 2) +
-                                 "nm --allow-spacing-violations -o " + fab);
+                                 "nm --allow-spacing-violations --write-on-violations -o " + fab);
     INFO(ex.out << ex.err);
     CHECK(ex.exit_code == 1);
     CHECK(contains(ex.out, "VIOLATIONS"));

@@ -185,6 +185,14 @@ TEST_CASE("every command stays under PINMASK_MEMORY_LIMIT plus the code margin")
         // squares): every ring made is charged, not only each record's.
         {"check an OASIS file of reused repetitions",
          "check " + (kCorpus / "layout-reused-repetition.oas").string(), "1G", 2, "memory bound"},
+        // 3.3 million squares that the reader alone fits under 1 GiB, but not the whole check
+        // (its copies of the rings peaked at 1.74 GB): charged at what a ring costs through it.
+        {"check a 300,000-entry OASIS repetition reused 10 times",
+         "check " + (kCorpus / "layout-repetition-300k-entries.oas").string(), "1G", 2,
+         "memory bound"},
+        // A million rings from a 1000 x 1000 GDSII AREF under 256 MiB (551 MB before).
+        {"check a GDSII AREF of a million squares",
+         "check " + (kCorpus / "layout-gds-aref-expands.gds").string(), "256M", 2, "memory bound"},
     };
     for (const Case& c : cases) check_case(c, d);
     // Nothing of the refused runs was written.
