@@ -171,7 +171,6 @@ TEST_CASE("decode --batch: bad inputs exit 2 naming the flag, nothing written") 
         {"--batch twice.txt" + m + "-o out", "--batch"},
         {"--batch clash.txt" + m + "-o out", "--batch"},
         {"--batch no-such-dir" + m + "-o out", "--batch"},
-        {"--batch caps" + m + "-o no-such-dir", "-o"},
         {"--batch caps" + m + "-o m.mask.json", "-o"},
         {"--batch caps" + m + "-o out --batch-format jpg", "--batch-format"},
         {"--batch caps" + m + "-o out --stats s.json", "--stats"},
@@ -193,6 +192,48 @@ TEST_CASE("decode --batch: bad inputs exit 2 naming the flag, nothing written") 
     CHECK(r.exit_code == 2);
     CHECK(fs::is_empty(dir.path / "out"));
     CHECK(run_cli("decode" + m + "-o out/x.tiff", dir.path).exit_code == 2);
+}
+
+TEST_CASE("decode --batch: a missing -o folder is created, and removed again when the run fails") {
+    TempDir dir("cli-decode-batch-folder");
+    make_captures(dir);
+    const std::string m = " --mask m.mask.json" + kFlags;
+    // Created with its missing parents; the files are those of an existing folder's run.
+    fs::create_directory(dir.path / "existing");
+    REQUIRE(run_cli("decode --batch caps" + m + "-o existing", dir.path).exit_code == 0);
+    const auto r = run_cli("decode --batch caps" + m + "-o new/deeper/out/", dir.path);
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(file_count(dir.path / "new/deeper/out") == file_count(dir.path / "existing"));
+    for (const std::string stem : {"c1", "c2", "c3"})
+        CHECK(slurp(dir.path / ("new/deeper/out/" + stem + ".tiff")) ==
+              slurp(dir.path / ("existing/" + stem + ".tiff")));
+    // A run that fails, before any work or on its second capture, leaves no folder behind: not
+    // the one named, not the parents it made; an existing parent stays.
+    std::ofstream(dir.path / "bad.npy") << "not an npy file";
+    std::ofstream(dir.path / "bad.txt") << "caps/c1.tiff\nbad.npy\ncaps/c3.tiff\n";
+    struct Case {
+        std::string args, flag;
+    };
+    const Case cases[] = {
+        {"--batch bad.txt" + m + "-o gone/a/b", "bad.npy"},
+        {"--batch caps" + m + "-o gone/a --batch-format jpg", "--batch-format"},
+        {"--batch caps --mask nope.mask.json -o gone", "nope.mask.json"},
+        {"--batch bad.txt" + m + "-o new/fresh", "bad.npy"},
+    };
+    for (const Case& c : cases) {
+        const auto f = run_cli("decode " + c.args, dir.path);
+        INFO(c.args, "\n", f.err);
+        CHECK(f.exit_code == 2);
+        CHECK(f.err.find(c.flag) != std::string::npos);
+        CHECK_FALSE(fs::exists(dir.path / "gone"));
+        CHECK_FALSE(fs::exists(dir.path / "new/fresh"));
+        CHECK(fs::is_directory(dir.path / "new/deeper/out"));
+    }
+    // A file under the folder's name is refused by name, as every command's output folder.
+    const auto file = run_cli("decode --batch caps" + m + "-o m.mask.json", dir.path);
+    CHECK(file.exit_code == 2);
+    CHECK(file.err.find("is a file; give a folder (created when missing)") != std::string::npos);
 }
 
 // PINMASK_TIME_LIMIT: the budget is checked between captures and each run decodes at least its
