@@ -60,6 +60,10 @@ std::vector<std::string> capture_list(const std::string& list_or_dir) {
     for (std::string raw; std::getline(in, raw);) {
         const std::string line = trimmed(raw);
         if (line.empty() || line[0] == '#') continue;
+        if (const auto at = line.find('\0'); at != std::string::npos)  // read up to it
+            throw invalid_field(
+                field_ref("batch"), line.substr(0, at),
+                "listed in " + list_or_dir + ": the line holds a NUL byte, which no file name can");
         if (!fs::is_regular_file(line, ec))
             throw invalid_field(field_ref("batch"), line,
                                 "listed in " + list_or_dir + ": no such file");

@@ -851,3 +851,17 @@ write("psf-stack-string-distance.json", json.dumps({
     "format": "pinmask-psf-stack", "version": 1,
     "planes": [{"object_distance_m": "0.5m", "psf": "psf-stack-ok.tiff"},
                {"object_distance_m": 1.0, "psf": "psf-stack-ok.tiff"}]}) + "\n")
+
+# ---------------------------------------------------------------- fifth round: decode and calibrate
+# PSF stacks whose planes are one plane given twice (distances within 1e-6 of each other, in or
+# out of order), and a PSF name with an escaped NUL (the system would open its prefix).
+psf_stack("psf-stack-float-step.json", [(0.5, "psf-stack-ok.tiff"),
+                                        (math.nextafter(0.5, 1.0), "psf-stack-ok.tiff")])
+psf_stack("psf-stack-near-unordered.json", [(0.5, "psf-stack-ok.tiff"), (1.0, "psf-stack-ok.tiff"),
+                                            (2.0, "psf-stack-ok.tiff"),
+                                            (0.5000002, "psf-stack-ok.tiff")])
+psf_stack("psf-stack-near-far.json", [(1000.0, "psf-stack-ok.tiff"),
+                                      (1000.0009, "psf-stack-ok.tiff")])
+psf_stack("psf-stack-nul-path.json", [(0.5, "psf-stack-ok.tiff"),
+                                      (1.0, "psf-stack-ok.tiff\u0000.missing")])
+psf_stack("psf-stack-nul-only.json", [(0.5, "psf-stack-ok.tiff"), (1.0, "\u0000")])
