@@ -74,6 +74,14 @@ py::dict result_dict(calibrate::CalibrationSummary&& s) {
     for (const auto& e : s.extra_spots) extra.append(py::make_tuple(e[0], e[1]));
     j["extra_spots"] = extra;
     j["saturated_spots"] = s.saturated_spots.size();
+    if (s.plateau.found) {
+        py::dict plateau;
+        plateau["pixels"] = s.plateau.pixels;
+        plateau["level"] = s.plateau.level;
+        j["saturated_plateau"] = plateau;
+    } else {
+        j["saturated_plateau"] = py::none();
+    }
     j["background"] = s.background;
     j["background_sigma"] = finite_or_none(s.background_sigma);
     j["optical_density"] = finite_or_none(s.optical_density);
@@ -129,6 +137,7 @@ void bind_calibrate(py::module_& m) {
             o.threshold_sigmas = threshold;
             o.saturation_level = saturation.is_none() ? std::numeric_limits<double>::infinity()
                                                       : saturation.cast<double>();
+            o.detect_saturation = saturation.is_none();  // as the command's --saturation auto
             o.pixel_binning = pixel_binning;
             Mask binned = mask;
             binned.camera.pixel_pitch_m *= pixel_binning;
@@ -136,6 +145,12 @@ void bind_calibrate(py::module_& m) {
             {
                 py::gil_scoped_release release;
                 s = calibrate::calibrate_point_source(cap.get(), dark, binned, o);
+            }
+            // The command's "pinmask: warning:" lines, as Python warnings.
+            for (const std::string& w : s.warnings) {
+                const std::string text = "pinmask: " + py_names::spell_keywords(w);
+                if (PyErr_WarnEx(PyExc_UserWarning, text.c_str(), 1) < 0)
+                    throw py::error_already_set();
             }
             return as_result(result_dict(std::move(s)));
         },
@@ -149,8 +164,10 @@ sense), pitches, position, pinhole side, per-pinhole gains and missing pinholes,
 density), background, with standard errors from the Fisher information.
 
 point: (rows, cols) capture; mask: a Mask or *.mask.json path (its camera must carry the sensor's
-pixel pitch); dark: optional dark frame of the same size; saturation_level: counts (None: no
-ceiling); pixel_binning: sensor pixels per capture pixel along each axis.
+pixel pitch); dark: optional dark frame of the same size; saturation_level: counts (None, the
+default, as --saturation auto: a flat top of at least 16 pixels at exactly the capture's largest
+value is its ceiling, with a UserWarning, or a ValueError when most spots reach it; inf: no
+ceiling, as --saturation none); pixel_binning: sensor pixels per capture pixel along each axis.
 Returns the keys of `pinmask calibrate --json` (files replaced by the arrays psf, psf_period,
 kernel, residual_map). ValueError (naming the keyword) when the fit cannot be trusted: too few
 photons, a capture the model does not explain, a rotation beyond max_rotation_deg.
