@@ -160,6 +160,12 @@ TEST_CASE("decode --batch: bad inputs exit 2 naming the flag, nothing written") 
     std::ofstream(dir.path / "twice.txt") << "caps/c1.tiff\ncaps/c1.tiff\n";
     fs::copy_file(dir.path / "caps/c2.tiff", dir.path / "c2.tiff");
     std::ofstream(dir.path / "clash.txt") << "caps/c2.tiff\nc2.tiff\n";
+    // A capture whose name is not UTF-8 (the summary, JSON, could not record it), in a folder
+    // and in a list; a list line with a NUL byte (the system would open its prefix).
+    fs::create_directory(dir.path / "latin1");
+    fs::copy_file(dir.path / "caps/c1.tiff", dir.path / "latin1/caf\xE9.tiff");
+    std::ofstream(dir.path / "latin1.txt") << "caps/c1.tiff\nlatin1/caf\xE9.tiff\n";
+    std::ofstream(dir.path / "nul.txt") << std::string("caps/c1.tiff\0.x\n", 16);
     const std::string m = " --mask m.mask.json ";
     struct Case {
         std::string args, flag;
@@ -170,6 +176,9 @@ TEST_CASE("decode --batch: bad inputs exit 2 naming the flag, nothing written") 
         {"--batch missing.txt" + m + "-o out", "--batch"},
         {"--batch twice.txt" + m + "-o out", "--batch"},
         {"--batch clash.txt" + m + "-o out", "--batch"},
+        {"--batch latin1" + m + "-o out", "caf\\xE9.tiff: in latin1: the name is not UTF-8"},
+        {"--batch latin1.txt" + m + "-o out", "the name is not UTF-8"},
+        {"--batch nul.txt" + m + "-o out", "the line holds a NUL byte"},
         {"--batch no-such-dir" + m + "-o out", "--batch"},
         {"--batch caps" + m + "-o m.mask.json", "-o"},
         {"--batch caps" + m + "-o out --batch-format jpg", "--batch-format"},
