@@ -14,6 +14,7 @@
 #include "decode/depthmap/refine.hpp"
 #include "decode/depthmap/smooth_labels.hpp"
 #include "decode/depthmap/sweep_cost.hpp"
+#include "design/optics/distance_list.hpp"
 #include "design/optics/working_distance.hpp"
 
 namespace pinmask {
@@ -21,42 +22,6 @@ namespace {
 
 constexpr std::size_t kMaxPlanes = 1000;
 
-// Two planes whose distances differ by at most this fraction of the larger are one plane given
-// twice: the magnification changes by that fraction, which moves a point at the edge of the
-// largest capture (kMaxImageSamples, 11585 px square: 8200 px from the centre) by 0.008 px, and
-// no sweep tells them apart. (Distances one float step apart passed as distinct before.)
-constexpr double kSameDistanceRelative = 1e-6;
-
-// Refuses two distances within kSameDistanceRelative of each other, naming both planes (their
-// indices in the caller's order) and both distances in full. `order` sorts `distances`.
-void check_distinct(const std::vector<double>& distances, const std::vector<std::size_t>& order,
-                    const char* field) {
-    for (std::size_t k = 1; k < order.size(); ++k) {
-        const std::size_t a = order[k - 1], b = order[k];
-        const double ua = distances[a], ub = distances[b];
-        const bool same = ua == ub || (std::isfinite(ub) && ub - ua <= kSameDistanceRelative * ub);
-        if (!same) continue;
-        const std::size_t first = std::min(a, b), second = std::max(a, b);
-        throw invalid_field(field_ref(field),
-                            format_number(distances[first], 17) + " m and " +
-                                format_number(distances[second], 17) + " m",
-                            "planes " + std::to_string(first) + " and " + std::to_string(second) +
-                                " hold the same distance twice: they differ by less than " +
-                                format_number(kSameDistanceRelative) +
-                                " of it, which no capture can tell apart");
-    }
-}
-
-std::vector<std::size_t> sorted_order(const std::vector<double>& u) {
-    std::vector<std::size_t> order(u.size());
-    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return u[a] < u[b]; });
-    return order;
-}
-
-// The sweep over sorted distances u, plane k's cost by cost_at(k), then the labelling and the
-// maps.
 template <class CostAt>
 DepthmapResult run(const Plane& capture, const std::vector<double>& u, const DepthmapOptions& o,
                    CostAt cost_at) {
@@ -178,7 +143,7 @@ DepthmapResult depthmap(const Plane& capture, const Mask& mask, const DepthmapOp
     o.validate();
     std::vector<double> u = o.distances_m;
     for (double d : u) check_object_distance(mask.camera, d, "distances_m");
-    check_distinct(u, sorted_order(u), "distances_m");
+    check_distinct_distances(u, field_ref("distances_m"));
     std::sort(u.begin(), u.end());
     return run(capture, u, o, [&](std::size_t k) {
         return sweep_cost(capture, mask, u[k], o.wiener_nsr, o.window);
@@ -213,11 +178,13 @@ DepthmapResult depthmap(const Plane& capture, const std::vector<PsfStackPlane>& 
                                 "plane " + std::to_string(k) +
                                     ": a PSF must be finite, non-negative and hold some light");
         }
+        order[k] = k;
     }
     std::vector<double> given;
     for (const PsfStackPlane& p : stack) given.push_back(p.distance_m);
-    order = sorted_order(given);
-    check_distinct(given, order, "psf_stack");
+    check_distinct_distances(given, field_ref("psf_stack"));
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return given[a] < given[b]; });
     std::vector<double> u;
     for (std::size_t k : order) u.push_back(stack[k].distance_m);
     return run(capture, u, o, [&](std::size_t k) {
