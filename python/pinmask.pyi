@@ -482,7 +482,7 @@ def depth(
     distances: Optional[Sequence[float]] = None,  # object distances, m (inf allowed)
     from_m: Optional[float] = None,  # a range from_m..to_m (inf allowed), steps points in 1/u
     to_m: Optional[float] = None,
-    steps: int = 8,
+    steps: Optional[int] = None,  # points of the range (None: 8); not with distances
     snr_db: Optional[float] = None,  # one level, dB; None: 30; inf: noiseless
     photons: Optional[float] = None,  # electrons per pixel through one pinhole (photon model)
     read_noise: Optional[float] = None,  # rms electrons

@@ -168,3 +168,10 @@ def test_capture_files_of_the_wrong_kind_are_value_errors(bad_inputs, name, patt
     with pytest.raises(ValueError, match=pattern):
         pinmask.read_image(str(bad_inputs / name))
 
+
+
+def test_steps_beside_distances_is_refused_as_the_command_does(mask7):
+    with pytest.raises(ValueError, match="give either it or from_m/to_m/steps"):
+        pinmask.depth(mask7, distances=[1.0, 2.0], steps=3, tv=False)
+    r = pinmask.depth(mask7, from_m=1.0, to_m=2.0, tv=False, scenes=["letter-R"])
+    assert len(r) == 8  # steps None: the command's --steps 8
