@@ -54,6 +54,9 @@ void run(CalibrateCommandOptions& o) {
                             "must be a new or empty folder (nothing is overwritten)");
     if (!dir.parent_path().empty() && !fs::is_directory(dir.parent_path()))
         throw invalid_field("-o", o.output, "its parent folder does not exist");
+    // auto: an integer file's largest count, or a flat top found in a float capture; a value or
+    // none is the user's word.
+    o.cal.detect_saturation = o.saturation == "auto";
     if (o.saturation != "auto" && o.saturation != "none") {
         try {
             o.cal.saturation_level = std::stod(o.saturation);
@@ -96,6 +99,8 @@ void run(CalibrateCommandOptions& o) {
     const CalibrateReport report = run_calibrate_request(std::move(q));
     bar.finish();
     const calibrate::CalibrationSummary& s = report.summary;
+    for (const std::string& w : s.warnings)
+        std::cerr << "pinmask: warning: " << spell_flags(w) << "\n";
     const Json config = {{"capture", o.capture},
                          {"mask", o.mask},
                          {"dark", o.dark},
@@ -178,8 +183,8 @@ void setup(CLI::App& app) {
                     "Spot detection threshold, noise sigmas above the background")
         ->capture_default_str();
     cmd->add_option("--saturation", o->saturation,
-                    "Saturation level, counts: auto (an integer file's largest count; none for "
-                    "float files) | none | VALUE")
+                    "Saturation level, counts: auto (an integer file's largest count; for a "
+                    "float file a flat top at its largest value, with a warning) | none | VALUE")
         ->capture_default_str();
     cmd->add_option("--bayer", o->bayer,
                     "Camera RAW: sum2x2 (half-resolution grey) | green (alias g) | r | b")

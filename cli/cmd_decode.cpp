@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -189,6 +190,28 @@ void run_batch_on_ranks(const DecodeCommand& r, const BatchRequest& b, BayerMode
     }
 }
 
+// Flags this run would ignore are refused, as the method's parameters are (resolve_method): the
+// batch's flags without --batch, and PNG's --bits and --scale for .tif/.tiff and .npy output.
+void refuse_ignored_output_flags(const CLI::App& cmd, const DecodeCommand& o,
+                                 const BatchRequest& b) {
+    const auto given = [&](const char* flag) { return cmd.count(flag) > 0; };
+    const auto value = [&](const char* flag) { return cmd.get_option(flag)->as<std::string>(); };
+    const bool batch = !b.list.empty();
+    for (const char* flag : {"--batch-format", "--batch-stats"})
+        if (!batch && given(flag))
+            throw invalid_field(flag, value(flag),
+                                "is used with --batch only; remove it or give --batch");
+    std::string format = b.format;
+    for (char& c : format) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (!batch && o.output.empty()) return;  // refused as missing later
+    const bool png = batch ? format == "png" : output_kind(o.output) == OutputKind::kPng;
+    for (const char* flag : {"--bits", "--scale"})
+        if (!png && given(flag))
+            throw invalid_field(flag, value(flag),
+                                "is used by .png output only (.tif/.tiff and .npy hold the raw "
+                                "float32 estimate); remove it or write .png");
+}
+
 void setup(CLI::App& app) {
     auto o = std::make_shared<DecodeCommand>();
     auto* cmd = app.add_subcommand(
@@ -206,7 +229,8 @@ void setup(CLI::App& app) {
                     "Decode many captures with one PSF and these flags: a directory (its .tif, "
                     ".tiff, .png, .npy, .jpg, .jpeg and camera RAW files) or a text file of paths, "
                     "one a line; -o is then a "
-                    "directory (STEM.EXT per capture, batch-summary.json). Under mpirun the "
+                    "folder, created when missing (STEM.EXT per capture, batch-summary.json). "
+                    "Under mpirun the "
                     "captures are shared among the ranks. With PINMASK_TIME_LIMIT set (a "
                     "duration from the start of the run, e.g. 2h) the batch stops between "
                     "captures once it is spent: the captures finished are written, the others "
@@ -214,8 +238,9 @@ void setup(CLI::App& app) {
     cmd->add_option("--batch-format", batch->format, "--batch outputs: tiff | png | npy")
         ->capture_default_str();
     cmd->add_flag("--batch-stats", batch->stats, "--batch: also write STEM.stats.json per capture");
-    cmd->callback([o, flags, batch] {
+    cmd->callback([cmd, o, flags, batch] {
         resolve_method(*o, *flags);
+        refuse_ignored_output_flags(*cmd, *o, *batch);
         if (!batch->list.empty()) return run_batch_on_ranks(*o, *batch, parse_bayer_mode(o->bayer));
         if (o->capture.empty())
             throw InvalidInput("decode needs a capture file (or --batch LIST_OR_DIR)");

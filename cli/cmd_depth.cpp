@@ -55,11 +55,14 @@ std::vector<std::string> split(const std::string& s) {
         if (item.empty()) throw invalid_field("list", "'" + s + "'", "has an empty item");
         out.push_back(item);
     }
+    // getline drops what follows a last comma: "1m," would be read as one distance.
+    if (!s.empty() && s.back() == ',')
+        throw invalid_field("list", "'" + s + "'", "has an empty item (after its last comma)");
     return out;
 }
 
-std::vector<double> resolve_distances(const DepthCommandOptions& o) {
-    if (o.distances && (o.from || o.to)) {
+std::vector<double> resolve_distances(const DepthCommandOptions& o, bool steps_given) {
+    if (o.distances && (o.from || o.to || steps_given)) {
         throw invalid_field("--distances", *o.distances, "give either it or --from/--to/--steps");
     }
     if (o.distances) {
@@ -78,7 +81,7 @@ std::vector<double> resolve_distances(const DepthCommandOptions& o) {
 }
 
 void run(const DepthCommandOptions& o, const CLI::App& cmd) {
-    const std::vector<double> distances = resolve_distances(o);
+    const std::vector<double> distances = resolve_distances(o, cmd.count("--steps") > 0);
     if (!o.output_dir.empty()) check_output_folder(o.output_dir, "-o");
     DepthOptions d;
     d.scenes = split(o.scenes);

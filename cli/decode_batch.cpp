@@ -12,6 +12,7 @@
 #include "cli/options/decode_inputs.hpp"
 #include "core/errors/error.hpp"
 #include "core/files/atomic_file.hpp"
+#include "core/files/output_folder.hpp"
 #include "core/files/output_set.hpp"
 #include "core/limits/resource_limits.hpp"
 #include "decode/capture/batch.hpp"
@@ -108,8 +109,9 @@ void run_decode_batch(const DecodeCommand& given, const BatchRequest& b, BayerMo
         throw invalid_field("--batch", b.list, "give either a capture or --batch, not both");
     if (!r.stats.empty())
         throw invalid_field("--stats", r.stats, "with --batch use --batch-stats (one per capture)");
-    if (r.output.empty() || !fs::is_directory(r.output))
-        throw invalid_field("-o", r.output, "with --batch must be an existing directory");
+    // -o is a folder, created when missing like every command's output folder, and removed
+    // again when the run fails before writing into it.
+    CreatedOutputFolder folder(r.output, "-o");
     const std::string ext = lower(b.format);
     if (ext != "tiff" && ext != "png" && ext != "npy")
         throw invalid_field("--batch-format", b.format, "must be tiff, png or npy");
@@ -132,13 +134,13 @@ void run_decode_batch(const DecodeCommand& given, const BatchRequest& b, BayerMo
         rc.output = (dir / (stem + "." + ext)).string();
         rc.stats = b.stats ? (dir / (stem + ".stats.json")).string() : "";
         in_paths.push_back({"--batch", path});
-        out_paths.push_back({"-o", rc.output});
-        out_paths.push_back({"-o (config)", rc.output + ".config.json"});
-        if (b.stats) out_paths.push_back({"--batch-stats", rc.stats});
+        out_paths.push_back({"-o", rc.output, true});
+        out_paths.push_back({"-o (config)", rc.output + ".config.json", true});
+        if (b.stats) out_paths.push_back({"--batch-stats", rc.stats, true});
         requests.push_back(rc);
     }
     const std::string summary_path = (dir / "batch-summary.json").string();
-    out_paths.push_back({"-o (summary)", summary_path});
+    out_paths.push_back({"-o (summary)", summary_path, true});
     in_paths.push_back({"--nsr-map", r.nsr_map});
     plan_outputs(in_paths, out_paths);
     if (apply_refocus(r))
@@ -157,7 +159,8 @@ void run_decode_batch(const DecodeCommand& given, const BatchRequest& b, BayerMo
     // This rank's captures; the first error stops this rank's work. A spent time budget
     // (PINMASK_TIME_LIMIT) stops it between captures: each rank decodes at least its first one,
     // and keeps every capture it finished.
-    StagedFiles files;
+    folder.create();
+    StagedFiles files;  // after the folder: its temporaries go before the folder is removed
     const TimeLimitScope time_limited;
     json mine = {{"entries", json::array()}, {"time_limit", false}};
     bool first = true;
@@ -235,6 +238,7 @@ void run_decode_batch(const DecodeCommand& given, const BatchRequest& b, BayerMo
         throw RuntimeFailure(message);
     }
     files.commit();
+    folder.keep();
     comm.barrier();
     const auto not_done = verdict["not_done"].get<std::size_t>();
     if (comm.rank() == 0) {

@@ -1,5 +1,6 @@
 // `pinmask decode --batch LIST_OR_DIR -o DIR`: many captures, one PSF, the same
-// flags. The inputs: io/capture_list (a directory or a list file). For each capture
+// flags. The inputs: io/capture_list (a directory or a list file). DIR is created when missing
+// (core/files/output_folder) and removed again when the run fails. For each capture
 // DIR/STEM.EXT (EXT from --batch-format), DIR/STEM.EXT.config.json and with --batch-stats
 // DIR/STEM.stats.json, the same files `pinmask decode CAPTURE -o DIR/STEM.EXT` writes;
 // DIR/batch-summary.json lists every capture in input order (deterministic: no timings, no rank

@@ -15,6 +15,7 @@
 #include "cli/outputs/interrupt.hpp"
 #include "core/errors/error.hpp"
 #include "core/files/output_set.hpp"
+#include "core/files/path_text.hpp"
 #include "core/limits/allocator.hpp"
 #include "core/limits/resource_limits.hpp"
 #include "core/units/units.hpp"
@@ -124,6 +125,21 @@ int main(int argc, char** argv) {
     if (const std::string_view bad = empty_assigned_value(argc, argv); !bad.empty()) {
         std::cerr << "pinmask: error: " << bad.substr(0, bad.size() - 1)
                   << ": the value after '=' is empty (give a value, or leave the option out)\n";
+        return 2;
+    }
+    // Every argument is recorded in some JSON file (configs, sidecars, summaries), which holds
+    // UTF-8 text only: a name with other bytes failed with exit 1 after the work.
+    for (int i = 1; i < argc; ++i) {
+        const std::string_view a = argv[i];
+        if (invalid_utf8_at(a) == std::string_view::npos) continue;
+        const bool after_flag = i > 1 && argv[i - 1][0] == '-' && a.substr(0, 1) != "-";
+        std::cerr << "pinmask: error: "
+                  << (after_flag ? std::string(argv[i - 1]) + " = " : std::string("argument "))
+                  << "'" << printable_text(a) << "': is not UTF-8 text (its byte "
+                  << invalid_utf8_at(a)
+                  << " begins no UTF-8 character); pinmask records its inputs' names in JSON, "
+                     "which holds UTF-8 only: "
+                     "rename the file (or give the value in UTF-8)\n";
         return 2;
     }
     CLI::App app{

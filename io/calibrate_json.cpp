@@ -63,6 +63,8 @@ Json calibration_result_json(const calibrate::CalibrationSummary& s, const fs::p
     for (const auto& e : s.extra_spots) extra.push_back({e[0], e[1]});
     j["extra_spots"] = extra;
     j["saturated_spots"] = s.saturated_spots.size();
+    j["saturated_plateau"] =
+        s.plateau.found ? Json{{"pixels", s.plateau.pixels}, {"level", s.plateau.level}} : Json();
     j["background"] = s.background;
     j["background_sigma"] = s.background_sigma;
     j["optical_density"] = std::isfinite(s.optical_density) ? Json(s.optical_density) : Json();

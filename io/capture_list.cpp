@@ -8,6 +8,7 @@
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
 #include "core/files/input_file.hpp"
+#include "core/files/path_text.hpp"
 #include "core/image/raw_io.hpp"
 
 namespace pinmask::io {
@@ -32,6 +33,19 @@ std::string trimmed(const std::string& line) {
     return line.substr(start, end - start);
 }
 
+// The batch summary (JSON, UTF-8 only) records every capture's name: a name with other bytes
+// would fail when the summary is written, after every decode.
+const std::vector<std::string>& utf8_names(const std::vector<std::string>& paths,
+                                           const std::string& list_or_dir) {
+    for (const std::string& p : paths)
+        if (invalid_utf8_at(p) != std::string::npos)
+            throw invalid_field(field_ref("batch"), printable_text(p),
+                                "in " + printable_text(list_or_dir) +
+                                    ": the name is not UTF-8 text, and the batch's JSON files "
+                                    "hold UTF-8 only: rename the file");
+    return paths;
+}
+
 }  // namespace
 
 std::vector<std::string> capture_list(const std::string& list_or_dir) {
@@ -48,7 +62,7 @@ std::vector<std::string> capture_list(const std::string& list_or_dir) {
             throw invalid_field(field_ref("batch"), list_or_dir,
                                 "the directory holds no capture (.tif, .tiff, .png, .npy, .jpg, "
                                 ".jpeg or a camera RAW file such as .dng)");
-        return paths;
+        return utf8_names(paths, list_or_dir);
     }
     if (const auto problem = input_file_problem(list_or_dir))
         throw invalid_field(field_ref("batch"), list_or_dir, *problem);
@@ -60,6 +74,10 @@ std::vector<std::string> capture_list(const std::string& list_or_dir) {
     for (std::string raw; std::getline(in, raw);) {
         const std::string line = trimmed(raw);
         if (line.empty() || line[0] == '#') continue;
+        if (const auto at = line.find('\0'); at != std::string::npos)  // read up to it
+            throw invalid_field(
+                field_ref("batch"), line.substr(0, at),
+                "listed in " + list_or_dir + ": the line holds a NUL byte, which no file name can");
         if (!fs::is_regular_file(line, ec))
             throw invalid_field(field_ref("batch"), line,
                                 "listed in " + list_or_dir + ": no such file");
@@ -67,7 +85,7 @@ std::vector<std::string> capture_list(const std::string& list_or_dir) {
     }
     if (paths.empty())
         throw invalid_field(field_ref("batch"), list_or_dir, "the list names no capture");
-    return paths;
+    return utf8_names(paths, list_or_dir);
 }
 
 }  // namespace pinmask::io

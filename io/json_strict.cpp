@@ -129,7 +129,12 @@ double read_length_or_inf(const Json& j, const std::string& path) {
 
 std::string read_string(const Json& j, const std::string& path) {
     if (!j.is_string()) fail(path, std::string("must be a string, got ") + j.type_name());
-    return j.get<std::string>();
+    std::string s = j.get<std::string>();
+    // No name, path or word of pinmask's files holds one, and a path would be opened up to it.
+    if (const auto at = s.find('\0'); at != std::string::npos)
+        fail(path, "holds a NUL character (\\u0000) after \"" + s.substr(0, at) +
+                       "\": no name or path can");
+    return s;
 }
 
 bool read_bool(const Json& j, const std::string& path) {

@@ -50,7 +50,7 @@ class ObjectReader {
 int read_int(const Json& j, const std::string& path);               // an integer within int range
 double read_number(const Json& j, const std::string& path);         // any finite number
 double read_length_or_inf(const Json& j, const std::string& path);  // number or "inf" -> +inf
-std::string read_string(const Json& j, const std::string& path);
+std::string read_string(const Json& j, const std::string& path);    // no NUL character inside
 bool read_bool(const Json& j, const std::string& path);
 // A two-element integer array; `what` names the elements in the message, e.g. "[row, col]".
 std::pair<int, int> read_int_pair(const Json& j, const std::string& path, const char* what);

@@ -36,6 +36,7 @@ void bind_calibrate(py::module_& m) {
             o.threshold_sigmas = threshold;
             o.saturation_level = saturation.is_none() ? std::numeric_limits<double>::infinity()
                                                       : saturation.cast<double>();
+            o.detect_saturation = saturation.is_none();  // as the command's --saturation auto
             o.pixel_binning = pixel_binning;
             q.capture = cap.take();
             q.capture_name = "point";
@@ -48,6 +49,12 @@ void bind_calibrate(py::module_& m) {
             // `calibrate --json`'s dict with arrays in place of its files (psf, psf_period,
             // kernel; no calibrated mask or report file), and the residual map.
             calibrate::CalibrationSummary& s = r.summary;
+            // The command's "pinmask: warning:" lines, as Python warnings.
+            for (const std::string& w : s.warnings) {
+                const std::string text = "pinmask: " + py_names::spell_keywords(w);
+                if (PyErr_WarnEx(PyExc_UserWarning, text.c_str(), 1) < 0)
+                    throw py::error_already_set();
+            }
             py::dict j = json_value(io::calibration_result_json(s, ""));
             j.attr("pop")("mask");
             j.attr("pop")("report");
@@ -68,8 +75,10 @@ sense), pitches, position, pinhole side, per-pinhole gains and missing pinholes,
 density), background, with standard errors from the Fisher information.
 
 point: (rows, cols) capture; mask: a Mask or *.mask.json path (its camera must carry the sensor's
-pixel pitch); dark: optional dark frame of the same size; saturation_level: counts (None: no
-ceiling); pixel_binning: sensor pixels per capture pixel along each axis.
+pixel pitch); dark: optional dark frame of the same size; saturation_level: counts (None, the
+default, as --saturation auto: a flat top of at least 16 pixels at exactly the capture's largest
+value is its ceiling, with a UserWarning, or a ValueError when most spots reach it; inf: no
+ceiling, as --saturation none); pixel_binning: sensor pixels per capture pixel along each axis.
 Returns the keys of `pinmask calibrate --json` (files replaced by the arrays psf, psf_period,
 kernel, residual_map). ValueError (naming the keyword) when the fit cannot be trusted: too few
 photons, a capture the model does not explain, a rotation beyond max_rotation_deg.

@@ -45,7 +45,7 @@ void bind_depth(py::module_& m) {
     m.def(
         "depth",
         [](const py::handle& mask, const std::optional<std::vector<double>>& distances,
-           std::optional<double> from_m, std::optional<double> to_m, int steps,
+           std::optional<double> from_m, std::optional<double> to_m, std::optional<int> steps,
            const py::object& snr_db, const py::object& photons, std::optional<double> read_noise,
            std::optional<double> dark_current, std::optional<double> full_well,
            std::optional<int> bits, std::optional<double> optical_density, const std::string& nsr,
@@ -59,7 +59,8 @@ void bind_depth(py::module_& m) {
             d.seed = seed;
             d.threads = fft_threads();
             std::vector<double> us;
-            if (distances && (from_m || to_m))
+            // steps is read with a range only: beside distances it was ignored without a word.
+            if (distances && (from_m || to_m || steps))
                 throw invalid_field(field_ref("distances"), "given",
                                     "give either it or from_m/to_m/steps");
             if (distances) {
@@ -68,7 +69,7 @@ void bind_depth(py::module_& m) {
                 if (!from_m || !to_m)
                     throw InvalidInput(
                         "depth needs distances=[...], or from_m and to_m (and steps)");
-                us = depth_range(*from_m, *to_m, steps);
+                us = depth_range(*from_m, *to_m, steps.value_or(8));
             }
             const Mask mk = mask_arg(mask);
             std::vector<DepthRecord> records;
@@ -80,7 +81,7 @@ void bind_depth(py::module_& m) {
             return as_result(out);
         },
         py::arg("mask"), py::arg("distances") = py::none(), py::arg("from_m") = py::none(),
-        py::arg("to_m") = py::none(), py::arg("steps") = 8, py::arg("snr_db") = py::none(),
+        py::arg("to_m") = py::none(), py::arg("steps") = py::none(), py::arg("snr_db") = py::none(),
         py::arg("photons") = py::none(), py::arg("read_noise") = py::none(),
         py::arg("dark_current") = py::none(), py::arg("full_well") = py::none(),
         py::arg("bits") = py::none(), py::arg("optical_density") = py::none(),
@@ -91,7 +92,8 @@ void bind_depth(py::module_& m) {
 distance u (metres; inf allowed), the pitch (pixels_per_cell), period_px, lsi_mismatch_px and the
 PSNR lost (dB) when the capture recorded at u (exact geometry) is decoded with the mask's integer
 PSF, Wiener and TV (tv=False: Wiener only, tv_psnr_loss_db None). distances=[...] or from_m, to_m
-(inf allowed) and steps (points equally spaced in 1/u). Noise: snr_db (one level, dB; default 30;
+(inf allowed) and steps (points equally spaced in 1/u; None: 8; refused beside distances, as
+--steps beside --distances). Noise: snr_db (one level, dB; default 30;
 inf: none) or photons (electrons per pixel through one pinhole) with read_noise, dark_current,
 full_well, bits, optical_density. nsr: 'tuned' (once per run, as metrics(nsr='tuned')) or a
 number. Returns a list of dicts with the keys of `pinmask depth --json`.)");

@@ -1,12 +1,15 @@
 // Kernels and the PSF of a mask (design/psf/kernel.hpp, design/psf/psf.hpp), PSF files
 // (io/psf_files), image files (core/image/image_io). psf() and write_psf() follow `pinmask psf`
 // (cli/cmd_psf.cpp).
+#include <cctype>
 #include <filesystem>
 
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
 #include "core/image/image_io.hpp"
 #include "core/image/raw_io.hpp"
+#include "core/units/number_format.hpp"
+#include "decode/capture/estimate_output.hpp"
 #include "design/optics/working_distance.hpp"
 #include "design/psf/kernel.hpp"
 #include "design/psf/psf.hpp"
@@ -14,6 +17,7 @@
 #include "design/psf/psf_settings.hpp"
 #include "io/psf_files.hpp"
 #include "python/common.hpp"
+#include "python/keyword_names.hpp"
 #include "python/result.hpp"
 #include "python/values.hpp"
 
@@ -33,6 +37,75 @@ Mask with_kernel(Mask mask, const std::optional<std::string>& kernel,
         mask.psf.kernel.measured_path = kernel_path;
     }
     return mask;
+}
+
+// write_image(): a PNG scaled by decode's rule (decode/capture/estimate_output scale_for_png) when
+// `scale` is given, and otherwise refused when a value lies outside [0, 1], where write_png would
+// clamp it silently (a decode in capture units came out all white).
+void write_image_scaled(const std::filesystem::path& path, Image img, const py::object& scale,
+                        int bits) {
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const bool png = ext == ".png";
+    if (!png && ext != ".tif" && ext != ".tiff" && ext != ".npy") {
+        write_image(path, img);  // refuses the extension, naming it
+        return;
+    }
+    if (!scale.is_none() && !png)
+        throw invalid_field(field_ref("scale"), py::str(py::repr(scale)).cast<std::string>(),
+                            "applies to .png only: .tif/.tiff and .npy hold the values as "
+                            "they are");
+    if (bits != 8 && bits != 16)
+        throw invalid_field(field_ref("bits"), std::to_string(bits), "must be 8 or 16");
+    if (!png) {
+        write_image(path, img);
+        return;
+    }
+    if (!scale.is_none()) {
+        std::optional<double> factor;
+        if (py::isinstance<py::str>(scale)) {
+            if (scale.cast<std::string>() != "max")
+                throw invalid_field(field_ref("scale"), scale.cast<std::string>(),
+                                    "must be 'max' or a factor > 0");
+        } else {
+            const auto refuse = [&] {
+                return py::type_error(py_names::spell_keywords(
+                    field_ref("scale") + " must be 'max' or a number, not " +
+                    std::string(py::str(scale.get_type().attr("__name__")))));
+            };
+            if (py::isinstance<py::bool_>(scale)) throw refuse();
+            try {
+                factor = py::float_(scale).cast<double>();  // numpy scalars too
+            } catch (const py::error_already_set&) {
+                throw refuse();
+            }
+            if (!(*factor > 0.0) || !std::isfinite(*factor))
+                throw invalid_field(field_ref("scale"), format_number(*factor),
+                                    "must be 'max' or a finite factor > 0");
+        }
+        for (const Plane& ch : img.channels)
+            if (!is_all_finite(ch)) throw invalid_field(field_ref("image"), "", "holds NaN or Inf");
+        img = scale_for_png(img, factor).image;
+    } else {
+        double lo = 0.0, hi = 0.0;
+        bool finite = true;
+        for (const Plane& ch : img.channels) {
+            if (ch.size() == 0) continue;
+            finite = finite && is_all_finite(ch);
+            lo = std::min(lo, ch.minCoeff());
+            hi = std::max(hi, ch.maxCoeff());
+        }
+        if (!finite || lo < 0.0 || hi > 1.0)
+            throw invalid_field(
+                field_ref("image"),
+                finite ? "values in [" + format_number(lo) + ", " + format_number(hi) + "]"
+                       : std::string("NaN or Inf"),
+                "a PNG holds [0, 1] and would clip them: give scale='max' (what `pinmask "
+                "decode -o x.png` writes: negatives to 0, divided by the largest value) or "
+                "scale=FACTOR, divide the array yourself, or write .tiff or .npy for the raw "
+                "values");
+    }
+    write_png(path, img, bits);
 }
 
 struct PsfAndKernel {
@@ -230,12 +303,20 @@ void bind_psf(py::module_& m) {
         "colour's sites).");
     m.def(
         "write_image",
-        [](const std::filesystem::path& path, const py::handle& image) {
-            write_image(path, image_arg(image, "image"));
+        [](const std::filesystem::path& path, const py::handle& image, const py::object& scale,
+           int bits) {
+            Image img = image_arg(image, "image");
+            write_image_scaled(path, std::move(img), scale, bits);
         },
-        py::arg("path"), py::arg("image"),
-        "Writes by extension: .tif/.tiff (float32), .png (16-bit), .npy (float32); PNG takes "
-        "values in [0, 1] (clamped). Atomic. 2-D: grey; 3-D (rows, cols, channels).");
+        py::arg("path"), py::arg("image"), py::arg("scale") = py::none(), py::arg("bits") = 16,
+        "Writes by extension: .tif/.tiff (float32) and .npy (float32) hold the values as they "
+        "are; .png (bits 8 or 16, default 16) holds [0, 1]. scale (PNG only) is decode's "
+        "--scale: 'max' (negatives to 0, then divided by the largest value over all channels: "
+        "what `pinmask decode -o x.png` writes, with bits=8 for its default --bits) or a factor "
+        "> 0 (negatives to 0, multiplied, above 1 full white); None (default): the values are "
+        "written as they are and must lie in [0, 1] (ValueError otherwise, saying how to scale: "
+        "a decode or a capture in counts would come out white). Atomic. 2-D: grey; 3-D (rows, "
+        "cols, channels).");
 }
 
 }  // namespace pinmask::python

@@ -164,6 +164,13 @@ Image image_arg(const py::handle& obj, const std::string& what) {
         throw invalid_field(what, "an array of " + std::to_string(arr.ndim()) + " dimension(s)",
                             "must be 2-D (rows, cols) or 3-D (rows, cols, channels)");
     }
+    // The channels pinmask's image files hold (core/image/image_io): grey or RGB. Another count
+    // (an RGBA array, two planes) was decoded channel by channel where the command refuses it.
+    if (arr.shape(2) != 1 && arr.shape(2) != 3) {
+        throw invalid_field(what, "an array of " + std::to_string(arr.shape(2)) + " channels",
+                            "must have 1 (grey) or 3 (RGB) channels, as the image files pinmask "
+                            "reads (drop an alpha channel first: image[..., :3])");
+    }
     ++g_input_copies;
     const auto d = py::array_t<double, py::array::forcecast>::ensure(arr);
     const auto v = d.unchecked<3>();

@@ -158,7 +158,12 @@ def read_image(
     path: PathLikeStr,
     bayer: Literal["sum2x2", "green", "g", "r", "b"] = "sum2x2",  # camera RAW only
 ) -> tuple[FloatArray, float]: ...
-def write_image(path: PathLikeStr, image: ArrayLike) -> None: ...
+def write_image(
+    path: PathLikeStr,
+    image: ArrayLike,
+    scale: Union[Literal["max"], float, None] = None,  # PNG only: decode's --scale
+    bits: Literal[8, 16] = 16,  # PNG only: decode's --bits (decode's default is 8)
+) -> None: ...
 def scene_names() -> list[str]: ...
 def scene(name: str, rows: int, cols: int, seed: int = 0, alpha: float = 1.0) -> FloatArray: ...
 def simulate(
@@ -478,7 +483,7 @@ def depth(
     distances: Optional[Sequence[float]] = None,  # object distances, m (inf allowed)
     from_m: Optional[float] = None,  # a range from_m..to_m (inf allowed), steps points in 1/u
     to_m: Optional[float] = None,
-    steps: int = 8,
+    steps: Optional[int] = None,  # points of the range (None: 8); not with distances
     snr_db: Optional[float] = None,  # one level, dB; None: 30; inf: noiseless
     photons: Optional[float] = None,  # electrons per pixel through one pinhole (photon model)
     read_noise: Optional[float] = None,  # rms electrons

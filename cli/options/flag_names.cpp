@@ -33,6 +33,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"datatype", "--datatype"},
     {"depth_from_m", "--depth-from"},
     {"depth_to_m", "--depth-to"},
+    {"distances", "--distances/--from/--to"},
     {"distances_m", "--from/--to"},
     {"draw", "--draw"},
     {"emulsion", "--emulsion"},

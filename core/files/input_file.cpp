@@ -8,6 +8,10 @@ namespace pinmask {
 
 std::optional<std::string> input_file_problem(const std::filesystem::path& path) {
     namespace fs = std::filesystem;
+    // The system reads a name up to its first NUL byte: a name with one (an escaped "\u0000"
+    // in a JSON file) would open the file named by its prefix.
+    if (path.native().find('\0') != std::string::npos)
+        return std::string("the name holds a NUL byte (\\u0000), which no file name can");
     std::error_code ec;
     const fs::file_status st = fs::status(path, ec);
     if (!fs::exists(st)) return std::string("file does not exist");

@@ -13,7 +13,8 @@
 namespace pinmask {
 
 // Why `path` cannot be read as an input file ("does not exist", "is a directory", "is a named
-// pipe: ..."), or nullopt when it is a regular file (then protected as an input of this run).
+// pipe: ...", a NUL byte inside the name), or nullopt when it is a regular file (then protected
+// as an input of this run).
 std::optional<std::string> input_file_problem(const std::filesystem::path& path);
 
 // What an existing path that is not a regular file or a directory is: "a named pipe", "a

@@ -137,6 +137,8 @@ void release_input(const fs::path& path) {
 
 void check_output_path(const fs::path& path, const std::string& flag) {
     if (path.empty()) throw invalid_field(flag, "''", "an output name must not be empty");
+    if (path.native().find('\0') != std::string::npos)  // the system would stop at the NUL
+        throw bad_output(flag, path, "the name holds a NUL byte, which no file name can");
     std::error_code ec;
     // Temporary siblings add ".tmp-<pid>-<n>" (twice when a writer nests) to the name: a name
     // that leaves no room for them fails late with the system's raw message, so it is refused

@@ -45,11 +45,18 @@ bool spots_stand_apart(const Mask& mask) {
     return (2.0 * n + 1.0) / a < mask.psf.pixels_per_cell;
 }
 
+// How a plateau found in the capture is named in messages.
+std::string plateau_words(const SaturatedPlateau& p) {
+    return " (no " + field_ref("saturation_level") + " given: the capture's largest value, where " +
+           std::to_string(p.pixels) + " pixels form a flat top of clipped light)";
+}
+
 // The spots above the threshold: refusals of captures that are not a usable point source (no
 // spots, far fewer than the design, saturated). The lattice itself starts from the FFT
 // (decode/calibrate/lattice_fft), not from these spots.
 std::vector<Spot> checked_spots(const Plane& frame, const Plane& raw, const Background& bg,
-                                const Mask& mask, const CalibrationOptions& o) {
+                                const Mask& mask, const CalibrationOptions& o,
+                                const SaturatedPlateau& plateau) {
     SpotOptions so;
     so.raw = &raw;
     so.threshold_sigmas = o.threshold_sigmas;
@@ -77,6 +84,7 @@ std::vector<Spot> checked_spots(const Plane& frame, const Plane& raw, const Back
                            " of " + std::to_string(spots.size()) + " spots (" +
                            format_number(std::round(1000 * frac) / 10) +
                            " %) reach the saturation level " + format_number(o.saturation_level) +
+                           (plateau.found ? plateau_words(plateau) : std::string()) +
                            "; expose shorter");
     return spots;
 }
@@ -156,10 +164,18 @@ void validate(const CalibrationOptions& o) {
 }
 
 CalibrationSummary calibrate_point_source(const Plane& capture, const std::optional<Plane>& dark,
-                                          const Mask& mask, const CalibrationOptions& o) {
-    validate(o);
+                                          const Mask& mask, const CalibrationOptions& given) {
+    validate(given);
     if (capture.size() == 0 || !is_all_finite(capture))
         throw InvalidInput("calibrate: the capture is empty or holds NaN/Inf");
+    check_capture_scale(capture);
+    // No ceiling given: a flat top at the capture's largest value is its ceiling.
+    CalibrationOptions o = given;
+    SaturatedPlateau plateau;
+    if (std::isinf(o.saturation_level) && o.detect_saturation) {
+        plateau = find_saturated_plateau(capture);
+        if (plateau.found) o.saturation_level = plateau.level;
+    }
     const int rows = static_cast<int>(capture.rows()), cols = static_cast<int>(capture.cols());
     const double design_pitch = double(mask.psf.pixels_per_cell) / o.pixel_binning;
     const double period_px = mask.pattern.n * design_pitch * (1.0 - o.pitch_range);
@@ -181,9 +197,22 @@ CalibrationSummary calibrate_point_source(const Plane& capture, const std::optio
     }
     // Refusals from the spots, then the start of the lattice from the FFT.
     const Background bg0 = estimate_background(frame);
-    s.spots = checked_spots(frame, capture, bg0, mask, o);
+    s.spots = checked_spots(frame, capture, bg0, mask, o, plateau);
     for (int k = 0; k < static_cast<int>(s.spots.size()); ++k)
         if (s.spots[k].saturated) s.saturated_spots.push_back(k);
+    if (plateau.found) {
+        s.plateau = plateau;
+        s.warnings.push_back(
+            "the capture has " + std::to_string(plateau.pixels) + " pixels at exactly its " +
+            "largest value " + format_number(plateau.level) + ", a flat top of clipped light (no " +
+            field_ref("saturation_level") + " given); " + std::to_string(s.saturated_spots.size()) +
+            " of " + std::to_string(s.spots.size()) +
+            " spots reach it, and their centroids, gains and the kernel are biased: expose "
+            "shorter (or give " +
+            field_ref("saturation_level") +
+            " if that value is not a "
+            "ceiling)");
+    }
     FftStartOptions so;
     so.nominal_pitch_px = design_pitch;
     so.pitch_range = o.pitch_range;

@@ -24,6 +24,7 @@
 #include "decode/calibrate/kernel_estimate.hpp"
 #include "decode/calibrate/kernel_fit.hpp"
 #include "decode/calibrate/lattice_fft.hpp"
+#include "decode/calibrate/saturation.hpp"
 #include "decode/calibrate/spots.hpp"
 #include "design/pattern/mask.hpp"
 
@@ -34,6 +35,9 @@ struct CalibrationOptions {
     double pitch_range = 0.05;      // pitches searched: design pixels per cell +- this fraction
     double threshold_sigmas = 6.0;  // spot detection threshold (decode/calibrate/spots)
     double saturation_level = std::numeric_limits<double>::infinity();  // raw counts
+    // With no saturation_level (infinite): a flat top at the capture's largest value
+    // (decode/calibrate/saturation) is taken as its ceiling, and its spots as saturated.
+    bool detect_saturation = true;
     // More than this fraction of spots with a saturated pixel: centroids and gains are unusable.
     double max_saturated_fraction = 0.5;
     // Fewer spots than this fraction of the design's in-frame pinholes: the capture is not of
@@ -75,7 +79,11 @@ struct CalibrationSummary {
     // median pinhole flux: light the design does not explain (a pinhole not in the design, a
     // scratch). (x, y, flux).
     std::vector<std::array<double, 3>> extra_spots;
-    std::vector<int> saturated_spots;                              // indices into spots
+    std::vector<int> saturated_spots;  // indices into spots
+    SaturatedPlateau plateau;          // the flat top found when no saturation level was given
+    // What the faces print as warnings (fields as references): a plateau that did not refuse
+    // the capture.
+    std::vector<std::string> warnings;
     double dark_level = std::numeric_limits<double>::quiet_NaN();  // counts, NaN: not measured
     std::string dark_source;  // "dark frame", "fitted background", "not measured"
     // The light's band as the fit treats it: the kernel is one wavelength's, the band's centre;
@@ -98,8 +106,10 @@ struct CalibrationSummary {
 };
 
 // Throws InvalidInput (exit 2 in the CLI) for: an empty/non-finite capture or dark frame of
-// another size; a capture smaller than one period; no spots; far fewer spots than the design;
-// saturation over most spots; a lattice outside the searched rotation/pitch range.
+// another size; a capture whose scale is out of range (decode/calibrate/saturation); a capture
+// smaller than one period; no spots; far fewer spots than the design; saturation over most spots
+// (at the given level, or at a flat top found when none is given); a lattice outside the
+// searched rotation/pitch range.
 CalibrationSummary calibrate_point_source(const Plane& capture, const std::optional<Plane>& dark,
                                           const Mask& mask, const CalibrationOptions& options = {});
 

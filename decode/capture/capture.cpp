@@ -36,6 +36,13 @@ void check_image_finite(const Image& image, const std::string& what) {
 
 void check_psf(const Plane& psf, const std::string& what) {
     if (psf.size() == 0) throw InvalidInput(what + ": the image is empty (no pixels)");
+    // One pixel is a point, not a coded PSF: the cyclic model's window is the PSF's size, so a
+    // "decode" returned a 1 x 1 image (exit 0).
+    if (psf.size() == 1)
+        throw InvalidInput(what +
+                           ": the PSF is 1 x 1 pixel: a single point codes nothing and "
+                           "the decode would be one pixel; give the PSF the capture was "
+                           "taken with");
     // A finite sum proves every value finite; otherwise the scan names the pixel, or the values
     // are finite and their sum overflows (unit-sum normalisation would zero the PSF).
     const double sum = psf.sum();

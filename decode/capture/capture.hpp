@@ -19,7 +19,8 @@ namespace pinmask {
 // channel, row and column of the first one).
 void check_image_finite(const Image& image, const std::string& what);
 
-// Throws InvalidInput naming `what` when the PSF is empty, not finite, or its sum is not > 0.
+// Throws InvalidInput naming `what` when the PSF is empty or one pixel, not finite, or its sum is
+// not > 0.
 void check_psf(const Plane& psf, const std::string& what);
 
 // capture - dark, channel by channel. `dark` must have the capture's rows and columns and either

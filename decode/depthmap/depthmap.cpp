@@ -14,6 +14,7 @@
 #include "decode/depthmap/refine.hpp"
 #include "decode/depthmap/smooth_labels.hpp"
 #include "decode/depthmap/sweep_cost.hpp"
+#include "design/optics/distance_list.hpp"
 #include "design/optics/working_distance.hpp"
 
 namespace pinmask {
@@ -21,8 +22,6 @@ namespace {
 
 constexpr std::size_t kMaxPlanes = 1000;
 
-// The sweep over sorted distances u, plane k's cost by cost_at(k), then the labelling and the
-// maps.
 template <class CostAt>
 DepthmapResult run(const Plane& capture, const std::vector<double>& u, const DepthmapOptions& o,
                    CostAt cost_at) {
@@ -144,10 +143,8 @@ DepthmapResult depthmap(const Plane& capture, const Mask& mask, const DepthmapOp
     o.validate();
     std::vector<double> u = o.distances_m;
     for (double d : u) check_object_distance(mask.camera, d, "distances_m");
+    check_distinct_distances(u, field_ref("distances_m"));
     std::sort(u.begin(), u.end());
-    if (std::adjacent_find(u.begin(), u.end()) != u.end()) {
-        throw invalid_field(field_ref("distances_m"), "", "holds the same distance twice");
-    }
     return run(capture, u, o, [&](std::size_t k) {
         return sweep_cost(capture, mask, u[k], o.wiener_nsr, o.window);
     });
@@ -183,14 +180,13 @@ DepthmapResult depthmap(const Plane& capture, const std::vector<PsfStackPlane>& 
         }
         order[k] = k;
     }
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-        return stack[a].distance_m < stack[b].distance_m;
-    });
+    std::vector<double> given;
+    for (const PsfStackPlane& p : stack) given.push_back(p.distance_m);
+    check_distinct_distances(given, field_ref("psf_stack"));
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return given[a] < given[b]; });
     std::vector<double> u;
     for (std::size_t k : order) u.push_back(stack[k].distance_m);
-    if (std::adjacent_find(u.begin(), u.end()) != u.end()) {
-        throw invalid_field(field_ref("psf_stack"), "", "holds the same distance twice");
-    }
     return run(capture, u, o, [&](std::size_t k) {
         return sweep_cost(capture, stack[order[k]].psf, o.wiener_nsr, o.window);
     });

@@ -28,9 +28,10 @@ namespace pinmask {
 inline constexpr double kDepthmapDefaultSmooth = 8.0;
 
 struct DepthmapOptions {
-    std::vector<double> distances_m;  // candidate planes (>= 2, distinct, each > f'; inf allowed)
-    double wiener_nsr = 0.01;         // scalar NSR of every decode (> 0)
-    int window = 121;                 // odd box side of the consistency cost, px (>= 3)
+    std::vector<double>
+        distances_m;  // candidate planes (>= 2, distinct by > 1e-6 relative, > f'; inf allowed)
+    double wiener_nsr = 0.01;  // scalar NSR of every decode (> 0)
+    int window = 121;          // odd box side of the consistency cost, px (>= 3)
     // Weight of the smoothness term (>= 0; 0: winner-take-all). A step of one plane between
     // neighbouring pixels costs smooth * s, a larger jump 2 smooth * s, where s is the mean
     // depth of the pixels' cost wells (decode/depthmap/smooth_labels cost_well_depth), so the
@@ -85,8 +86,8 @@ DepthmapResult depthmap(const Plane& capture, const Mask& mask, const DepthmapOp
 
 // The same pipeline over a given PSF stack instead of the mask's exact geometry: the planes are
 // the stack's distances (options.distances_m is not used). At least 2 planes, distances > 0,
-// finite and distinct, PSFs finite, non-negative, with light, at most the capture's size;
-// InvalidInput naming `psf_stack` otherwise.
+// finite and distinct (by more than 1e-6 of the distance), PSFs finite, non-negative, with light,
+// at most the capture's size; InvalidInput naming `psf_stack` otherwise.
 DepthmapResult depthmap(const Plane& capture, const std::vector<PsfStackPlane>& stack,
                         const DepthmapOptions& options);
 

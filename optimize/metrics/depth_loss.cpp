@@ -14,6 +14,7 @@
 #include "core/units/units.hpp"
 #include "decode/capture/decoder.hpp"
 #include "decode/solvers/precision.hpp"
+#include "design/optics/distance_list.hpp"
 #include "design/optics/working_distance.hpp"
 #include "design/psf/psf.hpp"
 #include "design/psf/psf_exact.hpp"
@@ -149,6 +150,7 @@ std::vector<DepthRecord> depth_analysis(const Mask& mask, const std::vector<doub
     o.validate();
     if (distances.empty()) throw invalid_field("distances", "none", "need at least one distance");
     for (double u : distances) check_object_distance(mask.camera, u, "object distance");
+    check_distinct_distances(distances, field_ref("distances"));
     const Plane psf = mask_psf(mask);
     const int m = static_cast<int>(psf.rows());
     const int n = mask.pattern.n, ppc = mask.psf.pixels_per_cell;

@@ -67,7 +67,8 @@ struct DepthRecord {
 // (equal pitch steps); InvalidInput naming `from_m`, `to_m` or `steps` otherwise.
 std::vector<double> depth_range(double from_m, double to_m, int steps);
 
-// One record per distance (each checked: > f' when there is a lens, M(u) != 0).
+// One record per distance (each checked: > f' when there is a lens, M(u) != 0; no two within
+// 1e-6 of each other, design/optics/distance_list).
 std::vector<DepthRecord> depth_analysis(const Mask& mask, const std::vector<double>& distances_m,
                                         const DepthOptions& options);
 

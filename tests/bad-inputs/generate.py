@@ -1014,3 +1014,106 @@ write("layout-dxf-layer-twice.dxf",
       DXF.replace("POLYLINE\n" + DXF_ENTITY_LAYER, "POLYLINE\n" + DXF_ENTITY_LAYER + "  8\nOTHER\n", 1))
 write("layout-dxf-empty-layer.dxf", DXF.replace(DXF_ENTITY_LAYER, "  8\n\n", 1))
 write("layout-dxf-blank-layer.dxf", DXF.replace(DXF_ENTITY_LAYER, "  8\n   \n", 1))
+# ---------------------------------------------------------------- fifth round: decode and calibrate
+# PSF stacks whose planes are one plane given twice (distances within 1e-6 of each other, in or
+# out of order), and a PSF name with an escaped NUL (the system would open its prefix).
+psf_stack("psf-stack-float-step.json", [(0.5, "psf-stack-ok.tiff"),
+                                        (math.nextafter(0.5, 1.0), "psf-stack-ok.tiff")])
+psf_stack("psf-stack-near-unordered.json", [(0.5, "psf-stack-ok.tiff"), (1.0, "psf-stack-ok.tiff"),
+                                            (2.0, "psf-stack-ok.tiff"),
+                                            (0.5000002, "psf-stack-ok.tiff")])
+psf_stack("psf-stack-near-far.json", [(1000.0, "psf-stack-ok.tiff"),
+                                      (1000.0009, "psf-stack-ok.tiff")])
+psf_stack("psf-stack-nul-path.json", [(0.5, "psf-stack-ok.tiff"),
+                                      (1.0, "psf-stack-ok.tiff\u0000.missing")])
+psf_stack("psf-stack-nul-only.json", [(0.5, "psf-stack-ok.tiff"), (1.0, "\u0000")])
+
+# Capture files of the wrong kind for a decode or a calibration: npy dtypes that are not light
+# values, channel counts other than 1 and 3, shapes of other ranks, a header whose data length
+# disagrees; TIFF and PNG layouts the readers do not take. (An alpha channel or other extra
+# samples are dropped by design, core/image/tiff_io and png_io: not listed here.)
+for stem, descr in [("complex", "<c8"), ("bool", "|b1"), ("object", "|O"), ("unicode", "<U4"),
+                    ("half", "<f2"), ("datetime", "<M8[s]"), ("bytes", "|S4"),
+                    ("struct", "[('a', '<f4')]")]:
+    write("capture-dtype-%s.npy" % stem, npy((28, 28), descr=descr, data=b"\0" * (28 * 28 * 16)))
+f4 = lambda n, v=0.5: struct.pack("<%df" % n, *([v] * n))
+write("capture-channels-2.npy", npy((28, 28, 2), data=f4(28 * 28 * 2)))
+write("capture-channels-4.npy", npy((28, 28, 4), data=f4(28 * 28 * 4)))
+write("capture-rank-1.npy", npy((784,), data=f4(784)))
+write("capture-rank-4.npy", npy((1, 28, 28, 1), data=f4(784)))
+write("capture-rank-0.npy", npy((), data=f4(1)))
+write("capture-shape-zero.npy", npy((0, 28), data=b""))
+write("capture-trailing-bytes.npy", npy((28, 28), data=f4(784) + b"\0" * 4096))
+write("capture-one-pixel.npy", npy((1, 1), data=f4(1)))
+write("capture-header-not-dict.npy", b"\x93NUMPY\x01\x00" + struct.pack("<H", 118) +
+      b"[1, 2, 3]".ljust(117) + b"\n" + f4(784))
+write("capture-header-no-descr.npy", b"\x93NUMPY\x01\x00" + struct.pack("<H", 118) +
+      b"{'fortran_order': False, 'shape': (28, 28), }".ljust(117) + b"\n" + f4(784))
+write("capture-version-9.npy", b"\x93NUMPY\x09\x00" + npy((28, 28), data=f4(784))[8:])
+
+
+def tiff_tags(width, height, data, tags):
+    """A little-endian TIFF of one strip holding `data`, with the baseline tags replaced or
+    added by `tags` {tag: (type, value)} (types 3 SHORT, 4 LONG)."""
+    base = {256: (4, width), 257: (4, height), 258: (3, 32), 259: (3, 1), 262: (3, 1),
+            273: (4, 8), 277: (3, 1), 278: (4, height), 279: (4, len(data)), 284: (3, 1),
+            339: (3, 3)}
+    base.update(tags)
+    ifd = struct.pack("<H", len(base))
+    for tag in sorted(base):
+        typ, value = base[tag]
+        ifd += struct.pack("<HHII", tag, typ, 1, value) if typ == 4 else struct.pack(
+            "<HHIHH", tag, typ, 1, value, 0)
+    ifd += struct.pack("<I", 0)
+    return b"II*\0" + struct.pack("<I", 8 + len(data)) + data + ifd
+
+
+write("capture-tiff-complex.tiff", tiff_tags(28, 28, f4(28 * 28 * 2), {258: (3, 64), 339: (3, 6)}))
+write("capture-tiff-float16.tiff", tiff_tags(28, 28, b"\0" * (28 * 28 * 2), {258: (3, 16)}))
+write("capture-tiff-12-bit.tiff", tiff_tags(28, 28, b"\0" * (28 * 42), {258: (3, 12), 339: (3, 1)}))
+write("capture-tiff-strip-short.tiff", tiff_tags(28, 28, f4(28 * 14), {279: (4, 28 * 28 * 4)}))
+write("capture-tiff-lzw-garbage.tiff", tiff_tags(28, 28, b"\xff" * 64, {259: (3, 5)}))
+
+
+def png_rows(width, height, colour, bit_depth, row_bytes, interlace=0):
+    """A PNG of `height` rows of `row_bytes` zero bytes each (filter 0)."""
+    ihdr = struct.pack(">IIBBBBB", width, height, bit_depth, colour, 0, 0, interlace)
+    idat = zlib.compress((b"\0" + b"\x40" * row_bytes) * height)
+    return (b"\x89PNG\r\n\x1a\n" + png_chunk(b"IHDR", ihdr) + png_chunk(b"IDAT", idat) +
+            png_chunk(b"IEND", b""))
+
+
+write("capture-png-palette-no-plte.png", png_rows(28, 28, 3, 8, 28))
+write("capture-png-bit-depth-3.png", png_rows(28, 28, 0, 3, 11))
+write("capture-png-rgb-bit-depth-4.png", png_rows(28, 28, 2, 4, 42))
+
+
+# A point-source capture of {mask} (fuzz/corpus/mask_json/small.mask.json: 7 x 7 cells of 4 px,
+# pinholes at cells (1, 0), (3, 6), (5, 0)): Gaussian spots (sigma 1.6 px, peak 800) on a
+# background of 20, as float32; clipped at half its peak, a flat top of 36 pixels a float file
+# does not declare. Also scaled far beyond any unit (1e300, float64) and below (1e-30), and a
+# 16-bit PNG whose spots reach its largest count (65535).
+def point_capture(scale=1.0, clip=None):
+    values = []
+    for r in range(28):
+        for c in range(28):
+            v = 20.0
+            for (pr, pc) in [(1, 0), (3, 6), (5, 0)]:
+                dy, dx = r - (4 * pr + 1.5), c - (4 * pc + 1.5)
+                v += 800.0 * math.exp(-(dy * dy + dx * dx) / (2 * 1.6 ** 2))
+            values.append(struct.unpack("<f", struct.pack("<f", v * scale))[0])
+    if clip is not None:
+        level = struct.unpack("<f", struct.pack("<f", clip * max(values)))[0]
+        values = [min(v, level) for v in values]
+    return values
+
+
+write("capture-point-clipped.npy", npy((28, 28), data=struct.pack("<784f", *point_capture(clip=0.5))))
+write("capture-point-clipped.tiff", tiff(28, 28, values=point_capture(clip=0.5)))
+write("capture-point-1e300.npy", npy((28, 28), descr="<f8",
+                                     data=struct.pack("<784d", *[v * 1e300 for v in point_capture()])))
+write("capture-point-1e-30.npy", npy((28, 28), data=struct.pack("<784f", *point_capture(1e-30))))
+rows16 = b""
+for r, row in enumerate(zip(*[iter(point_capture(200.0, clip=0.5))] * 28)):
+    rows16 += b"\0" + b"".join(struct.pack(">H", min(65535, int(v))) for v in row)
+write("capture-point-saturated-16.png", png(28, 28, zlib.compress(rows16), bit_depth=16))

@@ -160,6 +160,12 @@ TEST_CASE("decode --batch: bad inputs exit 2 naming the flag, nothing written") 
     std::ofstream(dir.path / "twice.txt") << "caps/c1.tiff\ncaps/c1.tiff\n";
     fs::copy_file(dir.path / "caps/c2.tiff", dir.path / "c2.tiff");
     std::ofstream(dir.path / "clash.txt") << "caps/c2.tiff\nc2.tiff\n";
+    // A capture whose name is not UTF-8 (the summary, JSON, could not record it), in a folder
+    // and in a list; a list line with a NUL byte (the system would open its prefix).
+    fs::create_directory(dir.path / "latin1");
+    fs::copy_file(dir.path / "caps/c1.tiff", dir.path / "latin1/caf\xE9.tiff");
+    std::ofstream(dir.path / "latin1.txt") << "caps/c1.tiff\nlatin1/caf\xE9.tiff\n";
+    std::ofstream(dir.path / "nul.txt") << std::string("caps/c1.tiff\0.x\n", 16);
     const std::string m = " --mask m.mask.json ";
     struct Case {
         std::string args, flag;
@@ -170,8 +176,10 @@ TEST_CASE("decode --batch: bad inputs exit 2 naming the flag, nothing written") 
         {"--batch missing.txt" + m + "-o out", "--batch"},
         {"--batch twice.txt" + m + "-o out", "--batch"},
         {"--batch clash.txt" + m + "-o out", "--batch"},
+        {"--batch latin1" + m + "-o out", "caf\\xE9.tiff: in latin1: the name is not UTF-8"},
+        {"--batch latin1.txt" + m + "-o out", "the name is not UTF-8"},
+        {"--batch nul.txt" + m + "-o out", "the line holds a NUL byte"},
         {"--batch no-such-dir" + m + "-o out", "--batch"},
-        {"--batch caps" + m + "-o no-such-dir", "-o"},
         {"--batch caps" + m + "-o m.mask.json", "-o"},
         {"--batch caps" + m + "-o out --batch-format jpg", "--batch-format"},
         {"--batch caps" + m + "-o out --stats s.json", "--stats"},
@@ -193,6 +201,48 @@ TEST_CASE("decode --batch: bad inputs exit 2 naming the flag, nothing written") 
     CHECK(r.exit_code == 2);
     CHECK(fs::is_empty(dir.path / "out"));
     CHECK(run_cli("decode" + m + "-o out/x.tiff", dir.path).exit_code == 2);
+}
+
+TEST_CASE("decode --batch: a missing -o folder is created, and removed again when the run fails") {
+    TempDir dir("cli-decode-batch-folder");
+    make_captures(dir);
+    const std::string m = " --mask m.mask.json" + kFlags;
+    // Created with its missing parents; the files are those of an existing folder's run.
+    fs::create_directory(dir.path / "existing");
+    REQUIRE(run_cli("decode --batch caps" + m + "-o existing", dir.path).exit_code == 0);
+    const auto r = run_cli("decode --batch caps" + m + "-o new/deeper/out/", dir.path);
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(file_count(dir.path / "new/deeper/out") == file_count(dir.path / "existing"));
+    for (const std::string stem : {"c1", "c2", "c3"})
+        CHECK(slurp(dir.path / ("new/deeper/out/" + stem + ".tiff")) ==
+              slurp(dir.path / ("existing/" + stem + ".tiff")));
+    // A run that fails, before any work or on its second capture, leaves no folder behind: not
+    // the one named, not the parents it made; an existing parent stays.
+    std::ofstream(dir.path / "bad.npy") << "not an npy file";
+    std::ofstream(dir.path / "bad.txt") << "caps/c1.tiff\nbad.npy\ncaps/c3.tiff\n";
+    struct Case {
+        std::string args, flag;
+    };
+    const Case cases[] = {
+        {"--batch bad.txt" + m + "-o gone/a/b", "bad.npy"},
+        {"--batch caps" + m + "-o gone/a --batch-format jpg", "--batch-format"},
+        {"--batch caps --mask nope.mask.json -o gone", "nope.mask.json"},
+        {"--batch bad.txt" + m + "-o new/fresh", "bad.npy"},
+    };
+    for (const Case& c : cases) {
+        const auto f = run_cli("decode " + c.args, dir.path);
+        INFO(c.args, "\n", f.err);
+        CHECK(f.exit_code == 2);
+        CHECK(f.err.find(c.flag) != std::string::npos);
+        CHECK_FALSE(fs::exists(dir.path / "gone"));
+        CHECK_FALSE(fs::exists(dir.path / "new/fresh"));
+        CHECK(fs::is_directory(dir.path / "new/deeper/out"));
+    }
+    // A file under the folder's name is refused by name, as every command's output folder.
+    const auto file = run_cli("decode --batch caps" + m + "-o m.mask.json", dir.path);
+    CHECK(file.exit_code == 2);
+    CHECK(file.err.find("is a file; give a folder (created when missing)") != std::string::npos);
 }
 
 // PINMASK_TIME_LIMIT: the budget is checked between captures and each run decodes at least its

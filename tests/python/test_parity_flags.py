@@ -93,8 +93,10 @@ BY_DESIGN = {
     ("simulate", "--output"): "the capture is returned as an array (write_image writes it)",
     ("simulate", "--explain"): "the returned dict holds the settings the run resolved",
     ("decode", "--output"): "the image is returned as an array (write_image writes it)",
-    ("decode", "--bits"): "PNG bit depth of the written image: the image is returned as float64",
-    ("decode", "--scale"): "PNG scaling of the written image: the image is returned unscaled",
+    ("decode", "--bits"): "the image is returned as float64; write_image(path, image, "
+                         "scale='max', bits=8) writes decode's PNG",
+    ("decode", "--scale"): "the image is returned unscaled; write_image(path, image, scale=) "
+                          "applies --scale",
     ("decode", "--stats"): "the stats JSON's values are the returned dict's (channels, window, "
                            "period_check)",
     ("decode", "--batch-format"): "decode_batch returns the images as arrays (write_image "

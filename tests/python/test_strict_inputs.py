@@ -111,3 +111,67 @@ def test_json_readers_speak_the_modules_words(tmp_path):
             read()
         assert "bad.json" in str(e.value) or "resume" in str(e.value)
         assert "[json.exception" not in str(e.value) and "syntax error" in str(e.value)
+
+
+# ---- fifth round: decode and calibrate, the module's side of the manifest's sections
+
+
+def test_planes_given_twice_are_refused_naming_both(mask7):
+    cap = pinmask.simulate(mask7, "letter-R", snr_db=30)["capture"]
+    h = np.full((7, 7), 1.0 / 49)
+    u = 0.5
+    with pytest.raises(ValueError) as e:  # one float step apart
+        pinmask.depthmap(cap, psf_stack=[(u, h), (1.0, h), (np.nextafter(u, 1.0), h)], window=5)
+    assert ("psf_stack = 0.5 m and 0.50000000000000011 m: planes 0 and 2 hold the same distance "
+            "twice") in str(e.value)
+    # Just beyond the tolerance (3e-6 relative) the planes are distinct.
+    r = pinmask.depthmap(cap, psf_stack=[(u, h), (u * (1 + 3e-6), h)], window=5, smooth=0)
+    assert len(r["planes"]) == 2
+    with pytest.raises(ValueError, match="hold the same distance twice"):
+        pinmask.depthmap(cap, mask=mask7, from_m=1.0, to_m=1.0000001, steps=3, window=5)
+    for distances in ([1.0, 1.0], [1.0, 1.0000001], [1.0, 2.0, 1.0]):
+        with pytest.raises(ValueError, match=r"distances = .*hold the same distance twice"):
+            pinmask.depth(mask7, distances=distances, tv=False)
+
+
+def test_a_one_pixel_psf_is_refused(mask7):
+    cap = pinmask.simulate(mask7, "letter-R", snr_db=30)["capture"]
+    with pytest.raises(ValueError, match="the PSF is 1 x 1 pixel"):
+        pinmask.decode(cap, psf=np.ones((1, 1)))
+
+
+@pytest.mark.parametrize("channels", [2, 4])
+def test_channel_counts_the_files_cannot_hold_are_refused(mask7, tmp_path, channels):
+    cap = pinmask.simulate(mask7, "letter-R", snr_db=30)["capture"]
+    stack = np.stack([cap] * channels, axis=-1)
+    calls = [lambda: pinmask.decode(stack, mask=mask7),
+             lambda: pinmask.decode(cap, mask=mask7, dark=stack * 0),
+             lambda: pinmask.depthmap(stack, mask=mask7, from_m=1.0, to_m=2.0, window=5),
+             lambda: pinmask.write_image(str(tmp_path / "x.tiff"), stack)]
+    for call in calls:
+        with pytest.raises(ValueError, match=f"an array of {channels} channels: must have 1 "
+                                             r"\(grey\) or 3 \(RGB\) channels"):
+            call()
+    assert not list(tmp_path.iterdir())
+
+
+@pytest.mark.parametrize("name,pattern", [
+    ("capture-dtype-complex.npy", "npy dtype '<c8' is not supported"),
+    ("capture-channels-4.npy", r"npy shape \(28, 28, 4\) is not supported"),
+    ("capture-rank-1.npy", r"npy shape \(784\) is not supported"),
+    ("capture-trailing-bytes.npy", "trailing bytes"),
+    ("capture-version-9.npy", "npy format version 9.0"),
+    ("capture-tiff-float16.tiff", "TIFF samples are 16-bit float"),
+    ("capture-png-palette-no-plte.png", "Missing PLTE before IDAT"),
+])
+def test_capture_files_of_the_wrong_kind_are_value_errors(bad_inputs, name, pattern):
+    with pytest.raises(ValueError, match=pattern):
+        pinmask.read_image(str(bad_inputs / name))
+
+
+
+def test_steps_beside_distances_is_refused_as_the_command_does(mask7):
+    with pytest.raises(ValueError, match="give either it or from_m/to_m/steps"):
+        pinmask.depth(mask7, distances=[1.0, 2.0], steps=3, tv=False)
+    r = pinmask.depth(mask7, from_m=1.0, to_m=2.0, tv=False, scenes=["letter-R"])
+    assert len(r) == 8  # steps None: the command's --steps 8
