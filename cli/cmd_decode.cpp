@@ -70,8 +70,10 @@ void run_decode(DecodeCommand& r, BayerMode bayer) {
     json timings;
 
     auto t0 = Clock::now();
-    CaptureDecodeInputs inputs =
-        load_inputs(r, bayer, options.background == BackgroundMode::kCorner, stats);
+    CaptureDecodeInputs inputs = load_inputs(r, bayer,
+                                             options.background == BackgroundMode::kCorner ||
+                                                 options.background == BackgroundMode::kAuto,
+                                             stats);
     load_nsr_map(r, options.decode, stats);
     timings["load"] = seconds_since(t0);
 
@@ -144,7 +146,9 @@ void run_decode(DecodeCommand& r, BayerMode bayer) {
             write_output_image(tmp, result.estimate, kind, r.bits);
         });
     }
-    const json config = config_json(r);
+    json config = config_json(r);
+    config["chosen"] = chosen_json(sum.chosen);
+    stats["chosen"] = config["chosen"];
     files.stage_bytes(r.output + ".config.json", config.dump(2) + "\n");
     timings["write"] = seconds_since(t0);
     timings["total"] = seconds_since(t_start);
@@ -159,7 +163,7 @@ void run_decode(DecodeCommand& r, BayerMode bayer) {
         return;
     }
     std::cout << "decode " << r.capture << " -> " << r.output << "\n"
-              << "  method   " << r.method << " (" << r.model << " model, "
+              << "  method   " << r.method << " (" << conv_model_name(sum.model) << " model, "
               << (sum.single_precision ? "single" : "double") << " precision)\n"
               << "  window   " << sum.window.cols << " x " << sum.window.rows
               << " at x=" << sum.window.col << ", y=" << sum.window.row << "\n";

@@ -150,9 +150,11 @@ void run_decode_batch(const DecodeCommand& given, const BatchRequest& b, BayerMo
     options.validate();
     json shared_stats;
     load_nsr_map(r, options.decode, shared_stats);
-    BatchDecoder decoder(
-        load_shared_inputs(r, bayer, options.background == BackgroundMode::kCorner, shared_stats),
-        options);
+    BatchDecoder decoder(load_shared_inputs(r, bayer,
+                                            options.background == BackgroundMode::kCorner ||
+                                                options.background == BackgroundMode::kAuto,
+                                            shared_stats),
+                         options);
 
     // This rank's captures; the first error stops this rank's work. A spent time budget
     // (PINMASK_TIME_LIMIT) stops it between captures: each rank decodes at least its first one,

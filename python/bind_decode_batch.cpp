@@ -42,6 +42,10 @@ void bind_decode_batch(py::module_& m) {
                 }
                 options["psf"] = to_array(std::move(p));
                 options["mask"] = py::none();
+                // What decode() reads from a mask's PSF when left to it: one period of a
+                // tiling, with no camera background (decode/capture/capture_defaults.hpp).
+                if (!options.contains("model")) options["model"] = "cyclic";
+                if (!options.contains("background")) options["background"] = "none";
             }
             const py::object decode = py::module_::import("pinmask").attr("decode");
             const py::object fspath = py::module_::import("os").attr("fspath");

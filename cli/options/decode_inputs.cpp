@@ -61,7 +61,7 @@ bool apply_refocus(DecodeCommand& r) {
     const Mask mask = io::read_mask_file(r.mask);
     const RefocusGeometry g = refocus_geometry(mask, refocus_distance(r, mask));
     if (!g.exact_geometry) return false;
-    if (r.model != "linear" || r.crop != "none")
+    if ((r.model != "linear" && r.model != "auto") || (r.crop != "none" && r.crop != "auto"))
         std::cerr << "decode: --object-distance " << *r.object_distance << ": the pitch there is "
                   << g.pitch_px << " px per cell, not a whole number (" << g.mismatch_px
                   << " px off across one period): decoding the whole frame with the exact-geometry "
@@ -87,14 +87,19 @@ CaptureDecodeInputs load_shared_inputs(const DecodeCommand& r, BayerMode bayer, 
             info["kernel_model"] = file.sidecar->kernel_model;
         }
         in.psf = Image(std::move(file.psf));
-        if (need_counts) in.psf_counts = read_image(r.psf).image.channels.at(0);
+        // pinmask's own PSF file (with its sidecar) is one period of a mask's tiling.
+        in.psf_one_period = file.sidecar.has_value();
+        // Background auto reads a measured PSF's own values only (pinmask's has no floor).
+        if (need_counts && (r.request.background.mode == BackgroundMode::kCorner || !file.sidecar))
+            in.psf_counts = read_image(r.psf).image.channels.at(0);
     } else {
-        if (need_counts) {
+        if (r.request.background.mode == BackgroundMode::kCorner) {
             throw invalid_field("--background", "corner",
                                 "needs a measured PSF (--psf): a PSF synthesised from a mask "
                                 "has no camera background");
         }
         Mask mask = io::read_mask_file(r.mask);
+        in.psf_one_period = true;
         std::optional<RefocusGeometry> refocus;
         double u = mask.camera.object_distance_m;
         if (r.object_distance) {  // refocus: the PSF for an object at u

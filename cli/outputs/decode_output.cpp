@@ -113,6 +113,13 @@ void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const Deco
     timings["history_seconds"] = history_seconds;
 }
 
+nlohmann::json chosen_json(const std::vector<ChosenSetting>& chosen) {
+    nlohmann::json out = nlohmann::json::object();
+    for (const ChosenSetting& c : chosen)
+        out[c.name] = {{"value", c.value}, {"reason", spell_flags(c.reason)}};
+    return out;
+}
+
 nlohmann::json config_json(const DecodeCommand& c) {
     const DecodeRequest& r = c.request;
     auto opt = [](const std::optional<double>& v) {
