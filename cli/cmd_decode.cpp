@@ -201,10 +201,15 @@ void setup(CLI::App& app) {
         "the image, OUT.config.json and optionally a stats file.");
     cmd->footer(kDecodeFooter);
     auto flags = std::make_shared<DecodeFlags>(add_decode_flags(*cmd, *o));
-    cmd->add_option("--bayer", o->bayer,
-                    "Camera RAW captures and dark frames: sum2x2 (half-resolution grey, the pixel "
-                    "pitch doubles) | green (alias g) | r | b; see core/image/raw_io.hpp")
-        ->capture_default_str();
+    auto* bayer =
+        cmd->add_option("--bayer", o->bayer,
+                        "Camera RAW captures and dark frames: sum2x2 (half-resolution grey, the "
+                        "pixel pitch doubles) | green (alias g) | r | b; see "
+                        "core/image/raw_io.hpp. Given with a TIFF, PNG or .npy: the file is a "
+                        "single-channel Bayer mosaic, read as sum2x2 (green, r and b need the "
+                        "colour-filter pattern only a RAW file holds). A PSF at the sensor's "
+                        "full resolution is summed 2 x 2 as the capture (sum2x2) or refused")
+            ->capture_default_str();
     auto batch = std::make_shared<BatchRequest>();
     cmd->add_option("--batch", batch->list,
                     "Decode many captures with one PSF and these flags: a directory (its .tif, "
@@ -218,7 +223,8 @@ void setup(CLI::App& app) {
     cmd->add_option("--batch-format", batch->format, "--batch outputs: tiff | png | npy")
         ->capture_default_str();
     cmd->add_flag("--batch-stats", batch->stats, "--batch: also write STEM.stats.json per capture");
-    cmd->callback([o, flags, batch] {
+    cmd->callback([o, flags, batch, bayer] {
+        o->bayer_given = bayer->count() > 0;
         resolve_method(*o, *flags);
         if (!batch->list.empty()) return run_batch_on_ranks(*o, *batch, parse_bayer_mode(o->bayer));
         if (o->capture.empty())

@@ -62,7 +62,7 @@ json decode_one(BatchDecoder& decoder, const DecodeCommand& rc, BayerMode bayer,
     json stats = {{"format", "pinmask-decode-stats"}, {"version", 2}};
     json timings;
     json shared_stats;
-    Image capture = load_capture(rc.capture, bayer, stats);
+    Image capture = load_capture(rc.capture, bayer, stats, rc.bayer_given);
     const CaptureDecodeResult result = decoder.decode(std::move(capture));
     const CaptureDecodeSummary& sum = result.summary;
     std::istringstream warnings(period_warning(sum.period));

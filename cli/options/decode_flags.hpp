@@ -40,6 +40,7 @@ struct DecodeCommand {
     std::string nsr = "auto";         // a number | auto
     std::string lambda = "auto";      // a number | auto
     std::string bayer = "sum2x2";     // camera RAW demosaic: sum2x2 | green | r | b
+    bool bayer_given = false;         // --bayer given: also applied to a mosaic in an image file
     // The command's output settings.
     std::string output;
     int bits = 8;

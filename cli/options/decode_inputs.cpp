@@ -8,6 +8,7 @@
 #include "cli/options/flag_names.hpp"
 #include "core/errors/error.hpp"
 #include "core/image/image_io.hpp"
+#include "core/image/mosaic.hpp"
 #include "core/units/units.hpp"
 #include "design/optics/working_distance.hpp"
 #include "design/pattern/mask.hpp"
@@ -25,17 +26,31 @@ CaptureDecodeInputs load_inputs(const DecodeCommand& r, BayerMode bayer, bool ne
     if (r.mask.empty() && r.psf.empty()) {
         throw InvalidInput("decode needs the PSF: give --mask FILE.mask.json or --psf FILE");
     }
-    Image capture = load_capture(r.capture, bayer, stats);
+    RawInfo raw;
+    Image capture = load_capture(r.capture, bayer, stats, r.bayer_given, &raw);
     CaptureDecodeInputs in =
         load_shared_inputs(r, bayer, need_counts, stats, static_cast<int>(capture.rows()),
                            static_cast<int>(capture.cols()));
+    std::string note;
+    for (Plane& p : in.psf.channels)
+        match_psf_to_binned_capture(p, capture.rows(), capture.cols(), raw, note);
+    if (in.psf_counts)
+        match_psf_to_binned_capture(*in.psf_counts, capture.rows(), capture.cols(), raw, note);
+    if (!note.empty()) {
+        std::cerr << "decode: " << spell_flags(note) << "\n";
+        stats["psf"]["binned"] = spell_flags(note);
+    }
     in.capture = std::move(capture);
     return in;
 }
 
-Image load_capture(const std::string& path, BayerMode bayer, json& stats) {
+Image load_capture(const std::string& path, BayerMode bayer, json& stats, bool bayer_given,
+                   RawInfo* info) {
     RawInfo raw;
-    LoadedImage loaded = read_capture(path, bayer, &raw);  // RAW: --bayer
+    // RAW: --bayer; another image file only when --bayer is given (a mosaic saved as an image).
+    LoadedImage loaded =
+        bayer_given ? read_capture_as_mosaic(path, bayer, &raw) : read_capture(path, bayer, &raw);
+    if (info) *info = raw;
     if (!raw.note.empty()) std::cerr << "decode: " << path << ": " << spell_flags(raw.note) << "\n";
     check_image_finite(loaded.image, "capture " + path);
     stats["capture"] = {{"path", path},
@@ -135,7 +150,9 @@ CaptureDecodeInputs load_shared_inputs(const DecodeCommand& r, BayerMode bayer, 
     info["cols"] = in.psf.cols();
     stats["psf"] = info;
     if (!r.dark.empty()) {
-        in.dark = read_capture(r.dark, bayer).image;
+        in.dark =
+            (r.bayer_given ? read_capture_as_mosaic(r.dark, bayer) : read_capture(r.dark, bayer))
+                .image;
         check_image_finite(*in.dark, "dark frame " + r.dark);
     }
     stats["dark"] =
