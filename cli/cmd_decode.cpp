@@ -147,8 +147,7 @@ void run_decode(DecodeCommand& r, BayerMode bayer) {
         });
     }
     json config = config_json(r);
-    config["chosen"] = chosen_json(sum.chosen);
-    stats["chosen"] = config["chosen"];
+    config["chosen"] = stats["chosen"];  // add_summary_json: what auto chose
     files.stage_bytes(r.output + ".config.json", config.dump(2) + "\n");
     timings["write"] = seconds_since(t0);
     timings["total"] = seconds_since(t_start);

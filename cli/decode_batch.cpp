@@ -87,7 +87,8 @@ json decode_one(BatchDecoder& decoder, const DecodeCommand& rc, BayerMode bayer,
             write_output_image(tmp, result.estimate, kind, rc.bits);
         });
     }
-    const json config = config_json(rc);
+    json config = config_json(rc);
+    config["chosen"] = stats["chosen"];  // add_summary_json: what auto chose
     files.stage_bytes(rc.output + ".config.json", config.dump(2) + "\n");
     if (!rc.stats.empty()) {
         stats["output"] = output;

@@ -6,6 +6,7 @@ after gain and offset against a reference written in numpy (the source's preproc
 non-negative FISTA on the linear model, 300 iterations: the data README's clean hand), so no
 decode is judged by pinmask's own code. Run from the repository:
 PINMASK_SHARED_DIR=/work/shared PYTHONPATH=build/python /usr/bin/python3 scripts/real_defaults_table.py
+(--nonneg: the non-negativity figures of docs/decoding.md instead).
 tests/python/test_real_defaults.py recomputes the rows at a smaller size and holds them."""
 import itertools
 import pathlib
@@ -97,7 +98,36 @@ def table():
     return "\n".join(lines)
 
 
+def nonneg_rows():
+    """tv at its automatic weight with x >= 0 and without: the real captures (hand 150 x 200,
+    USAF 135 x 160) against the reference, per normalisation; captures rendered by
+    tests/python/autoreg_scenes.py (400 electrons per unit, 2 e- read noise, seed 0) against
+    the truth. Lines of (case, PSNR with x >= 0, PSNR without)."""
+    import autoreg_scenes as sc
+    out = []
+    for name, k in (("hand", 3), ("usaf", 1)):
+        cap, psf = rc.load(name)
+        reference = rc.fista_nonneg(*rc.preprocess(name, k))
+        for norm in ("none", "l2"):
+            out.append((f"{name} normalize {norm}",) + tuple(
+                score(decode(cap, psf, k, method="tv", normalize=norm, nonneg=nn), reference)
+                for nn in (True, False)))
+    for camera in ("paper", "phone", "lensless"):
+        model, psf = sc.cameras()[camera]
+        for photo in ("ihc.png", "cell.png"):
+            cap, truth, photons = sc.render(photo, model, psf, 400.0, 2.0, 0)
+            out.append((f"{camera} {photo}",) + tuple(
+                sc.psnr(np.asarray(pinmask.decode(cap, psf=psf, model=model, crop="none",
+                                                  method="tv", nonneg=nn)["image"]) / photons,
+                        truth) for nn in (True, False)))
+    return out
+
+
 if __name__ == "__main__":
     if not rc.available():
         raise SystemExit(f"no real captures under {rc.real_dir()} (set PINMASK_SHARED_DIR)")
-    print(table())
+    if sys.argv[1:] == ["--nonneg"]:
+        for case, a, b in nonneg_rows():
+            print(f"{case}: x >= 0 {a:.2f} dB, free {b:.2f} dB")
+    else:
+        print(table())

@@ -43,6 +43,7 @@ nlohmann::json axis_json(const AxisPeriodCheck& a) {
 void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const DecodeCommand& r,
                       const CaptureDecodeSummary& s) {
     using nlohmann::json;
+    stats["chosen"] = chosen_json(s.chosen);
     timings["dark"] = s.seconds.dark;
     timings["preprocess"] = s.seconds.preprocess;
     timings["period_check"] = s.seconds.period_check;

@@ -39,7 +39,8 @@ void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const Deco
                       const CaptureDecodeSummary& summary);
 
 // The settings read from the data (CaptureDecodeSummary::chosen): {name: {"value", "reason"}},
-// reasons spelt with the command's flags. OUT.config.json and the stats carry it as "chosen".
+// reasons spelt with the command's flags. The stats carry it as "chosen" (add_summary_json), and
+// so does OUT.config.json.
 nlohmann::json chosen_json(const std::vector<ChosenSetting>& chosen);
 
 // The resolved configuration (every option with its value, defaults filled in), as written to
