@@ -14,6 +14,9 @@ const char* const kDecodeFooter = R"(
 Steps: dark frame subtracted (same size, 1 or the capture's channels) -> --background ->
 --downsample -> period check -> --crop -> --normalize -> decode each channel (RGB channels in
 parallel threads) -> write.
+Read from the data unless given (auto): --model (linear for a measured PSF that covers the
+capture), --crop, --background (a measured PSF's dark floor) and, for tv and tvqc, --nonneg
+(on for an intensity); --explain and OUT.config.json ("chosen") say each choice and why.
 Period: the PSF's size. The capture's own period is measured from its autocorrelation and a
 mismatch is reported on stderr and in the stats (skipped, with the reason, when the capture
 holds fewer than two periods along an axis).
