@@ -102,8 +102,10 @@ CaptureDecodeInputs load_shared_inputs(const DecodeCommand& r, BayerMode bayer, 
             info["kernel_model"] = file.sidecar->kernel_model;
         }
         in.psf = Image(std::move(file.psf));
-        // pinmask's own PSF file (with its sidecar) is one period of a mask's tiling.
-        in.psf_one_period = file.sidecar.has_value();
+        // pinmask's own PSF file is one period of a mask's tiling when its sidecar says
+        // "cyclic"; a "full-frame" one (exact geometry, calibrate's psf.tiff) is a response over
+        // the sensor, like a measured PSF.
+        in.psf_one_period = file.sidecar && file.sidecar->geometry == "cyclic";
         // Background auto reads a measured PSF's own values only (pinmask's has no floor).
         if (need_counts && (r.request.background.mode == BackgroundMode::kCorner || !file.sidecar))
             in.psf_counts = read_image(r.psf).image.channels.at(0);

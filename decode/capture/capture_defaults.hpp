@@ -20,7 +20,8 @@ struct ChosenSetting {
 // Model: a PSF at least as large as the capture along both axes is a lensless camera's response
 // over its sensor (a DiffuserCam PSF, a measured lensless array), decoded with the linear model,
 // unless the PSF is known to be one period of a mask's cyclic tiling (synthesised from a mask,
-// or a PSF file with pinmask's sidecar). A PSF smaller than the capture along an axis is one
+// or a PSF file whose pinmask sidecar says "cyclic"; a "full-frame" one is a response over the
+// sensor). A PSF smaller than the capture along an axis is one
 // period of a tiling: cyclic (the period check measures the repeat).
 bool psf_covers_capture(int capture_rows, int capture_cols, int psf_rows, int psf_cols);
 

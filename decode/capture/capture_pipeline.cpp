@@ -160,7 +160,7 @@ CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOp
                            size_text(capture) + ": one period of a cyclic tiling"
              : in.psf_one_period
                  ? "the PSF is one period of a mask's tiling (synthesised from the mask, or "
-                   "pinmask's PSF file)"
+                   "a cyclic PSF file of pinmask's)"
                  : "the PSF " + size_text(psf) + " covers the capture " + size_text(capture) +
                        ": a camera's response over its sensor, not one period of a tiling"});
     }
