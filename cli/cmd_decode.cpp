@@ -71,8 +71,10 @@ void run_decode(DecodeCommand& r, BayerMode bayer) {
     json timings;
 
     auto t0 = Clock::now();
-    CaptureDecodeInputs inputs =
-        load_inputs(r, bayer, options.background == BackgroundMode::kCorner, stats);
+    CaptureDecodeInputs inputs = load_inputs(r, bayer,
+                                             options.background == BackgroundMode::kCorner ||
+                                                 options.background == BackgroundMode::kAuto,
+                                             stats);
     load_nsr_map(r, options.decode, stats);
     timings["load"] = seconds_since(t0);
 
@@ -145,7 +147,8 @@ void run_decode(DecodeCommand& r, BayerMode bayer) {
             write_output_image(tmp, result.estimate, kind, r.bits);
         });
     }
-    const json config = config_json(r);
+    json config = config_json(r);
+    config["chosen"] = stats["chosen"];  // add_summary_json: what auto chose
     files.stage_bytes(r.output + ".config.json", config.dump(2) + "\n");
     timings["write"] = seconds_since(t0);
     timings["total"] = seconds_since(t_start);
@@ -160,7 +163,7 @@ void run_decode(DecodeCommand& r, BayerMode bayer) {
         return;
     }
     std::cout << "decode " << r.capture << " -> " << r.output << "\n"
-              << "  method   " << r.method << " (" << r.model << " model, "
+              << "  method   " << r.method << " (" << conv_model_name(sum.model) << " model, "
               << (sum.single_precision ? "single" : "double") << " precision)\n"
               << "  window   " << sum.window.cols << " x " << sum.window.rows
               << " at x=" << sum.window.col << ", y=" << sum.window.row << "\n";
@@ -220,10 +223,15 @@ void setup(CLI::App& app) {
         "the image, OUT.config.json and optionally a stats file.");
     cmd->footer(kDecodeFooter);
     auto flags = std::make_shared<DecodeFlags>(add_decode_flags(*cmd, *o));
-    cmd->add_option("--bayer", o->bayer,
-                    "Camera RAW captures and dark frames: sum2x2 (half-resolution grey, the pixel "
-                    "pitch doubles) | green (alias g) | r | b; see core/image/raw_io.hpp")
-        ->capture_default_str();
+    auto* bayer =
+        cmd->add_option("--bayer", o->bayer,
+                        "Camera RAW captures and dark frames: sum2x2 (half-resolution grey, the "
+                        "pixel pitch doubles) | green (alias g) | r | b; see "
+                        "core/image/raw_io.hpp. Given with a TIFF, PNG or .npy: the file is a "
+                        "single-channel Bayer mosaic, read as sum2x2 (green, r and b need the "
+                        "colour-filter pattern only a RAW file holds). A PSF at the sensor's "
+                        "full resolution is summed 2 x 2 as the capture (sum2x2) or refused")
+            ->capture_default_str();
     auto batch = std::make_shared<BatchRequest>();
     cmd->add_option("--batch", batch->list,
                     "Decode many captures with one PSF and these flags: a directory (its .tif, "
@@ -238,7 +246,8 @@ void setup(CLI::App& app) {
     cmd->add_option("--batch-format", batch->format, "--batch outputs: tiff | png | npy")
         ->capture_default_str();
     cmd->add_flag("--batch-stats", batch->stats, "--batch: also write STEM.stats.json per capture");
-    cmd->callback([cmd, o, flags, batch] {
+    cmd->callback([cmd, o, flags, batch, bayer] {
+        o->bayer_given = bayer->count() > 0;
         resolve_method(*o, *flags);
         refuse_ignored_output_flags(*cmd, *o, *batch);
         if (!batch->list.empty()) return run_batch_on_ranks(*o, *batch, parse_bayer_mode(o->bayer));

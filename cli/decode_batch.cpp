@@ -63,7 +63,7 @@ json decode_one(BatchDecoder& decoder, const DecodeCommand& rc, BayerMode bayer,
     json stats = {{"format", "pinmask-decode-stats"}, {"version", 2}};
     json timings;
     json shared_stats;
-    Image capture = load_capture(rc.capture, bayer, stats);
+    Image capture = load_capture(rc.capture, bayer, stats, rc.bayer_given);
     const CaptureDecodeResult result = decoder.decode(std::move(capture));
     const CaptureDecodeSummary& sum = result.summary;
     std::istringstream warnings(period_warning(sum.period));
@@ -88,7 +88,8 @@ json decode_one(BatchDecoder& decoder, const DecodeCommand& rc, BayerMode bayer,
             write_output_image(tmp, result.estimate, kind, rc.bits);
         });
     }
-    const json config = config_json(rc);
+    json config = config_json(rc);
+    config["chosen"] = stats["chosen"];  // add_summary_json: what auto chose
     files.stage_bytes(rc.output + ".config.json", config.dump(2) + "\n");
     if (!rc.stats.empty()) {
         stats["output"] = output;
@@ -152,9 +153,11 @@ void run_decode_batch(const DecodeCommand& given, const BatchRequest& b, BayerMo
     options.validate();
     json shared_stats;
     load_nsr_map(r, options.decode, shared_stats);
-    BatchDecoder decoder(
-        load_shared_inputs(r, bayer, options.background == BackgroundMode::kCorner, shared_stats),
-        options);
+    BatchDecoder decoder(load_shared_inputs(r, bayer,
+                                            options.background == BackgroundMode::kCorner ||
+                                                options.background == BackgroundMode::kAuto,
+                                            shared_stats),
+                         options);
 
     // This rank's captures; the first error stops this rank's work. A spent time budget
     // (PINMASK_TIME_LIMIT) stops it between captures: each rank decodes at least its first one,

@@ -33,6 +33,7 @@ struct DecodeOutput {
     CropWindow window;
     PeriodCheck period;
     std::vector<std::string> warnings;  // CaptureDecodeSummary::warnings
+    std::vector<ChosenSetting> chosen;  // CaptureDecodeSummary::chosen
 };
 
 // The capture: a borrowed library plane (mono, no copy) or an owned image.
@@ -61,12 +62,14 @@ DecodeOutput decode_pipeline(CaptureArg& cap, PlaneArg& psf_in, bool measured_ps
     if (measured_psf && options.background == BackgroundMode::kCorner) in.psf_counts = psf_in.get();
     in.psf = Image(psf_in.take());
     in.dark = dark;
+    in.psf_one_period = !measured_psf;  // a mask's PSF
     CaptureDecodeResult res = decode_capture(std::move(in), options);
     DecodeOutput out;
     out.window = res.summary.window;
     out.period = res.summary.period;
     out.results = std::move(res.summary.channels);
     out.warnings = std::move(res.summary.warnings);
+    out.chosen = std::move(res.summary.chosen);
     for (std::size_t i = 0; i < out.results.size() && i < res.estimate.channels.size(); ++i)
         out.results[i].image = std::move(res.estimate.channels[i]);
     return out;
@@ -174,9 +177,9 @@ std::vector<GivenParameter> set_method_args(DecodeRequest& r, const MethodArgs& 
     return given;
 }
 
-// background=: None or "none" | "corner" | a number of counts (or its text).
+// background=: "auto" | None or "none" | "corner" | a number of counts (or its text).
 DecodeBackground background_arg(const py::handle& b) {
-    if (b.is_none()) return {};
+    if (b.is_none()) return {BackgroundMode::kNone, 0.0};
     if (py::isinstance<py::str>(b)) {
         const std::string s = b.cast<std::string>();
         for (const auto& [mode, name] : kBackgroundModeNames)
@@ -185,7 +188,7 @@ DecodeBackground background_arg(const py::handle& b) {
     }
     if (py::isinstance<py::bool_>(b))
         throw invalid_field(field_ref("background"), py::str(b).cast<std::string>(),
-                            "must be none, corner or a number of counts");
+                            "must be auto, none, corner or a number of counts");
     return {BackgroundMode::kValue, b.cast<double>()};
 }
 
@@ -217,7 +220,8 @@ void bind_decode(py::module_& m) {
            const py::object& progress, double poll_s, const py::handle& nsr_map,
            const py::object& object_distance) {
             DecodeRequest r;
-            r.model = parse_conv_model(model, field_ref("model"));
+            r.model_auto = model == "auto";
+            if (!r.model_auto) r.model = parse_conv_model(model, field_ref("model"));
             MethodArgs args{{},    {},    eps,         noise_sigma, tol,
                             false, false, regulariser, nonneg,      iters};
             args.nsr = weight_arg(nsr_arg, "nsr", args.nsr_auto);
@@ -233,7 +237,9 @@ void bind_decode(py::module_& m) {
             r.downsample = downsample;
             r.method = parse_decode_method(method, field_ref("method"));
             refuse_unused_parameters(r, given);
-            r.crop = crop_arg(crop);
+            r.crop_auto = py::isinstance<py::str>(crop) && crop.cast<std::string>() == "auto";
+            if (!r.crop_auto) r.crop = crop_arg(crop);
+            r.nonnegative_auto = !nonneg.has_value();
             r.precision = parse_precision(precision, field_ref("precision"));
             if (psf.is_none() == mask.is_none())
                 throw InvalidInput(
@@ -272,7 +278,9 @@ void bind_decode(py::module_& m) {
                     const RefocusGeometry g = refocus_geometry(mk, u);
                     if (g.exact_geometry) {
                         r.model = ConvModel::kLinear;
+                        r.model_auto = false;
                         r.crop = {CropMode::kNone};
+                        r.crop_auto = false;
                         ExactPsfOptions eo;
                         eo.object_distance_m = u;
                         eo.rows = cap.rows();
@@ -402,6 +410,15 @@ void bind_decode(py::module_& m) {
                 py::make_tuple(out.window.row, out.window.col, out.window.rows, out.window.cols);
             d["period_check"] = period_dict(out.period);
             if (!refocus_info.is_none()) d["refocus"] = refocus_info;
+            // The settings read from the data: {name: {value, reason}}.
+            py::dict chosen;
+            for (const ChosenSetting& c : out.chosen) {
+                py::dict e;
+                e["value"] = c.value;
+                e["reason"] = py_names::spell_keywords(c.reason);
+                chosen[py::str(c.name)] = e;
+            }
+            d["chosen"] = chosen;
             // The CLI's "pinmask: warning:" lines, as Python warnings.
             for (const std::string& w : out.warnings) {
                 const std::string text = "pinmask: " + py_names::spell_keywords(w);
@@ -411,11 +428,11 @@ void bind_decode(py::module_& m) {
             return as_result(d);
         },
         py::arg("capture"), py::arg("psf") = py::none(), py::arg("mask") = py::none(),
-        py::arg("method") = "wiener", py::arg("model") = "cyclic", py::arg("nsr") = py::none(),
+        py::arg("method") = "wiener", py::arg("model") = "auto", py::arg("nsr") = py::none(),
         py::arg("lambda_") = py::none(), py::arg("regulariser") = py::none(),
         py::arg("eps") = py::none(), py::arg("noise_sigma") = py::none(),
         py::arg("nonneg") = py::none(), py::arg("iters") = py::none(), py::arg("tol") = py::none(),
-        py::arg("crop") = "center", py::arg("dark") = py::none(), py::arg("background") = "none",
+        py::arg("crop") = "auto", py::arg("dark") = py::none(), py::arg("background") = "auto",
         py::arg("downsample") = 0, py::arg("normalize") = "none", py::arg("precision") = "auto",
         py::arg("threads") = 0, py::arg("progress") = py::none(), py::arg("poll_s") = 0.05,
         py::arg("nsr_map") = py::none(), py::arg("object_distance") = py::none(),
@@ -427,18 +444,23 @@ capture: (rows, cols) or (rows, cols, channels) array, capture units. psf: a PSF
 sum > 0), or mask: a Mask or *.mask.json path (its PSF is synthesised).
 method: wiener (deconvwnr: PSF centre floor(size/2) at the origin, scalar nsr, real part) |
 tikhonov (lambda_, regulariser identity|gradient) | tv (TV-L2 ADMM, lambda_) | tvqc (min TV
-s.t. ||Ax - p||_2 <= eps, or eps from noise_sigma) | richardson-lucy. model: cyclic
-(circular convolution over one period) | linear (zero-padded, then cropped). nonneg: x >= 0 for
-tv/tvqc. iters, tol: iterative methods (relative change of x). Method arguments left None take
+s.t. ||Ax - p||_2 <= eps, or eps from noise_sigma) | richardson-lucy. model: 'auto' (linear
+for a psf= array that covers the capture, a lensless camera's response; cyclic for a smaller PSF
+or mask=) | cyclic (circular convolution over one period) | linear (zero-padded, then cropped).
+nonneg: x >= 0 for tv/tvqc (None: when the capture is an intensity, its 0.1 % quantile at least
+-3 noise sigma). iters, tol: iterative methods (relative change of x). Method arguments left None take
 the CLI's defaults (nsr 'auto', lambda_ 'auto', regulariser identity, nonneg False, iters
 200, tol 1e-4); one given for a method that does not read it raises ValueError naming it and
 the methods that do (as the CLI refuses --nsr with --method tv). nsr='auto' (wiener) and
 lambda_='auto' (tikhonov: the weight of least expected error for the noise and scene spectrum
 read from the capture; tv: a rule scaled by the noise and the PSF, docs/decoding.md) are the
-defaults; each channel's auto_weight then says {weight, noise_sigma, scene_spectrum_exponent}. crop: 'center' | 'none' |
-(row, col) of the period's top-left pixel. dark: dark frame, same size (1 or the capture's
-channels). background: 'none' | 'corner' (mean of the PSF's rows/cols 5..14, off PSF and
-capture; needs psf=) | a number of counts off the capture. downsample: K rounds of 2x2 box
+defaults; each channel's auto_weight then says {weight, noise_sigma, scene_spectrum_exponent}. crop: 'auto' (none for the linear
+model or a PSF covering the capture, else center) | 'center' | 'none' | (row, col) of the
+period's top-left pixel. dark: dark frame, same size (1 or the capture's
+channels). background: 'auto' (a psf= array's dark
+floor, its 5 % quantile, off the PSF, and off the capture too when both hold whole counts) |
+'none' | 'corner' (mean of the PSF's rows/cols 5..14, off PSF and capture; needs psf=) | a
+number of counts off the capture. downsample: K rounds of 2x2 box
 averaging of capture and PSF (0..12). normalize: 'none' (PSF to unit sum, estimate in capture
 counts) | 'l2' (capture window and PSF each divided by its L2 norm). precision: 'auto' (float32
 for every method from 256 x 256 decoded pixels) | 'single' | 'double'. threads: FFTW
@@ -458,7 +480,8 @@ iteration and returns the estimate so far with interrupted = True (as the CLI wr
 Ctrl-C stops it the same way and raises KeyboardInterrupt.
 Returns {image, channels: [{iterations, objective, residual, converged, interrupted, seconds,
 history: (n, 4) array of iteration, seconds, objective, residual}], interrupted,
-window: (row, col, rows, cols), period_check}. A mono `image` owns the library's buffer; a
+window: (row, col, rows, cols), period_check, chosen: the settings read from the data,
+{name: {value, reason}} for each of model, crop, background, nonnegative left to 'auto'}. A mono `image` owns the library's buffer; a
 module-made mono capture and PSF summing to 1 are used without copies.)");
 }
 

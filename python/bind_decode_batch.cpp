@@ -3,10 +3,12 @@
 // once (not per capture); each capture is then one decode() call with those keywords, so every
 // result equals decode() on that capture alone, the way the command's batch gives the same
 // bytes as single decodes.
+#include <optional>
 #include <string>
 
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
+#include "core/image/mosaic.hpp"
 #include "core/image/raw_io.hpp"
 #include "design/psf/psf.hpp"
 #include "python/common.hpp"
@@ -18,8 +20,10 @@ namespace pinmask::python {
 void bind_decode_batch(py::module_& m) {
     m.def(
         "decode_batch",
-        [](const py::iterable& captures, const std::string& bayer, const py::kwargs& kwargs) {
-            const BayerMode mode = parse_bayer_mode(bayer, field_ref("bayer"));
+        [](const py::iterable& captures, const std::optional<std::string>& bayer,
+           const py::kwargs& kwargs) {
+            const BayerMode mode =
+                bayer ? parse_bayer_mode(*bayer, field_ref("bayer")) : BayerMode::kSum2x2;
             if (kwargs.contains("capture"))
                 throw InvalidInput(field_ref("capture") +
                                    " is not a keyword of decode_batch: the captures are its first "
@@ -42,6 +46,10 @@ void bind_decode_batch(py::module_& m) {
                 }
                 options["psf"] = to_array(std::move(p));
                 options["mask"] = py::none();
+                // What decode() reads from a mask's PSF when left to it: one period of a
+                // tiling, with no camera background (decode/capture/capture_defaults.hpp).
+                if (!options.contains("model")) options["model"] = "cyclic";
+                if (!options.contains("background")) options["background"] = "none";
             }
             const py::object decode = py::module_::import("pinmask").attr("decode");
             const py::object fspath = py::module_::import("os").attr("fspath");
@@ -55,7 +63,8 @@ void bind_decode_batch(py::module_& m) {
                     LoadedImage li;
                     {
                         py::gil_scoped_release release;
-                        li = read_capture(source, mode);
+                        li = bayer ? read_capture_as_mosaic(source, mode)
+                                   : read_capture(source, mode);
                     }
                     capture = image_to_array(std::move(li.image));
                 }
@@ -79,7 +88,7 @@ void bind_decode_batch(py::module_& m) {
             if (index == 0) throw InvalidInput(field_ref("captures") + ": the list is empty");
             return as_result(results);
         },
-        py::arg("captures"), py::arg("bayer") = "sum2x2",
+        py::arg("captures"), py::arg("bayer") = py::none(),
         R"(Decodes many captures with one PSF and the same settings, as `pinmask decode --batch`:
 captures is a list of arrays and/or image paths (TIFF, PNG, JPEG, .npy, or camera RAW by
 extension, read as read_image(path, bayer) reads it); every other keyword is decode()'s (psf= or

@@ -3,10 +3,12 @@
 // (cli/cmd_psf.cpp).
 #include <cctype>
 #include <filesystem>
+#include <optional>
 
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
 #include "core/image/image_io.hpp"
+#include "core/image/mosaic.hpp"
 #include "core/image/raw_io.hpp"
 #include "core/units/number_format.hpp"
 #include "decode/capture/estimate_output.hpp"
@@ -284,23 +286,28 @@ void bind_psf(py::module_& m) {
 
     m.def(
         "read_image",
-        [](const std::filesystem::path& path, const std::string& bayer) {
-            const BayerMode mode = parse_bayer_mode(bayer, field_ref("bayer"));
+        [](const std::filesystem::path& path, const std::optional<std::string>& bayer) {
+            // None: RAW files as sum2x2, other files as they are; given: any file as a mosaic
+            // (`decode --bayer` given, core/image/mosaic.hpp).
+            const BayerMode mode =
+                bayer ? parse_bayer_mode(*bayer, field_ref("bayer")) : BayerMode::kSum2x2;
             LoadedImage li;
             {
                 py::gil_scoped_release release;
-                li = read_capture(path, mode);
+                li = bayer ? read_capture_as_mosaic(path, mode) : read_capture(path, mode);
             }
             return py::make_tuple(image_to_array(std::move(li.image)), li.full_scale);
         },
-        py::arg("path"), py::arg("bayer") = "sum2x2",
+        py::arg("path"), py::arg("bayer") = py::none(),
         "(image, full_scale) of a TIFF, PNG, JPEG or .npy file (by content), or of a camera RAW "
         "file (by extension: .dng, .cr2, .nef, .arw, ...; through LibRaw, black level removed) as "
         "`decode` and `calibrate` read captures: raw values (integer files as counts, full_scale "
         "= 255 or 65535; float files 1.0; RAW: white - black). Grey: (rows, cols), no copy; "
-        "colour: (rows, cols, 3). bayer (RAW only, as --bayer): 'sum2x2' (each 2 x 2 Bayer cell "
-        "summed: half the resolution, pixel pitch doubled) | 'green' ('g') | 'r' | 'b' (one "
-        "colour's sites).");
+        "colour: (rows, cols, 3). bayer (as --bayer; None: 'sum2x2' for RAW, nothing for other "
+        "files): 'sum2x2' (each 2 x 2 Bayer cell summed: half the resolution, pixel pitch "
+        "doubled) | 'green' ('g') | 'r' | 'b' (one colour's sites). Given with a TIFF, PNG or "
+        ".npy, the file is a single-channel mosaic: sum2x2 applies, green/r/b (no colour-filter "
+        "pattern in the file) and colour images raise ValueError.");
     m.def(
         "write_image",
         [](const std::filesystem::path& path, const py::handle& image, const py::object& scale,

@@ -156,7 +156,7 @@ def write_psf(
 def read_psf(path: PathLikeStr) -> tuple[FloatArray, Optional[Result]]: ...
 def read_image(
     path: PathLikeStr,
-    bayer: Literal["sum2x2", "green", "g", "r", "b"] = "sum2x2",  # camera RAW only
+    bayer: Optional[Literal["sum2x2", "green", "g", "r", "b"]] = None,  # None: RAW as sum2x2
 ) -> tuple[FloatArray, float]: ...
 def write_image(
     path: PathLikeStr,
@@ -192,7 +192,7 @@ def decode(
     psf: Optional[ArrayLike] = None,
     mask: Optional[MaskLike] = None,
     method: Literal["wiener", "tikhonov", "tv", "tvqc", "richardson-lucy"] = "wiener",
-    model: Literal["cyclic", "linear"] = "cyclic",
+    model: Literal["auto", "cyclic", "linear"] = "auto",
     nsr: Union[None, float, Literal["auto"]] = None,
     lambda_: Union[None, float, Literal["auto"]] = None,
     regulariser: Optional[Literal["identity", "gradient"]] = None,
@@ -201,9 +201,9 @@ def decode(
     nonneg: Optional[bool] = None,
     iters: Optional[int] = None,
     tol: Optional[float] = None,
-    crop: Union[str, tuple[int, int]] = "center",
+    crop: Union[str, tuple[int, int]] = "auto",  # auto | center | none | (row, col)
     dark: Optional[ArrayLike] = None,
-    background: Union[None, float, Literal["none", "corner"]] = "none",
+    background: Union[None, float, Literal["auto", "none", "corner"]] = "auto",
     downsample: int = 0,
     normalize: Literal["none", "l2"] = "none",
     precision: Literal["auto", "single", "double"] = "auto",
@@ -215,7 +215,7 @@ def decode(
 ) -> Result: ...
 def decode_batch(
     captures: Iterable[Union[ArrayLike, PathLikeStr]],  # arrays and/or image or RAW paths
-    bayer: Literal["sum2x2", "green", "g", "r", "b"] = "sum2x2",  # RAW paths only
+    bayer: Optional[Literal["sum2x2", "green", "g", "r", "b"]] = None,  # as read_image
     **kwargs: Any,  # decode()'s keywords: psf= or mask=, method, nsr, iters, ...
 ) -> list[Result]: ...
 def metrics(

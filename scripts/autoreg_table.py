@@ -25,6 +25,8 @@ GRID = 10.0 ** (np.arange(-8, 9) / 4)
 def decode(capture, psf, model, method, weight):
     kw = dict(psf=psf, model=model, method=method, crop="none")
     kw["nsr" if method == "wiener" else "lambda_"] = weight
+    if method == "tv":
+        kw["nonneg"] = False  # the table (and the TV constant's calibration) without x >= 0
     with warnings.catch_warnings():
         # The lensless captures fill the frame: wiener warns, and is in the table for that.
         warnings.simplefilter("ignore")

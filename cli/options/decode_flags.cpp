@@ -14,6 +14,9 @@ const char* const kDecodeFooter = R"(
 Steps: dark frame subtracted (same size, 1 or the capture's channels) -> --background ->
 --downsample -> period check -> --crop -> --normalize -> decode each channel (RGB channels in
 parallel threads) -> write.
+Read from the data unless given (auto): --model (linear for a measured PSF that covers the
+capture), --crop, --background (a measured PSF's dark floor) and, for tv and tvqc, --nonneg
+(on for an intensity); --explain and OUT.config.json ("chosen") say each choice and why.
 Period: the PSF's size. The capture's own period is measured from its autocorrelation and a
 mismatch is reported on stderr and in the stats (skipped, with the reason, when the capture
 holds fewer than two periods along an axis).
@@ -49,6 +52,16 @@ Examples:
   pinmask decode raw.tif --psf psf.tif --model linear --background corner --downsample 2 \
       --normalize l2 --crop none --method tv --lambda 1e-4 --iters 100 -o hand.png)";
 
+namespace {
+
+// A mode's names with "auto" first (--model).
+std::vector<std::string> with_auto(std::vector<std::string> names) {
+    names.insert(names.begin(), "auto");
+    return names;
+}
+
+}  // namespace
+
 DecodeFlags add_decode_flags(CLI::App& cmd, DecodeCommand& o) {
     DecodeFlags f;
     DecodeRequest& q = o.request;
@@ -76,17 +89,20 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeCommand& o) {
     cmd.add_option("--dark", o.dark,
                    "Dark frame (capture through an all-opaque film), subtracted first; same size");
     cmd.add_option("--crop", o.crop,
-                   "Window decoded: center (the period centred in the frame), none (whole frame, "
-                   "PSF zero-padded), or X,Y (top-left column,row of one period)")
+                   "Window decoded: auto (none for the linear model or a PSF that covers the "
+                   "capture, else center), center (the period centred in the frame), none (whole "
+                   "frame, PSF zero-padded), or X,Y (top-left column,row of one period)")
         ->capture_default_str();
     cmd.add_option("--method", o.method,
                    "wiener (closed form, deconvwnr) | tikhonov (closed form) | tv (TV-L2, ADMM) | "
                    "tvqc (min TV s.t. ||Ax - p||_2 <= eps) | richardson-lucy")
         ->capture_default_str();
     cmd.add_option("--model", o.model,
-                   "cyclic (circular convolution over one period, the paper) | linear (zero-padded "
-                   "convolution then crop: lensless captures, non-cyclic masks)")
-        ->check(CLI::IsMember(name_list(kConvModelNames)))
+                   "auto (linear for a measured PSF that covers the capture, a lensless camera's; "
+                   "cyclic otherwise) | cyclic (circular convolution over one period, the paper) | "
+                   "linear (zero-padded convolution then crop: lensless captures, non-cyclic "
+                   "masks)")
+        ->check(CLI::IsMember(with_auto(name_list(kConvModelNames))))
         ->capture_default_str();
     method_flag(cmd.add_option("--nsr", o.nsr,
                                "wiener: noise-to-signal power ratio, dimensionless (>= 0); "
@@ -119,8 +135,15 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeCommand& o) {
                               MethodParameter::kNoiseSigma);
     eps->excludes(sigma);
     sigma->excludes(eps);
-    method_flag(cmd.add_flag("--nonneg", q.nonnegative, "tv / tvqc: constrain x >= 0"),
-                MethodParameter::kNonnegative);
+    auto* nonneg = method_flag(cmd.add_flag("--nonneg", q.nonnegative,
+                                            "tv / tvqc: constrain x >= 0 (default: when the "
+                                            "capture is an intensity, read from it)"),
+                               MethodParameter::kNonnegative);
+    auto* no_nonneg =
+        method_flag(cmd.add_flag("--no-nonneg", o.no_nonneg, "tv / tvqc: do not constrain x >= 0"),
+                    MethodParameter::kNonnegative);
+    nonneg->excludes(no_nonneg);
+    no_nonneg->excludes(nonneg);
     method_flag(cmd.add_option("--iters", q.iterations,
                                "tv, tvqc, richardson-lucy: maximum iterations (>= 1)")
                     ->check(CLI::Range(1, 2147483647))
@@ -135,6 +158,8 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeCommand& o) {
         ->check(CLI::Range(0, 12))
         ->capture_default_str();
     cmd.add_option("--background", o.background,
+                   "auto (a measured PSF's dark floor, its 5 % quantile, off the PSF, and off "
+                   "the capture too when both are whole counts; nothing for a mask's PSF) | "
                    "none | corner (mean of the PSF's rows/cols 5..14, subtracted from PSF and "
                    "capture, as the DiffuserCam tutorial) | VALUE (counts, from the capture only; "
                    "|VALUE| <= the capture's largest magnitude)")
@@ -221,11 +246,15 @@ void resolve_method(DecodeCommand& c, const DecodeFlags& flags) {
 
 void resolve_request(DecodeCommand& c) {
     DecodeRequest& q = c.request;
-    q.crop = parse_crop(c.crop);
+    q.crop_auto = c.crop == "auto";
+    if (!q.crop_auto) q.crop = parse_crop(c.crop);
     q.background = parse_background(c.background);
     q.normalize = parse_normalize_mode(c.normalize, "--normalize");
     q.method = parse_decode_method(c.method, "--method");
-    q.model = parse_conv_model(c.model, "--model");
+    q.model_auto = c.model == "auto";
+    if (!q.model_auto) q.model = parse_conv_model(c.model, "--model");
+    // --nonneg or --no-nonneg given: that; neither: read from the capture.
+    q.nonnegative_auto = !q.nonnegative && !c.no_nonneg;
     q.regulariser = parse_regulariser(c.regulariser, "--regulariser");
     q.precision = parse_precision(c.precision, "--precision");
 }

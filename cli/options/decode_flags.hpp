@@ -29,16 +29,18 @@ struct DecodeCommand {
     // (below) are parsed into it by resolve_method and resolve_request.
     DecodeRequest request;
     // The text flags as given; OUT.config.json and the stats repeat them as given.
-    std::string crop = "center";    // center | centre | none | X,Y
+    std::string crop = "auto";      // auto | center | centre | none | X,Y
     std::string method = "wiener";  // decode/solvers/decode_method.hpp names
-    std::string model = "cyclic";
+    std::string model = "auto";     // auto | cyclic | linear
     std::string regulariser = "identity";
-    std::string background = "none";  // none | corner | VALUE
+    std::string background = "auto";  // auto | none | corner | VALUE
+    bool no_nonneg = false;           // --no-nonneg: tv, tvqc without x >= 0 (not auto)
     std::string normalize = "none";   // none | l2
     std::string precision = "auto";   // auto | single | double
     std::string nsr = "auto";         // a number | auto
     std::string lambda = "auto";      // a number | auto
     std::string bayer = "sum2x2";     // camera RAW demosaic: sum2x2 | green | r | b
+    bool bayer_given = false;         // --bayer given: also applied to a mosaic in an image file
     // The command's output settings.
     std::string output;
     int bits = 8;
@@ -63,13 +65,15 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeCommand& command);
 void resolve_method(DecodeCommand& command, const DecodeFlags& flags);
 
 // Parses the remaining text flags (--crop, --background, --model, --regulariser, --normalize,
-// --precision) into command.request; InvalidInput naming the flag otherwise.
+// --precision; "auto" where the setting has one) into command.request; InvalidInput naming the
+// flag otherwise.
 void resolve_request(DecodeCommand& command);
 
-// --crop: center (or centre) | none | X,Y (integer top-left column, row). InvalidInput otherwise.
+// --crop: center (or centre) | none | X,Y (integer top-left column, row). InvalidInput otherwise
+// ("auto" is resolve_request's).
 CropSpec parse_crop(const std::string& text);
 
-// --background: none | corner | a number of counts (mode "value").
+// --background: auto | none | corner | a number of counts (mode "value").
 DecodeBackground parse_background(const std::string& text);
 
 // --scale: "max" -> empty; a factor > 0 otherwise (InvalidInput for anything else).

@@ -8,6 +8,7 @@
 #include "cli/options/flag_names.hpp"
 #include "core/errors/error.hpp"
 #include "core/image/image_io.hpp"
+#include "core/image/mosaic.hpp"
 #include "core/units/units.hpp"
 #include "design/optics/working_distance.hpp"
 #include "design/pattern/mask.hpp"
@@ -25,17 +26,31 @@ CaptureDecodeInputs load_inputs(const DecodeCommand& r, BayerMode bayer, bool ne
     if (r.mask.empty() && r.psf.empty()) {
         throw InvalidInput("decode needs the PSF: give --mask FILE.mask.json or --psf FILE");
     }
-    Image capture = load_capture(r.capture, bayer, stats);
+    RawInfo raw;
+    Image capture = load_capture(r.capture, bayer, stats, r.bayer_given, &raw);
     CaptureDecodeInputs in =
         load_shared_inputs(r, bayer, need_counts, stats, static_cast<int>(capture.rows()),
                            static_cast<int>(capture.cols()));
+    std::string note;
+    for (Plane& p : in.psf.channels)
+        match_psf_to_binned_capture(p, capture.rows(), capture.cols(), raw, note);
+    if (in.psf_counts)
+        match_psf_to_binned_capture(*in.psf_counts, capture.rows(), capture.cols(), raw, note);
+    if (!note.empty()) {
+        std::cerr << "decode: " << spell_flags(note) << "\n";
+        stats["psf"]["binned"] = spell_flags(note);
+    }
     in.capture = std::move(capture);
     return in;
 }
 
-Image load_capture(const std::string& path, BayerMode bayer, json& stats) {
+Image load_capture(const std::string& path, BayerMode bayer, json& stats, bool bayer_given,
+                   RawInfo* info) {
     RawInfo raw;
-    LoadedImage loaded = read_capture(path, bayer, &raw);  // RAW: --bayer
+    // RAW: --bayer; another image file only when --bayer is given (a mosaic saved as an image).
+    LoadedImage loaded =
+        bayer_given ? read_capture_as_mosaic(path, bayer, &raw) : read_capture(path, bayer, &raw);
+    if (info) *info = raw;
     if (!raw.note.empty()) std::cerr << "decode: " << path << ": " << spell_flags(raw.note) << "\n";
     check_image_finite(loaded.image, "capture " + path);
     stats["capture"] = {{"path", path},
@@ -61,7 +76,7 @@ bool apply_refocus(DecodeCommand& r) {
     const Mask mask = io::read_mask_file(r.mask);
     const RefocusGeometry g = refocus_geometry(mask, refocus_distance(r, mask));
     if (!g.exact_geometry) return false;
-    if (r.model != "linear" || r.crop != "none")
+    if ((r.model != "linear" && r.model != "auto") || (r.crop != "none" && r.crop != "auto"))
         std::cerr << "decode: --object-distance " << *r.object_distance << ": the pitch there is "
                   << g.pitch_px << " px per cell, not a whole number (" << g.mismatch_px
                   << " px off across one period): decoding the whole frame with the exact-geometry "
@@ -87,14 +102,21 @@ CaptureDecodeInputs load_shared_inputs(const DecodeCommand& r, BayerMode bayer, 
             info["kernel_model"] = file.sidecar->kernel_model;
         }
         in.psf = Image(std::move(file.psf));
-        if (need_counts) in.psf_counts = read_image(r.psf).image.channels.at(0);
+        // pinmask's own PSF file is one period of a mask's tiling when its sidecar says
+        // "cyclic"; a "full-frame" one (exact geometry, calibrate's psf.tiff) is a response over
+        // the sensor, like a measured PSF.
+        in.psf_one_period = file.sidecar && file.sidecar->geometry == "cyclic";
+        // Background auto reads a measured PSF's own values only (pinmask's has no floor).
+        if (need_counts && (r.request.background.mode == BackgroundMode::kCorner || !file.sidecar))
+            in.psf_counts = read_image(r.psf).image.channels.at(0);
     } else {
-        if (need_counts) {
+        if (r.request.background.mode == BackgroundMode::kCorner) {
             throw invalid_field("--background", "corner",
                                 "needs a measured PSF (--psf): a PSF synthesised from a mask "
                                 "has no camera background");
         }
         Mask mask = io::read_mask_file(r.mask);
+        in.psf_one_period = true;
         std::optional<RefocusGeometry> refocus;
         double u = mask.camera.object_distance_m;
         if (r.object_distance) {  // refocus: the PSF for an object at u
@@ -130,7 +152,9 @@ CaptureDecodeInputs load_shared_inputs(const DecodeCommand& r, BayerMode bayer, 
     info["cols"] = in.psf.cols();
     stats["psf"] = info;
     if (!r.dark.empty()) {
-        in.dark = read_capture(r.dark, bayer).image;
+        in.dark =
+            (r.bayer_given ? read_capture_as_mosaic(r.dark, bayer) : read_capture(r.dark, bayer))
+                .image;
         check_image_finite(*in.dark, "dark frame " + r.dark);
     }
     stats["dark"] =

@@ -14,8 +14,11 @@
 
 namespace pinmask::cli {
 
-// The capture (RAW files through --bayer); stats["capture"] describes it.
-Image load_capture(const std::string& path, BayerMode bayer, nlohmann::json& stats);
+// The capture (RAW files through --bayer; with `bayer_given`, any image file as a Bayer mosaic,
+// core/image/mosaic.hpp); stats["capture"] describes it; `info` (optional) says how it was
+// binned.
+Image load_capture(const std::string& path, BayerMode bayer, nlohmann::json& stats,
+                   bool bayer_given = false, RawInfo* info = nullptr);
 
 // Refocus (--object-distance with --mask): when the pitch at u is not a whole number of pixels
 // (design/optics/working_distance refocus_geometry), the decode uses the exact-geometry PSF at u
@@ -32,7 +35,9 @@ CaptureDecodeInputs load_shared_inputs(const DecodeCommand& r, BayerMode bayer, 
                                        nlohmann::json& stats, int frame_rows = 0,
                                        int frame_cols = 0);
 
-// Both, capture first (as `pinmask decode` reads them).
+// Both, capture first (as `pinmask decode` reads them). A PSF at the sensor's full resolution
+// for a capture read at half resolution is summed 2 x 2 as the capture was, or refused
+// (core/image/mosaic.hpp match_psf_to_binned_capture); stderr and stats["psf"]["binned"] say so.
 CaptureDecodeInputs load_inputs(const DecodeCommand& r, BayerMode bayer, bool need_counts,
                                 nlohmann::json& stats);
 

@@ -43,6 +43,7 @@ nlohmann::json axis_json(const AxisPeriodCheck& a) {
 void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const DecodeCommand& r,
                       const CaptureDecodeSummary& s) {
     using nlohmann::json;
+    stats["chosen"] = chosen_json(s.chosen);
     timings["dark"] = s.seconds.dark;
     timings["preprocess"] = s.seconds.preprocess;
     timings["period_check"] = s.seconds.period_check;
@@ -111,6 +112,13 @@ void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const Deco
     if (s.interrupted) stats["interrupted"] = true;
     timings["decode_channels"] = per_channel;
     timings["history_seconds"] = history_seconds;
+}
+
+nlohmann::json chosen_json(const std::vector<ChosenSetting>& chosen) {
+    nlohmann::json out = nlohmann::json::object();
+    for (const ChosenSetting& c : chosen)
+        out[c.name] = {{"value", c.value}, {"reason", spell_flags(c.reason)}};
+    return out;
 }
 
 nlohmann::json config_json(const DecodeCommand& c) {

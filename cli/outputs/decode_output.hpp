@@ -38,6 +38,11 @@ using pinmask::write_output_image;
 void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const DecodeCommand& command,
                       const CaptureDecodeSummary& summary);
 
+// The settings read from the data (CaptureDecodeSummary::chosen): {name: {"value", "reason"}},
+// reasons spelt with the command's flags. The stats carry it as "chosen" (add_summary_json), and
+// so does OUT.config.json.
+nlohmann::json chosen_json(const std::vector<ChosenSetting>& chosen);
+
 // The resolved configuration (every option with its value, defaults filled in), as written to
 // OUT.config.json and into the stats. The text flags appear as given.
 nlohmann::json config_json(const DecodeCommand& command);

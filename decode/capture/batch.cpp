@@ -21,6 +21,7 @@ CaptureDecodeResult BatchDecoder::decode(Image capture) {
     in.psf = shared_.psf;
     in.psf_counts = shared_.psf_counts;
     in.dark = shared_.dark;
+    in.psf_one_period = shared_.psf_one_period;
     CaptureDecodeResult r = decode_capture(std::move(in), options_);
     ++decoded_;
     return r;

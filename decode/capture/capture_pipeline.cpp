@@ -10,9 +10,11 @@
 #include "core/errors/field_names.hpp"
 #include "core/fft/fft.hpp"
 #include "core/units/number_format.hpp"
+#include "decode/capture/capture_defaults.hpp"
 #include "decode/capture/preprocess.hpp"
 #include "decode/solvers/convolution.hpp"
 #include "decode/solvers/decode_method.hpp"
+#include "decode/solvers/decode_modes.hpp"
 #include "decode/solvers/precision.hpp"
 
 namespace pinmask {
@@ -27,6 +29,47 @@ double seconds_since(Clock::time_point t0) {
 std::string size_text(const Image& img) {
     return std::to_string(img.cols()) + " x " + std::to_string(img.rows()) + " x " +
            std::to_string(img.n_channels());
+}
+
+// background auto: a measured PSF's floor off the PSF, and off the capture too when both are
+// counts (whole numbers: the same camera's units); nothing for a mask's PSF.
+// `counts`: the PSF file's own values when the caller kept them (a PSF file is read scaled).
+ChosenSetting auto_background(Image& capture, Image& psf, const std::optional<Plane>& psf_counts,
+                              bool psf_one_period, CaptureDecodeSummary& s) {
+    if (psf_one_period)
+        return {"background", "none", "the PSF is a mask's, with no camera background"};
+    const Plane& given = psf_counts ? *psf_counts : psf.channels.front();
+    if (!psf_covers_capture(capture.rows(), capture.cols(), given.rows(), given.cols()))
+        return {"background", "none",
+                "the PSF is smaller than the capture: one period of a tiling, not a camera's "
+                "response over its sensor"};
+    if (!whole_numbers(given))
+        return {"background", "none",
+                "the PSF is not in whole counts (a computed or rescaled PSF): no camera floor "
+                "to read"};
+    if (psf_counts) psf.channels.assign(1, *psf_counts);
+    double floor = 0.0;
+    for (const Plane& p : psf.channels) floor = std::max(floor, psf_floor(p));
+    if (!(floor > 0.0))
+        return {"background", "none", "the PSF's 5 % quantile is 0: no dark floor to take off"};
+    double peak = 0.0;
+    for (const Plane& p : psf.channels) peak = std::max(peak, p.maxCoeff());
+    if (floor >= kPsfFloorMaxOfPeak * peak)
+        return {"background", "none",
+                "the PSF's 5 % quantile " + format_number(floor, 6) +
+                    " is at least a tenth of its peak: light, not a dark floor"};
+    const bool counts = whole_numbers(capture);
+    for (Plane& p : psf.channels) p -= floor;
+    for (const Plane& p : psf.channels) check_psf(p, "PSF after its dark floor");
+    s.psf_background = floor;
+    if (counts) {
+        for (Plane& p : capture.channels) p -= floor;
+        s.background = floor;
+    }
+    return {"background", format_number(floor, 6),
+            "the PSF's 5 % quantile, its dark floor, taken off the PSF" +
+                std::string(counts ? " and the capture (both in counts)"
+                                   : " only (the capture is not in the PSF's counts)")};
 }
 
 }  // namespace
@@ -61,9 +104,12 @@ CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOp
     }
     s.seconds.dark = seconds_since(t0);
 
-    // Background: a value off the capture, or the tutorial's corner patch off PSF and capture.
+    // Background: a value off the capture, or the tutorial's corner patch off PSF and capture,
+    // or (auto) a measured PSF's floor (decode/capture/capture_defaults.hpp).
     t0 = Clock::now();
-    if (o.background != BackgroundMode::kNone) {
+    if (o.background == BackgroundMode::kAuto) {
+        s.chosen.push_back(auto_background(capture, psf, in.psf_counts, in.psf_one_period, s));
+    } else if (o.background != BackgroundMode::kNone) {
         double b = o.background_value;
         if (o.background == BackgroundMode::kCorner) {
             if (!in.psf_counts) {
@@ -102,6 +148,33 @@ CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOp
                           " rounds of 2x2: capture " + size_text(capture) + ", PSF " +
                           size_text(psf));
 
+    // The model and the crop read from the sizes and the PSF's kind.
+    DecodeOptions d = o.decode;
+    CropSpec crop_spec = o.crop;
+    const bool covers = psf_covers_capture(capture.rows(), capture.cols(), psf.rows(), psf.cols());
+    if (o.model_auto) {
+        d.model = covers && !in.psf_one_period ? ConvModel::kLinear : ConvModel::kCyclic;
+        s.chosen.push_back(
+            {"model", conv_model_name(d.model),
+             !covers ? "the PSF " + size_text(psf) + " is smaller than the capture " +
+                           size_text(capture) + ": one period of a cyclic tiling"
+             : in.psf_one_period
+                 ? "the PSF is one period of a mask's tiling (synthesised from the mask, or "
+                   "a cyclic PSF file of pinmask's)"
+                 : "the PSF " + size_text(psf) + " covers the capture " + size_text(capture) +
+                       ": a camera's response over its sensor, not one period of a tiling"});
+    }
+    if (o.crop_auto) {
+        const bool one_period = psf.rows() == capture.rows() && psf.cols() == capture.cols();
+        const bool whole = d.model == ConvModel::kLinear || one_period;
+        crop_spec = {whole ? CropMode::kNone : CropMode::kCenter};
+        s.chosen.push_back(
+            {"crop", whole ? "none" : "center",
+             whole ? (d.model == ConvModel::kLinear ? "the linear model reads the whole sensor"
+                                                    : "the capture is one period, the PSF's size")
+                   : "the period centred in the frame"});
+    }
+
     // Period check on the frame's luminance (strips of it, decode/capture/period.hpp), against the
     // PSF.
     t0 = Clock::now();
@@ -123,7 +196,7 @@ CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOp
     }
 
     t0 = Clock::now();
-    s.window = crop_window(capture.rows(), capture.cols(), psf.rows(), psf.cols(), o.crop);
+    s.window = crop_window(capture.rows(), capture.cols(), psf.rows(), psf.cols(), crop_spec);
     // The whole frame (crop none, or a frame of one period) is kept as it is, not copied.
     if (s.window.row != 0 || s.window.col != 0 || s.window.rows != capture.rows() ||
         s.window.cols != capture.cols())
@@ -132,6 +205,18 @@ CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOp
     s.notes.push_back("decoding the window " + std::to_string(s.window.cols) + " x " +
                       std::to_string(s.window.rows) + " at x=" + std::to_string(s.window.col) +
                       ", y=" + std::to_string(s.window.row));
+
+    if (o.nonnegative_auto && (d.method == DecodeMethod::kTv || d.method == DecodeMethod::kTvqc)) {
+        double low = 0.0, sigma = 0.0;
+        const bool intensity = capture_is_intensity(capture, low, sigma);
+        d.tv.nonnegative = d.tvqc.nonnegative = intensity;
+        s.chosen.push_back(
+            {"nonnegative", intensity ? "true" : "false",
+             "the capture's 0.1 % quantile " + format_number(low, 4) +
+                 (intensity ? " is at least" : " is below") + " -3 x its noise sigma " +
+                 format_number(sigma, 4) +
+                 (intensity ? ": an intensity" : ": not an intensity (signed values)")});
+    }
 
     if (o.normalize == NormalizeMode::kL2) {
         for (Plane& p : capture.channels) {
@@ -148,11 +233,13 @@ CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOp
             p /= s.psf_sums.back();
         }
     }
+    for (const ChosenSetting& c : s.chosen)
+        s.notes.push_back(field_ref(c.name) + " " + c.value + " (auto): " + c.reason);
+    s.model = d.model;
     s.decoded_rows = capture.rows();
     s.decoded_cols = capture.cols();
 
     // Precision and threads.
-    DecodeOptions d = o.decode;
     const long long pixels = static_cast<long long>(s.decoded_rows) * s.decoded_cols;
     const bool want_single =
         o.precision == Precision::kSingle ||

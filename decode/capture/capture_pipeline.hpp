@@ -20,6 +20,7 @@
 
 #include "core/image/image.hpp"
 #include "decode/capture/capture.hpp"
+#include "decode/capture/capture_defaults.hpp"
 #include "decode/capture/decoder.hpp"
 #include "decode/capture/period.hpp"
 #include "decode/solvers/decode_modes.hpp"
@@ -34,6 +35,10 @@ namespace pinmask {
 
 struct CaptureDecodeOptions {
     CropSpec crop{};  // kCenter: the period centred in the frame
+    // Settings read from the data (decode/capture/capture_defaults.hpp) in place of the given
+    // crop, decode.model and decode.tv/tvqc.nonnegative; background kAuto likewise. Each choice
+    // is recorded in CaptureDecodeSummary::chosen.
+    bool crop_auto = false, model_auto = false, nonnegative_auto = false;
     BackgroundMode background = BackgroundMode::kNone;
     double background_value = 0.0;  // kValue: counts off the capture
     int downsample = 0;             // rounds of 2 x 2 averaging, 0..12
@@ -50,14 +55,22 @@ struct CaptureDecodeInputs {
     Image psf;                        // one channel (shared) or one per channel
     std::optional<Plane> psf_counts;  // the PSF file's own values (needed by kCorner)
     std::optional<Image> dark;        // same size as the capture; 1 or the capture's channels
+    // The PSF is one period of a mask's cyclic tiling (synthesised from a mask, or a PSF file
+    // with pinmask's sidecar), not a camera's measured response: the automatic model and
+    // background read it so.
+    bool psf_one_period = false;
 };
 
 struct CaptureDecodeSummary {
     CropWindow window;
     PeriodCheck period;
-    std::optional<double> background;  // the value subtracted
+    std::optional<double> background;      // the value subtracted from the capture
+    std::optional<double> psf_background;  // background kAuto: the floor taken off the PSF
+    // The settings read from the data (auto), in the order model, crop, background, nonnegative.
+    std::vector<ChosenSetting> chosen;
     std::vector<double> capture_l2_norms, psf_l2_norms, psf_sums;
     int decoded_rows = 0, decoded_cols = 0;
+    ConvModel model = ConvModel::kCyclic;  // the model decoded with (given or chosen)
     bool single_precision = false;
     int fft_threads = 1;                 // threads the decode's transforms used
     std::vector<DecodeResult> channels;  // per channel, images empty (they are in the estimate)

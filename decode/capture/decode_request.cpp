@@ -110,6 +110,9 @@ DecodeOptions decode_options(const DecodeRequest& r) {
 CaptureDecodeOptions capture_decode_options(const DecodeRequest& r) {
     CaptureDecodeOptions o;
     o.crop = r.crop;
+    o.crop_auto = r.crop_auto;
+    o.model_auto = r.model_auto;
+    o.nonnegative_auto = r.nonnegative_auto;
     o.background = r.background.mode;
     o.background_value = r.background.value;
     o.downsample = r.downsample;

@@ -16,18 +16,23 @@
 
 namespace pinmask {
 
-// The background a request subtracts: none, the PSF's corner patch, or a value in counts.
+// The background a request subtracts: none, the PSF's corner patch, a value in counts, or (auto,
+// the default) a measured PSF's floor (decode/capture/capture_defaults.hpp).
 struct DecodeBackground {
-    BackgroundMode mode = BackgroundMode::kNone;
+    BackgroundMode mode = BackgroundMode::kAuto;
     double value = 0.0;  // kValue only: counts off the capture
 };
 
 // Every setting of a decode, with its default. The method's parameters are all here, whatever
 // the method; decode_options keeps the ones the method reads.
 struct DecodeRequest {
-    CropSpec crop{};  // kCenter: the period centred in the frame
+    CropSpec crop{};  // kCenter: the period centred in the frame, when crop_auto is false
     DecodeMethod method = DecodeMethod::kWiener;
-    ConvModel model = ConvModel::kCyclic;
+    ConvModel model = ConvModel::kCyclic;  // when model_auto is false
+    // "auto", the default: the model, the crop and (tv, tvqc) non-negativity read from the capture
+    // and the PSF (decode/capture/capture_defaults.hpp) in place of the values given here. A face
+    // sets each false when the user gives a value.
+    bool model_auto = true, crop_auto = true, nonnegative_auto = true;
     double nsr = 0.01;     // wiener, when nsr_auto is false
     double lambda = 1e-3;  // tikhonov (> 0), tv (>= 0), when lambda_auto is false
     // "auto", the default: the weight chosen from the capture (decode/solvers/auto_weight.hpp) in
@@ -36,7 +41,7 @@ struct DecodeRequest {
     bool nsr_auto = true, lambda_auto = true;
     TikhonovRegulariser regulariser = TikhonovRegulariser::kIdentity;
     std::optional<double> eps, noise_sigma;  // tvqc: one of them
-    bool nonnegative = false;                // tv, tvqc
+    bool nonnegative = false;                // tv, tvqc, when nonnegative_auto is false
     int iterations = 200;                    // tv, tvqc, richardson-lucy
     double tolerance = 1e-4;                 // tv, tvqc, richardson-lucy
     int downsample = 0;

@@ -13,7 +13,8 @@
 
 namespace pinmask {
 
-enum class BackgroundMode { kNone, kCorner, kValue };
+// kAuto: read from the PSF (decode/capture/capture_defaults.hpp).
+enum class BackgroundMode { kNone, kCorner, kValue, kAuto };
 enum class NormalizeMode { kNone, kL2 };
 enum class Precision { kAuto, kSingle, kDouble };
 
@@ -22,10 +23,11 @@ inline constexpr NameTable<ConvModel, 2> kConvModelNames{
 inline constexpr NameTable<TikhonovRegulariser, 2> kRegulariserNames{
     {{TikhonovRegulariser::kIdentity, "identity"}, {TikhonovRegulariser::kGradient, "gradient"}}};
 // "value": a number of counts (the CLI's --background VALUE); its name is the mode in the stats.
-inline constexpr NameTable<BackgroundMode, 3> kBackgroundModeNames{
+inline constexpr NameTable<BackgroundMode, 4> kBackgroundModeNames{
     {{BackgroundMode::kNone, "none"},
      {BackgroundMode::kCorner, "corner"},
-     {BackgroundMode::kValue, "value"}}};
+     {BackgroundMode::kValue, "value"},
+     {BackgroundMode::kAuto, "auto"}}};
 inline constexpr NameTable<NormalizeMode, 2> kNormalizeModeNames{
     {{NormalizeMode::kNone, "none"}, {NormalizeMode::kL2, "l2"}}};
 inline constexpr NameTable<Precision, 3> kPrecisionNames{

@@ -1117,3 +1117,14 @@ rows16 = b""
 for r, row in enumerate(zip(*[iter(point_capture(200.0, clip=0.5))] * 28)):
     rows16 += b"\0" + b"".join(struct.pack(">H", min(65535, int(v))) for v in row)
 write("capture-point-saturated-16.png", png(28, 28, zlib.compress(rows16), bit_depth=16))
+# ---------------------------------------------------------------- capture and PSF sampling
+# The valid RAW capture fuzz/corpus/raw/small.dng ({raw_capture}) reads as 16 x 12 (2 x 2 Bayer
+# blocks of its 32 x 24 sensor): a float PSF at the sensor's full resolution, a PSF of neither
+# size, a grey mosaic saved as TIFF and a colour image saved as .npy.
+sensor_psf = [0.0] * (32 * 24)
+sensor_psf[3 * 32 + 5] = 1.0
+sensor_psf[10 * 32 + 20] = 0.5
+write("psf-sensor-32x24.tiff", tiff(32, 24, values=sensor_psf))
+write("psf-40x30.tiff", tiff(40, 30, values=[1.0 / 1200] * 1200))
+write("capture-mosaic-32x24.tiff", tiff(32, 24, values=[0.5] * 768))
+write("capture-rgb.npy", npy((24, 32, 3), descr="<f8", data=struct.pack("<2304d", *[0.5] * 2304)))

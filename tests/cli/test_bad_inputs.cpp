@@ -29,6 +29,7 @@ namespace {
 const fs::path kCorpus = fs::path(PINMASK_SOURCE_DIR) / "tests" / "bad-inputs";
 const fs::path kValidMask = fs::path(PINMASK_SOURCE_DIR) / "fuzz/corpus/mask_json/small.mask.json";
 const fs::path kValidCapture = fs::path(PINMASK_SOURCE_DIR) / "fuzz/corpus/image/cap.npy";
+const fs::path kValidRaw = fs::path(PINMASK_SOURCE_DIR) / "fuzz/corpus/raw/small.dng";
 
 struct ManifestLine {
     int line_number = 0;
@@ -153,6 +154,7 @@ std::string shell_command(const ManifestLine& m, const TempDir& out, const TempD
     replace_all(cmd, "{dir}", quoted(out.path));
     replace_all(cmd, "{mask}", quoted(kValidMask));
     replace_all(cmd, "{mask_capture}", quoted(kValidCapture));
+    replace_all(cmd, "{raw_capture}", quoted(kValidRaw));
     const auto at = cmd.find("pinmask ");
     REQUIRE(at != std::string::npos);
     // coreutils timeout: a line that blocks (a pipe read by mistake) fails with 124 instead of

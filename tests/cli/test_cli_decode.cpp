@@ -110,8 +110,11 @@ TEST_CASE("decode of one period returns the scene (Wiener, float TIFF out, stats
     const Plane scene = smooth_scene(kN, 0.3);
     write_float(dir / "psf.tiff", Image(psf));
     write_float(dir / "cap.tiff", Image(circular_capture(scene, psf)));
-    const auto r = run_cli("decode " + dir / "cap.tiff" + " --psf " + dir / "psf.tiff" +
-                           " --nsr 1e-9 -o " + dir / "x.tiff" + " --stats " + dir / "s.json");
+    // A PSF file without pinmask's sidecar that covers the capture is read as a lensless
+    // camera's (--model auto: linear); this one is one period of a tiling.
+    const auto r =
+        run_cli("decode " + dir / "cap.tiff" + " --psf " + dir / "psf.tiff" +
+                " --model cyclic --nsr 1e-9 -o " + dir / "x.tiff" + " --stats " + dir / "s.json");
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
     const Plane x = read_image(dir / "x.tiff").image.channels.at(0);
@@ -136,7 +139,7 @@ TEST_CASE("decode of one period returns the scene (Wiener, float TIFF out, stats
           std::string::npos);
     // --json prints the same stats on stdout.
     const auto j = run_cli("decode " + dir / "cap.tiff" + " --psf " + dir / "psf.tiff" +
-                           " --nsr 1e-9 -o " + dir / "x2.tiff --json");
+                           " --model cyclic --nsr 1e-9 -o " + dir / "x2.tiff --json");
     REQUIRE(j.exit_code == 0);
     const auto js = nlohmann::json::parse(j.out);
     CHECK(js["format"] == "pinmask-decode-stats");
@@ -144,18 +147,26 @@ TEST_CASE("decode of one period returns the scene (Wiener, float TIFF out, stats
     // The resolved configuration sits next to the output.
     const auto cfg = read_json(dir / "x.tiff.config.json");
     CHECK(cfg["method"] == "wiener");
-    CHECK(cfg["crop"] == "center");
+    CHECK(cfg["crop"] == "auto");
     CHECK(cfg["model"] == "cyclic");
+    // What auto chose, and why: the whole frame (the PSF covers it); a float PSF has no floor.
+    CHECK(cfg["chosen"]["crop"]["value"] == "none");
+    CHECK(cfg["chosen"]["background"]["value"] == "none");
+    CHECK_FALSE(cfg["chosen"].contains("model"));
+    CHECK(s["chosen"] == cfg["chosen"]);
     // Every choice is recorded, defaults included: the RAW demosaic and the normalisation.
     CHECK(cfg["bayer"] == "sum2x2");
     CHECK(cfg["normalize"] == "none");
     CHECK(s["config"]["bayer"] == "sum2x2");
     CHECK(s["preprocess"]["bayer"] == "sum2x2");
     CHECK(s["preprocess"]["normalize"]["mode"] == "none");
+    // --bayer given with a TIFF capture reads it as a mosaic: green needs the colour-filter
+    // pattern a TIFF does not hold, so it is refused, never silently ignored.
     const auto g = run_cli("decode " + dir / "cap.tiff" + " --psf " + dir / "psf.tiff" +
-                           " --nsr 1e-9 --bayer green -o " + dir / "x3.tiff");
-    REQUIRE(g.exit_code == 0);
-    CHECK(read_json(dir / "x3.tiff.config.json")["bayer"] == "green");
+                           " --model cyclic --nsr 1e-9 --bayer green -o " + dir / "x3.tiff");
+    CHECK(g.exit_code == 2);
+    CHECK(g.err.find("--bayer = green") != std::string::npos);
+    CHECK_FALSE(fs::exists(dir / "x3.tiff"));
 }
 
 TEST_CASE("decode crops the centred period of a tiled RGB frame and checks the period") {
@@ -249,15 +260,15 @@ TEST_CASE("bad input exits 2 naming the problem and leaves no output") {
         const std::string bytes = test::slurp(dir / "cap.tiff");
         std::ofstream(dir / "trunc.tiff", std::ios::binary) << bytes.substr(0, bytes.size() / 2);
     }
-    const std::string psf_arg = " --psf " + dir / "psf.tiff";
+    const std::string psf_arg = " --psf " + dir / "psf.tiff --model cyclic";
     const std::pair<std::string, std::string> cases[] = {
         {dir / "small.tiff" + psf_arg, "smaller than one period"},
         {dir / "nan.tiff" + psf_arg, "NaN"},
         {dir / "inf.tiff" + psf_arg, "infinite"},
         {dir / "empty.tiff" + psf_arg, "empty.tiff"},
         {dir / "trunc.tiff" + psf_arg, "trunc.tiff"},
-        {dir / "cap.tiff --psf " + dir / "zero.tiff", "sums to"},
-        {dir / "cap.tiff --psf " + dir / "neg.tiff", "sums to"},
+        {dir / "cap.tiff --model cyclic --psf " + dir / "zero.tiff", "sums to"},
+        {dir / "cap.tiff --model cyclic --psf " + dir / "neg.tiff", "sums to"},
         {dir / "cap.tiff" + psf_arg + " --method magic", "magic"},
         {dir / "cap.tiff" + psf_arg + " --method rl", "richardson-lucy"},  // one spelling
         // A flag the method does not read: refused naming the flag, the method and its users.

@@ -16,6 +16,8 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
 def _decode(capture, psf, model, method, **kw):
+    if method == "tv":
+        kw.setdefault("nonneg", False)  # as the table (scripts/autoreg_table.py)
     return pinmask.decode(capture, psf=psf, model=model, method=method, crop="none", **kw)
 
 
@@ -93,7 +95,7 @@ def test_cli_auto_and_warning(cli, tmp_path):
     np.save(tmp_path / "cap.npy", capture)
     np.save(tmp_path / "psf.npy", psf)
     p = cli.run("decode", "cap.npy", "--psf", "psf.npy", "--crop", "none", "--nsr", "auto",
-                "--json", "--explain", "-o", "a.tiff")
+                "--model", model, "--json", "--explain", "-o", "a.tiff")
     import json
     stats = json.loads(p.stdout)
     w = stats["channels"][0]["auto_weight"]
@@ -102,7 +104,7 @@ def test_cli_auto_and_warning(cli, tmp_path):
     assert w["weight"] == pytest.approx(mod["weight"], rel=1e-6)
     assert re.search(r"--nsr \S+ chosen from the capture \(noise sigma", p.stderr)
     p = cli.run("decode", "cap.npy", "--psf", "psf.npy", "--crop", "none", "--method", "tv",
-                "--lambda", "1e9", "--iters", "3", "-o", "b.tiff")
+                "--model", model, "--lambda", "1e9", "--iters", "3", "-o", "b.tiff")
     lines = [l for l in p.stderr.splitlines() if "times the automatic weight" in l]
     assert len(lines) == 1 and lines[0].startswith("pinmask: warning: --lambda 1e+09")
     assert "--lambda auto" in lines[0]

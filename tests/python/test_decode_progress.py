@@ -64,7 +64,8 @@ def test_fft_planning_is_announced_once_per_size(cli):
 
     def run(out):
         p = subprocess.run([cli.exe, "decode", "small.npy", "--psf", "small_psf.npy",
-                            "--crop", "none", "-o", out], cwd=cli.cwd, env=env,
+                            "--crop", "none", "--model", "cyclic", "-o", out], cwd=cli.cwd,
+                           env=env,
                            capture_output=True, text=True, timeout=300)
         assert p.returncode == 0, p.stderr
         return [l for l in p.stderr.splitlines() if "planning FFTs" in l]

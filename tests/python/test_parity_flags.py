@@ -58,6 +58,7 @@ COUNTERPART = {
     "--tv-iters": "tv_iterations",
     "--energy": "energy_fraction",
     "--lsi-tolerance": "lsi_tolerance_px",
+    "--no-nonneg": "nonneg",  # nonneg=False
     "--no-rerank": "rerank_scenes",  # rerank_scenes=[]
     "--no-rerank-tv": "rerank_tv",  # rerank_tv=False
     "--max-rotation": "max_rotation_deg",

@@ -1,0 +1,51 @@
+// The settings a decode reads from the capture and the PSF when the user leaves them to it
+// (`auto`, the faces' default): the convolution model, the crop, the background and
+// non-negativity. Each rule is stated here with what it was measured on (docs/decoding.md,
+// "Defaults read from the capture"); the pipeline (decode/capture/capture_pipeline.hpp) applies
+// them and records each choice with its reason.
+#pragma once
+
+#include <string>
+
+#include "core/image/image.hpp"
+
+namespace pinmask {
+
+// One setting chosen from the data: its name ("model", "crop", "background", "nonnegative"), the
+// value chosen (the faces' spelling: "linear", "none", ...) and why, one line.
+struct ChosenSetting {
+    std::string name, value, reason;
+};
+
+// Model: a PSF at least as large as the capture along both axes is a lensless camera's response
+// over its sensor (a DiffuserCam PSF, a measured lensless array), decoded with the linear model,
+// unless the PSF is known to be one period of a mask's cyclic tiling (synthesised from a mask,
+// or a PSF file whose pinmask sidecar says "cyclic"; a "full-frame" one is a response over the
+// sensor). A PSF smaller than the capture along an axis is one
+// period of a tiling: cyclic (the period check measures the repeat).
+bool psf_covers_capture(int capture_rows, int capture_cols, int psf_rows, int psf_cols);
+
+// The fraction of a measured PSF's pixels taken as its dark floor.
+inline constexpr double kPsfFloorQuantile = 0.05;
+
+// Background auto reads a PSF that covers the capture and holds whole numbers (a measured image
+// in counts; a computed or rescaled PSF has no camera floor to read).
+// A measured PSF's dark floor: its kPsfFloorQuantile quantile (a point source lights less than
+// 95 % of the sensor; the DiffuserCam tutorial's PSF: 32 counts against its corner patch's 34),
+// or 0 when that is not positive (a synthesised PSF).
+double psf_floor(const Plane& psf);
+
+// True when every value of every channel is a whole number (sensor counts): the PSF's floor is
+// then subtracted from the capture too only when both are counts (the same camera's units).
+bool whole_numbers(const Image& image);
+// A quantile at least this fraction of the PSF's peak is light (a flat or broad PSF), not a
+// floor: nothing is subtracted.
+inline constexpr double kPsfFloorMaxOfPeak = 0.1;
+bool whole_numbers(const Plane& plane);
+
+// Non-negativity (tv, tvqc): the capture is an intensity when its 0.1 % quantile is at least
+// -3 sigma (sigma the capture's noise, decode/solvers/noise_estimate.hpp, largest over the
+// channels): a sensor's counts after the dark level, noise included. `low` and `sigma` are set.
+bool capture_is_intensity(const Image& capture, double& low, double& sigma);
+
+}  // namespace pinmask
