@@ -540,11 +540,18 @@ DecodeResult run_admm(const ConvolutionOperator& op, const Plane& capture_d, con
     // term across the spectrum (on the paper problem 1x beat 0.3x..3x; lambda-proportional
     // choices were 2-3x slower); residual balancing adapts it from there.
     double rho = o.rho > 0.0 ? o.rho : h2_mean;
-    // The crop split's penalty: the same as rho. On simulated full-frame captures (the paper
-    // sensor at 6 m and refocused at 2 m, a quarter size, lambda 1e-3) rho_s = 1 (the data term's
-    // own weight) left the PSNR at 3 dB after 30 iterations and under 5 dB after 300, against
-    // 18 and 19.6 dB at rho_s ~ mean |H|^2 (bench/linear_convergence).
-    double rho_s = o.rho_crop > 0.0 ? o.rho_crop : rho;
+    // The crop split's penalty: mean |H|^2 / |H(0)|^2, which is rho for a PSF that sums to 1.
+    // On simulated full-frame captures (the paper sensor at 6 m and refocused at 2 m, a quarter
+    // size, lambda 1e-3) rho_s = 1 (the data term's own weight) left the PSNR at 3 dB after 30
+    // iterations and under 5 dB after 300, against 18 and 19.6 dB at rho_s ~ mean |H|^2
+    // (bench/linear_convergence). The s-step weighs rho_s against the data term's 1 in capture
+    // units, where H x does not change when the PSF is scaled by c (x scales by 1 / c): rho_s
+    // must not change either, so it is divided by |H(0)|^2 = (sum of the PSF)^2, which scales
+    // like mean |H|^2 (an L2-normalised PSF took hundreds more iterations to the same PSNR).
+    const double h0 = std::norm(op.otf()(0, 0));
+    double rho_s = o.rho_crop > 0.0 ? o.rho_crop
+                   : o.rho > 0.0    ? o.rho
+                                    : h2_mean / std::max(h0, 1e-300);
     P inv_denom(R, hc);  // 1 / (N x-step denominator): the 1/N of the inverse FFT folded in
     auto update_denominator = [&] {
         for (Eigen::Index i = 0; i < nh; ++i) {
@@ -702,8 +709,11 @@ DecodeResult run_admm(const ConvolutionOperator& op, const Plane& capture_d, con
 
         if (adapt) {
             const double mu = linear ? kMuLinear : kMu, tau = linear ? kTauLinear : kTau;
-            const double f =
-                balance(std::sqrt(sums.prim2), rho * std::sqrt(sums.dual2), rho, mu, tau);
+            // The gradient split's dual residual in the units of a PSF that sums to 1 (rho /
+            // |H(0)|^2): rho follows the PSF's scale squared, the residuals its inverse.
+            const double f = balance(std::sqrt(sums.prim2),
+                                     rho / std::max(h0, 1e-300) * std::sqrt(sums.dual2), rho, mu,
+                                     tau);
             double fs = 1.0;
             if (linear) fs = balance(prim_s, dual_s, rho_s, mu, tau);
             if (f != 1.0) {
