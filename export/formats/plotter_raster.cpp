@@ -10,6 +10,7 @@
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
 #include "core/limits/resource_limits.hpp"
+#include "core/units/number_format.hpp"
 #include "export/layout/geometry.hpp"
 #include "export/layout/rings.hpp"
 #include "export/layout/shapes.hpp"
@@ -27,14 +28,14 @@ struct Grid {
 
 Grid grid_of(const Layout& l, double dpi) {
     if (!(dpi >= 1 && dpi <= 1e6))
-        throw invalid_field(field_ref("tiff_dpi"), std::to_string(dpi), "must be in 1..1000000");
+        throw invalid_field(field_ref("tiff_dpi"), format_number(dpi), "must be in 1..1000000");
     Grid g;
     g.pixel = kNmPerInch / dpi;
     g.e = l.extent;
     const double w = std::ceil(double(g.e.x1 - g.e.x0) / g.pixel - 1e-9);
     const double h = std::ceil(double(g.e.y1 - g.e.y0) / g.pixel - 1e-9);
     if (std::max(w, h) > double(kMaxRasterPixels))
-        throw invalid_field(field_ref("tiff_dpi"), std::to_string(dpi),
+        throw invalid_field(field_ref("tiff_dpi"), format_number(dpi),
                             "gives a raster of " + std::to_string(std::llround(w)) + " x " +
                                 std::to_string(std::llround(h)) + " pixels, more than " +
                                 std::to_string(kMaxRasterPixels) + " a side");

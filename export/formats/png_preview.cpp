@@ -7,6 +7,7 @@
 #include "core/errors/error.hpp"
 #include "core/image/cairo_handles.hpp"
 #include "core/limits/resource_limits.hpp"
+#include "core/units/number_format.hpp"
 #include "export/layout/film_paint.hpp"
 
 namespace pinmask {
@@ -23,12 +24,12 @@ cairo_status_t append(void* closure, const unsigned char* data, unsigned int len
 
 PreviewSize preview_size(const Layout& layout, double dpi) {
     if (!(dpi > 0) || !std::isfinite(dpi))
-        throw invalid_field("dpi", std::to_string(dpi), "must be positive and finite");
+        throw invalid_field("dpi", format_number(dpi), "must be positive and finite");
     const BoxNm& e = layout.extent;
     const double w = std::ceil(double(e.x1 - e.x0) / kNmPerInch * dpi - 1e-9);
     const double h = std::ceil(double(e.y1 - e.y0) / kNmPerInch * dpi - 1e-9);
     if (std::max(w, h) > kMaxPreviewPixels)
-        throw invalid_field("dpi", std::to_string(dpi),
+        throw invalid_field("dpi", format_number(dpi),
                             "gives a preview of " + std::to_string(std::llround(w)) + " x " +
                                 std::to_string(std::llround(h)) + " pixels, more than " +
                                 std::to_string(kMaxPreviewPixels) + " per side; lower the dpi");

@@ -8,6 +8,7 @@
 
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
+#include "core/units/number_format.hpp"
 #include "design/optics/fab_grid.hpp"
 #include "design/optics/working_distance.hpp"
 #include "export/formats/klayout_open.hpp"
@@ -73,10 +74,10 @@ void ExportOptions::validate() const {
         throw invalid_field(field_ref("max_snap_error_nm"), nm_text(write.max_snap_error_nm),
                             "must be finite and > 0");
     if (!(write.tiff_dpi >= 1 && write.tiff_dpi <= 1e6))
-        throw invalid_field(field_ref("tiff_dpi"), std::to_string(write.tiff_dpi),
+        throw invalid_field(field_ref("tiff_dpi"), format_number(write.tiff_dpi),
                             "must be in 1..1000000");
     if (!(write.png_dpi >= 1 && write.png_dpi <= 1e6))
-        throw invalid_field(field_ref("png_dpi"), std::to_string(write.png_dpi),
+        throw invalid_field(field_ref("png_dpi"), format_number(write.png_dpi),
                             "must be in 1..1000000");
 }
 

@@ -7,6 +7,7 @@
 #include "core/errors/error.hpp"
 #include "core/files/output_set.hpp"
 #include "core/limits/resource_limits.hpp"
+#include "core/units/number_format.hpp"
 #include "export/formats/pdf_reader.hpp"
 #include "export/layout/geometry.hpp"
 #include "export/layout/shapes.hpp"
@@ -112,7 +113,7 @@ PictureComparison compare_picture(const std::filesystem::path& path, FabFormat f
     try {
         if (format == FabFormat::kPng) {
             if (!(o.png_dpi > 0))
-                throw invalid_field("png dpi", std::to_string(o.png_dpi),
+                throw invalid_field("png dpi", format_number(o.png_dpi),
                                     "is unknown: a PNG is checked with its export sidecar");
             const RasterComparison r =
                 compare_raster(read_png_bytes(bytes, o.png_dpi), design, o.draw, kRasterEdgePixels);

@@ -11,6 +11,7 @@
 
 #include "core/errors/error.hpp"
 #include "core/limits/resource_limits.hpp"
+#include "core/units/number_format.hpp"
 #include "export/formats/plotter_raster.hpp"
 #include "export/layout/geometry.hpp"
 #include "export/layout/rings.hpp"
@@ -171,7 +172,7 @@ std::string RasterComparison::describe() const {
 RasterComparison compare_raster(const RasterPicture& pic, const Layout& design, DrawMode draw,
                                 int edge_tolerance_px) {
     if (!(pic.dpi >= 1 && pic.dpi <= 1e6))
-        throw invalid_field("dpi", std::to_string(pic.dpi), "must be in 1..1000000");
+        throw invalid_field("dpi", format_number(pic.dpi), "must be in 1..1000000");
     if (edge_tolerance_px < 0 || edge_tolerance_px > 8)
         throw invalid_field("edge tolerance", std::to_string(edge_tolerance_px),
                             "must be in 0..8 pixels");
