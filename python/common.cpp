@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "core/errors/error.hpp"
+#include "core/files/path_text.hpp"
 #include "core/limits/resource_limits.hpp"
 #include "python/keyword_names.hpp"
 
@@ -251,6 +252,14 @@ Poll poll_python(const py::object& progress, const std::function<py::object()>& 
         *error = std::current_exception();
         return Poll::kError;
     }
+}
+
+void refuse_path_with_nul(const std::string& text) {
+    std::string shown;  // the NUL as \x00: a C string would end the message there
+    for (const char c : printable_text(text))
+        shown += c == '\0' ? std::string("\\x00") : std::string(1, c);
+    throw InvalidInput("path '" + shown +
+                       "': the name holds a NUL byte (\\u0000), which no file name can");
 }
 
 void raise_keyboard_interrupt() {

@@ -17,13 +17,13 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
-#include <pybind11/stl/filesystem.h>
 
 #include <atomic>
 #include <functional>
 #include <string>
 
 #include "core/image/image.hpp"
+#include "python/path_caster.hpp"
 
 namespace pinmask::python {
 

@@ -175,3 +175,14 @@ def test_steps_beside_distances_is_refused_as_the_command_does(mask7):
         pinmask.depth(mask7, distances=[1.0, 2.0], steps=3, tv=False)
     r = pinmask.depth(mask7, from_m=1.0, to_m=2.0, tv=False, scenes=["letter-R"])
     assert len(r) == 8  # steps None: the command's --steps 8
+
+
+def test_a_path_with_a_nul_byte_is_refused_in_the_modules_words(tmp_path):
+    """A name with a NUL byte would name its prefix; pybind11's own path conversion failed the
+    overload ("incompatible function arguments"). Every path argument says why instead."""
+    (tmp_path / "a").write_bytes(b"not an image")
+    for name in (str(tmp_path / "a\x00b.tiff"), bytes(tmp_path / "a") + b"\x00b.tiff"):
+        with pytest.raises(ValueError, match=r"NUL byte.*no file name can"):
+            pinmask.read_image(name)
+    with pytest.raises(ValueError, match="NUL byte"):
+        pinmask.load_camera(str(tmp_path / "cam\x00.json"))
