@@ -14,6 +14,7 @@
 #include "core/files/atomic_file.hpp"
 #include "core/files/output_folder.hpp"
 #include "core/files/output_set.hpp"
+#include "core/image/mosaic.hpp"
 #include "core/limits/resource_limits.hpp"
 #include "decode/capture/batch.hpp"
 #include "decode/solvers/decode_method.hpp"
@@ -63,7 +64,10 @@ json decode_one(BatchDecoder& decoder, const DecodeCommand& rc, BayerMode bayer,
     json stats = {{"format", "pinmask-decode-stats"}, {"version", 2}};
     json timings;
     json shared_stats;
-    Image capture = load_capture(rc.capture, bayer, stats, rc.bayer_given);
+    RawInfo raw;
+    Image capture = load_capture(rc.capture, bayer, stats, rc.bayer_given, &raw);
+    for (const Plane& psf : decoder.shared().psf.channels)
+        check_shared_psf_sampling(psf, capture.rows(), capture.cols(), raw);
     const CaptureDecodeResult result = decoder.decode(std::move(capture));
     const CaptureDecodeSummary& sum = result.summary;
     std::istringstream warnings(period_warning(sum.period));

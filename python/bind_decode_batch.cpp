@@ -61,10 +61,23 @@ void bind_decode_batch(py::module_& m) {
                 if (py::isinstance<py::str>(c) || py::hasattr(c, "__fspath__")) {
                     source = py::str(fspath(c));
                     LoadedImage li;
+                    RawInfo raw;
                     {
                         py::gil_scoped_release release;
-                        li = bayer ? read_capture_as_mosaic(source, mode)
-                                   : read_capture(source, mode);
+                        li = bayer ? read_capture_as_mosaic(source, mode, &raw)
+                                   : read_capture(source, mode, &raw);
+                    }
+                    // One PSF for every capture: a full-resolution PSF for a binned RAW capture
+                    // is refused, as decode --batch refuses it (core/image/mosaic.hpp).
+                    if (raw.binning == 2 && options.contains("psf") &&
+                        py::isinstance<py::array>(options["psf"])) {
+                        const auto psf = plane_arg(options["psf"], "psf");
+                        try {
+                            check_shared_psf_sampling(psf.get(), li.image.rows(), li.image.cols(),
+                                                      raw);
+                        } catch (const InvalidInput& e) {
+                            throw InvalidInput(source + ": " + e.what());
+                        }
                     }
                     capture = image_to_array(std::move(li.image));
                 }

@@ -84,4 +84,21 @@ void match_psf_to_binned_capture(Plane& psf, int capture_rows, int capture_cols,
                             "its sampling; give a PSF at the capture's sampling");
 }
 
+void check_shared_psf_sampling(const Plane& psf, int capture_rows, int capture_cols,
+                               const RawInfo& capture_info) {
+    if (capture_info.binning != 2) return;
+    if (psf.rows() <= capture_rows && psf.cols() <= capture_cols) return;
+    Plane copy = psf;
+    std::string note;
+    // Refuses the sizes and colour sites no capture could take; binning is left to say below.
+    match_psf_to_binned_capture(copy, capture_rows, capture_cols, capture_info, note);
+    throw invalid_field(
+        field_ref("psf"), size_text(psf.rows(), psf.cols()),
+        "is the sensor's full resolution, and the capture " +
+            size_text(capture_rows, capture_cols) + " is read at half resolution (" +
+            field_ref("bayer") + " " + capture_info.bayer +
+            "): one PSF serves every capture of a batch, so it is not binned per capture as a "
+            "capture decoded alone is; give the PSF binned 2 x 2");
+}
+
 }  // namespace pinmask

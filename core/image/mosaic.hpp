@@ -36,4 +36,10 @@ LoadedImage read_capture_as_mosaic(const std::filesystem::path& path, BayerMode 
 void match_psf_to_binned_capture(Plane& psf, int capture_rows, int capture_cols,
                                  const RawInfo& capture_info, std::string& note);
 
+// The same check where one PSF serves many captures (decode --batch, decode_batch): the PSF is
+// not binned per capture, so a PSF that match_psf_to_binned_capture would bin is refused too,
+// saying so (InvalidInput naming field_ref("psf"), both sizes); the refusals above stand.
+void check_shared_psf_sampling(const Plane& psf, int capture_rows, int capture_cols,
+                               const RawInfo& capture_info);
+
 }  // namespace pinmask

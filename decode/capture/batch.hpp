@@ -25,6 +25,7 @@ class BatchDecoder {
     CaptureDecodeResult decode(Image capture);
 
     const DecodePlanCache& plans() const { return *plans_; }
+    const CaptureDecodeInputs& shared() const { return shared_; }
     int decoded() const { return decoded_; }
 
   private:

@@ -310,3 +310,33 @@ TEST_CASE("decode --batch: a spent time budget keeps the captures finished, list
     CHECK(printed["stopped"] == summary["stopped"]);
     CHECK(file_count(dir.path / "tight-json/out") == 3 + 1);
 }
+
+TEST_CASE("decode --batch: a full-resolution PSF for binned RAW captures is refused, not misread") {
+    // A capture alone bins a PSF at twice its size 2 x 2 (core/image/mosaic.hpp); a batch
+    // shares one PSF over every capture, so it refuses instead of decoding at the wrong sampling
+    // (exit 0 with an estimate of garbage before).
+    TempDir dir("cli-decode-batch-raw-psf");
+    pinmask::test::DngSpec dng;
+    dng.rows = 24;
+    dng.cols = 32;
+    dng.values.assign(static_cast<std::size_t>(dng.rows) * dng.cols, 100);
+    for (std::size_t i = 0; i < dng.values.size(); i += 7) dng.values[i] = 900;
+    fs::create_directory(dir.path / "raws");
+    pinmask::test::write_dng(dir.path / "raws/a.dng", dng);
+    pinmask::Image psf;
+    psf.channels.push_back(pinmask::Plane::Zero(dng.rows, dng.cols));
+    psf.channels[0](3, 5) = 1.0;
+    psf.channels[0](17, 20) = 2.0;
+    pinmask::write_image(dir.path / "psf.tiff", psf);  // the sensor's full resolution: 24 x 32
+    const auto batch = run_cli("decode --batch raws --psf psf.tiff -o out", dir.path);
+    INFO(batch.err);
+    CHECK(batch.exit_code == 2);
+    CHECK(batch.err.find("one PSF serves every capture of a batch") != std::string::npos);
+    CHECK(batch.err.find("32 x 24") != std::string::npos);
+    CHECK_FALSE(fs::exists(dir.path / "out"));
+    // Alone, the same capture and PSF decode, the PSF binned as the capture was.
+    const auto alone = run_cli("decode raws/a.dng --psf psf.tiff -o alone.tiff", dir.path);
+    INFO(alone.err);
+    CHECK(alone.exit_code == 0);
+    CHECK(alone.err.find("2 x 2 blocks summed") != std::string::npos);
+}

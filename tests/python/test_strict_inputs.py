@@ -3,6 +3,7 @@ module's words (never pybind11's "Unable to cast"), lengths with units read as t
 reads them, arrays charged to the memory budget from their shape before any copy, the library's
 caps met by both faces, and the file-size limit reported without killing the interpreter."""
 import os
+import pathlib
 import subprocess
 import sys
 
@@ -186,3 +187,14 @@ def test_a_path_with_a_nul_byte_is_refused_in_the_modules_words(tmp_path):
             pinmask.read_image(name)
     with pytest.raises(ValueError, match="NUL byte"):
         pinmask.load_camera(str(tmp_path / "cam\x00.json"))
+
+
+def test_decode_batch_refuses_a_full_resolution_psf_for_binned_raw_captures():
+    """A RAW capture is read 2 x 2 binned; decode() of it alone bins a PSF twice its size, but a
+    batch shares one PSF, so decode_batch refuses it as `decode --batch` does."""
+    raw = str(pathlib.Path(__file__).resolve().parents[2] / "fuzz/corpus/raw/small.dng")
+    rows, cols = np.asarray(pinmask.read_image(raw)[0]).shape
+    psf = np.zeros((2 * rows, 2 * cols))
+    psf[3, 5], psf[7, 9] = 1.0, 2.0
+    with pytest.raises(ValueError, match="one PSF serves every capture of a batch"):
+        pinmask.decode_batch([raw], psf=psf)
