@@ -101,6 +101,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"precision", "--precision"},
     {"prior", "--prior"},
     {"prior.count", "--prior-scenes"},
+    {"psf", "--psf"},
     {"psf_stack", "--psf-stack"},
     {"rank_by", "--rank-by"},
     {"read_noise", "--read-noise"},
