@@ -1,5 +1,5 @@
-// The --help footers of score, compare, search, simulate, design and check (long teaching text
-// kept out of the command files so each stays parse -> call -> render).
+// The --help footers of score, compare, search, simulate, design, check and export (long teaching
+// text kept out of the command files so each stays parse -> call -> render).
 #pragma once
 
 namespace pinmask::cli {
@@ -170,5 +170,11 @@ inline constexpr const char* kCheckFooter =
     "limit PINMASK_TIME_LIMIT was spent (a duration: 90s, 2m, 1.5h; off unless set; counted "
     "from the start of the run): the check stops where it is and prints no verdict.\n"
     "Example: pinmask export m.mask.json -o fab/ && pinmask check fab/m.gds";
+
+inline constexpr const char* kExportFooter =
+    "Examples:\n  pinmask export paper.mask.json --format svg,gds,pdf --marks --label --frame "
+    "1mm -o out/\n  pinmask export paper.mask.json --vendor film-plotter -o film/   (DXF in mm "
+    "+ 1-bit TIFF at 25400 dpi, emulsion down)\n  pinmask check out/paper.gds   (settings "
+    "from out/paper.export.json)";
 
 }  // namespace pinmask::cli
