@@ -296,7 +296,8 @@ bytes; export/pipeline/export_pipeline): formats svg pdf gds oasis dxf gerber pn
 out_dir/<stem>.svg .pdf .gds .oas .dxf .gbr .png .tif, all or nothing (None: the vendor
 preset's formats, else svg pdf gds dxf gerber png, as the command); dpi: PNG/TIFF
 resolution (None: the CLI's default per format); each readable format is read back from disk and compared with the design (identical polygons or XOR area 0, and the mask
-hash), else RuntimeError and no file. The design-rule check (vendor: an export preset or rules
+hash), each picture (pdf, png, tiff1) with the design drawn the same way, as the command does,
+else RuntimeError and no file. The design-rule check (vendor: an export preset or rules
 film | chrome | none; min_feature / min_space: the shop's own limits over them, lengths) is
 checked: a violation is a RuntimeError naming every failed rule and no file is written
 (require_drc_clean, the default, kept for scripts; write_on_violations=True writes the files for
