@@ -9,11 +9,11 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/options/calibrate_inputs.hpp"
 #include "cli/options/camera_options.hpp"
 #include "cli/options/flag_names.hpp"
 #include "cli/outputs/progress.hpp"
 #include "core/errors/error.hpp"
-#include "core/image/image_io.hpp"
 #include "core/image/raw_io.hpp"
 #include "decode/calibrate/calibrate_run.hpp"
 #include "design/psf/kernel_model.hpp"
@@ -35,18 +35,6 @@ struct CalibrateCommandOptions {
     bool json = false;
 };
 
-Plane read_grey(const std::string& path, const std::string& what, BayerMode bayer,
-                double* full_scale, RawInfo& raw) {
-    LoadedImage img = read_capture(path, bayer, &raw);
-    if (!raw.note.empty())
-        std::cerr << "calibrate: " << path << ": " << spell_flags(raw.note) << "\n";
-    if (full_scale) *full_scale = img.full_scale;
-    Plane p = img.image.channels.at(0);
-    for (std::size_t c = 1; c < img.image.channels.size(); ++c) p += img.image.channels[c];
-    if (!is_all_finite(p)) throw InvalidInput(what + " '" + path + "' holds NaN or Inf");
-    return p;
-}
-
 void run(CalibrateCommandOptions& o) {
     const fs::path dir = o.output;
     if (fs::exists(dir) && !(fs::is_directory(dir) && fs::is_empty(dir)))
@@ -54,16 +42,7 @@ void run(CalibrateCommandOptions& o) {
                             "must be a new or empty folder (nothing is overwritten)");
     if (!dir.parent_path().empty() && !fs::is_directory(dir.parent_path()))
         throw invalid_field("-o", o.output, "its parent folder does not exist");
-    // auto: an integer file's largest count, or a flat top found in a float capture; a value or
-    // none is the user's word.
-    o.cal.detect_saturation = o.saturation == "auto";
-    if (o.saturation != "auto" && o.saturation != "none") {
-        try {
-            o.cal.saturation_level = std::stod(o.saturation);
-        } catch (const std::exception&) {
-            throw invalid_field("--saturation", o.saturation, "must be auto, none or a count");
-        }
-    }
+    apply_saturation_flag(o.saturation, o.cal);
     calibrate::validate(o.cal);
     const BayerMode bayer = parse_bayer_mode(o.bayer);
     CalibrateRequest q;

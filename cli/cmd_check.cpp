@@ -1,6 +1,6 @@
 // `pinmask check`: the design-rule check (export/pipeline/drc) of a mask file, via the layout the
 // export builds from it, or of a fabrication file read back (GDSII, OASIS, DXF, Gerber, SVG) and
-// compared with its design (export/pipeline/file_check, export/pipeline/read_back). The layout
+// compared with its design (export/pipeline/check_run, which Python calls too). The layout
 // settings come from the export sidecar <stem>.export.json beside the file when there is one
 // (explicit flags must agree with it), else from the flags. What identifies the film (layer,
 // datatype, DXF layer name, Gerber polarity) is compared with the sidecar or the vendor preset
@@ -10,27 +10,21 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
-#include <limits>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 
+#include "cli/command_footers.hpp"
 #include "cli/commands.hpp"
 #include "cli/options/check_settings.hpp"
 #include "cli/outputs/check_picture.hpp"
 #include "cli/outputs/check_report.hpp"
 #include "core/errors/error.hpp"
-#include "core/files/input_file.hpp"
 #include "core/limits/resource_limits.hpp"
-#include "core/units/units.hpp"
-#include "design/optics/fab_grid.hpp"
 #include "export/formats/fab_units.hpp"
 #include "export/formats/read_any.hpp"
-#include "export/layout/geometry.hpp"
 #include "export/layout/vendor_rules.hpp"
-#include "export/pipeline/drc.hpp"
-#include "export/pipeline/file_check.hpp"
+#include "export/pipeline/check_run.hpp"
 #include "io/export_sidecar.hpp"
 #include "io/mask_json.hpp"
 #include "io/sidecar_identity.hpp"
@@ -48,16 +42,7 @@ void poll_time(const std::string& stage) { check_time_limit("check stopped " + s
 int run(const CheckOptions& o) {
     const TimeLimitScope time_limited;  // the readers and the DRC poll it too
     poll_time("before reading " + o.input);
-    if (fs::exists(o.input)) {
-        if (const auto problem = input_file_problem(o.input))
-            throw invalid_field("input", o.input, *problem);
-    }
-    if (!fs::is_regular_file(o.input))
-        throw invalid_field("input", o.input, "must be an existing mask or fabrication file");
-    if (!std::isfinite(o.max_xor_um2) || o.max_xor_um2 < 0)
-        throw invalid_field("--max-xor-um2", std::to_string(o.max_xor_um2),
-                            "must be finite and >= 0");
-    if (o.list < 1) throw invalid_field("--list", std::to_string(o.list), "must be >= 1");
+    validate(o);
     const bool mask_input = io::is_mask_file(o.input);
     // The export sidecar beside a fabrication file gives the vendor's rules (and the layout).
     const fs::path side_path = io::sidecar_path_for(o.input);
@@ -72,6 +57,7 @@ int run(const CheckOptions& o) {
     rep.mask = o.mask;
     rep.list = o.list;
     rep.rules_source = rules_source;
+    const RuleOverrides overrides = [&o](DrcRules r) { return resolve_rules(o, r); };
     FileCheck c;
     if (const auto picture = picture_format_of(o.input); picture && !mask_input) {
         rep.kind = fab_format_name(*picture);
@@ -81,14 +67,10 @@ int run(const CheckOptions& o) {
             throw invalid_field("--mask", o.mask, "only used with a fabrication file");
         rep.kind = "mask";
         const Mask mask = io::read_mask_file(o.input, {.allow_spacing_violations = true});
-        c.layout = make_layout(mask, design_options(o, nullptr));
-        poll_time("after building the layout of " + o.input);
-        rep.rules = resolve_rules(o, rules_for_mask(mask, vendor, c.layout.grid_nm));
-        if (!o.min_spacing)
-            rep.spacing = spacing_rule_text(mask.pattern.min_spacing_cells, c.layout.pitch_nm,
-                                            c.layout.grid_nm);
-        c.drc = run_drc(c.layout, rep.rules);
-        add_pattern_spacing(c.drc, mask, c.layout.pitch_nm, rep.rules);
+        CheckRun run = check_mask(mask, design_options(o, nullptr), vendor, overrides, o.input);
+        c = std::move(run.check);
+        rep.rules = run.rules;
+        if (!o.min_spacing) rep.spacing = run.spacing;
     } else {
         rep.kind = fs::path(o.input).extension().string().substr(1);
         const FileGeometry file = read_fabrication_file(o.input);
@@ -100,57 +82,43 @@ int run(const CheckOptions& o) {
         } else {
             rep.settings = "from the flags (no sidecar " + side_path.filename().string() + ")";
         }
-        FileCheckOptions fo;
-        fo.max_xor_nm2 = o.max_xor_um2 * 1e6;
+        FabricationCheckRequest q;
+        q.input = o.input;
+        q.vendor = vendor;
+        q.overrides = overrides;
+        q.max_xor_nm2 = o.max_xor_um2 * 1e6;
         std::optional<Mask> mask;
-        std::optional<Layout> design;
         if (!rep.mask.empty()) {
             mask = io::read_mask_file(rep.mask, {.allow_spacing_violations = true});
-            LayoutOptions lo = design_options(o, side ? &*side : nullptr);
-            if (!side) io::apply_file_declarations(lo, file);  // as the file declares them
-            design = make_layout(*mask, lo);
-            fo.design = &*design;
-            fo.whole_layout = side.has_value();
-            rep.rules = resolve_rules(o, rules_for_mask(*mask, vendor, design->grid_nm));
-            if (!o.min_spacing)
-                rep.spacing = spacing_rule_text(mask->pattern.min_spacing_cells, design->pitch_nm,
-                                                design->grid_nm);
+            q.layout = design_options(o, side ? &*side : nullptr);
+            if (!side) io::apply_file_declarations(q.layout, file);  // as the file declares them
+            q.mask = &*mask;
+            q.whole_layout = side.has_value();
         } else {
             // No design to build, but the flags given are still checked, and compared with the
             // sidecar: a contradiction stops the check whether or not its mask resolves.
             (void)design_options(o, side ? &*side : nullptr);
-            DrcRules rules;
-            rules.min_gap_nm = vendor.min_gap_nm;
-            rules.min_feature_nm = vendor.min_feature_nm;
-            rules.max_vertices = vendor.max_vertices;
-            rep.rules = resolve_rules(o, rules);
             if (side) {
                 const auto& a = side->active_area_nm;
                 const std::int64_t fr = std::llround(side->frame_m * 1e9);
-                fo.outline = BoxNm{a[0] - fr, a[1] - fr, a[2] + fr, a[3] + fr};
+                q.outline = BoxNm{a[0] - fr, a[1] - fr, a[2] + fr, a[3] + fr};
                 rep.note = "mask " + side->mask_path +
                            " not found: no comparison; centre spacing only with --min-spacing";
             } else {
                 rep.note =
-                    "no --mask and no sidecar: all rings are checked as polygons; centre spacing "
-                    "only with --min-spacing";
+                    "no --mask and no sidecar: all rings are checked as polygons; centre "
+                    "spacing only with --min-spacing";
             }
         }
-        fo.rules = rep.rules;
-        poll_time("before the design-rule check of " + o.input);
-        c = check_file_geometry(file, fo);
-        if (mask) add_pattern_spacing(c.drc, *mask, design->pitch_nm, rep.rules);
-        c.identity = check_film_identity(
-            file, *readable_format_of(o.input),
-            io::film_identity_expected(o.input, side ? &*side : nullptr, side_path, o.no_sidecar,
-                                       o.vendor, o.layout.tone));
-        if (auto it = file.info.find("unit_assumed"); it != file.info.end() && !side) {
-            const std::string w =
-                "the file states no unit ($INSUNITS 0 or absent, no pinmask "
-                "units= comment): read as " +
-                it->second;
-            std::cerr << "pinmask: warning: " << w << "\n";
-            rep.note = rep.note.empty() ? w : rep.note + "; " + w;
+        q.film = io::film_identity_expected(o.input, side ? &*side : nullptr, side_path,
+                                            o.no_sidecar, o.vendor, o.layout.tone);
+        CheckRun run = check_fabrication(file, q);
+        c = std::move(run.check);
+        rep.rules = run.rules;
+        if (mask && !o.min_spacing) rep.spacing = run.spacing;
+        if (!run.unit_assumed.empty() && !side) {
+            std::cerr << "pinmask: warning: " << run.unit_assumed << "\n";
+            rep.note = rep.note.empty() ? run.unit_assumed : rep.note + "; " + run.unit_assumed;
         }
     }
     poll_time("before printing the verdict on " + o.input);
@@ -162,37 +130,11 @@ int run(const CheckOptions& o) {
     return c.clean() ? 0 : 1;
 }
 
-constexpr const char* kFooter =
-    "A mask file is checked on the layout `pinmask export` builds from it. A fabrication file "
-    "(.gds .oas .dxf .gbr .svg) is read back in nanometres (DXF in its $INSUNITS unit). With "
-    "the sidecar <stem>.export.json beside it (written by export) the layout settings (tone, "
-    "mirroring, shape, size, frame, marks, label, grid, unit) and the mask come from the "
-    "sidecar: every ring, marks and label included, must match the design; explicit flags "
-    "must agree with the sidecar or the check stops (exit 2). Without a sidecar, give --mask "
-    "and the export's --shape/--sides/--hole-side/--frame/--chord-tol; tone, mirroring and grid "
-    "are read from the file; its rings inside the design's outline are the pinholes.\n"
-    "Pictures (.pdf .png .tif) are compared with the design drawn the same way: the 1-bit TIFF "
-    "pixel for pixel at its dpi, the PNG within 1 px of an edge (dpi from the sidecar), the PDF "
-    "ring by ring within 1/256 pt (Cairo's coordinate step); the design itself is then "
-    "design-rule checked.\n"
-    "Rules (exact, integer nm): ring, vertices, self_intersection, orientation (CCW), area, "
-    "feature, gap, touching, overlap, spacing (pinhole centroids on the tiled mask).\n"
-    "What identifies the film is compared with the sidecar's entry for the file, else with a "
-    "--vendor preset (export's default layers 1/0 and PINMASK, the preset's tone) and --tone: "
-    "GDSII/OASIS layer and datatype, DXF layer name (geometry on two layers always fails: the "
-    "shop images one), Gerber polarity (%TF.FilePolarity, also against the file's own tone "
-    "comment); what nothing says is listed as not compared.\n"
-    "Exit codes: 0 clean, 1 violations or a mismatch with the design or the film's identity, 2 "
-    "bad input, 3 the time "
-    "limit PINMASK_TIME_LIMIT was spent (a duration: 90s, 2m, 1.5h; off unless set; counted "
-    "from the start of the run): the check stops where it is and prints no verdict.\n"
-    "Example: pinmask export m.mask.json -o fab/ && pinmask check fab/m.gds";
-
 void setup(CLI::App& app, int& exit_code) {
     auto o = std::make_shared<CheckOptions>();
     auto* cmd = app.add_subcommand(
         "check", "Design-rule check of a mask file or an exported fabrication file.");
-    cmd->footer(kFooter);
+    cmd->footer(kCheckFooter);
     cmd->add_option("input", o->input,
                     "A *.mask.json, or a .gds/.oas/.dxf/.gbr/.svg/.pdf/.png/.tif file")
         ->required();

@@ -4,14 +4,12 @@
 #include <unistd.h>
 
 #include <atomic>
-#include <cctype>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 
 #include "cli/commands.hpp"
@@ -19,6 +17,7 @@
 #include "cli/options/decode_flags.hpp"
 #include "cli/options/decode_inputs.hpp"
 #include "cli/options/flag_names.hpp"
+#include "cli/outputs/decode_files.hpp"
 #include "cli/outputs/decode_output.hpp"
 #include "cli/outputs/decode_progress.hpp"
 #include "cli/outputs/image_output.hpp"
@@ -102,21 +101,8 @@ void run_decode(DecodeCommand& r, BayerMode bayer) {
     const CaptureDecodeSummary& sum = result.summary;
     for (const std::string& note : sum.notes) explain(spell_flags(note));
     explain("FFT planning " + std::to_string(sum.seconds.fft_planning) + " s during the decode");
-    std::istringstream warnings(period_warning(sum.period));
-    for (std::string line; std::getline(warnings, line);)
-        std::cerr << "pinmask: warning: " << line << "\n";
-    for (const std::string& w : sum.warnings)
-        std::cerr << "pinmask: warning: " << spell_flags(w) << "\n";
+    print_decode_warnings(sum);
     add_summary_json(stats, timings, r, sum);
-    if (sum.interrupted) {
-        std::cerr << "pinmask: interrupted: writing the estimate after "
-                  << sum.channels.front().iterations << " iterations (not converged)\n";
-    }
-    if (!sum.constraint_met) {
-        std::cerr << "pinmask: warning: tvqc did not meet its constraint ||Ax - p||_2 <= eps "
-                     "(see \"constraint_met\" and \"residual\" in the stats); the estimate is "
-                     "written but is not a TVQC solution\n";
-    }
     check_output_range(result.estimate, kind);
 
     // Write: the image, its config and the stats appear together or not at all.
@@ -124,36 +110,13 @@ void run_decode(DecodeCommand& r, BayerMode bayer) {
     warn_all_zero("pinmask", "the estimate", result.estimate,
                   "a very large --nsr or --lambda passes nothing; so does an all-zero capture");
     StagedFiles files;
-    json output = {{"path", r.output},
-                   {"format", output_kind_name(kind)},
-                   {"config", r.output + ".config.json"}};
-    if (kind == OutputKind::kPng) {
-        const ScaledImage png = scale_for_png(result.estimate, scale);
-        files.stage(r.output,
-                    [&](const fs::path& tmp) { write_output_image(tmp, png.image, kind, r.bits); });
-        output["bits"] = r.bits;
-        output["scaling"] = scale ? "factor" : "max";
-        output["scale_factor"] = png.factor;
-        output["max_value"] = png.max_value;
-        if (png.max_value <= 0.0)
-            std::cerr << "pinmask: warning: the estimate has no positive value; the PNG is black\n";
-        else if (png.max_value * png.factor * double((1 << r.bits) - 1) < 0.5)
-            std::cerr << "pinmask: warning: at --scale " << png.factor
-                      << " every pixel rounds to 0: the PNG is black (the estimate's largest "
-                         "value is "
-                      << png.max_value << ")\n";
-    } else {
-        files.stage(r.output, [&](const fs::path& tmp) {
-            write_output_image(tmp, result.estimate, kind, r.bits);
-        });
-    }
-    json config = config_json(r);
-    config["chosen"] = stats["chosen"];  // add_summary_json: what auto chose
-    files.stage_bytes(r.output + ".config.json", config.dump(2) + "\n");
+    const StagedDecode staged =
+        stage_decode_files(files, r, result.estimate, kind, scale, stats["chosen"]);
+    warn_black_png(staged, r.bits);
     timings["write"] = seconds_since(t0);
     timings["total"] = seconds_since(t_start);
-    stats["output"] = output;
-    stats["config"] = config;
+    stats["output"] = staged.output;
+    stats["config"] = staged.config;
     stats["timings_s"] = timings;
     if (!r.stats.empty()) files.stage_bytes(r.stats, stats.dump(2) + "\n");
     files.commit();
@@ -162,20 +125,7 @@ void run_decode(DecodeCommand& r, BayerMode bayer) {
         std::cout << stats.dump(2) << "\n";
         return;
     }
-    std::cout << "decode " << r.capture << " -> " << r.output << "\n"
-              << "  method   " << r.method << " (" << conv_model_name(sum.model) << " model, "
-              << (sum.single_precision ? "single" : "double") << " precision)\n"
-              << "  window   " << sum.window.cols << " x " << sum.window.rows
-              << " at x=" << sum.window.col << ", y=" << sum.window.row << "\n";
-    for (std::size_t ch = 0; ch < sum.channels.size(); ++ch) {
-        const DecodeResult& d = sum.channels[ch];
-        std::cout << "  channel " << ch << "  iterations " << d.iterations << "  residual "
-                  << d.residual << "  objective " << d.objective << "  " << d.seconds << " s"
-                  << (d.interrupted ? "  (interrupted)" : "")
-                  << (d.constraint_met ? "" : "  (constraint NOT met)") << "\n";
-    }
-    std::cout << "  period   " << period_summary(sum.period) << "\n  wrote    " << r.output << ", "
-              << r.output << ".config.json" << (r.stats.empty() ? "" : ", " + r.stats) << "\n";
+    print_decode_summary(r, sum);
 }
 
 // Under mpirun every rank runs the batch. Set-up errors are every rank's alike: rank 0 reports,
@@ -191,28 +141,6 @@ void run_batch_on_ranks(const DecodeCommand& r, const BatchRequest& b, BayerMode
         if (comm.size() == 1 || comm.rank() == 0) throw;
         std::exit(dynamic_cast<const InvalidInput*>(&e) ? 2 : 1);
     }
-}
-
-// Flags this run would ignore are refused, as the method's parameters are (resolve_method): the
-// batch's flags without --batch, and PNG's --bits and --scale for .tif/.tiff and .npy output.
-void refuse_ignored_output_flags(const CLI::App& cmd, const DecodeCommand& o,
-                                 const BatchRequest& b) {
-    const auto given = [&](const char* flag) { return cmd.count(flag) > 0; };
-    const auto value = [&](const char* flag) { return cmd.get_option(flag)->as<std::string>(); };
-    const bool batch = !b.list.empty();
-    for (const char* flag : {"--batch-format", "--batch-stats"})
-        if (!batch && given(flag))
-            throw invalid_field(flag, value(flag),
-                                "is used with --batch only; remove it or give --batch");
-    std::string format = b.format;
-    for (char& c : format) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (!batch && o.output.empty()) return;  // refused as missing later
-    const bool png = batch ? format == "png" : output_kind(o.output) == OutputKind::kPng;
-    for (const char* flag : {"--bits", "--scale"})
-        if (!png && given(flag))
-            throw invalid_field(flag, value(flag),
-                                "is used by .png output only (.tif/.tiff and .npy hold the raw "
-                                "float32 estimate); remove it or write .png");
 }
 
 void setup(CLI::App& app) {
@@ -249,7 +177,7 @@ void setup(CLI::App& app) {
     cmd->callback([cmd, o, flags, batch, bayer] {
         o->bayer_given = bayer->count() > 0;
         resolve_method(*o, *flags);
-        refuse_ignored_output_flags(*cmd, *o, *batch);
+        refuse_ignored_output_flags(*cmd, *o, !batch->list.empty(), batch->format);
         if (!batch->list.empty()) return run_batch_on_ranks(*o, *batch, parse_bayer_mode(o->bayer));
         if (o->capture.empty())
             throw InvalidInput("decode needs a capture file (or --batch LIST_OR_DIR)");

@@ -67,9 +67,8 @@ std::vector<double> resolve_distances(const DepthCommandOptions& o, bool steps_g
     }
     if (o.distances) {
         std::vector<double> out;
-        for (const std::string& t : split(*o.distances)) {
+        for (const std::string& t : split(*o.distances))
             out.push_back(parse_length_m(t, "--distances", AllowInfinity::kYes));
-        }
         if (out.size() > 1000) throw invalid_field("--distances", "too many", "at most 1000");
         return out;
     }

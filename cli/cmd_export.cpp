@@ -1,35 +1,26 @@
 // `pinmask export`: mask file -> fabrication files (export/pipeline/export_pipeline), the PSF files
-// (as `pinmask psf` writes them) and the sidecar `<stem>.export.json` (io/export_sidecar). Every
-// readable file is read back from its staged temporary and compared with the design
-// (export/pipeline/read_back); any difference, any error and any design-rule violation (unless
-// --write-on-violations) leaves no file. A --vendor preset
-// (export/pipeline/vendor_presets) sets defaults that explicit flags override.
-#include <cerrno>
-#include <cstring>
+// (as `pinmask psf` writes them) and the sidecar `<stem>.export.json`, written by io/export_files
+// (the transaction Python's export_mask calls too). Every readable file is read back from its
+// staged temporary and compared with the design (export/pipeline/read_back); any difference, any
+// error and any design-rule violation (unless --write-on-violations) leaves no file. A --vendor
+// preset (export/pipeline/vendor_presets) sets defaults that explicit flags override.
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <optional>
-#include <sstream>
 #include <string>
 
+#include "cli/command_footers.hpp"
 #include "cli/commands.hpp"
 #include "cli/options/export_options.hpp"
 #include "cli/options/flag_names.hpp"
 #include "core/errors/error.hpp"
-#include "core/files/atomic_file.hpp"
 #include "core/files/output_set.hpp"
 #include "core/units/units.hpp"
 #include "design/optics/fab_grid.hpp"
-#include "design/psf/psf.hpp"
 #include "export/pipeline/export_pipeline.hpp"
-#include "export/pipeline/file_check.hpp"
-#include "export/pipeline/read_back.hpp"
 #include "export/pipeline/vendor_presets.hpp"
+#include "io/export_files.hpp"
 #include "io/export_sidecar.hpp"
-#include "io/export_sidecar_of.hpp"
 #include "io/mask_json.hpp"
-#include "io/psf_files.hpp"
 
 namespace pinmask::cli {
 namespace {
@@ -43,14 +34,6 @@ string default_stem(const fs::path& input) {
         if (name.size() > suffix.size() && name.ends_with(suffix))
             return name.substr(0, name.size() - suffix.size());
     return input.stem().string();
-}
-
-string file_bytes(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    if (!in && !in.eof()) throw RuntimeFailure("cannot read back " + p.string());
-    return s.str();
 }
 
 // The rules the export checked, in words (vendor preset, overrides and the spacing rule on the
@@ -80,59 +63,13 @@ int run_export(const ExportFlags& f) {
     if (stem.empty() || stem.find('/') != string::npos)
         throw invalid_field("--stem", stem, "must be a plain file name");
     const ExportOptions o = export_options_from(f, mask, stem);
-    {  // every output named and checked before any work (core/files/output_set)
-        std::vector<NamedPath> outs{{"-o (export.json)", out_dir / (stem + ".export.json"), true}};
-        for (FabFormat ff : o.formats)
-            outs.push_back({"-o", out_dir / (stem + fab_extension(ff)), true});
-        if (!f.no_psf) {
-            const fs::path psf_tiff = out_dir / (stem + ".psf.tiff");
-            outs.push_back({"-o (PSF)", psf_tiff, true});
-            outs.push_back({"-o (PSF sidecar)", io::psf_sidecar_path(psf_tiff), true});
-            if (f.psf_npy) outs.push_back({"-o (PSF npy)", out_dir / (stem + ".psf.npy"), true});
-        }
-        plan_outputs({{"input", f.input}}, outs);
-    }
-    const ExportSummary s = export_mask(mask, o);
-    io::ExportSidecar side = export_sidecar_of(f, mask, o, s);
-    std::optional<std::pair<Plane, io::PsfSidecar>> psf;
-    if (!f.no_psf) {
-        check_psf_memory(mask.pattern.n, mask.psf.pixels_per_cell, 2, 0);
-        const Kernel kernel = mask_kernel(mask);
-        psf.emplace(synthesize_psf(mask.pattern, kernel, mask.psf.pixels_per_cell),
-                    io::psf_sidecar_for(mask, kernel, f.input));
-    }
-    fs::create_directories(out_dir);
-    StagedFiles staged;
-    for (const ExportedFile& e : s.files) {
-        const fs::path path = out_dir / (stem + e.extension);
-        string check = "not readable (written only)";
-        staged.stage(path, [&](const fs::path& tmp) {
-            {
-                std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-                out.write(e.bytes.data(), std::streamsize(e.bytes.size()));
-                out.close();  // a failed flush (disk full, file-size limit) shows here
-                if (!out)
-                    throw RuntimeFailure("cannot write " + tmp.string() + ": " +
-                                         std::strerror(errno));
-            }
-            if (is_readable(e.format)) check = verify_written(file_bytes(tmp), e.format, s.layout);
-            if (is_picture(e.format)) check = verify_picture(tmp, e.format, s.layout, o.write);
-        });
-        side.files.push_back(io::sidecar_file_entry(path.filename().string(), e, check, f, o));
-    }
-    std::vector<fs::path> psf_written;  // staged with the others: all appear, or none
-    if (psf) {
-        psf_written = io::stage_psf_files(staged, out_dir / (stem + ".psf.tiff"), psf->first,
-                                          psf->second, f.psf_npy);
-        for (const fs::path& p : psf_written) side.psf_files.push_back(p.filename().string());
-        side.psf_kernel = psf->second.kernel_model;
-        side.psf_pixels_per_cell = psf->second.pixels_per_cell;
-        side.psf_rows = int(psf->first.rows());
-        side.psf_cols = int(psf->first.cols());
-    }
-    const string side_text = io::export_sidecar_text(side);
-    staged.stage_bytes(out_dir / (stem + ".export.json"), side_text);
-    staged.commit();
+    std::vector<NamedPath> outs;  // every output named and checked before any work
+    for (const io::ExportOutput& x : io::export_outputs(f, o, out_dir, stem))
+        outs.push_back({x.what.empty() ? "-o" : "-o (" + x.what + ")", x.path, true});
+    plan_outputs({{"input", f.input}}, outs);
+    const io::ExportWritten w = io::write_export(mask, f, o, out_dir, stem);
+    const ExportSummary& s = w.summary;
+    const io::ExportSidecar& side = w.sidecar;
     const bool clean = s.drc.clean();
     auto verdict = [&] {
         if (clean) return 0;
@@ -145,7 +82,7 @@ int run_export(const ExportFlags& f) {
         return 1;
     };
     if (f.json) {
-        std::cout << side_text;
+        std::cout << w.sidecar_text;
         return verdict();
     }
     std::cout << "export of " << f.input << " (hash " << s.layout.mask_hash << ", "
@@ -154,7 +91,7 @@ int run_export(const ExportFlags& f) {
               << s.layout.annotations.size() << " annotations) into " << out_dir.string() << "/\n";
     for (const io::ExportSidecarFile& e : side.files)
         std::cout << "  " << e.name << "  " << e.bytes << " bytes  " << e.verification << "\n";
-    for (const fs::path& p : psf_written) std::cout << "  " << p.filename().string() << "  PSF\n";
+    for (const fs::path& p : w.psf) std::cout << "  " << p.filename().string() << "  PSF\n";
     std::cout << "  " << stem << ".export.json  sidecar\n";
     for (const string& n : s.notes) std::cout << "note: " << spell_flags(n) << "\n";
     std::cout << "design-rule check (" << rules_line(o, mask, s.layout)
@@ -244,11 +181,7 @@ void setup(CLI::App& app, int& exit_code) {
     c->add_flag("--no-psf", f->no_psf, "Do not write the PSF files");
     c->add_flag("--npy", f->psf_npy, "Also write the PSF as <stem>.psf.npy");
     c->add_flag("--json", f->json, "Print the sidecar JSON on stdout instead of a table");
-    c->footer(
-        "Examples:\n  pinmask export paper.mask.json --format svg,gds,pdf --marks --label --frame "
-        "1mm -o out/\n  pinmask export paper.mask.json --vendor film-plotter -o film/   (DXF in mm "
-        "+ 1-bit TIFF at 25400 dpi, emulsion down)\n  pinmask check out/paper.gds   (settings "
-        "from out/paper.export.json)");
+    c->footer(kExportFooter);
     c->callback([f, &exit_code] { exit_code = run_export(*f); });
 }
 

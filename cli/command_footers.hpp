@@ -1,5 +1,5 @@
-// The --help footers of score, compare, search, simulate and design (long teaching text kept out of
-// the command files so each stays parse -> call -> render).
+// The --help footers of score, compare, search, simulate, design, check and export (long teaching
+// text kept out of the command files so each stays parse -> call -> render).
 #pragma once
 
 namespace pinmask::cli {
@@ -144,5 +144,37 @@ inline constexpr const char* kDesignFooter =
     "      --sensor-distance 20mm --object-distance 2m --wavelength 530nm --pixels-per-cell 21\n"
     "      (solves d = 345 um for 21 whole pixels per cell at 2 m)\n"
     "  pinmask design --wavelength 850nm --bandwidth 30nm   (an LED's 30 nm band around 850 nm)";
+
+inline constexpr const char* kCheckFooter =
+    "A mask file is checked on the layout `pinmask export` builds from it. A fabrication file "
+    "(.gds .oas .dxf .gbr .svg) is read back in nanometres (DXF in its $INSUNITS unit). With "
+    "the sidecar <stem>.export.json beside it (written by export) the layout settings (tone, "
+    "mirroring, shape, size, frame, marks, label, grid, unit) and the mask come from the "
+    "sidecar: every ring, marks and label included, must match the design; explicit flags "
+    "must agree with the sidecar or the check stops (exit 2). Without a sidecar, give --mask "
+    "and the export's --shape/--sides/--hole-side/--frame/--chord-tol; tone, mirroring and grid "
+    "are read from the file; its rings inside the design's outline are the pinholes.\n"
+    "Pictures (.pdf .png .tif) are compared with the design drawn the same way: the 1-bit TIFF "
+    "pixel for pixel at its dpi, the PNG within 1 px of an edge (dpi from the sidecar), the PDF "
+    "ring by ring within 1/256 pt (Cairo's coordinate step); the design itself is then "
+    "design-rule checked.\n"
+    "Rules (exact, integer nm): ring, vertices, self_intersection, orientation (CCW), area, "
+    "feature, gap, touching, overlap, spacing (pinhole centroids on the tiled mask).\n"
+    "What identifies the film is compared with the sidecar's entry for the file, else with a "
+    "--vendor preset (export's default layers 1/0 and PINMASK, the preset's tone) and --tone: "
+    "GDSII/OASIS layer and datatype, DXF layer name (geometry on two layers always fails: the "
+    "shop images one), Gerber polarity (%TF.FilePolarity, also against the file's own tone "
+    "comment); what nothing says is listed as not compared.\n"
+    "Exit codes: 0 clean, 1 violations or a mismatch with the design or the film's identity, 2 "
+    "bad input, 3 the time "
+    "limit PINMASK_TIME_LIMIT was spent (a duration: 90s, 2m, 1.5h; off unless set; counted "
+    "from the start of the run): the check stops where it is and prints no verdict.\n"
+    "Example: pinmask export m.mask.json -o fab/ && pinmask check fab/m.gds";
+
+inline constexpr const char* kExportFooter =
+    "Examples:\n  pinmask export paper.mask.json --format svg,gds,pdf --marks --label --frame "
+    "1mm -o out/\n  pinmask export paper.mask.json --vendor film-plotter -o film/   (DXF in mm "
+    "+ 1-bit TIFF at 25400 dpi, emulsion down)\n  pinmask check out/paper.gds   (settings "
+    "from out/paper.export.json)";
 
 }  // namespace pinmask::cli

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "cli/options/decode_inputs.hpp"
+#include "cli/outputs/decode_files.hpp"
 #include "core/errors/error.hpp"
 #include "core/files/atomic_file.hpp"
 #include "core/files/output_folder.hpp"
@@ -75,29 +76,11 @@ json decode_one(BatchDecoder& decoder, const DecodeCommand& rc, BayerMode bayer,
         std::cerr << "pinmask: warning: " << rc.capture << ": " << line << "\n";
     add_summary_json(stats, timings, rc, sum);
     check_output_range(result.estimate, kind);
-    json output = {{"path", rc.output},
-                   {"format", output_kind_name(kind)},
-                   {"config", rc.output + ".config.json"}};
-    if (kind == OutputKind::kPng) {
-        const ScaledImage png = scale_for_png(result.estimate, scale);
-        files.stage(rc.output, [&](const fs::path& tmp) {
-            write_output_image(tmp, png.image, kind, rc.bits);
-        });
-        output["bits"] = rc.bits;
-        output["scaling"] = scale ? "factor" : "max";
-        output["scale_factor"] = png.factor;
-        output["max_value"] = png.max_value;
-    } else {
-        files.stage(rc.output, [&](const fs::path& tmp) {
-            write_output_image(tmp, result.estimate, kind, rc.bits);
-        });
-    }
-    json config = config_json(rc);
-    config["chosen"] = stats["chosen"];  // add_summary_json: what auto chose
-    files.stage_bytes(rc.output + ".config.json", config.dump(2) + "\n");
+    const StagedDecode staged =
+        stage_decode_files(files, rc, result.estimate, kind, scale, stats["chosen"]);
     if (!rc.stats.empty()) {
-        stats["output"] = output;
-        stats["config"] = config;
+        stats["output"] = staged.output;
+        stats["config"] = staged.config;
         stats["timings_s"] = timings;
         files.stage_bytes(rc.stats, stats.dump(2) + "\n");
     }

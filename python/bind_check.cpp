@@ -1,8 +1,9 @@
 // The design-rule check: check() follows `pinmask check` (cli/cmd_check.cpp) and returns what
-// its --json prints. A mask: export/pipeline/drc on its layout; a fabrication file:
-// export/pipeline/file_check (check_file_geometry: the DRC and the export/pipeline/read_back
-// comparison with the design). The layout settings come from the export sidecar beside the file
-// when there is one (as the CLI; io/sidecar_layout), else from the arguments.
+// its --json prints. Both run the library's transaction export/pipeline/check_run: a mask,
+// export/pipeline/drc on its layout; a fabrication file, export/pipeline/file_check (the DRC and
+// the export/pipeline/read_back comparison with the design) and the film's identity. The layout
+// settings come from the export sidecar beside the file when there is one (as the CLI;
+// io/sidecar_layout), else from the arguments.
 #include <cmath>
 #include <filesystem>
 
@@ -14,6 +15,7 @@
 #include "export/layout/rings.hpp"
 #include "export/layout/vendor_rules.hpp"
 #include "export/layout/xor_area.hpp"
+#include "export/pipeline/check_run.hpp"
 #include "export/pipeline/drc.hpp"
 #include "export/pipeline/file_check.hpp"
 #include "export/pipeline/film_identity.hpp"
@@ -112,6 +114,11 @@ void bind_check(py::module_& m) {
             CheckArgs o{min_gap,   min_feature, min_spacing, max_vertices, list,  shape, sides,
                         hole_side, frame,       chord_tol,   tone,         units, mirror};
             const io::CheckLayoutSettings given = layout_settings(o);
+            // The keywords' overrides, read with the GIL (the library calls them without it).
+            const RuleOverrides overrides = [&o](DrcRules rules) {
+                py::gil_scoped_acquire gil;
+                return resolve_rules(o, rules);
+            };
             if (!std::isfinite(max_xor_um2) || max_xor_um2 < 0)
                 throw invalid_field(field_ref("max_xor_um2"), std::to_string(max_xor_um2),
                                     "must be finite and >= 0");
@@ -151,11 +158,15 @@ void bind_check(py::module_& m) {
                 const Mask mk = input_is_mask ? input.cast<Mask>()
                                               : io::read_mask_file(
                                                     input_text, {.allow_spacing_violations = true});
-                l = make_layout(mk, io::check_layout(given, nullptr));
-                rules = resolve_rules(o, rules_for_mask(mk, vendor, l.grid_nm));
-                py::gil_scoped_release release;
-                r = run_drc(l, rules);
-                add_pattern_spacing(r, mk, l.pitch_nm, rules);  // before the layout's merging
+                const LayoutOptions lo = io::check_layout(given, nullptr);
+                CheckRun run;
+                {
+                    py::gil_scoped_release release;  // the overrides take it back
+                    run = check_mask(mk, lo, vendor, overrides, input_text);
+                }
+                l = std::move(run.check.layout);
+                rules = run.rules;
+                r = std::move(run.check.drc);
             } else {
                 const FileGeometry file = read_fabrication_file(input_text);
                 kind = fs::path(input_text).extension().string().substr(1);
@@ -177,47 +188,37 @@ void bind_check(py::module_& m) {
                 } else {
                     settings = "from the flags (no sidecar " + side_path.filename().string() + ")";
                 }
-                FileCheckOptions fo;
-                fo.max_xor_nm2 = max_xor_um2 * 1e6;
-                std::optional<Layout> design;
-                if (!design_mask) {
-                    DrcRules r;
-                    r.min_gap_nm = vendor.min_gap_nm;
-                    r.min_feature_nm = vendor.min_feature_nm;
-                    r.max_vertices = vendor.max_vertices;
-                    rules = resolve_rules(o, r);
-                    if (side) {
-                        const auto& a = side->active_area_nm;
-                        const std::int64_t fr = std::llround(side->frame_m * 1e9);
-                        fo.outline = BoxNm{a[0] - fr, a[1] - fr, a[2] + fr, a[3] + fr};
-                    }
-                } else {
-                    LayoutOptions lo = io::check_layout(given, side ? &*side : nullptr);
-                    if (!side) io::apply_file_declarations(lo, file);
-                    design = make_layout(*design_mask, lo);
-                    fo.design = &*design;
-                    fo.whole_layout = side.has_value();
-                    rules = resolve_rules(o, rules_for_mask(*design_mask, vendor, design->grid_nm));
+                FabricationCheckRequest q;
+                q.input = input_text;
+                q.vendor = vendor;
+                q.overrides = overrides;
+                q.max_xor_nm2 = max_xor_um2 * 1e6;
+                if (design_mask) {
+                    q.layout = io::check_layout(given, side ? &*side : nullptr);
+                    if (!side) io::apply_file_declarations(q.layout, file);
+                    q.mask = &*design_mask;
+                    q.whole_layout = side.has_value();
+                } else if (side) {
+                    const auto& a = side->active_area_nm;
+                    const std::int64_t fr = std::llround(side->frame_m * 1e9);
+                    q.outline = BoxNm{a[0] - fr, a[1] - fr, a[2] + fr, a[3] + fr};
                 }
-                fo.rules = rules;
-                FileCheck fc;
+                q.film = io::film_identity_expected(input_text, side ? &*side : nullptr, side_path,
+                                                    no_sidecar, vendor_arg, tone);
+                CheckRun run;
                 {
-                    py::gil_scoped_release release;
-                    fc = check_file_geometry(file,
-                                             fo);  // export/pipeline/file_check: DRC + read_back
+                    py::gil_scoped_release release;    // the overrides take it back
+                    run = check_fabrication(file, q);  // export/pipeline/check_run
                 }
+                const FileCheck& fc = run.check;
+                rules = run.rules;
                 l = fc.layout;
                 r = fc.drc;
-                identity = check_film_identity(
-                    file, *readable_format_of(input_text),
-                    io::film_identity_expected(input_text, side ? &*side : nullptr, side_path,
-                                               no_sidecar, vendor_arg, tone));
-                if (design_mask && design)
-                    add_pattern_spacing(r, *design_mask, design->pitch_nm, rules);
+                identity = fc.identity;
                 if (fc.comparison) {
                     const ReadBack& k = *fc.comparison;
                     comparison_ok =
-                        k.xor_area_nm2 <= fo.max_xor_nm2 && (k.file_hash.empty() || k.hash_ok());
+                        k.xor_area_nm2 <= q.max_xor_nm2 && (k.file_hash.empty() || k.hash_ok());
                     py::dict cd;
                     cd["mask"] = mask_text;
                     cd["xor_area_um2"] = k.xor_area_nm2 * 1e-6;

@@ -1,24 +1,16 @@
 // Fabrication export. export_mask() is `pinmask export`'s library pipeline for the fabrication
 // files (cli/options/export_options turns the same flags into ExportOptions;
-// export/pipeline/export_pipeline export_mask; each file read back from disk with
-// export/pipeline/read_back verify_written before it is committed): same bytes, and the export
-// sidecar (io/export_sidecar_of). The PSF files are the CLI's (write_psf() writes the PSF).
+// io/export_files write_export, the transaction the command calls: each file read back from disk
+// before it is committed): same bytes, the same PSF files and the export sidecar.
 // layout() builds the same layout (make_layout with the pipeline's LayoutOptions).
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
-#include <sstream>
 
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
-#include "core/files/atomic_file.hpp"
 #include "core/files/output_set.hpp"
 #include "core/units/units.hpp"
-#include "design/psf/psf.hpp"
 #include "export/formats/read_any.hpp"
 #include "export/formats/write_any.hpp"
 #include "export/layout/geometry.hpp"
@@ -28,11 +20,9 @@
 #include "export/pipeline/drc.hpp"
 #include "export/pipeline/export_pipeline.hpp"
 #include "export/pipeline/export_request.hpp"
-#include "export/pipeline/read_back.hpp"
+#include "io/export_files.hpp"
 #include "io/export_sidecar.hpp"
-#include "io/export_sidecar_of.hpp"
 #include "io/mask_json.hpp"
-#include "io/psf_files.hpp"
 #include "python/common.hpp"
 #include "python/keyword_names.hpp"
 #include "python/result.hpp"
@@ -246,89 +236,32 @@ void bind_export(py::module_& m) {
             // No output may replace the mask file read (as the command's plan_outputs refuses;
             // the module leaves the process-wide input protection off, so it checks here).
             if (!f.input.empty()) {
-                std::vector<std::string> names{stem + ".export.json"};
-                for (FabFormat ff : o.formats) names.push_back(stem + fab_extension(ff));
-                if (psf) {
-                    names.push_back(stem + ".psf.tiff");
-                    names.push_back(
-                        io::psf_sidecar_path(fs::path(stem + ".psf.tiff")).filename().string());
-                    if (npy) names.push_back(stem + ".psf.npy");
-                }
-                for (const std::string& n : names)
-                    if (same_file(fs::path(out_dir) / n, f.input))
+                for (const io::ExportOutput& x : io::export_outputs(f, o, out_dir, stem))
+                    if (same_file(x.path, f.input))
                         throw invalid_field(field_ref("stem"), stem,
-                                            "would write " + n + " over the mask file " + f.input);
+                                            "would write " + x.path.filename().string() +
+                                                " over the mask file " + f.input);
             }
-            py::list files;
-            std::vector<fs::path> psf_written;
-            ExportSummary summary;
             const fs::path sidecar_path = fs::path(out_dir) / (stem + ".export.json");
+            io::ExportWritten w;
             {
                 py::gil_scoped_release release;
-                summary = pinmask::export_mask(mk, o);
-                // The export sidecar (io/export_sidecar_of, as `pinmask export` writes it):
-                // check() of these files reads their layout settings and rules from it.
-                io::ExportSidecar side = io::export_sidecar_of(f, mk, o, summary);
-                for (std::string& n : side.notes) n = py_names::spell_keywords(n);
-                // The PSF files beside the layouts, as the command writes them (<stem>.psf.tiff,
-                // its sidecar, with npy <stem>.psf.npy): decode --psf reads them.
-                std::optional<std::pair<Plane, io::PsfSidecar>> psf_files;
-                if (psf) {
-                    check_psf_memory(mk.pattern.n, mk.psf.pixels_per_cell, 2, 0);
-                    const Kernel kernel = mask_kernel(mk);
-                    psf_files.emplace(synthesize_psf(mk.pattern, kernel, mk.psf.pixels_per_cell),
-                                      io::psf_sidecar_for(mk, kernel, f.input));
-                }
-                fs::create_directories(out_dir);
-                StagedFiles staged;
-                std::vector<std::tuple<std::string, std::string, std::size_t, std::string>> info;
-                for (const ExportedFile& e : summary.files) {
-                    const fs::path path = fs::path(out_dir) / (stem + e.extension);
-                    std::string check = "not readable (written only)";
-                    staged.stage(path, [&](const fs::path& tmp) {
-                        {
-                            std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-                            out.write(e.bytes.data(), std::streamsize(e.bytes.size()));
-                            out.close();  // a failed flush (disk full, size limit) shows here
-                            if (!out)
-                                throw RuntimeFailure("cannot write " + tmp.string() + ": " +
-                                                     std::strerror(errno));
-                        }
-                        if (is_readable(e.format)) {
-                            std::ifstream in(tmp, std::ios::binary);
-                            const std::string back{std::istreambuf_iterator<char>(in),
-                                                   std::istreambuf_iterator<char>()};
-                            check = verify_written(back, e.format, summary.layout);
-                        }
-                    });
-                    info.emplace_back(path.string(), fab_format_name(e.format), e.bytes.size(),
-                                      check);
-                    side.files.push_back(
-                        io::sidecar_file_entry(path.filename().string(), e, check, f, o));
-                }
-                if (psf_files) {
-                    // staged with the fabrication files: all appear, or none
-                    psf_written =
-                        io::stage_psf_files(staged, fs::path(out_dir) / (stem + ".psf.tiff"),
-                                            psf_files->first, psf_files->second, npy);
-                    for (const fs::path& p : psf_written)
-                        side.psf_files.push_back(p.filename().string());
-                    side.psf_kernel = psf_files->second.kernel_model;
-                    side.psf_pixels_per_cell = psf_files->second.pixels_per_cell;
-                    side.psf_rows = int(psf_files->first.rows());
-                    side.psf_cols = int(psf_files->first.cols());
-                }
-                staged.stage_bytes(sidecar_path, io::export_sidecar_text(side));
-                staged.commit();
-                py::gil_scoped_acquire gil;
-                for (const auto& [path, format, size, check] : info) {
-                    py::dict d;
-                    d["path"] = path;
-                    d["format"] = format;
-                    d["bytes"] = size;
-                    d["verification"] = check;
-                    files.append(d);
-                }
+                // io/export_files, as `pinmask export` writes them: check() of these files reads
+                // their layout settings and rules from the sidecar, decode --psf the PSF files.
+                w = io::write_export(mk, f, o, out_dir, stem, [](const std::string& n) {
+                    return py_names::spell_keywords(n);
+                });
+            }
+            const ExportSummary& summary = w.summary;
+            py::list files;
+            for (std::size_t i = 0; i < summary.files.size(); ++i) {
+                const ExportedFile& e = summary.files[i];
+                py::dict d;
+                d["path"] = (fs::path(out_dir) / (stem + e.extension)).string();
+                d["format"] = fab_format_name(e.format);
+                d["bytes"] = e.bytes.size();
+                d["verification"] = w.sidecar.files.at(i).verification;
+                files.append(d);
             }
             const DrcReport& drc = summary.drc;
             const Layout& layout = summary.layout;
@@ -339,7 +272,7 @@ void bind_export(py::module_& m) {
             out["mask_hash"] = layout.mask_hash;
             out["sidecar"] = sidecar_path.string();
             py::list psf_paths;
-            for (const fs::path& p : psf_written) psf_paths.append(p.string());
+            for (const fs::path& p : w.psf) psf_paths.append(p.string());
             out["psf_files"] = psf_paths;
             return as_result(out);
         },
@@ -363,7 +296,8 @@ bytes; export/pipeline/export_pipeline): formats svg pdf gds oasis dxf gerber pn
 out_dir/<stem>.svg .pdf .gds .oas .dxf .gbr .png .tif, all or nothing (None: the vendor
 preset's formats, else svg pdf gds dxf gerber png, as the command); dpi: PNG/TIFF
 resolution (None: the CLI's default per format); each readable format is read back from disk and compared with the design (identical polygons or XOR area 0, and the mask
-hash), else RuntimeError and no file. The design-rule check (vendor: an export preset or rules
+hash), each picture (pdf, png, tiff1) with the design drawn the same way, as the command does,
+else RuntimeError and no file. The design-rule check (vendor: an export preset or rules
 film | chrome | none; min_feature / min_space: the shop's own limits over them, lengths) is
 checked: a violation is a RuntimeError naming every failed rule and no file is written
 (require_drc_clean, the default, kept for scripts; write_on_violations=True writes the files for

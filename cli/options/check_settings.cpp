@@ -1,14 +1,31 @@
 #include "cli/options/check_settings.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <string>
 
 #include "core/errors/error.hpp"
+#include "core/files/input_file.hpp"
 #include "core/units/units.hpp"
 #include "export/pipeline/vendor_presets.hpp"
 #include "io/sidecar_layout.hpp"
 
 namespace pinmask::cli {
+
+namespace fs = std::filesystem;
+
+void validate(const CheckOptions& o) {
+    if (fs::exists(o.input)) {
+        if (const auto problem = input_file_problem(o.input))
+            throw invalid_field("input", o.input, *problem);
+    }
+    if (!fs::is_regular_file(o.input))
+        throw invalid_field("input", o.input, "must be an existing mask or fabrication file");
+    if (!std::isfinite(o.max_xor_um2) || o.max_xor_um2 < 0)
+        throw invalid_field("--max-xor-um2", std::to_string(o.max_xor_um2),
+                            "must be finite and >= 0");
+    if (o.list < 1) throw invalid_field("--list", std::to_string(o.list), "must be >= 1");
+}
 
 // The flags as given settings; the rules are io/sidecar_layout's (shared with the Python module).
 LayoutOptions design_options(const CheckOptions& o, const io::ExportSidecar* side) {

@@ -27,6 +27,11 @@ struct CheckOptions {
     bool json = false;
 };
 
+// The input and the flags checked before any file is read: the input an existing regular file
+// (not a device or a folder), --max-xor-um2 finite and >= 0, --list >= 1; InvalidInput naming
+// each otherwise.
+void validate(const CheckOptions& o);
+
 // Layout settings: the sidecar's (when given), every explicit flag required to agree with it
 // (InvalidInput naming the flag otherwise); without a sidecar, the flags.
 LayoutOptions design_options(const CheckOptions& o, const io::ExportSidecar* side);

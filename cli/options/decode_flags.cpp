@@ -1,11 +1,13 @@
 #include "cli/options/decode_flags.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <string>
 
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
 #include "core/units/units.hpp"
+#include "decode/capture/estimate_output.hpp"
 #include "decode/solvers/decode_modes.hpp"
 
 namespace pinmask::cli {
@@ -285,6 +287,25 @@ std::optional<double> parse_scale(const std::string& s) {
     const double v = parse_number(s, "--scale");
     if (!(v > 0.0)) throw invalid_field("--scale", s, "must be max or a factor > 0");
     return v;
+}
+
+void refuse_ignored_output_flags(const CLI::App& cmd, const DecodeCommand& o, bool batch,
+                                 const std::string& batch_format) {
+    const auto given = [&](const char* flag) { return cmd.count(flag) > 0; };
+    const auto value = [&](const char* flag) { return cmd.get_option(flag)->as<std::string>(); };
+    for (const char* flag : {"--batch-format", "--batch-stats"})
+        if (!batch && given(flag))
+            throw invalid_field(flag, value(flag),
+                                "is used with --batch only; remove it or give --batch");
+    std::string format = batch_format;
+    for (char& c : format) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (!batch && o.output.empty()) return;  // refused as missing later
+    const bool png = batch ? format == "png" : output_kind(o.output) == OutputKind::kPng;
+    for (const char* flag : {"--bits", "--scale"})
+        if (!png && given(flag))
+            throw invalid_field(flag, value(flag),
+                                "is used by .png output only (.tif/.tiff and .npy hold the raw "
+                                "float32 estimate); remove it or write .png");
 }
 
 }  // namespace pinmask::cli

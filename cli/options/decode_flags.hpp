@@ -64,6 +64,12 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeCommand& command);
 // meaningless (--lambda 0 for tikhonov).
 void resolve_method(DecodeCommand& command, const DecodeFlags& flags);
 
+// Flags this run would ignore are refused, as the method's parameters are (resolve_method): the
+// batch's flags (--batch-format, --batch-stats) without --batch (`batch`), and PNG's --bits and
+// --scale for .tif/.tiff and .npy output (`batch_format` under --batch, else -o's extension).
+void refuse_ignored_output_flags(const CLI::App& cmd, const DecodeCommand& command, bool batch,
+                                 const std::string& batch_format);
+
 // Parses the remaining text flags (--crop, --background, --model, --regulariser, --normalize,
 // --precision; "auto" where the setting has one) into command.request; InvalidInput naming the
 // flag otherwise.
