@@ -39,9 +39,15 @@ std::string kernel_model_names() { return names_of(kKernelModelNames); }
 
 KernelChoice choose_kernel_model(double fresnel_number) {
     if (std::isnan(fresnel_number)) {
-        throw invalid_field("Fresnel number", "nan", "must be a number");
+        throw invalid_field("fresnel_number", "nan", "must be a number");
     }
-    const double n = std::fabs(fresnel_number);
+    // N = d^2 |1/f - 1/f' + 1/u| / (4 lambda) is never negative: a negative value is a wrong
+    // input, not a distance on the other side of focus (every caller passes the magnitude).
+    if (fresnel_number < 0.0) {
+        throw invalid_field("fresnel_number", number(fresnel_number),
+                            "must be >= 0 (N = d^2 |1/f - 1/f' + 1/u| / (4 lambda))");
+    }
+    const double n = fresnel_number;
     const std::string l1 = " (L1 error <= " + number(kAutoL1Target) + ")";
     if (n <= kAutoFraunhoferMaxN) {
         return {KernelModel::kFraunhofer, "N = " + number(n) +

@@ -392,8 +392,8 @@ FileGeometry read_gds(std::string_view bytes) {
     g.info["structure"] = top;
     if (order.size() > 1) g.info["hierarchy"] = "yes";
     std::uint64_t visits = 0;
-    double bytes = 0.0;
-    flatten(structures_by_name, top, {0, 0}, 0, g.rings, visits, bytes);
+    double charged = 0.0;  // the rings' cost through the check so far (flatten)
+    flatten(structures_by_name, top, {0, 0}, 0, g.rings, visits, charged);
     return g;
 }
 

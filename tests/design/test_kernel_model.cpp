@@ -57,7 +57,7 @@ TEST_CASE("auto picks by N with the documented bounds") {
     CHECK(choose_kernel_model(kAutoFraunhoferMaxN).model == KernelModel::kFraunhofer);
     CHECK(choose_kernel_model(kAutoFraunhoferMaxN * 1.001).model == KernelModel::kFresnel);
     CHECK(choose_kernel_model(0.87).model == KernelModel::kFresnel);
-    CHECK(choose_kernel_model(-0.87).model == KernelModel::kFresnel);
+    CHECK_THROWS_AS(choose_kernel_model(-0.87), InvalidInput);  // N is a magnitude
     CHECK(choose_kernel_model(kAutoBoxMinN * 0.999).model == KernelModel::kFresnel);
     CHECK(choose_kernel_model(kAutoBoxMinN).model == KernelModel::kBox);
     CHECK(choose_kernel_model(1e9).model == KernelModel::kBox);

@@ -198,3 +198,10 @@ def test_decode_batch_refuses_a_full_resolution_psf_for_binned_raw_captures():
     psf[3, 5], psf[7, 9] = 1.0, 2.0
     with pytest.raises(ValueError, match="one PSF serves every capture of a batch"):
         pinmask.decode_batch([raw], psf=psf)
+
+
+def test_a_negative_fresnel_number_is_refused():
+    """N = d^2 |1/f - 1/f' + 1/u| / (4 lambda) is a magnitude: -0.87 picked the Fresnel kernel."""
+    with pytest.raises(ValueError, match=r"fresnel_number = -0\.87: must be >= 0"):
+        pinmask.choose_kernel_model(-0.87)
+    assert pinmask.choose_kernel_model(0.87)[0] == "fresnel"
