@@ -205,3 +205,12 @@ def test_a_negative_fresnel_number_is_refused():
     with pytest.raises(ValueError, match=r"fresnel_number = -0\.87: must be >= 0"):
         pinmask.choose_kernel_model(-0.87)
     assert pinmask.choose_kernel_model(0.87)[0] == "fresnel"
+
+
+def test_a_psf_stack_of_different_sizes_is_refused():
+    """The command's stack reader refuses planes of different sizes; an array stack met no check."""
+    cap = np.random.default_rng(1).random((64, 64))
+    h1, h2 = np.zeros((16, 16)), np.zeros((20, 20))
+    h1[3, 3] = h2[4, 4] = 1.0
+    with pytest.raises(ValueError, match=r"psf_stack = 20x20: plane 1 differs from plane 0's 16x16"):
+        pinmask.depthmap(cap, psf_stack=[(0.5, h1), (1.0, h2)], window=5)
