@@ -68,7 +68,7 @@ json decode_one(BatchDecoder& decoder, const DecodeCommand& rc, BayerMode bayer,
     RawInfo raw;
     Image capture = load_capture(rc.capture, bayer, stats, rc.bayer_given, &raw);
     for (const Plane& psf : decoder.shared().psf.channels)
-        check_shared_psf_sampling(psf, capture.rows(), capture.cols(), raw);
+        check_shared_psf_sampling(psf.rows(), psf.cols(), capture.rows(), capture.cols(), raw);
     const CaptureDecodeResult result = decoder.decode(std::move(capture));
     const CaptureDecodeSummary& sum = result.summary;
     std::istringstream warnings(period_warning(sum.period));

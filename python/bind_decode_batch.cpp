@@ -71,10 +71,13 @@ void bind_decode_batch(py::module_& m) {
                     // is refused, as decode --batch refuses it (core/image/mosaic.hpp).
                     if (raw.binning == 2 && options.contains("psf") &&
                         py::isinstance<py::array>(options["psf"])) {
-                        const auto psf = plane_arg(options["psf"], "psf");
+                        const py::array psf = options["psf"];  // its shape only: no copy
                         try {
-                            check_shared_psf_sampling(psf.get(), li.image.rows(), li.image.cols(),
-                                                      raw);
+                            // A PSF that is not 2-D is decode()'s to refuse, below.
+                            if (psf.ndim() == 2)
+                                check_shared_psf_sampling(static_cast<int>(psf.shape(0)),
+                                                          static_cast<int>(psf.shape(1)),
+                                                          li.image.rows(), li.image.cols(), raw);
                         } catch (const InvalidInput& e) {
                             throw InvalidInput(source + ": " + e.what());
                         }

@@ -57,20 +57,27 @@ LoadedImage read_capture_as_mosaic(const std::filesystem::path& path, BayerMode 
     return out;
 }
 
-void match_psf_to_binned_capture(Plane& psf, int capture_rows, int capture_cols,
-                                 const RawInfo& info, std::string& note) {
-    if (info.binning != 2) return;
-    if (psf.rows() <= capture_rows && psf.cols() <= capture_cols) return;
-    const bool twice = (psf.rows() == 2 * capture_rows || psf.rows() == 2 * capture_rows + 1) &&
-                       (psf.cols() == 2 * capture_cols || psf.cols() == 2 * capture_cols + 1);
-    const std::string sizes = "the capture, read at half resolution (" + field_ref("bayer") + " " +
-                              info.bayer + "), is " + size_text(capture_rows, capture_cols) +
-                              "; the PSF is " + size_text(psf.rows(), psf.cols());
-    if (twice && info.bayer == "sum2x2") {
-        psf = sum_2x2_blocks(psf, "PSF");
-        note = sizes + ", the sensor's full resolution: its 2 x 2 blocks summed as the capture's";
-        return;
-    }
+namespace {
+
+// "the capture, read at half resolution (bayer B), is W x H; the PSF is W x H"
+std::string sampling_sizes(int psf_rows, int psf_cols, int capture_rows, int capture_cols,
+                           const RawInfo& info) {
+    return "the capture, read at half resolution (" + field_ref("bayer") + " " + info.bayer +
+           "), is " + size_text(capture_rows, capture_cols) + "; the PSF is " +
+           size_text(psf_rows, psf_cols);
+}
+
+// The relation of a PSF's size to a capture's sampling: false when the PSF is taken as it is,
+// true when it is the sensor's full resolution for a sum2x2 capture (to be summed 2 x 2); every
+// other PSF larger than a binned capture is refused here (InvalidInput naming field_ref("bayer")).
+bool psf_needs_binning(int psf_rows, int psf_cols, int capture_rows, int capture_cols,
+                       const RawInfo& info) {
+    if (info.binning != 2) return false;
+    if (psf_rows <= capture_rows && psf_cols <= capture_cols) return false;
+    const bool twice = (psf_rows == 2 * capture_rows || psf_rows == 2 * capture_rows + 1) &&
+                       (psf_cols == 2 * capture_cols || psf_cols == 2 * capture_cols + 1);
+    if (twice && info.bayer == "sum2x2") return true;
+    const std::string sizes = sampling_sizes(psf_rows, psf_cols, capture_rows, capture_cols, info);
     if (twice) {
         throw invalid_field(field_ref("bayer"), info.bayer,
                             sizes +
@@ -84,16 +91,22 @@ void match_psf_to_binned_capture(Plane& psf, int capture_rows, int capture_cols,
                             "its sampling; give a PSF at the capture's sampling");
 }
 
-void check_shared_psf_sampling(const Plane& psf, int capture_rows, int capture_cols,
+}  // namespace
+
+void match_psf_to_binned_capture(Plane& psf, int capture_rows, int capture_cols,
+                                 const RawInfo& info, std::string& note) {
+    const int pr = static_cast<int>(psf.rows()), pc = static_cast<int>(psf.cols());
+    if (!psf_needs_binning(pr, pc, capture_rows, capture_cols, info)) return;
+    psf = sum_2x2_blocks(psf, "PSF");
+    note = sampling_sizes(pr, pc, capture_rows, capture_cols, info) +
+           ", the sensor's full resolution: its 2 x 2 blocks summed as the capture's";
+}
+
+void check_shared_psf_sampling(int psf_rows, int psf_cols, int capture_rows, int capture_cols,
                                const RawInfo& capture_info) {
-    if (capture_info.binning != 2) return;
-    if (psf.rows() <= capture_rows && psf.cols() <= capture_cols) return;
-    Plane copy = psf;
-    std::string note;
-    // Refuses the sizes and colour sites no capture could take; binning is left to say below.
-    match_psf_to_binned_capture(copy, capture_rows, capture_cols, capture_info, note);
+    if (!psf_needs_binning(psf_rows, psf_cols, capture_rows, capture_cols, capture_info)) return;
     throw invalid_field(
-        field_ref("psf"), size_text(psf.rows(), psf.cols()),
+        field_ref("psf"), size_text(psf_rows, psf_cols),
         "is the sensor's full resolution, and the capture " +
             size_text(capture_rows, capture_cols) + " is read at half resolution (" +
             field_ref("bayer") + " " + capture_info.bayer +

@@ -38,8 +38,9 @@ void match_psf_to_binned_capture(Plane& psf, int capture_rows, int capture_cols,
 
 // The same check where one PSF serves many captures (decode --batch, decode_batch): the PSF is
 // not binned per capture, so a PSF that match_psf_to_binned_capture would bin is refused too,
-// saying so (InvalidInput naming field_ref("psf"), both sizes); the refusals above stand.
-void check_shared_psf_sampling(const Plane& psf, int capture_rows, int capture_cols,
+// saying so (InvalidInput naming field_ref("psf"), both sizes); the refusals above stand. Only
+// the sizes are read: a batch checks each capture without copying its PSF.
+void check_shared_psf_sampling(int psf_rows, int psf_cols, int capture_rows, int capture_cols,
                                const RawInfo& capture_info);
 
 }  // namespace pinmask
