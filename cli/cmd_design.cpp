@@ -66,7 +66,6 @@ GridSnap fab_grid_of(const DesignOptions& o) {
     return g;
 }
 
-
 void run(const DesignOptions& o, const CLI::App& command) {
     // --pixels-per-cell solves the pinhole itself: no default pinhole is chosen (or said) first.
     CameraOptions camera_options = o.camera;

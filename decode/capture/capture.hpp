@@ -1,6 +1,6 @@
 // The capture pipeline around decode_plane(): validation of the inputs, dark-frame subtraction,
-// the crop of one period (docs/design.md section 2: "any one full period decodes the scene") and the
-// per-channel decode, run on one std::thread per channel.
+// the crop of one period (docs/design.md section 2: "any one full period decodes the scene") and
+// the per-channel decode, run on one std::thread per channel.
 //
 // Notation: the capture is R x C pixels with one or three channels; the period is the PSF's size
 // Pr x Pc (the mask's PSF is one period of the cyclic tiling). Rows are y (downwards), columns

@@ -176,12 +176,11 @@ DepthmapResult depthmap(const Plane& capture, const std::vector<PsfStackPlane>& 
         // One camera's stack: every plane the size of the first (the command's reader refuses
         // a listing that differs; an array stack from Python met no check before).
         if (k > 0 && (h.rows() != stack[0].psf.rows() || h.cols() != stack[0].psf.cols())) {
-            throw invalid_field(field_ref("psf_stack"),
-                                std::to_string(h.rows()) + "x" + std::to_string(h.cols()),
-                                "plane " + std::to_string(k) + " differs from plane 0's " +
-                                    std::to_string(stack[0].psf.rows()) + "x" +
-                                    std::to_string(stack[0].psf.cols()) +
-                                    " (one camera's stack has one size)");
+            throw invalid_field(
+                field_ref("psf_stack"), std::to_string(h.rows()) + "x" + std::to_string(h.cols()),
+                "plane " + std::to_string(k) + " differs from plane 0's " +
+                    std::to_string(stack[0].psf.rows()) + "x" +
+                    std::to_string(stack[0].psf.cols()) + " (one camera's stack has one size)");
         }
         if (!is_all_finite(h) || h.minCoeff() < 0.0 || !(h.sum() > 0.0)) {
             throw invalid_field(field_ref("psf_stack"), "",

@@ -711,9 +711,9 @@ DecodeResult run_admm(const ConvolutionOperator& op, const Plane& capture_d, con
             const double mu = linear ? kMuLinear : kMu, tau = linear ? kTauLinear : kTau;
             // The gradient split's dual residual in the units of a PSF that sums to 1 (rho /
             // |H(0)|^2): rho follows the PSF's scale squared, the residuals its inverse.
-            const double f = balance(std::sqrt(sums.prim2),
-                                     rho / std::max(h0, 1e-300) * std::sqrt(sums.dual2), rho, mu,
-                                     tau);
+            const double f =
+                balance(std::sqrt(sums.prim2), rho / std::max(h0, 1e-300) * std::sqrt(sums.dual2),
+                        rho, mu, tau);
             double fs = 1.0;
             if (linear) fs = balance(prim_s, dual_s, rho_s, mu, tau);
             if (f != 1.0) {

@@ -126,7 +126,8 @@ TEST_CASE("paper: 8 px at 6 m, mismatch against the 8-px model, near end clamps 
     CHECK(wd.pixels_per_cell == 8);
     CHECK(std::fabs(wd.pixels_per_cell_at_u - 8.08) <= 0.005);  // design.md 2: 8.08 pixels
     CHECK_CLOSE(wd.lsi_mismatch_px, 16 * (wd.pixels_per_cell_at_u - 8.0), kExactRel);
-    const WorkingDistance huge = compute_working_distance(paper_camera(), {16, 20, 2, 2}, {1000, 0});
+    const WorkingDistance huge =
+        compute_working_distance(paper_camera(), {16, 20, 2, 2}, {1000, 0});
     CHECK(huge.range_near_clamped_to_focal);
     CHECK(huge.range_near_m == paper_camera().lens_focal_m);
 }
