@@ -18,6 +18,10 @@ import tempfile
 import numpy as np
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tests" / "python"))
+# The box spot by exact pixel overlap and the PSNR after gain and offset, as the refocus test
+# renders and scores its capture.
+from test_refocus import box_overlap, psnr_aligned as psnr  # noqa: E402
 PM = sys.argv[1] if len(sys.argv) > 1 else str(ROOT / "build" / "cli" / "pinmask")
 F, FL, W = 4.2e-3, 4.4e-3, 1.12e-6
 ROWS, COLS = int(os.environ.get("ROWS", 378)), int(os.environ.get("COLS", 504))
@@ -33,11 +37,6 @@ def run(d, *args):
     if r.returncode:
         raise SystemExit(r.stderr)
     return r
-
-
-def box_overlap(centre, side, size):
-    k = np.arange(size, dtype=float)
-    return np.clip(np.minimum(k + 1, centre + side / 2) - np.maximum(k, centre - side / 2), 0, None)
 
 
 def true_psf(mask, u):
@@ -60,12 +59,6 @@ def scene(shape, rng):
     s = np.fft.rfft2(rng.standard_normal(shape)) / np.maximum(np.hypot(fy, fx), 1.0 / max(shape))
     x = np.fft.irfft2(s, shape)
     return (x - x.min()) / (x.max() - x.min())
-
-
-def psnr(estimate, truth):
-    a = np.stack([estimate.ravel(), np.ones(estimate.size)], 1)
-    coef, *_ = np.linalg.lstsq(a, truth.ravel(), rcond=None)
-    return 10 * np.log10(1.0 / np.mean((a @ coef - truth.ravel()) ** 2))
 
 
 def main():
