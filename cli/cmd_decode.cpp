@@ -77,31 +77,35 @@ void run_decode(DecodeCommand& r, BayerMode bayer) {
     load_nsr_map(r, options.decode, stats);
     timings["load"] = seconds_since(t0);
 
+    // Everything before the decode, so that the method (given, or chosen from the capture) is
+    // known before it runs.
+    const int channels = inputs.capture.n_channels();
+    PreparedCapture prepared =
+        naming_nsr_map(r, [&] { return prepare_capture(std::move(inputs), options); });
+    DecodeOptions& d = prepared.decode;
     // Iterative methods stop on SIGINT/SIGTERM after their current iteration; the estimate so
     // far is then written like a finished one and marked interrupted.
-    if (is_iterative(options.decode.method)) {
-        options.decode.iterative.stop = &install_interrupt_flag();
+    if (is_iterative(d.method)) {
+        d.iterative.stop = &install_interrupt_flag();
         if (::isatty(2))
-            std::cerr << "decode: " << r.method << ", up to "
-                      << options.decode.iterative.max_iterations
+            std::cerr << "decode: " << decode_method_name(d.method) << ", up to "
+                      << d.iterative.max_iterations
                       << " iterations; Ctrl-C stops and writes the estimate so far\n";
     }
     // Iterations finished over all channels, counted by the solvers: the progress lines.
     std::atomic<long long> iterations_done{0};
-    options.decode.iterative.iterations_done = &iterations_done;
-    const long long most_iterations =
-        static_cast<long long>(options.decode.iterative.max_iterations) *
-        inputs.capture.n_channels();
+    d.iterative.iterations_done = &iterations_done;
+    const long long most_iterations = static_cast<long long>(d.iterative.max_iterations) * channels;
+    const bool iterative = is_iterative(d.method);
     std::optional<CaptureDecodeResult> decoded;
-    run_with_decode_progress(
-        most_iterations, is_iterative(options.decode.method) && !r.quiet, iterations_done, [&] {
-            decoded = naming_nsr_map(r, [&] { return decode_capture(std::move(inputs), options); });
-        });
+    run_with_decode_progress(most_iterations, iterative && !r.quiet, iterations_done, [&] {
+        decoded = naming_nsr_map(r, [&] { return decode_prepared(std::move(prepared)); });
+    });
     const CaptureDecodeResult& result = *decoded;
     const CaptureDecodeSummary& sum = result.summary;
     for (const std::string& note : sum.notes) explain(spell_flags(note));
     explain("FFT planning " + std::to_string(sum.seconds.fft_planning) + " s during the decode");
-    print_decode_warnings(sum);
+    print_decode_warnings(sum, r.quiet);
     add_summary_json(stats, timings, r, sum);
     check_output_range(result.estimate, kind);
 

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "cli/options/decode_inputs.hpp"
+#include "cli/options/flag_names.hpp"
 #include "cli/outputs/decode_files.hpp"
 #include "core/errors/error.hpp"
 #include "core/files/atomic_file.hpp"
@@ -52,6 +53,7 @@ json capture_entry(const DecodeCommand& rc, const CaptureDecodeSummary& sum) {
               {"row", sum.window.row},
               {"cols", sum.window.cols},
               {"rows", sum.window.rows}}},
+            {"method", decode_method_name(sum.method)},
             {"single_precision", sum.single_precision},
             {"period", period_check_json(sum.period)},
             {"channels", channels}};
@@ -74,6 +76,9 @@ json decode_one(BatchDecoder& decoder, const DecodeCommand& rc, BayerMode bayer,
     std::istringstream warnings(period_warning(sum.period));
     for (std::string line; std::getline(warnings, line);)
         std::cerr << "pinmask: warning: " << rc.capture << ": " << line << "\n";
+    if (!rc.quiet)  // a method or weight this capture makes poor (the stats keep them)
+        for (const std::string& w : sum.warnings)
+            std::cerr << "pinmask: warning: " << rc.capture << ": " << spell_flags(w) << "\n";
     add_summary_json(stats, timings, rc, sum);
     check_output_range(result.estimate, kind);
     const StagedDecode staged =

@@ -32,8 +32,9 @@ struct DecodeOutput {
     std::vector<DecodeResult> results;
     CropWindow window;
     PeriodCheck period;
-    std::vector<std::string> warnings;  // CaptureDecodeSummary::warnings
-    std::vector<ChosenSetting> chosen;  // CaptureDecodeSummary::chosen
+    DecodeMethod method = DecodeMethod::kWiener;  // CaptureDecodeSummary::method
+    std::vector<std::string> warnings;            // CaptureDecodeSummary::warnings
+    std::vector<ChosenSetting> chosen;            // CaptureDecodeSummary::chosen
 };
 
 // The capture: a borrowed library plane (mono, no copy) or an owned image.
@@ -46,16 +47,15 @@ struct CaptureArg {
     int cols() const { return plane ? int(plane->cols()) : image.cols(); }
 };
 
-// `pinmask decode`'s library pipeline (decode/capture/capture_pipeline decode_capture: dark frame,
-// period check, crop, PSF to unit sum, precision, each channel decoded) with the CLI's own
-// options (capture_decode_options). The pipeline owns its inputs: a borrowed capture or PSF
-// is copied into it (a C++ copy, not a numpy conversion: input_copies() does not count it), a
-// plane already converted from numpy is moved in.
-DecodeOutput decode_pipeline(CaptureArg& cap, PlaneArg& psf_in, bool measured_psf,
-                             const std::optional<Image>& dark, const CaptureDecodeOptions& o,
-                             const std::atomic<bool>* stop) {
-    CaptureDecodeOptions options = o;
-    options.decode.iterative.stop = stop;
+// `pinmask decode`'s library pipeline (decode/capture/capture_pipeline: dark frame, background,
+// period check, crop, the automatic settings, PSF to unit sum, precision) with the CLI's own
+// options (capture_decode_options), up to the decode: its method is then known. The pipeline
+// owns its inputs: a borrowed capture or PSF is copied into it (a C++ copy, not a numpy
+// conversion: input_copies() does not count it), a plane already converted from numpy is moved
+// in.
+PreparedCapture prepare_pipeline(CaptureArg& cap, PlaneArg& psf_in, bool measured_psf,
+                                 const std::optional<Image>& dark,
+                                 const CaptureDecodeOptions& options) {
     CaptureDecodeInputs in;
     in.capture = cap.plane ? Image(*cap.plane) : std::move(cap.image);
     // background="corner" reads the PSF's own values (a measured PSF, as the CLI's --psf file).
@@ -63,10 +63,16 @@ DecodeOutput decode_pipeline(CaptureArg& cap, PlaneArg& psf_in, bool measured_ps
     in.psf = Image(psf_in.take());
     in.dark = dark;
     in.psf_one_period = !measured_psf;  // a mask's PSF
-    CaptureDecodeResult res = decode_capture(std::move(in), options);
+    return prepare_capture(std::move(in), options);
+}
+
+// The decode of a prepared capture (each channel), sorted for the result.
+DecodeOutput decode_pipeline(PreparedCapture prepared) {
+    CaptureDecodeResult res = decode_prepared(std::move(prepared));
     DecodeOutput out;
     out.window = res.summary.window;
     out.period = res.summary.period;
+    out.method = res.summary.method;
     out.results = std::move(res.summary.channels);
     out.warnings = std::move(res.summary.warnings);
     out.chosen = std::move(res.summary.chosen);
@@ -235,7 +241,12 @@ void bind_decode(py::module_& m) {
             r.threads = threads;
             r.background = background_arg(background);
             r.downsample = downsample;
-            r.method = parse_decode_method(method, field_ref("method"));
+            const std::optional<DecodeMethod> given_method =
+                parse_decode_method_or_auto(method, field_ref("method"));
+            r.method_auto = !given_method;
+            if (given_method) r.method = *given_method;
+            // Method auto: a keyword only wiener or only tv reads says which.
+            resolve_implied_method(r, given, !nsr_map.is_none());
             refuse_unused_parameters(r, given);
             r.crop_auto = py::isinstance<py::str>(crop) && crop.cast<std::string>() == "auto";
             if (!r.crop_auto) r.crop = crop_arg(crop);
@@ -326,33 +337,37 @@ void bind_decode(py::module_& m) {
                                     "has no camera background");
             }
 
+            // Everything before the decode (GIL released), so that the method that runs, given
+            // or chosen from the capture, decides the progress and the thread below.
+            PreparedCapture prepared;
+            {
+                py::gil_scoped_release release;
+                prepared = prepare_pipeline(cap, *psf_arg, !psf.is_none(), dark_img, options);
+            }
+            DecodeOptions& run_options = prepared.decode;
             std::atomic<bool> stop{false};
+            run_options.iterative.stop = &stop;
             // Iterations finished over all channels (the solvers count them): progress gets
             // the iteration each channel has reached.
             std::atomic<long long> iterations_done{0};
-            options.decode.iterative.iterations_done = &iterations_done;
-            const long long channel_count =
-                cap.plane ? 1 : std::max<long long>(1, cap.image.channels.size());
-            const bool iterative = options.decode.method != DecodeMethod::kWiener &&
-                                   options.decode.method != DecodeMethod::kTikhonov;
-            const int max_iterations = iterative ? options.decode.iterative.max_iterations : 0;
+            run_options.iterative.iterations_done = &iterations_done;
+            const auto channel_count =
+                std::max<long long>(1, static_cast<long long>(prepared.capture.channels.size()));
+            const bool iterative = is_iterative(run_options.method);
+            const int max_iterations = iterative ? run_options.iterative.max_iterations : 0;
             DecodeOutput out;
-            const auto work = [&] {
-                out = decode_pipeline(cap, *psf_arg, !psf.is_none(), dark_img, options, &stop);
-            };
+            const auto work = [&] { out = decode_pipeline(std::move(prepared)); };
             // A closed-form decode without a progress callback runs on this thread (GIL
             // released): it takes milliseconds up to kInlineDecodePixels, and a worker thread's
             // start and fresh stack and heap pages cost ~0.1 ms, a third of a warm 128 x 128
             // Wiener decode. Ctrl-C is then seen when it returns.
-            const auto pixels = cap.plane ? cap.plane->size()
-                                          : (cap.image.channels.empty()
-                                                 ? Eigen::Index{0}
-                                                 : cap.image.channels[0].size() *
-                                                       Eigen::Index(cap.image.channels.size()));
-            const bool closed_form = options.decode.method == DecodeMethod::kWiener ||
-                                     options.decode.method == DecodeMethod::kTikhonov;
+            const Eigen::Index pixels =
+                prepared.capture.channels.empty()
+                    ? Eigen::Index{0}
+                    : prepared.capture.channels[0].size() *
+                          static_cast<Eigen::Index>(prepared.capture.channels.size());
             Poll poll = Poll::kContinue;
-            if (closed_form && progress.is_none() && pixels <= kInlineDecodePixels) {
+            if (!iterative && progress.is_none() && pixels <= kInlineDecodePixels) {
                 py::gil_scoped_release release;
                 work();
             } else {
@@ -409,6 +424,7 @@ void bind_decode(py::module_& m) {
             d["window"] =
                 py::make_tuple(out.window.row, out.window.col, out.window.rows, out.window.cols);
             d["period_check"] = period_dict(out.period);
+            d["method"] = decode_method_name(out.method);  // given, or chosen (see chosen)
             if (!refocus_info.is_none()) d["refocus"] = refocus_info;
             // The settings read from the data: {name: {value, reason}}.
             py::dict chosen;
@@ -428,7 +444,7 @@ void bind_decode(py::module_& m) {
             return as_result(d);
         },
         py::arg("capture"), py::arg("psf") = py::none(), py::arg("mask") = py::none(),
-        py::arg("method") = "wiener", py::arg("model") = "auto", py::arg("nsr") = py::none(),
+        py::arg("method") = "auto", py::arg("model") = "auto", py::arg("nsr") = py::none(),
         py::arg("lambda_") = py::none(), py::arg("regulariser") = py::none(),
         py::arg("eps") = py::none(), py::arg("noise_sigma") = py::none(),
         py::arg("nonneg") = py::none(), py::arg("iters") = py::none(), py::arg("tol") = py::none(),
@@ -442,9 +458,12 @@ parallel). Same names, defaults, refusals and numbers as the CLI's flags.
 
 capture: (rows, cols) or (rows, cols, channels) array, capture units. psf: a PSF array (any
 sum > 0), or mask: a Mask or *.mask.json path (its PSF is synthesised).
-method: wiener (deconvwnr: PSF centre floor(size/2) at the origin, scalar nsr, real part) |
-tikhonov (lambda_, regulariser identity|gradient) | tv (TV-L2 ADMM, lambda_) | tvqc (min TV
-s.t. ||Ax - p||_2 <= eps, or eps from noise_sigma) | richardson-lucy. model: 'auto' (linear
+method: 'auto' (tv for the linear model with a capture that fills the frame, its border band
+at least half its mean, where wiener would read the light beyond the sensor as zero; wiener
+otherwise; a keyword only one of them reads chooses it: nsr, nsr_map wiener; lambda_, nonneg,
+iters, tol tv) | wiener (deconvwnr: PSF centre floor(size/2) at the origin, scalar nsr, real
+part) | tikhonov (lambda_, regulariser identity|gradient) | tv (TV-L2 ADMM, lambda_) | tvqc (min
+TV s.t. ||Ax - p||_2 <= eps, or eps from noise_sigma) | richardson-lucy. model: 'auto' (linear
 for a psf= array that covers the capture, a lensless camera's response; cyclic for a smaller PSF
 or mask=) | cyclic (circular convolution over one period) | linear (zero-padded, then cropped).
 nonneg: x >= 0 for tv/tvqc (None: when the capture is an intensity, its 0.1 % quantile at least
@@ -478,10 +497,11 @@ each channel has finished), max_iterations (iters; 0 for the closed-form wiener 
 seconds (elapsed)}; return False to stop: an iterative method ends after its current
 iteration and returns the estimate so far with interrupted = True (as the CLI writes it).
 Ctrl-C stops it the same way and raises KeyboardInterrupt.
-Returns {image, channels: [{iterations, objective, residual, converged, interrupted, seconds,
-history: (n, 4) array of iteration, seconds, objective, residual}], interrupted,
-window: (row, col, rows, cols), period_check, chosen: the settings read from the data,
-{name: {value, reason}} for each of model, crop, background, nonnegative left to 'auto'}. A mono `image` owns the library's buffer; a
+Returns {image, method (the method that ran), channels: [{iterations, objective, residual,
+converged, interrupted, seconds, history: (n, 4) array of iteration, seconds, objective,
+residual}], interrupted, window: (row, col, rows, cols), period_check, chosen: the settings read
+from the data, {name: {value, reason}} for each of background, model, crop, method, nonnegative
+left to 'auto'}. A mono `image` owns the library's buffer; a
 module-made mono capture and PSF summing to 1 are used without copies.)");
 }
 

@@ -191,7 +191,7 @@ def decode(
     capture: ArrayLike,
     psf: Optional[ArrayLike] = None,
     mask: Optional[MaskLike] = None,
-    method: Literal["wiener", "tikhonov", "tv", "tvqc", "richardson-lucy"] = "wiener",
+    method: Literal["auto", "wiener", "tikhonov", "tv", "tvqc", "richardson-lucy"] = "auto",
     model: Literal["auto", "cyclic", "linear"] = "auto",
     nsr: Union[None, float, Literal["auto"]] = None,
     lambda_: Union[None, float, Literal["auto"]] = None,

@@ -17,8 +17,10 @@ Steps: dark frame subtracted (same size, 1 or the capture's channels) -> --backg
 --downsample -> period check -> --crop -> --normalize -> decode each channel (RGB channels in
 parallel threads) -> write.
 Read from the data unless given (auto): --model (linear for a measured PSF that covers the
-capture), --crop, --background (a measured PSF's dark floor) and, for tv and tvqc, --nonneg
-(on for an intensity); --explain and OUT.config.json ("chosen") say each choice and why.
+capture), --crop, --background (a measured PSF's dark floor), --method (tv for the linear model
+with a capture whose border band is lit, at least half its mean: it fills the frame; wiener
+otherwise) and, for tv and tvqc, --nonneg (on for an intensity); --explain and
+OUT.config.json ("chosen") say each choice and why.
 Period: the PSF's size. The capture's own period is measured from its autocorrelation and a
 mismatch is reported on stderr and in the stats (skipped, with the reason, when the capture
 holds fewer than two periods along an axis).
@@ -96,8 +98,11 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeCommand& o) {
                    "frame, PSF zero-padded), or X,Y (top-left column,row of one period)")
         ->capture_default_str();
     cmd.add_option("--method", o.method,
-                   "wiener (closed form, deconvwnr) | tikhonov (closed form) | tv (TV-L2, ADMM) | "
-                   "tvqc (min TV s.t. ||Ax - p||_2 <= eps) | richardson-lucy")
+                   "auto (tv for the linear model with a capture that fills the frame, wiener "
+                   "otherwise; a flag only one of them reads chooses it: --nsr, --nsr-map wiener, "
+                   "--lambda, --nonneg, --iters, --tol tv) | wiener (closed form, deconvwnr) | "
+                   "tikhonov (closed form) | tv (TV-L2, ADMM) | tvqc (min TV s.t. ||Ax - p||_2 "
+                   "<= eps) | richardson-lucy")
         ->capture_default_str();
     cmd.add_option("--model", o.model,
                    "auto (linear for a measured PSF that covers the capture, a lensless camera's; "
@@ -202,7 +207,8 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeCommand& o) {
                  "precision, threads, FFT planning time)");
     cmd.add_flag("--quiet", o.quiet,
                  "No progress lines on stderr (an iterative decode that runs over 2 s reports "
-                 "its iterations and the time left)");
+                 "its iterations and the time left) and no advice on a method or weight the "
+                 "capture makes poor (the stats keep it under \"warnings\")");
     return f;
 }
 
@@ -234,13 +240,18 @@ void resolve_method(DecodeCommand& c, const DecodeFlags& flags) {
                                     " (the map replaces the scalar NSR); give one of them");
         }
     }
-    c.request.method = parse_decode_method(c.method, "--method");
+    const std::optional<DecodeMethod> method = parse_decode_method_or_auto(c.method, "--method");
+    c.request.method_auto = !method;
+    if (method) c.request.method = *method;
+    // Method auto: a given flag that only wiener or only tv reads says which.
+    resolve_implied_method(c.request, given, !c.nsr_map.empty());
     // A per-frequency NSR map replaces the scalar NSR, automatic or given (a given --nsr is
     // refused above).
     if (!c.nsr_map.empty()) c.request.nsr_auto = false;
     if (!c.nsr_map.empty() && c.request.method != DecodeMethod::kWiener) {
         throw invalid_field("--nsr-map", c.nsr_map,
-                            "is not used by --method " + c.method +
+                            "is not used by --method " +
+                                std::string(decode_method_name(c.request.method)) +
                                 " (only by wiener); remove it or choose that method");
     }
     refuse_unused_parameters(c.request, given);
@@ -252,7 +263,6 @@ void resolve_request(DecodeCommand& c) {
     if (!q.crop_auto) q.crop = parse_crop(c.crop);
     q.background = parse_background(c.background);
     q.normalize = parse_normalize_mode(c.normalize, "--normalize");
-    q.method = parse_decode_method(c.method, "--method");
     q.model_auto = c.model == "auto";
     if (!q.model_auto) q.model = parse_conv_model(c.model, "--model");
     // --nonneg or --no-nonneg given: that; neither: read from the capture.

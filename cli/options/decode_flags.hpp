@@ -29,9 +29,9 @@ struct DecodeCommand {
     // (below) are parsed into it by resolve_method and resolve_request.
     DecodeRequest request;
     // The text flags as given; OUT.config.json and the stats repeat them as given.
-    std::string crop = "auto";      // auto | center | centre | none | X,Y
-    std::string method = "wiener";  // decode/solvers/decode_method.hpp names
-    std::string model = "auto";     // auto | cyclic | linear
+    std::string crop = "auto";    // auto | center | centre | none | X,Y
+    std::string method = "auto";  // auto | decode/solvers/decode_method.hpp names
+    std::string model = "auto";   // auto | cyclic | linear
     std::string regulariser = "identity";
     std::string background = "auto";  // auto | none | corner | VALUE
     bool no_nonneg = false;           // --no-nonneg: tv, tvqc without x >= 0 (not auto)
@@ -59,9 +59,10 @@ struct DecodeFlags {
 // Adds every decode flag to `cmd`, writing into `command`.
 DecodeFlags add_decode_flags(CLI::App& cmd, DecodeCommand& command);
 
-// After parsing: parses --method into command.request, then InvalidInput naming the first flag
-// given that --method does not read, and the refusals of values that are legal for the type but
-// meaningless (--lambda 0 for tikhonov).
+// After parsing: parses --method into command.request (auto: a flag only wiener or only tv
+// reads implies that method, decode/capture/decode_request.hpp resolve_implied_method), then
+// InvalidInput naming the first flag given that the method does not read, and the refusals of
+// values that are legal for the type but meaningless (--lambda 0 for tikhonov).
 void resolve_method(DecodeCommand& command, const DecodeFlags& flags);
 
 // Flags this run would ignore are refused, as the method's parameters are (resolve_method): the

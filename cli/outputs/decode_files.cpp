@@ -49,12 +49,13 @@ void warn_black_png(const StagedDecode& staged, int bits) {
                   << max_value << ")\n";
 }
 
-void print_decode_warnings(const CaptureDecodeSummary& sum) {
+void print_decode_warnings(const CaptureDecodeSummary& sum, bool quiet) {
     std::istringstream warnings(period_warning(sum.period));
     for (std::string line; std::getline(warnings, line);)
         std::cerr << "pinmask: warning: " << line << "\n";
-    for (const std::string& w : sum.warnings)
-        std::cerr << "pinmask: warning: " << spell_flags(w) << "\n";
+    if (!quiet)
+        for (const std::string& w : sum.warnings)
+            std::cerr << "pinmask: warning: " << spell_flags(w) << "\n";
     if (sum.interrupted) {
         std::cerr << "pinmask: interrupted: writing the estimate after "
                   << sum.channels.front().iterations << " iterations (not converged)\n";
@@ -68,8 +69,9 @@ void print_decode_warnings(const CaptureDecodeSummary& sum) {
 
 void print_decode_summary(const DecodeCommand& r, const CaptureDecodeSummary& sum) {
     std::cout << "decode " << r.capture << " -> " << r.output << "\n"
-              << "  method   " << r.method << " (" << conv_model_name(sum.model) << " model, "
-              << (sum.single_precision ? "single" : "double") << " precision)\n"
+              << "  method   " << decode_method_name(sum.method)
+              << (r.request.method_auto ? " (auto; " : " (") << conv_model_name(sum.model)
+              << " model, " << (sum.single_precision ? "single" : "double") << " precision)\n"
               << "  window   " << sum.window.cols << " x " << sum.window.rows
               << " at x=" << sum.window.col << ", y=" << sum.window.row << "\n";
     for (std::size_t ch = 0; ch < sum.channels.size(); ++ch) {

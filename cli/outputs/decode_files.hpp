@@ -31,8 +31,10 @@ StagedDecode stage_decode_files(StagedFiles& files, const DecodeCommand& r, cons
 void warn_black_png(const StagedDecode& staged, int bits);
 
 // The summary's problems on stderr, each "pinmask: warning: ...": the period check's lines, the
-// pipeline's warnings (in the command's flags), an interrupted solve, TVQC's constraint not met.
-void print_decode_warnings(const CaptureDecodeSummary& sum);
+// pipeline's warnings (in the command's flags; a method or weight the input makes poor, not
+// printed under --quiet, `quiet`: the stats keep them), an interrupted solve, TVQC's constraint
+// not met.
+void print_decode_warnings(const CaptureDecodeSummary& sum, bool quiet);
 
 // The summary table on stdout: method, model, precision, window, per channel its iterations,
 // residual, objective and time, the period verdict and the files written.

@@ -74,7 +74,7 @@ void add_summary_json(nlohmann::json& stats, nlohmann::json& timings, const Deco
         {"bayer", r.bayer},
         {"decoded_rows", s.decoded_rows},
         {"decoded_cols", s.decoded_cols}};
-    stats["method"] = r.method;
+    stats["method"] = decode_method_name(s.method);  // given, or chosen (auto: "chosen")
     stats["precision"] =
         precision_name(s.single_precision ? Precision::kSingle : Precision::kDouble);
     stats["fft_threads"] = s.fft_threads;

@@ -48,4 +48,26 @@ bool capture_is_intensity(const Image& capture, double& low, double& sigma) {
     return low >= -3.0 * sigma;
 }
 
+double border_fill(const Plane& capture) {
+    const Eigen::Index rows = capture.rows(), cols = capture.cols();
+    const Eigen::Index b = std::max<Eigen::Index>(1, std::min(rows, cols) / kBorderBandDivisor);
+    if (2 * b >= rows || 2 * b >= cols) return 0.0;
+    const double all = capture.abs().sum();
+    const double inner = capture.block(b, b, rows - 2 * b, cols - 2 * b).abs().sum();
+    const double border_pixels = static_cast<double>(rows * cols - (rows - 2 * b) * (cols - 2 * b));
+    const double mean = all / static_cast<double>(rows * cols);
+    if (!(mean > 0.0)) return 0.0;
+    return (all - inner) / border_pixels / mean;
+}
+
+double border_fill(const Image& capture) {
+    double fill = 0.0;
+    for (const Plane& p : capture.channels) fill = std::max(fill, border_fill(p));
+    return fill;
+}
+
+bool auto_method_is_tv(bool linear_model, double fill) {
+    return linear_model && fill >= kFrameFillingBorderFill;
+}
+
 }  // namespace pinmask

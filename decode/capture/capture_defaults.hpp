@@ -1,5 +1,5 @@
 // The settings a decode reads from the capture and the PSF when the user leaves them to it
-// (`auto`, the faces' default): the convolution model, the crop, the background and
+// (`auto`, the faces' default): the convolution model, the crop, the background, the method and
 // non-negativity. Each rule is stated here with what it was measured on (docs/decoding.md,
 // "Defaults read from the capture"); the pipeline (decode/capture/capture_pipeline.hpp) applies
 // them and records each choice with its reason.
@@ -47,5 +47,24 @@ bool whole_numbers(const Plane& plane);
 // -3 sigma (sigma the capture's noise, decode/solvers/noise_estimate.hpp, largest over the
 // channels): a sensor's counts after the dark level, noise included. `low` and `sigma` are set.
 bool capture_is_intensity(const Image& capture, double& low, double& sigma);
+
+// Frame filling: the mean magnitude of a capture's border band (kBorderBandDivisor-th of the
+// smaller side wide, at least 1 px) over the mean magnitude of the whole capture; 0 when the
+// band would cover the capture or the capture is all zero. A scene lit to the sensor's edges
+// reads about 1; an object in the middle of a dark frame, about 0.
+inline constexpr int kBorderBandDivisor = 16;
+double border_fill(const Plane& capture);
+// A capture fills the frame when its border band averages at least this fraction of its mean
+// magnitude (in any channel): the linear model's closed forms (wiener, tikhonov) then read the
+// light that came from beyond the sensor as zero and ring from the edges.
+inline constexpr double kFrameFillingBorderFill = 0.5;
+// The largest border_fill over the channels.
+double border_fill(const Image& capture);
+
+// Method: with the linear model and a capture that fills the frame, tv (it solves the linear
+// model with its crop exactly); wiener otherwise (exact on the cyclic model, and on the linear
+// model when the light beyond the sensor is dark). Measured on the refocus of
+// scripts/refocus_phone.py (docs/decoding.md, "Refocus on a frame-filling scene").
+bool auto_method_is_tv(bool linear_model, double fill);
 
 }  // namespace pinmask

@@ -81,15 +81,22 @@ void CaptureDecodeOptions::validate() const {
         throw invalid_field("threads", std::to_string(threads), "must be 1..1024 (0: all cores)");
     if (background == BackgroundMode::kValue && !std::isfinite(background_value))
         throw invalid_field("background", format_number(background_value), "must be finite");
-    decode.validate();
-    if (is_iterative(decode.method) && decode.iterative.max_iterations < 1)
-        throw invalid_field("iterations", std::to_string(decode.iterative.max_iterations),
-                            "must be >= 1 (0 iterations would return the starting point)");
+    // Method auto validates the options of both methods it may choose.
+    for (DecodeMethod m : method_auto
+                              ? std::vector<DecodeMethod>{DecodeMethod::kWiener, DecodeMethod::kTv}
+                              : std::vector<DecodeMethod>{decode.method}) {
+        DecodeOptions d = decode;
+        d.method = m;
+        d.validate();
+        if (is_iterative(m) && d.iterative.max_iterations < 1)
+            throw invalid_field("iterations", std::to_string(d.iterative.max_iterations),
+                                "must be >= 1 (0 iterations would return the starting point)");
+    }
 }
 
-CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOptions& o) {
+PreparedCapture prepare_capture(CaptureDecodeInputs in, const CaptureDecodeOptions& o) {
     o.validate();
-    CaptureDecodeResult out;
+    PreparedCapture out;
     CaptureDecodeSummary& s = out.summary;
     Image& capture = in.capture;
     Image& psf = in.psf;
@@ -206,6 +213,33 @@ CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOp
                       std::to_string(s.window.rows) + " at x=" + std::to_string(s.window.col) +
                       ", y=" + std::to_string(s.window.row));
 
+    if (o.method_auto || !o.method_implied_by.empty()) {
+        // Measured on the window decoded, after the background and the crop.
+        const double fill = border_fill(capture);
+        const bool linear = d.model == ConvModel::kLinear;
+        if (o.method_auto)
+            d.method = auto_method_is_tv(linear, fill) ? DecodeMethod::kTv : DecodeMethod::kWiener;
+        const std::string fill_text =
+            "its border band averages " + format_number(100 * fill, 3) + " % of its mean, " +
+            format_number(100 * kFrameFillingBorderFill, 3) + " % or more fills the frame";
+        std::string reason;
+        if (!o.method_implied_by.empty()) {
+            reason = field_ref(o.method_implied_by) + " given: only " +
+                     decode_method_name(d.method) + " of the automatic choice's wiener and tv " +
+                     "reads it";
+        } else if (d.method == DecodeMethod::kTv) {
+            reason = "the linear model with a capture that fills the frame (" + fill_text +
+                     "): tv solves the linear model exactly, wiener would read the light beyond "
+                     "the sensor as zero";
+        } else if (linear) {
+            reason = "the linear model with a capture that does not fill the frame (" + fill_text +
+                     "): the closed form, with the dark beyond the sensor as zero";
+        } else {
+            reason = "the cyclic model: the closed form is its exact least-error filter";
+        }
+        s.chosen.push_back({"method", decode_method_name(d.method), reason});
+    }
+
     if (o.nonnegative_auto && (d.method == DecodeMethod::kTv || d.method == DecodeMethod::kTvqc)) {
         double low = 0.0, sigma = 0.0;
         const bool intensity = capture_is_intensity(capture, low, sigma);
@@ -236,6 +270,7 @@ CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOp
     for (const ChosenSetting& c : s.chosen)
         s.notes.push_back(field_ref(c.name) + " " + c.value + " (auto): " + c.reason);
     s.model = d.model;
+    s.method = d.method;
     s.decoded_rows = capture.rows();
     s.decoded_cols = capture.cols();
 
@@ -273,9 +308,20 @@ CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOp
                       " grid, " + std::to_string(s.fft_threads) + " FFT thread(s), " +
                       std::to_string(capture.n_channels()) + " channel(s) in parallel");
 
-    t0 = Clock::now();
+    out.capture = std::move(capture);
+    out.psf = std::move(psf.channels);
+    out.decode = std::move(d);
+    return out;
+}
+
+CaptureDecodeResult decode_prepared(PreparedCapture prepared) {
+    CaptureDecodeResult out;
+    out.summary = std::move(prepared.summary);
+    CaptureDecodeSummary& s = out.summary;
+    const DecodeOptions& d = prepared.decode;
+    const auto t0 = Clock::now();
     const double planning_before = fft_plan_stats().planning_seconds;
-    s.channels = decode_channels(capture, psf.channels, d);
+    s.channels = decode_channels(prepared.capture, prepared.psf, d);
     s.seconds.decode = seconds_since(t0);
     s.seconds.fft_planning = fft_plan_stats().planning_seconds - planning_before;
     for (std::size_t ch = 0; ch < s.channels.size(); ++ch) {
@@ -301,6 +347,10 @@ CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOp
     }
     // decode_plane refuses a non-finite estimate (RuntimeFailure), so every channel is finite.
     return out;
+}
+
+CaptureDecodeResult decode_capture(CaptureDecodeInputs in, const CaptureDecodeOptions& o) {
+    return decode_prepared(prepare_capture(std::move(in), o));
 }
 
 }  // namespace pinmask

@@ -1,6 +1,8 @@
 // The capture pipeline of `pinmask decode` as one library call: dark frame -> background ->
-// 2^K box downsampling -> period check -> crop -> normalisation -> decode each channel (in
-// parallel) -> the estimate and a Summary. Never prints, never touches files: the caller loads
+// 2^K box downsampling -> model -> period check -> crop -> method -> normalisation -> decode each
+// channel (in parallel) -> the estimate and a Summary. In two steps when the caller needs the
+// method before the decode runs (progress for an iterative method, the Python module's thread):
+// prepare_capture, then decode_prepared. Never prints, never touches files: the caller loads
 // the images and renders the Summary (cli/cmd_decode.cpp, the real-data tests, Python).
 //
 // Units: with normalize kNone the PSF is scaled to unit sum and the estimate is in capture
@@ -36,9 +38,16 @@ namespace pinmask {
 struct CaptureDecodeOptions {
     CropSpec crop{};  // kCenter: the period centred in the frame
     // Settings read from the data (decode/capture/capture_defaults.hpp) in place of the given
-    // crop, decode.model and decode.tv/tvqc.nonnegative; background kAuto likewise. Each choice
-    // is recorded in CaptureDecodeSummary::chosen.
-    bool crop_auto = false, model_auto = false, nonnegative_auto = false;
+    // crop, decode.model, decode.method and decode.tv/tvqc.nonnegative; background kAuto
+    // likewise. Each choice is recorded in CaptureDecodeSummary::chosen. method_auto chooses
+    // wiener or tv (auto_method_is_tv) after the model and the crop, and reads the parameters
+    // of whichever it chooses from decode.wiener, decode.tv and decode.iterative (so both are
+    // filled and validated).
+    bool crop_auto = false, model_auto = false, method_auto = false, nonnegative_auto = false;
+    // The method was not given but implied by a parameter only it reads (the request's field,
+    // e.g. "nsr"): recorded in CaptureDecodeSummary::chosen as the method's reason. Empty
+    // otherwise.
+    std::string method_implied_by;
     BackgroundMode background = BackgroundMode::kNone;
     double background_value = 0.0;  // kValue: counts off the capture
     int downsample = 0;             // rounds of 2 x 2 averaging, 0..12
@@ -66,11 +75,13 @@ struct CaptureDecodeSummary {
     PeriodCheck period;
     std::optional<double> background;      // the value subtracted from the capture
     std::optional<double> psf_background;  // background kAuto: the floor taken off the PSF
-    // The settings read from the data (auto), in the order model, crop, background, nonnegative.
+    // The settings read from the data (auto), in the order background, model, crop, method,
+    // nonnegative.
     std::vector<ChosenSetting> chosen;
     std::vector<double> capture_l2_norms, psf_l2_norms, psf_sums;
     int decoded_rows = 0, decoded_cols = 0;
-    ConvModel model = ConvModel::kCyclic;  // the model decoded with (given or chosen)
+    ConvModel model = ConvModel::kCyclic;         // the model decoded with (given or chosen)
+    DecodeMethod method = DecodeMethod::kWiener;  // the method decoded with (given or chosen)
     bool single_precision = false;
     int fft_threads = 1;                 // threads the decode's transforms used
     std::vector<DecodeResult> channels;  // per channel, images empty (they are in the estimate)
@@ -90,8 +101,23 @@ struct CaptureDecodeResult {
     CaptureDecodeSummary summary;
 };
 
-// Runs the pipeline. Throws InvalidInput for bad inputs or options (naming the field),
-// RuntimeFailure when a solver returns a non-finite estimate.
+// Everything before the decode: the capture window and the PSF as the solvers will read them,
+// the options with every automatic setting resolved (decode.method is the method that will run),
+// and the summary so far. The caller may set decode.iterative.stop and iterations_done here.
+struct PreparedCapture {
+    Image capture;
+    std::vector<Plane> psf;
+    DecodeOptions decode;
+    CaptureDecodeSummary summary;
+};
+
+// The pipeline up to the decode. Throws InvalidInput for bad inputs or options (naming the field).
+PreparedCapture prepare_capture(CaptureDecodeInputs inputs, const CaptureDecodeOptions& options);
+// The decode of each channel and the estimate. Throws RuntimeFailure when a solver returns a
+// non-finite estimate.
+CaptureDecodeResult decode_prepared(PreparedCapture prepared);
+
+// Runs the pipeline: decode_prepared(prepare_capture(inputs, options)).
 CaptureDecodeResult decode_capture(CaptureDecodeInputs inputs, const CaptureDecodeOptions& options);
 
 }  // namespace pinmask

@@ -1,5 +1,6 @@
 #include "decode/capture/decode_request.hpp"
 
+#include <optional>
 #include <string>
 
 #include "core/errors/error.hpp"
@@ -73,6 +74,48 @@ bool write_method_parameter(DecodeOptions& d, MethodParameter p, const DecodeReq
     return false;
 }
 
+void resolve_implied_method(DecodeRequest& r, const std::vector<GivenParameter>& given,
+                            bool nsr_map_given) {
+    if (!r.method_auto) return;
+    std::optional<DecodeMethod> implied;
+    std::string by, by_value;
+    const auto imply = [&](DecodeMethod m, const std::string& field, const std::string& value) {
+        if (implied && *implied != m) {
+            throw invalid_field(field_ref(field), value,
+                                "is read by " + std::string(decode_method_name(m)) + " but " +
+                                    field_ref(by) + (by_value.empty() ? "" : " " + by_value) +
+                                    " is read by " + decode_method_name(*implied) + " only; give " +
+                                    field_ref("method") + " to say which");
+        }
+        if (!implied) implied = m, by = field, by_value = value;
+    };
+    if (nsr_map_given) imply(DecodeMethod::kWiener, "nsr_map", "");
+    for (const GivenParameter& g : given) {
+        const char* field = method_parameter_field(g.parameter);
+        std::optional<DecodeMethod> reader;
+        std::string users;
+        for (DecodeMethod m : kDecodeMethods) {
+            DecodeOptions probe;
+            probe.method = m;
+            if (!write_method_parameter(probe, g.parameter, r)) continue;
+            users += (users.empty() ? "" : ", ") + std::string(decode_method_name(m));
+            for (DecodeMethod a : kAutoMethods)
+                if (a == m) reader = m;
+        }
+        if (!reader) {
+            throw invalid_field(field_ref(field), g.value,
+                                "is not used by " + field_ref("method") +
+                                    " auto (wiener or tv, chosen from the capture; only by " +
+                                    users + "); give " + field_ref("method") + " " + users);
+        }
+        imply(*reader, field, g.value);
+    }
+    if (!implied) return;
+    r.method = *implied;
+    r.method_auto = false;
+    r.method_implied_by = by;
+}
+
 void refuse_unused_parameters(const DecodeRequest& r, const std::vector<GivenParameter>& given) {
     const DecodeMethod m = r.method;
     for (const GivenParameter& g : given) {
@@ -101,8 +144,16 @@ void refuse_unused_parameters(const DecodeRequest& r, const std::vector<GivenPar
 
 DecodeOptions decode_options(const DecodeRequest& r) {
     DecodeOptions d;
-    d.method = r.method;
     d.model = r.model;
+    // Each method writes its own struct (and the iterative ones the shared iterative options):
+    // method auto fills both candidates' so the pipeline can run either.
+    if (r.method_auto) {
+        for (DecodeMethod m : kAutoMethods) {
+            d.method = m;
+            for (MethodParameter p : kMethodParameters) write_method_parameter(d, p, r);
+        }
+    }
+    d.method = r.method;
     for (MethodParameter p : kMethodParameters) write_method_parameter(d, p, r);
     return d;
 }
@@ -113,6 +164,8 @@ CaptureDecodeOptions capture_decode_options(const DecodeRequest& r) {
     o.crop_auto = r.crop_auto;
     o.model_auto = r.model_auto;
     o.nonnegative_auto = r.nonnegative_auto;
+    o.method_auto = r.method_auto;
+    o.method_implied_by = r.method_implied_by;
     o.background = r.background.mode;
     o.background_value = r.background.value;
     o.downsample = r.downsample;

@@ -27,7 +27,13 @@ struct DecodeBackground {
 // the method; decode_options keeps the ones the method reads.
 struct DecodeRequest {
     CropSpec crop{};  // kCenter: the period centred in the frame, when crop_auto is false
-    DecodeMethod method = DecodeMethod::kWiener;
+    DecodeMethod method = DecodeMethod::kWiener;  // when method_auto is false
+    // "auto", the default: wiener or tv chosen from the model and the capture
+    // (decode/capture/capture_defaults.hpp auto_method_is_tv). A face sets it false when the
+    // user gives a method; resolve_implied_method sets it false when a given parameter is read
+    // by only one of the two (method_implied_by then names that parameter's field).
+    bool method_auto = true;
+    std::string method_implied_by;
     ConvModel model = ConvModel::kCyclic;  // when model_auto is false
     // "auto", the default: the model, the crop and (tv, tvqc) non-negativity read from the capture
     // and the PSF (decode/capture/capture_defaults.hpp) in place of the values given here. A face
@@ -83,17 +89,31 @@ struct GivenParameter {
     MethodParameter parameter;
     std::string value;
 };
+// The methods method auto chooses between: wiener and tv.
+inline constexpr DecodeMethod kAutoMethods[] = {DecodeMethod::kWiener, DecodeMethod::kTv};
+
+// Method auto with parameters given: no parameter is read by both wiener and tv, so a given one
+// implies its method (nsr, or an NSR map when `nsr_map_given`: wiener; lambda, nonnegative,
+// iterations, tolerance: tv), which is then the method (method_auto false, method_implied_by
+// the first such field). InvalidInput naming the parameter when it is read by neither (give the
+// method that reads it) or when two given parameters imply different methods. Nothing happens
+// when the method was given.
+void resolve_implied_method(DecodeRequest& request, const std::vector<GivenParameter>& given,
+                            bool nsr_map_given);
+
 // InvalidInput naming the first given parameter that the request's method does not read and
-// the methods that do; then the refusal of lambda <= 0 for tikhonov.
+// the methods that do; then the refusal of lambda <= 0 for tikhonov. After
+// resolve_implied_method (method auto with a parameter given is then resolved or refused).
 void refuse_unused_parameters(const DecodeRequest& request,
                               const std::vector<GivenParameter>& given);
 
 // The DecodeOptions of a request: method, model, and every parameter the chosen method reads
-// (write_method_parameter). Whether the iterations are recorded (iterative.record_history) is
-// left at its default: each face sets it by what it shows.
+// (write_method_parameter); with method auto, every parameter wiener or tv reads (the method is
+// left wiener until the pipeline chooses). Whether the iterations are recorded
+// (iterative.record_history) is left at its default: each face sets it by what it shows.
 DecodeOptions decode_options(const DecodeRequest& request);
-// The pipeline options of a request (crop, background, downsample, normalize, decode,
-// precision, threads).
+// The pipeline options of a request (crop, background, downsample, normalize, decode, the
+// automatic settings, precision, threads).
 CaptureDecodeOptions capture_decode_options(const DecodeRequest& request);
 
 }  // namespace pinmask

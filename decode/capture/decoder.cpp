@@ -13,6 +13,7 @@
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
 #include "core/units/number_format.hpp"
+#include "decode/capture/capture_defaults.hpp"
 #include "decode/solvers/auto_weight.hpp"
 #include "decode/solvers/convolution.hpp"
 #include "decode/solvers/decode_method.hpp"
@@ -233,18 +234,11 @@ std::string tv_weight_warning(double lambda, const AutoWeight& a) {
            "; " + field_ref("lambda") + " auto chooses it";
 }
 
-// The warning for a closed form on the linear model with a capture that fills the frame.
+// The warning for a closed form on the linear model with a capture that fills the frame
+// (decode/capture/capture_defaults.hpp border_fill).
 std::string frame_filling_warning(const Plane& capture, DecodeMethod method) {
-    const Eigen::Index rows = capture.rows(), cols = capture.cols();
-    const Eigen::Index b = std::max<Eigen::Index>(1, std::min(rows, cols) / 16);
-    if (2 * b >= rows || 2 * b >= cols) return "";
-    const double all = capture.abs().sum();
-    const double inner = capture.block(b, b, rows - 2 * b, cols - 2 * b).abs().sum();
-    const double border_pixels = static_cast<double>(rows * cols - (rows - 2 * b) * (cols - 2 * b));
-    const double mean = all / static_cast<double>(rows * cols);
-    if (!(mean > 0.0)) return "";
-    const double fill = (all - inner) / border_pixels / mean;
-    if (fill < 0.5) return "";
+    const double fill = border_fill(capture);
+    if (fill < kFrameFillingBorderFill) return "";
     return std::string(decode_method_name(method)) + " on the linear model reads the light " +
            "beyond the sensor as zero, and this capture fills the frame (its border averages " +
            format_number(100 * fill, 3) + " % of its mean): expect ringing from the edges; " +

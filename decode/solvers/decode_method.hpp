@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -31,6 +32,11 @@ const char* decode_method_name(DecodeMethod method);
 std::string decode_method_names();
 // Parses a name; throws InvalidInput naming `field` for anything else.
 DecodeMethod parse_decode_method(std::string_view name, std::string_view field = "method");
+
+// "auto" (empty: the method is chosen from the capture, decode/capture/capture_defaults.hpp) or
+// a method's name; InvalidInput naming `field` and the names accepted, auto first, otherwise.
+std::optional<DecodeMethod> parse_decode_method_or_auto(std::string_view name,
+                                                        std::string_view field = "method");
 
 bool is_iterative(DecodeMethod method);
 

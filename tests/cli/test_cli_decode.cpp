@@ -146,7 +146,12 @@ TEST_CASE("decode of one period returns the scene (Wiener, float TIFF out, stats
     CHECK(js["channels"][0]["residual"] == s["channels"][0]["residual"]);
     // The resolved configuration sits next to the output.
     const auto cfg = read_json(dir / "x.tiff.config.json");
-    CHECK(cfg["method"] == "wiener");
+    // --method as given (auto, the default); the method that ran, implied by --nsr, in the stats.
+    CHECK(cfg["method"] == "auto");
+    CHECK(s["method"] == "wiener");
+    CHECK(cfg["chosen"]["method"]["value"] == "wiener");
+    CHECK(cfg["chosen"]["method"]["reason"].get<std::string>().find("--nsr given: only wiener") ==
+          0);
     CHECK(cfg["crop"] == "auto");
     CHECK(cfg["model"] == "cyclic");
     // What auto chose, and why: the whole frame (the PSF covers it); a float PSF has no floor.
@@ -274,13 +279,20 @@ TEST_CASE("bad input exits 2 naming the problem and leaves no output") {
         // A flag the method does not read: refused naming the flag, the method and its users.
         {dir / "cap.tiff" + psf_arg + " --method tv --nsr 0.1",
          "--nsr = 0.1: is not used by --method tv (only by wiener)"},
-        {dir / "cap.tiff" + psf_arg + " --lambda 0.1",
+        {dir / "cap.tiff" + psf_arg + " --method wiener --lambda 0.1",
          "--lambda = 0.1: is not used by --method wiener (only by tikhonov, tv)"},
+        // --method auto (the default): a flag neither wiener nor tv reads, or two that disagree.
+        {dir / "cap.tiff" + psf_arg + " --regulariser gradient",
+         "--regulariser = gradient: is not used by --method auto (wiener or tv, chosen from the "
+         "capture; only by tikhonov); give --method tikhonov"},
+        {dir / "cap.tiff" + psf_arg + " --nsr 0.1 --iters 3",
+         "--iters = 3: is read by tv but --nsr 0.1 is read by wiener only; give --method"},
         {dir / "cap.tiff" + psf_arg + " --method tv --regulariser gradient", "--regulariser"},
         {dir / "cap.tiff" + psf_arg + " --method tv --eps 1", "(only by tvqc)"},
         {dir / "cap.tiff" + psf_arg + " --method richardson-lucy --noise-sigma 1", "--noise-sigma"},
         {dir / "cap.tiff" + psf_arg + " --method tikhonov --nonneg", "(only by tv, tvqc)"},
-        {dir / "cap.tiff" + psf_arg + " --iters 3", "(only by tv, tvqc, richardson-lucy)"},
+        {dir / "cap.tiff" + psf_arg + " --method wiener --iters 3",
+         "(only by tv, tvqc, richardson-lucy)"},
         {dir / "cap.tiff" + psf_arg + " --method tikhonov --tol 0.1", "--tol"},
         {dir / "cap.tiff" + psf_arg + " --method tikhonov --lambda 0",
          "(use --method wiener --nsr 0 for the floored inverse)"},

@@ -110,3 +110,82 @@ TEST_CASE("given settings are not replaced and nothing is recorded for them") {
     CHECK(r.summary.chosen.empty());
     CHECK(r.summary.model == ConvModel::kCyclic);
 }
+
+TEST_CASE("border_fill: the border band's mean magnitude over the capture's, counted by hand") {
+    // 32 x 48: the band is 32 / 16 = 2 px wide; 32 * 48 - 28 * 44 = 304 band pixels.
+    Plane lit = Plane::Constant(32, 48, 3.0);
+    CHECK(border_fill(lit) == doctest::Approx(1.0).epsilon(1e-15));
+    Plane dark_band = lit;
+    dark_band.block(2, 2, 28, 44).setConstant(0.0);  // only the band lit: 304 px of 3
+    // mean = 304 * 3 / 1536; band mean = 3: fill = 1536 / 304.
+    CHECK(border_fill(dark_band) == doctest::Approx(1536.0 / 304.0).epsilon(1e-15));
+    Plane centre = Plane::Zero(32, 48);
+    centre.block(10, 10, 8, 8).setConstant(-5.0);  // magnitudes: a signed capture reads the same
+    CHECK(border_fill(centre) == 0.0);
+    CHECK(border_fill(Plane(Plane::Zero(32, 48))) == 0.0);
+    CHECK(border_fill(Plane(Plane::Constant(2, 40, 1.0))) == 0.0);  // the band covers it
+    // An image: the largest over the channels.
+    Image two;
+    two.channels = {centre, lit};
+    CHECK(border_fill(two) == doctest::Approx(1.0).epsilon(1e-15));
+    CHECK(auto_method_is_tv(true, kFrameFillingBorderFill));
+    CHECK_FALSE(auto_method_is_tv(true, 0.49));
+    CHECK_FALSE(auto_method_is_tv(false, 1.0));
+}
+
+TEST_CASE("auto method: tv for a frame-filling capture on the linear model, wiener otherwise") {
+    const int n = 32;
+    CaptureDecodeInputs in;
+    in.psf = Image(random_psf(n, n, 7));                  // covers the capture: linear
+    in.capture = Image(random_plane(n, n, 8, 1.0, 2.0));  // lit to the edges
+    CaptureDecodeOptions o = all_auto();
+    o.method_auto = true;
+    o.decode.wiener.automatic = o.decode.tv.automatic = true;  // the faces' default weights
+    o.decode.iterative.max_iterations = 3;
+    const CaptureDecodeResult tv = decode_capture(in, o);
+    CHECK(find(tv.summary, "model")->value == "linear");
+    REQUIRE(find(tv.summary, "method"));
+    CHECK(find(tv.summary, "method")->value == "tv");
+    CHECK(find(tv.summary, "method")->reason.find("fills the frame") != std::string::npos);
+    CHECK(tv.summary.method == DecodeMethod::kTv);
+    CHECK(find(tv.summary, "nonnegative")->value == "true");  // read for the method chosen
+    CHECK(tv.summary.channels.front().iterations >= 1);
+    CHECK(tv.summary.warnings.empty());  // tv at its automatic weight: nothing to advise
+
+    // The same sizes with the light in the middle of a dark frame: wiener, with no warning.
+    Plane middle = Plane::Zero(n, n);
+    middle.block(12, 12, 8, 8) = random_plane(8, 8, 9, 1.0, 2.0);
+    in.capture = Image(middle);
+    const CaptureDecodeResult w = decode_capture(in, o);
+    CHECK(find(w.summary, "method")->value == "wiener");
+    CHECK(w.summary.method == DecodeMethod::kWiener);
+    CHECK_FALSE(find(w.summary, "nonnegative"));
+    CHECK(w.summary.warnings.empty());
+
+    // A lit frame on the cyclic model (a mask's period): wiener.
+    in.capture = Image(random_plane(n, n, 8, 1.0, 2.0));
+    in.psf_one_period = true;
+    const CaptureDecodeResult c = decode_capture(in, o);
+    CHECK(find(c.summary, "model")->value == "cyclic");
+    CHECK(find(c.summary, "method")->value == "wiener");
+
+    // The decode is the given method's, bytes and all: auto adds only the record.
+    in.psf_one_period = false;
+    CaptureDecodeOptions given = o;
+    given.method_auto = false;
+    given.decode.method = DecodeMethod::kTv;
+    const CaptureDecodeResult same = decode_capture(in, given);
+    CHECK_FALSE(find(same.summary, "method"));
+    CHECK((same.estimate.channels.front() == tv.estimate.channels.front()).all());
+
+    // A method implied by a given parameter is recorded with that parameter as the reason.
+    CaptureDecodeOptions implied = given;
+    implied.decode.method = DecodeMethod::kWiener;
+    implied.method_implied_by = "nsr";
+    const CaptureDecodeResult i = decode_capture(in, implied);
+    CHECK(find(i.summary, "method")->value == "wiener");
+    CHECK(find(i.summary, "method")->reason.find("`nsr` given") == 0);
+    // ... and keeps wiener's advice on this frame-filling linear capture, naming tv.
+    REQUIRE(i.summary.warnings.size() == 1);
+    CHECK(i.summary.warnings.front().find("`method` tv") != std::string::npos);
+}

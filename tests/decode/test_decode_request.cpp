@@ -35,6 +35,7 @@ TEST_CASE("decode_request: each method's options get the parameters it reads, an
     r.iterations = 17;
     r.tolerance = 1e-6;
     r.model = ConvModel::kLinear;
+    r.method_auto = false;  // a method given
 
     r.method = DecodeMethod::kWiener;
     DecodeOptions d = decode_options(r);
@@ -124,4 +125,71 @@ TEST_CASE("decode_request: a parameter the method ignores is refused by its fiel
     const std::string m = refusal(r, {});
     CHECK(m.find("`lambda` = ") == 0);
     CHECK(m.find("use `method` wiener `nsr` 0 for the floored inverse") != std::string::npos);
+}
+
+TEST_CASE("decode_request: method auto fills wiener's and tv's options; a given parameter picks") {
+    DecodeRequest r;  // the faces' defaults: method auto
+    REQUIRE(r.method_auto);
+    r.nsr = 0.5;
+    r.nsr_auto = false;
+    r.lambda = 0.25;
+    r.lambda_auto = false;
+    r.iterations = 17;
+    const CaptureDecodeOptions o = capture_decode_options(r);
+    CHECK(o.method_auto);
+    CHECK(o.decode.wiener.nsr == 0.5);
+    CHECK(o.decode.tv.lambda == 0.25);
+    CHECK(o.decode.iterative.max_iterations == 17);
+    CHECK(o.decode.tikhonov.lambda == DecodeOptions{}.tikhonov.lambda);
+
+    // Nothing given: still auto.
+    DecodeRequest a;
+    resolve_implied_method(a, {}, false);
+    CHECK(a.method_auto);
+    // A parameter only wiener reads, or an NSR map: wiener; one only tv reads: tv.
+    a = DecodeRequest{};
+    resolve_implied_method(a, {{MethodParameter::kNsr, "0.1"}}, false);
+    CHECK_FALSE(a.method_auto);
+    CHECK(a.method == DecodeMethod::kWiener);
+    CHECK(a.method_implied_by == "nsr");
+    CHECK(capture_decode_options(a).method_implied_by == "nsr");
+    a = DecodeRequest{};
+    resolve_implied_method(a, {}, true);
+    CHECK(a.method == DecodeMethod::kWiener);
+    CHECK(a.method_implied_by == "nsr_map");
+    for (MethodParameter p : {MethodParameter::kLambda, MethodParameter::kNonnegative,
+                              MethodParameter::kIterations, MethodParameter::kTolerance}) {
+        a = DecodeRequest{};
+        resolve_implied_method(a, {{p, "1"}}, false);
+        CHECK(a.method == DecodeMethod::kTv);
+        CHECK(a.method_implied_by == method_parameter_field(p));
+        CHECK(refusal(a, {{p, "1"}}) == "no error");
+    }
+    // A parameter neither reads, or two that disagree: refused, naming them and the method.
+    const auto resolve_refusal = [](const std::vector<GivenParameter>& given, bool map) {
+        DecodeRequest q;
+        try {
+            resolve_implied_method(q, given, map);
+        } catch (const InvalidInput& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    CHECK(resolve_refusal({{MethodParameter::kRegulariser, "gradient"}}, false) ==
+          "`regulariser` = gradient: is not used by `method` auto (wiener or tv, chosen from the "
+          "capture; only by tikhonov); give `method` tikhonov");
+    CHECK(resolve_refusal({{MethodParameter::kEps, "3"}}, false).find("give `method` tvqc") !=
+          std::string::npos);
+    CHECK(resolve_refusal({{MethodParameter::kNsr, "0.1"}, {MethodParameter::kIterations, "5"}},
+                          false) ==
+          "`iterations` = 5: is read by tv but `nsr` 0.1 is read by wiener only; give `method` "
+          "to say which");
+    CHECK(resolve_refusal({{MethodParameter::kLambda, "1"}}, true).find("`lambda` = 1") == 0);
+    // A given method is left alone (refuse_unused_parameters judges its parameters).
+    DecodeRequest g;
+    g.method_auto = false;
+    g.method = DecodeMethod::kTikhonov;
+    resolve_implied_method(g, {{MethodParameter::kRegulariser, "gradient"}}, false);
+    CHECK(g.method == DecodeMethod::kTikhonov);
+    CHECK(g.method_implied_by.empty());
 }

@@ -145,3 +145,61 @@ def test_table_rows_hold():
         assert p == pytest.approx(p_auto, abs=0.01)
         assert sc.psnr(np.asarray(oracle["image"]) / photons, truth) == pytest.approx(p_oracle,
                                                                                       abs=0.02)
+
+
+def test_method_auto_chooses_tv_on_a_frame_filling_linear_capture_and_wiener_otherwise(cli,
+                                                                                      tmp_path):
+    """The default method: tv on the lensless array's frame-filling capture (linear model), with
+    no warning; wiener on the paper camera's period (cyclic). Both faces say so (stats, config,
+    --explain, the summary; the result's method and chosen)."""
+    import json
+    model, psf = sc.cameras()["lensless"]
+    capture, _, _ = sc.render("cell.png", model, psf, 300.0, 2.0, 7)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # tv at its automatic weight: nothing to advise
+        out = pinmask.decode(capture, psf=psf, iters=20)  # iters alone: tv's parameter
+        auto = pinmask.decode(capture, psf=psf)
+    assert out["method"] == "tv" and out["chosen"]["method"]["reason"].startswith("iters given: only tv")
+    assert auto["method"] == "tv" and "fills the frame" in auto["chosen"]["method"]["reason"]
+    assert auto["chosen"]["nonnegative"]["value"] == "true"
+    np.save(tmp_path / "cap.npy", capture)
+    np.save(tmp_path / "psf.npy", psf)
+    p = cli.run("decode", "cap.npy", "--psf", "psf.npy", "--explain", "--stats", "s.json",
+                "-o", "a.npy")
+    stats = json.loads((tmp_path / "s.json").read_text())
+    assert stats["method"] == "tv" and stats["config"]["method"] == "auto"
+    assert stats["chosen"]["method"] == {"value": "tv",
+                                         "reason": auto["chosen"]["method"]["reason"]}
+    assert "decode: --method tv (auto): the linear model with a capture that fills the frame" \
+        in p.stderr
+    assert "method   tv (auto; linear model" in p.stdout
+    np.testing.assert_array_equal(np.load(tmp_path / "a.npy"),
+                                  np.asarray(auto["image"], np.float32))
+
+    model, psf = sc.cameras()["paper"]
+    capture, _, _ = sc.render("ihc.png", model, psf, 300.0, 2.0, 8)
+    out = pinmask.decode(capture, psf=psf, model=model)
+    assert out["method"] == "wiener"
+    assert out["chosen"]["method"]["reason"].startswith("the cyclic model")
+
+
+def test_cli_frame_filling_warning_names_tv_and_quiet_keeps_it_in_the_stats(cli, tmp_path):
+    """Wiener given on a frame-filling linear capture: one stderr line naming --method tv; under
+    --quiet no line, the stats' warnings still hold it."""
+    import json
+    model, psf = sc.cameras()["lensless"]
+    capture, _, _ = sc.render("cell.png", model, psf, 300.0, 2.0, 7)
+    np.save(tmp_path / "cap.npy", capture)
+    np.save(tmp_path / "psf.npy", psf)
+    p = cli.run("decode", "cap.npy", "--psf", "psf.npy", "--method", "wiener", "-o", "w.npy")
+    lines = [l for l in p.stderr.splitlines() if "fills the frame" in l]
+    assert len(lines) == 1 and lines[0].startswith("pinmask: warning: wiener on the linear")
+    assert lines[0].endswith("--method tv solves the linear model exactly")
+    q = cli.run("decode", "cap.npy", "--psf", "psf.npy", "--method", "wiener", "--quiet",
+                "--stats", "s.json", "-o", "q.npy")
+    assert "fills the frame" not in q.stderr
+    assert "fills the frame" in json.loads((tmp_path / "s.json").read_text())["warnings"][0]
+    # The far TV weight likewise.
+    q = cli.run("decode", "cap.npy", "--psf", "psf.npy", "--method", "tv", "--lambda", "1e9",
+                "--iters", "3", "--quiet", "-o", "t.npy")
+    assert "times the automatic weight" not in q.stderr
