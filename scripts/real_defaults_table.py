@@ -6,7 +6,8 @@ after gain and offset against a reference written in numpy (the source's preproc
 non-negative FISTA on the linear model, 300 iterations: the data README's clean hand), so no
 decode is judged by pinmask's own code. Run from the repository:
 PINMASK_SHARED_DIR=/work/shared PYTHONPATH=build/python /usr/bin/python3 scripts/real_defaults_table.py
-(--nonneg: the non-negativity figures of docs/decoding.md instead).
+(--nonneg: the non-negativity figures of docs/decoding.md instead; --auto: the default decode,
+its method chosen from the capture, against the best of both methods' sweeps).
 tests/python/test_real_defaults.py recomputes the rows at a smaller size and holds them."""
 import itertools
 import pathlib
@@ -78,7 +79,7 @@ def rows(names=("hand", "usaf"), methods=("wiener", "tv"), rounds=None, iters=30
         cap, psf = rc.load(name)
         reference = rc.fista_nonneg(*rc.preprocess(name, k), iters=iters)
         for method in methods:
-            default = decode(cap, psf, k, **({} if method == "wiener" else {"method": method}))
+            default = decode(cap, psf, k, method=method)
             p_default = score(default, reference)
             p_best, settings = sweep(name, method, cap, psf, k, reference, quick)
             out.append((name, method, default["chosen"], weight_of(default), p_default, p_best,
@@ -97,6 +98,22 @@ def table():
         lines.append(f"| {name} | {method} | {c} | {w:.3g} | {p:.2f} | {sw} | {pb:.2f} | "
                      f"{p - pb:+.2f} |")
     return "\n".join(lines)
+
+
+def auto_rows(rounds=None, iters=300):
+    """The default decode (method auto: the method chosen from the capture too) against the
+    best of the wiener and tv sweeps. Lines of (capture, method chosen, its reason, default
+    PSNR, best PSNR, best settings)."""
+    out = []
+    for name in ("hand", "usaf"):
+        k = (rounds or ROUNDS)[name]
+        cap, psf = rc.load(name)
+        reference = rc.fista_nonneg(*rc.preprocess(name, k), iters=iters)
+        default = decode(cap, psf, k)
+        best = max(sweep(name, m, cap, psf, k, reference) for m in ("wiener", "tv"))
+        out.append((name, default["method"], default["chosen"]["method"]["reason"],
+                    score(default, reference), best[0], best[1]))
+    return out
 
 
 def nonneg_rows():
@@ -127,7 +144,11 @@ def nonneg_rows():
 if __name__ == "__main__":
     if not rc.available():
         raise SystemExit(f"no real captures under {rc.real_dir()} (set PINMASK_SHARED_DIR)")
-    if sys.argv[1:] == ["--nonneg"]:
+    if sys.argv[1:] == ["--auto"]:
+        for name, method, reason, p, pb, settings in auto_rows():
+            print(f"{name}: default chooses {method} ({reason}): {p:.2f} dB; best {pb:.2f} dB "
+                  f"({settings}): default - best {p - pb:+.2f} dB")
+    elif sys.argv[1:] == ["--nonneg"]:
         for case, a, b in nonneg_rows():
             print(f"{case}: x >= 0 {a:.2f} dB, free {b:.2f} dB")
     else:
