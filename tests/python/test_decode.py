@@ -319,3 +319,29 @@ def test_bad_preprocessing_arguments_are_value_errors(mask7, kw, pattern):
     cap = pinmask.simulate(mask7, "letter-R", snr_db=30)["capture"]
     with pytest.raises(ValueError, match=pattern):
         pinmask.decode(cap, mask=mask7, **kw)
+
+
+def test_progress_follows_the_method_auto_chooses():
+    """method='auto' resolves inside the pipeline (tv here: a PSF that covers a capture lit to
+    its edges, the linear model); progress and stopping follow that method: max_iterations is
+    tv's 200, and returning False stops it with the estimate so far."""
+    rng = np.random.default_rng(3)
+    cap = 1.0 + rng.random((256, 256))
+    psf = rng.random((256, 256))
+    calls = []
+
+    def progress(info):
+        calls.append(info)
+        return False
+
+    out = pinmask.decode(cap, psf=psf, progress=progress, poll_s=0.001)
+    assert out["method"] == "tv" and out["chosen"]["method"]["value"] == "tv"
+    assert calls and all(c["max_iterations"] == 200 for c in calls)
+    assert out["interrupted"] and out["channels"][0]["iterations"] < 200
+    # A closed form chosen the same way reports no iterations.
+    calls.clear()
+    small = np.zeros((256, 256))
+    small[120:136, 120:136] = 1.0  # light in the middle of a dark frame: wiener
+    out = pinmask.decode(small, psf=psf, progress=progress, poll_s=0.001)
+    assert out["method"] == "wiener"
+    assert all(c["max_iterations"] == 0 for c in calls)
