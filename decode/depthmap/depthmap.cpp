@@ -112,8 +112,8 @@ void check_plane_source(bool mask, bool psf_stack, bool from, bool to, bool step
     if (mask == psf_stack) {
         throw invalid_field(field_ref("mask"), mask ? "given" : "absent",
                             "give either " + field_ref("mask") + " (with " + field_ref("from_m") +
-                                " and " + field_ref("to_m") + ") or " + field_ref("psf_stack") +
-                                ", one of them");
+                                ", " + field_ref("to_m") + " and " + field_ref("steps") +
+                                " optional) or " + field_ref("psf_stack") + ", one of them");
     }
     if (psf_stack) {
         for (const auto& [name, given] :
@@ -124,10 +124,6 @@ void check_plane_source(bool mask, bool psf_stack, bool from, bool to, bool step
                                         ": the stack's distances are the planes");
             }
         }
-    } else {
-        if (!from)
-            throw invalid_field(field_ref("from_m"), "", "required with " + field_ref("mask"));
-        if (!to) throw invalid_field(field_ref("to_m"), "", "required with " + field_ref("mask"));
     }
 }
 

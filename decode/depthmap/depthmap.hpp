@@ -75,9 +75,9 @@ struct DepthmapResult {
     bool interrupted = false;
 };
 
-// Where the planes come from, as a face's arguments give it: the mask with a distance range
-// (from and to required, steps optional) or a PSF stack, exactly one. InvalidInput naming the
-// field at fault (mask, psf_stack, from_m, to_m, steps) otherwise.
+// Where the planes come from, as a face's arguments give it: the mask (from, to and steps
+// optional: decode/depthmap/depthmap_planes's defaults) or a PSF stack (none of them), exactly
+// one. InvalidInput naming the field at fault (mask, psf_stack, from_m, to_m, steps) otherwise.
 void check_plane_source(bool mask, bool psf_stack, bool from, bool to, bool steps);
 
 // capture: one channel (grey), finite, at least window x window. Throws InvalidInput naming the
