@@ -1,12 +1,9 @@
-// `pinmask depthmap CAPTURE --mask M --from U1 --to U2 [--steps N] [--smooth L]` (or
-// `--psf-stack STACK` instead of --mask/--from/--to/--steps): a depth map, its confidence and an
-// all-in-focus image from one capture, by a plane sweep over object distance. Parses the flags,
-// reads the inputs (the stack's format: io/psf_stack.hpp), runs decode/depthmap/depthmap_run and
-// writes io/depthmap_json's files into -o DIR, together: depth.tif (float32, metres),
-// confidence.tif (float32, [0, 1]), all_in_focus.tif (float32), depthmap.png (depth in colour and
-// confidence in grey scaled to its maximum, side by side, a colour bar from near (dark) to far
-// (bright) at the right), depthmap.json (the summary, also on stdout with --json). Ctrl-C stops
-// after the current plane and writes the sweep over the planes finished.
+// `pinmask depthmap CAPTURE --mask M [--from U1 --to U2 --steps N]` (or `--psf-stack STACK`): a
+// depth map, its confidence and an all-in-focus image from one capture, by a plane sweep over
+// object distance. Parses the flags, reads the inputs (the stack's format: io/psf_stack.hpp), runs
+// decode/depthmap/depthmap_run and writes io/depthmap_json's files into -o DIR, together (their
+// list: io/depthmap_json.hpp). Ctrl-C stops after the current plane and writes the sweep over the
+// planes finished.
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -113,8 +110,9 @@ constexpr const char* kFooter =
     "raises. Labels: the plane per pixel that minimises the cost plus --smooth times a penalty "
     "on neighbouring pixels' planes (a one-plane step costs the weight times the mean depth of the "
     "pixels' cost wells, a larger jump twice that; semi-global dynamic programming along 8 "
-    "paths; 0: the lowest-cost plane per pixel), refined by a parabola in 1/u; confidence "
-    "(median cost - chosen cost) / median cost in [0, 1]; the all-in-focus image takes each "
+    "paths; 0: the lowest-cost plane per pixel), refined by a parabola in 1/u; cost margin "
+    "(median cost - chosen cost) / median cost, confidence the probability of a depth within one "
+    "plane spacing it maps to (measured in docs/depth.md); the all-in-focus image takes each "
     "pixel from the decode at its plane. capture_depth_m: the lowest frame-mean cost (the whole "
     "capture as one plane); capture_evidence_depth_m: the lowest evidence (the capture's "
     "marginal likelihood under a 1/f^2 scene prior and white noise). Light from one point spreads "
@@ -131,7 +129,8 @@ constexpr const char* kFooter =
     "non-negative, centred at element (rows/2, cols/2) rounded down; each is normalised to sum "
     "1.\n"
     "The capture is read as grey (channels averaged). Outputs in -o DIR, written together: "
-    "depth.tif (float32, metres), confidence.tif, all_in_focus.tif, depthmap.png (depth | "
+    "depth.tif (float32, metres), confidence.tif, cost_margin.tif, all_in_focus.tif, depthmap.png "
+    "(depth | "
     "confidence scaled to its maximum | colour bar: near dark at the top, far bright at the "
     "bottom), depthmap.json (also on stdout with --json). Progress per plane on stderr; Ctrl-C "
     "stops after the current plane and writes the sweep over the planes done.\n"

@@ -17,8 +17,8 @@ namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
 using json_strict::finite_or_null;
 
-constexpr const char* kFiles[] = {"depth.tif", "confidence.tif", "all_in_focus.tif", "depthmap.png",
-                                  "depthmap.json"};
+constexpr const char* kFiles[] = {"depth.tif",        "confidence.tif", "cost_margin.tif",
+                                  "all_in_focus.tif", "depthmap.png",   "depthmap.json"};
 
 json name_or_null(const std::string& name) { return name.empty() ? json(nullptr) : json(name); }
 
@@ -118,6 +118,9 @@ void write_depthmap_files(DepthmapReport& report, const fs::path& dir) {
     });
     files.stage(dir / "confidence.tif", [&](const fs::path& tmp) {
         write_tiff(tmp, Image(r.confidence), SampleFormat::kFloat32);
+    });
+    files.stage(dir / "cost_margin.tif", [&](const fs::path& tmp) {
+        write_tiff(tmp, Image(r.cost_margin), SampleFormat::kFloat32);
     });
     files.stage(dir / "all_in_focus.tif", [&](const fs::path& tmp) {
         write_tiff(tmp, Image(r.all_in_focus), SampleFormat::kFloat32);

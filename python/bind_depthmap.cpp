@@ -78,6 +78,7 @@ void bind_depthmap(py::module_& m) {
             py::dict out = json_value(io::depthmap_json(r));
             out["depth_m"] = to_array(std::move(r.result.depth_m));
             out["confidence"] = to_array(std::move(r.result.confidence));
+            out["cost_margin"] = to_array(std::move(r.result.cost_margin));
             out["all_in_focus"] = to_array(std::move(r.result.all_in_focus));
             out["label"] = to_array(std::move(r.result.label));
             return as_result(out);
@@ -102,11 +103,13 @@ plane), refined by a parabola in 1/u. capture: a 2-D (or colour, averaged) array
 path; mask: a Mask or *.mask.json path. background: 'none', 'corner' (each image's own mean of
 rows/cols 5..14 off it: the capture's, and each psf_stack PSF's, clipped at 0) or a number of
 counts off the capture; downsample: K rounds of 2x2 box averaging of the capture and the PSFs (a
-mask's PSFs drawn at the binned pixel pitch). output_dir: write the command's files there (depth.tif,
-confidence.tif, all_in_focus.tif, depthmap.png, depthmap.json; all or none); None writes nothing.
-Returns what `pinmask depthmap --json` prints (files: those written, [] without output_dir) plus
-the arrays depth_m (metres), confidence ([0, 1]), all_in_focus and label (plane index). Method
-and measured accuracy: docs/depth.md.)");
+mask's PSFs drawn at the binned pixel pitch). output_dir: write the command's files there
+(depth.tif, confidence.tif, cost_margin.tif, all_in_focus.tif, depthmap.png, depthmap.json; all
+or none); None writes nothing. Returns what `pinmask depthmap --json` prints (files: those
+written, [] without output_dir) plus the arrays depth_m (metres), confidence (the probability
+that the depth lies within one plane spacing, mapped from the cost margin), cost_margin
+((median cost - chosen cost) / median cost), all_in_focus and label (plane index). Method and
+measured accuracy: docs/depth.md.)");
 
     m.def(
         "depth_fisher",

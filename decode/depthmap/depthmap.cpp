@@ -11,6 +11,7 @@
 #include "core/limits/resource_limits.hpp"
 #include "core/units/number_format.hpp"
 #include "core/units/units.hpp"
+#include "decode/depthmap/calibrated_confidence.hpp"
 #include "decode/depthmap/refine.hpp"
 #include "decode/depthmap/smooth_labels.hpp"
 #include "decode/depthmap/sweep_cost.hpp"
@@ -68,7 +69,8 @@ DepthmapResult run(const Plane& capture, const std::vector<double>& u, const Dep
         r = refine_depth(costs, inv);
     }
     out.depth_m = std::move(r.depth_m);
-    out.confidence = std::move(r.confidence);
+    out.confidence = calibrated_confidence(r.confidence);
+    out.cost_margin = std::move(r.confidence);
     out.label = std::move(r.label);
     out.all_in_focus = Plane(capture.rows(), capture.cols());
     out.plane_fraction.assign(out.distances_m.size(), 0.0);
