@@ -120,7 +120,8 @@ constexpr const char* kFooter =
     "depth only on regions about the PSF's size: measured accuracy in docs/depth.md.\n"
     "Defaults with --mask: --from/--to the design's usable object distances (as pinmask design "
     "prints), --steps one resolvable depth step apart (JSON `sweep`: what was chosen and the "
-    "depth resolution). --background and --downsample prepare the capture as decode's do.\n"
+    "depth resolution). --background and --downsample prepare the capture with decode's corner "
+    "patch and binning.\n"
     "--psf-stack STACK replaces --mask/--from/--to/--steps with measured or computed PSFs: a JSON "
     "file (or a folder holding psf_stack.json) {\"format\": \"pinmask-psf-stack\", "
     "\"version\": 1, \"planes\": [{\"object_distance_m\": 0.5, \"psf\": \"psf_0.5m.tif\"}, "
@@ -135,6 +136,7 @@ constexpr const char* kFooter =
     "bottom), depthmap.json (also on stdout with --json). Progress per plane on stderr; Ctrl-C "
     "stops after the current plane and writes the sweep over the planes done.\n"
     "Examples:\n"
+    "  pinmask depthmap cap.tif --mask m.mask.json   (the design's usable range)\n"
     "  pinmask depthmap cap.tif --mask m.mask.json --from 0.3m --to 2m\n"
     "  pinmask depthmap cap.tif --mask m.mask.json --from 1m --to inf --steps 8 -o dm --json\n"
     "  pinmask depthmap cap.tif --psf-stack measured/psf_stack.json --smooth 0";
