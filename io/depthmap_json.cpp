@@ -4,6 +4,7 @@
 
 #include "core/files/atomic_file.hpp"
 #include "core/image/image_io.hpp"
+#include "core/units/number_format.hpp"
 #include "core/units/units.hpp"
 #include "decode/depthmap/depthmap_picture.hpp"
 #include "decode/solvers/decode_modes.hpp"
@@ -39,6 +40,7 @@ json sweep_json(const std::optional<DepthmapPlaneChoice>& p) {
                 {"crb_distance_m", p->crb_distance_m},
                 {"crb_photons", kDepthmapResolutionPhotons},
                 {"resolvable_inverse_per_m", p->resolvable_inverse_per_m},
+                {"finer_than_resolvable", p->finer_than_resolvable},
                 {"depth_resolution_near_m", p->resolution_near_m},
                 {"depth_resolution_far_m", finite_or_null(p->resolution_far_m)}};
 }
@@ -97,6 +99,11 @@ std::string depthmap_text(const DepthmapReport& report) {
             << format_length(c.to_m)
             << (c.capped ? " (planes capped at " + std::to_string(kDepthmapMaxDefaultPlanes) + ")"
                          : "")
+            << (c.finer_than_resolvable
+                    ? "; the planes are closer than the camera resolves (" +
+                          format_number(c.resolvable_inverse_per_m / c.spacing_inverse_per_m, 3) +
+                          " planes per resolvable step)"
+                    : "")
             << "\n";
     }
     return out.str();

@@ -83,6 +83,7 @@ DepthmapPlaneChoice choose_depthmap_planes(const Mask& mask, std::optional<doubl
         c.steps = static_cast<int>(std::clamp(planes, 2.0, double(kDepthmapMaxDefaultPlanes)));
     }
     c.spacing_inverse_per_m = (x0 - x1) / (c.steps - 1);
+    c.finer_than_resolvable = c.spacing_inverse_per_m < c.resolvable_inverse_per_m * (1.0 - 1e-9);
     c.resolution_near_m = c.from_m * c.from_m * c.resolvable_inverse_per_m;
     c.resolution_far_m = std::isinf(c.to_m) ? kInf : c.to_m * c.to_m * c.resolvable_inverse_per_m;
     return c;

@@ -36,6 +36,9 @@ struct DepthmapPlaneChoice {
     double resolution_near_m = 0;         // from^2 x resolvable step
     double resolution_far_m = 0;          // to^2 x resolvable step (inf at to = inf)
     bool capped = false;                  // the count was cut to kDepthmapMaxDefaultPlanes
+    // The planes are closer than the resolvable step (a given count, or range): neighbouring
+    // planes are not told apart by the camera, so a label is read to about step / spacing planes.
+    bool finer_than_resolvable = false;
 };
 
 // from_m, to_m, steps: the face's values (nullopt: the default above); rows x cols the capture's

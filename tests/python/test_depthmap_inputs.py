@@ -64,6 +64,13 @@ def test_default_range_and_count_follow_the_design(cli, tmp_path):
     # Given values are kept, and said to be given.
     g = pinmask.depthmap(capture, str(mask), from_m=0.4, to_m=2.0, steps=3, window=31)["sweep"]
     assert (g["from"], g["to"], g["steps_from"], g["steps"]) == ("given", "given", "given", 3)
+    assert not s["finer_than_resolvable"] and not g["finer_than_resolvable"]
+    # Planes closer than the camera resolves are said to be.
+    fine = pinmask.depthmap(capture, str(mask), from_m=0.49, to_m=0.51, steps=8, window=31)
+    assert fine["sweep"]["finer_than_resolvable"]
+    text = cli.run("depthmap", cap, "--mask", mask, "--from", "0.49m", "--to", "0.51m",
+                   "--steps", 8, "--window", 31, "-o", tmp_path / "f").stdout
+    assert "closer than the camera resolves" in text
     # One end given on the wrong side of the other's default.
     with pytest.raises(ValueError, match="to_m"):
         pinmask.depthmap(capture, str(mask), to_m=0.45, window=31)

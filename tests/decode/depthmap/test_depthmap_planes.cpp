@@ -62,6 +62,7 @@ TEST_CASE("depthmap_planes: the design's usable range and planes one resolvable 
     CHECK(c.resolution_near_m == doctest::Approx(c.from_m * c.from_m * step).epsilon(1e-9));
     CHECK(c.resolution_far_m == doctest::Approx(c.to_m * c.to_m * step).epsilon(1e-9));
     CHECK_FALSE(c.capped);
+    CHECK_FALSE(c.finer_than_resolvable);
 }
 
 TEST_CASE("depthmap_planes: given ends and counts are kept; a wide range is capped at 64") {
@@ -72,6 +73,9 @@ TEST_CASE("depthmap_planes: given ends and counts are kept; a wide range is capp
     CHECK(g.steps == 7);
     CHECK(g.steps_given);
     CHECK(g.spacing_inverse_per_m == doctest::Approx((2.5 - 0.5) / 6).epsilon(1e-12));
+    CHECK(g.finer_than_resolvable == (g.spacing_inverse_per_m < g.resolvable_inverse_per_m));
+    // 64 planes over 0.45 .. 0.55 m are 0.0064 /m apart, far below one pixel (0.094 /m).
+    CHECK(choose_depthmap_planes(m, 0.45, 0.55, 64, 160, 160).finer_than_resolvable);
     // 0.15 m .. inf is 6.67 /m, 71 one-pixel steps of 0.094 /m: capped.
     const DepthmapPlaneChoice wide =
         choose_depthmap_planes(m, 0.15, std::numeric_limits<double>::infinity(), {}, 160, 160);
