@@ -1,12 +1,9 @@
-// `pinmask depthmap CAPTURE --mask M --from U1 --to U2 [--steps N] [--smooth L]` (or
-// `--psf-stack STACK` instead of --mask/--from/--to/--steps): a depth map, its confidence and an
-// all-in-focus image from one capture, by a plane sweep over object distance. Parses the flags,
-// reads the inputs (the stack's format: io/psf_stack.hpp), runs decode/depthmap/depthmap_run and
-// writes io/depthmap_json's files into -o DIR, together: depth.tif (float32, metres),
-// confidence.tif (float32, [0, 1]), all_in_focus.tif (float32), depthmap.png (depth in colour and
-// confidence in grey scaled to its maximum, side by side, a colour bar from near (dark) to far
-// (bright) at the right), depthmap.json (the summary, also on stdout with --json). Ctrl-C stops
-// after the current plane and writes the sweep over the planes finished.
+// `pinmask depthmap CAPTURE --mask M [--from U1 --to U2 --steps N]` (or `--psf-stack STACK`): a
+// depth map, its confidence and an all-in-focus image from one capture, by a plane sweep over
+// object distance. Parses the flags, reads the inputs (the stack's format: io/psf_stack.hpp), runs
+// decode/depthmap/depthmap_run and writes io/depthmap_json's files into -o DIR, together (their
+// list: io/depthmap_json.hpp). Ctrl-C stops after the current plane and writes the sweep over the
+// planes finished.
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -14,6 +11,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/options/decode_flags.hpp"
 #include "cli/outputs/interrupt.hpp"
 #include "cli/outputs/progress.hpp"
 #include "core/files/output_set.hpp"
@@ -34,11 +32,13 @@ struct DepthmapCommandOptions {
     std::string mask;
     std::string psf_stack;
     std::string from, to;
-    int steps = DepthmapRequest{}.steps;
+    int steps = 0;
     bool steps_given = false;
     double smooth = DepthmapRequest{}.smooth;
     double nsr = DepthmapRequest{}.wiener_nsr;
     int window = DepthmapRequest{}.window;
+    std::string background = "none";
+    int downsample = 0;
     std::string output_dir = "depthmap_out";
     bool json = false;
 };
@@ -64,13 +64,15 @@ void run(const DepthmapCommandOptions& o) {
     q.mask_name = o.mask;
     q.psf_stack_name = o.psf_stack;
     if (o.psf_stack.empty()) {
-        q.from_m = parse_length_m(o.from, "--from");
-        q.to_m = parse_length_m(o.to, "--to", AllowInfinity::kYes);
-        q.steps = o.steps;
+        if (!o.from.empty()) q.from_m = parse_length_m(o.from, "--from");
+        if (!o.to.empty()) q.to_m = parse_length_m(o.to, "--to", AllowInfinity::kYes);
+        if (o.steps_given) q.steps = o.steps;
     } else {
         for (std::size_t k = 0; k < stack.psfs.size(); ++k)
             q.psf_stack.push_back({stack.distances_m[k], std::move(stack.psfs[k])});
     }
+    q.capture_options.background = parse_background(o.background);
+    q.capture_options.downsample = o.downsample;
     q.smooth = o.smooth;
     q.wiener_nsr = o.nsr;
     q.window = o.window;
@@ -97,11 +99,7 @@ void run(const DepthmapCommandOptions& o) {
         return;
     }
     for (const auto& p : io::depthmap_file_paths(dir)) std::cerr << "wrote " << p.string() << "\n";
-    std::cout << "depth " << format_length(r.depth_min_m) << " .. " << format_length(r.depth_max_m)
-              << " (median " << format_length(r.depth_median_m) << "), median confidence "
-              << r.confidence_median << "; whole capture " << format_length(r.capture_depth_m)
-              << " (confidence " << r.capture_confidence << "); " << r.distances_m.size()
-              << " planes\n";
+    std::cout << io::depthmap_text(report);
 }
 
 constexpr const char* kFooter =
@@ -112,13 +110,18 @@ constexpr const char* kFooter =
     "raises. Labels: the plane per pixel that minimises the cost plus --smooth times a penalty "
     "on neighbouring pixels' planes (a one-plane step costs the weight times the mean depth of the "
     "pixels' cost wells, a larger jump twice that; semi-global dynamic programming along 8 "
-    "paths; 0: the lowest-cost plane per pixel), refined by a parabola in 1/u; confidence "
-    "(median cost - chosen cost) / median cost in [0, 1]; the all-in-focus image takes each "
+    "paths; 0: the lowest-cost plane per pixel), refined by a parabola in 1/u; cost margin "
+    "(median cost - chosen cost) / median cost, confidence the probability of a depth within one "
+    "plane spacing it maps to (measured in docs/depth.md); the all-in-focus image takes each "
     "pixel from the decode at its plane. capture_depth_m: the lowest frame-mean cost (the whole "
     "capture as one plane); capture_evidence_depth_m: the lowest evidence (the capture's "
     "marginal likelihood under a 1/f^2 scene prior and white noise). Light from one point spreads "
     "over the whole PSF, so the map resolves "
     "depth only on regions about the PSF's size: measured accuracy in docs/depth.md.\n"
+    "Defaults with --mask: --from/--to the design's usable object distances (as pinmask design "
+    "prints), --steps one resolvable depth step apart (JSON `sweep`: what was chosen and the "
+    "depth resolution). --background and --downsample prepare the capture with decode's corner "
+    "patch and binning.\n"
     "--psf-stack STACK replaces --mask/--from/--to/--steps with measured or computed PSFs: a JSON "
     "file (or a folder holding psf_stack.json) {\"format\": \"pinmask-psf-stack\", "
     "\"version\": 1, \"planes\": [{\"object_distance_m\": 0.5, \"psf\": \"psf_0.5m.tif\"}, "
@@ -127,11 +130,13 @@ constexpr const char* kFooter =
     "non-negative, centred at element (rows/2, cols/2) rounded down; each is normalised to sum "
     "1.\n"
     "The capture is read as grey (channels averaged). Outputs in -o DIR, written together: "
-    "depth.tif (float32, metres), confidence.tif, all_in_focus.tif, depthmap.png (depth | "
+    "depth.tif (float32, metres), confidence.tif, cost_margin.tif, all_in_focus.tif, depthmap.png "
+    "(depth | "
     "confidence scaled to its maximum | colour bar: near dark at the top, far bright at the "
     "bottom), depthmap.json (also on stdout with --json). Progress per plane on stderr; Ctrl-C "
     "stops after the current plane and writes the sweep over the planes done.\n"
     "Examples:\n"
+    "  pinmask depthmap cap.tif --mask m.mask.json   (the design's usable range)\n"
     "  pinmask depthmap cap.tif --mask m.mask.json --from 0.3m --to 2m\n"
     "  pinmask depthmap cap.tif --mask m.mask.json --from 1m --to inf --steps 8 -o dm --json\n"
     "  pinmask depthmap cap.tif --psf-stack measured/psf_stack.json --smooth 0";
@@ -149,12 +154,17 @@ void setup(CLI::App& app) {
     cmd->add_option("--psf-stack", o->psf_stack,
                     "Instead of --mask/--from/--to/--steps: PSFs at given distances (a "
                     "pinmask-psf-stack JSON file, or a folder holding psf_stack.json)");
-    cmd->add_option("--from", o->from, "Nearest distance of the sweep (e.g. 0.3m), with --mask");
-    cmd->add_option("--to", o->to, "Farthest distance of the sweep (e.g. 2m or inf), with --mask");
+    cmd->add_option("--from", o->from,
+                    "Nearest distance of the sweep (e.g. 0.3m), with --mask; default: the "
+                    "design's nearest usable distance (as pinmask design prints)");
+    cmd->add_option("--to", o->to,
+                    "Farthest distance of the sweep (e.g. 2m or inf), with --mask; default: the "
+                    "design's farthest usable distance");
     auto* steps =
         cmd->add_option("--steps", o->steps,
-                        "Planes of the sweep, equally spaced in 1/u (2..1000), with --mask")
-            ->capture_default_str();
+                        "Planes of the sweep, equally spaced in 1/u (2..1000), with --mask; "
+                        "default: one resolvable depth step apart (the larger of one pixel of "
+                        "pattern change and the Cramer-Rao FWHM), at most 64");
     cmd->add_option("--smooth", o->smooth,
                     "Smoothness weight of the depth labels (>= 0; 0: lowest-cost plane per "
                     "pixel). A one-plane step between neighbours costs the weight times the mean "
@@ -164,6 +174,15 @@ void setup(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--window", o->window,
                     "Side of the cost's box, px (odd, >= 3, at most the capture's smaller side)")
+        ->capture_default_str();
+    cmd->add_option("--background", o->background,
+                    "Off the capture before the sweep: none, corner (each image's own mean of "
+                    "rows/cols 5..14: the capture's off the capture, each --psf-stack PSF's off "
+                    "it, clipped at 0) or a number of counts")
+        ->capture_default_str();
+    cmd->add_option("--downsample", o->downsample,
+                    "Rounds of 2x2 box averaging of the capture and the PSFs (0..12; a mask's "
+                    "PSFs are drawn at the binned pixel pitch)")
         ->capture_default_str();
     cmd->add_option("-o,--output-dir", o->output_dir,
                     "Folder for the outputs (created when missing)")

@@ -6,6 +6,8 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "decode/depthmap/depthmap_run.hpp"
 
@@ -13,8 +15,12 @@ namespace pinmask::io {
 
 nlohmann::ordered_json depthmap_json(const DepthmapReport& report);
 
-// The files of a depthmap run in `dir`: depth.tif, confidence.tif, all_in_focus.tif (float32),
-// depthmap.png (decode/depthmap/depthmap_picture), depthmap.json.
+// The command's text summary: the maps' range, the whole-capture estimate, and with a mask the
+// sweep's range and count (given or chosen) and the depth resolution at its ends.
+std::string depthmap_text(const DepthmapReport& report);
+
+// The files of a depthmap run in `dir`: depth.tif, confidence.tif, cost_margin.tif,
+// all_in_focus.tif (float32), depthmap.png (decode/depthmap/depthmap_picture), depthmap.json.
 std::vector<std::filesystem::path> depthmap_file_paths(const std::filesystem::path& dir);
 
 // Writes them all or none (creating dir); sets report.files.

@@ -19,6 +19,7 @@
 #include "design/optics/working_distance.hpp"
 #include "design/psf/psf.hpp"
 #include "design/psf/psf_exact.hpp"
+#include "python/background_arg.hpp"
 #include "python/common.hpp"
 #include "python/keyword_names.hpp"
 #include "python/result.hpp"
@@ -181,21 +182,6 @@ std::vector<GivenParameter> set_method_args(DecodeRequest& r, const MethodArgs& 
         throw InvalidInput(field_ref("eps") + " excludes " + field_ref("noise_sigma") +
                            " (give one of them)");
     return given;
-}
-
-// background=: "auto" | None or "none" | "corner" | a number of counts (or its text).
-DecodeBackground background_arg(const py::handle& b) {
-    if (b.is_none()) return {BackgroundMode::kNone, 0.0};
-    if (py::isinstance<py::str>(b)) {
-        const std::string s = b.cast<std::string>();
-        for (const auto& [mode, name] : kBackgroundModeNames)
-            if (mode != BackgroundMode::kValue && s == name) return {mode, 0.0};
-        return {BackgroundMode::kValue, parse_number(s, field_ref("background"))};
-    }
-    if (py::isinstance<py::bool_>(b))
-        throw invalid_field(field_ref("background"), py::str(b).cast<std::string>(),
-                            "must be auto, none, corner or a number of counts");
-    return {BackgroundMode::kValue, b.cast<double>()};
 }
 
 // crop=: "center" (or "centre") | "none" | (row, col) of the period's top-left pixel.

@@ -17,6 +17,7 @@
 #include "io/depthmap_json.hpp"
 #include "optimize/metrics/depth_fisher.hpp"
 #include "optimize/metrics/depth_loss.hpp"
+#include "python/background_arg.hpp"
 #include "python/common.hpp"
 #include "python/json_value.hpp"
 #include "python/result.hpp"
@@ -29,7 +30,8 @@ void bind_depthmap(py::module_& m) {
         "depthmap",
         [](const py::handle& capture, const py::object& mask, const py::object& from_m,
            const py::object& to_m, const py::object& steps, double nsr, int window, double smooth,
-           const py::object& psf_stack, const std::optional<std::string>& output_dir) {
+           const py::object& psf_stack, const py::handle& background, int downsample,
+           const std::optional<std::string>& output_dir) {
             if (output_dir) check_output_folder(*output_dir, field_ref("output_dir"));
             DepthmapRequest q;
             const bool capture_is_path =
@@ -39,6 +41,8 @@ void bind_depthmap(py::module_& m) {
                 capture_is_path ? read_image(q.capture_name).image : image_arg(capture, "capture");
             check_plane_source(!mask.is_none(), !psf_stack.is_none(), !from_m.is_none(),
                                !to_m.is_none(), !steps.is_none());
+            q.capture_options.background = background_arg(background);
+            q.capture_options.downsample = downsample;
             q.wiener_nsr = nsr;
             q.window = window;
             q.smooth = smooth;
@@ -46,8 +50,8 @@ void bind_depthmap(py::module_& m) {
                 q.mask = mask_arg(mask);
                 if (py::isinstance<py::str>(mask) || py::hasattr(mask, "__fspath__"))
                     q.mask_name = py::str(mask).cast<std::string>();
-                q.from_m = length_value(from_m, field_ref("from_m"), false);
-                q.to_m = length_value(to_m, field_ref("to_m"), true);
+                if (!from_m.is_none()) q.from_m = length_value(from_m, field_ref("from_m"), false);
+                if (!to_m.is_none()) q.to_m = length_value(to_m, field_ref("to_m"), true);
                 if (!steps.is_none()) q.steps = steps.cast<int>();
             } else {
                 if (!py::isinstance<py::sequence>(psf_stack) || py::isinstance<py::str>(psf_stack))
@@ -74,6 +78,7 @@ void bind_depthmap(py::module_& m) {
             py::dict out = json_value(io::depthmap_json(r));
             out["depth_m"] = to_array(std::move(r.result.depth_m));
             out["confidence"] = to_array(std::move(r.result.confidence));
+            out["cost_margin"] = to_array(std::move(r.result.cost_margin));
             out["all_in_focus"] = to_array(std::move(r.result.all_in_focus));
             out["label"] = to_array(std::move(r.result.label));
             return as_result(out);
@@ -82,21 +87,29 @@ void bind_depthmap(py::module_& m) {
         py::arg("to_m") = py::none(), py::arg("steps") = py::none(),
         py::arg("nsr") = DepthmapRequest{}.wiener_nsr, py::arg("window") = DepthmapRequest{}.window,
         py::arg("smooth") = DepthmapRequest{}.smooth, py::arg("psf_stack") = py::none(),
+        py::arg("background") = "none", py::arg("downsample") = 0,
         py::arg("output_dir") = py::none(),
-        R"(Depth map of one capture as `pinmask depthmap`: a plane sweep over steps (default 16)
-distances from from_m to to_m (metres, or strings with a unit as "40cm"; to_m may be inf;
-equally spaced in 1/u) with the mask's exact-geometry PSF at each, or over the planes of
+        R"(Depth map of one capture as `pinmask depthmap`: a plane sweep over steps distances from
+from_m to to_m (metres, or strings with a unit as "40cm"; to_m may be inf; equally spaced in 1/u;
+None: from_m and to_m the design's usable object distances, steps one resolvable depth step
+apart, at most 64; the result's "sweep" says what was chosen and the depth resolution) with the
+mask's exact-geometry PSF at each, or over the planes of
 psf_stack (a list of (distance_m, psf array)
 pairs, measured or computed elsewhere; PSFs at most the capture's size, centred at (rows // 2,
 cols // 2); instead of mask, from_m, to_m and steps). Wiener decodes (scalar nsr), cost the local
 energy (window x window px box) of the residual capture - PSF (*) estimate; per pixel the plane
 minimising the cost plus smooth times a penalty on neighbouring planes' steps (0: the lowest-cost
 plane), refined by a parabola in 1/u. capture: a 2-D (or colour, averaged) array or an image
-path; mask: a Mask or *.mask.json path. output_dir: write the command's files there (depth.tif,
-confidence.tif, all_in_focus.tif, depthmap.png, depthmap.json; all or none); None writes nothing.
-Returns what `pinmask depthmap --json` prints (files: those written, [] without output_dir) plus
-the arrays depth_m (metres), confidence ([0, 1]), all_in_focus and label (plane index). Method
-and measured accuracy: docs/depth.md.)");
+path; mask: a Mask or *.mask.json path. background: 'none', 'corner' (each image's own mean of
+rows/cols 5..14 off it: the capture's, and each psf_stack PSF's, clipped at 0) or a number of
+counts off the capture; downsample: K rounds of 2x2 box averaging of the capture and the PSFs (a
+mask's PSFs drawn at the binned pixel pitch). output_dir: write the command's files there
+(depth.tif, confidence.tif, cost_margin.tif, all_in_focus.tif, depthmap.png, depthmap.json; all
+or none); None writes nothing. Returns what `pinmask depthmap --json` prints (files: those
+written, [] without output_dir) plus the arrays depth_m (metres), confidence (the probability
+that the depth lies within one plane spacing, mapped from the cost margin), cost_margin
+((median cost - chosen cost) / median cost), all_in_focus and label (plane index). Method and
+measured accuracy: docs/depth.md.)");
 
     m.def(
         "depth_fisher",

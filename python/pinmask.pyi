@@ -499,13 +499,15 @@ def depth(
 def depthmap(
     capture: Union[PathLikeStr, ArrayLike],  # grey (colour: channels averaged) or an image path
     mask: Optional[MaskLike] = None,  # the PSFs from its exact geometry (or psf_stack)
-    from_m: Optional[Union[float, str]] = None,  # nearest plane, m or "40cm" (with mask)
-    to_m: Optional[Union[float, str]] = None,  # farthest plane, m or "2m" (inf allowed; with mask)
-    steps: Optional[int] = None,  # planes, equally spaced in 1/u (with mask; default 16)
+    from_m: Optional[Union[float, str]] = None,  # nearest plane, m or "40cm" (None: design's)
+    to_m: Optional[Union[float, str]] = None,  # farthest plane, m or "2m" (inf; None: design's)
+    steps: Optional[int] = None,  # planes, equally spaced in 1/u (None: one resolvable step)
     nsr: float = 0.01,  # Wiener NSR of every decode
     window: int = 121,  # odd box side of the cost, px
     smooth: float = 8.0,  # smoothness weight of the labels (0: lowest-cost plane per pixel)
     psf_stack: Optional[Sequence[tuple[Union[float, str], ArrayLike]]] = None,  # (distance, PSF)
+    background: Union[None, float, Literal["none", "corner"]] = "none",  # counts off the capture
+    downsample: int = 0,  # rounds of 2x2 box averaging of capture and PSFs
     output_dir: Optional[str] = None,  # write the command's files there (None: nothing written)
 ) -> Result: ...  # `pinmask depthmap --json`'s dict; depth_m, confidence... arrays
 def depth_fisher(

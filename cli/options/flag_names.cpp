@@ -37,6 +37,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"depth_to_m", "--depth-to"},
     {"distances", "--distances/--from/--to"},
     {"distances_m", "--from/--to"},
+    {"downsample", "--downsample"},
     {"draw", "--draw"},
     {"emulsion", "--emulsion"},
     {"energy_fraction", "--energy"},

@@ -11,6 +11,7 @@
 #include "core/limits/resource_limits.hpp"
 #include "core/units/number_format.hpp"
 #include "core/units/units.hpp"
+#include "decode/depthmap/calibrated_confidence.hpp"
 #include "decode/depthmap/refine.hpp"
 #include "decode/depthmap/smooth_labels.hpp"
 #include "decode/depthmap/sweep_cost.hpp"
@@ -68,7 +69,8 @@ DepthmapResult run(const Plane& capture, const std::vector<double>& u, const Dep
         r = refine_depth(costs, inv);
     }
     out.depth_m = std::move(r.depth_m);
-    out.confidence = std::move(r.confidence);
+    out.confidence = calibrated_confidence(r.confidence);
+    out.cost_margin = std::move(r.confidence);
     out.label = std::move(r.label);
     out.all_in_focus = Plane(capture.rows(), capture.cols());
     out.plane_fraction.assign(out.distances_m.size(), 0.0);
@@ -112,8 +114,8 @@ void check_plane_source(bool mask, bool psf_stack, bool from, bool to, bool step
     if (mask == psf_stack) {
         throw invalid_field(field_ref("mask"), mask ? "given" : "absent",
                             "give either " + field_ref("mask") + " (with " + field_ref("from_m") +
-                                " and " + field_ref("to_m") + ") or " + field_ref("psf_stack") +
-                                ", one of them");
+                                ", " + field_ref("to_m") + " and " + field_ref("steps") +
+                                " optional) or " + field_ref("psf_stack") + ", one of them");
     }
     if (psf_stack) {
         for (const auto& [name, given] :
@@ -124,10 +126,6 @@ void check_plane_source(bool mask, bool psf_stack, bool from, bool to, bool step
                                         ": the stack's distances are the planes");
             }
         }
-    } else {
-        if (!from)
-            throw invalid_field(field_ref("from_m"), "", "required with " + field_ref("mask"));
-        if (!to) throw invalid_field(field_ref("to_m"), "", "required with " + field_ref("mask"));
     }
 }
 

@@ -5,8 +5,8 @@
 //   2. The labelling: with smooth = 0 the lowest-cost plane per pixel (winner-take-all); with
 //      smooth > 0 the minimiser of the cost plus a smoothness penalty between neighbouring
 //      pixels' planes, by semi-global aggregation along 8 paths (decode/depthmap/smooth_labels).
-//      Then decode/depthmap/refine: a parabola in 1/u between planes, and a confidence from the
-//      sweep's costs at the chosen plane.
+//      Then decode/depthmap/refine: a parabola in 1/u between planes, and the cost margin of the
+//      chosen plane, mapped to a probability (decode/depthmap/calibrated_confidence).
 //   3. All-in-focus: each pixel from the estimate of its winning plane.
 //   4. The whole capture as one plane: the same refinement on the frame-mean costs, and on the
 //      planes' evidence (the marginal likelihood of the capture).
@@ -53,11 +53,15 @@ struct PsfStackPlane {
 };
 
 struct DepthmapResult {
-    std::vector<double> distances_m;     // the planes swept, sorted by increasing u
-    Plane depth_m;                       // refined distance per pixel, metres
-    Plane confidence;                    // [0, 1]
-    Plane label;                         // winning plane index into distances_m
-    Plane all_in_focus;                  // each pixel from its plane's Wiener estimate
+    std::vector<double> distances_m;  // the planes swept, sorted by increasing u
+    Plane depth_m;                    // refined distance per pixel, metres
+    // The probability that the pixel's depth lies within one plane spacing of the truth: its
+    // cost margin mapped by decode/depthmap/calibrated_confidence (measured reliability:
+    // docs/depth.md section 3c).
+    Plane confidence;
+    Plane cost_margin;   // (median cost - chosen plane's cost) / median cost, in [0, 1]
+    Plane label;         // winning plane index into distances_m
+    Plane all_in_focus;  // each pixel from its plane's Wiener estimate
     std::vector<double> plane_fraction;  // share of pixels won by each plane
     // The whole capture as one plane: the frame-mean cost per plane, and the distance where it is
     // lowest (refined by the parabola of decode/depthmap/refine), with its confidence.
@@ -75,9 +79,9 @@ struct DepthmapResult {
     bool interrupted = false;
 };
 
-// Where the planes come from, as a face's arguments give it: the mask with a distance range
-// (from and to required, steps optional) or a PSF stack, exactly one. InvalidInput naming the
-// field at fault (mask, psf_stack, from_m, to_m, steps) otherwise.
+// Where the planes come from, as a face's arguments give it: the mask (from, to and steps
+// optional: decode/depthmap/depthmap_planes's defaults) or a PSF stack (none of them), exactly
+// one. InvalidInput naming the field at fault (mask, psf_stack, from_m, to_m, steps) otherwise.
 void check_plane_source(bool mask, bool psf_stack, bool from, bool to, bool steps);
 
 // capture: one channel (grey), finite, at least window x window. Throws InvalidInput naming the

@@ -116,7 +116,7 @@ def test_python_matches_the_command_line(cli, tmp_path):
     c = json.loads(cli.run("depthmap", cap, "--mask", mask, "--from", "0.4m", "--to", "inf",
                            "--steps", 5, "--window", 31, "-o", out, "--json").stdout)
     p = pinmask.depthmap(str(cap), str(mask), from_m=0.4, to_m=math.inf, steps=5, window=31)
-    arrays = {"depth_m", "confidence", "all_in_focus", "label"}
+    arrays = {"depth_m", "confidence", "cost_margin", "all_in_focus", "label"}
     assert set(p) - arrays == set(c)
     for key, value in c.items():
         if key == "files":

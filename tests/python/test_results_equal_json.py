@@ -38,7 +38,7 @@ def test_compare_baselines_equal_cli_json(cli, tmp_path, mask7):
     assert out.baselines.mura.order == j["baselines"]["mura"]["order"]
 
 
-MAPS = ("depth_m", "confidence", "all_in_focus", "label")
+MAPS = ("depth_m", "confidence", "cost_margin", "all_in_focus", "label")
 
 
 def test_depthmap_equals_cli_json(cli, tmp_path, mask7, monkeypatch):
