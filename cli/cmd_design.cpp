@@ -1,8 +1,8 @@
 // `pinmask design`: the optics report (docs/design.md section 2) for a preset or explicit
 // parameters: parses and checks the flags, runs design/optics/design_run, prints a table
-// (quantity, value, note) or, with --json, one JSON object whose keys carry units. Infinite values
-// (z_eff at f = f', the pinhole for integer pixels when M = 0, u = inf) are written as JSON null
-// with the reason under "notes" (key -> text).
+// (quantity, value, note) or, with --json, io/design_json's object whose keys carry units. Infinite
+// values (z_eff at f = f', the pinhole for integer pixels when M = 0, u = inf) are written as JSON
+// null with the reason under "notes" (key -> text).
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -23,6 +23,7 @@
 #include "design/optics/fab_grid.hpp"
 #include "export/pipeline/vendor_presets.hpp"
 #include "io/camera_json.hpp"
+#include "io/design_json.hpp"
 #include "io/json_strict.hpp"
 
 namespace pinmask::cli {
@@ -113,6 +114,8 @@ void run(const DesignOptions& o, const CLI::App& command) {
     if (o.pixels_per_cell) q.pixels_per_cell = static_cast<int>(*o.pixels_per_cell);
     q.solve = !o.solve.empty();
     q.grid = snap;
+    for (const CameraInput& in : camera_inputs(camera_options, camera))
+        q.input_sources.emplace_back(in.symbol, in.source);
     q.spell = [&command](const std::string& w) { return spell_flags(w, command); };
     const DesignReport d = run_design_request(q);
     if (!d.far_from_optimum.empty())
@@ -121,9 +124,7 @@ void run(const DesignOptions& o, const CLI::App& command) {
     const std::string solved =
         d.snap.solved ? "solved: d gives N at u, then snapped to the fabrication grid" : "";
     std::vector<CameraInput> inputs = camera_inputs(camera_options, d.camera);
-    if (d.snap.solved)
-        inputs[0].source = "solved for N px per cell at u, on the " +
-                           std::to_string(d.snap.grid_nm) + " nm fabrication grid";
+    for (std::size_t i = 0; i < inputs.size(); ++i) inputs[i].source = d.input_sources[i].second;
     if (geometry.holes > d.packing.count)
         std::cerr << "pinmask: warning: --holes " << geometry.holes
                   << ": that many pinholes do not fit on a " << geometry.n << " x " << geometry.n
@@ -131,13 +132,7 @@ void run(const DesignOptions& o, const CLI::App& command) {
                   << " (" << d.packing.reason << ")\n";
     if (!o.save_camera.empty()) io::write_camera_file(o.save_camera, d.camera);
     if (o.json) {
-        auto j = design_json(d.optics, d.working, d.snap, d.kernel);
-        j["spacing_cells"] = o.geometry.spacing;
-        j["max_holes_at_spacing"] = d.packing.count;
-        j["max_holes_reason"] = d.packing.reason;
-        j["kernel_warnings"] = d.kernel.validity.warnings;
-        for (const CameraInput& in : inputs) j["input_sources"][in.symbol] = in.source;
-        std::cout << io::json_strict::pretty(j) << "\n";
+        std::cout << io::json_strict::pretty(io::design_json(d)) << "\n";
     } else {
         std::cout << design_table(d.optics, d.working, solved, inputs, d.snap, d.kernel);
         if (!o.save_camera.empty()) std::cerr << "wrote " << o.save_camera << "\n";

@@ -56,6 +56,11 @@ DesignReport run_design_request(const DesignRequest& q) {
     // The spacing rule against the pinhole count: the proven packing bound, so a design that no
     // search or generator can realise says so before any of them runs.
     r.packing = packing_upper_bound(q.geometry.n, q.spacing_cells);
+    r.spacing_cells = q.spacing_cells;
+    r.input_sources = q.input_sources;
+    if (r.snap.solved && !r.input_sources.empty())
+        r.input_sources.front().second = "solved for N px per cell at u, on the " +
+                                         std::to_string(r.snap.grid_nm) + " nm fabrication grid";
     return r;
 }
 

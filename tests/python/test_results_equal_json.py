@@ -2,6 +2,7 @@
 rendering, so `result.to_dict()` equals what the command prints for the same settings (the
 library's words that name a setting are in each face's own spelling)."""
 import json
+import re
 
 import numpy as np
 
@@ -88,3 +89,43 @@ def test_depth_equals_cli_json(cli, tmp_path, mask7):
                         scenes=["letter-R"], tv=False)
     assert [r.to_dict() for r in out] == j
     assert out[2].object_distance_m is None  # inf, as null in the JSON
+
+
+def test_optics_equals_cli_design_json(cli):
+    """optics() is `design --json`: the paper's camera (both faces name it the preset default)."""
+    j = json.loads(cli.run("design", "--preset", "paper", "--json").stdout)
+    assert pinmask.optics().to_dict() == j
+    # A distant object and no lens: infinities as null with their notes, in both.
+    j = json.loads(cli.run("design", "--preset", "paper", "--object-distance", "inf",
+                           "--lens-focal", "inf", "--pinhole", "440um", "--grid", "8", "--holes", "6",
+                           "--json").stdout)
+    out = pinmask.optics(pinmask.Camera(object_distance_m="inf", lens_focal_m="inf",
+                                        pinhole_m="440um"), grid=8, holes=6)
+    assert out.camera.object_distance_m is None and "object_distance_m" in out.notes
+    # Where the camera values came from is each face's own word (a flag, the camera argument).
+    assert set(out.input_sources.values()) == {"camera argument"}
+    assert {k: v for k, v in out.to_dict().items() if k != "input_sources"} == \
+        {k: v for k, v in j.items() if k != "input_sources"}
+
+
+def test_optics_solved_equals_cli_design_json(cli, tmp_path):
+    """A pinhole solved for whole pixels per cell and snapped to an export preset's grid."""
+    flags = ["--pixel-pitch", "3.45um", "--sensor", "2448x2048", "--lens-focal", "25mm",
+             "--sensor-distance", "20mm", "--object-distance", "2m", "--wavelength", "530nm"]
+    j = json.loads(cli.run("design", *flags, "--pixels-per-cell", "12", "--vendor",
+                           "film-plotter", "--spacing", "3", "--json").stdout)
+    out = pinmask.optics(pinmask.Camera(pixel_pitch_m="3.45um", sensor_cols=2448,
+                                        sensor_rows=2048, lens_focal_m="25mm",
+                                        sensor_distance_m="20mm", object_distance_m="2m",
+                                        wavelength_m="530nm"),
+                         pixels_per_cell=12, vendor="film-plotter", spacing=3)
+    solved = out.input_sources["d (pinhole)"]
+    assert solved.startswith("solved") and j["input_sources"]["d (pinhole)"] == solved
+    # psf's setting a warning names is in each face's spelling: --energy, energy_fraction.
+    assert j["kernel_warnings"] and len(out.kernel_warnings) == len(j["kernel_warnings"])
+    where = r" \((?:a flag|a keyword) of .*?, not of (?:design|optics\(\))\)"
+    for d in (j, out):
+        del d["input_sources"]
+        d["kernel_warnings"] = [re.sub(where, "", w).replace("--energy", "energy_fraction")
+                                for w in d["kernel_warnings"]]
+    assert out.to_dict() == j
