@@ -57,7 +57,7 @@ def main(out):
 
     # 3. Export: fabrication files (read back before they are written).
     exported = pinmask.export_mask(mask, str(out / "fab"), formats=["svg", "gds"], stem="best")
-    summary["export_files"] = sorted(pathlib.Path(f["path"]).name for f in exported["files"])
+    summary["export_files"] = sorted(f["name"] for f in exported["files"])
 
     # 4. Simulate a capture of the letter R at 40 dB SNR; 5. decode it (Wiener).
     psf = pinmask.psf(mask)

@@ -129,3 +129,19 @@ def test_optics_solved_equals_cli_design_json(cli, tmp_path):
         d["kernel_warnings"] = [re.sub(where, "", w).replace("--energy", "energy_fraction")
                                 for w in d["kernel_warnings"]]
     assert out.to_dict() == j
+
+
+def test_export_mask_equals_cli_json(cli, tmp_path, mask7, monkeypatch):
+    """export_mask() is `export --json`: the sidecar <stem>.export.json as written, PSF included."""
+    mask7.save(str(tmp_path / "m.mask.json"))
+    args = ["--format", "gds,dxf,svg", "--vendor", "film-plotter", "--shape", "circle",
+            "--label", "--marks", "--units", "mm"]
+    j = json.loads(cli.run("export", "m.mask.json", *args, "-o", "cli", "--json").stdout)
+    monkeypatch.chdir(tmp_path)  # the mask path recorded as given, as the command records it
+    out = pinmask.export_mask("m.mask.json", "py", formats=["gds", "dxf", "svg"],
+                              vendor="film-plotter", shape="circle", label=True, marks=True,
+                              units="mm")
+    assert out.to_dict() == j
+    assert out.to_dict() == json.loads((tmp_path / "py" / "m.export.json").read_text())
+    assert [f.name for f in out.files] == ["m.gds", "m.dxf", "m.svg"]
+    assert out.psf.files == ["m.psf.tiff", "m.psf.json"] and out.drc.clean
