@@ -78,6 +78,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"migrate_every", "--migrate-every"},
     {"min_feature", "--min-feature"},
     {"min_space", "--min-space"},
+    {"min_spacing", "--min-spacing"},
     {"mirror", "--mirror"},
     {"model", "--model"},
     {"no_rerank", "--no-rerank"},

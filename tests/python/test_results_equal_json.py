@@ -145,3 +145,36 @@ def test_export_mask_equals_cli_json(cli, tmp_path, mask7, monkeypatch):
     assert out.to_dict() == json.loads((tmp_path / "py" / "m.export.json").read_text())
     assert [f.name for f in out.files] == ["m.gds", "m.dxf", "m.svg"]
     assert out.psf.files == ["m.psf.tiff", "m.psf.json"] and out.drc.clean
+
+
+def test_check_equals_cli_json(cli, tmp_path, mask7, monkeypatch):
+    """check() is `check --json` for each kind of input: a mask, a fabrication file with and
+    without its sidecar or design, a picture against its design, and overridden rules."""
+    mask7.save(str(tmp_path / "m.mask.json"))
+    cli.run("export", "m.mask.json", "--format", "gds,dxf,pdf,png", "--vendor", "film-plotter",
+            "-o", "fab")
+    (tmp_path / "lone").mkdir()
+    (tmp_path / "lone" / "m.gds").write_bytes((tmp_path / "fab" / "m.gds").read_bytes())
+    monkeypatch.chdir(tmp_path)
+    cases = [
+        (["m.mask.json"], {}),
+        (["m.mask.json", "--vendor", "chrome", "--min-gap", "600um", "--list", "2"],
+         dict(vendor="chrome", min_gap="600um", list=2)),
+        (["fab/m.gds"], {}),
+        (["fab/m.dxf", "--no-sidecar", "--mask", "m.mask.json", "--tone", "dark"],
+         dict(no_sidecar=True, mask="m.mask.json", tone="dark")),
+        (["fab/m.pdf"], {}),
+        (["fab/m.png", "--min-feature", "1mm"], dict(min_feature="1mm")),
+        (["lone/m.gds", "--min-spacing", "800um"], dict(min_spacing="800um")),
+    ]
+    for args, kwargs in cases:
+        p = cli.run("check", *args, "--json", expect=(0, 1))
+        j = json.loads(p.stdout)
+        out = pinmask.check(args[0], **kwargs)
+        assert out.to_dict() == j, args
+        assert out.clean == (p.returncode == 0), args
+    assert "picture" in pinmask.check("fab/m.pdf")
+    # A Mask object is named as such where the command names its file.
+    j = json.loads(cli.run("check", "m.mask.json", "--json").stdout)
+    j["input"] = "python mask"
+    assert pinmask.check(mask7).to_dict() == j
