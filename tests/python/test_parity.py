@@ -173,13 +173,13 @@ def test_search_photon_model_and_prior_same_masks_as_cli(cli, tmp_path):
     r = pinmask.search(grid=16, holes=20, evals=150, threads=1, seed=4, top=2, rerank_scenes=[],
                        photons=500, read_noise=2, full_well=40000, bits=10, prior="stars",
                        prior_scenes=2)
-    assert len(r["candidates"]) == 2
-    for i, c in enumerate(r["candidates"]):
-        assert c["mask"].to_json() == (tmp_path / "runs" / f"rank-{i + 1}.mask.json").read_text()
+    assert len(r["masks"]) == 2
+    for i, m in enumerate(r["masks"]):
+        assert m.to_json() == (tmp_path / "runs" / f"rank-{i + 1}.mask.json").read_text()
     # The noise model is used: Gaussian noise finds a different objective.
     g = pinmask.search(grid=16, holes=20, evals=150, threads=1, seed=4, top=2, rerank_scenes=[],
                        prior="stars", prior_scenes=2)
-    assert g["candidates"][0]["objective"] != r["candidates"][0]["objective"]
+    assert g["ranked"][0]["objective"] != r["ranked"][0]["objective"]
 
 
 @pytest.mark.parametrize("cli_args,kwargs", [
@@ -339,10 +339,10 @@ def test_search_holes_range_same_masks_as_cli(cli, tmp_path):
             "--threads", "1", "--seed", "5", "--top", "2", "--no-rerank", "-o", "runs")
     r = pinmask.search(grid=16, holes="8..14", evals=200, threads=1, seed=5, top=2,
                        rerank_scenes=[])
-    assert len(r["candidates"]) == 2
-    for i, c in enumerate(r["candidates"]):
-        assert c["mask"].to_json() == (tmp_path / "runs" / f"rank-{i + 1}.mask.json").read_text()
-    counts = {len(c["mask"].pattern.pinholes) for c in r["candidates"]}
+    assert len(r["masks"]) == 2
+    for i, m in enumerate(r["masks"]):
+        assert m.to_json() == (tmp_path / "runs" / f"rank-{i + 1}.mask.json").read_text()
+    counts = {len(m.pattern.pinholes) for m in r["masks"]}
     assert all(8 <= k <= 14 for k in counts)
     # The range's messages are the CLI's, in Python spelling.
     msg = as_keywords_holes(cli.error("search", "--holes", "9..4", "--evals", "5", "-o", "bad"))

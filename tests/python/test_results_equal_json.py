@@ -178,3 +178,26 @@ def test_check_equals_cli_json(cli, tmp_path, mask7, monkeypatch):
     j = json.loads(cli.run("check", "m.mask.json", "--json").stdout)
     j["input"] = "python mask"
     assert pinmask.check(mask7).to_dict() == j
+
+
+def test_search_equals_cli_json(cli, tmp_path):
+    """search() is `search --json` with nothing written: output and the rows' paths None, the
+    masks the command writes as values (rank-N.mask.json), and the run's timings its own."""
+    flags = ["--grid", "8", "--holes", "5..7", "--evals", "300", "--threads", "1", "--seed", "4",
+             "--top", "2", "--rerank-scenes", "letter-R", "--robust", "size=44um,jitter=2um",
+             "--quiet"]
+    j = json.loads(cli.run("search", *flags, "-o", "runs", "--json").stdout)
+    out = pinmask.search(grid=8, holes="5..7", evals=300, threads=1, seed=4, top=2,
+                         rerank_scenes=["letter-R"], robust="size=44um,jitter=2um")
+    assert out.output is None and all(r.path is None for r in out.ranked)
+    for i, m in enumerate(out.masks):
+        assert j["ranked"][i]["path"] == f"runs/rank-{i + 1}.mask.json"
+        assert m.to_json() == (tmp_path / j["ranked"][i]["path"]).read_text()
+    got = out.to_dict()
+    for k in ("used_s", "search_s", "rerank_s"):  # wall-clock seconds of each run
+        assert got.pop(k) >= 0 and j.pop(k) >= 0
+    j["output"] = None
+    for row in j["ranked"]:
+        row["path"] = None
+    assert {k: v for k, v in got.items() if k not in ("masks", "log")} == j
+    assert "best_per_holes" in j and "robust_wiener_psnr_db" in j["ranked"][0]
