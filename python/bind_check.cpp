@@ -49,8 +49,7 @@ DrcRules resolve_rules(const CheckArgs& o, DrcRules rules) {
     if (!o.min_spacing.is_none())
         rules.min_center_spacing_nm = double(length_nm(o.min_spacing, field_ref("min_spacing"), 0));
     if (o.max_vertices) rules.max_vertices = *o.max_vertices;
-    if (o.list < 1) throw invalid_field(field_ref("list"), std::to_string(o.list), "must be >= 1");
-    rules.max_reported_per_rule = o.list;
+    rules.max_reported_per_rule = o.list;  // >= 1, checked before the call
     return rules;
 }
 
