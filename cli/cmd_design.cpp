@@ -42,31 +42,6 @@ struct DesignOptions {
     bool json = false;
 };
 
-// The fabrication grid a solved pinhole is snapped to: --fab-grid, else the --vendor preset's,
-// else 1 nm.
-GridSnap fab_grid_of(const DesignOptions& o) {
-    GridSnap g;
-    if (o.fab_grid && o.vendor)
-        throw invalid_field("--fab-grid", *o.fab_grid,
-                            "and --vendor both set the grid: give one of them");
-    if (o.fab_grid) {
-        g.grid_nm = fab_grid_nm(parse_length_m(*o.fab_grid, "--fab-grid"), "--fab-grid");
-        g.grid_source = "--fab-grid";
-    } else if (o.vendor) {
-        const VendorPreset* p = find_vendor_preset(*o.vendor);
-        if (!p)
-            throw invalid_field("--vendor", *o.vendor,
-                                "is a rule preset without a grid; give an export preset "
-                                "(`pinmask export --vendor list`) or --fab-grid");
-        g.grid_nm = fab_grid_nm(p->grid_m, "--vendor");
-        g.grid_source = "vendor " + p->name;
-    } else {
-        g.grid_nm = kDefaultFabGridNm;
-        g.grid_source = "default";
-    }
-    return g;
-}
-
 void run(const DesignOptions& o, const CLI::App& command) {
     // --pixels-per-cell solves the pinhole itself: no default pinhole is chosen (or said) first.
     CameraOptions camera_options = o.camera;
@@ -98,12 +73,6 @@ void run(const DesignOptions& o, const CLI::App& command) {
                             "must be between 1 and " + std::to_string(kMaxPixelsPerCell));
     }
     check_object_distance(camera, camera.object_distance_m, "--object-distance");
-    GridSnap snap = fab_grid_of(o);
-    if ((o.fab_grid || o.vendor) && !o.pixels_per_cell && o.solve.empty())
-        throw invalid_field(o.fab_grid ? "--fab-grid" : "--vendor",
-                            o.fab_grid ? *o.fab_grid : *o.vendor,
-                            "sets the grid a solved pinhole lands on: use it with --solve pinhole "
-                            "or --pixels-per-cell");
     DesignRequest q;
     q.camera = camera;
     q.geometry = geometry;
@@ -113,7 +82,16 @@ void run(const DesignOptions& o, const CLI::App& command) {
     q.lsi_tolerance_px = o.lsi_tolerance_px;
     if (o.pixels_per_cell) q.pixels_per_cell = static_cast<int>(*o.pixels_per_cell);
     q.solve = !o.solve.empty();
-    q.grid = snap;
+    // The grid a solved pinhole lands on: --fab-grid, or the --vendor export preset's
+    // (design/optics/design_run checks them).
+    if (o.fab_grid) {
+        q.fab_grid_m = parse_length_m(*o.fab_grid, "--fab-grid");
+        q.fab_grid_text = *o.fab_grid;
+    }
+    if (o.vendor) {
+        q.vendor = *o.vendor;
+        if (const VendorPreset* p = find_vendor_preset(*o.vendor)) q.vendor_grid_m = p->grid_m;
+    }
     for (const CameraInput& in : camera_inputs(camera_options, camera))
         q.input_sources.emplace_back(in.symbol, in.source);
     q.spell = [&command](const std::string& w) { return spell_flags(w, command); };

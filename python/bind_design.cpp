@@ -205,31 +205,6 @@ void bind_design(py::module_& m) {
                     throw invalid_field(field_ref("save_camera"), save_camera->string(),
                                         "its folder does not exist");
             }
-            // The fabrication grid a solved pinhole lands on: fab_grid, else the vendor
-            // preset's, else 1 nm.
-            std::int64_t grid_nm = kDefaultFabGridNm;
-            if (!fab_grid.is_none() && vendor)
-                throw invalid_field(
-                    field_ref("fab_grid"), std::string(py::str(fab_grid)),
-                    "and " + field_ref("vendor") + " both set the grid: give one of them");
-            if (!fab_grid.is_none()) {
-                grid_nm = fab_grid_nm(length_value(fab_grid, "fab_grid", false), "fab_grid");
-            } else if (vendor) {
-                const VendorPreset* preset = find_vendor_preset(*vendor);
-                if (!preset)
-                    throw invalid_field(field_ref("vendor"), *vendor,
-                                        "is a rule preset without a grid; give an export preset "
-                                        "(pinmask export --vendor list) or " +
-                                            field_ref("fab_grid"));
-                grid_nm = fab_grid_nm(preset->grid_m, "vendor");
-            }
-            const bool solving = pixels_per_cell || solve;
-            if ((!fab_grid.is_none() || vendor) && !solving)
-                throw invalid_field(field_ref(!fab_grid.is_none() ? "fab_grid" : "vendor"),
-                                    !fab_grid.is_none() ? std::string(py::str(fab_grid)) : *vendor,
-                                    "sets the grid a solved pinhole lands on: use it with " +
-                                        field_ref("solve") + "='pinhole' or " +
-                                        field_ref("pixels_per_cell"));
             // The command's transaction (design/optics/design_run): the solve, the report, the
             // kernel psf would build and the packing bound.
             DesignRequest q;
@@ -240,8 +215,18 @@ void bind_design(py::module_& m) {
             q.kernel = kernel;
             q.lsi_tolerance_px = lsi_tolerance_px;
             if (pixels_per_cell) q.pixels_per_cell = static_cast<int>(*pixels_per_cell);
-            q.solve = solving && !pixels_per_cell;
-            q.grid.grid_nm = grid_nm;
+            q.solve = solve && !pixels_per_cell;
+            // The grid a solved pinhole lands on: fab_grid, or the export preset vendor's
+            // (design/optics/design_run checks them).
+            if (!fab_grid.is_none()) {
+                q.fab_grid_m = length_value(fab_grid, "fab_grid", false);
+                q.fab_grid_text = py::str(fab_grid).cast<std::string>();
+            }
+            if (vendor) {
+                q.vendor = *vendor;
+                if (const VendorPreset* p = find_vendor_preset(*vendor))
+                    q.vendor_grid_m = p->grid_m;
+            }
             // Where the camera came from, in this face's words (design --json's input_sources).
             for (const char* symbol : kCameraInputSymbols)
                 q.input_sources.emplace_back(symbol,

@@ -42,6 +42,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"energy_fraction", "--energy"},
     {"eps", "--eps"},
     {"exact_geometry", "--geometry exact"},
+    {"fab_grid", "--fab-grid"},
     {"family", "--family"},
     {"filter", "--filter"},
     {"formats", "--format"},

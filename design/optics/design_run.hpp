@@ -42,12 +42,23 @@ struct DesignRequest {
     double lsi_tolerance_px = 1.0;
     std::optional<int> pixels_per_cell;  // solve d for N whole pixels per cell at u
     bool solve = false;                  // solve d for the whole N nearest the pitch at u
-    GridSnap grid{false, kDefaultFabGridNm, "default"};  // the grid a solved pinhole lands on
+    // The grid a solved pinhole lands on, as given: a length (fab_grid_m; its text for
+    // messages) or an export preset (vendor, and its grid: nullopt for a rule preset without
+    // one). Neither: 1 nm. Given without a solve, or both, is refused.
+    std::optional<double> fab_grid_m;
+    std::string fab_grid_text;
+    std::optional<std::string> vendor;
+    std::optional<double> vendor_grid_m;
     // Where the face took each camera value from, in its words: (symbol, source) in the order
     // of kCameraInputSymbols ("flag", "camera file", "paper preset default", ...).
     std::vector<std::pair<std::string, std::string>> input_sources;
     // The face's spelling of the field references in the warnings (identity when not given).
     std::function<std::string(const std::string&)> spell;
+
+    // The fabrication grid from fab_grid_m or the vendor's (InvalidInput naming the field when
+    // both are given, when either is given without a solve, for a vendor without a grid, or a
+    // grid that is not a whole number of nm); where it came from in the face's words.
+    GridSnap grid() const;
 };
 
 // The camera values a design report names the source of, in the report's order (the pinhole
