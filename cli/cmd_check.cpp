@@ -1,18 +1,15 @@
 // `pinmask check`: the design-rule check (export/pipeline/drc) of a mask file, via the layout the
-// export builds from it, or of a fabrication file read back (GDSII, OASIS, DXF, Gerber, SVG) and
-// compared with its design: the transaction io/check_files, which Python's check() calls too,
-// rendered by io/check_json for --json. The layout settings come from the export sidecar
-// <stem>.export.json beside the file when there is one (explicit flags must agree with it), else
-// from the flags. What identifies the film (layer,
-// datatype, DXF layer name, Gerber polarity) is compared with the sidecar or the vendor preset
+// export builds from it, or of a fabrication file read back (GDSII, OASIS, DXF, Gerber, SVG) or a
+// picture (PDF, PNG, 1-bit TIFF) compared with its design: the transaction io/check_files, which
+// Python's check() calls too, rendered by io/check_json for --json. The layout settings come
+// from the export sidecar <stem>.export.json beside the file when there is one (explicit flags
+// must agree with it), else from the flags. What identifies the film (layer, datatype, DXF layer
+// name, Gerber polarity) is compared with the sidecar or the vendor preset
 // (export/pipeline/film_identity). Exit codes: 0 clean, 1 violations (or an XOR or film identity
 // mismatch), 2 bad input, 3 the time limit PINMASK_TIME_LIMIT was spent (no verdict printed:
 // check writes only stdout, at the end).
-#include <cmath>
-#include <filesystem>
 #include <iostream>
 #include <memory>
-#include <optional>
 #include <string>
 
 #include "cli/command_footers.hpp"
@@ -26,8 +23,6 @@
 
 namespace pinmask::cli {
 namespace {
-
-namespace fs = std::filesystem;
 
 // Returns the exit code: 0 clean, 1 violations found.
 int run(const CheckOptions& o) {
