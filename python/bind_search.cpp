@@ -96,130 +96,132 @@ void bind_search(py::module_& m) {
            const std::optional<std::string>& checkpoint, std::int64_t checkpoint_every,
            const std::optional<std::string>& resume, double depth_weight,
            std::optional<double> depth_from, std::optional<double> depth_to) {
-        SearchPipelineOptions p;
-        p.tmpl.camera = camera.value_or(paper_camera());
-        validate(p.tmpl.camera);
-        parse_kernel_model(kernel, field_ref("kernel"));
-        PsfSettings po;
-        po.kernel = kernel;
-        po.kernel_path = kernel_path;
-        po.pixels_per_cell = pixels_per_cell;
-        p.tmpl.psf = resolve_psf_spec(po, p.tmpl.camera);
-        p.tmpl.pattern.n = grid;
-        p.tmpl.pattern.tiles_rows = p.tmpl.pattern.tiles_cols = tiles;
-        p.tmpl.pattern.min_spacing_cells = spacing;
-        // holes: K, or "A..B" as --holes (a pinhole-count range: the best mask per K).
-        if (py::isinstance<py::str>(holes)) {
-            std::tie(p.holes, p.max_holes) = parse_holes_range(holes.cast<std::string>());
-        } else if (py::isinstance<py::int_>(holes) && !py::isinstance<py::bool_>(holes)) {
-            p.holes = holes.cast<int>();
-        } else {
-            throw invalid_field(field_ref("holes"), std::string(py::repr(holes)),
-                                "must be a pinhole count K or a range 'A..B'");
-        }
-        if (strategy != "random" && strategy != "anneal")
-            throw invalid_field(field_ref("strategy"), strategy, "must be random or anneal");
-        if (evals < 0)
-            throw invalid_field(field_ref("evals"), std::to_string(evals),
-                                "must be >= 1 evaluations per chain (0: search for time)");
-        SearchOptions& so = p.search;
-        so.strategy = strategy == "random" ? SearchStrategy::kRandom : SearchStrategy::kAnneal;
-        so.threads = threads;
-        so.time_budget_s = evals > 0 ? 0.0 : parse_duration_s(time, field_ref("time"));
-        so.max_evaluations = evals;
-        so.seed = seed;
-        so.top = top;
-        if (top < 1 || top > 1000)
-            throw invalid_field(field_ref("top"), std::to_string(top),
-                                "must be between 1 and 1000");
-        p.keep_out = keep_out;
-        const SensorSettings sensor{read_noise, dark_current, full_well, optical_density, bits};
-        const std::vector<NoiseLevel> levels = noise_levels_arg(snr_db, photons, sensor, {30.0});
-        if (levels.size() != 1) {
-            throw InvalidInput(field_ref("snr_db") + "/" + field_ref("photons") +
-                               ": search optimises one noise level; give one value "
-                               "(score and compare take lists)");
-        }
-        p.noise = levels.front().model;
-        p.prior = prior_arg(prior, prior_scenes);
-        p.filter = parse_search_filter(filter, p.noise);
-        p.weights = {w_analytic, w_max_sidelobe, w_sidelobe_energy, w_min_spectrum, depth_weight};
-        if (!(depth_weight > 0.0) && (depth_from || depth_to)) {
-            throw InvalidInput(field_ref("depth_from_m") + "/" + field_ref("depth_to_m") +
-                               ": give " + field_ref("weights.depth") +
-                               " > 0 (the range is the depth term's)");
-        }
-        p.depth_range.from_m = depth_from.value_or(0.0);
-        p.depth_range.to_m = depth_to.value_or(0.0);
-        p.allow_spectral_zeros = allow_spectral_zeros;
-        for (const auto& name : rerank_scenes) p.rerank_scenes.push_back(scene_from_name(name));
-        p.rerank_tv = rerank_tv && !rerank_scenes.empty();
-        p.rank_by = parse_rank_by(rank_by);
-        p.generator = io::kSearchGenerator;
-        // robust / objective: the same parsers and the same pipeline as the CLI.
-        if (robust) p.robust = parse_fabrication_errors(*robust);
-        p.objective = parse_objective_kind(objective);
-        p.validate();
-        // Checkpoints, as `search --checkpoint F --checkpoint-every E` / `--resume F`: the
-        // file records the run's resolved configuration (io/search_run_config, the command's
-        // own), so a checkpoint of either face resumes in the other with the same settings.
-        io::SearchRunTexts texts;
-        texts.strategy = strategy;
-        texts.time = time;
-        texts.filter = filter;
-        texts.keep_out = keep_out;
-        texts.rank_by = rank_by;
-        texts.objective = objective;
-        texts.robust = robust.value_or("");
-        texts.seed = seed;
-        texts.top = top;
-        texts.w_analytic = w_analytic;
-        texts.w_max_sidelobe = w_max_sidelobe;
-        texts.w_sidelobe_energy = w_sidelobe_energy;
-        texts.w_min_spectrum = w_min_spectrum;
-        texts.w_depth = depth_weight;
-        texts.rerank_scenes = rerank_scenes;
-        set_checkpoints(p, texts, checkpoint, checkpoint_every, resume);
+            SearchPipelineOptions p;
+            p.tmpl.camera = camera.value_or(paper_camera());
+            validate(p.tmpl.camera);
+            parse_kernel_model(kernel, field_ref("kernel"));
+            PsfSettings po;
+            po.kernel = kernel;
+            po.kernel_path = kernel_path;
+            po.pixels_per_cell = pixels_per_cell;
+            p.tmpl.psf = resolve_psf_spec(po, p.tmpl.camera);
+            p.tmpl.pattern.n = grid;
+            p.tmpl.pattern.tiles_rows = p.tmpl.pattern.tiles_cols = tiles;
+            p.tmpl.pattern.min_spacing_cells = spacing;
+            // holes: K, or "A..B" as --holes (a pinhole-count range: the best mask per K).
+            if (py::isinstance<py::str>(holes)) {
+                std::tie(p.holes, p.max_holes) = parse_holes_range(holes.cast<std::string>());
+            } else if (py::isinstance<py::int_>(holes) && !py::isinstance<py::bool_>(holes)) {
+                p.holes = holes.cast<int>();
+            } else {
+                throw invalid_field(field_ref("holes"), std::string(py::repr(holes)),
+                                    "must be a pinhole count K or a range 'A..B'");
+            }
+            if (strategy != "random" && strategy != "anneal")
+                throw invalid_field(field_ref("strategy"), strategy, "must be random or anneal");
+            if (evals < 0)
+                throw invalid_field(field_ref("evals"), std::to_string(evals),
+                                    "must be >= 1 evaluations per chain (0: search for time)");
+            SearchOptions& so = p.search;
+            so.strategy = strategy == "random" ? SearchStrategy::kRandom : SearchStrategy::kAnneal;
+            so.threads = threads;
+            so.time_budget_s = evals > 0 ? 0.0 : parse_duration_s(time, field_ref("time"));
+            so.max_evaluations = evals;
+            so.seed = seed;
+            so.top = top;
+            if (top < 1 || top > 1000)
+                throw invalid_field(field_ref("top"), std::to_string(top),
+                                    "must be between 1 and 1000");
+            p.keep_out = keep_out;
+            const SensorSettings sensor{read_noise, dark_current, full_well, optical_density, bits};
+            const std::vector<NoiseLevel> levels =
+                noise_levels_arg(snr_db, photons, sensor, {30.0});
+            if (levels.size() != 1) {
+                throw InvalidInput(field_ref("snr_db") + "/" + field_ref("photons") +
+                                   ": search optimises one noise level; give one value "
+                                   "(score and compare take lists)");
+            }
+            p.noise = levels.front().model;
+            p.prior = prior_arg(prior, prior_scenes);
+            p.filter = parse_search_filter(filter, p.noise);
+            p.weights = {w_analytic, w_max_sidelobe, w_sidelobe_energy, w_min_spectrum,
+                         depth_weight};
+            if (!(depth_weight > 0.0) && (depth_from || depth_to)) {
+                throw InvalidInput(field_ref("depth_from_m") + "/" + field_ref("depth_to_m") +
+                                   ": give " + field_ref("weights.depth") +
+                                   " > 0 (the range is the depth term's)");
+            }
+            p.depth_range.from_m = depth_from.value_or(0.0);
+            p.depth_range.to_m = depth_to.value_or(0.0);
+            p.allow_spectral_zeros = allow_spectral_zeros;
+            for (const auto& name : rerank_scenes) p.rerank_scenes.push_back(scene_from_name(name));
+            p.rerank_tv = rerank_tv && !rerank_scenes.empty();
+            p.rank_by = parse_rank_by(rank_by);
+            p.generator = io::kSearchGenerator;
+            // robust / objective: the same parsers and the same pipeline as the CLI.
+            if (robust) p.robust = parse_fabrication_errors(*robust);
+            p.objective = parse_objective_kind(objective);
+            p.validate();
+            // Checkpoints, as `search --checkpoint F --checkpoint-every E` / `--resume F`: the
+            // file records the run's resolved configuration (io/search_run_config, the command's
+            // own), so a checkpoint of either face resumes in the other with the same settings.
+            io::SearchRunTexts texts;
+            texts.strategy = strategy;
+            texts.time = time;
+            texts.filter = filter;
+            texts.keep_out = keep_out;
+            texts.rank_by = rank_by;
+            texts.objective = objective;
+            texts.robust = robust.value_or("");
+            texts.seed = seed;
+            texts.top = top;
+            texts.w_analytic = w_analytic;
+            texts.w_max_sidelobe = w_max_sidelobe;
+            texts.w_sidelobe_energy = w_sidelobe_energy;
+            texts.w_min_spectrum = w_min_spectrum;
+            texts.w_depth = depth_weight;
+            texts.rerank_scenes = rerank_scenes;
+            set_checkpoints(p, texts, checkpoint, checkpoint_every, resume);
 
-        std::atomic<bool> cancel{false};
-        std::exception_ptr py_error;
-        Poll poll = Poll::kContinue;
-        SearchPipelineSummary summary;
-        {
-            py::gil_scoped_release release;
-            check_psf_memory(grid, p.tmpl.psf.pixels_per_cell, 4, 2);
-            summary = run_search_pipeline(
-                p, &cancel,
-                [&](const std::string& phase, double fraction, const std::string& text) {
-                    if (cancel.load()) return;
-                    poll = poll_python(
-                        progress,
-                        [&] {
-                            py::dict d;
-                            d["phase"] = phase;
-                            d["fraction"] = fraction;
-                            d["text"] = text;
-                            return py::object(d);
-                        },
-                        &py_error);
-                    if (poll != Poll::kContinue) cancel.store(true);
-                });
-        }
-        if (py_error) std::rethrow_exception(py_error);
-        // Ctrl-C is Python's KeyboardInterrupt, as for any call; the search stopped at it.
-        // (A progress callback returning False stops it and returns the best so far.)
-        if (poll == Poll::kKeyboardInterrupt) raise_keyboard_interrupt();
-        // What `search --json` prints (io/search_json; nothing written: output and the
-        // ranked rows' paths None), with what the command writes as files as values: the
-        // ranked masks (rank-N.mask.json) and the search's log (run-log.csv).
-        py::dict out(json_value(io::search_json(summary, "", {})));
-        py::list masks;
-        for (const RankedMask& c : summary.ranked) masks.append(c.mask);
-        out["masks"] = masks;
-        py::list log;
-        for (const auto& row : summary.search.log) log.append(log_row(row));
-        out["log"] = log;
-        return as_result(out);
+            std::atomic<bool> cancel{false};
+            std::exception_ptr py_error;
+            Poll poll = Poll::kContinue;
+            SearchPipelineSummary summary;
+            {
+                py::gil_scoped_release release;
+                check_psf_memory(grid, p.tmpl.psf.pixels_per_cell, 4, 2);
+                summary = run_search_pipeline(
+                    p, &cancel,
+                    [&](const std::string& phase, double fraction, const std::string& text) {
+                        if (cancel.load()) return;
+                        poll = poll_python(
+                            progress,
+                            [&] {
+                                py::dict d;
+                                d["phase"] = phase;
+                                d["fraction"] = fraction;
+                                d["text"] = text;
+                                return py::object(d);
+                            },
+                            &py_error);
+                        if (poll != Poll::kContinue) cancel.store(true);
+                    });
+            }
+            if (py_error) std::rethrow_exception(py_error);
+            // Ctrl-C is Python's KeyboardInterrupt, as for any call; the search stopped at it.
+            // (A progress callback returning False stops it and returns the best so far.)
+            if (poll == Poll::kKeyboardInterrupt) raise_keyboard_interrupt();
+            // What `search --json` prints (io/search_json; nothing written: output and the
+            // ranked rows' paths None), with what the command writes as files as values: the
+            // ranked masks (rank-N.mask.json) and the search's log (run-log.csv).
+            py::dict out(json_value(io::search_json(summary, "", {})));
+            py::list masks;
+            for (const RankedMask& c : summary.ranked) masks.append(c.mask);
+            out["masks"] = masks;
+            py::list log;
+            for (const auto& row : summary.search.log) log.append(log_row(row));
+            out["log"] = log;
+            return as_result(out);
         },
         py::arg("camera") = py::none(), py::arg("grid") = 16, py::arg("holes") = 20,
         py::arg("tiles") = 2, py::arg("spacing") = 2.0, py::arg("kernel") = "auto",
