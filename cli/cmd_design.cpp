@@ -1,8 +1,8 @@
 // `pinmask design`: the optics report (docs/design.md section 2) for a preset or explicit
 // parameters: parses and checks the flags, runs design/optics/design_run, prints a table
-// (quantity, value, note) or, with --json, one JSON object whose keys carry units. Infinite values
-// (z_eff at f = f', the pinhole for integer pixels when M = 0, u = inf) are written as JSON null
-// with the reason under "notes" (key -> text).
+// (quantity, value, note) or, with --json, io/design_json's object whose keys carry units. Infinite
+// values (z_eff at f = f', the pinhole for integer pixels when M = 0, u = inf) are written as JSON
+// null with the reason under "notes" (key -> text).
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -23,6 +23,7 @@
 #include "design/optics/fab_grid.hpp"
 #include "export/pipeline/vendor_presets.hpp"
 #include "io/camera_json.hpp"
+#include "io/design_json.hpp"
 #include "io/json_strict.hpp"
 
 namespace pinmask::cli {
@@ -40,31 +41,6 @@ struct DesignOptions {
     std::optional<std::string> vendor;    // ... or on this export preset's grid
     bool json = false;
 };
-
-// The fabrication grid a solved pinhole is snapped to: --fab-grid, else the --vendor preset's,
-// else 1 nm.
-GridSnap fab_grid_of(const DesignOptions& o) {
-    GridSnap g;
-    if (o.fab_grid && o.vendor)
-        throw invalid_field("--fab-grid", *o.fab_grid,
-                            "and --vendor both set the grid: give one of them");
-    if (o.fab_grid) {
-        g.grid_nm = fab_grid_nm(parse_length_m(*o.fab_grid, "--fab-grid"), "--fab-grid");
-        g.grid_source = "--fab-grid";
-    } else if (o.vendor) {
-        const VendorPreset* p = find_vendor_preset(*o.vendor);
-        if (!p)
-            throw invalid_field("--vendor", *o.vendor,
-                                "is a rule preset without a grid; give an export preset "
-                                "(`pinmask export --vendor list`) or --fab-grid");
-        g.grid_nm = fab_grid_nm(p->grid_m, "--vendor");
-        g.grid_source = "vendor " + p->name;
-    } else {
-        g.grid_nm = kDefaultFabGridNm;
-        g.grid_source = "default";
-    }
-    return g;
-}
 
 void run(const DesignOptions& o, const CLI::App& command) {
     // --pixels-per-cell solves the pinhole itself: no default pinhole is chosen (or said) first.
@@ -97,12 +73,6 @@ void run(const DesignOptions& o, const CLI::App& command) {
                             "must be between 1 and " + std::to_string(kMaxPixelsPerCell));
     }
     check_object_distance(camera, camera.object_distance_m, "--object-distance");
-    GridSnap snap = fab_grid_of(o);
-    if ((o.fab_grid || o.vendor) && !o.pixels_per_cell && o.solve.empty())
-        throw invalid_field(o.fab_grid ? "--fab-grid" : "--vendor",
-                            o.fab_grid ? *o.fab_grid : *o.vendor,
-                            "sets the grid a solved pinhole lands on: use it with --solve pinhole "
-                            "or --pixels-per-cell");
     DesignRequest q;
     q.camera = camera;
     q.geometry = geometry;
@@ -112,7 +82,18 @@ void run(const DesignOptions& o, const CLI::App& command) {
     q.lsi_tolerance_px = o.lsi_tolerance_px;
     if (o.pixels_per_cell) q.pixels_per_cell = static_cast<int>(*o.pixels_per_cell);
     q.solve = !o.solve.empty();
-    q.grid = snap;
+    // The grid a solved pinhole lands on: --fab-grid, or the --vendor export preset's
+    // (design/optics/design_run checks them).
+    if (o.fab_grid) {
+        q.fab_grid_m = parse_length_m(*o.fab_grid, "--fab-grid");
+        q.fab_grid_text = *o.fab_grid;
+    }
+    if (o.vendor) {
+        q.vendor = *o.vendor;
+        if (const VendorPreset* p = find_vendor_preset(*o.vendor)) q.vendor_grid_m = p->grid_m;
+    }
+    for (const CameraInput& in : camera_inputs(camera_options, camera))
+        q.input_sources.emplace_back(in.symbol, in.source);
     q.spell = [&command](const std::string& w) { return spell_flags(w, command); };
     const DesignReport d = run_design_request(q);
     if (!d.far_from_optimum.empty())
@@ -121,9 +102,7 @@ void run(const DesignOptions& o, const CLI::App& command) {
     const std::string solved =
         d.snap.solved ? "solved: d gives N at u, then snapped to the fabrication grid" : "";
     std::vector<CameraInput> inputs = camera_inputs(camera_options, d.camera);
-    if (d.snap.solved)
-        inputs[0].source = "solved for N px per cell at u, on the " +
-                           std::to_string(d.snap.grid_nm) + " nm fabrication grid";
+    for (std::size_t i = 0; i < inputs.size(); ++i) inputs[i].source = d.input_sources[i].second;
     if (geometry.holes > d.packing.count)
         std::cerr << "pinmask: warning: --holes " << geometry.holes
                   << ": that many pinholes do not fit on a " << geometry.n << " x " << geometry.n
@@ -131,13 +110,7 @@ void run(const DesignOptions& o, const CLI::App& command) {
                   << " (" << d.packing.reason << ")\n";
     if (!o.save_camera.empty()) io::write_camera_file(o.save_camera, d.camera);
     if (o.json) {
-        auto j = design_json(d.optics, d.working, d.snap, d.kernel);
-        j["spacing_cells"] = o.geometry.spacing;
-        j["max_holes_at_spacing"] = d.packing.count;
-        j["max_holes_reason"] = d.packing.reason;
-        j["kernel_warnings"] = d.kernel.validity.warnings;
-        for (const CameraInput& in : inputs) j["input_sources"][in.symbol] = in.source;
-        std::cout << io::json_strict::pretty(j) << "\n";
+        std::cout << io::json_strict::pretty(io::design_json(d)) << "\n";
     } else {
         std::cout << design_table(d.optics, d.working, solved, inputs, d.snap, d.kernel);
         if (!o.save_camera.empty()) std::cerr << "wrote " << o.save_camera << "\n";

@@ -28,14 +28,6 @@ namespace {
 namespace fs = std::filesystem;
 using std::string;
 
-string default_stem(const fs::path& input) {
-    const string name = input.filename().string();
-    for (const string suffix : {".mask.json", ".json"})
-        if (name.size() > suffix.size() && name.ends_with(suffix))
-            return name.substr(0, name.size() - suffix.size());
-    return input.stem().string();
-}
-
 // The rules the export checked, in words (vendor preset, overrides and the spacing rule on the
 // grid pitch the layout uses).
 string rules_line(const ExportOptions& o, const Mask& mask, const Layout& l) {
@@ -59,7 +51,7 @@ int run_export(const ExportFlags& f) {
     check_output_folder(out_dir, "-o");
     const Mask mask =
         io::read_mask_file(f.input, {.allow_spacing_violations = f.allow_spacing_violations});
-    const string stem = f.stem.empty() ? default_stem(f.input) : f.stem;
+    const string stem = f.stem.empty() ? io::default_export_stem(f.input) : f.stem;
     if (stem.empty() || stem.find('/') != string::npos)
         throw invalid_field("--stem", stem, "must be a plain file name");
     const ExportOptions o = export_options_from(f, mask, stem);

@@ -31,6 +31,14 @@ std::string file_bytes(const fs::path& p) {
 
 }  // namespace
 
+std::string default_export_stem(const std::filesystem::path& mask_file) {
+    const std::string name = mask_file.filename().string();
+    for (const std::string suffix : {".mask.json", ".json"})
+        if (name.size() > suffix.size() && name.ends_with(suffix))
+            return name.substr(0, name.size() - suffix.size());
+    return mask_file.stem().string();
+}
+
 std::vector<ExportOutput> export_outputs(const ExportRequest& f, const ExportOptions& o,
                                          const fs::path& out_dir, const std::string& stem) {
     std::vector<ExportOutput> outs{{"export.json", out_dir / (stem + ".export.json")}};

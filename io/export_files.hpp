@@ -33,6 +33,10 @@ struct ExportOutput {
     std::filesystem::path path;
 };
 
+// The stem of an export's files when none is given: the mask file's name without .mask.json
+// (or .json), else without its extension.
+std::string default_export_stem(const std::filesystem::path& mask_file);
+
 // Every file write_export would write, in the order written (the sidecar first): for the faces to
 // check before any work (core/files/output_set).
 std::vector<ExportOutput> export_outputs(const ExportRequest& request, const ExportOptions& options,

@@ -8,7 +8,8 @@ nlohmann::ordered_json search_json(
     const SearchPipelineSummary& s, const std::string& output,
     const std::vector<std::filesystem::path>& paths,
     const std::optional<std::pair<std::string, std::string>>& robust_decoder) {
-    nlohmann::ordered_json j{{"output", output},
+    using Json = nlohmann::ordered_json;
+    nlohmann::ordered_json j{{"output", output.empty() ? Json(nullptr) : Json(output)},
                              {"evaluations", s.search.evaluations},
                              {"evaluations_per_chain", s.search.evaluations_per_chain},
                              {"stop_reason", search_termination_name(s.termination)},
@@ -27,11 +28,12 @@ nlohmann::ordered_json search_json(
         {"sim_tv_psnr_db", "simulated on scenes " + scenes + ", TV-L2"}};
     j["reordered"] = s.reordered;
     for (std::size_t i = 0; i < s.ranked.size(); ++i) {
-        nlohmann::ordered_json r{{"rank", i + 1},
-                                 {"path", paths[i].string()},
-                                 {"geometry_hash", geometry_hash(s.ranked[i].mask)},
-                                 {"objective", s.ranked[i].objective},
-                                 {"reranked", s.ranked[i].reranked}};
+        nlohmann::ordered_json r{
+            {"rank", i + 1},
+            {"path", i < paths.size() ? Json(paths[i].string()) : Json(nullptr)},
+            {"geometry_hash", geometry_hash(s.ranked[i].mask)},
+            {"objective", s.ranked[i].objective},
+            {"reranked", s.ranked[i].reranked}};
         for (const auto& [k, v] : s.ranked[i].mask.provenance.scores) r[k] = v;
         if (std::isfinite(s.ranked[i].upper_bound_psnr_db))
             r["upper_bound_psnr_db"] = s.ranked[i].upper_bound_psnr_db;

@@ -1,6 +1,7 @@
 // Camera and optics numbers (design/optics/camera.hpp, design/optics/optics.hpp,
 // design/psf/kernel_model.hpp).
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include "core/errors/error.hpp"
@@ -21,7 +22,9 @@
 #include "design/psf/kernel_validity.hpp"
 #include "export/pipeline/vendor_presets.hpp"
 #include "io/camera_json.hpp"
+#include "io/design_json.hpp"
 #include "python/common.hpp"
+#include "python/json_value.hpp"
 #include "python/keyword_names.hpp"
 #include "python/result.hpp"
 #include "python/values.hpp"
@@ -56,70 +59,6 @@ std::optional<std::string> optics_keyword(std::string_view field) {
     if (field == "energy_fraction")
         return "energy_fraction (a keyword of kernel(), psf() and write_psf(), not of optics())";
     return py_names::keyword_spelling(field);
-}
-
-py::dict optics_dict(const OpticsReport& r, const WorkingDistance& wd,
-                     const std::vector<std::string>& kernel_warnings) {
-    py::dict d;
-    d["camera"] = r.camera;
-    d["geometry"] =
-        py::dict(py::arg("n") = r.geometry.n, py::arg("holes") = r.geometry.holes,
-                 py::arg("tiles") = py::make_tuple(r.geometry.tiles_rows, r.geometry.tiles_cols));
-    // Keys as `pinmask design --json` (cli/outputs/design_report): plain and "_at_u" keys at
-    // the working distance u, "_at_inf" keys for a distant object.
-    d["optimum_pinhole_m"] = r.optimum_pinhole_m;
-    d["fresnel_number"] = r.fresnel_number;
-    d["fresnel_number_with_lens"] = r.fresnel_number_with_lens_at_u;
-    d["fresnel_number_with_lens_at_u"] = r.fresnel_number_with_lens_at_u;
-    d["fresnel_number_with_lens_at_inf"] = r.fresnel_number_with_lens;
-    d["effective_distance_m"] = r.effective_distance_at_u_m;
-    d["effective_distance_at_u_m"] = r.effective_distance_at_u_m;
-    d["effective_distance_at_inf_m"] = r.effective_distance_m;
-    d["magnification"] = r.magnification_at_u;
-    d["magnification_at_u"] = r.magnification_at_u;
-    d["magnification_at_inf"] = r.magnification;
-    d["geometric_spot_m"] = r.geometric_spot_at_u_m;
-    d["geometric_spot_at_u_m"] = r.geometric_spot_at_u_m;
-    d["geometric_spot_at_inf_m"] = r.geometric_spot_m;
-    d["pixels_per_cell"] = r.pixels_per_cell_at_u;
-    d["pixels_per_cell_at_u"] = r.pixels_per_cell_at_u;
-    d["pixels_per_cell_at_inf"] = r.pixels_per_cell;
-    d["integer_pixels_per_cell"] = wd.pixels_per_cell;
-    d["integer_pixels_per_cell_at_inf"] = r.integer_pixels_per_cell;
-    d["pinhole_for_integer_pixels_m"] = wd.pinhole_for_pixels_per_cell_m;
-    d["pinhole_for_integer_pixels_at_inf_m"] = r.pinhole_for_integer_pixels_m;
-    d["image_distance_at_u_m"] = image_distance_at_u_m(r.camera);
-    d["diffraction_first_zero_px"] = diffraction_first_zero_px(r.camera);
-    d["max_separation_m"] = r.max_separation_m;
-    d["lsi_tolerance_px"] = r.options.lsi_tolerance_px;
-    d["lsi_mismatch_px"] = wd.lsi_mismatch_px;
-    d["lsi_shift_invariant"] = wd.is_shift_invariant();
-    d["lsi_mismatch_at_inf_px"] = r.lsi_mismatch_px;
-    d["lsi_min_object_distance_at_inf_m"] = r.lsi_min_object_distance_m;
-    d["psf_size_px"] = wd.psf_size_px;
-    d["psf_size_at_inf_px"] = r.psf_size_px;
-    d["periods_on_sensor"] = py::dict(py::arg("cols") = wd.periods_on_sensor_cols,
-                                      py::arg("rows") = wd.periods_on_sensor_rows);
-    d["periods_on_sensor_at_inf"] = py::dict(py::arg("cols") = r.periods_on_sensor_cols,
-                                             py::arg("rows") = r.periods_on_sensor_rows);
-    d["mask_size_m"] =
-        py::dict(py::arg("width") = r.mask_width_m, py::arg("height") = r.mask_height_m);
-    d["open_fraction"] = r.open_fraction;
-    d["light_gain"] = r.light_gain;
-    d["kernel_model"] = kernel_model_name(r.kernel_model);
-    d["kernel_reason"] = r.kernel_reason;
-    // The working distance (design/optics/working_distance.hpp), under design --json's keys.
-    d["whole_pixels_per_cell_at_u"] = wd.pixels_per_cell;
-    d["pinhole_for_pixels_per_cell_m"] = wd.pinhole_for_pixels_per_cell_m;
-    d["period_at_u_px"] = wd.period_px;
-    d["lsi_mismatch_at_u_px"] = wd.lsi_mismatch_px;
-    d["object_distance_range_m"] = py::make_tuple(wd.range_near_m, wd.range_far_m);
-    d["optimum_pinhole_lensless_m"] = wd.optimum_pinhole_lensless_m;
-    d["optimum_pinhole_with_lens_m"] = wd.optimum_pinhole_with_lens_m;
-    d["spot_spread_cells"] = wd.spot_spread_cells;
-    d["spot_spreads_beyond_cell"] = wd.spreads_beyond_cell();
-    d["kernel_warnings"] = kernel_warnings;
-    return d;
 }
 
 void bind_design(py::module_& m) {
@@ -243,7 +182,8 @@ void bind_design(py::module_& m) {
         [](const std::optional<Camera>& camera, int grid, int holes, int tiles,
            const std::string& kernel, double lsi_tolerance_px,
            std::optional<long long> pixels_per_cell, const std::optional<std::string>& solve,
-           const py::object& fab_grid, const std::optional<std::string>& vendor, double spacing) {
+           const py::object& fab_grid, const std::optional<std::string>& vendor, double spacing,
+           const std::optional<std::filesystem::path>& save_camera) {
             PatternGeometry g{grid, holes, tiles, tiles};
             if (!std::isfinite(spacing) || spacing < 0)
                 throw invalid_field(field_ref("spacing"), std::to_string(spacing),
@@ -259,31 +199,12 @@ void bind_design(py::module_& m) {
                 throw invalid_field(field_ref("pixels_per_cell"), std::to_string(*pixels_per_cell),
                                     "must be between 1 and " + std::to_string(kMaxPixelsPerCell));
             check_object_distance(c, c.object_distance_m, "object_distance_m");
-            // The fabrication grid a solved pinhole lands on: fab_grid, else the vendor
-            // preset's, else 1 nm.
-            std::int64_t grid_nm = kDefaultFabGridNm;
-            if (!fab_grid.is_none() && vendor)
-                throw invalid_field(
-                    field_ref("fab_grid"), std::string(py::str(fab_grid)),
-                    "and " + field_ref("vendor") + " both set the grid: give one of them");
-            if (!fab_grid.is_none()) {
-                grid_nm = fab_grid_nm(length_value(fab_grid, "fab_grid", false), "fab_grid");
-            } else if (vendor) {
-                const VendorPreset* preset = find_vendor_preset(*vendor);
-                if (!preset)
-                    throw invalid_field(field_ref("vendor"), *vendor,
-                                        "is a rule preset without a grid; give an export preset "
-                                        "(pinmask export --vendor list) or " +
-                                            field_ref("fab_grid"));
-                grid_nm = fab_grid_nm(preset->grid_m, "vendor");
+            if (save_camera) {  // as --save-camera: into an existing folder
+                const std::filesystem::path dir = save_camera->parent_path();
+                if (!dir.empty() && !std::filesystem::is_directory(dir))
+                    throw invalid_field(field_ref("save_camera"), save_camera->string(),
+                                        "its folder does not exist");
             }
-            const bool solving = pixels_per_cell || solve;
-            if ((!fab_grid.is_none() || vendor) && !solving)
-                throw invalid_field(field_ref(!fab_grid.is_none() ? "fab_grid" : "vendor"),
-                                    !fab_grid.is_none() ? std::string(py::str(fab_grid)) : *vendor,
-                                    "sets the grid a solved pinhole lands on: use it with " +
-                                        field_ref("solve") + "='pinhole' or " +
-                                        field_ref("pixels_per_cell"));
             // The command's transaction (design/optics/design_run): the solve, the report, the
             // kernel psf would build and the packing bound.
             DesignRequest q;
@@ -294,69 +215,58 @@ void bind_design(py::module_& m) {
             q.kernel = kernel;
             q.lsi_tolerance_px = lsi_tolerance_px;
             if (pixels_per_cell) q.pixels_per_cell = static_cast<int>(*pixels_per_cell);
-            q.solve = solving && !pixels_per_cell;
-            q.grid.grid_nm = grid_nm;
+            q.solve = solve && !pixels_per_cell;
+            // The grid a solved pinhole lands on: fab_grid, or the export preset vendor's
+            // (design/optics/design_run checks them).
+            if (!fab_grid.is_none()) {
+                q.fab_grid_m = length_value(fab_grid, "fab_grid", false);
+                q.fab_grid_text = py::str(fab_grid).cast<std::string>();
+            }
+            if (vendor) {
+                q.vendor = *vendor;
+                if (const VendorPreset* p = find_vendor_preset(*vendor))
+                    q.vendor_grid_m = p->grid_m;
+            }
+            // Where the camera came from, in this face's words (design --json's input_sources).
+            for (const char* symbol : kCameraInputSymbols)
+                q.input_sources.emplace_back(symbol,
+                                             camera ? "camera argument" : "paper preset default");
             q.spell = [](const std::string& w) { return spell_fields(w, &optics_keyword); };
             const DesignReport r = run_design_request(q);
             if (!r.far_from_optimum.empty() &&
                 PyErr_WarnEx(PyExc_UserWarning, ("pinmask: " + r.far_from_optimum).c_str(), 1) < 0)
                 throw py::error_already_set();
-            py::dict d = optics_dict(r.optics, r.working, r.kernel.validity.warnings);
-            py::dict spectrum;
-            spectrum["bandwidth_m"] = r.camera.bandwidth_m;
-            spectrum["wavelengths"] = band_wavelengths(r.camera);
-            d["spectrum"] = spectrum;
-            py::dict k;
-            if (r.kernel.kernel) {
-                k["support_px"] =
-                    py::make_tuple(r.kernel.kernel->values.rows(), r.kernel.kernel->values.cols());
-                k["enclosed_energy"] = r.kernel.kernel->enclosed_energy;
-                k["support_capped"] = r.kernel.kernel->support_capped;
-            } else {
-                k["not_built"] = r.kernel.not_built;
-            }
-            d["kernel"] = k;
-            if (r.snap.solved) {  // the keys `design --json` adds for a solved pinhole
-                d["fab_grid_m"] = double(r.snap.grid_nm) * 1e-9;
-                d["pinhole_solved_m"] = r.snap.exact_m;
-                d["pinhole_on_grid_m"] = r.snap.on_grid_m;
-                d["grid_pitch_shift_px"] = r.snap.pitch_shift_px;
-                d["grid_period_shift_px"] = r.snap.pitch_shift_px * g.n;
-            }
-            // As `design --json`: the spacing rule's packing bound on the pinhole count.
-            d["spacing_cells"] = spacing;
-            d["max_holes_at_spacing"] = r.packing.count;
-            d["max_holes_reason"] = r.packing.reason;
-            return as_result(d);
+            if (save_camera) io::write_camera_file(*save_camera, r.camera);
+            return as_result(py::dict(json_value(io::design_json(r))));
         },
         py::arg("camera") = py::none(), py::arg("grid") = 16, py::arg("holes") = 20,
         py::arg("tiles") = 2, py::arg("kernel") = "auto", py::arg("lsi_tolerance_px") = 1.0,
         py::arg("pixels_per_cell") = py::none(), py::arg("solve") = py::none(),
         py::arg("fab_grid") = py::none(), py::arg("vendor") = py::none(), py::arg("spacing") = 2.0,
-        "The optics report of `pinmask design --json` as a dict (same keys and numbers; lengths "
-        "in metres with _m suffixes, infinite values as float('inf') where the CLI writes null "
-        "and a note; keys without a suffix and \"_at_u\" keys are at the working distance u, "
-        "\"_at_inf\" keys are the distant-object design values), the working distance "
-        "included: whole_pixels_per_cell_at_u, "
-        "pinhole_for_pixels_per_cell_m, period_at_u_px, lsi_mismatch_at_u_px, "
-        "object_distance_range_m (near, far; far inf when shift invariant to infinity), "
-        "optimum_pinhole_lensless_m, optimum_pinhole_with_lens_m, spot_spread_cells (cells), "
-        "spot_spreads_beyond_cell, image_distance_at_u_m (1/v = 1/f' - 1/u; inf without a lens), "
-        "diffraction_first_zero_px (lambda f / (d w)), kernel_warnings (psf's warnings for the "
-        "kernel it would build; a keyword optics() lacks is named with the functions that take "
-        "it), "
-        "spectrum (bandwidth_m, wavelengths [(m, weight)]: the camera's band as the kernels "
-        "sample it), kernel (support_px, enclosed_energy, support_capped; or not_built). grid n "
-        "(cells per side), holes K, tiles per "
-        "side, kernel (kernel_models()), lsi_tolerance_px in pixels. Solving the pinhole as "
-        "`design --solve pinhole` / `--pixels-per-cell N`: solve='pinhole' (N = the nearest "
-        "whole number at u) or pixels_per_cell=N gives d for N whole pixels per cell at u, "
-        "snapped to the fabrication grid fab_grid (a length, '1um'; default 1 nm) or the export "
-        "preset vendor's; the report is then for that d (camera holds it: save_camera writes "
-        "it, as --save-camera) with fab_grid_m, pinhole_solved_m, pinhole_on_grid_m, "
-        "grid_pitch_shift_px and grid_period_shift_px. spacing (cells, as --spacing): "
-        "spacing_cells, max_holes_at_spacing (the proven packing bound: no valid placement of more "
-        "pinholes exists) and max_holes_reason.");
+        py::arg("save_camera") = py::none(),
+        R"(What `pinmask design --json` prints for the same settings, as a Result (io/design_json:
+one rendering): lengths in metres with _m suffixes; infinite values are None with the reason
+under notes (key -> text); keys without a suffix and "_at_u" keys are at the working distance u,
+"_at_inf" keys are the distant-object design values; camera {object_distance_m, lens_focal_m,
+sensor_distance_m, wavelength_m, bandwidth_m, pixel_pitch_m, pinhole_m, sensor_px [cols, rows]}
+(as reported: a solved pinhole on the grid), geometry {n, holes, tiles [rows, cols]}, the
+working distance (whole_pixels_per_cell_at_u, pinhole_for_pixels_per_cell_m, period_at_u_px,
+lsi_mismatch_at_u_px, object_distance_range_m [near, far] (far None: shift invariant to
+infinity), optimum_pinhole_lensless_m, optimum_pinhole_with_lens_m, spot_spread_cells,
+spot_spreads_beyond_cell), image_distance_at_u_m (1/v = 1/f' - 1/u), diffraction_first_zero_px
+(lambda f / (d w)), spectrum {bandwidth_m, wavelengths [[m, weight]]: the band as the kernels
+sample it}, kernel {support_px, enclosed_energy, support_capped; or not_built}, kernel_warnings
+(psf's warnings for the kernel it would build; a keyword optics() lacks is named with the
+functions that take it), spacing_cells, max_holes_at_spacing (the proven packing bound: no valid
+placement of more pinholes exists), max_holes_reason, input_sources (camera symbol -> 'camera
+argument' or 'paper preset default'; a solved pinhole says so). grid n (cells per side), holes
+K, tiles per side, spacing (cells, as --spacing), kernel (kernel_models()), lsi_tolerance_px in
+pixels. Solving the pinhole as `design --solve pinhole` / `--pixels-per-cell N`: solve='pinhole'
+(N = the nearest whole number at u) or pixels_per_cell=N gives d for N whole pixels per cell at
+u, snapped to the fabrication grid fab_grid (a length, '1um'; default 1 nm) or the export preset
+vendor's; the report is then for that d, with fab_grid_m, pinhole_solved_m, pinhole_on_grid_m,
+grid_pitch_shift_px and grid_period_shift_px. save_camera (a path, as --save-camera): writes
+the camera reported (a solved pinhole included) as a *.camera.json.)");
 
     m.def(
         "kernel_models", [] { return name_list(kKernelModelNames); },

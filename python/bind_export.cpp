@@ -24,6 +24,7 @@
 #include "io/export_sidecar.hpp"
 #include "io/mask_json.hpp"
 #include "python/common.hpp"
+#include "python/json_value.hpp"
 #include "python/keyword_names.hpp"
 #include "python/result.hpp"
 #include "python/values.hpp"
@@ -179,21 +180,13 @@ void bind_export(py::module_& m) {
             if (fs::exists(out_dir) && !fs::is_directory(out_dir))
                 throw invalid_field(field_ref("out_dir"), out_dir, "exists and is not a directory");
             const Mask mk = mask_arg(mask_obj, allow_spacing_violations);
+            // stem: as given, else the mask file's name as the command takes it ("mask" for a
+            // Mask object).
             std::string stem = stem_opt.value_or("");
-            if (stem.empty()) {
-                if (py::isinstance<Mask>(mask_obj)) {
-                    stem = "mask";
-                } else {
-                    stem = fs::path(py::str(mask_obj).cast<std::string>()).filename().string();
-                    for (const char* suffix : {".mask.json", ".json"}) {
-                        const std::string s(suffix);
-                        if (stem.size() > s.size() && stem.ends_with(s)) {
-                            stem = stem.substr(0, stem.size() - s.size());
-                            break;
-                        }
-                    }
-                }
-            }
+            if (stem.empty())
+                stem = py::isinstance<Mask>(mask_obj)
+                           ? "mask"
+                           : io::default_export_stem(py::str(mask_obj).cast<std::string>());
             if (stem.empty() || stem.find('/') != std::string::npos)
                 throw invalid_field(field_ref("stem"), stem, "must be a plain file name");
             // `pinmask export`'s flags -> the library pipeline (export/pipeline/export_pipeline).
@@ -242,7 +235,6 @@ void bind_export(py::module_& m) {
                                             "would write " + x.path.filename().string() +
                                                 " over the mask file " + f.input);
             }
-            const fs::path sidecar_path = fs::path(out_dir) / (stem + ".export.json");
             io::ExportWritten w;
             {
                 py::gil_scoped_release release;
@@ -252,29 +244,8 @@ void bind_export(py::module_& m) {
                     return py_names::spell_keywords(n);
                 });
             }
-            const ExportSummary& summary = w.summary;
-            py::list files;
-            for (std::size_t i = 0; i < summary.files.size(); ++i) {
-                const ExportedFile& e = summary.files[i];
-                py::dict d;
-                d["path"] = (fs::path(out_dir) / (stem + e.extension)).string();
-                d["format"] = fab_format_name(e.format);
-                d["bytes"] = e.bytes.size();
-                d["verification"] = w.sidecar.files.at(i).verification;
-                files.append(d);
-            }
-            const DrcReport& drc = summary.drc;
-            const Layout& layout = summary.layout;
-            py::dict out;
-            out["files"] = files;
-            out["drc"] = py::dict(py::arg("vendor") = vendor, py::arg("clean") = drc.clean(),
-                                  py::arg("counts") = drc.counts);
-            out["mask_hash"] = layout.mask_hash;
-            out["sidecar"] = sidecar_path.string();
-            py::list psf_paths;
-            for (const fs::path& p : w.psf) psf_paths.append(p.string());
-            out["psf_files"] = psf_paths;
-            return as_result(out);
+            // What `export --json` prints: the sidecar <stem>.export.json, as written.
+            return as_result(py::dict(json_value(nlohmann::ordered_json::parse(w.sidecar_text))));
         },
         py::arg("mask"), py::arg("out_dir"), py::arg("formats") = py::none(),
         py::arg("stem") = py::none(), py::arg("tone") = py::none(), py::arg("shape") = "square",
@@ -310,9 +281,12 @@ Gerber always mm); emulsion up | down (= mirror); draw (PDF/PNG/SVG) film | poly
 kerf, holes drawn this much smaller (a length); max_snap_error (tiff1): refuse when snapping moves
 an edge more (a length); each as the command's flag of the same name, defaults and vendor
 presets included. psf (as the command, unless --no-psf): also <stem>.psf.tiff and its JSON
-sidecar (the mask's PSF, what decode --psf reads; npy: also <stem>.psf.npy). Returns {files:
-[{path, format, bytes, verification}], sidecar (its path), drc: {vendor, clean, counts},
-mask_hash, psf_files (paths written)}.)");
+sidecar (the mask's PSF, what decode --psf reads; npy: also <stem>.psf.npy). Returns what
+`pinmask export --json` prints, the sidecar <stem>.export.json as written: {format, version,
+mask: {path, geometry_hash, n, tiles, pinholes, pinhole_m}, geometry (the layout settings, unit,
+tone, emulsion, boxes in nm, polygon counts), drc: {vendor, clean, counts, rules}, files:
+[{name (in out_dir), format, units, bytes, fnv1a64, verification, detail}], psf: {files, kernel,
+pixels_per_cell, size_px} (or why none was written), notes}.)");
 }
 
 }  // namespace pinmask::python

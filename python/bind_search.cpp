@@ -14,11 +14,13 @@
 #include "design/psf/psf_settings.hpp"
 #include "io/checkpoint.hpp"
 #include "io/search_config.hpp"
+#include "io/search_json.hpp"
 #include "io/search_run_config.hpp"
 #include "optimize/metrics/metric_spellings.hpp"
 #include "optimize/metrics/robust_errors.hpp"
 #include "optimize/search/search_pipeline.hpp"
 #include "python/common.hpp"
+#include "python/json_value.hpp"
 #include "python/level_args.hpp"
 #include "python/result.hpp"
 #include "python/values.hpp"
@@ -209,32 +211,15 @@ void bind_search(py::module_& m) {
             // Ctrl-C is Python's KeyboardInterrupt, as for any call; the search stopped at it.
             // (A progress callback returning False stops it and returns the best so far.)
             if (poll == Poll::kKeyboardInterrupt) raise_keyboard_interrupt();
-            py::list candidates;
-            for (const RankedMask& c : summary.ranked) {
-                py::dict d;
-                d["mask"] = c.mask;
-                d["objective"] = c.objective;
-                d["terms"] = c.mask.provenance.scores;
-                d["reranked"] = c.reranked;
-                d["sim_wiener_psnr_db"] = c.sim_wiener_psnr_db;
-                d["sim_tv_psnr_db"] = c.sim_tv_psnr_db;
-                d["tv_lambda"] = c.tv_lambda;
-                d["spectral_zero"] = c.spectral_zero;
-                d["upper_bound_psnr_db"] = c.upper_bound_psnr_db;  // NaN without the objective
-                candidates.append(d);
-            }
+            // What `search --json` prints (io/search_json; nothing written: output and the
+            // ranked rows' paths None), with what the command writes as files as values: the
+            // ranked masks (rank-N.mask.json) and the search's log (run-log.csv).
+            py::dict out(json_value(io::search_json(summary, "", {})));
+            py::list masks;
+            for (const RankedMask& c : summary.ranked) masks.append(c.mask);
+            out["masks"] = masks;
             py::list log;
             for (const auto& row : summary.search.log) log.append(log_row(row));
-            py::dict out;
-            out["candidates"] = candidates;
-            out["evaluations"] = summary.search.evaluations;
-            out["evaluations_per_chain"] = summary.search.evaluations_per_chain;
-            out["seconds"] = summary.used_s;
-            out["search_seconds"] = summary.search_s;
-            out["rerank_seconds"] = summary.rerank_s;
-            out["reranked"] = summary.reranked;
-            out["termination"] = search_termination_name(summary.termination);
-            out["kernel"] = summary.kernel_resolved;
             out["log"] = log;
             return as_result(out);
         },
@@ -273,7 +258,7 @@ rejected unless
 allow_spectral_zeros. The top candidates are re-ranked by simulated decodes of rerank_scenes
 (empty list: no re-ranking, as --no-rerank) ranked by rank_by 'wiener' | 'tv'.
 progress(row) is called with {phase: 'search' | 'rerank', fraction, text}; returning False
-stops the search: the best candidates so far are returned, termination 'interrupted'. Ctrl-C
+stops the search: the best candidates so far are returned, stop_reason 'interrupted'. Ctrl-C
 stops it and raises KeyboardInterrupt.
 Noise: ONE level, snr_db (Gaussian, dB; None: 30) or photons (electrons per pixel per pinhole)
 with read_noise, dark_current, full_well, bits, optical_density, as metrics().
@@ -285,11 +270,15 @@ with checkpoint_every=E writes every chain's state atomically every E evaluation
 resume=FILE continues from a checkpoint of the same settings (the command's file format and
 configuration: one written by `pinmask search` on one process with the same settings resumes
 here, and back), and the result equals the uninterrupted run's.
-Returns {candidates: [{mask, objective, terms, reranked, sim_wiener_psnr_db, sim_tv_psnr_db,
-tv_lambda, spectral_zero, upper_bound_psnr_db (the analytic PSNR no pattern with the
-candidate's K can exceed)}] best first, evaluations, evaluations_per_chain, seconds (all),
-search_seconds, rerank_seconds, reranked, termination, kernel, log: [{seconds, evaluations,
-best_objective}]}.)");
+Returns what `pinmask search --json` prints (io/search_json) with nothing written: {output
+(None), evaluations, evaluations_per_chain, stop_reason, planned_s, used_s (all), search_s,
+rerank_s, reranked, psnr_columns, reordered, ranked: [{rank, path (None), geometry_hash,
+objective, reranked, every term and simulated figure (analytic_wiener_psnr_db,
+sim_wiener_psnr_db, sim_tv_psnr_db, sim_tv_lambda, ...), upper_bound_psnr_db (the analytic PSNR
+no pattern with the candidate's K can exceed)}] best first, best_per_holes (with a range of
+holes: the best row per K)}; and, what the command writes as files, masks: the ranked Mask
+objects in rank order (rank-N.mask.json) and log: [{seconds, evaluations, best_objective}]
+(run-log.csv).)");
 }
 
 }  // namespace pinmask::python

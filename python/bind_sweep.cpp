@@ -154,11 +154,11 @@ void bind_sweep(py::module_& m) {
                     if (e.matches(PyExc_RuntimeError)) throw RuntimeFailure(text);
                     throw;
                 }
-                const py::list candidates = r["candidates"];
-                if (candidates.empty())
+                const py::list ranked = r["ranked"];
+                if (ranked.empty())
                     throw RuntimeFailure("sweep point " + std::to_string(i) +
                                          ": the search returned no candidate");
-                const py::dict best = candidates[0].cast<py::dict>();
+                const py::dict best = ranked[0].cast<py::dict>();
                 py::dict row;
                 row["point"] = i;
                 for (const std::string& key : keys) {
@@ -169,10 +169,17 @@ void bind_sweep(py::module_& m) {
                 }
                 row["objective"] = best["objective"];
                 row["evaluations"] = r["evaluations"];
-                row["geometry_hash"] = best["mask"].attr("geometry_hash")();
-                for (auto item : best["terms"].cast<py::dict>()) row[item.first] = item.second;
+                row["geometry_hash"] = best["geometry_hash"];
+                // The best mask's terms and figures: its ranked row (search --json's) without
+                // the ranking's own columns.
+                for (auto item : best) {
+                    const std::string k = py::str(item.first);
+                    if (k != "rank" && k != "path" && k != "geometry_hash" && k != "objective" &&
+                        k != "reranked" && k != "upper_bound_psnr_db")
+                        row[item.first] = item.second;
+                }
                 rows.append(row);
-                masks.append(best["mask"]);
+                masks.append(r["masks"].cast<py::list>()[0]);
                 if (!progress.is_none()) {
                     py::dict info;
                     info["point"] = i;

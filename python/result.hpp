@@ -1,8 +1,7 @@
 // Results of the module's functions: a dict whose keys also read as attributes
 // (r.image is r["image"]), as scipy.optimize.OptimizeResult reads, so an editor completes them and
 // a mistyped name is an AttributeError naming the keys. to_dict() gives plain dicts and lists all
-// the way down. (Not yet the command's --json for every function: optics() keeps tuples and the
-// Camera where design --json writes lists and a camera object.)
+// the way down.
 #pragma once
 
 #include "python/common.hpp"

@@ -9,6 +9,7 @@
 #include "core/errors/error.hpp"
 #include "core/units/units.hpp"
 #include "design/optics/default_pinhole.hpp"
+#include "design/optics/design_run.hpp"
 #include "design/optics/working_distance.hpp"
 #include "design/pattern/pattern.hpp"
 #include "io/camera_json.hpp"
@@ -121,18 +122,18 @@ std::vector<CameraInput> camera_inputs(const CameraOptions& o, const Camera& c) 
     const std::string base =
         o.camera_file ? "camera file" : (o.base ? "config" : "paper preset default");
     auto from = [&](const std::optional<std::string>& flag) { return flag ? "flag" : base; };
+    const auto* sym = kCameraInputSymbols;  // the design report's order
     return {
-        {"d (pinhole)", format_length(c.pinhole_m),
+        {sym[0], format_length(c.pinhole_m),
          pinhole_defaulted(o) ? "whole-pixel optimum (no --pinhole given)" : from(o.pinhole)},
-        {"lambda (wavelength)", format_length(c.wavelength_m), from(o.wavelength)},
-        {"B (bandwidth, FWHM)",
-         c.bandwidth_m == 0.0 ? "0 (one wavelength)" : format_length(c.bandwidth_m),
+        {sym[1], format_length(c.wavelength_m), from(o.wavelength)},
+        {sym[2], c.bandwidth_m == 0.0 ? "0 (one wavelength)" : format_length(c.bandwidth_m),
          from(o.bandwidth)},
-        {"f (lens to sensor)", format_length(c.sensor_distance_m), from(o.sensor_distance)},
-        {"f' (lens focal)", format_length(c.lens_focal_m), from(o.lens_focal)},
-        {"u (object distance)", format_length(c.object_distance_m), from(o.object_distance)},
-        {"w (pixel pitch)", format_length(c.pixel_pitch_m), from(o.pixel_pitch)},
-        {"sensor", std::to_string(c.sensor_cols) + " x " + std::to_string(c.sensor_rows) + " px",
+        {sym[3], format_length(c.sensor_distance_m), from(o.sensor_distance)},
+        {sym[4], format_length(c.lens_focal_m), from(o.lens_focal)},
+        {sym[5], format_length(c.object_distance_m), from(o.object_distance)},
+        {sym[6], format_length(c.pixel_pitch_m), from(o.pixel_pitch)},
+        {sym[7], std::to_string(c.sensor_cols) + " x " + std::to_string(c.sensor_rows) + " px",
          from(o.sensor)},
     };
 }

@@ -7,8 +7,6 @@
 #include "core/errors/error.hpp"
 #include "core/files/input_file.hpp"
 #include "core/units/units.hpp"
-#include "export/pipeline/vendor_presets.hpp"
-#include "io/sidecar_layout.hpp"
 
 namespace pinmask::cli {
 
@@ -27,11 +25,6 @@ void validate(const CheckOptions& o) {
     if (o.list < 1) throw invalid_field("--list", std::to_string(o.list), "must be >= 1");
 }
 
-// The flags as given settings; the rules are io/sidecar_layout's (shared with the Python module).
-LayoutOptions design_options(const CheckOptions& o, const io::ExportSidecar* side) {
-    return io::check_layout(io::check_layout_settings(o.layout), side);
-}
-
 namespace {
 
 std::int64_t length_nm(const std::string& text, const char* flag, std::int64_t min_nm) {
@@ -44,20 +37,6 @@ std::int64_t length_nm(const std::string& text, const char* flag, std::int64_t m
 }
 
 }  // namespace
-
-VendorRules check_vendor_rules(const CheckOptions& o, const io::ExportSidecar* side,
-                               std::string& source) {
-    if (o.vendor) {
-        source = "given";
-        return vendor_rules_for(*o.vendor);
-    }
-    if (side) {
-        source = "the export sidecar";
-        return io::sidecar_rules(*side);
-    }
-    source = "default (film)";
-    return vendor_rules("film");
-}
 
 DrcRules resolve_rules(const CheckOptions& o, DrcRules rules) {
     if (o.min_gap) rules.min_gap_nm = length_nm(*o.min_gap, "--min-space/--min-gap", 1);

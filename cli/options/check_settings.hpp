@@ -1,4 +1,5 @@
-// `pinmask check`'s flags, and the layout settings they give together with an export sidecar.
+// `pinmask check`'s flags: their checks and the rule overrides they give (io/check_files runs
+// the check).
 #pragma once
 
 #include <cstddef>
@@ -8,7 +9,6 @@
 
 #include "export/layout/geometry.hpp"
 #include "export/pipeline/drc.hpp"
-#include "io/export_sidecar.hpp"
 #include "io/sidecar_layout.hpp"
 
 namespace pinmask::cli {
@@ -31,16 +31,6 @@ struct CheckOptions {
 // (not a device or a folder), --max-xor-um2 finite and >= 0, --list >= 1; InvalidInput naming
 // each otherwise.
 void validate(const CheckOptions& o);
-
-// Layout settings: the sidecar's (when given), every explicit flag required to agree with it
-// (InvalidInput naming the flag otherwise); without a sidecar, the flags.
-LayoutOptions design_options(const CheckOptions& o, const io::ExportSidecar* side);
-
-// The vendor rules: --vendor when given (a preset or rule name), else the rules the export
-// sidecar records, else film; `source` says which ("given", "the export sidecar", "default
-// (film)": the words Python's check() uses too).
-VendorRules check_vendor_rules(const CheckOptions& o, const io::ExportSidecar* side,
-                               std::string& source);
 
 // The rules: `rules` (the vendor's or the mask's) with every explicit flag applied.
 DrcRules resolve_rules(const CheckOptions& o, DrcRules rules);

@@ -1,8 +1,7 @@
-// Rendering of the `pinmask design` report (cli/cmd_design.cpp): table and JSON.
+// The `pinmask design` report as a table (cli/cmd_design.cpp); its JSON is io/design_json.
 #pragma once
 
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -13,13 +12,6 @@
 #include "design/psf/design_kernel.hpp"
 
 namespace pinmask::cli {
-
-// One JSON object: camera, geometry, every OpticsReport and WorkingDistance figure (unit-suffixed
-// keys: plain and "_at_u" keys at the working distance u, "_at_inf" keys for a distant object),
-// "notes" (key -> why a value is null), and the kernel psf would build (`dk`): "spectrum"
-// (bandwidth_m, wavelengths [[m, weight], ...]) and "kernel" (support_px, enclosed_energy).
-nlohmann::ordered_json design_json(const OpticsReport& r, const WorkingDistance& wd,
-                                   const GridSnap& snap = {}, const DesignKernel& dk = {});
 
 // The table (quantity, value, note), after the inputs used (symbol, value, source); `solved`
 // non-empty says the pinhole was solved for N at u.

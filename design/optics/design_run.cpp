@@ -3,16 +3,43 @@
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
 #include "design/optics/default_pinhole.hpp"
+#include "design/optics/fab_grid.hpp"
 #include "design/psf/kernel.hpp"
 
 namespace pinmask {
+
+GridSnap DesignRequest::grid() const {
+    const auto say = [&](const std::string& w) { return spell ? spell(w) : w; };
+    GridSnap g{false, kDefaultFabGridNm, "default"};
+    if (fab_grid_m && vendor)
+        throw invalid_field(field_ref("fab_grid"), fab_grid_text,
+                            "and " + field_ref("vendor") + " both set the grid: give one of them");
+    if (fab_grid_m) {
+        g.grid_nm = fab_grid_nm(*fab_grid_m, field_ref("fab_grid"));
+        g.grid_source = say(field_ref("fab_grid"));
+    } else if (vendor) {
+        if (!vendor_grid_m)
+            throw invalid_field(field_ref("vendor"), *vendor,
+                                "is a rule preset without a grid; give an export preset "
+                                "(`pinmask export --vendor list`) or " +
+                                    field_ref("fab_grid"));
+        g.grid_nm = fab_grid_nm(*vendor_grid_m, field_ref("vendor"));
+        g.grid_source = "vendor " + *vendor;
+    }
+    if ((fab_grid_m || vendor) && !pixels_per_cell && !solve)
+        throw invalid_field(field_ref(fab_grid_m ? "fab_grid" : "vendor"),
+                            fab_grid_m ? fab_grid_text : *vendor,
+                            "sets the grid a solved pinhole lands on: use it with " +
+                                field_ref("solve") + " pinhole or " + field_ref("pixels_per_cell"));
+    return g;
+}
 
 DesignReport run_design_request(const DesignRequest& q) {
     const auto spell = [&](const std::string& s) { return q.spell ? q.spell(s) : s; };
     DesignReport r;
     Camera& camera = r.camera;
     camera = q.camera;
-    r.snap = q.grid;
+    r.snap = q.grid();
     WorkingDistanceOptions wo{q.lsi_tolerance_px, q.pixels_per_cell.value_or(0)};
     if (q.pixels_per_cell || q.solve) {
         // Solving for the nearest N keeps the whole pitch of the pinhole it starts from: a start
@@ -56,6 +83,11 @@ DesignReport run_design_request(const DesignRequest& q) {
     // The spacing rule against the pinhole count: the proven packing bound, so a design that no
     // search or generator can realise says so before any of them runs.
     r.packing = packing_upper_bound(q.geometry.n, q.spacing_cells);
+    r.spacing_cells = q.spacing_cells;
+    r.input_sources = q.input_sources;
+    if (r.snap.solved && !r.input_sources.empty())
+        r.input_sources.front().second = "solved for N px per cell at u, on the " +
+                                         std::to_string(r.snap.grid_nm) + " nm fabrication grid";
     return r;
 }
 

@@ -49,15 +49,15 @@ def main(out):
     # 2. Search: 8 x 8 cells, 6..10 pinholes, a fixed number of evaluations (deterministic).
     result = pinmask.search(camera=camera, grid=8, holes="6..10", evals=300, threads=1, seed=3,
                             top=1, rerank_scenes=[])
-    mask = result["candidates"][0]["mask"]
+    mask = result["masks"][0]
     mask.save(str(out / "best.mask.json"))
     summary["holes"] = len(mask.pattern.pinholes)
-    summary["objective"] = result["candidates"][0]["objective"]
+    summary["objective"] = result["ranked"][0]["objective"]
     print(f"search: {summary['holes']} pinholes, objective {summary['objective']:.4f}")
 
     # 3. Export: fabrication files (read back before they are written).
     exported = pinmask.export_mask(mask, str(out / "fab"), formats=["svg", "gds"], stem="best")
-    summary["export_files"] = sorted(pathlib.Path(f["path"]).name for f in exported["files"])
+    summary["export_files"] = sorted(f["name"] for f in exported["files"])
 
     # 4. Simulate a capture of the letter R at 40 dB SNR; 5. decode it (Wiener).
     psf = pinmask.psf(mask)

@@ -1,12 +1,12 @@
-// The check transaction, one call per kind of input for both faces (`pinmask check` and Python's
-// check()): a mask checked on the layout export builds from it (check_mask), and a fabrication
-// file read back and checked against its design when one is known (check_fabrication: the
-// design's layout, export/pipeline/file_check's comparison and design-rule check, the pattern's
-// centre spacing, and what identifies the film, export/pipeline/film_identity). The faces read
-// the files, the export sidecar and the mask, give the layout settings and apply their own rule
-// overrides (their flags or keywords, refused in their own spelling); pictures are the command's
-// (cli/outputs/check_picture). Between stages the time budget (core/limits) is polled, naming
-// the input.
+// The check, one call per kind of input (io/check_files runs them for both faces, `pinmask
+// check` and Python's check()): a mask checked on the layout export builds from it
+// (check_mask), and a fabrication file read back and checked against its design when one is
+// known (check_fabrication: the design's layout, export/pipeline/file_check's comparison and
+// design-rule check, the pattern's centre spacing, and what identifies the film,
+// export/pipeline/film_identity). io/check_files reads the files, the export sidecar and the
+// mask, and takes the layout settings and each face's rule overrides (their flags or keywords,
+// refused in their own spelling). Between stages the time budget (core/limits) is polled,
+// naming the input.
 #pragma once
 
 #include <functional>

@@ -20,7 +20,7 @@ import sys
 import pinmask
 r = pinmask.search(grid=16, holes=20, evals=150, threads=1, seed=4, top=1, rerank_scenes=[])
 print(pinmask.__file__)
-sys.stdout.write(r["candidates"][0]["mask"].to_json())
+sys.stdout.write(r["masks"][0].to_json())
 """
 
 

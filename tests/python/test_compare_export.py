@@ -47,7 +47,7 @@ def test_export_same_bytes_as_cli(cli, tmp_path, mask7):
                               label=True, frame="1mm")
     assert len(out["files"]) == 5
     for f in out["files"]:
-        name = f["path"].split("/")[-1]
+        name = f["name"]
         assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
         if f["format"] != "png":
             assert f["verification"].startswith("read back")
@@ -90,7 +90,7 @@ def test_export_new_formats_same_bytes_as_cli(cli, tmp_path, mask7):
                               formats=["oasis", "tiff1"])
     assert [f["format"] for f in out["files"]] == ["oasis", "tiff1"]
     for f in out["files"]:
-        name = f["path"].split("/")[-1]
+        name = f["name"]
         assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
     assert out["files"][0]["verification"].startswith("read back")
     assert pinmask.check(str(tmp_path / "py" / "m.oas"), mask=mask7)["comparison"]["ok"]
@@ -110,15 +110,14 @@ def test_export_units_and_drawing_equal_cli(cli, tmp_path, mask7, cli_args, kwar
     cli.run("export", "m.mask.json", *cli_args, "--no-psf", "-o", "cli")
     out = pinmask.export_mask(str(tmp_path / "m.mask.json"), str(tmp_path / "py"), **kwargs)
     names = sorted(p.name for p in (tmp_path / "cli").iterdir() if p.suffix != ".json")
-    assert names == sorted(pathlib.Path(f["path"]).name for f in out["files"])
+    assert names == sorted(f["name"] for f in out["files"])
     for name in names:
         assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
     # The settings are used: without them the files differ.
     default = pinmask.export_mask(str(tmp_path / "m.mask.json"), str(tmp_path / "default"),
                                   formats=kwargs["formats"])
-    assert any((tmp_path / "default" / pathlib.Path(f["path"]).name).read_bytes() !=
-               (tmp_path / "py" / pathlib.Path(f["path"]).name).read_bytes()
-               for f in default["files"])
+    assert any((tmp_path / "default" / f["name"]).read_bytes() !=
+               (tmp_path / "py" / f["name"]).read_bytes() for f in default["files"])
 
 
 def test_export_max_snap_error_refuses_as_cli(cli, tmp_path, mask7):
@@ -142,10 +141,10 @@ def test_export_sidecar_equals_cli_and_check_reads_it(cli, tmp_path, mask7, monk
             "circle", "--units", "mm", "--frame", "1mm", "--no-psf", "-o", "cli")
     monkeypatch.chdir(tmp_path)  # the mask path recorded as given, as the command records it
     out = pinmask.export_mask("m.mask.json", "py", psf=False, **args)
-    assert out["sidecar"] == "py/m.export.json" and out["psf_files"] == []
+    assert out.psf.startswith("not written")
     py_side = json.loads((tmp_path / "py" / "m.export.json").read_text())
     cli_side = json.loads((tmp_path / "cli" / "m.export.json").read_text())
-    assert py_side == cli_side
+    assert py_side == cli_side == out.to_dict()
     # check() of the Python export uses the sidecar's tone, shape, frame and units: clean, the
     # same report as the command's check of the same file.
     report = pinmask.check("py/m.gds", mask="m.mask.json")
@@ -166,8 +165,7 @@ def test_export_psf_files_equal_cli(cli, tmp_path, mask7, monkeypatch):
     cli.run("export", "m.mask.json", "--format", "gds", "--npy", "-o", "cli")
     monkeypatch.chdir(tmp_path)
     out = pinmask.export_mask("m.mask.json", "py", formats=["gds"], npy=True)
-    assert sorted(pathlib.Path(p).name for p in out["psf_files"]) == [
-        "m.psf.json", "m.psf.npy", "m.psf.tiff"]
+    assert sorted(out.psf.files) == ["m.psf.json", "m.psf.npy", "m.psf.tiff"]
     names = sorted(p.name for p in (tmp_path / "cli").iterdir())
     assert names == sorted(p.name for p in (tmp_path / "py").iterdir())
     for name in names:

@@ -76,13 +76,15 @@ def same_report(d, j):
 def test_optics_solving_the_pinhole_equals_cli(cli, tmp_path, cli_args, kwargs):
     j = json.loads(cli.run("design", *MV_FLAGS, *cli_args, "--save-camera", "cli.camera.json",
                            "--json").stdout)
-    d = pinmask.optics(pinmask.Camera(**MV), **kwargs)
+    d = pinmask.optics(pinmask.Camera(**MV), **kwargs,
+                       save_camera=str(tmp_path / "py.camera.json"))
     same_report(d, j)
     assert "pinhole_on_grid_m" in j and d["pinhole_on_grid_m"] == j["pinhole_on_grid_m"]
-    # The solved camera is the one --save-camera writes.
-    pinmask.save_camera(d["camera"], str(tmp_path / "py.camera.json"))
+    # The solved camera is the one --save-camera writes, and the report's camera.
     assert (tmp_path / "py.camera.json").read_bytes() == \
         (tmp_path / "cli.camera.json").read_bytes()
+    assert d.camera == j["camera"]
+    assert pinmask.load_camera(str(tmp_path / "py.camera.json")).pinhole_m == d.camera.pinhole_m
     # Independent of pinmask: N = d M(u) / w with M(u) = 1 - f/f' + f/u, before the grid.
     f, fl, u, w = 0.020, 0.025, 2.0, 3.45e-6
     n_whole = round(d["pinhole_solved_m"] * (1 - f / fl + f / u) / w)
@@ -96,6 +98,7 @@ def test_optics_solving_the_pinhole_equals_cli(cli, tmp_path, cli_args, kwargs):
     (dict(fab_grid="1um"), "^fab_grid = 1um: sets the grid a solved pinhole lands on"),
     (dict(pixels_per_cell=12, fab_grid="1um", vendor="film-plotter"), "^fab_grid = 1um: and vendor"),
     (dict(pixels_per_cell=0), "^pixels_per_cell = 0"),
+    (dict(save_camera="/nonexistent/x.camera.json"), "^save_camera = .*folder does not exist"),
 ])
 def test_optics_solving_errors_name_keywords(kwargs, pattern):
     with pytest.raises(ValueError, match=pattern):

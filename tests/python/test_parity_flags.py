@@ -104,7 +104,8 @@ BY_DESIGN = {
                                   "writes any of them)",
     ("decode", "--batch-stats"): "decode_batch returns each capture's stats as its dict",
     ("decode", "--explain"): "the returned dict holds what each step decided",
-    ("search", "--output"): "the candidates are returned as Mask objects (Mask.save writes one)",
+    ("search", "--output"): "the ranked masks are returned as Mask objects under masks "
+                            "(Mask.save writes one)",
     ("search", "--explain"): "the returned dict holds the resolved settings and the run's log",
     ("search", "--config"): "a file of flag values: Python passes keywords (search(**settings))",
     ("search", "--migrate-every"): "the MPI island model runs under mpirun, a command-line "

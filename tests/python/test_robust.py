@@ -46,10 +46,10 @@ def test_search_robust_objective_same_masks_as_cli(cli, tmp_path):
             "--objective", "robust", "-o", "runs")
     r = pinmask.search(grid=16, holes=20, evals=300, threads=1, seed=5, top=2, rerank_scenes=[],
                        robust=ERRORS, objective="robust")
-    assert len(r["candidates"]) == 2
-    for i, c in enumerate(r["candidates"]):
-        assert c["mask"].to_json() == (tmp_path / "runs" / f"rank-{i + 1}.mask.json").read_text()
-        t = c["terms"]
+    assert len(r["ranked"]) == 2
+    for i, (c, m) in enumerate(zip(r["ranked"], r["masks"])):
+        assert m.to_json() == (tmp_path / "runs" / f"rank-{i + 1}.mask.json").read_text()
+        t = c  # every term is a key of the ranked row
         # The robust objective: -robust PSNR; the nominal figure beside it is higher.
         assert c["objective"] == pytest.approx(-t["robust_wiener_psnr_db"], abs=1e-12)
         assert t["analytic_wiener_psnr_db"] > t["robust_wiener_psnr_db"]

@@ -13,16 +13,16 @@ def test_search_same_masks_as_cli(cli, tmp_path):
     cli.run("search", "--preset", "paper", "--grid", "16", "--holes", "20", "--evals", "400",
             "--threads", "1", "--seed", "5", "--top", "3", "--no-rerank", "-o", "runs")
     r = pinmask.search(grid=16, holes=20, evals=400, threads=1, seed=5, top=3, rerank_scenes=[])
-    assert r["termination"] == "evaluation budget" and r["evaluations"] == 400
+    assert r["stop_reason"] == "evaluation budget" and r["evaluations"] == 400
     assert r["reranked"] == 0
-    assert len(r["candidates"]) == 3
-    for i, c in enumerate(r["candidates"]):
-        assert c["mask"].to_json() == (tmp_path / "runs" / f"rank-{i + 1}.mask.json").read_text()
-    objectives = [c["objective"] for c in r["candidates"]]
+    assert len(r["ranked"]) == len(r["masks"]) == 3
+    for i, m in enumerate(r["masks"]):
+        assert m.to_json() == (tmp_path / "runs" / f"rank-{i + 1}.mask.json").read_text()
+    objectives = [c["objective"] for c in r["ranked"]]
     assert objectives == sorted(objectives)
     # The bound on any 20-pinhole pattern is above every candidate's analytic PSNR.
-    for c in r["candidates"]:
-        assert c["upper_bound_psnr_db"] >= c["terms"]["analytic_wiener_psnr_db"]
+    for c in r["ranked"]:
+        assert c["upper_bound_psnr_db"] >= c["analytic_wiener_psnr_db"]
 
 
 def test_search_keep_out_and_rerank_same_masks_as_cli(cli, tmp_path):
@@ -31,14 +31,14 @@ def test_search_keep_out_and_rerank_same_masks_as_cli(cli, tmp_path):
             "--rerank-scenes", "letter-R", "--no-rerank-tv", "-o", "runs")
     r = pinmask.search(grid=16, holes=20, evals=200, threads=1, seed=6, top=2,
                        keep_out="border", rerank_scenes=["letter-R"], rerank_tv=False)
-    assert r["reranked"] == 2 and len(r["candidates"]) == 2
-    for i, c in enumerate(r["candidates"]):
+    assert r["reranked"] == 2 and len(r["ranked"]) == 2
+    for i, (c, m) in enumerate(zip(r["ranked"], r["masks"])):
         assert c["reranked"] and c["sim_wiener_psnr_db"] > 0
-        assert c["mask"].to_json() == (tmp_path / "runs" / f"rank-{i + 1}.mask.json").read_text()
+        assert m.to_json() == (tmp_path / "runs" / f"rank-{i + 1}.mask.json").read_text()
         # keep-out border: no pinhole on the outer ring of the grid
-        for (row, col) in c["mask"].pattern.pinholes:
+        for (row, col) in m.pattern.pinholes:
             assert 0 < row < 15 and 0 < col < 15
-    psnrs = [c["sim_wiener_psnr_db"] for c in r["candidates"]]
+    psnrs = [c["sim_wiener_psnr_db"] for c in r["ranked"]]
     assert psnrs == sorted(psnrs, reverse=True)  # re-ranked: best simulated PSNR first
 
 
@@ -51,9 +51,9 @@ def test_search_progress_and_stop():
 
     r = pinmask.search(grid=16, holes=20, time="60s", threads=1, seed=2, top=2,
                        progress=progress, strategy="random", rerank_scenes=[])
-    assert len(rows) == 3 and r["termination"] == "interrupted"
+    assert len(rows) == 3 and r["stop_reason"] == "interrupted"
     assert all(row["phase"] == "search" and 0 <= row["fraction"] <= 1 for row in rows)
-    assert r["candidates"] and r["seconds"] < 30
+    assert r["ranked"] and r["masks"] and r["used_s"] < 30
 
 
 def test_search_ctrl_c_raises_keyboard_interrupt():

@@ -16,7 +16,7 @@ FLAGS = ["--grid", "12", "--holes", "8", "--pixels-per-cell", "4", "--tiles", "1
 
 
 def hashes(result):
-    return [c["mask"].geometry_hash() for c in result["candidates"]]
+    return [m.geometry_hash() for m in result["masks"]]
 
 
 def test_checkpoints_cross_the_faces(cli, tmp_path):
@@ -28,8 +28,7 @@ def test_checkpoints_cross_the_faces(cli, tmp_path):
     resumed = pinmask.search(**KW, resume=str(tmp_path / "ck.json"),
                              checkpoint=str(tmp_path / "r.json"), checkpoint_every=20000)
     assert hashes(resumed) == hashes(full)
-    assert [c["objective"] for c in resumed["candidates"]] == [
-        c["objective"] for c in full["candidates"]]
+    assert [c["objective"] for c in resumed["ranked"]] == [c["objective"] for c in full["ranked"]]
     # search()'s checkpoint: the command's bytes, and the command resumes it.
     py = pinmask.search(**KW, checkpoint=str(tmp_path / "py.json"), checkpoint_every=20000)
     assert hashes(py) == hashes(full)

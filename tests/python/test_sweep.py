@@ -39,9 +39,10 @@ def test_sweep_points_and_progress():
     assert seen == [1, 2] and r["points"] == 2  # False after the second point stops the sweep
     assert r["keys"] == ["holes", "seed"]
     assert r["rows"][0]["seed"] is None  # not set there: search()'s default
-    one = pinmask.search(holes=6, seed=3, threads=1, **BASE)["candidates"][0]
-    assert r["rows"][1]["geometry_hash"] == one["mask"].geometry_hash()
-    assert r["rows"][1]["objective"] == pytest.approx(one["objective"], rel=1e-12)
+    one = pinmask.search(holes=6, seed=3, threads=1, **BASE)
+    assert r["rows"][1]["geometry_hash"] == one["masks"][0].geometry_hash()
+    assert r["rows"][1]["geometry_hash"] == one["ranked"][0]["geometry_hash"]
+    assert r["rows"][1]["objective"] == pytest.approx(one["ranked"][0]["objective"], rel=1e-12)
 
 
 @pytest.mark.parametrize("kw, fragment", [
