@@ -84,23 +84,59 @@ def mad_sigma(p):
     return np.sort(d.ravel())[d.size // 2] / 0.6744897501960817
 
 
+def _tv_curve(model, psf, photo, photons, gains):
+    """(SNR = mean / sigma, PSNR at lambda = g sigma ||a||_2 for each g) of one training capture."""
+    capture, truth, k = sc.render(photo, model, psf, photons, READ_E, 7)
+    sigma = mad_sigma(capture)
+    unit = sigma * np.sqrt(np.sum(psf ** 2))
+    ps = np.array([sc.psnr(np.asarray(decode(capture, psf, model, "tv", g * unit)["image"]) / k,
+                           truth) for g in gains])
+    return capture.mean() / sigma, ps
+
+
 def calibrate_tv():
-    """PSNR of TV at lambda = g sigma ||a||_2 for g on GRID, per training case; the g that
-    loses least in the worst case."""
+    """The TV rule's constants (decode/solvers/auto_weight.cpp). k: PSNR of TV at lambda = g sigma
+    ||a||_2 for g on a grid, per low-light training case (100 and 1000 electrons per unit, every
+    training camera); the g that loses least in the worst case. The fall above the knee: the
+    cyclic training cameras at 1e2..1e6 electrons per unit, the loss of g = k min(1, (knee /
+    SNR)^beta) per (knee, beta), against the constant k. The lensless camera is left out of the
+    fall: on a frame-filling linear capture the error at high SNR is the unobserved border's, not
+    the noise's, and its best gain rises with SNR instead (printed for the record)."""
     gains = 10.0 ** (np.arange(-4, 9) / 8)  # 0.32 .. 10, 8 per decade
     losses = []
     for name, (model, psf) in TRAIN_CAMERAS.items():
         for photo in TRAIN_PHOTOS:
             for photons in (100.0, 1000.0):
-                capture, truth, k = sc.render(photo, model, psf, photons, READ_E, 7)
-                unit = mad_sigma(capture) * np.sqrt(np.sum(psf ** 2))
-                ps = np.array([sc.psnr(np.asarray(decode(capture, psf, model, "tv", g * unit)[
-                    "image"]) / k, truth) for g in gains])
+                _, ps = _tv_curve(model, psf, photo, photons, gains)
                 losses.append(ps.max() - ps)
                 print(f"{name} {photo} {photons:g}: best g {gains[ps.argmax()]:.3g} "
                       f"({ps.max():.2f} dB)", flush=True)
     for g, worst, mean in zip(gains, np.max(losses, axis=0), np.mean(losses, axis=0)):
         print(f"g {g:.4g}: worst loss {worst:.2f} dB, mean {mean:.2f}")
+    gains = 10.0 ** (np.arange(-16, 9) / 8)  # 0.01 .. 10
+    curves = []
+    for name, (model, psf) in TRAIN_CAMERAS.items():
+        for photo in TRAIN_PHOTOS:
+            for photons in (1e2, 1e3, 1e4, 1e5, 1e6):
+                if model == "linear" and photons > 1e5:
+                    continue
+                snr, ps = _tv_curve(model, psf, photo, photons, gains)
+                print(f"{name} {photo} {photons:g}: SNR {snr:.1f}, best g "
+                      f"{gains[ps.argmax()]:.3g} ({ps.max():.2f} dB)", flush=True)
+                if model == "cyclic":
+                    curves.append((snr, ps))
+
+    def losses_of(rule):
+        return [ps.max() - np.interp(np.log(rule(snr)), np.log(gains), ps) for snr, ps in curves]
+
+    k = 2.4  # kTvLambdaPerNoise
+    print(f"constant {k}: worst loss {max(losses_of(lambda s: k)):.2f} dB, "
+          f"mean {np.mean(losses_of(lambda s: k)):.2f}")
+    for knee in (10.0, 16.0, 25.0, 40.0):
+        for beta in (0.5, 0.6, 2 / 3, 0.75):
+            ls = losses_of(lambda s: k * min(1.0, (knee / s) ** beta))
+            print(f"knee {knee:g}, beta {beta:.3g}: worst loss {max(ls):.2f} dB, "
+                  f"mean {np.mean(ls):.2f}")
 
 
 if __name__ == "__main__":

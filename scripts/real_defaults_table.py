@@ -7,7 +7,8 @@ non-negative FISTA on the linear model, 300 iterations: the data README's clean 
 decode is judged by pinmask's own code. Run from the repository:
 PINMASK_SHARED_DIR=/work/shared PYTHONPATH=build/python /usr/bin/python3 scripts/real_defaults_table.py
 (--nonneg: the non-negativity figures of docs/decoding.md instead; --auto: the default decode,
-its method chosen from the capture, against the best of both methods' sweeps).
+its method chosen from the capture, against the best of both methods' sweeps; --noise: the noise
+sigma after each round of averaging and before it).
 tests/python/test_real_defaults.py recomputes the rows at a smaller size and holds them."""
 import itertools
 import pathlib
@@ -141,6 +142,23 @@ def nonneg_rows():
     return out
 
 
+def noise_rows():
+    """Per capture and rounds of 2 x 2 averaging: the noise sigma the MAD rule of
+    decode/solvers/noise_estimate.hpp reads after the rounds (numpy), the full-size one over
+    2^rounds, the sigma pinmask records for its default decode (a background taken off does not
+    move it) and the SNR of the TV rule, the capture's mean over that sigma."""
+    import autoreg_table as at
+    out = []
+    for name in ("hand", "usaf"):
+        cap, psf = rc.load(name)
+        full = at.mad_sigma(cap)
+        for k in range(4):
+            recorded = decode(cap, psf, k)["channels"][0]["auto_weight"]["noise_sigma"]
+            out.append((name, k, at.mad_sigma(rc.box_downsample(cap, k)), full / 2 ** k,
+                        recorded, cap.mean() / recorded))
+    return out
+
+
 if __name__ == "__main__":
     if not rc.available():
         raise SystemExit(f"no real captures under {rc.real_dir()} (set PINMASK_SHARED_DIR)")
@@ -148,6 +166,10 @@ if __name__ == "__main__":
         for name, method, reason, p, pb, settings in auto_rows():
             print(f"{name}: default chooses {method} ({reason}): {p:.2f} dB; best {pb:.2f} dB "
                   f"({settings}): default - best {p - pb:+.2f} dB")
+    elif sys.argv[1:] == ["--noise"]:
+        for name, k, after, before, recorded, snr in noise_rows():
+            print(f"{name} {k} rounds: sigma after the rounds {after:.1f}, full size / 2^k "
+                  f"{before:.1f}, recorded {recorded:.1f}; SNR (mean / recorded) {snr:.0f}")
     elif sys.argv[1:] == ["--nonneg"]:
         for case, a, b in nonneg_rows():
             print(f"{case}: x >= 0 {a:.2f} dB, free {b:.2f} dB")

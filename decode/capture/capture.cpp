@@ -112,16 +112,30 @@ Image crop(const Image& image, const CropWindow& w) {
 }
 
 std::vector<DecodeResult> decode_channels(const Image& capture, const std::vector<Plane>& psfs,
-                                          const DecodeOptions& options) {
+                                          const DecodeOptions& options,
+                                          const std::vector<double>& noise_sigmas) {
     const std::size_t n = capture.channels.size();
     if (psfs.size() != 1 && psfs.size() != n) {
         throw InvalidInput("PSF: " + std::to_string(psfs.size()) + " channels for a capture of " +
                            std::to_string(n) + ": need one PSF or one per channel");
     }
+    if (!noise_sigmas.empty() && noise_sigmas.size() != n) {
+        throw InvalidInput("decode_channels: " + std::to_string(noise_sigmas.size()) +
+                           " noise sigmas for a capture of " + std::to_string(n) + " channels");
+    }
     auto psf_of = [&](std::size_t ch) -> const Plane& { return psfs[psfs.size() == 1 ? 0 : ch]; };
+    // Each channel's options: the shared ones, or a copy with the channel's noise sigma.
+    std::vector<DecodeOptions> own;
+    for (double sigma : noise_sigmas) {
+        own.push_back(options);
+        own.back().auto_noise_sigma = sigma;
+    }
+    auto options_of = [&](std::size_t ch) -> const DecodeOptions& {
+        return own.empty() ? options : own[ch];
+    };
     std::vector<DecodeResult> results(n);
     if (n == 1) {
-        results[0] = decode_plane(capture.channels[0], psf_of(0), options);
+        results[0] = decode_plane(capture.channels[0], psf_of(0), options_of(0));
         return results;
     }
     std::vector<std::exception_ptr> errors(n);
@@ -130,7 +144,7 @@ std::vector<DecodeResult> decode_channels(const Image& capture, const std::vecto
     for (std::size_t ch = 0; ch < n; ++ch) {
         threads.emplace_back([&, ch] {
             try {
-                results[ch] = decode_plane(capture.channels[ch], psf_of(ch), options);
+                results[ch] = decode_plane(capture.channels[ch], psf_of(ch), options_of(ch));
             } catch (...) {
                 errors[ch] = std::current_exception();
             }

@@ -60,7 +60,9 @@ Image crop(const Image& image, const CropWindow& window);
 // shared by all channels or one per channel. Channels run in parallel, one std::thread each;
 // a mono capture decodes its one channel on the calling thread. Results are in channel order;
 // if channels fail, the error of the lowest-numbered failing channel is rethrown.
+// `noise_sigmas`: empty, or one per channel, each channel's DecodeOptions::auto_noise_sigma.
 std::vector<DecodeResult> decode_channels(const Image& capture, const std::vector<Plane>& psfs,
-                                          const DecodeOptions& options);
+                                          const DecodeOptions& options,
+                                          const std::vector<double>& noise_sigmas = {});
 
 }  // namespace pinmask

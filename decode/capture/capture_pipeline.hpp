@@ -109,6 +109,9 @@ struct PreparedCapture {
     std::vector<Plane> psf;
     DecodeOptions decode;
     CaptureDecodeSummary summary;
+    // Each channel's noise sigma measured on the capture before downsampling (empty: the
+    // solvers measure it on the window they decode).
+    std::vector<double> noise_sigmas;
 };
 
 // The pipeline up to the decode. Throws InvalidInput for bad inputs or options (naming the field).

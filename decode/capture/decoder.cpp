@@ -136,7 +136,8 @@ DecodeResult decode_closed_form(const Plane& capture, const Plane& psf, const De
         const Plane symbol =
             tikhonov_symbol(g.work_rows, g.work_cols,
                             wiener ? TikhonovRegulariser::kIdentity : given.tikhonov.regulariser);
-        chosen = choose_closed_form_weight(capture, op.otf(), symbol, g.work_rows, g.work_cols);
+        chosen = choose_closed_form_weight(capture, op.otf(), symbol, g.work_rows, g.work_cols,
+                                           given.auto_noise_sigma);
         if (wiener) {
             o.wiener.nsr = chosen->weight;
             o.wiener.automatic = false;
@@ -336,6 +337,7 @@ void DecodeOptions::validate() const {
             throw invalid_field("method", std::to_string(static_cast<int>(method)),
                                 "is not a decode method (" + decode_method_names() + ")");
     }
+    if (auto_noise_sigma) check_nonnegative("auto_noise_sigma", *auto_noise_sigma);
     // Checked for every method (its size needs the working grid: decode_plane checks that).
     iterative.validate();
 }
@@ -371,7 +373,7 @@ DecodeResult decode_plane(const Plane& capture, const Plane& psf, const DecodeOp
             std::optional<AutoWeight> tv_auto;
             std::string tv_warning;
             if (o.method == DecodeMethod::kTv) {
-                const AutoWeight a = choose_tv_weight(capture, psf);
+                const AutoWeight a = choose_tv_weight(capture, psf, o.auto_noise_sigma);
                 if (o.tv.automatic) {
                     tv_auto = a;
                     o.tv.lambda = a.weight;

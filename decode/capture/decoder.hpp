@@ -95,6 +95,11 @@ struct DecodeOptions {
     TikhonovParams tikhonov;
     TvParams tv;
     TvqcParams tvqc;
+    // The capture's per-pixel noise sigma (capture units) for the automatic weights and tv's
+    // weight warning, when it is known better than from the decoded plane (the capture pipeline
+    // measures it before downsampling, where the scene reaches the finest scale least); unset:
+    // estimated from the plane (decode/solvers/noise_estimate.hpp).
+    std::optional<double> auto_noise_sigma;
     // Optional: operators and closed-form filters made once and reused across calls with the same
     // PSF and grid (decode/solvers/plan_cache.hpp; batch decode). Not owned; results are the same
     // bytes.

@@ -13,9 +13,15 @@ namespace {
 
 constexpr int kBands = 12;
 // k of the TV rule (auto_weight.hpp): the gain of least worst-case PSNR loss against each case's
-// best gain on the training set of scripts/autoreg_table.py --calibrate-tv (24 cases; gains
-// 10^(i/8): 2.37 loses at most 0.79 dB, 0.23 dB on average; 1.78: 1.77 and 0.19 dB).
+// best gain on the low-light training set of scripts/autoreg_table.py --calibrate-tv (24 cases;
+// gains 10^(i/8): 2.37 loses at most 0.79 dB, 0.23 dB on average; 1.78: 1.77 and 0.19 dB).
 constexpr double kTvLambdaPerNoise = 2.4;
+// Above a capture SNR (mean / sigma) of kTvSnrKnee the best gain falls as SNR^-kTvSnrExponent
+// (the same training cameras at 1e2..1e6 electrons per unit: best gains 1.3-3.2 at SNR 7,
+// 0.3-0.6 at SNR 200-600; --calibrate-tv fits the fall). The knee keeps k where it was
+// calibrated (SNR 7-22).
+constexpr double kTvSnrKnee = 16.0;
+constexpr double kTvSnrExponent = 2.0 / 3.0;
 constexpr double kAlphaMax = 4.0;
 
 // Radial frequency |f| (cycles per pixel) of half-spectrum entry (k, l).
@@ -178,6 +184,9 @@ AutoWeight choose_tv_weight(const Plane& capture, const Plane& psf,
     AutoWeight out;
     out.noise_sigma = noise_sigma ? *noise_sigma : estimate_noise_sigma(capture);
     out.weight = kTvLambdaPerNoise * out.noise_sigma * std::sqrt(psf.square().sum());
+    // A signed capture (mean <= 0) or one without measurable noise keeps the low-SNR gain.
+    const double snr = out.noise_sigma > 0.0 ? capture.mean() / out.noise_sigma : 0.0;
+    if (snr > kTvSnrKnee) out.weight *= std::pow(kTvSnrKnee / snr, kTvSnrExponent);
     return out;
 }
 

@@ -45,13 +45,16 @@ AutoWeight choose_closed_form_weight(const Plane& capture, const ComplexPlane& o
                                      const Plane& symbol, int rows, int cols,
                                      std::optional<double> noise_sigma = std::nullopt);
 
-// TV-L2 (1/2 ||A x - p||^2 + lambda TV(x)): lambda = k sigma ||a||_2 (k: auto_weight.cpp), sigma
-// the per-pixel noise (estimated from the capture unless given), ||a||_2 the PSF's l2 norm (the rms
-// of |H|: the gain of the data term a typical frequency sees). Denoising with the data term
-// ~ ||a||_2^2 ||x - x~||^2 / 2 and x~'s noise sigma / ||a||_2 wants a TV weight proportional to
-// that noise, times ||a||_2^2: lambda ~ sigma ||a||_2. The weight is in capture units and
-// follows the capture's scale; a PSF scaled by t scales it by t (x scales by 1/t).
-// The constant was calibrated on a training set of photographs and cameras disjoint from those
+// TV-L2 (1/2 ||A x - p||^2 + lambda TV(x)): lambda = k sigma ||a||_2 g(SNR) (k: auto_weight.cpp),
+// sigma the per-pixel noise (estimated from the capture unless given), ||a||_2 the PSF's l2 norm
+// (the rms of |H|: the gain of the data term a typical frequency sees). Denoising with the data
+// term ~ ||a||_2^2 ||x - x~||^2 / 2 and x~'s noise sigma / ||a||_2 wants a TV weight proportional
+// to that noise, times ||a||_2^2: lambda ~ sigma ||a||_2. That holds at low light; at a higher
+// SNR (the capture's mean over sigma) the error left is more the weight's blur than the noise,
+// and the best weight falls faster than sigma: g = min(1, (SNR0 / SNR)^beta) (SNR0, beta:
+// auto_weight.cpp), so lambda ~ sigma^(1 + beta) well above SNR0. The weight is in capture units
+// and follows the capture's scale (SNR is scale-free); a PSF scaled by t scales it by t.
+// The constants were calibrated on a training set of photographs and cameras disjoint from those
 // of the table in docs/decoding.md (scripts/autoreg_table.py --calibrate-tv says which).
 AutoWeight choose_tv_weight(const Plane& capture, const Plane& psf,
                             std::optional<double> noise_sigma = std::nullopt);

@@ -240,7 +240,18 @@ TEST_CASE("automatic NSR excludes a per-frequency NSR map") {
     CHECK_THROWS_AS(o.validate(), InvalidInput);
 }
 
-TEST_CASE("automatic TV weight: k sigma ||a||_2, in capture units") {
+TEST_CASE("a given noise sigma for the automatic weights must be finite and >= 0") {
+    DecodeOptions o;
+    o.wiener.automatic = true;
+    for (double bad : {-1.0, std::nan("")}) {
+        o.auto_noise_sigma = bad;
+        CHECK_THROWS_AS(o.validate(), InvalidInput);
+    }
+    o.auto_noise_sigma = 0.5;
+    CHECK_NOTHROW(o.validate());
+}
+
+TEST_CASE("automatic TV weight: k sigma ||a||_2 min(1, (16 / SNR)^(2/3)), in capture units") {
     const int R = 48, C = 48;
     const Plane psf = pinhole_psf(12, 4, 8, 13);
     Plane x(R, C);
@@ -255,6 +266,24 @@ TEST_CASE("automatic TV weight: k sigma ||a||_2, in capture units") {
     REQUIRE(a.auto_weight.has_value());
     const double sigma = estimate_noise_sigma(p);
     CHECK(a.auto_weight->noise_sigma == sigma);
+    // The rule written out: this capture's SNR (mean / sigma, about 30) is above the knee.
+    const double norm = std::sqrt(psf.square().sum()), snr = p.mean() / sigma;
+    REQUIRE(snr > 16.0);
+    CHECK(a.auto_weight->weight ==
+          doctest::Approx(2.4 * sigma * norm * std::pow(16.0 / snr, 2.0 / 3.0)).epsilon(1e-12));
+    // Below the knee, and for a signed capture (mean <= 0), the factor is 1; a given sigma is
+    // used as it is.
+    const Plane noisy = circular_blur(x, psf) + gaussian_plane(R, C, 62, 0.2);
+    const double s_noisy = estimate_noise_sigma(noisy);
+    REQUIRE(noisy.mean() / s_noisy < 16.0);
+    CHECK(choose_tv_weight(noisy, psf).weight ==
+          doctest::Approx(2.4 * s_noisy * norm).epsilon(1e-12));
+    const Plane centred = p - p.mean() - 0.1;
+    CHECK(choose_tv_weight(centred, psf, 0.05).weight ==
+          doctest::Approx(2.4 * 0.05 * norm).epsilon(1e-12));
+    CHECK(choose_tv_weight(p, psf, 0.002).weight ==
+          doctest::Approx(2.4 * 0.002 * norm * std::pow(16.0 * 0.002 / p.mean(), 2.0 / 3.0))
+              .epsilon(1e-12));
     // The rule is proportional to sigma ||a||_2: a PSF scaled by 4 and a capture scaled by 8
     // scale it by 4 and 8 (powers of two: exact).
     CHECK(choose_tv_weight(p, psf * 4.0).weight == 4.0 * a.auto_weight->weight);

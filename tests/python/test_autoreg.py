@@ -45,6 +45,46 @@ def test_scale_invariance(camera, method):
                                        atol=1e-6 * k * np.abs(img0).max())
 
 
+def _mad_sigma(p):
+    """decode/solvers/noise_estimate.hpp's rule in numpy: the MAD of the diagonal Haar details."""
+    r, c = p.shape[0] // 2 * 2, p.shape[1] // 2 * 2
+    q = p[:r, :c]
+    d = np.abs(q[0::2, 0::2] - q[0::2, 1::2] - q[1::2, 0::2] + q[1::2, 1::2]) / 2
+    return np.sort(d.ravel())[d.size // 2] / 0.6744897501960817
+
+
+def _box(a, rounds):
+    for _ in range(rounds):
+        a = a.reshape(a.shape[0] // 2, 2, a.shape[1] // 2, 2).mean(axis=(1, 3))
+    return a
+
+
+@pytest.mark.parametrize("camera,rounds,normalize", [("paper", 1, "none"), ("nir-mv", 2, "l2"),
+                                                     ("phone", 1, "l2")])
+def test_downsampled_noise_is_measured_before_the_rounds(camera, rounds, normalize):
+    """With downsample, sigma is the full-size capture's (numpy) over 2^rounds (over the window's
+    L2 norm with normalize l2), and tv's weight is the rule written out in numpy on the
+    downsampled capture and PSF: 2.4 sigma ||a||_2 min(1, (16 / SNR)^(2/3)), SNR = mean / sigma."""
+    model, psf = sc.cameras()[camera]
+    capture, _, _ = sc.render("ihc.png", model, psf, 3000.0, 2.0, 11)
+    small, a = _box(capture, rounds), _box(psf, rounds)
+    sigma = _mad_sigma(capture) / 2 ** rounds
+    if normalize == "l2":
+        sigma /= np.linalg.norm(small)
+        small, a = small / np.linalg.norm(small), a / np.linalg.norm(a)
+    else:
+        a = a / a.sum()
+    snr = small.mean() / sigma
+    want = 2.4 * sigma * np.sqrt(np.sum(a ** 2)) * min(1.0, (16.0 / snr) ** (2 / 3))
+    for method, kw in (("wiener", {"nsr": "auto"}), ("tv", {"lambda_": "auto", "iters": 2})):
+        out = pinmask.decode(capture, psf=psf, model=model, crop="none", method=method,
+                             downsample=rounds, normalize=normalize,
+                             **kw)["channels"][0]["auto_weight"]
+        assert out["noise_sigma"] == pytest.approx(sigma, rel=1e-12)
+        if method == "tv":
+            assert out["weight"] == pytest.approx(want, rel=1e-9)
+
+
 def test_tv_weight_far_from_auto_warns_naming_the_keyword():
     model, psf = sc.cameras()["paper"]
     capture, _, _ = sc.render("ihc.png", model, psf, 300.0, 2.0, 6)
