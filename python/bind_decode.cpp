@@ -444,9 +444,8 @@ parallel). Same names, defaults, refusals and numbers as the CLI's flags.
 
 capture: (rows, cols) or (rows, cols, channels) array, capture units. psf: a PSF array (any
 sum > 0), or mask: a Mask or *.mask.json path (its PSF is synthesised).
-method: 'auto' (tv for the linear model with a capture that fills the frame, its border band
-at least half its mean, where wiener would read the light beyond the sensor as zero; wiener
-otherwise; a keyword only one of them reads chooses it: nsr, nsr_map wiener; lambda_, nonneg,
+method: 'auto' (tv for the linear model, where wiener would read the light beyond the sensor
+as zero; wiener for the cyclic model; a keyword only one of them reads chooses it: nsr, nsr_map wiener; lambda_, nonneg,
 iters, tol tv) | wiener (deconvwnr: PSF centre floor(size/2) at the origin, scalar nsr, real
 part) | tikhonov (lambda_, regulariser identity|gradient) | tv (TV-L2 ADMM, lambda_) | tvqc (min
 TV s.t. ||Ax - p||_2 <= eps, or eps from noise_sigma) | richardson-lucy. model: 'auto' (linear

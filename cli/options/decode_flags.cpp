@@ -17,9 +17,8 @@ Steps: dark frame subtracted (same size, 1 or the capture's channels) -> --backg
 --downsample -> period check -> --crop -> --normalize -> decode each channel (RGB channels in
 parallel threads) -> write.
 Read from the data unless given (auto): --model (linear for a measured PSF that covers the
-capture), --crop, --background (a measured PSF's dark floor), --method (tv for the linear model
-with a capture whose border band is lit, at least half its mean: it fills the frame; wiener
-otherwise) and, for tv and tvqc, --nonneg (on for an intensity); --explain and
+capture), --crop, --background (a measured PSF's dark floor), --method (tv for the linear model,
+whose light from beyond the sensor is unknown; wiener for the cyclic model) and, for tv and tvqc, --nonneg (on for an intensity); --explain and
 OUT.config.json ("chosen") say each choice and why.
 Period: the PSF's size. The capture's own period is measured from its autocorrelation and a
 mismatch is reported on stderr and in the stats (skipped, with the reason, when the capture
@@ -98,8 +97,7 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeCommand& o) {
                    "frame, PSF zero-padded), or X,Y (top-left column,row of one period)")
         ->capture_default_str();
     cmd.add_option("--method", o.method,
-                   "auto (tv for the linear model with a capture that fills the frame, wiener "
-                   "otherwise; a flag only one of them reads chooses it: --nsr, --nsr-map wiener, "
+                   "auto (tv for the linear model, wiener for the cyclic; a flag only one of them reads chooses it: --nsr, --nsr-map wiener, "
                    "--lambda, --nonneg, --iters, --tol tv) | wiener (closed form, deconvwnr) | "
                    "tikhonov (closed form) | tv (TV-L2, ADMM) | tvqc (min TV s.t. ||Ax - p||_2 "
                    "<= eps) | richardson-lucy")

@@ -66,8 +66,6 @@ double border_fill(const Image& capture) {
     return fill;
 }
 
-bool auto_method_is_tv(bool linear_model, double fill) {
-    return linear_model && fill >= kFrameFillingBorderFill;
-}
+bool auto_method_is_tv(bool linear_model) { return linear_model; }
 
 }  // namespace pinmask

@@ -223,26 +223,19 @@ PreparedCapture prepare_capture(CaptureDecodeInputs in, const CaptureDecodeOptio
                       ", y=" + std::to_string(s.window.row));
 
     if (o.method_auto || !o.method_implied_by.empty()) {
-        // Measured on the window decoded, after the background and the crop.
-        const double fill = border_fill(capture);
         const bool linear = d.model == ConvModel::kLinear;
         if (o.method_auto)
-            d.method = auto_method_is_tv(linear, fill) ? DecodeMethod::kTv : DecodeMethod::kWiener;
-        const std::string fill_text =
-            "its border band averages " + format_number(100 * fill, 3) + " % of its mean, " +
-            format_number(100 * kFrameFillingBorderFill, 3) + " % or more fills the frame";
+            d.method = auto_method_is_tv(linear) ? DecodeMethod::kTv : DecodeMethod::kWiener;
         std::string reason;
         if (!o.method_implied_by.empty()) {
             reason = field_ref(o.method_implied_by) + " given: only " +
                      decode_method_name(d.method) + " of the automatic choice's wiener and tv " +
                      "reads it";
         } else if (d.method == DecodeMethod::kTv) {
-            reason = "the linear model with a capture that fills the frame (" + fill_text +
-                     "): tv solves the linear model exactly, wiener would read the light beyond "
-                     "the sensor as zero";
-        } else if (linear) {
-            reason = "the linear model with a capture that does not fill the frame (" + fill_text +
-                     "): the closed form, with the dark beyond the sensor as zero";
+            // Measured on the window decoded, after the background and the crop.
+            reason = "the linear model: tv solves it with its crop exactly, wiener would read "
+                     "the light beyond the sensor as zero (the window's border band averages " +
+                     format_number(100 * border_fill(capture), 3) + " % of its mean)";
         } else {
             reason = "the cyclic model: the closed form is its exact least-error filter";
         }

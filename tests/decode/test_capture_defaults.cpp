@@ -128,12 +128,11 @@ TEST_CASE("border_fill: the border band's mean magnitude over the capture's, cou
     Image two;
     two.channels = {centre, lit};
     CHECK(border_fill(two) == doctest::Approx(1.0).epsilon(1e-15));
-    CHECK(auto_method_is_tv(true, kFrameFillingBorderFill));
-    CHECK_FALSE(auto_method_is_tv(true, 0.49));
-    CHECK_FALSE(auto_method_is_tv(false, 1.0));
+    CHECK(auto_method_is_tv(true));
+    CHECK_FALSE(auto_method_is_tv(false));
 }
 
-TEST_CASE("auto method: tv for a frame-filling capture on the linear model, wiener otherwise") {
+TEST_CASE("auto method: tv on the linear model, lit to the edges or dark, wiener on the cyclic") {
     const int n = 32;
     CaptureDecodeInputs in;
     in.psf = Image(random_psf(n, n, 7));                  // covers the capture: linear
@@ -146,20 +145,20 @@ TEST_CASE("auto method: tv for a frame-filling capture on the linear model, wien
     CHECK(find(tv.summary, "model")->value == "linear");
     REQUIRE(find(tv.summary, "method"));
     CHECK(find(tv.summary, "method")->value == "tv");
-    CHECK(find(tv.summary, "method")->reason.find("fills the frame") != std::string::npos);
+    CHECK(find(tv.summary, "method")->reason.find("linear model") != std::string::npos);
     CHECK(tv.summary.method == DecodeMethod::kTv);
     CHECK(find(tv.summary, "nonnegative")->value == "true");  // read for the method chosen
     CHECK(tv.summary.channels.front().iterations >= 1);
     CHECK(tv.summary.warnings.empty());  // tv at its automatic weight: nothing to advise
 
-    // The same sizes with the light in the middle of a dark frame: wiener, with no warning.
+    // The same sizes with the light in the middle of a dark frame: still tv (the light
+    // beyond the sensor is unknown, not zero), the border's share in the reason.
     Plane middle = Plane::Zero(n, n);
     middle.block(12, 12, 8, 8) = random_plane(8, 8, 9, 1.0, 2.0);
     in.capture = Image(middle);
     const CaptureDecodeResult w = decode_capture(in, o);
-    CHECK(find(w.summary, "method")->value == "wiener");
-    CHECK(w.summary.method == DecodeMethod::kWiener);
-    CHECK_FALSE(find(w.summary, "nonnegative"));
+    CHECK(find(w.summary, "method")->value == "tv");
+    CHECK(find(w.summary, "method")->reason.find("border band averages 0 %") != std::string::npos);
     CHECK(w.summary.warnings.empty());
 
     // A lit frame on the cyclic model (a mask's period): wiener.

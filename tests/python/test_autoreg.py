@@ -187,9 +187,8 @@ def test_table_rows_hold():
                                                                                       abs=0.02)
 
 
-def test_method_auto_chooses_tv_on_a_frame_filling_linear_capture_and_wiener_otherwise(cli,
-                                                                                      tmp_path):
-    """The default method: tv on the lensless array's frame-filling capture (linear model), with
+def test_method_auto_chooses_tv_on_the_linear_model_and_wiener_on_the_cyclic(cli, tmp_path):
+    """The default method: tv on the lensless array's capture (linear model), with
     no warning; wiener on the paper camera's period (cyclic). Both faces say so (stats, config,
     --explain, the summary; the result's method and chosen)."""
     import json
@@ -200,7 +199,7 @@ def test_method_auto_chooses_tv_on_a_frame_filling_linear_capture_and_wiener_oth
         out = pinmask.decode(capture, psf=psf, iters=20)  # iters alone: tv's parameter
         auto = pinmask.decode(capture, psf=psf)
     assert out["method"] == "tv" and out["chosen"]["method"]["reason"].startswith("iters given: only tv")
-    assert auto["method"] == "tv" and "fills the frame" in auto["chosen"]["method"]["reason"]
+    assert auto["method"] == "tv" and "the linear model" in auto["chosen"]["method"]["reason"]
     assert auto["chosen"]["nonnegative"]["value"] == "true"
     np.save(tmp_path / "cap.npy", capture)
     np.save(tmp_path / "psf.npy", psf)
@@ -210,8 +209,7 @@ def test_method_auto_chooses_tv_on_a_frame_filling_linear_capture_and_wiener_oth
     assert stats["method"] == "tv" and stats["config"]["method"] == "auto"
     assert stats["chosen"]["method"] == {"value": "tv",
                                          "reason": auto["chosen"]["method"]["reason"]}
-    assert "decode: --method tv (auto): the linear model with a capture that fills the frame" \
-        in p.stderr
+    assert "decode: --method tv (auto): the linear model: tv solves it" in p.stderr
     assert "method   tv (auto; linear model" in p.stdout
     np.testing.assert_array_equal(np.load(tmp_path / "a.npy"),
                                   np.asarray(auto["image"], np.float32))

@@ -45,3 +45,19 @@ def test_the_gaps_are_as_measured(rows, key):
     """The expected failures above fail by what docs/decoding.md says, no worse."""
     _, _, _, _, p_default, p_best, _ = rows[key]
     assert p_default - p_best == pytest.approx(GAPS[key], abs=0.3)
+
+
+@pytest.mark.parametrize("name", ["hand", "usaf"])
+def test_the_default_method_is_tv_within_1_db_of_both_sweeps(rows, name):
+    """Given only the capture and the PSF (no method), decode chooses tv (the linear model) and
+    decodes tv's row bytes and all, so the default lies within 1 dB of the best of both
+    methods' sweeps."""
+    import numpy as np
+    cap, psf = rc.load(name)
+    default = table.decode(cap, psf, ROUNDS[name])
+    assert default["method"] == "tv"
+    assert default["chosen"]["method"]["reason"].startswith("the linear model")
+    tv = table.decode(cap, psf, ROUNDS[name], method="tv")
+    np.testing.assert_array_equal(np.asarray(default["image"]), np.asarray(tv["image"]))
+    best = max(rows[(name, m)][5] for m in ("wiener", "tv"))
+    assert rows[(name, "tv")][4] >= best - 1.0, (rows[(name, "tv")][4], best)
