@@ -189,9 +189,9 @@ def test_refocus_on_a_frame_filling_scene_default_within_1db_of_oracle_tv(cli, t
     stats = json.loads((tmp_path / "s.json").read_text())
     assert stats["method"] == "tv" and stats["config"]["method"] == "auto"
     assert stats["chosen"]["method"]["value"] == "tv"
-    assert "fills the frame" in stats["chosen"]["method"]["reason"]
+    assert stats["chosen"]["method"]["reason"].startswith("the linear model")
     assert stats["config"]["chosen"] == stats["chosen"]
-    assert "--method tv (auto): the linear model with a capture that fills the frame" in p.stderr
+    assert "--method tv (auto): the linear model: tv solves it" in p.stderr
     assert "warning" not in p.stderr
     default = np.load(tmp_path / "x.npy")
     # The module chooses the same, to the same numbers.
