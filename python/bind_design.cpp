@@ -83,7 +83,7 @@ py::dict optics_dict(const OpticsReport& r, const WorkingDistance& wd,
     d["geometric_spot_at_inf_m"] = r.geometric_spot_m;
     d["pixels_per_cell"] = r.pixels_per_cell_at_u;
     d["pixels_per_cell_at_u"] = r.pixels_per_cell_at_u;
-    d["pixels_per_cell_at_inf"] = r.pixels_per_cell;
+    d["pixels_per_cell_at_inf"] = r.pixels_per_cell_at_inf;
     d["integer_pixels_per_cell"] = wd.pixels_per_cell;
     d["integer_pixels_per_cell_at_inf"] = r.integer_pixels_per_cell;
     d["pinhole_for_integer_pixels_m"] = wd.pinhole_for_pixels_per_cell_m;

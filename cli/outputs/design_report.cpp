@@ -86,7 +86,7 @@ nlohmann::ordered_json design_json(const OpticsReport& r, const WorkingDistance&
     j["geometric_spot_at_inf_m"] = r.geometric_spot_m;
     j["pixels_per_cell"] = r.pixels_per_cell_at_u;
     j["pixels_per_cell_at_u"] = r.pixels_per_cell_at_u;
-    j["pixels_per_cell_at_inf"] = r.pixels_per_cell;
+    j["pixels_per_cell_at_inf"] = r.pixels_per_cell_at_inf;
     j["integer_pixels_per_cell"] = wd.pixels_per_cell;
     j["integer_pixels_per_cell_at_inf"] = r.integer_pixels_per_cell;
     put(j, notes, "pinhole_for_integer_pixels_m", wd.pinhole_for_pixels_per_cell_m,
@@ -203,7 +203,7 @@ std::string design_table(const OpticsReport& r, const WorkingDistance& wd,
         {"geometric spot = cell pitch p(u)", length(r.geometric_spot_at_u_m), "d |M(u)|"},
         {inf, length(r.geometric_spot_m), "d |1 - f/f'|"},
         {"pixels per cell (pitch at u)", num(r.pixels_per_cell_at_u, 8), "p(u) / w"},
-        {inf, num(r.pixels_per_cell), "p / w at u = inf"},
+        {inf, num(r.pixels_per_cell_at_inf), "p / w at u = inf"},
         {"whole pixels per cell N at u", std::to_string(wd.pixels_per_cell),
          solved.empty() ? "nearest whole number to the pitch at u" : solved},
         {inf, std::to_string(r.integer_pixels_per_cell), "nearest whole number at u = inf"},
