@@ -220,7 +220,8 @@ void bind_search(py::module_& m) {
                 d["sim_tv_psnr_db"] = c.sim_tv_psnr_db;
                 d["tv_lambda"] = c.tv_lambda;
                 d["spectral_zero"] = c.spectral_zero;
-                d["upper_bound_psnr_db"] = c.upper_bound_psnr_db;  // NaN without the objective
+                // NaN without the objective
+                d["upper_bound_analytic_mmse_psnr_db"] = c.upper_bound_psnr_db;
                 candidates.append(d);
             }
             py::list log;
@@ -235,6 +236,7 @@ void bind_search(py::module_& m) {
             out["reranked"] = summary.reranked;
             out["termination"] = search_termination_name(summary.termination);
             out["kernel"] = summary.kernel_resolved;
+            out["objective_figure"] = summary.objective_figure;
             out["log"] = log;
             return as_result(out);
         },
@@ -278,18 +280,21 @@ stops it and raises KeyboardInterrupt.
 Noise: ONE level, snr_db (Gaussian, dB; None: 30) or photons (electrons per pixel per pinhole)
 with read_noise, dark_current, full_well, bits, optical_density, as metrics().
 robust (as --robust, e.g. 'size=44um,jitter=2um'): every candidate's terms gain
-robust_wiener_psnr_db (expected under those fabrication errors, nominal-PSF decoder);
+analytic_robust_mmse_psnr_db or analytic_robust_wiener_psnr_db (by the filter; expected under
+those fabrication errors, nominal-PSF decoder);
 objective 'robust' (needs robust) optimises it, 'nominal' (default) the design's figure.
 Checkpoints (as --checkpoint / --checkpoint-every / --resume; needs evals): checkpoint=FILE
 with checkpoint_every=E writes every chain's state atomically every E evaluations per chain;
 resume=FILE continues from a checkpoint of the same settings (the command's file format and
 configuration: one written by `pinmask search` on one process with the same settings resumes
 here, and back), and the result equals the uninterrupted run's.
-Returns {candidates: [{mask, objective, terms, reranked, sim_wiener_psnr_db, sim_tv_psnr_db,
-tv_lambda, spectral_zero, upper_bound_psnr_db (the analytic PSNR no pattern with the
-candidate's K can exceed)}] best first, evaluations, evaluations_per_chain, seconds (all),
-search_seconds, rerank_seconds, reranked, termination, kernel, log: [{seconds, evaluations,
-best_objective}]}.)");
+Returns {candidates: [{mask, objective, terms (score's names: analytic_mmse_psnr_db, with a
+fixed or tuned filter analytic_wiener_psnr_db and analytic_wiener_nsr, max_sidelobe, ...),
+reranked, sim_wiener_psnr_db, sim_tv_psnr_db, tv_lambda, spectral_zero,
+upper_bound_analytic_mmse_psnr_db (the analytic MMSE PSNR no pattern with the candidate's K can
+exceed)}] best first, evaluations, evaluations_per_chain, seconds (all), search_seconds,
+rerank_seconds, reranked, termination, kernel, objective_figure (the terms key the objective
+weighs), log: [{seconds, evaluations, best_objective}]}.)");
 }
 
 }  // namespace pinmask::python
