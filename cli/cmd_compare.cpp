@@ -119,11 +119,18 @@ void run(const Options& o, const CLI::App& cmd) {
                     " (first level): sigma_u / u and the axial FWHM 2.355 sigma_u (score "
                     "--metrics depth).\n"
               : "";
-    std::cout << compare_table_text(compare_table(r.outcome.results))
-              << "PSNR columns: analytic W = " << r.analytic_basis << "; sim W = " << r.sim_basis
-              << ", Wiener " << r.nsr_words << "; sim TV = the same captures, TV-L2 lambda "
-              << o.tv_lambda << ".\n"
+    const LeadFigure& lead = r.outcome.lead;
+    std::cout << "Leading with " << lead.name << " (" << figure_words(lead.name)
+              << "): " << lead.reason << ".\n"
+              << compare_table_text(compare_table(r.outcome.results, lead.name))
+              << "PSNR columns: analytic MMSE = " << r.mmse_basis
+              << "; analytic W = " << r.analytic_basis << "; sim W = " << r.sim_basis << ", Wiener "
+              << r.nsr_words << "; sim TV = the same captures, TV-L2 lambda " << o.tv_lambda
+              << ". vs 1st: minus the first mask; analytic exact, simulated paired over the "
+                 "scenes +- its standard error, n.s. under two.\n"
               << depth_legend << compare_holes_text(r.outcome.results);
+    if (!r.random_gain_text.empty()) std::cout << r.random_gain_text << "\n";
+    if (!r.outcome.lead_mismatch.empty()) std::cout << r.outcome.lead_mismatch << "\n";
     for (const auto& c : r.outcome.results) {
         if (c.row.metrics.spectral_zero->found)
             std::cout << "warning: " << c.row.name << ": " << c.row.metrics.spectral_zero->message()

@@ -190,7 +190,9 @@ void add_search(CLI::App& app) {
     cmd->footer(std::string(kSearchFooter) + "\n" + kRobustFooter +
                 " With --objective robust the search optimises it (the re-ranking then reports "
                 "simulated figures without reordering); with --robust alone every candidate "
-                "reports robust_wiener_psnr_db beside the nominal figure.");
+                "reports its robust figure (analytic_robust_mmse_psnr_db or "
+                "analytic_robust_wiener_psnr_db, by "
+                "the filter) beside the nominal one.");
     cmd->callback([o, cf, cmd] {
         if (!o->config.empty()) apply_config(io::read_search_config(o->config), *cmd, *o);
         run_search(*o, *cf, *cmd);

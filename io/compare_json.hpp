@@ -1,6 +1,8 @@
 // `pinmask compare --json` from the compare transaction's result (report/compare_run): the rows
-// (score's keys for every noise level), what each PSNR column is computed on, the settings, the
-// baselines and, once written, the report's files. The command prints it, writes it as the
+// (score's keys for every noise level, io/metrics_json.hpp, and each row's difference_to_first),
+// the lead figure and why, what each PSNR column is computed on, the settings, the baselines
+// (the random median with its standard error and the first mask's gain over it) and, once
+// written, the report's files. The command prints it, writes it as the
 // report's config, and the Python module's compare() returns it as a dict.
 #pragma once
 

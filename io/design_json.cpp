@@ -65,7 +65,7 @@ nlohmann::ordered_json design_json(const DesignReport& d) {
     j["geometric_spot_at_inf_m"] = r.geometric_spot_m;
     j["pixels_per_cell"] = r.pixels_per_cell_at_u;
     j["pixels_per_cell_at_u"] = r.pixels_per_cell_at_u;
-    j["pixels_per_cell_at_inf"] = r.pixels_per_cell;
+    j["pixels_per_cell_at_inf"] = r.pixels_per_cell_at_inf;
     j["integer_pixels_per_cell"] = wd.pixels_per_cell;
     j["integer_pixels_per_cell_at_inf"] = r.integer_pixels_per_cell;
     put(j, notes, "pinhole_for_integer_pixels_m", wd.pinhole_for_pixels_per_cell_m,

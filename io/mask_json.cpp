@@ -10,6 +10,8 @@
 //                       [[wavelength_m, weight], ...]}, "pixels_per_cell"},
 //    "provenance": {"seed", "generator", "family", "spacing_violations_allowed" (optional,
 //                   default false), "scores" (optional, name -> number),
+//                   "objective_figure" (optional, written when not empty: the scores key a
+//                   search optimised),
 //                   "geometry_hash" (optional; checked against the geometry when present)}}
 // Output format: 2-space indent, keys in the order above, arrays of scalars on one line (one
 // pinhole per line), numbers in nlohmann's shortest round-trip form, pinholes sorted.
@@ -137,9 +139,9 @@ PsfSpec read_psf(const Json& j) {
 
 // Returns the provenance and, through `hash`, the recorded geometry hash ("" when absent).
 Provenance read_provenance(const Json& j, std::string& hash) {
-    ObjectReader r(
-        j, "provenance",
-        {"seed", "generator", "family", "spacing_violations_allowed", "scores", "geometry_hash"});
+    ObjectReader r(j, "provenance",
+                   {"seed", "generator", "family", "spacing_violations_allowed", "scores",
+                    "objective_figure", "geometry_hash"});
     r.reject_unknown();
     Provenance p;
     const Json& seed = r.required("seed");
@@ -157,6 +159,9 @@ Provenance read_provenance(const Json& j, std::string& hash) {
         for (const auto& item : s->items()) {
             p.scores[item.key()] = read_number(item.value(), r.path("scores") + "." + item.key());
         }
+    }
+    if (const Json* f = r.optional("objective_figure")) {
+        p.objective_figure = read_string(*f, r.path("objective_figure"));
     }
     hash.clear();
     if (const Json* h = r.optional("geometry_hash")) {
@@ -208,6 +213,7 @@ J build_json(const Mask& m, bool with_pinholes = true) {
     J scores = J::object();
     for (const auto& [name, value] : p.scores) scores[name] = value;
     prov["scores"] = std::move(scores);
+    if (!p.objective_figure.empty()) prov["objective_figure"] = p.objective_figure;
     prov["geometry_hash"] = geometry_hash(m);
     j["provenance"] = std::move(prov);
     return j;

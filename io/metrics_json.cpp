@@ -52,24 +52,24 @@ void metrics_json(const MaskMetrics& m, nlohmann::ordered_json& row,
         if (l.analytic) {
             row["analytic_wiener_psnr_db_" + k] = finite_or_null(l.analytic->psnr_db);
             row["analytic_wiener_nsr_" + k] = l.analytic->nsr;
-            row["analytic_optimal_wiener_psnr_db_" + k] =
-                finite_or_null(l.analytic->optimal_psnr_db);
+            row["analytic_mmse_psnr_db_" + k] = finite_or_null(l.analytic->mmse_psnr_db);
         }
         if (l.robust) {
-            row["robust_wiener_psnr_db_" + k] = finite_or_null(l.robust->psnr_db);
-            row["robust_loss_db_" + k] = finite_or_null(l.robust->loss_db);
+            row["analytic_robust_wiener_psnr_db_" + k] = finite_or_null(l.robust->psnr_db);
+            row["analytic_robust_wiener_loss_db_" + k] = finite_or_null(l.robust->loss_db);
         }
         for (const auto& [metric, q] :
              {std::pair{std::string("wiener"), &l.wiener}, std::pair{std::string("tv"), &l.tv}}) {
             if (!*q) continue;
             const std::string weight = metric == "wiener" ? "nsr" : "lambda";
-            row[metric + "_psnr_db_" + k] = finite_or_null((*q)->mean_psnr_db);
-            row[metric + "_ssim_" + k] = finite_or_null((*q)->mean_ssim);
-            row[metric + "_" + weight + "_" + k] = (*q)->weight;
+            const std::string name = "sim_" + metric;  // simulated on the scenes
+            row[name + "_psnr_db_" + k] = finite_or_null((*q)->mean_psnr_db);
+            row[name + "_ssim_" + k] = finite_or_null((*q)->mean_ssim);
+            row[name + "_" + weight + "_" + k] = (*q)->weight;
             if (!per_scene) continue;
             for (const SceneQuality& s : (*q)->scenes) {
-                (*per_scene)[s.scene][metric + "_psnr_db_" + k] = finite_or_null(s.psnr_db);
-                (*per_scene)[s.scene][metric + "_ssim_" + k] = finite_or_null(s.ssim);
+                (*per_scene)[s.scene][name + "_psnr_db_" + k] = finite_or_null(s.psnr_db);
+                (*per_scene)[s.scene][name + "_ssim_" + k] = finite_or_null(s.ssim);
             }
         }
     }

@@ -95,7 +95,7 @@ psnr_columns (what each PSNR is computed on), settings, baselines (with baseline
 paper_like, mura; a baseline left out says why under 'skipped') and, with a report, report:
 [paths written] and config: the NAME.config.json written beside it (this same dict)}.
 Noise (snr_db or photons with the sensor stages), prior and robust (fabrication errors, as
---robust: 'size=44um,jitter=2um'; each row gains robust_wiener_psnr_db) as in metrics().
+--robust: 'size=44um,jitter=2um'; each row gains analytic_robust_wiener_psnr_db) as in metrics().
 depth=True (needs photons): each row gains score(metrics='depth')'s keys over depth_from ..
 depth_to metres (None, None: the working distance / 2 .. x 2).
 The run is optimize/metrics/compare's run_compare (one camera rule, baselines, metric rows).)");

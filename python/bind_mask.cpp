@@ -140,6 +140,10 @@ void bind_mask(py::module_& m) {
             "scores", [](const Mask& k) { return k.provenance.scores; },
             [](Mask& k, const std::map<std::string, double>& v) { k.provenance.scores = v; },
             "metric name -> value (names carry units)")
+        .def_property(
+            "objective_figure", [](const Mask& k) { return k.provenance.objective_figure; },
+            [](Mask& k, const std::string& v) { k.provenance.objective_figure = v; },
+            "the scores key of the figure a search optimised ('' for a mask no search made)")
         .def("geometry_hash", &geometry_hash,
              "16 hex digits (FNV-1a 64) of n, sorted pinholes, tiles, pinhole side (nm) and "
              "spacing: identical geometry, identical hash.")

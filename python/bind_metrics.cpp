@@ -62,15 +62,17 @@ py::dict row_dict(const CompareRow& r) {
     d["min_abs_pattern_spectrum"] = r.min_abs_pattern_spectrum;
     d["spectral_flatness"] = r.spectral_flatness;
     d["otf_condition_number"] = r.otf_condition_number;
+    d["analytic_mmse_psnr_db"] = r.analytic_mmse_psnr_db;
     d["analytic_wiener_psnr_db"] = r.analytic_wiener_psnr_db;
-    d["analytic_optimal_wiener_psnr_db"] = r.analytic_optimal_wiener_psnr_db;
-    if (!std::isnan(r.robust_wiener_psnr_db)) d["robust_wiener_psnr_db"] = r.robust_wiener_psnr_db;
-    d["wiener_psnr_db"] = r.wiener_psnr_db;
-    d["wiener_ssim"] = r.wiener_ssim;
-    d["wiener_nsr"] = r.wiener_nsr;
-    d["tv_psnr_db"] = r.tv_psnr_db;
-    d["tv_ssim"] = r.tv_ssim;
-    d["tv_lambda"] = r.tv_lambda;
+    d["analytic_wiener_nsr"] = r.analytic_wiener_nsr;
+    if (!std::isnan(r.analytic_robust_wiener_psnr_db))
+        d["analytic_robust_wiener_psnr_db"] = r.analytic_robust_wiener_psnr_db;
+    d["sim_wiener_psnr_db"] = r.sim_wiener_psnr_db;
+    d["sim_wiener_ssim"] = r.sim_wiener_ssim;
+    d["sim_wiener_nsr"] = r.sim_wiener_nsr;
+    d["sim_tv_psnr_db"] = r.sim_tv_psnr_db;
+    d["sim_tv_ssim"] = r.sim_tv_ssim;
+    d["sim_tv_lambda"] = r.sim_tv_lambda;
     // Every level under score's keys (cli/options/analytic_setup metrics_json names them the same
     // way).
     for (const LevelMetrics& l : r.metrics.levels) {
@@ -78,20 +80,20 @@ py::dict row_dict(const CompareRow& r) {
         if (l.analytic) {
             d[py::str("analytic_wiener_psnr_db_" + k)] = l.analytic->psnr_db;
             d[py::str("analytic_wiener_nsr_" + k)] = l.analytic->nsr;
-            d[py::str("analytic_optimal_wiener_psnr_db_" + k)] = l.analytic->optimal_psnr_db;
+            d[py::str("analytic_mmse_psnr_db_" + k)] = l.analytic->mmse_psnr_db;
         }
         if (l.robust) {
-            d[py::str("robust_wiener_psnr_db_" + k)] = l.robust->psnr_db;
-            d[py::str("robust_loss_db_" + k)] = l.robust->loss_db;
+            d[py::str("analytic_robust_wiener_psnr_db_" + k)] = l.robust->psnr_db;
+            d[py::str("analytic_robust_wiener_loss_db_" + k)] = l.robust->loss_db;
         }
         const std::pair<const char*, const std::optional<SimulatedQuality>*> sims[] = {
             {"wiener", &l.wiener}, {"tv", &l.tv}};
         for (const auto& [metric, q] : sims) {
             if (!*q) continue;
-            const std::string name = metric;
+            const std::string name = std::string("sim_") + metric;  // simulated on the scenes
             d[py::str(name + "_psnr_db_" + k)] = (*q)->mean_psnr_db;
             d[py::str(name + "_ssim_" + k)] = (*q)->mean_ssim;
-            d[py::str(name + (name == "wiener" ? "_nsr_" : "_lambda_") + k)] = (*q)->weight;
+            d[py::str(name + (name == "sim_wiener" ? "_nsr_" : "_lambda_") + k)] = (*q)->weight;
         }
         if (l.depth) {
             d["depth_from_m"] = l.depth->from_m;
@@ -150,21 +152,24 @@ void bind_metrics(py::module_& m) {
         py::arg("robust") = py::none(),
         R"(The metric row of `pinmask compare` for one mask (optimize/metrics/compare over
 optimize/metrics/mask_metrics, the set score and search use; same settings, same numbers): sidelobes,
-spectrum, OTF condition, analytic Wiener PSNR (dB; the nsr filter and the per-frequency optimal
-bound), simulated Wiener and TV-L2 PSNR (dB) and SSIM over `scenes`.
+spectrum, OTF condition, analytic PSNR over the prior (dB; analytic_mmse_psnr_db: the
+per-frequency optimal filter, analytic_wiener_psnr_db: Wiener at the nsr, analytic_wiener_nsr),
+simulated Wiener and TV-L2 PSNR (dB) and SSIM over `scenes` (sim_wiener_psnr_db, sim_tv_psnr_db,
+...).
 Noise (as --snr / --photons and the sensor flags): snr_db, Gaussian SNR in dB, a number or a
 list (None: 30 dB); or photons, the photon model at that many electrons per pixel through one
 pinhole (a number or a list), with read_noise (rms electrons), dark_current (mean electrons per
 pixel), full_well (electrons), bits (ADC, needs full_well) and optical_density (film OD).
 The unsuffixed keys are the first level's; every level is also under score's keys
-(analytic_wiener_psnr_db_snr30, wiener_psnr_db_ph100, ...).
+(analytic_mmse_psnr_db_snr30, sim_wiener_psnr_db_ph100, ...).
 Prior of the analytic error (as --prior / --prior-scenes): 'natural' | 'text' | 'stars' or image
 files (a list of paths or one comma-separated string), prior_scenes sample scenes (1..4096).
 nsr and tv_lambda: 'tuned' or a number > 0.
 robust (as --robust): 'size=44um,jitter=2um,missing=0.01' (any subset) adds the analytic Wiener
 PSNR expected under those fabrication errors, decoded with the nominal PSF, and its loss:
-robust_wiener_psnr_db (first level) and per level robust_wiener_psnr_db_<level>,
-robust_loss_db_<level>, score's keys and numbers.)");
+analytic_robust_wiener_psnr_db (first level) and per level
+analytic_robust_wiener_psnr_db_<level>, analytic_robust_wiener_loss_db_<level>, score's keys and
+numbers.)");
 
     m.def(
         "sidelobes",

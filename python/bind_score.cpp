@@ -152,9 +152,9 @@ bits (ADC, needs full_well), optical_density (film OD). prior, prior_scenes: the
 error's scene prior. nsr, tv_lambda: the simulated decoders' weights (a number > 0 or 'tuned');
 tv_iterations: TV-L2 iterations. noise_seeds: noise realisations per scene and level (1..1000;
 score --seeds); seed: the base seed of the noise. robust: fabrication errors
-'size=5um,jitter=2um,missing=0.01' (any subset): adds robust_wiener_psnr_db_<level> and
-robust_loss_db_<level>. robust_decoder=True (with robust, one mask, one noise level): adds the
-row's robust_decoder {psf, nsr_map (arrays; decode(psf=..., nsr_map=...) reads them), floored}
+'size=5um,jitter=2um,missing=0.01' (any subset): adds analytic_robust_wiener_psnr_db_<level> and
+analytic_robust_wiener_loss_db_<level>. robust_decoder=True (with robust, one mask, one noise
+level): adds the row's robust_decoder {psf, nsr_map (arrays; decode(psf=..., nsr_map=...) reads them), floored}
 that score --robust-decoder writes as files. allow_violations: score masks that break their
 spacing rule. Returns what `pinmask score --json` prints, {masks: [rows], settings} (infinite
 figures None), the one transaction optimize/metrics/score_run rendered by io/score_json;

@@ -263,7 +263,8 @@ stops it and raises KeyboardInterrupt.
 Noise: ONE level, snr_db (Gaussian, dB; None: 30) or photons (electrons per pixel per pinhole)
 with read_noise, dark_current, full_well, bits, optical_density, as metrics().
 robust (as --robust, e.g. 'size=44um,jitter=2um'): every candidate's terms gain
-robust_wiener_psnr_db (expected under those fabrication errors, nominal-PSF decoder);
+analytic_robust_mmse_psnr_db or analytic_robust_wiener_psnr_db (by the filter; expected under
+those fabrication errors, nominal-PSF decoder);
 objective 'robust' (needs robust) optimises it, 'nominal' (default) the design's figure.
 Checkpoints (as --checkpoint / --checkpoint-every / --resume; needs evals): checkpoint=FILE
 with checkpoint_every=E writes every chain's state atomically every E evaluations per chain;
@@ -272,9 +273,11 @@ configuration: one written by `pinmask search` on one process with the same sett
 here, and back), and the result equals the uninterrupted run's.
 Returns what `pinmask search --json` prints (io/search_json) with nothing written: {output
 (None), evaluations, evaluations_per_chain, stop_reason, planned_s, used_s (all), search_s,
-rerank_s, reranked, psnr_columns, reordered, ranked: [{rank, path (None), geometry_hash,
-objective, reranked, every term and simulated figure (analytic_wiener_psnr_db,
-sim_wiener_psnr_db, sim_tv_psnr_db, sim_tv_lambda, ...), upper_bound_psnr_db (the analytic PSNR
+rerank_s, reranked, psnr_columns, reordered, objective_figure (the terms key the objective
+weighs), ranked: [{rank, path (None), geometry_hash, objective, reranked, every term under
+score's names (analytic_mmse_psnr_db; with a fixed or tuned filter analytic_wiener_psnr_db and
+analytic_wiener_nsr; max_sidelobe, ...) and simulated figure (sim_wiener_psnr_db,
+sim_tv_psnr_db, sim_tv_lambda, ...), upper_bound_analytic_mmse_psnr_db (the analytic MMSE PSNR
 no pattern with the candidate's K can exceed)}] best first, best_per_holes (with a range of
 holes: the best row per K)}; and, what the command writes as files, masks: the ranked Mask
 objects in rank order (rank-N.mask.json) and log: [{seconds, evaluations, best_objective}]

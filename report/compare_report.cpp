@@ -7,6 +7,7 @@
 
 #include "core/units/units.hpp"
 #include "design/optics/optics.hpp"
+#include "design/optics/working_distance.hpp"
 
 namespace pinmask {
 namespace {
@@ -29,6 +30,15 @@ std::string fmt(double v, const char* format) {
 std::string db(double v) { return fmt(v, "%.2f"); }
 std::string ratio(double v) { return fmt(v, "%.3g"); }
 std::string ssim_text(double v) { return fmt(v, "%.3f"); }
+
+// A difference to the first mask: "+0.146 exact", "-0.31 +- 0.22" with " n.s." under two
+// standard errors, "+0.31 (1 scene)" without a spread.
+std::string difference_text(const PairedDifference& d) {
+    const std::string v = fmt(d.difference, "%+.3f");
+    if (d.exact) return v + " exact";
+    if (!std::isfinite(d.standard_error)) return v + " (1 scene)";
+    return v + " +- " + fmt(d.standard_error, "%.3f") + (d.significant ? "" : " n.s.");
+}
 
 std::string px(int rows, int cols) { return std::to_string(rows) + " x " + std::to_string(cols); }
 
@@ -93,13 +103,16 @@ ReportMaskPage mask_page(const CompareResult& res, std::size_t index, const Came
     metrics << "max sidelobe " << r.max_sidelobe << ", PSR " << ratio(r.peak_to_sidelobe_ratio)
             << ", min|P^| " << ratio(r.min_abs_pattern_spectrum) << ", flatness "
             << ratio(r.spectral_flatness) << ", OTF condition " << ratio(r.otf_condition_number)
-            << "; analytic Wiener " << db(r.analytic_wiener_psnr_db) << " dB"
-            << (std::isnan(r.robust_wiener_psnr_db)
+            << "; analytic MMSE " << db(r.analytic_mmse_psnr_db) << " dB, analytic Wiener "
+            << db(r.analytic_wiener_psnr_db) << " dB (NSR " << fmt(r.analytic_wiener_nsr, "%.3g")
+            << ")"
+            << (std::isnan(r.analytic_robust_wiener_psnr_db)
                     ? ""
-                    : " (robust, under fabrication errors: " + db(r.robust_wiener_psnr_db) + " dB)")
-            << "; mean over scenes: Wiener " << db(r.wiener_psnr_db) << " dB / SSIM "
-            << ssim_text(r.wiener_ssim) << ", TV " << db(r.tv_psnr_db) << " dB / SSIM "
-            << ssim_text(r.tv_ssim);
+                    : " (robust, under fabrication errors: " +
+                          db(r.analytic_robust_wiener_psnr_db) + " dB)")
+            << "; mean over scenes: sim Wiener " << db(r.sim_wiener_psnr_db) << " dB / SSIM "
+            << ssim_text(r.sim_wiener_ssim) << ", sim TV " << db(r.sim_tv_psnr_db) << " dB / SSIM "
+            << ssim_text(r.sim_tv_ssim);
     page.lines = {(r.kind == "input" ? "File: " : "Baseline: ") + r.source, geo.str(),
                   metrics.str()};
     if (r.metrics.spectral_zero->found)
@@ -134,11 +147,11 @@ ReportMaskPage mask_page(const CompareResult& res, std::size_t index, const Came
                                 p.capture, clo, chi,
                                 "mean noise sigma " + fmt(p.capture_sigma, "%.3g")));
     page.panels.push_back(
-        panel("Wiener, NSR " + fmt(r.wiener_nsr, "%.3g"), p.wiener, 0.0, 1.0,
+        panel("Wiener, NSR " + fmt(r.sim_wiener_nsr, "%.3g"), p.wiener, 0.0, 1.0,
               "this capture (grey clipped to 0..1):",
               {"PSNR " + db(p.wiener_psnr_db) + " dB, SSIM " + ssim_text(p.wiener_ssim)}));
     page.panels.push_back(
-        panel("TV-L2, lambda " + fmt(r.tv_lambda, "%.3g"), p.tv, 0.0, 1.0,
+        panel("TV-L2, lambda " + fmt(r.sim_tv_lambda, "%.3g"), p.tv, 0.0, 1.0,
               "this capture, " + std::to_string(p.tv_iterations) + " iterations:",
               {"PSNR " + db(p.tv_psnr_db) + " dB, SSIM " + ssim_text(p.tv_ssim)}));
     return page;
@@ -154,32 +167,47 @@ std::string noise_caption(const NoiseModel& m) {
     return "noiseless";
 }
 
-ReportTable compare_table(const std::vector<CompareResult>& results) {
+ReportTable compare_table(const std::vector<CompareResult>& results, const std::string& lead) {
+    const bool mmse = lead == "analytic_mmse_psnr_db";
+    const std::string other = mmse ? "analytic_wiener_psnr_db" : "analytic_mmse_psnr_db";
+    const auto short_name = [](const std::string& f) {
+        return f == "analytic_mmse_psnr_db" ? std::string("analytic MMSE") : "analytic W";
+    };
     ReportTable t;
-    t.headers = {"mask",       "K",       "n",        "spacing", "max SL",
-                 "PSR",        "min|P^|", "flatness", "zero",    "OTF cond",
-                 "analytic W", "sim W",   "W SSIM",   "sim TV",  "TV SSIM"};
-    t.units = {"",     "", "",        "ok?",     "", "",        "", "",
-               "freq", "", "PSNR dB", "PSNR dB", "", "PSNR dB", ""};
+    t.headers = {
+        "mask",  "K",       "n",        "spacing", short_name(lead), "vs 1st",  short_name(other),
+        "sim W", "vs 1st",  "W SSIM",   "sim TV",  "vs 1st",         "TV SSIM", "max SL",
+        "PSR",   "min|P^|", "flatness", "zero",    "OTF cond"};
+    t.units = {"",        "",         "", "ok?",     "PSNR dB",  "dB", "PSNR dB",
+               "PSNR dB", "dB +- SE", "", "PSNR dB", "dB +- SE", "",   "",
+               "",        "",         "", "freq",    ""};
+    const auto diff = [](const CompareRow& r, const std::string& name) -> std::string {
+        for (const auto& [n, d] : r.to_first)
+            if (n == name) return difference_text(d);
+        return "-";
+    };
     for (const CompareResult& res : results) {
         const CompareRow& r = res.row;
         t.rows.push_back({r.name, std::to_string(r.holes), std::to_string(r.n),
-                          r.spacing_ok ? "yes" : "NO", std::to_string(r.max_sidelobe),
-                          ratio(r.peak_to_sidelobe_ratio), ratio(r.min_abs_pattern_spectrum),
-                          ratio(r.spectral_flatness), zero_text(r), ratio(r.otf_condition_number),
-                          db(r.analytic_wiener_psnr_db), db(r.wiener_psnr_db),
-                          ssim_text(r.wiener_ssim), db(r.tv_psnr_db), ssim_text(r.tv_ssim)});
+                          r.spacing_ok ? "yes" : "NO", db(row_figure(r, lead)), diff(r, lead),
+                          db(row_figure(r, other)), db(r.sim_wiener_psnr_db),
+                          diff(r, "sim_wiener_psnr_db"), ssim_text(r.sim_wiener_ssim),
+                          db(r.sim_tv_psnr_db), diff(r, "sim_tv_psnr_db"), ssim_text(r.sim_tv_ssim),
+                          std::to_string(r.max_sidelobe), ratio(r.peak_to_sidelobe_ratio),
+                          ratio(r.min_abs_pattern_spectrum), ratio(r.spectral_flatness),
+                          zero_text(r), ratio(r.otf_condition_number)});
     }
-    // With --robust: the robust analytic figure beside the nominal one.
+    // With --robust: the robust analytic figure beside the analytic ones.
     const bool robust = std::any_of(results.begin(), results.end(), [](const CompareResult& r) {
-        return !std::isnan(r.row.robust_wiener_psnr_db);
+        return !std::isnan(r.row.analytic_robust_wiener_psnr_db);
     });
     if (robust) {
-        const std::size_t at = 11;  // after "analytic W"
+        const std::size_t at = 7;  // after the second analytic figure
         t.headers.insert(t.headers.begin() + at, "robust W");
         t.units.insert(t.units.begin() + at, "PSNR dB");
         for (std::size_t i = 0; i < results.size(); ++i)
-            t.rows[i].insert(t.rows[i].begin() + at, db(results[i].row.robust_wiener_psnr_db));
+            t.rows[i].insert(t.rows[i].begin() + at,
+                             db(results[i].row.analytic_robust_wiener_psnr_db));
     }
     // With the depth group: the worst Cramer-Rao bound on the distance, first level.
     const auto depth = [](const CompareResult& r) -> const DepthFigures* {
@@ -207,9 +235,9 @@ std::string compare_holes_text(const std::vector<CompareResult>& results) {
     std::ostringstream s;
     s << "PSNR against pinhole count (light gain = K x one pinhole's light):\n";
     for (const CompareRow* r : rows) {
-        s << "  K " << r->holes << "  light " << r->holes << "x  analytic W "
-          << db(r->analytic_wiener_psnr_db) << " dB  sim W " << db(r->wiener_psnr_db) << " dB  "
-          << r->name << "\n";
+        s << "  K " << r->holes << "  light " << r->holes << "x  analytic MMSE "
+          << db(r->analytic_mmse_psnr_db) << " dB  analytic W " << db(r->analytic_wiener_psnr_db)
+          << " dB  sim W " << db(r->sim_wiener_psnr_db) << " dB  " << r->name << "\n";
     }
     return s.str();
 }
@@ -226,12 +254,14 @@ ReportDocument compare_document(const std::vector<CompareResult>& results, const
         << ", pinhole d = " << format_length(c.pinhole_m)
         << ", pixel pitch w = " << format_length(c.pixel_pitch_m) << ", wavelength "
         << format_length(c.wavelength_m) << ", sensor " << c.sensor_cols << " x " << c.sensor_rows
-        << " px; design pixels per cell d |1 - f/f'| / w = "
-        << fmt(design_pixels_per_cell(c), "%.2f") << ".";
+        << " px; pixels per cell at u, d |1 - f/f' + f/u| / w = "
+        << fmt(pixels_per_cell_at(c, c.object_distance_m), "%.2f") << ".";
     d.lines.push_back(cam.str());
     for (const auto& l : summary.settings_lines) d.lines.push_back(l);
     for (const auto& l : summary.baseline_lines) d.lines.push_back(l);
-    d.table = compare_table(results);
+    d.lines.push_back("The table leads with " + summary.lead.name + " (" +
+                      figure_words(summary.lead.name) + "): " + summary.lead.reason + ".");
+    d.table = compare_table(results, summary.lead.name);
     const MaskMetricsOptions& mo = s.metrics;
     d.notes = {
         "Columns. K: pinholes. n: cells per side of the cyclic pattern. spacing ok?: no two "
@@ -244,12 +274,21 @@ ReportDocument compare_document(const std::vector<CompareResult>& results, const
         "passes light), none otherwise.",
         "OTF cond: max / min |A^| of the mask OTF over the kernel passband (|K^| >= 0.1 max |K^|); "
         "inf = an exact zero.",
-        "analytic W: expected PSNR of Wiener decoding in closed form over one period, " +
-            summary.noise_text + " (the first level), Wiener NSR " +
+        "analytic MMSE (analytic_mmse_psnr_db): expected PSNR in closed form over one period "
+        "under the prior, decoded by the per-frequency optimal (MMSE) Wiener filter, which no "
+        "linear decoder beats: the figure search optimises under Gaussian noise. analytic W "
+        "(analytic_wiener_psnr_db): the same, decoded by Wiener of one NSR (" +
             (mo.simulation.wiener_nsr.tuned ? std::string("tuned per mask")
-                                            : fmt(mo.simulation.wiener_nsr.value, "%g")) +
-            ", prior " + mo.prior.description() + ": the figure pinmask score prints.",
-        "sim W / sim TV: one period of each scene through the PSF (cyclic model) with " +
+                                            : "NSR " + fmt(mo.simulation.wiener_nsr.value, "%g")) +
+            "): the figure search optimises under the photon model. Both " + summary.noise_text +
+            " (the first level), prior " + mo.prior.description() +
+            "; pinmask score prints them under the same names.",
+        "vs 1st: each mask minus the first mask on the figure to its left. Analytic figures are "
+        "closed forms, so their differences are exact. Simulated ones are paired over the scenes "
+        "(the same scenes and noise draws for every mask): mean difference +- the standard error "
+        "of the mean (sd / sqrt(scenes)); n.s. = not significant, under two standard errors.",
+        "sim W / sim TV (sim_wiener_psnr_db, sim_tv_psnr_db): one period of each scene through the "
+        "PSF (cyclic model) with " +
             summary.noise_text +
             " (the first level), decoded by Wiener and TV-L2; PSNR = 10 log10(1 / MSE) for scenes "
             "in [0, 1], SSIM with an 11 x 11 Gaussian window; means over the scenes (" +

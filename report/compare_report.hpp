@@ -18,13 +18,15 @@ struct CompareSummary {
     std::vector<std::string> settings_lines;
     std::vector<std::string> baseline_lines;  // what each baseline is, or why it is missing
     std::string noise_text;  // the noise levels in words ("Gaussian noise at SNR 30 dB")
+    LeadFigure lead;         // the figure the table leads with, and why
 };
 
 // "SNR 30 dB" or "photon model, 2 e per pinhole" (the shown capture's caption).
 std::string noise_caption(const NoiseModel& model);
 
-// The metrics table, one row per result (text cells, units in the second header line).
-ReportTable compare_table(const std::vector<CompareResult>& results);
+// The metrics table, one row per result (text cells, units in the second header line), led by
+// the `lead` figure (optimize/metrics/compare.hpp) and each figure's difference to the first row.
+ReportTable compare_table(const std::vector<CompareResult>& results, const std::string& lead);
 
 // The PSNR-against-K view: the masks ordered by pinhole count K with their light gain
 // (K times one pinhole's light) and analytic and simulated Wiener PSNR, one line each. Empty

@@ -1,5 +1,7 @@
 #include "report/compare_run.hpp"
 
+#include <sstream>
+
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
 #include "optimize/metrics/metric_spellings.hpp"
@@ -10,6 +12,40 @@
 namespace pinmask {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+std::string fixed(double v, int digits) {
+    std::ostringstream s;
+    s.setf(std::ios::fixed);
+    s.precision(digits);
+    s << v;
+    return s.str();
+}
+
+// The first mask's gain over the random median on the lead figure, or that there is none.
+std::string random_gain_words(const CompareOutcome& out) {
+    const PairedDifference& g = *out.random_gain;
+    const std::string& name = out.results.front().row.name;
+    std::string s = "Gain of " + name + " over the random median on " + out.lead.name + " (" +
+                    figure_words(out.lead.name) + ", " + out.lead.reason +
+                    "): " + (g.difference >= 0 ? "+" : "") + fixed(g.difference, 3) +
+                    " dB, standard error " + fixed(g.standard_error, 3) + " dB (the median of " +
+                    std::to_string(g.samples) +
+                    " random draws as an estimate of the population's; the mask's figure is "
+                    "exact). ";
+    if (!g.significant) {
+        s += "No significant gain: the difference is under two standard errors.";
+    } else if (g.difference > 0) {
+        s += "A significant gain (at least two standard errors).";
+    } else {
+        s += "A significant LOSS: the mask is below the random median by at least two standard "
+             "errors.";
+    }
+    return s;
+}
+
+}  // namespace
 
 CompareRunOptions CompareRequest::run_options() const {
     CompareRunOptions r;
@@ -76,6 +112,10 @@ CompareReport run_compare_request(CompareRequest request, const CompareProgress&
     r.nsr_words = nsr == "tuned" ? "NSR tuned per mask" : "NSR " + nsr;
     r.analytic_basis = "closed form over one period, prior " + mo.prior.description() +
                        ", Wiener " + r.nsr_words + ", " + request.noise_text + " (first level)";
+    r.mmse_basis = "closed form over one period, prior " + mo.prior.description() +
+                   ", per-frequency optimal (MMSE) Wiener filter, " + request.noise_text +
+                   " (first level)";
+    if (out.random_gain) r.random_gain_text = random_gain_words(out);
     r.sim_basis = "simulated on scenes " + scenes + " (cyclic model, " + request.noise_text +
                   ", first level, noise seed " + std::to_string(request.seed) + ")";
     if (!request.report.empty()) {
@@ -84,6 +124,9 @@ CompareReport run_compare_request(CompareRequest request, const CompareProgress&
         summary.noise_text = request.noise_text;
         summary.baseline_lines = out.baseline_lines;
         summary.settings_lines = r.settings_lines;
+        summary.lead = out.lead;
+        if (!r.random_gain_text.empty()) summary.baseline_lines.push_back(r.random_gain_text);
+        if (!out.lead_mismatch.empty()) summary.baseline_lines.push_back(out.lead_mismatch);
         r.report_pages = render_report(compare_document(out.results, r.options.settings, summary),
                                        request.report);
     }

@@ -54,7 +54,10 @@ struct CompareReport {
     std::vector<std::string> settings_lines;  // the report's settings paragraph
     std::string scenes;                       // the request's scenes, comma-separated
     std::string nsr_words;                    // "NSR tuned per mask" or "NSR 0.01"
-    std::string analytic_basis;               // what the analytic PSNR column is computed on
+    std::string analytic_basis;               // what analytic_wiener_psnr_db is computed on
+    std::string mmse_basis;                   // what analytic_mmse_psnr_db is computed on
+    // The first mask's gain over the random median on the lead figure, in words ("" without it).
+    std::string random_gain_text;
     std::string sim_basis;                    // what the simulated PSNR columns are computed on
     // The report's files (path, bytes), not yet written (io/compare_json writes them).
     std::vector<std::pair<std::filesystem::path, std::string>> report_pages;

@@ -41,10 +41,12 @@ std::string metrics_table_text(const std::vector<nlohmann::ordered_json>& rows,
     }
     for (const NoiseLevel& level : m.noise) {
         const std::string& k = level.key;
+        if (m.analytic) cols.push_back({"analytic_mmse_psnr_db_" + k, "M" + k});
         if (m.analytic) cols.push_back({"analytic_wiener_psnr_db_" + k, "A" + k});
-        if (m.analytic && m.robust.any()) cols.push_back({"robust_wiener_psnr_db_" + k, "R" + k});
-        if (m.wiener) cols.push_back({"wiener_psnr_db_" + k, "W" + k});
-        if (m.tv) cols.push_back({"tv_psnr_db_" + k, "TV" + k});
+        if (m.analytic && m.robust.any())
+            cols.push_back({"analytic_robust_wiener_psnr_db_" + k, "R" + k});
+        if (m.wiener) cols.push_back({"sim_wiener_psnr_db_" + k, "W" + k});
+        if (m.tv) cols.push_back({"sim_tv_psnr_db_" + k, "TV" + k});
         if (m.depth) {
             cols.push_back({"depth_crb_rel_" + k, "Du" + k});
             cols.push_back({"depth_axial_fwhm_m_" + k, "Dfw" + k});

@@ -10,6 +10,7 @@
 #include "core/units/number_format.hpp"
 #include "io/json_strict.hpp"
 #include "io/mask_json.hpp"
+#include "optimize/metrics/figure_names.hpp"
 #include "report/holes_plot.hpp"
 
 namespace pinmask::cli {
@@ -17,9 +18,28 @@ namespace fs = std::filesystem;
 
 namespace {
 
-double score_or_nan(const Mask& m, const char* key) {
+double score_or_nan(const Mask& m, const std::string& key) {
     const auto it = m.provenance.scores.find(key);
     return it == m.provenance.scores.end() ? NAN : it->second;
+}
+
+// The analytic figure the summary's tables show: the one the objective weighs, else the MMSE one.
+std::string shown_figure(const SearchPipelineSummary& s) {
+    return s.objective_figure.empty() ? "analytic_mmse_psnr_db" : s.objective_figure;
+}
+
+// The robust figure's key among a mask's scores and the nominal figure it is set against.
+std::pair<std::string, std::string> robust_keys(const Mask& m) {
+    for (const char* k : {"analytic_robust_filter_psnr_db", "analytic_robust_mmse_psnr_db",
+                          "analytic_robust_wiener_psnr_db"}) {
+        if (!m.provenance.scores.count(k)) continue;
+        const std::string key = k;
+        if (key == "analytic_robust_filter_psnr_db")
+            return {key, "analytic_robust_filter_nominal_psnr_db"};
+        return {key, key == "analytic_robust_mmse_psnr_db" ? "analytic_mmse_psnr_db"
+                                                           : "analytic_wiener_psnr_db"};
+    }
+    return {"", ""};
 }
 
 // "Best possible for K holes <= X dB" (optimize/search/objective_bound): for rank 1's K, and with a
@@ -29,11 +49,20 @@ std::string bound_summary(const SearchPipelineSummary& summary) {
         return "";
     const RankedMask& top = summary.ranked.front();
     std::ostringstream s;
+    // The bound is on the analytic MMSE PSNR (the optimal filter): rank 1 is set against it on
+    // that same figure, and the searched figure follows when it is another filter's.
     s << "\nBest possible for " << top.mask.pattern.pinholes.size()
       << " holes <= " << format_cell(top.upper_bound_psnr_db)
-      << " dB (analytic Wiener PSNR of any pattern with "
-      << "that K, optimal linear decoder, this kernel, prior and noise); rank 1: "
-      << format_cell(score_or_nan(top.mask, "analytic_wiener_psnr_db")) << " dB.\n";
+      << " dB analytic MMSE PSNR (any pattern with that K, per-frequency optimal filter, which "
+         "no linear decoder beats; this kernel, prior and noise); rank 1: "
+      << format_cell(score_or_nan(top.mask, "analytic_mmse_psnr_db")) << " dB on the same figure";
+    if (summary.objective_figure == "analytic_wiener_psnr_db") {
+        s << " (" << format_cell(score_or_nan(top.mask, "analytic_wiener_psnr_db"))
+          << " dB analytic Wiener PSNR at NSR "
+          << format_cell(score_or_nan(top.mask, "analytic_wiener_nsr"), "%.3g")
+          << ", the figure searched)";
+    }
+    s << ".\n";
     const RankedMask* best = nullptr;
     for (const RankedMask& r : summary.best_per_holes)
         if (std::isfinite(r.upper_bound_psnr_db) &&
@@ -56,32 +85,33 @@ std::string search_summary_markdown(const SearchPipelineSummary& summary) {
     for (const std::string& n : summary.rerank_scene_names)
         scenes += (scenes.empty() ? "" : "+") + n;
     if (scenes.empty()) scenes = "none";
-    s << "| rank | geometry hash | objective | analytic Wiener PSNR (dB; closed form, prior "
-      << summary.prior_description << ") | simulated Wiener PSNR (dB; scenes " << scenes
-      << ", NSR tuned) | simulated TV PSNR (dB; scenes " << scenes
-      << ") | max sidelobe / K | min |P^| / sqrt(K) |\n"
+    const std::string shown = shown_figure(summary);
+    s << "| rank | geometry hash | objective | " << figure_words(shown) << " (dB; " << shown
+      << ", closed form, prior " << summary.prior_description
+      << ") | simulated Wiener PSNR (dB; sim_wiener_psnr_db, scenes " << scenes
+      << ", NSR tuned) | simulated TV PSNR (dB; sim_tv_psnr_db, scenes " << scenes
+      << ") | max sidelobe | min |P^| |\n"
       << "|---:|---|---:|---:|---:|---:|---:|---:|\n";
     for (std::size_t i = 0; i < summary.ranked.size(); ++i) {
         const RankedMask& r = summary.ranked[i];
         const Mask& m = r.mask;
         s << "| " << i + 1 << " | " << geometry_hash(m) << " | " << format_cell(r.objective, "%.4f")
-          << " | " << format_cell(score_or_nan(m, "analytic_wiener_psnr_db")) << " | "
+          << " | " << format_cell(score_or_nan(m, shown)) << " | "
           << format_cell(r.sim_wiener_psnr_db) << " | " << format_cell(r.sim_tv_psnr_db) << " | "
-          << format_cell(score_or_nan(m, "max_sidelobe")) << " | "
-          << format_cell(-score_or_nan(m, "min_spectrum")) << " |\n";
+          << format_cell(score_or_nan(m, "max_sidelobe"), "%.0f") << " | "
+          << format_cell(score_or_nan(m, "min_abs_pattern_spectrum")) << " |\n";
     }
     // --robust: the expected PSNR under fabrication errors beside the nominal figure.
-    bool robust = false;
-    for (const RankedMask& r : summary.ranked)
-        robust = robust || !std::isnan(score_or_nan(r.mask, "robust_wiener_psnr_db"));
-    if (robust) {
-        s << "\nAnalytic Wiener PSNR (dB), nominal -> expected under the --robust fabrication "
-             "errors (decoded with the nominal PSF):";
+    const auto [robust, nominal] = summary.ranked.empty()
+                                       ? std::pair<std::string, std::string>{}
+                                       : robust_keys(summary.ranked.front().mask);
+    if (!robust.empty()) {
+        s << "\nAnalytic PSNR (dB), nominal (" << nominal << ") -> expected under the --robust "
+          << "fabrication errors (" << robust << "):";
         for (std::size_t i = 0; i < summary.ranked.size(); ++i) {
             const Mask& m = summary.ranked[i].mask;
-            s << (i ? "," : "") << " rank " << i + 1 << " "
-              << format_cell(score_or_nan(m, "analytic_wiener_psnr_db")) << " -> "
-              << format_cell(score_or_nan(m, "robust_wiener_psnr_db"));
+            s << (i ? "," : "") << " rank " << i + 1 << " " << format_cell(score_or_nan(m, nominal))
+              << " -> " << format_cell(score_or_nan(m, robust));
         }
         s << "\n";
     }
@@ -110,14 +140,17 @@ std::string search_summary_markdown(const SearchPipelineSummary& summary) {
     if (!summary.best_per_holes.empty()) {
         s << "\nBest mask per pinhole count (predicted by the analytic objective; light gain = K "
              "times one pinhole's light):\n\n"
-          << "| K | light gain | objective | analytic Wiener PSNR (dB) | bound (dB) | geometry "
-             "hash | spectral zero |\n|---:|---:|---:|---:|---:|---|---|\n";
+          << "| K | light gain | objective | " << figure_words(shown_figure(summary)) << " (dB; "
+          << shown_figure(summary)
+          << ") | bound on analytic MMSE PSNR (dB) | analytic MMSE PSNR (dB) | geometry hash | "
+             "spectral zero |\n|---:|---:|---:|---:|---:|---:|---|---|\n";
         for (const RankedMask& r : summary.best_per_holes) {
             const std::size_t k = r.mask.pattern.pinholes.size();
             s << "| " << k << " | " << k << "x | " << format_cell(r.objective, "%.4f") << " | "
-              << format_cell(score_or_nan(r.mask, "analytic_wiener_psnr_db")) << " | "
-              << format_cell(r.upper_bound_psnr_db) << " | " << geometry_hash(r.mask) << " | "
-              << (r.spectral_zero ? "yes" : "no") << " |\n";
+              << format_cell(score_or_nan(r.mask, shown_figure(summary))) << " | "
+              << format_cell(r.upper_bound_psnr_db) << " | "
+              << format_cell(score_or_nan(r.mask, "analytic_mmse_psnr_db")) << " | "
+              << geometry_hash(r.mask) << " | " << (r.spectral_zero ? "yes" : "no") << " |\n";
         }
     }
     s << bound_summary(summary);
@@ -161,12 +194,13 @@ std::vector<fs::path> write_search_outputs(const fs::path& dir,
     files.stage_bytes(dir / "timing.csv", timing.str());
     if (!summary.best_per_holes.empty()) {
         std::ostringstream csv;
-        csv << "holes,light_gain,objective,analytic_wiener_psnr_db,spectral_zero,geometry_hash,"
-               "upper_bound_psnr_db\n";
+        const std::string shown = shown_figure(summary);
+        csv << "holes,light_gain,objective," << shown
+            << ",spectral_zero,geometry_hash,upper_bound_analytic_mmse_psnr_db\n";
         std::vector<HolesPoint> points;
         for (const RankedMask& r : summary.best_per_holes) {
             const int k = static_cast<int>(r.mask.pattern.pinholes.size());
-            const double psnr = score_or_nan(r.mask, "analytic_wiener_psnr_db");
+            const double psnr = score_or_nan(r.mask, shown);
             csv << k << "," << k << "," << format_cell(r.objective, "%.9g") << ","
                 << format_cell(psnr, "%.9g") << "," << (r.spectral_zero ? 1 : 0) << ","
                 << geometry_hash(r.mask) << "," << format_cell(r.upper_bound_psnr_db, "%.9g")

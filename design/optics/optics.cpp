@@ -96,9 +96,9 @@ OpticsReport compute_optics(const Camera& c, const PatternGeometry& g, KernelMod
     r.magnification_at_u = f * inv_z_u;
     r.geometric_spot_m = std::fabs(r.magnification) * d;
     r.geometric_spot_at_u_m = std::fabs(r.magnification_at_u) * d;
-    r.pixels_per_cell = design_pixels_per_cell(c);
+    r.pixels_per_cell_at_inf = design_pixels_per_cell(c);
     r.pixels_per_cell_at_u = r.geometric_spot_at_u_m / w;
-    const double rounded = std::max(1.0, std::round(r.pixels_per_cell));
+    const double rounded = std::max(1.0, std::round(r.pixels_per_cell_at_inf));
     r.integer_pixels_per_cell = static_cast<long long>(std::min(rounded, kMaxPixelsPerCell));
     r.pinhole_for_integer_pixels_m =
         r.magnification == 0.0 ? kInf : rounded * w / std::fabs(r.magnification);

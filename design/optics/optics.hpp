@@ -57,7 +57,9 @@ struct OpticsReport {
     double magnification_at_u = 0;  // 1 - f/f' + f/u
     double geometric_spot_m = 0;    // |M| d: the image-plane cell pitch p
     double geometric_spot_at_u_m = 0;
-    double pixels_per_cell = 0;  // p / w
+    // p / w for a distant object (u = inf: the paper's 7.94); every face reports pixels per cell
+    // at the working distance u (pixels_per_cell_at_u) under the name pixels_per_cell.
+    double pixels_per_cell_at_inf = 0;
     double pixels_per_cell_at_u = 0;
     long long integer_pixels_per_cell = 1;    // n_px: nearest integer to p / w, at least 1
     double pinhole_for_integer_pixels_m = 0;  // d = n_px w / |M| (inf when M = 0)
@@ -97,7 +99,8 @@ double magnification_at_u(const Camera& camera);
 // N(u) = d^2 |1/z_eff(u)| / (4 lambda): the Fresnel number the kernel models use.
 double fresnel_number_at_u(const Camera& camera);
 // Image-plane cell pitch in sensor pixels for a distant object, |M| d / w with M = 1 - f/f'
-// (f' = inf: d / w): OpticsReport::pixels_per_cell, the design value the paper quotes (7.94).
+// (f' = inf: d / w): OpticsReport::pixels_per_cell_at_inf, the design value the paper quotes
+// (7.94).
 double design_pixels_per_cell(const Camera& camera);
 
 }  // namespace pinmask

@@ -35,6 +35,9 @@ struct Provenance {
     std::string family;     // random | paper | mura | ura | search:<strategy> | file
     bool spacing_violations_allowed = false;
     std::map<std::string, double> scores;  // metric name -> value, names carry units
+    // The scores key of the figure a search optimised ("analytic_mmse_psnr_db", ...; "" for a
+    // mask no search made): compare leads with it (optimize/metrics/compare.hpp).
+    std::string objective_figure;
 };
 
 struct Mask {

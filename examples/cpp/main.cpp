@@ -24,10 +24,10 @@ int run() {
     generate.seed = 1;
     mask.pattern = generate_pattern(generate).pattern;
     const OpticsReport optics = compute_optics(mask.camera, geometry_of(mask.pattern));
-    std::printf("camera: u %.1f m, f' %.0f mm, f %.0f mm, pinhole %.0f um, %.2f px per cell\n",
+    std::printf("camera: u %.1f m, f' %.0f mm, f %.0f mm, pinhole %.0f um, %.2f px per cell at u\n",
                 mask.camera.object_distance_m, mask.camera.lens_focal_m * 1e3,
                 mask.camera.sensor_distance_m * 1e3, mask.camera.pinhole_m * 1e6,
-                optics.pixels_per_cell);
+                optics.pixels_per_cell_at_u);
     std::printf("mask: %d x %d cells, %zu pinholes, tiles %d x %d, Fresnel number %.2f\n",
                 mask.pattern.n, mask.pattern.n, mask.pattern.pinholes.size(),
                 mask.pattern.tiles_rows, mask.pattern.tiles_cols, optics.fresnel_number_with_lens);

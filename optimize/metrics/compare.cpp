@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <numeric>
 #include <random>
@@ -18,6 +19,9 @@
 #include "design/psf/kernel_model.hpp"
 #include "design/psf/psf.hpp"
 #include "optimize/metrics/autocorrelation.hpp"
+#include "optimize/metrics/figure_names.hpp"
+#include "optimize/metrics/metric_spellings.hpp"
+#include "optimize/metrics/paired_difference.hpp"
 #include "optimize/metrics/spectrum_metrics.hpp"
 #include "optimize/simulate/image_quality.hpp"
 #include "optimize/simulate/noise_model.hpp"
@@ -27,6 +31,9 @@ namespace pinmask {
 namespace {
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+// A file's recorded figure and compare's own agree to this (relative): the same closed form on
+// the same inputs, summed in the same order.
+constexpr double kSameFigureTolerance = 1e-9;
 
 // Zero frequency / zero shift moved from (0, 0) to (rows / 2, cols / 2).
 Plane centred(const Plane& p) {
@@ -70,11 +77,11 @@ void fill_pictures(CompareResult& r, const Mask& mask, const Plane& psf, const C
     for (const Plane& ch : cap.capture.channels) {
         DecodeOptions w;
         w.method = DecodeMethod::kWiener;
-        w.wiener.nsr = r.row.wiener_nsr;
+        w.wiener.nsr = r.row.sim_wiener_nsr;
         wiener.channels.push_back(decode_plane(ch, psf, w).image);
         DecodeOptions t;
         t.method = DecodeMethod::kTv;
-        t.tv.lambda = r.row.tv_lambda;
+        t.tv.lambda = r.row.sim_tv_lambda;
         t.iterative.max_iterations = s.metrics.simulation.tv_iterations;
         t.iterative.tolerance = s.metrics.simulation.tv_tolerance;
         t.iterative.record_history = false;
@@ -95,6 +102,36 @@ void fill_pictures(CompareResult& r, const Mask& mask, const Plane& psf, const C
     p.tv_psnr_db = psnr_db(tv, shown.image);
     p.wiener_ssim = has_ssim ? ssim(wiener, shown.image) : kNan;
     p.tv_ssim = has_ssim ? ssim(tv, shown.image) : kNan;
+}
+
+// Each row's difference to the first: the lead figure exactly, the simulated ones paired over
+// the first level's scenes; and the first mask's gain over the random median.
+void add_differences(CompareOutcome& out) {
+    const CompareRow& a = out.results.front().row;
+    const auto scenes = [](const std::optional<SimulatedQuality>& q) {
+        std::vector<double> v;
+        for (const SceneQuality& s : q->scenes) v.push_back(s.psnr_db);
+        return v;
+    };
+    const LevelMetrics& la = a.metrics.levels.front();
+    for (std::size_t i = 1; i < out.results.size(); ++i) {
+        CompareRow& b = out.results[i].row;
+        const LevelMetrics& lb = b.metrics.levels.front();
+        b.to_first = {
+            {out.lead.name,
+             exact_difference(row_figure(b, out.lead.name), row_figure(a, out.lead.name))},
+            {"sim_wiener_psnr_db", paired_difference(scenes(lb.wiener), scenes(la.wiener))},
+            {"sim_tv_psnr_db", paired_difference(scenes(lb.tv), scenes(la.tv))}};
+    }
+    if (!out.random) return;
+    PairedDifference g;
+    g.difference = row_figure(a, out.lead.name) - out.random->median_psnr_db;
+    g.standard_error = out.random->median_standard_error_db;
+    g.samples = out.random->count;
+    g.significant = std::isfinite(g.standard_error) &&
+                    std::abs(g.difference) >= kSignificantStandardErrors * g.standard_error &&
+                    g.difference != 0.0;
+    out.random_gain = g;
 }
 
 }  // namespace
@@ -137,14 +174,15 @@ CompareResult compare_mask(const CompareEntry& e, const CompareSettings& s,
     row.otf_condition_number = mm.otf->condition_number;
     const LevelMetrics& first = mm.levels.front();
     row.analytic_wiener_psnr_db = first.analytic->psnr_db;
-    row.analytic_optimal_wiener_psnr_db = first.analytic->optimal_psnr_db;
-    if (first.robust) row.robust_wiener_psnr_db = first.robust->psnr_db;
-    row.wiener_psnr_db = first.wiener->mean_psnr_db;
-    row.wiener_ssim = first.wiener->mean_ssim;
-    row.wiener_nsr = first.wiener->weight;
-    row.tv_psnr_db = first.tv->mean_psnr_db;
-    row.tv_ssim = first.tv->mean_ssim;
-    row.tv_lambda = first.tv->weight;
+    row.analytic_wiener_nsr = first.analytic->nsr;
+    row.analytic_mmse_psnr_db = first.analytic->mmse_psnr_db;
+    if (first.robust) row.analytic_robust_wiener_psnr_db = first.robust->psnr_db;
+    row.sim_wiener_psnr_db = first.wiener->mean_psnr_db;
+    row.sim_wiener_ssim = first.wiener->mean_ssim;
+    row.sim_wiener_nsr = first.wiener->weight;
+    row.sim_tv_psnr_db = first.tv->mean_psnr_db;
+    row.sim_tv_ssim = first.tv->mean_ssim;
+    row.sim_tv_lambda = first.tv->weight;
 
     const Kernel kernel = mask_kernel(mask);
     r.pictures.kernel = kernel_text(kernel);
@@ -159,9 +197,42 @@ CompareResult compare_mask(const CompareEntry& e, const CompareSettings& s,
     return r;
 }
 
+double row_figure(const CompareRow& r, const std::string& name) {
+    if (name == "analytic_mmse_psnr_db") return r.analytic_mmse_psnr_db;
+    if (name == "analytic_wiener_psnr_db") return r.analytic_wiener_psnr_db;
+    if (name == "sim_wiener_psnr_db") return r.sim_wiener_psnr_db;
+    if (name == "sim_tv_psnr_db") return r.sim_tv_psnr_db;
+    return kNan;
+}
+
+LeadFigure compare_lead_figure(const Mask& first, const NoiseModel& noise) {
+    const std::string& f = first.provenance.objective_figure;
+    if (f == "analytic_mmse_psnr_db" || f == "analytic_wiener_psnr_db")
+        return {f, "the figure the first mask's search optimised"};
+    if (f == "analytic_robust_mmse_psnr_db" || f == "analytic_robust_wiener_psnr_db") {
+        const std::string nominal = f == "analytic_robust_mmse_psnr_db" ? "analytic_mmse_psnr_db"
+                                                                        : "analytic_wiener_psnr_db";
+        return {nominal,
+                "the nominal figure of the filter the first mask's search optimised under "
+                "fabrication errors (" +
+                    f + ")"};
+    }
+    const std::string fallback =
+        parse_search_filter("auto", noise).kind == WienerFilterKind::kOptimal
+            ? "analytic_mmse_psnr_db"
+            : "analytic_wiener_psnr_db";
+    return {fallback, f.empty() ? "the figure search optimises by default at this noise (the first "
+                                  "mask records no search's figure)"
+                                : "the figure search optimises by default at this noise (the "
+                                  "first mask's search optimised " +
+                                      f + ")"};
+}
+
 RandomMedian random_median_baseline(const Mask& tmpl, int count, const CompareSettings& s,
-                                    MetricsContext& context,
+                                    MetricsContext& context, const std::string& figure,
                                     const std::function<void(int, int)>& progress) {
+    if (figure != "analytic_mmse_psnr_db" && figure != "analytic_wiener_psnr_db")
+        throw InvalidInput("random baseline: cannot rank by '" + figure + "'");
     if (count < 1 || count > kMaxBaselineCount) {
         throw invalid_field(field_ref("baseline_count"), std::to_string(count),
                             "must be between 1 and 10000 (random draws; the median settles long "
@@ -176,18 +247,23 @@ RandomMedian random_median_baseline(const Mask& tmpl, int count, const CompareSe
     const int ppc = tmpl.psf.pixels_per_cell, m = ro.n * ppc;
     check_psf_memory(ro.n, ppc, 8, 4);
     const Kernel kernel = mask_kernel(tmpl);
-    const std::vector<NamedScene>& scenes = context.scenes(m);
-    const SimulatedMetricsOptions& so = s.metrics.simulation;
-    const NoiseModel& noise = s.metrics.noise.front().model;
+    // The model compute_mask_metrics builds for the first level: the same numbers as the rows.
+    const ComplexPlane kernel_otf = expand_half_spectrum(kernel_spectrum(kernel, ro.n, ppc), m);
+    const AnalyticWienerModel model(kernel_otf, context.prior(m), s.metrics.noise.front().model);
+    const WeightChoice& nsr = s.metrics.simulation.wiener_nsr;
+    const auto evaluate = [&](const ComplexPlane& spectrum) {
+        if (figure == "analytic_mmse_psnr_db")
+            return model.evaluate(spectrum, {WienerFilterKind::kOptimal, 0.0}).psnr_db;
+        return nsr.tuned
+                   ? model.evaluate_tuned_nsr(spectrum).psnr_db
+                   : model.evaluate(spectrum, {WienerFilterKind::kFixedNsr, nsr.value}).psnr_db;
+    };
     std::vector<Pattern> patterns;
     std::vector<double> psnr;
     for (int i = 0; i < count; ++i) {
         std::mt19937_64 rng(s.seed + static_cast<std::uint64_t>(i));
         patterns.push_back(random_sparse_pattern(ro, rng));
-        const Plane psf = synthesize_psf(patterns.back(), kernel, ppc);
-        psnr.push_back(simulated_quality(psf, scenes, noise, ro.holes, ro.n * ro.n,
-                                         SimulatedDecoder::kWiener, so)
-                           .mean_psnr_db);
+        psnr.push_back(evaluate(pattern_spectrum(patterns.back())));
         if (progress) progress(i + 1, count);
     }
     std::vector<int> order(static_cast<std::size_t>(count));
@@ -198,6 +274,8 @@ RandomMedian random_median_baseline(const Mask& tmpl, int count, const CompareSe
     const int median = order[static_cast<std::size_t>((count - 1) / 2)];
     RandomMedian out;
     out.count = count;
+    out.figure = figure;
+    out.median_standard_error_db = median_estimate(psnr).standard_error;
     out.median_seed = s.seed + static_cast<std::uint64_t>(median);
     out.min_psnr_db = psnr[static_cast<std::size_t>(order.front())];
     out.max_psnr_db = psnr[static_cast<std::size_t>(order.back())];
@@ -209,7 +287,8 @@ RandomMedian random_median_baseline(const Mask& tmpl, int count, const CompareSe
     mask.provenance.family = "random";
     mask.provenance.generator = PINMASK_GENERATOR("compare") " (random baseline)";
     std::ostringstream src;
-    src << "median of " << count << " random valid masks by simulated Wiener PSNR (draw i from "
+    src << "median of " << count << " random valid masks by " << figure_words(figure) << " ("
+        << figure << ", draw i from "
         << "seed " << s.seed << " + i, i = 0.." << count - 1 << "); this is seed "
         << out.median_seed << " (pinmask generate " << field_ref("family")
         << " random with this geometry and " << field_ref("seed") << " " << out.median_seed
@@ -271,20 +350,23 @@ CompareOutcome run_compare(std::vector<CompareEntry> entries, const CompareRunOp
     if (progress) progress("building the scenes and the prior", 0, 0);
     MetricsContext context(s.metrics);
     CompareOutcome out;
+    out.lead = compare_lead_figure(entries.front().mask, s.metrics.noise.front().model);
     const std::size_t given = entries.size();
     if (o.baselines) {
         const Mask tmpl = entries.front().mask;  // a copy: entries grows below
         try {
             RandomMedian rm = random_median_baseline(
-                tmpl, o.baseline_count, s, context, [&](int done, int total) {
+                tmpl, o.baseline_count, s, context, out.lead.name, [&](int done, int total) {
                     if (progress) progress("random baseline", done, total);
                 });
             std::ostringstream l;
             l.setf(std::ios::fixed);
             l.precision(2);
-            l << "Baseline 'random median': " << rm.entry.source
-              << ". Simulated Wiener PSNR of the " << rm.count << " draws: min " << rm.min_psnr_db
-              << ", median " << rm.median_psnr_db << ", max " << rm.max_psnr_db << " dB.";
+            l << "Baseline 'random median': " << rm.entry.source << ". " << figure_words(rm.figure)
+              << " of the " << rm.count << " draws: min " << rm.min_psnr_db << ", median "
+              << rm.median_psnr_db << " (standard error " << std::setprecision(3)
+              << rm.median_standard_error_db << "), max " << std::setprecision(2) << rm.max_psnr_db
+              << " dB.";
             out.baseline_lines.push_back(l.str());
             entries.push_back(rm.entry);
             rm.entry.mask = {};
@@ -318,6 +400,20 @@ CompareOutcome run_compare(std::vector<CompareEntry> entries, const CompareRunOp
     for (std::size_t i = 0; i < entries.size(); ++i) {
         if (progress) progress("mask", static_cast<int>(i), static_cast<int>(entries.size()));
         out.results.push_back(compare_mask(entries[i], s, context));
+    }
+    add_differences(out);
+    const Provenance& p = entries.front().mask.provenance;
+    const auto recorded = p.scores.find(out.lead.name);
+    const double computed = row_figure(out.results.front().row, out.lead.name);
+    if (recorded != p.scores.end() &&
+        !(std::abs(recorded->second - computed) <= kSameFigureTolerance * std::abs(computed))) {
+        std::ostringstream l;
+        l.precision(4);
+        l.setf(std::ios::fixed);
+        l << "The first mask's file records " << out.lead.name << " = " << recorded->second
+          << " dB; compare computes " << computed
+          << " dB under its settings (noise, prior or NSR other than the search's).";
+        out.lead_mismatch = l.str();
     }
     return out;
 }

@@ -10,6 +10,14 @@
 // optimize/metrics/mask_metrics, the set score and search use, so the numbers agree across
 // commands. The first noise level is the one shown on the pages and used to rank the random
 // baseline.
+//
+// The lead figure: a comparison leads with the figure the first mask's search optimised
+// (provenance.objective_figure: analytic_mmse_psnr_db or analytic_wiener_psnr_db, the names of
+// io/metrics_json.hpp), else the one `search` optimises by default under the first noise level
+// (parse_search_filter "auto"). The random baseline is ranked by it, every mask's difference to
+// the first is given on it (exact: a closed form) and on the simulated figures (paired over the
+// scenes, with a standard error: optimize/metrics/paired_difference), and the first mask's gain
+// over the random median on it carries the median's standard error.
 #pragma once
 
 #include <cstdint>
@@ -23,7 +31,9 @@
 #include "core/image/image.hpp"
 #include "design/pattern/mask.hpp"
 #include "optimize/metrics/analytic_error.hpp"
+#include "optimize/metrics/figure_names.hpp"
 #include "optimize/metrics/mask_metrics.hpp"
+#include "optimize/metrics/paired_difference.hpp"
 #include "optimize/metrics/simulated_metrics.hpp"
 #include "optimize/simulate/scenes.hpp"
 
@@ -58,14 +68,31 @@ struct CompareRow {
     double min_abs_pattern_spectrum = 0.0;
     double spectral_flatness = 0.0;
     double otf_condition_number = 0.0;             // +inf with a spectral zero in the passband
-    double analytic_wiener_psnr_db = 0.0;          // the Wiener NSR setting, first level
-    double analytic_optimal_wiener_psnr_db = 0.0;  // per-frequency optimal filter, first level
-    // analytic W expected under the --robust fabrication errors, first level; NaN without errors
-    double robust_wiener_psnr_db = std::numeric_limits<double>::quiet_NaN();
-    double wiener_psnr_db = 0.0, wiener_ssim = 0.0, wiener_nsr = 0.0;  // mean over scenes
-    double tv_psnr_db = 0.0, tv_ssim = 0.0, tv_lambda = 0.0;
+    // First level. Closed form over the prior: the Wiener filter of one NSR (the setting, given
+    // or tuned), and the per-frequency optimal (MMSE) filter.
+    double analytic_wiener_psnr_db = 0.0, analytic_wiener_nsr = 0.0;
+    double analytic_mmse_psnr_db = 0.0;
+    // analytic Wiener expected under the --robust fabrication errors, first level; NaN without
+    double analytic_robust_wiener_psnr_db = std::numeric_limits<double>::quiet_NaN();
+    // Simulated on the scenes, first level, mean over scenes.
+    double sim_wiener_psnr_db = 0.0, sim_wiener_ssim = 0.0, sim_wiener_nsr = 0.0;
+    double sim_tv_psnr_db = 0.0, sim_tv_ssim = 0.0, sim_tv_lambda = 0.0;
     MaskMetrics metrics;  // every level's figures, as score computes them
+    // The difference to the first mask (row b minus the first row), by figure name: the lead
+    // figure, sim_wiener_psnr_db, sim_tv_psnr_db. Empty for the first mask.
+    std::vector<std::pair<std::string, PairedDifference>> to_first;
 };
+
+// A CompareRow's first-level figure by its name (analytic_mmse_psnr_db, analytic_wiener_psnr_db,
+// sim_wiener_psnr_db, sim_tv_psnr_db); NaN for another name.
+double row_figure(const CompareRow& row, const std::string& name);
+
+// The figure a comparison leads with (the rule at the top) and why, in words.
+struct LeadFigure {
+    std::string name;    // analytic_mmse_psnr_db or analytic_wiener_psnr_db
+    std::string reason;  // "the figure the first mask's search optimised", ...
+};
+LeadFigure compare_lead_figure(const Mask& first, const NoiseModel& noise);
 
 // The pictures of one mask's report page, and the figures of the shown reconstructions.
 struct ComparePictures {
@@ -101,17 +128,22 @@ CompareResult compare_mask(const CompareEntry& entry, const CompareSettings& set
 
 // The random baseline: `count` random valid patterns with the template's n, K, spacing and tiles
 // (draw i from std::mt19937_64(seed + i)), camera and PSF settings of the template, ranked by
-// simulated Wiener PSNR; the entry is the median draw (index (count - 1) / 2 of the ascending
-// ranking). InvalidInput when count is outside 1 .. kMaxBaselineCount or random placement
-// cannot place K pinholes. `progress(done, count)` is called after each draw.
+// the `figure` (analytic_mmse_psnr_db, or analytic_wiener_psnr_db at the settings' NSR) at the
+// first noise level; the entry is the median draw (index (count - 1) / 2 of the ascending
+// ranking). InvalidInput when count is outside 1 .. kMaxBaselineCount, random placement
+// cannot place K pinholes, or the figure is another. `progress(done, count)` is called after
+// each draw.
 struct RandomMedian {
     CompareEntry entry;
+    std::string figure;  // what ranks the draws
     std::uint64_t median_seed = 0;
     double min_psnr_db = 0.0, median_psnr_db = 0.0, max_psnr_db = 0.0;
+    // The median's standard error as an estimate of the population's (paired_difference.hpp).
+    double median_standard_error_db = 0.0;
     int count = 0;
 };
 RandomMedian random_median_baseline(const Mask& tmpl, int count, const CompareSettings& settings,
-                                    MetricsContext& context,
+                                    MetricsContext& context, const std::string& figure,
                                     const std::function<void(int, int)>& progress = {});
 
 // The paper's geometry (design/pattern/families paper_pattern, seeded with settings.seed) with the
@@ -141,6 +173,13 @@ struct CompareOutcome {
     std::optional<RandomMedian> random;        // without the entry's mask
     std::string random_skipped, mura_skipped;  // why a baseline is missing ("" when present)
     int mura_order = 0;
+    LeadFigure lead;  // the figure the table leads with and the random baseline is ranked by
+    // The first mask's gain over the random median on the lead figure: its standard error is
+    // the median's (the first mask's figure is exact). Absent without the random baseline.
+    std::optional<PairedDifference> random_gain;
+    // When the first mask's file records the lead figure (a search's score) and compare computes
+    // another value (other noise, prior or NSR): the line that says so; "" otherwise.
+    std::string lead_mismatch;
 };
 
 // Progress: (phase, done, total), phase "random baseline" or "mask" (done masks before this

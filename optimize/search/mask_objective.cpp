@@ -12,7 +12,8 @@ namespace pinmask {
 namespace {
 
 struct SidelobeTerms {
-    double max_ratio = 0.0;
+    int max_sidelobe = 0;    // max_{d != 0} R(d)
+    double max_ratio = 0.0;  // / K
     double energy = 0.0;
 };
 
@@ -25,14 +26,19 @@ SidelobeTerms sidelobes(const PatternState& s) {
         max_side = std::max(max_side, r[i]);
         sum_sq += static_cast<double>(r[i]) * r[i];
     }
-    return {max_side / k, sum_sq / (k * k)};
+    return {max_side, max_side / k, sum_sq / (k * k)};
 }
 
-double min_spectrum_ratio(const PatternState& s) {
+// min_{k != 0} |P^(k)| (0 for a 1 x 1 pattern, as spectrum_metrics).
+double min_abs_spectrum(const PatternState& s) {
     const ComplexPlane& p = s.spectrum();
     double m = INFINITY;
     for (Eigen::Index i = 1; i < p.size(); ++i) m = std::min(m, std::abs(p.data()[i]));
-    return p.size() > 1 ? m / std::sqrt(static_cast<double>(s.holes())) : 0.0;
+    return p.size() > 1 ? m : 0.0;
+}
+
+double min_spectrum_ratio(const PatternState& s) {
+    return min_abs_spectrum(s) / std::sqrt(static_cast<double>(s.holes()));
 }
 
 }  // namespace
@@ -87,17 +93,28 @@ double MaskObjective::evaluate(const PatternState& s) const {
     return total;
 }
 
+std::string analytic_figure_name(const WienerFilterSpec& filter) {
+    return filter.kind == WienerFilterKind::kOptimal ? "analytic_mmse_psnr_db"
+                                                     : "analytic_wiener_psnr_db";
+}
+
 std::map<std::string, double> MaskObjective::terms(const PatternState& s) const {
     std::map<std::string, double> out;
     if (model_) {
-        const double psnr = model_->evaluate(s.spectrum(), filter_).psnr_db;
-        out["analytic_wiener_psnr_db"] = psnr;
-        out["analytic_wiener"] = -psnr;
+        out["analytic_mmse_psnr_db"] =
+            model_->evaluate(s.spectrum(), {WienerFilterKind::kOptimal, 0.0}).psnr_db;
+        if (filter_.kind != WienerFilterKind::kOptimal) {
+            const AnalyticError e = model_->evaluate(s.spectrum(), filter_);
+            out["analytic_wiener_psnr_db"] = e.psnr_db;
+            out["analytic_wiener_nsr"] = e.nsr;
+        }
     }
+    // Score's normalisation (optimize/metrics/autocorrelation, spectrum_metrics): the weighted
+    // terms divide by K and sqrt(K), the reported figures do not.
     const SidelobeTerms t = sidelobes(s);
-    out["max_sidelobe"] = t.max_ratio;
-    out["sidelobe_energy"] = t.energy;
-    out["min_spectrum"] = -min_spectrum_ratio(s);
+    out["max_sidelobe"] = t.max_sidelobe;
+    out["integrated_sidelobe_level"] = t.energy;
+    out["min_abs_pattern_spectrum"] = min_abs_spectrum(s);
     out["objective"] = evaluate(s);
     return out;
 }

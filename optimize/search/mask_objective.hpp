@@ -10,13 +10,19 @@
 //   sidelobe_energy   integrated sidelobe level sum_{d != 0} R(d)^2 / K^2
 //   min_spectrum      -min_{k != 0} |P^(k)| / sqrt(K)  (sqrt(K) is |P^| of a flat spectrum with
 //                     the same energy, so the term is about -1 for a good pattern)
-// Terms and their values are reported under these names (plus "analytic_wiener_psnr_db").
+// terms() reports figures under the names score and compare give them (io/metrics_json.hpp),
+// not the weighted terms above: analytic_mmse_psnr_db (the per-frequency optimal filter, always:
+// the objective bound is stated against it), with a fixed or tuned NSR filter also
+// analytic_wiener_psnr_db and analytic_wiener_nsr, max_sidelobe (R(d), not / K),
+// integrated_sidelobe_level (the sidelobe_energy term), min_abs_pattern_spectrum (|P^|, not
+// / sqrt(K)) and the weighted sum as "objective".
 // The depth weight is optimize/search/depth_term's (DepthTermObjective wraps this objective or the
 // robust one); MaskObjective itself does not evaluate it.
 #pragma once
 
 #include <memory>
 #include <mutex>
+#include <string>
 
 #include "optimize/metrics/aliased_wiener.hpp"
 #include "optimize/metrics/analytic_error.hpp"
@@ -34,6 +40,11 @@ struct ObjectiveWeights {
     // Throws InvalidInput for a negative or non-finite weight, or when all are zero.
     void validate() const;
 };
+
+// The scores key of the analytic figure a search with `filter` optimises:
+// "analytic_mmse_psnr_db" for the optimal filter, "analytic_wiener_psnr_db" for a fixed or tuned
+// NSR.
+std::string analytic_figure_name(const WienerFilterSpec& filter);
 
 class MaskObjective : public SearchObjective {
   public:

@@ -31,14 +31,23 @@ double RobustObjective::evaluate(const PatternState& s) const {
     return total;
 }
 
+std::string robust_figure_name(const WienerFilterSpec& filter, RobustObjectiveDecoder decoder) {
+    if (decoder == RobustObjectiveDecoder::kRobustFilter) return "analytic_robust_filter_psnr_db";
+    return filter.kind == WienerFilterKind::kOptimal ? "analytic_robust_mmse_psnr_db"
+                                                     : "analytic_robust_wiener_psnr_db";
+}
+
 std::map<std::string, double> RobustObjective::terms(const PatternState& s) const {
     std::map<std::string, double> out;
     if (others_) out = others_->terms(s);
     const RobustError e = figure(s);
-    out["analytic_wiener_psnr_db"] = e.nominal.psnr_db;
-    out["analytic_wiener"] = -e.nominal.psnr_db;
-    out["robust_wiener_psnr_db"] = e.psnr_db;
-    out["robust_wiener"] = -e.psnr_db;
+    if (decoder_ == RobustObjectiveDecoder::kRobustFilter) {
+        out["analytic_robust_filter_nominal_psnr_db"] = e.nominal.psnr_db;
+    } else {
+        out[analytic_figure_name(filter_)] = e.nominal.psnr_db;
+        if (filter_.kind != WienerFilterKind::kOptimal) out["analytic_wiener_nsr"] = e.nominal.nsr;
+    }
+    out[robust_figure_name(filter_, decoder_)] = e.psnr_db;
     out["objective"] = evaluate(s);
     return out;
 }

@@ -13,12 +13,18 @@
 namespace pinmask {
 
 // The search objective of `--objective robust`: -weights.analytic_wiener x robust PSNR plus the
-// other weighted terms of MaskObjective (sidelobes, min spectrum). Terms add
-// "robust_wiener_psnr_db" beside the nominal "analytic_wiener_psnr_db".
+// other weighted terms of MaskObjective (sidelobes, min spectrum). Terms add the robust figure
+// (robust_figure_name) beside the nominal one (analytic_figure_name of the filter; with the
+// robust filter "analytic_robust_filter_nominal_psnr_db", the nominal capture decoded by it).
 // kDesignFilter: the figure is evaluate(spectrum, filter) (the nominal PSF's filter, what
 // `search --objective robust` optimises). kRobustFilter: evaluate_robust_filter (the decoder is
 // part of the design; `filter` is then unused by the robust term).
 enum class RobustObjectiveDecoder { kDesignFilter, kRobustFilter };
+
+// The scores key of the robust figure: "analytic_robust_mmse_psnr_db" or
+// "analytic_robust_wiener_psnr_db" (the design's filter, by its kind), or
+// "analytic_robust_filter_psnr_db".
+std::string robust_figure_name(const WienerFilterSpec& filter, RobustObjectiveDecoder decoder);
 
 class RobustObjective : public SearchObjective {
   public:

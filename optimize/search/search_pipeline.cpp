@@ -257,6 +257,14 @@ void SearchPipelineOptions::validate() const {
     }
 }
 
+std::string objective_figure_name(const SearchPipelineOptions& o) {
+    if (!(o.weights.analytic_wiener > 0.0)) return "";
+    if (o.objective == ObjectiveKind::kNominal) return analytic_figure_name(o.filter);
+    return robust_figure_name(o.filter, o.objective == ObjectiveKind::kRobustFilter
+                                            ? RobustObjectiveDecoder::kRobustFilter
+                                            : RobustObjectiveDecoder::kDesignFilter);
+}
+
 SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
                                           const std::atomic<bool>* cancel,
                                           const PipelineProgress& progress,
@@ -289,6 +297,7 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
         if (o.weights.analytic_wiener > 0.0 && !robust_objective)
             model = std::make_shared<AnalyticWienerModel>(kernel_otf, std::move(prior), o.noise);
     }
+    out.objective_figure = objective_figure_name(o);
     std::unique_ptr<SearchObjective> inner;
     if (robust_objective)
         inner = std::make_unique<RobustObjective>(o.weights, robust_model, o.filter,
@@ -447,8 +456,10 @@ SearchPipelineSummary run_search_pipeline(const SearchPipelineOptions& o,
             std::string("search:") +
             (o.search.strategy == SearchStrategy::kRandom ? "random" : "anneal");
         r.mask.provenance.scores = c.terms;
+        r.mask.provenance.objective_figure = out.objective_figure;
         if (robust_model && !robust_objective) {
-            r.mask.provenance.scores["robust_wiener_psnr_db"] =
+            r.mask.provenance
+                .scores[robust_figure_name(o.filter, RobustObjectiveDecoder::kDesignFilter)] =
                 robust_model->evaluate(pattern_spectrum(c.pattern), o.filter).psnr_db;
         }
         r.objective = c.objective;

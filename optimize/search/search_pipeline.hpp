@@ -60,7 +60,7 @@ struct SearchPipelineOptions {
     // must have an
     // error); the re-ranking then reports its simulated figures without reordering (they are
     // nominal-PSF figures, which would undo the robust choice). With kNominal and errors given,
-    // every candidate's robust PSNR is reported beside the nominal one ("robust_wiener_psnr_db").
+    // every candidate's robust PSNR is reported beside the nominal one (robust_figure_name).
     ObjectiveKind objective = ObjectiveKind::kNominal;
     FabricationErrors robust;
     bool allow_spectral_zeros = false;     // else patterns with a spectral zero are rejected
@@ -90,9 +90,9 @@ struct RankedMask {
     std::vector<double> sim_scene_psnr_db;
     bool spectral_zero = false;  // only with allow_spectral_zeros
     std::string spectral_zero_message;
-    // Upper bound on the analytic Wiener PSNR of ANY pattern with this mask's K under the
-    // objective's kernel, prior and noise (optimize/search/objective_bound); NaN without the
-    // nominal analytic objective (--objective robust, or no Wiener weight).
+    // Upper bound on the analytic MMSE PSNR (analytic_mmse_psnr_db) of ANY pattern with this mask's
+    // K under the objective's kernel, prior and noise (optimize/search/objective_bound); NaN
+    // without the nominal analytic objective (--objective robust, or no Wiener weight).
     double upper_bound_psnr_db = NAN;
 };
 
@@ -114,7 +114,15 @@ struct SearchPipelineSummary {
     std::vector<std::string> rerank_scene_names;  // the simulated figures' scenes
     PriorRelevance prior_relevance;  // frequencies the prior makes irrelevant (for --explain)
     std::string prior_description;
+    // The scores key of the analytic figure the objective weighs (analytic_figure_name,
+    // robust_figure_name); "" without an analytic Wiener weight. Also each mask's
+    // provenance.objective_figure.
+    std::string objective_figure;
 };
+
+// The scores key of the analytic figure the options' objective weighs (analytic_figure_name or
+// robust_figure_name of its filter); "" without an analytic Wiener weight.
+std::string objective_figure_name(const SearchPipelineOptions& options);
 
 // Progress: (phase "search" | "rerank", fraction 0..1, text). The search's rate counts from its
 // first logged row on (the chains' set-up is not throughput).

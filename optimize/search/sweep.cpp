@@ -129,6 +129,7 @@ Mask sweep_best_mask(const SearchPipelineOptions& options, const SweepPointResul
         std::string("search:") +
         (options.search.strategy == SearchStrategy::kRandom ? "random" : "anneal");
     m.provenance.scores = r.scores;
+    m.provenance.objective_figure = objective_figure_name(options);
     return m;
 }
 

@@ -78,12 +78,27 @@ TEST_CASE("compare: two masks -> JSON table with unit-suffixed keys and a PDF re
     const auto j = nlohmann::json::parse(r.out);
     REQUIRE(j["masks"].size() == 2);
     for (const auto& row : j["masks"]) {
-        for (const char* key :
-             {"name", "kind", "geometry_hash", "n", "holes", "period_px", "spacing_ok",
-              "max_sidelobe", "peak_to_sidelobe_ratio", "min_abs_pattern_spectrum",
-              "spectral_flatness", "otf_condition_number", "analytic_wiener_psnr_db",
-              "wiener_psnr_db", "wiener_ssim", "wiener_nsr", "tv_psnr_db", "tv_ssim",
-              "tv_lambda"}) {
+        for (const char* key : {"name",
+                                "kind",
+                                "geometry_hash",
+                                "n",
+                                "holes",
+                                "period_px",
+                                "spacing_ok",
+                                "max_sidelobe",
+                                "peak_to_sidelobe_ratio",
+                                "min_abs_pattern_spectrum",
+                                "spectral_flatness",
+                                "otf_condition_number",
+                                "analytic_mmse_psnr_db",
+                                "analytic_wiener_psnr_db",
+                                "analytic_wiener_nsr",
+                                "sim_wiener_psnr_db",
+                                "sim_wiener_ssim",
+                                "sim_wiener_nsr",
+                                "sim_tv_psnr_db",
+                                "sim_tv_ssim",
+                                "sim_tv_lambda"}) {
             INFO(key);
             CHECK(row.contains(key));
         }
@@ -91,8 +106,26 @@ TEST_CASE("compare: two masks -> JSON table with unit-suffixed keys and a PDF re
         CHECK(row["holes"] == 5);
         CHECK(row["period_px"] == 32);
         CHECK(row["spacing_ok"] == true);
-        CHECK(row["wiener_ssim"].get<double>() <= 1.0);
+        CHECK(row["sim_wiener_ssim"].get<double>() <= 1.0);
     }
+    // The second row's differences to the first: the lead figure exact, the simulated ones
+    // paired over the scenes; one scene (kFast) gives no spread: no standard error, never
+    // significant.
+    CHECK_FALSE(j["masks"][0].contains("difference_to_first"));
+    const auto& diff = j["masks"][1]["difference_to_first"];
+    const std::string lead = j["lead_figure"]["name"];
+    CHECK(lead == "analytic_mmse_psnr_db");  // generated masks: search's default under --snr
+    CHECK(diff[lead]["exact"] == true);
+    CHECK(diff[lead]["difference_db"].get<double>() ==
+          j["masks"][1][lead].get<double>() - j["masks"][0][lead].get<double>());
+    CHECK(diff["sim_wiener_psnr_db"]["exact"] == false);
+    CHECK(diff["sim_wiener_psnr_db"]["samples"] == 1);
+    CHECK(diff["sim_wiener_psnr_db"]["standard_error_db"].is_null());
+    CHECK(diff["sim_wiener_psnr_db"]["significant"] == false);
+    CHECK(diff["sim_wiener_psnr_db"]["difference_db"].get<double>() ==
+          doctest::Approx(j["masks"][1]["sim_wiener_psnr_db"].get<double>() -
+                          j["masks"][0]["sim_wiener_psnr_db"].get<double>())
+              .epsilon(1e-12));
     CHECK(j["settings"]["noise"][0]["snr_db"] == 25.0);
     CHECK(!j.contains("baselines"));
     // Title page + one page per mask, in one PDF; the configuration beside it.
@@ -136,13 +169,22 @@ TEST_CASE("compare --baselines: random median, paper-like and MURA rows; SVG pag
     CHECK(mura["spacing_ok"] == false);
     const auto& rnd = j["baselines"]["random"];
     CHECK(rnd["count"] == 5);
-    const double lo = rnd["min_wiener_psnr_db"], mid = rnd["median_wiener_psnr_db"],
-                 hi = rnd["max_wiener_psnr_db"];
+    // Ranked by the lead figure (the analytic MMSE PSNR under --snr for masks no search made).
+    const std::string f = rnd["ranked_by"];
+    CHECK(f == j["lead_figure"]["name"]);
+    const double lo = rnd["min_" + f], mid = rnd["median_" + f], hi = rnd["max_" + f];
     CHECK(lo <= mid);
     CHECK(mid <= hi);
-    // The median row is recomputed from the same PSF, scenes and seeds: the same figure.
+    // The median row is recomputed from the same model: the same figure.
     constexpr double kSameComputation = 1e-12;  // identical arithmetic, only printing differs
-    CHECK(std::fabs(median["wiener_psnr_db"].get<double>() - mid) <= kSameComputation * mid);
+    CHECK(std::fabs(median[f].get<double>() - mid) <= kSameComputation * mid);
+    // The first mask's gain over the median, with the median's standard error, in words too.
+    const auto& gain = rnd["first_mask_gain"];
+    CHECK(gain["difference_db"].get<double>() ==
+          doctest::Approx(j["masks"][0][f].get<double>() - mid).epsilon(1e-12));
+    CHECK(gain["standard_error_db"].get<double>() >= 0.0);
+    CHECK(gain["standard_error_db"] == rnd["median_standard_error_db"]);
+    CHECK(gain["text"].get<std::string>().find("standard error") != std::string::npos);
     // The median draw is reproducible with generate, as its source line says.
     const std::uint64_t seed = rnd["median_seed"];
     CHECK(seed >= 3);
@@ -253,18 +295,49 @@ TEST_CASE("compare and score print the same analytic and simulated numbers, in t
             const auto &a = js["masks"][i], &b = jc["masks"][i];
             CHECK(a["geometry_hash"] == b["geometry_hash"]);
             for (const std::string metric :
-                 {"analytic_wiener_psnr_db_", "analytic_optimal_wiener_psnr_db_", "wiener_psnr_db_",
-                  "tv_psnr_db_", "wiener_ssim_"}) {
+                 {"analytic_wiener_psnr_db_", "analytic_mmse_psnr_db_", "sim_wiener_psnr_db_",
+                  "sim_tv_psnr_db_", "sim_wiener_ssim_"}) {
                 INFO(metric << key);
                 REQUIRE(b.contains(metric + key));
                 CHECK(a[metric + key].get<double>() == b[metric + key].get<double>());
             }
             CHECK(b["analytic_wiener_psnr_db"] == b["analytic_wiener_psnr_db_" + key]);
-            score_order.push_back({a["wiener_psnr_db_" + key].get<double>(), i});
-            compare_order.push_back({b["wiener_psnr_db"].get<double>(), i});
+            score_order.push_back({a["sim_wiener_psnr_db_" + key].get<double>(), i});
+            compare_order.push_back({b["sim_wiener_psnr_db"].get<double>(), i});
         }
         std::sort(score_order.begin(), score_order.end());
         std::sort(compare_order.begin(), compare_order.end());
         for (int i = 0; i < 3; ++i) CHECK(score_order[i].second == compare_order[i].second);
     }
+}
+
+// compare's paired standard error, recomputed from score's per-scene figures of the same masks
+// under the same settings (another command's output and this test's own arithmetic).
+TEST_CASE("compare: the simulated difference to the first mask is paired over the scenes") {
+    Masks m;
+    const std::string common =
+        " --scenes letter-R,usaf,siemens-star --snr 30 --nsr tuned --seed 1 --tv-iters 5 ";
+    const auto k = run_cli("compare " + m.a + " " + m.b + common + "--json --quiet");
+    const auto s = run_cli("score " + m.a + " " + m.b + common +
+                           "--metrics wiener --tv-lambda 1e-3 --json --quiet");
+    INFO(k.err << s.err);
+    REQUIRE(k.exit_code == 0);
+    REQUIRE(s.exit_code == 0);
+    const auto jc = nlohmann::json::parse(k.out), js = nlohmann::json::parse(s.out);
+    std::vector<double> d;
+    for (const char* scene : {"letter-R", "usaf", "siemens-star"}) {
+        const auto at = [&](int i) {
+            return js["masks"][i]["per_scene"][scene]["sim_wiener_psnr_db_snr30"].get<double>();
+        };
+        d.push_back(at(1) - at(0));
+    }
+    const double mean = (d[0] + d[1] + d[2]) / 3.0;
+    double ss = 0.0;
+    for (double x : d) ss += (x - mean) * (x - mean);
+    const double se = std::sqrt(ss / 2.0) / std::sqrt(3.0);
+    const auto& diff = jc["masks"][1]["difference_to_first"]["sim_wiener_psnr_db"];
+    CHECK(diff["samples"] == 3);
+    CHECK(diff["difference_db"].get<double>() == doctest::Approx(mean).epsilon(1e-12));
+    CHECK(diff["standard_error_db"].get<double>() == doctest::Approx(se).epsilon(1e-12));
+    CHECK(diff["significant"] == (std::fabs(mean) >= 2.0 * se));
 }

@@ -136,7 +136,7 @@ TEST_CASE("depth tunes the Wiener NSR as score does: the same NSR for the same s
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
     const double score_nsr =
-        nlohmann::json::parse(r.out)["masks"][0]["wiener_nsr_ph20"].get<double>();
+        nlohmann::json::parse(r.out)["masks"][0]["sim_wiener_nsr_ph20"].get<double>();
     CHECK(score_nsr != 0.01);
     for (const auto& rec : j) CHECK(rec["wiener_nsr"].get<double>() == score_nsr);
 }

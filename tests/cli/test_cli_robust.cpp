@@ -37,9 +37,10 @@ TEST_CASE("score --robust: robust figures beside the nominal ones; no errors giv
     auto j = nlohmann::json::parse(r.out);
     for (const auto& row : j["masks"]) {
         const double nominal = row["analytic_wiener_psnr_db_snr30"].get<double>();
-        const double robust = row["robust_wiener_psnr_db_snr30"].get<double>();
+        const double robust = row["analytic_robust_wiener_psnr_db_snr30"].get<double>();
         CHECK(robust < nominal);
-        CHECK(row["robust_loss_db_snr30"].get<double>() == doctest::Approx(nominal - robust));
+        CHECK(row["analytic_robust_wiener_loss_db_snr30"].get<double>() ==
+              doctest::Approx(nominal - robust));
     }
     CHECK(j["settings"]["robust"].get<std::string>().find("size +-44 um") != std::string::npos);
     // The table has the R column and says what it is.
@@ -51,11 +52,11 @@ TEST_CASE("score --robust: robust figures beside the nominal ones; no errors giv
     r = run_cli("score " + m.a + " --metrics analytic --snr 30 --robust size=0,missing=0 --json");
     REQUIRE(r.exit_code == 0);
     j = nlohmann::json::parse(r.out);
-    CHECK(!j["masks"][0].contains("robust_wiener_psnr_db_snr30"));  // no errors: no column
+    CHECK(!j["masks"][0].contains("analytic_robust_wiener_psnr_db_snr30"));  // no errors: no column
     r = run_cli("score " + m.a + " --metrics analytic --snr 30 --robust jitter=1e-17 --json");
     REQUIRE(r.exit_code == 0);
     j = nlohmann::json::parse(r.out);
-    CHECK(j["masks"][0]["robust_wiener_psnr_db_snr30"].get<double>() ==
+    CHECK(j["masks"][0]["analytic_robust_wiener_psnr_db_snr30"].get<double>() ==
           doctest::Approx(j["masks"][0]["analytic_wiener_psnr_db_snr30"].get<double>())
               .epsilon(1e-9));
 }
@@ -118,8 +119,8 @@ TEST_CASE("compare --robust: the robust column is score's number; report written
     REQUIRE(s.exit_code == 0);
     const auto js = nlohmann::json::parse(s.out);
     for (int i = 0; i < 2; ++i) {
-        CHECK(jc["masks"][i]["robust_wiener_psnr_db_snr30"].get<double>() ==
-              js["masks"][i]["robust_wiener_psnr_db_snr30"].get<double>());
+        CHECK(jc["masks"][i]["analytic_robust_wiener_psnr_db_snr30"].get<double>() ==
+              js["masks"][i]["analytic_robust_wiener_psnr_db_snr30"].get<double>());
     }
     CHECK(fs::exists(m.dir / "r-1.svg"));
     const auto t = run_cli("compare " + m.a + " --scenes letter-R --tv-iters 5 --snr 30" + kErrors);
@@ -134,8 +135,8 @@ TEST_CASE("search --objective robust: recorded, repeatable byte for byte, and vi
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
     const auto j = nlohmann::json::parse(r.out);
-    const double robust = j["ranked"][0]["robust_wiener_psnr_db"].get<double>();
-    CHECK(robust < j["ranked"][0]["analytic_wiener_psnr_db"].get<double>());
+    const double robust = j["ranked"][0]["analytic_robust_mmse_psnr_db"].get<double>();
+    CHECK(robust < j["ranked"][0]["analytic_mmse_psnr_db"].get<double>());
     CHECK(j["ranked"][0]["objective"].get<double>() == doctest::Approx(-robust));
     const auto config = nlohmann::json::parse(slurp(dir.path / "a" / "search.config.json"));
     CHECK(config["objective"] == "robust");
@@ -156,5 +157,5 @@ TEST_CASE("search --objective robust: recorded, repeatable byte for byte, and vi
         run_cli(std::string("search") + kSearch + kErrors + "--json -o " + (dir / "n"));
     REQUIRE(nominal.exit_code == 0);
     const auto jn = nlohmann::json::parse(nominal.out);
-    CHECK(jn["ranked"][0].contains("robust_wiener_psnr_db"));  // reported beside the nominal
+    CHECK(jn["ranked"][0].contains("analytic_robust_mmse_psnr_db"));  // reported beside the nominal
 }

@@ -260,7 +260,7 @@ TEST_CASE("search --objective robust-filter: optimises the robust design, writes
     CAPTURE(r.err);
     REQUIRE(r.exit_code == 0);
     const auto j = nlohmann::json::parse(r.out);
-    const double figure = j["ranked"][0]["robust_wiener_psnr_db"].get<double>();
+    const double figure = j["ranked"][0]["analytic_robust_filter_psnr_db"].get<double>();
     CHECK(j["ranked"][0]["objective"].get<double>() == doctest::Approx(-figure));
     CHECK(j["robust_decoder"]["nsr_map"] ==
           (dir.path / "a" / "rank-1.robust-decoder" / "robust-nsr.npy").string());

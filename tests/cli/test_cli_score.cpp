@@ -33,13 +33,13 @@ TEST_CASE("score --json: one row per mask with self-describing keys") {
               "integrated_sidelobe_level", "peak_to_sidelobe_ratio", "min_abs_pattern_spectrum",
               "spectral_flatness", "open_fraction", "light_gain", "otf_condition_number",
               "analytic_wiener_psnr_db_snr20", "analytic_wiener_psnr_db_snr30",
-              "analytic_optimal_wiener_psnr_db_snr30", "wiener_psnr_db_snr20", "wiener_ssim_snr30",
+              "analytic_mmse_psnr_db_snr30", "sim_wiener_psnr_db_snr20", "sim_wiener_ssim_snr30",
               "per_scene"}) {
             INFO(key);
             CHECK(row.contains(key));
         }
         CHECK(row["peak_autocorrelation"] == 5);
-        CHECK(!row.contains("tv_psnr_db_snr20"));  // not requested, not run
+        CHECK(!row.contains("sim_tv_psnr_db_snr20"));  // not requested, not run
         CHECK(row["per_scene"].contains("letter-R"));
         // More SNR, better expected reconstruction.
         CHECK(row["analytic_wiener_psnr_db_snr30"].get<double>() >
@@ -61,7 +61,7 @@ TEST_CASE("score prints a table, and --explain names what was skipped") {
     const auto parsed = nlohmann::json::parse(j.out);
     REQUIRE(parsed.contains("explain"));
     CHECK(parsed["explain"].dump().find("analytic: skipped") != std::string::npos);
-    CHECK(!parsed["masks"][0].contains("wiener_psnr_db_snr30"));
+    CHECK(!parsed["masks"][0].contains("sim_wiener_psnr_db_snr30"));
 }
 
 TEST_CASE("score: TV runs only when asked, with tuned weights") {
@@ -72,8 +72,8 @@ TEST_CASE("score: TV runs only when asked, with tuned weights") {
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
     const auto row = nlohmann::json::parse(r.out)["masks"][0];
-    CHECK(row.contains("tv_psnr_db_snr25"));
-    CHECK(row.contains("wiener_nsr_snr25"));
+    CHECK(row.contains("sim_tv_psnr_db_snr25"));
+    CHECK(row.contains("sim_wiener_nsr_snr25"));
     CHECK(!row.contains("max_sidelobe"));
 }
 
@@ -101,13 +101,14 @@ TEST_CASE("score --photons: the photon model's levels as columns, sensor flags a
     const auto j = nlohmann::json::parse(r.out);
     const auto& row = j["masks"][0];
     for (const char* key : {"analytic_wiener_psnr_db_ph10", "analytic_wiener_psnr_db_ph1000",
-                            "wiener_psnr_db_ph10", "wiener_psnr_db_ph1000"})
+                            "sim_wiener_psnr_db_ph10", "sim_wiener_psnr_db_ph1000"})
         CHECK_MESSAGE(row.contains(key), key);
     CHECK(!row.contains("analytic_wiener_psnr_db_snr30"));
     // More light, less shot noise: higher PSNR, analytic and simulated.
     CHECK(row["analytic_wiener_psnr_db_ph1000"].get<double>() >
           row["analytic_wiener_psnr_db_ph10"].get<double>());
-    CHECK(row["wiener_psnr_db_ph1000"].get<double>() > row["wiener_psnr_db_ph10"].get<double>());
+    CHECK(row["sim_wiener_psnr_db_ph1000"].get<double>() >
+          row["sim_wiener_psnr_db_ph10"].get<double>());
     const auto& noise = j["settings"]["noise"];
     REQUIRE(noise.size() == 2);
     CHECK(noise[0]["kind"] == "photon");

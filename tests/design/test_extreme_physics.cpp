@@ -45,7 +45,7 @@ void check_report_has_no_nan(const Camera& c) {
     const OpticsReport r = compute_optics(c, {16, 20, 2, 2});
     for (double v :
          {r.magnification, r.magnification_at_u, r.geometric_spot_m, r.geometric_spot_at_u_m,
-          r.pixels_per_cell, r.pixels_per_cell_at_u, r.pinhole_for_integer_pixels_m,
+          r.pixels_per_cell_at_inf, r.pixels_per_cell_at_u, r.pinhole_for_integer_pixels_m,
           r.optimum_pinhole_m, r.fresnel_number, r.effective_distance_m,
           r.effective_distance_at_u_m, r.fresnel_number_with_lens, r.fresnel_number_with_lens_at_u,
           r.lsi_min_object_distance_m, r.lsi_mismatch_px, r.periods_on_sensor_cols,

@@ -29,7 +29,7 @@ def test_compare_with_baselines_equals_cli(cli, tmp_path, mask7):
     assert [r["kind"] for r in out["masks"]] == [m["kind"] for m in j["masks"]]
     for row, cli_row in zip(out["masks"], j["masks"]):
         assert row["geometry_hash"] == cli_row["geometry_hash"]
-        assert row["wiener_psnr_db"] == cli_row["wiener_psnr_db"]
+        assert row["sim_wiener_psnr_db"] == cli_row["sim_wiener_psnr_db"]
 
 
 def test_compare_refuses_two_cameras(mask7):

@@ -9,7 +9,8 @@ import pinmask
 
 ROW_KEYS = ["max_sidelobe", "peak_to_sidelobe_ratio", "min_abs_pattern_spectrum",
             "spectral_flatness", "otf_condition_number", "analytic_wiener_psnr_db",
-            "wiener_psnr_db", "wiener_ssim", "wiener_nsr", "tv_psnr_db", "tv_ssim", "tv_lambda",
+            "analytic_mmse_psnr_db", "analytic_wiener_nsr", "sim_wiener_psnr_db",
+            "sim_wiener_ssim", "sim_wiener_nsr", "sim_tv_psnr_db", "sim_tv_ssim", "sim_tv_lambda",
             "spacing_violations", "geometry_hash", "period_px"]
 
 
@@ -29,7 +30,7 @@ def test_metrics_equal_cli_compare(cli, tmp_path, mask7):
     # score and compare share one metric set and one prior: the same analytic figures.
     s = json.loads(cli.run("score", "m.mask.json", "--nsr", "tuned", "--json").stdout)["masks"][0]
     assert row["analytic_wiener_psnr_db"] == s["analytic_wiener_psnr_db_snr30"]
-    assert row["analytic_optimal_wiener_psnr_db"] == s["analytic_optimal_wiener_psnr_db_snr30"]
+    assert row["analytic_mmse_psnr_db"] == s["analytic_mmse_psnr_db_snr30"]
 
 
 def test_sidelobes_and_autocorrelation_against_numpy(mask7):
@@ -95,10 +96,10 @@ def test_score_numbers_from_library_metrics(cli, tmp_path, mask7, cli_noise, noi
     fixed = pinmask.analytic_error(mask7, filter="nsr:0.01", **prior, **noise)
     optimal = pinmask.analytic_error(mask7, filter="optimal", **prior, **noise)
     assert fixed["psnr_db"] == j[f"analytic_wiener_psnr_db_{key}"]
-    assert optimal["psnr_db"] == j[f"analytic_optimal_wiener_psnr_db_{key}"]
+    assert optimal["psnr_db"] == j[f"analytic_mmse_psnr_db_{key}"]
     q = pinmask.simulated_quality(mask7, scenes=["letter-R", "usaf", "natural"], weight="0.01",
                                   seed=0, **noise)
-    assert q["mean_psnr_db"] == j[f"wiener_psnr_db_{key}"]
-    assert q["mean_ssim"] == j[f"wiener_ssim_{key}"]
+    assert q["mean_psnr_db"] == j[f"sim_wiener_psnr_db_{key}"]
+    assert q["mean_ssim"] == j[f"sim_wiener_ssim_{key}"]
     for name, (psnr, ssim) in q["scenes"].items():
-        assert psnr == j["per_scene"][name][f"wiener_psnr_db_{key}"]
+        assert psnr == j["per_scene"][name][f"sim_wiener_psnr_db_{key}"]

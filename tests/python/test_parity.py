@@ -32,11 +32,11 @@ PHOTON_CLI = ["--photons", "200,2000", "--read-noise", "3", "--dark-current", "0
 PHOTON_PY = dict(photons=[200, 2000], read_noise=3, dark_current=0.5, full_well=30000, bits=12,
                  optical_density=3)
 PHOTON_KEYS = ["ph200", "ph2000"]
-LEVEL_FIELDS = ["analytic_wiener_psnr_db_", "analytic_optimal_wiener_psnr_db_",
-                "analytic_wiener_nsr_", "wiener_psnr_db_", "wiener_ssim_", "wiener_nsr_",
-                "tv_psnr_db_", "tv_ssim_", "tv_lambda_"]
-ROW_KEYS = ["analytic_wiener_psnr_db", "wiener_psnr_db",
-            "wiener_ssim", "tv_psnr_db", "tv_ssim", "geometry_hash"]
+LEVEL_FIELDS = ["analytic_wiener_psnr_db_", "analytic_mmse_psnr_db_",
+                "analytic_wiener_nsr_", "sim_wiener_psnr_db_", "sim_wiener_ssim_",
+                "sim_wiener_nsr_", "sim_tv_psnr_db_", "sim_tv_ssim_", "sim_tv_lambda_"]
+ROW_KEYS = ["analytic_mmse_psnr_db", "analytic_wiener_psnr_db", "sim_wiener_psnr_db",
+            "sim_wiener_ssim", "sim_tv_psnr_db", "sim_tv_ssim", "geometry_hash"]
 
 
 def same(a, b):
@@ -72,7 +72,7 @@ def test_metrics_photon_model_equals_cli_compare(cli, tmp_path, mask7):
     row = pinmask.metrics(str(tmp_path / "m.mask.json"), tv_iterations=20, **PHOTON_PY)
     assert_rows_equal(row, j["masks"][0], PHOTON_KEYS)
     # The unsuffixed figures are the first level's.
-    assert row["wiener_psnr_db"] == row["wiener_psnr_db_ph200"]
+    assert row["sim_wiener_psnr_db"] == row["sim_wiener_psnr_db_ph200"]
     # More photons, less noise: a better analytic figure.
     assert row["analytic_wiener_psnr_db_ph2000"] > row["analytic_wiener_psnr_db_ph200"]
 

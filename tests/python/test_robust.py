@@ -15,14 +15,15 @@ def test_metrics_robust_equals_cli_score(cli, tmp_path, mask7):
     row = pinmask.metrics(str(tmp_path / "m.mask.json"), snr_db=40, tv_iterations=20,
                           robust=ERRORS)
     # The same closed form, prior and filter: the same numbers, to the last bit.
-    assert row["robust_wiener_psnr_db_snr40"] == s["robust_wiener_psnr_db_snr40"]
-    assert row["robust_loss_db_snr40"] == s["robust_loss_db_snr40"]
-    assert row["robust_wiener_psnr_db"] == s["robust_wiener_psnr_db_snr40"]
+    assert row["analytic_robust_wiener_psnr_db_snr40"] == s["analytic_robust_wiener_psnr_db_snr40"]
+    assert row["analytic_robust_wiener_loss_db_snr40"] == s["analytic_robust_wiener_loss_db_snr40"]
+    assert row["analytic_robust_wiener_psnr_db"] == s["analytic_robust_wiener_psnr_db_snr40"]
     assert row["analytic_wiener_psnr_db_snr40"] == s["analytic_wiener_psnr_db_snr40"]
     # The errors cost PSNR, and the loss is nominal minus robust.
-    assert 0 < row["robust_loss_db_snr40"] < 5
-    assert row["robust_loss_db_snr40"] == pytest.approx(
-        row["analytic_wiener_psnr_db_snr40"] - row["robust_wiener_psnr_db_snr40"], abs=1e-9)
+    assert 0 < row["analytic_robust_wiener_loss_db_snr40"] < 5
+    assert row["analytic_robust_wiener_loss_db_snr40"] == pytest.approx(
+        row["analytic_wiener_psnr_db_snr40"] - row["analytic_robust_wiener_psnr_db_snr40"],
+        abs=1e-9)
     # Without robust no robust key (as score without --robust).
     plain = pinmask.metrics(mask7, snr_db=40, tv_iterations=20)
     assert not any(k.startswith("robust") for k in plain)
@@ -51,8 +52,8 @@ def test_search_robust_objective_same_masks_as_cli(cli, tmp_path):
         assert m.to_json() == (tmp_path / "runs" / f"rank-{i + 1}.mask.json").read_text()
         t = c  # every term is a key of the ranked row
         # The robust objective: -robust PSNR; the nominal figure beside it is higher.
-        assert c["objective"] == pytest.approx(-t["robust_wiener_psnr_db"], abs=1e-12)
-        assert t["analytic_wiener_psnr_db"] > t["robust_wiener_psnr_db"]
+        assert c["objective"] == pytest.approx(-t["analytic_robust_mmse_psnr_db"], abs=1e-12)
+        assert t["analytic_mmse_psnr_db"] > t["analytic_robust_mmse_psnr_db"]
     with pytest.raises(ValueError, match="^objective = robust: needs robust with"):
         pinmask.search(evals=10, objective="robust")  # needs robust errors
     with pytest.raises(ValueError, match="^objective = best"):
@@ -103,8 +104,9 @@ def test_compare_robust_equals_cli(cli, tmp_path, mask7):
                           robust=spec, tv_iterations=10)
     assert len(out["masks"]) == 2
     for row, cli_row in zip(out["masks"], j["masks"]):
-        for key in ["robust_wiener_psnr_db_snr30", "robust_loss_db_snr30"]:
+        for key in ["analytic_robust_wiener_psnr_db_snr30", "analytic_robust_wiener_loss_db_snr30"]:
             assert row[key] == cli_row[key], key
-        assert row["robust_loss_db_snr30"] > 0  # the errors cost
+        assert row["analytic_robust_wiener_loss_db_snr30"] > 0  # the errors cost
     single = pinmask.metrics(str(tmp_path / "m.mask.json"), robust=spec, tv_iterations=10)
-    assert single["robust_wiener_psnr_db"] == out["masks"][0]["robust_wiener_psnr_db_snr30"]
+    assert single["analytic_robust_wiener_psnr_db"] == \
+        out["masks"][0]["analytic_robust_wiener_psnr_db_snr30"]

@@ -43,9 +43,9 @@ def test_score_defaults_are_the_commands(cli, tmp_path, mask7):
     assert [level["key"] for level in p["settings"]["noise"]] == ["snr20", "snr30", "snr40"]
     assert p["settings"]["scenes"] == c["settings"]["scenes"]
     cr, pr = c["masks"][0], p["masks"][0]
-    for k in ("wiener_psnr_db_snr30", "analytic_wiener_psnr_db_snr40", "max_sidelobe"):
+    for k in ("sim_wiener_psnr_db_snr30", "analytic_wiener_psnr_db_snr40", "max_sidelobe"):
         assert pr[k] == cr[k], k
-    assert "tv_psnr_db_snr30" not in pr  # tv is opt-in, as in the command
+    assert "sim_tv_psnr_db_snr30" not in pr  # tv is opt-in, as in the command
 
 
 def test_score_sidelobes_against_numpy(mask7):
@@ -73,7 +73,7 @@ def test_score_robust_decoder_equals_the_files(cli, tmp_path, mask7):
     rd = row["robust_decoder"]
     assert np.array_equal(rd["psf"], np.load(tmp_path / "rd" / "robust-psf.npy"))
     assert np.array_equal(rd["nsr_map"], np.load(tmp_path / "rd" / "robust-nsr.npy"))
-    assert "robust_loss_db_snr25" in row
+    assert "analytic_robust_wiener_loss_db_snr25" in row
     # decode reads them as it reads the files
     out = pinmask.decode(np.ones(rd["psf"].shape), psf=rd["psf"], nsr_map=rd["nsr_map"],
                          model="cyclic")  # one period of the mask (an array has no sidecar)

@@ -22,7 +22,26 @@ def test_search_same_masks_as_cli(cli, tmp_path):
     assert objectives == sorted(objectives)
     # The bound on any 20-pinhole pattern is above every candidate's analytic PSNR.
     for c in r["ranked"]:
-        assert c["upper_bound_psnr_db"] >= c["analytic_wiener_psnr_db"]
+        assert c["upper_bound_analytic_mmse_psnr_db"] >= c["analytic_mmse_psnr_db"]
+
+
+@pytest.mark.parametrize("noise, figure", [(dict(snr_db=30), "analytic_mmse_psnr_db"),
+                                           (dict(photons=5), "analytic_wiener_psnr_db")])
+def test_search_figure_is_compares_lead_figure(noise, figure):
+    # The figure the search optimised has one name in its result, its masks and compare, and
+    # compare computes the same value for the same mask, prior and noise.
+    r = pinmask.search(grid=8, holes=5, tiles=1, pixels_per_cell=4, evals=200, seed=2, top=1,
+                       prior_scenes=2, rerank_scenes=[], **noise)
+    assert r["objective_figure"] == figure
+    c, mask = r["ranked"][0], r["masks"][0]
+    assert mask.objective_figure == figure
+    assert '"objective_figure": "%s"' % figure in mask.to_json()
+    out = pinmask.compare([mask], prior_scenes=2, scenes=["letter-R"], tv_iterations=5,
+                          **noise)
+    assert out["lead_figure"]["name"] == figure
+    assert abs(out["masks"][0][figure] - c[figure]) <= 1e-9
+    assert abs(out["masks"][0]["analytic_mmse_psnr_db"] - c["analytic_mmse_psnr_db"]) \
+        <= 1e-9
 
 
 def test_search_keep_out_and_rerank_same_masks_as_cli(cli, tmp_path):

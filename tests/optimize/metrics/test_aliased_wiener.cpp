@@ -146,7 +146,7 @@ TEST_CASE("MaskObjective::evaluate reads the aliased tables: same PSNR as terms(
         if (state.is_legal_move(j, to)) state.move(j, to);
         // PSNR error = 10 log10(1 + rel MSE error) / ... <= 4.4 kTabulationTol dB.
         CHECK(std::fabs(objective.evaluate(state) +
-                        objective.terms(state).at("analytic_wiener_psnr_db")) <=
+                        objective.terms(state).at("analytic_mmse_psnr_db")) <=
               5.0 * kTabulationTol);
     }
 }

@@ -61,16 +61,38 @@ TEST_CASE("objective terms equal the metrics computed independently") {
     const SidelobeMetrics side = sidelobe_metrics_from_spectrum(spectrum);
     const PatternSpectrumMetrics spec = pattern_spectrum_metrics(spectrum);
     const double psnr = m->evaluate(spectrum, filter).psnr_db;
-    CHECK_CLOSE(t.at("max_sidelobe"), side.max_sidelobe / 5.0, kSameQuantityTol);
-    CHECK_CLOSE(t.at("sidelobe_energy"), side.integrated_sidelobe_level, kSameQuantityTol);
-    CHECK_CLOSE(t.at("min_spectrum"), -spec.min_abs_pattern_spectrum / std::sqrt(5.0),
+    // Reported under score's names and normalisation (the weighted terms divide by K, sqrt(K)).
+    CHECK(t.at("max_sidelobe") == side.max_sidelobe);
+    CHECK_CLOSE(t.at("integrated_sidelobe_level"), side.integrated_sidelobe_level,
                 kSameQuantityTol);
-    CHECK_CLOSE(t.at("analytic_wiener_psnr_db"), psnr, kSameQuantityTol);
+    CHECK_CLOSE(t.at("min_abs_pattern_spectrum"), spec.min_abs_pattern_spectrum, kSameQuantityTol);
+    CHECK(t.count("sidelobe_energy") == 0);
+    CHECK(t.count("min_spectrum") == 0);
+    // The optimal filter's figure under its name; no Wiener figure without a Wiener filter.
+    CHECK_CLOSE(t.at("analytic_mmse_psnr_db"), psnr, kSameQuantityTol);
+    CHECK(t.count("analytic_wiener_psnr_db") == 0);
+    CHECK(analytic_figure_name(filter) == "analytic_mmse_psnr_db");
     const double expected = -psnr + 2.0 * side.max_sidelobe / 5.0 +
                             0.5 * side.integrated_sidelobe_level -
                             3.0 * spec.min_abs_pattern_spectrum / std::sqrt(5.0);
     CHECK_CLOSE(objective.evaluate(s), expected, kTabulatedTol);
     CHECK_CLOSE(t.at("objective"), expected, kTabulatedTol);
+}
+
+TEST_CASE("a tuned-NSR search reports both filters' figures under their names") {
+    const PatternState s(small_pattern());
+    const WienerFilterSpec tuned{WienerFilterKind::kTunedNsr, 0.0};
+    const auto m = model();
+    const auto t = MaskObjective(ObjectiveWeights{}, m, tuned).terms(s);
+    const ComplexPlane spectrum = pattern_spectrum(small_pattern());
+    const AnalyticError e = m->evaluate_tuned_nsr(spectrum);
+    CHECK_CLOSE(t.at("analytic_wiener_psnr_db"), e.psnr_db, kSameQuantityTol);
+    CHECK_CLOSE(t.at("analytic_wiener_nsr"), e.nsr, kSameQuantityTol);
+    CHECK_CLOSE(t.at("analytic_mmse_psnr_db"),
+                m->evaluate(spectrum, {WienerFilterKind::kOptimal, 0.0}).psnr_db, kSameQuantityTol);
+    // No fixed NSR beats the per-frequency optimal filter.
+    CHECK(t.at("analytic_mmse_psnr_db") >= t.at("analytic_wiener_psnr_db"));
+    CHECK(analytic_figure_name(tuned) == "analytic_wiener_psnr_db");
 }
 
 TEST_CASE("weights are validated") {

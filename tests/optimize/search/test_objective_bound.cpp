@@ -328,7 +328,7 @@ TEST_CASE("search reports the bound per K, above every best mask") {
         const int k = static_cast<int>(r.mask.pattern.pinholes.size());
         CAPTURE(k);
         REQUIRE(std::isfinite(r.upper_bound_psnr_db));
-        CHECK(r.mask.provenance.scores.at("analytic_wiener_psnr_db") <=
+        CHECK(r.mask.provenance.scores.at("analytic_mmse_psnr_db") <=
               r.upper_bound_psnr_db + kBoundTolDb);
     }
     for (const RankedMask& r : s.ranked) CHECK(std::isfinite(r.upper_bound_psnr_db));

@@ -59,7 +59,8 @@ constexpr double kLossRatioBar = 0.5;
 // The figures of one robust-design measurement (search seed `seed`), simulated (q*) and closed
 // form (a*): the nominal design (n), the robust design (r), the nominal mask with the tuned fixed
 // NSR (t), `search --objective robust`'s mask with it (o), the nominal mask decoded with the
-// expected fabricated PSF (x); the robust_wiener_psnr_db scores of the two pipeline searches.
+// expected fabricated PSF (x); the analytic_robust_mmse_psnr_db scores of the two pipeline
+// searches.
 struct RobustDesignFigures {
     FabricatedQuality qn, qr, qt, qo, qx;
     RobustError an, ar, at, ao, ax;
@@ -138,9 +139,9 @@ RobustDesignFigures measure_robust_design(std::uint64_t seed) {
 
     RobustDesignFigures f{qn, qr, qt, qo, qx, an, ar, at, ao, ax};
     f.nominal_search_score =
-        nominal_search.ranked.front().mask.provenance.scores.at("robust_wiener_psnr_db");
+        nominal_search.ranked.front().mask.provenance.scores.at("analytic_robust_mmse_psnr_db");
     f.robust_objective_score =
-        robust_objective.ranked.front().mask.provenance.scores.at("robust_wiener_psnr_db");
+        robust_objective.ranked.front().mask.provenance.scores.at("analytic_robust_mmse_psnr_db");
     const double loss_n = f.loss(qn), loss_r = f.loss(qr), loss_t = f.loss(qt);
     MESSAGE("search seed " << seed);
     MESSAGE("nominal design (optimal filter): "
