@@ -25,7 +25,7 @@ import bench_peers_linear as bpl
 # The tau the comparison chose per problem (docs/benchmarks.md's table).
 ADMM_TAU = {"DiffuserCam": 3.3e-6, "exact PSF": 1e-5, "lensless": 1e-6}
 ADMM_ITERS = 1000
-LAMBDAS = (3e-5, 1e-4, 3e-4)  # pinmask's lambda relative to the capture's peak
+LAMBDAS = (3e-5, 1e-4, 3e-4, 1e-3, 3e-3)  # pinmask's lambda relative to the capture's peak
 PENALTY_SCALE = 1e4
 ANISO_ITERS = 1000
 PINMASK_COUNTS = (300, 700)
