@@ -114,7 +114,10 @@ def make_problem(name, psf, photo, seed):
     scene = photograph(photo, 2 * r - 1, 2 * c - 1)
     capture = render(psf, scene, SNR_DB, seed)
     truth = scene[r - 1 - r // 2:r - 1 - r // 2 + r, c - 1 - c // 2:c - 1 - c // 2 + c]
-    return {"name": name, "psf": psf, "capture": capture, "truth": truth}
+    # The noise's standard deviation, as render drew it (for the data term's noise level).
+    clean = render(psf, scene, math.inf, seed)
+    sigma = np.sqrt(np.mean(clean ** 2)) * 10 ** (-SNR_DB / 20)
+    return {"name": name, "psf": psf, "capture": capture, "truth": truth, "sigma": sigma}
 
 
 def problems(pinmask, only=None):

@@ -61,3 +61,21 @@ def test_without_a_checkout_the_comparison_is_skipped_with_a_message():
     lines = []
     assert bpl.run(None, None, 10, out=lines.append) == []
     assert len(lines) == 1 and "--lenslesspicam" in lines[0] and "skipped" in lines[0]
+
+
+def test_problem_sigma_is_the_rendered_noise():
+    # make_problem's sigma is the standard deviation of the noise render added: capture minus the
+    # noiseless valid convolution (by its definition) has that spread.
+    rng = np.random.default_rng(6)
+    psf = rng.random((4, 5))
+    scene = rng.random((2 * 60 - 1, 2 * 70 - 1))
+    orig = bpl.photograph
+    bpl.photograph = lambda name, rows, cols: scene
+    try:
+        prob = bpl.make_problem("t", np.pad(psf, ((28, 28), (32, 33))), "unused", 7)
+    finally:
+        bpl.photograph = orig
+    noise = prob["capture"] - direct_valid(scene, np.pad(psf, ((28, 28), (32, 33))))
+    clean_rms = np.sqrt(np.mean((prob["capture"] - noise) ** 2))
+    assert abs(prob["sigma"] - clean_rms * 10 ** (-bpl.SNR_DB / 20)) < 1e-12 * clean_rms
+    assert abs(noise.std() / prob["sigma"] - 1.0) < 0.05  # 4200 samples: 2 % standard error
