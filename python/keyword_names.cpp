@@ -37,6 +37,9 @@ constexpr auto kKeywords = std::to_array<std::pair<std::string_view, std::string
     {"tolerance", "tol"},
     {"weights.analytic_wiener", "w_analytic"},
     {"weights.depth", "depth_weight"},
+    {"weights.max_sidelobe", "w_max_sidelobe"},
+    {"weights.min_spectrum", "w_min_spectrum"},
+    {"weights.sidelobe_energy", "w_sidelobe_energy"},
     {"wiener_nsr", "nsr"},
     {"window", "size"},
 });
