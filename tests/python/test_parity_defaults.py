@@ -7,8 +7,8 @@ holds to the runtime signatures). A flag's keyword is read from the two spelling
 command line's field -> flag (cli/options/flag_names.cpp) and the module's field -> keyword
 (python/keyword_names.cpp; a field without a row is its own keyword).
 
-Refusals: one out-of-range value per setting, given as the flag (exit 2, the flag named) and as the
-keyword (ValueError naming the keyword).
+Refusals: one out-of-range value per setting, given as the flag (exit 2, the flag named, nothing
+written) and as the keyword (ValueError naming the keyword, no flag).
 """
 import ast
 import re
@@ -120,3 +120,86 @@ def test_every_flag_default_is_the_keyword_default(cli, command):
     if command != "sweep":  # sweep's flags (a config file, an output folder) have no defaults
         assert compared >= 1, command
 
+
+
+MASK = SOURCE_DIR / "fuzz" / "corpus" / "mask_json" / "small.mask.json"
+CAPTURE = SOURCE_DIR / "fuzz" / "corpus" / "image" / "cap.npy"  # simulated from MASK
+
+DEPTHMAP = "depthmap {capture} --mask {mask} --from 1m --to 2m -o {out}"
+SWEEP = dict(from_m=1.0, to_m=2.0)
+
+# One out-of-range value per setting: (command and its other arguments, flag, value, function,
+# its other keywords, keyword, value). {mask}, {capture}, {out} are filled in per run.
+REFUSALS = [
+    ("design", "--lsi-tolerance", "-1", "optics", {}, "lsi_tolerance_px", -1.0),
+    ("design", "--grid", "0", "optics", {}, "grid", 0),
+    ("design", "--holes", "-1", "optics", {}, "holes", -1),
+    ("design", "--tiles", "0", "optics", {}, "tiles", 0),
+    ("decode {capture} --mask {mask} -o {out}.tiff --method tv", "--iters", "0", "decode",
+     dict(method="tv"), "iters", 0),
+    ("decode {capture} --mask {mask} -o {out}.tiff --method tv", "--tol", "-1", "decode",
+     dict(method="tv"), "tol", -1.0),
+    ("decode {capture} --mask {mask} -o {out}.tiff", "--nsr", "-1", "decode", {}, "nsr", -1.0),
+    ("decode {capture} --mask {mask} -o {out}.tiff", "--downsample", "13", "decode", {},
+     "downsample", 13),
+    ("decode {capture} --mask {mask} -o {out}.tiff", "--threads", "1025", "decode", {},
+     "threads", 1025),
+    (DEPTHMAP, "--window", "4", "depthmap", SWEEP, "window", 4),
+    (DEPTHMAP + " --window 5", "--steps", "1", "depthmap", dict(SWEEP, window=5), "steps", 1),
+    (DEPTHMAP + " --window 5", "--smooth", "-1", "depthmap", dict(SWEEP, window=5), "smooth", -1.0),
+    (DEPTHMAP + " --window 5", "--nsr", "0", "depthmap", dict(SWEEP, window=5), "nsr", 0.0),
+    ("calibrate {capture} --mask {mask} -o {out}", "--max-rotation", "-1", "calibrate", {},
+     "max_rotation_deg", -1.0),
+    ("calibrate {capture} --mask {mask} -o {out}", "--pitch-range", "0.5", "calibrate", {},
+     "pitch_range", 0.5),
+    ("calibrate {capture} --mask {mask} -o {out}", "--threshold", "0", "calibrate", {},
+     "threshold_sigmas", 0.0),
+    ("score {mask}", "--seeds", "0", "score", {}, "noise_seeds", 0),
+    ("score {mask}", "--tv-iters", "0", "score", {}, "tv_iterations", 0),
+    ("score {mask}", "--nsr", "-1", "score", {}, "nsr", "-1"),
+    ("score {mask}", "--prior-scenes", "0", "score", {}, "prior_scenes", 0),
+    ("compare {mask}", "--tv-iters", "0", "compare", {}, "tv_iterations", 0),
+    ("compare {mask}", "--nsr", "0", "compare", {}, "nsr", "0"),
+    ("compare {mask} --baselines", "--baseline-count", "0", "compare", dict(baselines=True),
+     "baseline_count", 0),
+    ("export {mask} -o {out}", "--layer", "-1", "export_mask", {}, "layer", -1),
+    ("export {mask} -o {out}", "--margin", "-1mm", "export_mask", {}, "margin", "-1mm"),
+    ("export {mask} -o {out}", "--shape", "hexagon", "export_mask", {}, "shape", "hexagon"),
+    ("check {mask}", "--max-xor-um2", "-1", "check", {}, "max_xor_um2", -1.0),
+]
+
+
+def positional(function, tmp_path):
+    """The function's leading arguments for MASK and CAPTURE."""
+    mask = pinmask.load_mask(MASK)
+    capture = np.load(CAPTURE)
+    return {"optics": (), "decode": (capture,), "depthmap": (capture,),
+            "calibrate": (capture, mask), "score": ([mask],), "compare": ([mask],),
+            "export_mask": (mask, str(tmp_path / "py-export")), "check": (mask,)}[function]
+
+
+@pytest.mark.parametrize("row", REFUSALS, ids=lambda r: f"{r[0].split()[0]}{r[1]}={r[2]}")
+def test_the_same_value_is_refused_in_each_face_s_own_words(cli, tmp_path, row):
+    command, flag, value, function, others, keyword, py_value = row
+    args = command.format(mask=MASK, capture=CAPTURE, out=tmp_path / "out").split()
+    message = cli.run(*args, flag, value, expect=2).stderr
+    assert flag in message, message
+    assert not (tmp_path / "out").exists() and not list(tmp_path.glob("out.*"))
+    if function == "decode" or function == "depthmap":
+        others = dict(others, mask=pinmask.load_mask(MASK))
+    with pytest.raises(ValueError) as e:
+        getattr(pinmask, function)(*positional(function, tmp_path), **others,
+                                   **{keyword: py_value})
+    assert keyword in str(e.value), str(e.value)
+    assert "--" not in str(e.value), str(e.value)
+
+
+def test_threads_zero_is_all_cores_in_both_faces(cli, tmp_path):
+    """0 is decode's default thread count (all cores) in the library and the module, so the
+    command line takes it as a value too."""
+    cli.run("decode", CAPTURE, "--mask", MASK, "--threads", "0", "-o", tmp_path / "d.tiff")
+    cli.run("simulate", MASK, "--threads", "0", "-o", tmp_path / "s.tiff")
+    mask = pinmask.load_mask(MASK)
+    capture = np.load(CAPTURE)
+    all_cores = pinmask.decode(capture, mask=mask, threads=0)["image"]
+    assert np.array_equal(all_cores, pinmask.decode(capture, mask=mask, threads=1)["image"])
