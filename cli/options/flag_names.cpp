@@ -1,17 +1,17 @@
 #include "cli/options/flag_names.hpp"
 
-#include <algorithm>
 #include <array>
 #include <utility>
 
 #include "core/errors/field_names.hpp"
+#include "core/errors/spelling_table.hpp"
 
 namespace pinmask::cli {
 namespace {
 
 // field name (as the libraries write it) -> flag. Sorted by field name (a test checks it, and
 // that every field a library names has a row).
-constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_view>>({
+constexpr auto kFlags = std::to_array<SpellingRow>({
     {"allow_spectral_zeros", "--allow-spectral-zeros"},
     {"allow_violations", "--allow-violations"},
     {"attempts", "--attempts"},
@@ -156,11 +156,9 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
 }  // namespace
 
 std::optional<std::string> flag_spelling(std::string_view field) {
-    const auto it =
-        std::lower_bound(kFlags.begin(), kFlags.end(), field,
-                         [](const auto& row, std::string_view f) { return row.first < f; });
-    if (it == kFlags.end() || it->first != field) return std::nullopt;
-    return std::string(it->second);
+    const std::optional<std::string_view> flag = find_spelling(kFlags, field);
+    if (!flag) return std::nullopt;
+    return std::string(*flag);
 }
 
 std::string spell_flags(std::string_view message) { return spell_fields(message, &flag_spelling); }
