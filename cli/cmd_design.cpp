@@ -32,8 +32,8 @@ namespace {
 struct DesignOptions {
     CameraOptions camera;
     GeometryOptions geometry;
-    std::string kernel = "auto";
-    double lsi_tolerance_px = 1.0;
+    std::string kernel = DesignRequest{}.kernel;
+    double lsi_tolerance_px = DesignRequest{}.lsi_tolerance_px;
     std::optional<int> pixels_per_cell;   // solve the pinhole for N whole pixels per cell at u
     std::string solve;                    // "pinhole": N = the nearest whole number at u
     std::string save_camera;              // write the resolved (solved) camera here

@@ -113,7 +113,8 @@ void setup(CLI::App& app, int& exit_code) {
     c->add_option("--vendor", f->vendor,
                   "Preset: chrome-photomask | film-plotter | gerber-film | laser-cutter (formats, "
                   "units, tone, side, frame, grid...; flags win), or rules only: film | chrome | "
-                  "none (default). `--vendor list` prints them");
+                  "none. `--vendor list` prints them")
+        ->capture_default_str();
     c->add_option("--units", f->units,
                   "DXF drawing unit and GDSII/OASIS user unit: um | mm | in (default um; Gerber "
                   "is always mm, SVG/PDF physical)");
@@ -132,18 +133,21 @@ void setup(CLI::App& app, int& exit_code) {
                   "(default polygon)");
     c->add_option("--hierarchy", f->hierarchy,
                   "GDSII: flat | cells (one pinhole cell, SREF per pinhole, AREF over repeating "
-                  "tiles) | auto (cells above 10000 pinholes; default)");
+                  "tiles) | auto (cells above 10000 pinholes)")
+        ->capture_default_str();
     c->add_flag("--marks", f->marks, "Alignment crosses beyond the outline's corners");
     c->add_flag("--label", f->label, "Label: id, hash, scale, tone, emulsion side, unit");
     c->add_option("--label-id", f->label_id, "Id on the label (default: the stem)");
     c->add_option("--frame", f->frame, "Opaque frame around the active area (length; 0)");
-    c->add_option("--shape", f->shape, "Pinhole shape: square | circle | polygon (square)");
+    c->add_option("--shape", f->shape, "Pinhole shape: square | circle | polygon")
+        ->capture_default_str();
     c->add_option("--sides", f->sides, "Sides of --shape polygon (default 8)");
     c->add_option("--hole-side", f->hole_side,
                   "Square side or circle diameter (length > 0; default the cell pitch)");
     c->add_option("--kerf", f->kerf, "Laser kerf: holes drawn this much smaller (length; 0)");
     c->add_option("--chord-tol", f->chord_tol,
-                  "Circles: largest sagitta of the polygon (length), or auto (default)");
+                  "Circles: largest sagitta of the polygon (length), or auto")
+        ->capture_default_str();
     c->add_option("--grid", f->grid,
                   "Manufacturing grid, whole nm (length; default the vendor's, else 1nm). The "
                   "pinhole side is snapped to it once: every cell edge is a whole number of "
@@ -154,14 +158,14 @@ void setup(CLI::App& app, int& exit_code) {
                   "The shop's minimum space between polygons (length, e.g. 2um; >= 1 nm), over "
                   "the vendor's rules");
     c->add_option("--max-vertices", f->max_vertices, "Vertex limit per polygon (default 199)");
-    c->add_option("--layer", f->layer, "GDSII/OASIS layer (default 1)");
-    c->add_option("--datatype", f->datatype, "GDSII/OASIS datatype (default 0)");
-    c->add_option("--dxf-layer", f->dxf_layer, "DXF layer name (default PINMASK)");
+    c->add_option("--layer", f->layer, "GDSII/OASIS layer")->capture_default_str();
+    c->add_option("--datatype", f->datatype, "GDSII/OASIS datatype")->capture_default_str();
+    c->add_option("--dxf-layer", f->dxf_layer, "DXF layer name")->capture_default_str();
     c->add_option("--dpi", f->dpi,
                   "Raster resolution in dots per inch (PNG default 2400, tiff1 default 25400)");
     c->add_option("--max-snap-error", f->max_snap_error,
                   "tiff1: refuse when snapping to the plotter grid moves an edge more (length)");
-    c->add_option("--margin", f->margin, "PDF page margin (length; default 10mm)");
+    c->add_option("--margin", f->margin, "PDF page margin (length)")->capture_default_str();
     c->add_flag("--require-drc-clean", f->require_drc_clean,
                 "Fail (exit 1, no files) when the design-rule check finds violations: the "
                 "default, kept for scripts that give it");

@@ -176,11 +176,12 @@ void setup(CLI::App& app) {
                     "read noise, same exposure); photon model only");
     cmd->add_option("-o,--output", o->output, "Capture file: .tif/.tiff, .png or .npy")->required();
     cmd->add_option("--threads", o->threads,
-                    "FFTW threads for transforms of >= 512 x 512 (default: all cores). With "
+                    "FFTW threads for transforms of >= 512 x 512 (0: all cores). With "
                     "PINMASK_WISDOM=off the bytes do not depend on it; with the wisdom cache "
                     "FFTW measures a plan per thread count, and a float32 convolution can differ "
                     "in the last bits between counts")
-        ->check(CLI::Range(1, 1024));
+        ->check(CLI::Range(0, 1024))
+        ->capture_default_str();
     cmd->add_option("--precision", o->precision,
                     "auto (float32 from a 256 x 256 convolution grid) | single | double: the "
                     "convolution's precision (noise is always drawn in double)")

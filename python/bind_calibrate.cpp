@@ -66,9 +66,11 @@ void bind_calibrate(py::module_& m) {
             return as_result(j);
         },
         py::arg("point"), py::arg("mask"), py::arg("dark") = py::none(),
-        py::arg("max_rotation_deg") = 5.0, py::arg("pitch_range") = 0.05,
-        py::arg("threshold_sigmas") = 6.0, py::arg("saturation_level") = py::none(),
-        py::arg("pixel_binning") = 1,
+        py::arg("max_rotation_deg") = CalibrateRequest{}.options.max_rotation_deg,
+        py::arg("pitch_range") = CalibrateRequest{}.options.pitch_range,
+        py::arg("threshold_sigmas") = CalibrateRequest{}.options.threshold_sigmas,
+        py::arg("saturation_level") = py::none(),
+        py::arg("pixel_binning") = CalibrateRequest{}.options.pixel_binning,
         R"(Fits the mask's forward model to a point-source capture, as `pinmask calibrate`:
 rotation (degrees, counter-clockwise on screen with rows running down: scipy.ndimage.rotate's
 sense), pitches, position, pinhole side, per-pinhole gains and missing pinholes, leak (optical

@@ -200,6 +200,7 @@ CropSpec crop_arg(const py::handle& crop) {
 }  // namespace
 
 void bind_decode(py::module_& m) {
+    const DecodeRequest defaults;  // the keywords' defaults (tests/python/test_parity_defaults.py)
     m.def(
         "decode",
         [](const py::handle& capture, const py::handle& psf, const py::handle& mask,
@@ -430,14 +431,19 @@ void bind_decode(py::module_& m) {
             return as_result(d);
         },
         py::arg("capture"), py::arg("psf") = py::none(), py::arg("mask") = py::none(),
-        py::arg("method") = "auto", py::arg("model") = "auto", py::arg("nsr") = py::none(),
-        py::arg("lambda_") = py::none(), py::arg("regulariser") = py::none(),
-        py::arg("eps") = py::none(), py::arg("noise_sigma") = py::none(),
-        py::arg("nonneg") = py::none(), py::arg("iters") = py::none(), py::arg("tol") = py::none(),
-        py::arg("crop") = "auto", py::arg("dark") = py::none(), py::arg("background") = "auto",
-        py::arg("downsample") = 0, py::arg("normalize") = "none", py::arg("precision") = "auto",
-        py::arg("threads") = 0, py::arg("progress") = py::none(), py::arg("poll_s") = 0.05,
-        py::arg("nsr_map") = py::none(), py::arg("object_distance") = py::none(),
+        py::arg("method") = defaults.method_auto ? "auto" : decode_method_name(defaults.method),
+        py::arg("model") = "auto", py::arg("nsr") = py::none(), py::arg("lambda_") = py::none(),
+        py::arg("regulariser") = py::none(), py::arg("eps") = py::none(),
+        py::arg("noise_sigma") = py::none(), py::arg("nonneg") = py::none(),
+        py::arg("iters") = py::none(), py::arg("tol") = py::none(), py::arg("crop") = "auto",
+        py::arg("dark") = py::none(),
+        py::arg("background") = background_mode_name(defaults.background.mode),
+        py::arg("downsample") = defaults.downsample,
+        py::arg("normalize") = normalize_mode_name(defaults.normalize),
+        py::arg("precision") = precision_name(defaults.precision),
+        py::arg("threads") = defaults.threads, py::arg("progress") = py::none(),
+        py::arg("poll_s") = 0.05, py::arg("nsr_map") = py::none(),
+        py::arg("object_distance") = py::none(),
         R"(Decodes a capture as `pinmask decode` does: dark frame subtracted, background,
 downsampling, period check, crop, normalisation, each channel decoded (colour channels in
 parallel). Same names, defaults, refusals and numbers as the CLI's flags.

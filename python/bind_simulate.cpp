@@ -104,7 +104,7 @@ void bind_simulate(py::module_& m) {
            bool allow_violations, const std::string& precision, const std::string& geometry,
            const py::object& object_distance, std::optional<std::pair<int, int>> size,
            int threads) {
-            // As `simulate --threads` (1..1024) and decode(threads=): 0, all cores.
+            // As `simulate --threads` and decode(threads=): 0..1024, 0 all cores.
             if (threads < 0 || threads > 1024)
                 throw invalid_field(field_ref("threads"), std::to_string(threads),
                                     "must be 1..1024 (0: all cores)");

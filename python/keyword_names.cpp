@@ -1,17 +1,17 @@
 #include "python/keyword_names.hpp"
 
-#include <algorithm>
 #include <array>
 #include <utility>
 
 #include "core/errors/field_names.hpp"
+#include "core/errors/spelling_table.hpp"
 
 namespace pinmask::py_names {
 namespace {
 
 // field name (as the libraries write it) -> keyword argument. Sorted by field name (a test
 // checks it). A field whose keyword is its own name needs no row.
-constexpr auto kKeywords = std::to_array<std::pair<std::string_view, std::string_view>>({
+constexpr auto kKeywords = std::to_array<SpellingRow>({
     {"chord_tolerance_m", "chord_tol"},
     {"cost_window", "window"},
     {"depth_from_m", "depth_from"},
@@ -37,6 +37,9 @@ constexpr auto kKeywords = std::to_array<std::pair<std::string_view, std::string
     {"tolerance", "tol"},
     {"weights.analytic_wiener", "w_analytic"},
     {"weights.depth", "depth_weight"},
+    {"weights.max_sidelobe", "w_max_sidelobe"},
+    {"weights.min_spectrum", "w_min_spectrum"},
+    {"weights.sidelobe_energy", "w_sidelobe_energy"},
     {"wiener_nsr", "nsr"},
     {"window", "size"},
 });
@@ -44,11 +47,7 @@ constexpr auto kKeywords = std::to_array<std::pair<std::string_view, std::string
 }  // namespace
 
 std::optional<std::string> keyword_spelling(std::string_view field) {
-    const auto it =
-        std::lower_bound(kKeywords.begin(), kKeywords.end(), field,
-                         [](const auto& row, std::string_view f) { return row.first < f; });
-    if (it == kKeywords.end() || it->first != field) return std::string(field);
-    return std::string(it->second);
+    return std::string(find_spelling(kKeywords, field).value_or(field));
 }
 
 std::string spell_keywords(std::string_view message) {

@@ -8,7 +8,7 @@
 
 namespace pinmask::py_names {
 
-// "iters" for "iterations", ...; nullopt for a field no keyword sets.
+// "iters" for "iterations", ...; a field without a row in the table is its own keyword.
 std::optional<std::string> keyword_spelling(std::string_view field);
 
 // `message` as Python says it: every field reference spelled as its keyword.

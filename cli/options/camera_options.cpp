@@ -157,22 +157,12 @@ void add_geometry_options(CLI::App& cmd, GeometryOptions& o, std::string* holes_
 }
 
 PatternGeometry resolve_geometry(const GeometryOptions& g) {
-    if (g.grid < 1 || g.grid > kMaxGrid) {
-        throw invalid_field("--grid", std::to_string(g.grid),
-                            "must be between 1 and " + std::to_string(kMaxGrid));
-    }
-    const long long cells = static_cast<long long>(g.grid) * g.grid;
-    if (g.holes < 0 || g.holes > cells) {
-        throw invalid_field("--holes", std::to_string(g.holes),
-                            "must be between 0 and n^2 = " + std::to_string(cells));
-    }
-    if (g.tiles < 1 || g.tiles > kMaxTiles)
-        throw invalid_field("--tiles", std::to_string(g.tiles),
-                            "must be between 1 and " + std::to_string(kMaxTiles));
+    const PatternGeometry geometry{g.grid, g.holes, g.tiles, g.tiles};
+    validate(geometry);  // design/optics/optics: the ranges, in the library's words for both faces
     if (!std::isfinite(g.spacing) || g.spacing < 0) {
         throw invalid_field("--spacing", std::to_string(g.spacing), "must be finite and >= 0");
     }
-    return {g.grid, g.holes, g.tiles, g.tiles};
+    return geometry;
 }
 
 }  // namespace pinmask::cli

@@ -9,6 +9,7 @@
 
 #include "design/optics/camera.hpp"
 #include "design/optics/optics.hpp"
+#include "design/pattern/pattern.hpp"
 
 namespace pinmask::cli {
 
@@ -46,14 +47,16 @@ struct CameraInput {
 };
 std::vector<CameraInput> camera_inputs(const CameraOptions& o, const Camera& resolved);
 
+// The defaults are the library's: a default PatternGeometry's (the paper's 16, 20, 2) and a
+// default Pattern's spacing rule (2 cells).
 struct GeometryOptions {
-    int grid = 16;         // n
-    int holes = 20;        // K
-    int tiles = 2;         // tiles per side
-    double spacing = 2.0;  // min centre spacing, cells
+    int grid = PatternGeometry{}.n;
+    int holes = PatternGeometry{}.holes;           // K
+    int tiles = PatternGeometry{}.tiles_rows;      // tiles per side
+    double spacing = Pattern{}.min_spacing_cells;  // min centre spacing, cells
 };
 
-// --grid, --holes, --tiles, --spacing (defaults: the paper's 16, 20, 2, 2.0). With
+// --grid, --holes, --tiles, --spacing. With
 // `holes_range` (search), --holes is read as text into it instead: K or a range A..B
 // (optimize/search/search_pipeline parse_holes_range), o.holes unused.
 void add_geometry_options(CLI::App& cmd, GeometryOptions& o, std::string* holes_range = nullptr);

@@ -181,12 +181,13 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeCommand& o) {
         ->capture_default_str();
     cmd.add_option(
            "--threads", q.threads,
-           "FFTW threads for transforms of >= 512 x 512 (default: all cores); channels "
+           "FFTW threads for transforms of >= 512 x 512 (0: all cores); channels "
            "always decode in parallel. With PINMASK_WISDOM=off the bytes do not depend on it; with "
            "the wisdom cache FFTW measures a plan per thread count, and float32 results "
            "can differ in the last bits (about 1e-6 relative) between counts (recorded "
            "in the config)")
-        ->check(CLI::Range(1, 1024));
+        ->check(CLI::Range(0, 1024))
+        ->capture_default_str();
     cmd.add_option("-o,--output", o.output,
                    "Output image: .png (scaled, see below), .tif/.tiff or .npy (raw float32)")
         ->required();

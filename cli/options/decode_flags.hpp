@@ -13,6 +13,7 @@
 
 #include "decode/capture/decode_request.hpp"
 #include "decode/solvers/decode_method.hpp"
+#include "decode/solvers/decode_modes.hpp"
 
 namespace pinmask::cli {
 
@@ -28,19 +29,21 @@ struct DecodeCommand {
     // The library's settings: the numbers are parsed into it directly; the flags given as text
     // (below) are parsed into it by resolve_method and resolve_request.
     DecodeRequest request;
-    // The text flags as given; OUT.config.json and the stats repeat them as given.
-    std::string crop = "auto";    // auto | center | centre | none | X,Y
-    std::string method = "auto";  // auto | decode/solvers/decode_method.hpp names
-    std::string model = "auto";   // auto | cyclic | linear
-    std::string regulariser = "identity";
-    std::string background = "auto";  // auto | none | corner | VALUE
-    bool no_nonneg = false;           // --no-nonneg: tv, tvqc without x >= 0 (not auto)
-    std::string normalize = "none";   // none | l2
-    std::string precision = "auto";   // auto | single | double
-    std::string nsr = "auto";         // a number | auto
-    std::string lambda = "auto";      // a number | auto
-    std::string bayer = "sum2x2";     // camera RAW demosaic: sum2x2 | green | r | b
-    bool bayer_given = false;         // --bayer given: also applied to a mosaic in an image file
+    // The text flags as given; OUT.config.json and the stats repeat them as given. Their
+    // defaults are the request's: its names, or "auto" where it reads the value from the data.
+    std::string crop = "auto";  // auto | center | centre | none | X,Y
+    std::string method =        // auto | decode_method.hpp names
+        request.method_auto ? "auto" : decode_method_name(request.method);
+    std::string model = "auto";                                       // auto | cyclic | linear
+    std::string regulariser = regulariser_name(request.regulariser);  // identity | gradient
+    std::string background = background_mode_name(request.background.mode);  // or none, VALUE
+    bool no_nonneg = false;  // --no-nonneg: tv, tvqc without x >= 0 (not auto)
+    std::string normalize = normalize_mode_name(request.normalize);  // none | l2
+    std::string precision = precision_name(request.precision);       // auto | single | double
+    std::string nsr = "auto";                                        // a number | auto
+    std::string lambda = "auto";                                     // a number | auto
+    std::string bayer = "sum2x2";  // camera RAW demosaic: sum2x2 | green | r | b
+    bool bayer_given = false;      // --bayer given: also applied to a mosaic in an image file
     // The command's output settings.
     std::string output;
     int bits = 8;

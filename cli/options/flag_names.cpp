@@ -1,17 +1,17 @@
 #include "cli/options/flag_names.hpp"
 
-#include <algorithm>
 #include <array>
 #include <utility>
 
 #include "core/errors/field_names.hpp"
+#include "core/errors/spelling_table.hpp"
 
 namespace pinmask::cli {
 namespace {
 
 // field name (as the libraries write it) -> flag. Sorted by field name (a test checks it, and
 // that every field a library names has a row).
-constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_view>>({
+constexpr auto kFlags = std::to_array<SpellingRow>({
     {"allow_spectral_zeros", "--allow-spectral-zeros"},
     {"allow_violations", "--allow-violations"},
     {"attempts", "--attempts"},
@@ -39,6 +39,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"distances_m", "--from/--to"},
     {"downsample", "--downsample"},
     {"draw", "--draw"},
+    {"dxf_layer", "--dxf-layer"},
     {"emulsion", "--emulsion"},
     {"energy_fraction", "--energy"},
     {"eps", "--eps"},
@@ -52,6 +53,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"from_m", "--from"},
     {"full_sensor", "--full-sensor"},
     {"full_well", "--full-well"},
+    {"geometry", "--geometry"},
     {"grid", "--grid"},
     {"grid_m", "--grid"},
     {"hierarchy", "--hierarchy"},
@@ -66,6 +68,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"kernel_path", "--kernel-path"},
     {"lambda", "--lambda"},
     {"layer", "--layer"},
+    {"list", "--list"},
     {"lsi_tolerance_px", "--lsi-tolerance"},
     {"margin", "--margin"},
     {"margin_m", "--margin"},
@@ -75,6 +78,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"max_snap_error", "--max-snap-error"},
     {"max_snap_error_nm", "--max-snap-error"},
     {"max_vertices", "--max-vertices"},
+    {"max_xor_um2", "--max-xor-um2"},
     {"method", "--method"},
     {"metrics", "--metrics"},
     {"migrate_every", "--migrate-every"},
@@ -89,6 +93,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"noise_seeds", "--seeds"},
     {"noise_sigma", "--noise-sigma"},
     {"nonnegative", "--nonneg"},
+    {"normalize", "--normalize"},
     {"nsr", "--nsr"},
     {"nsr_map", "--nsr-map"},
     {"object_distance_m", "--object-distance"},
@@ -115,6 +120,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"resume", "--resume"},
     {"robust", "--robust"},
     {"saturation_level", "--saturation"},
+    {"scene", "--scene"},
     {"scenes", "--scenes"},
     {"seed", "--seed"},
     {"sensor", "--sensor"},
@@ -125,6 +131,7 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
     {"solve", "--solve"},
     {"spacing", "--spacing"},
     {"steps", "--steps"},
+    {"strategy", "--strategy"},
     {"threads", "--threads"},
     {"threshold_sigmas", "--threshold"},
     {"tiff_dpi", "--dpi"},
@@ -151,11 +158,9 @@ constexpr auto kFlags = std::to_array<std::pair<std::string_view, std::string_vi
 }  // namespace
 
 std::optional<std::string> flag_spelling(std::string_view field) {
-    const auto it =
-        std::lower_bound(kFlags.begin(), kFlags.end(), field,
-                         [](const auto& row, std::string_view f) { return row.first < f; });
-    if (it == kFlags.end() || it->first != field) return std::nullopt;
-    return std::string(it->second);
+    const std::optional<std::string_view> flag = find_spelling(kFlags, field);
+    if (!flag) return std::nullopt;
+    return std::string(*flag);
 }
 
 std::string spell_flags(std::string_view message) { return spell_fields(message, &flag_spelling); }

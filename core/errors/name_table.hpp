@@ -47,6 +47,15 @@ const char* name_of(const NameTable<E, N>& table, E value, std::string_view what
                         "is not one of " + names_of(table));
 }
 
+// The name of `value`, or `fallback` for a value outside the table (where a name is only
+// reported, never parsed back).
+template <class E, std::size_t N>
+const char* name_or(const NameTable<E, N>& table, E value, const char* fallback) {
+    for (const auto& entry : table)
+        if (entry.first == value) return entry.second;
+    return fallback;
+}
+
 // The value named `name`; InvalidInput naming `field`, the value and the names otherwise.
 template <class E, std::size_t N>
 E parse_name(const NameTable<E, N>& table, std::string_view name, std::string_view field) {

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <string>
 
+#include "core/errors/name_table.hpp"
 #include "core/files/input_file.hpp"
 #include "core/files/output_set.hpp"
 #include "core/image/image_io_detail.hpp"
@@ -91,16 +92,11 @@ int bytes_of(SampleFormat format) {
 }
 
 const char* format_name(SampleFormat format) {
-    switch (format) {
-        case SampleFormat::kUint8:
-            return "uint8";
-        case SampleFormat::kUint16:
-            return "uint16";
-        case SampleFormat::kFloat32:
-            return "float32";
-        default:
-            return "float64";
-    }
+    static constexpr NameTable<SampleFormat, 4> kNames{{{SampleFormat::kUint8, "uint8"},
+                                                        {SampleFormat::kUint16, "uint16"},
+                                                        {SampleFormat::kFloat32, "float32"},
+                                                        {SampleFormat::kFloat64, "float64"}}};
+    return name_or(kNames, format, "float64");
 }
 
 std::uint32_t quantise(double v, double full_scale) {

@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/errors/name_table.hpp"
 #include "core/files/atomic_file.hpp"
 #include "core/image/image_io.hpp"
 #include "core/image/image_io_detail.hpp"
@@ -211,16 +212,11 @@ void encode_le(unsigned char* p, SampleFormat f, double v) {
 }
 
 const char* descr_of(SampleFormat f) {
-    switch (f) {
-        case SampleFormat::kUint8:
-            return "|u1";
-        case SampleFormat::kUint16:
-            return "<u2";
-        case SampleFormat::kFloat32:
-            return "<f4";
-        default:
-            return "<f8";
-    }
+    static constexpr NameTable<SampleFormat, 4> kDescr{{{SampleFormat::kUint8, "|u1"},
+                                                        {SampleFormat::kUint16, "<u2"},
+                                                        {SampleFormat::kFloat32, "<f4"},
+                                                        {SampleFormat::kFloat64, "<f8"}}};
+    return name_or(kDescr, f, "<f8");
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/errors/error.hpp"
+#include "core/errors/name_table.hpp"
 #include "core/files/isolated_call.hpp"
 #include "core/image/image_io_detail.hpp"
 
@@ -25,16 +26,11 @@ BayerMode parse_bayer_mode(const std::string& name, const std::string& field) {
 }
 
 std::string bayer_mode_name(BayerMode mode) {
-    switch (mode) {
-        case BayerMode::kSum2x2:
-            return "sum2x2";
-        case BayerMode::kGreen:
-            return "green";
-        case BayerMode::kRed:
-            return "r";
-        default:
-            return "b";
-    }
+    static constexpr NameTable<BayerMode, 4> kNames{{{BayerMode::kSum2x2, "sum2x2"},
+                                                     {BayerMode::kGreen, "green"},
+                                                     {BayerMode::kRed, "r"},
+                                                     {BayerMode::kBlue, "b"}}};
+    return name_or(kNames, mode, "b");
 }
 
 bool is_raw_extension(const fs::path& path) {

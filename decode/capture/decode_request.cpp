@@ -5,31 +5,23 @@
 
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
+#include "core/errors/name_table.hpp"
 #include "decode/solvers/decode_method.hpp"
 #include "decode/solvers/decode_modes.hpp"
 
 namespace pinmask {
 
 const char* method_parameter_field(MethodParameter p) {
-    switch (p) {
-        case MethodParameter::kNsr:
-            return "nsr";
-        case MethodParameter::kLambda:
-            return "lambda";
-        case MethodParameter::kRegulariser:
-            return "regulariser";
-        case MethodParameter::kEps:
-            return "eps";
-        case MethodParameter::kNoiseSigma:
-            return "noise_sigma";
-        case MethodParameter::kNonnegative:
-            return "nonnegative";
-        case MethodParameter::kIterations:
-            return "iterations";
-        case MethodParameter::kTolerance:
-            return "tolerance";
-    }
-    return "?";
+    static constexpr NameTable<MethodParameter, 8> kFields{
+        {{MethodParameter::kNsr, "nsr"},
+         {MethodParameter::kLambda, "lambda"},
+         {MethodParameter::kRegulariser, "regulariser"},
+         {MethodParameter::kEps, "eps"},
+         {MethodParameter::kNoiseSigma, "noise_sigma"},
+         {MethodParameter::kNonnegative, "nonnegative"},
+         {MethodParameter::kIterations, "iterations"},
+         {MethodParameter::kTolerance, "tolerance"}}};
+    return name_or(kFields, p, "?");
 }
 
 bool write_method_parameter(DecodeOptions& d, MethodParameter p, const DecodeRequest& r) {

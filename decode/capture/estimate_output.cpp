@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/errors/error.hpp"
+#include "core/errors/name_table.hpp"
 #include "core/image/image_io.hpp"
 
 namespace pinmask {
@@ -36,15 +37,10 @@ OutputKind output_kind(const std::filesystem::path& path) {
 }
 
 const char* output_kind_name(OutputKind kind) {
-    switch (kind) {
-        case OutputKind::kPng:
-            return "png";
-        case OutputKind::kTiff:
-            return "tiff-float32";
-        case OutputKind::kNpy:
-            return "npy-float32";
-    }
-    return "?";
+    static constexpr NameTable<OutputKind, 3> kNames{{{OutputKind::kPng, "png"},
+                                                      {OutputKind::kTiff, "tiff-float32"},
+                                                      {OutputKind::kNpy, "npy-float32"}}};
+    return name_or(kNames, kind, "?");
 }
 
 ScaledImage scale_for_png(const Image& estimate, std::optional<double> scale) {

@@ -30,18 +30,20 @@ PatternGeometry geometry_of(const Pattern& p) {
 
 void validate(const PatternGeometry& g) {
     if (g.n < 1 || g.n > kMaxGrid) {
-        throw invalid_field("grid n", std::to_string(g.n),
+        throw invalid_field(field_ref("grid"), std::to_string(g.n),
                             "must be between 1 and " + std::to_string(kMaxGrid));
     }
     const long long cells = static_cast<long long>(g.n) * g.n;
     if (g.holes < 0 || g.holes > cells) {
-        throw invalid_field("holes", std::to_string(g.holes),
+        throw invalid_field(field_ref("holes"), std::to_string(g.holes),
                             "must be between 0 and n^2 = " + std::to_string(cells));
     }
     if (g.tiles_rows < 1 || g.tiles_cols < 1 || g.tiles_rows > kMaxTiles ||
         g.tiles_cols > kMaxTiles) {
-        throw invalid_field("tiles",
-                            std::to_string(g.tiles_rows) + "x" + std::to_string(g.tiles_cols),
+        throw invalid_field(field_ref("tiles"),
+                            g.tiles_rows == g.tiles_cols
+                                ? std::to_string(g.tiles_rows)
+                                : std::to_string(g.tiles_rows) + "x" + std::to_string(g.tiles_cols),
                             "must be between 1 and " + std::to_string(kMaxTiles) +
                                 " per side (as a mask file's pattern.tiles)");
     }

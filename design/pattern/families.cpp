@@ -2,32 +2,33 @@
 
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
+#include "core/errors/name_table.hpp"
 #include "design/pattern/random_sparse.hpp"
 
 namespace pinmask {
 
+namespace {
+
+constexpr NameTable<Family, 3> kFamilyNames{
+    {{Family::kRandom, "random"}, {Family::kPaper, "paper"}, {Family::kMura, "mura"}}};
+
+}  // namespace
+
 Family parse_family(std::string_view name) {
-    if (name == "random") return Family::kRandom;
-    if (name == "paper") return Family::kPaper;
-    if (name == "mura") return Family::kMura;
+    for (const auto& [family, spelled] : kFamilyNames)
+        if (name == spelled) return family;
     if (name == "ura") {
         throw invalid_field(field_ref("family"), "ura",
                             "not available: a URA is rectangular (p x (p + 2) cells) and pinmask "
                             "patterns are square n x n tori; use mura (square, prime p = 4m + 1)");
     }
     throw invalid_field(field_ref("family"), std::string(name),
-                        "must be one of random, paper, mura");
+                        "must be one of " + names_of(kFamilyNames, ", "));
 }
 
 std::string family_name(Family family) {
-    switch (family) {
-        case Family::kRandom:
-            return "random";
-        case Family::kPaper:
-            return "paper";
-        case Family::kMura:
-            return "mura";
-    }
+    for (const auto& [value, spelled] : kFamilyNames)
+        if (value == family) return spelled;
     return "random";
 }
 

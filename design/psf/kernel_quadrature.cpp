@@ -8,6 +8,24 @@
 
 namespace pinmask {
 
+namespace {
+
+// P_m(x) and its derivative P_m'(x) (|x| < 1), by the three-term recurrence from P_0 = 1, P_1 = x.
+struct Legendre {
+    double p, dp;
+};
+Legendre legendre(int m, double x) {
+    double p0 = 1.0, p1 = x;
+    for (int k = 2; k <= m; ++k) {
+        const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+    }
+    return {p1, m * (x * p1 - p0) / (x * x - 1.0)};
+}
+
+}  // namespace
+
 GaussLegendreRule gauss_legendre(int m) {
     if (m < 1 || m > 1000) {
         throw invalid_field("Gauss-Legendre order", std::to_string(m), "must be in 1..1000");
@@ -18,29 +36,14 @@ GaussLegendreRule gauss_legendre(int m) {
     for (int i = 0; i < (m + 1) / 2; ++i) {
         // Tricomi's approximation of the i-th largest root, then Newton on P_m.
         double x = std::cos(std::numbers::pi * (i + 0.75) / (m + 0.5));
-        double dp = 1.0;
         for (int it = 0; it < 100; ++it) {
-            double p0 = 1.0, p1 = x;  // P_0, P_1
-            for (int k = 2; k <= m; ++k) {
-                const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
-                p0 = p1;
-                p1 = p2;
-            }
-            const double pm = p1, pm1 = p0;  // P_m, P_{m-1}
-            dp = m * (x * pm - pm1) / (x * x - 1.0);
-            const double dx = pm / dp;
+            const Legendre at = legendre(m, x);
+            const double dx = at.p / at.dp;
             x -= dx;
             if (std::fabs(dx) <= 1e-16 * std::max(1.0, std::fabs(x))) break;
         }
-        // Recompute the derivative at the converged root for the weight.
-        double p0 = 1.0, p1 = x;
-        for (int k = 2; k <= m; ++k) {
-            const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
-            p0 = p1;
-            p1 = p2;
-        }
-        const double pm = p1, pm1 = p0;  // P_m, P_{m-1}
-        dp = m * (x * pm - pm1) / (x * x - 1.0);
+        // The derivative at the converged root, for the weight.
+        const double dp = legendre(m, x).dp;
         const double w = 2.0 / ((1.0 - x * x) * dp * dp);
         rule.nodes[m - 1 - i] = x;
         rule.nodes[i] = -x;

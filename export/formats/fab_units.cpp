@@ -1,62 +1,59 @@
 #include "export/formats/fab_units.hpp"
 
+#include <array>
+
 #include "core/errors/error.hpp"
 
 namespace pinmask {
+namespace {
+
+// Everything a unit stands for, one row each: the only place a unit's facts are written.
+struct FabUnitRow {
+    FabUnit unit;
+    const char* name;   // as --units spells it
+    const char* words;  // in sentences
+    std::int64_t nm;    // nanometres per drawing unit
+    int insunits;       // the DXF $INSUNITS code
+};
+constexpr std::array<FabUnitRow, 3> kUnits{{
+    {FabUnit::kMicrometre, "um", "micrometres", 1000, 13},
+    {FabUnit::kMillimetre, "mm", "millimetres", 1000000, 4},
+    {FabUnit::kInch, "in", "inches", 25400000, 1},
+}};
+
+// The unit's row; nullptr for a value no enumerator has.
+const FabUnitRow* row_of(FabUnit unit) {
+    for (const FabUnitRow& row : kUnits)
+        if (row.unit == unit) return &row;
+    return nullptr;
+}
+
+}  // namespace
 
 FabUnit parse_fab_unit(std::string_view text, std::string_view field) {
-    if (text == "um") return FabUnit::kMicrometre;
-    if (text == "mm") return FabUnit::kMillimetre;
-    if (text == "in") return FabUnit::kInch;
+    for (const FabUnitRow& row : kUnits)
+        if (text == row.name) return row.unit;
     throw invalid_field(std::string(field), std::string(text), "must be one of um, mm, in");
 }
 
 std::string fab_unit_name(FabUnit unit) {
-    switch (unit) {
-        case FabUnit::kMicrometre:
-            return "um";
-        case FabUnit::kMillimetre:
-            return "mm";
-        case FabUnit::kInch:
-            return "in";
-    }
-    return "?";
+    const FabUnitRow* row = row_of(unit);
+    return row ? row->name : "?";
 }
 
 std::string fab_unit_words(FabUnit unit) {
-    switch (unit) {
-        case FabUnit::kMicrometre:
-            return "micrometres";
-        case FabUnit::kMillimetre:
-            return "millimetres";
-        case FabUnit::kInch:
-            return "inches";
-    }
-    return "?";
+    const FabUnitRow* row = row_of(unit);
+    return row ? row->words : "?";
 }
 
 std::int64_t nm_per_unit(FabUnit unit) {
-    switch (unit) {
-        case FabUnit::kMicrometre:
-            return 1000;
-        case FabUnit::kMillimetre:
-            return 1000000;
-        case FabUnit::kInch:
-            return 25400000;
-    }
-    return 1;
+    const FabUnitRow* row = row_of(unit);
+    return row ? row->nm : 1;
 }
 
 int dxf_insunits(FabUnit unit) {
-    switch (unit) {
-        case FabUnit::kMicrometre:
-            return 13;
-        case FabUnit::kMillimetre:
-            return 4;
-        case FabUnit::kInch:
-            return 1;
-    }
-    return 0;
+    const FabUnitRow* row = row_of(unit);
+    return row ? row->insunits : 0;
 }
 
 }  // namespace pinmask

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "core/errors/error.hpp"
+#include "core/errors/name_table.hpp"
 #include "core/files/output_set.hpp"
 #include "core/limits/resource_limits.hpp"
 #include "export/formats/dxf_reader.hpp"
@@ -16,40 +17,28 @@
 
 namespace pinmask {
 
+namespace {
+
+// In the order the refusal lists them.
+constexpr NameTable<FabFormat, 8> kFabFormatNames{{{FabFormat::kSvg, "svg"},
+                                                   {FabFormat::kPdf, "pdf"},
+                                                   {FabFormat::kGds, "gds"},
+                                                   {FabFormat::kOasis, "oasis"},
+                                                   {FabFormat::kDxf, "dxf"},
+                                                   {FabFormat::kGerber, "gerber"},
+                                                   {FabFormat::kPng, "png"},
+                                                   {FabFormat::kTiff1, "tiff1"}}};
+
+}  // namespace
+
 FabFormat parse_fab_format(std::string_view name, std::string_view field) {
-    if (name == "svg") return FabFormat::kSvg;
-    if (name == "pdf") return FabFormat::kPdf;
-    if (name == "gds") return FabFormat::kGds;
-    if (name == "dxf") return FabFormat::kDxf;
-    if (name == "gerber") return FabFormat::kGerber;
-    if (name == "png") return FabFormat::kPng;
-    if (name == "oasis") return FabFormat::kOasis;
-    if (name == "tiff1") return FabFormat::kTiff1;
+    for (const auto& [format, spelled] : kFabFormatNames)
+        if (name == spelled) return format;
     throw invalid_field(std::string(field), std::string(name),
-                        "must be one of svg, pdf, gds, oasis, dxf, gerber, png, tiff1");
+                        "must be one of " + names_of(kFabFormatNames, ", "));
 }
 
-std::string fab_format_name(FabFormat f) {
-    switch (f) {
-        case FabFormat::kSvg:
-            return "svg";
-        case FabFormat::kPdf:
-            return "pdf";
-        case FabFormat::kGds:
-            return "gds";
-        case FabFormat::kDxf:
-            return "dxf";
-        case FabFormat::kGerber:
-            return "gerber";
-        case FabFormat::kPng:
-            return "png";
-        case FabFormat::kOasis:
-            return "oasis";
-        case FabFormat::kTiff1:
-            return "tiff1";
-    }
-    return "?";
-}
+std::string fab_format_name(FabFormat f) { return name_or(kFabFormatNames, f, "?"); }
 
 std::string fab_extension(FabFormat f) {
     if (f == FabFormat::kGerber) return ".gbr";

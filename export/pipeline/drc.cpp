@@ -12,6 +12,7 @@
 
 #include "core/errors/error.hpp"
 #include "core/errors/field_names.hpp"
+#include "core/errors/name_table.hpp"
 #include "core/limits/resource_limits.hpp"
 #include "export/layout/segment_predicates.hpp"
 #include "export/layout/xor_area.hpp"
@@ -85,17 +86,11 @@ struct RingInfo {
 // the clear regions they leave), and clear regions are compared only with each other.
 enum class Group { kPolygon, kAnnotation, kPiece, kClearRegion };
 const char* group_name(Group g) {
-    switch (g) {
-        case Group::kPolygon:
-            return "polygon";
-        case Group::kAnnotation:
-            return "annotation";
-        case Group::kPiece:
-            return "piece";
-        case Group::kClearRegion:
-            return "clear region";
-    }
-    return "?";
+    static constexpr NameTable<Group, 4> kNames{{{Group::kPolygon, "polygon"},
+                                                 {Group::kAnnotation, "annotation"},
+                                                 {Group::kPiece, "piece"},
+                                                 {Group::kClearRegion, "clear region"}}};
+    return name_or(kNames, g, "?");
 }
 bool pair_checked(Group a, Group b) {
     if (a == Group::kPiece || b == Group::kPiece) {

@@ -63,6 +63,17 @@ double registered_psnr(const Plane& x, const Plane& scene) {
     return 10.0 * std::log10(1.0 / (best / (double(m) * m)));
 }
 
+// What the sensor records of `scene` at u metres, as the test computes it: the centred period of
+// the linear capture through the exact PSF of the whole tiled mask on a window of four periods.
+Plane exact_period_capture(const Mask& m, const Plane& scene, double u_m) {
+    const int p = static_cast<int>(scene.rows());
+    ExactPsfOptions eo;
+    eo.object_distance_m = u_m;
+    eo.rows = eo.cols = 4 * p;
+    const int o = (eo.rows - p) / 2;
+    return linear_capture(scene, exact_psf(m, eo)).block(o, o, p, p);
+}
+
 double wiener_psnr(const Plane& capture, const Plane& psf, const Plane& scene, double nsr = 0.01) {
     DecodeOptions d;
     d.wiener.nsr = nsr;
@@ -83,12 +94,7 @@ TEST_CASE("depth of the paper mask: the Wiener loss at 6 m equals a direct simul
     const Plane psf = mask_psf(m);
     const int p = static_cast<int>(psf.rows());
     const Plane scene = make_scene(scene_from_name("letter-R"), p, p).channels[0];
-    ExactPsfOptions eo;
-    eo.object_distance_m = 6.0;
-    eo.rows = eo.cols = 4 * p;
-    const Plane exact = exact_psf(m, eo);
-    const int o = (eo.rows - p) / 2;
-    const Plane cap = linear_capture(scene, exact).block(o, o, p, p);
+    const Plane cap = exact_period_capture(m, scene, 6.0);
     const double direct =
         wiener_psnr(cyclic_capture(scene, psf), psf, scene) - wiener_psnr(cap, psf, scene);
     CHECK(std::fabs(loss - direct) <= kLossTolDb);
@@ -108,11 +114,7 @@ TEST_CASE("depth under the photon model: the Wiener loss equals a direct simulat
     const Plane psf = mask_psf(m);
     const int p = static_cast<int>(psf.rows());
     const Plane scene = make_scene(scene_from_name("natural"), p, p).channels[0];
-    ExactPsfOptions eo;
-    eo.object_distance_m = 3.0;
-    eo.rows = eo.cols = 4 * p;
-    const int o = (eo.rows - p) / 2;
-    const Plane clean = linear_capture(scene, exact_psf(m, eo)).block(o, o, p, p);
+    const Plane clean = exact_period_capture(m, scene, 3.0);
     NoiseModel photon;
     photon.kind = NoiseKind::kPhoton;
     photon.photons_per_pinhole = 20;

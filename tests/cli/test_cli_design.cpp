@@ -22,6 +22,15 @@ nlohmann::json design_json(const std::string& args) {
     return nlohmann::json::parse(r.out);
 }
 
+// `pinmask design ARGS` is refused: exit 2, `says` on stderr, nothing on stdout.
+void refused(const std::string& args, const std::string& says) {
+    const auto r = run_cli("design " + args);
+    INFO(args << " -> " << r.err);
+    CHECK(r.exit_code == 2);
+    CHECK(contains(r.err, says));
+    CHECK(r.out.empty());
+}
+
 // Half a unit in the last published digit (the same bounds as tests/design/test_optics.cpp).
 constexpr double kHalfUnit3rdDecimalMm = 0.0005e-3;
 constexpr double kHalfUnit1stDecimalMm = 0.05e-3;
@@ -88,13 +97,6 @@ TEST_CASE("f = f' and u = inf are valid; infinities are null with a note") {
 }
 
 TEST_CASE("invalid input exits 2 naming the flag") {
-    auto refused = [](const std::string& args, const std::string& flag) {
-        const auto r = run_cli("design " + args);
-        INFO(args << " -> " << r.err);
-        CHECK(r.exit_code == 2);
-        CHECK(contains(r.err, flag));
-        CHECK(r.out.empty());
-    };
     refused("--sensor-distance 0", "--sensor-distance");
     refused("--wavelength 0", "--wavelength");
     refused("--lens-focal -1", "--lens-focal");
@@ -103,12 +105,6 @@ TEST_CASE("invalid input exits 2 naming the flag") {
 }
 
 TEST_CASE("more invalid input: units, models, geometry") {
-    auto refused = [](const std::string& args, const std::string& flag) {
-        const auto r = run_cli("design " + args);
-        INFO(args << " -> " << r.err);
-        CHECK(r.exit_code == 2);
-        CHECK(contains(r.err, flag));
-    };
     refused("--wavelength 550xm", "--wavelength");
     refused("--kernel gauss", "--kernel");
     refused("--grid 0", "--grid");
@@ -178,13 +174,6 @@ TEST_CASE("design table: both optima with formulas, the regime line and the spre
 }
 
 TEST_CASE("design working-distance edge cases exit 2 with a message") {
-    auto refused = [](const std::string& args, const std::string& says) {
-        const auto r = run_cli("design " + args);
-        INFO(args << " -> " << r.err);
-        CHECK(r.exit_code == 2);
-        CHECK(contains(r.err, says));
-        CHECK(r.out.empty());
-    };
     refused("--object-distance 100mm", "inside the focal length");
     refused("--lens-focal 55mm --object-distance inf --pixels-per-cell 8", "z_eff is infinite");
     refused("--lsi-tolerance 0", "empty object-distance range");
@@ -222,12 +211,6 @@ TEST_CASE("design --save-camera writes a camera file; --camera reads it; flags o
     const auto gen = run_cli("generate --camera " + file + " --seed 1 -o " + (dir / "m.mask.json"));
     CHECK(gen.exit_code == 0);
     // Bad input: missing file, a folder that does not exist, overwriting the input.
-    auto refused = [&](const std::string& args, const std::string& says) {
-        const auto r = run_cli("design " + args);
-        INFO(args << " -> " << r.err);
-        CHECK(r.exit_code == 2);
-        CHECK(contains(r.err, says));
-    };
     refused("--camera " + (dir / "nope.camera.json"), "nope.camera.json");
     refused("--save-camera " + (dir / "no/such.camera.json"), "--save-camera");
     refused("--camera " + file + " --save-camera " + file, "overwrite");
