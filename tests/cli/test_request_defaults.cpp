@@ -159,7 +159,9 @@ TEST_CASE("calibrate's flags default to CalibrateRequest's settings") {
 
 TEST_CASE("depthmap's flags default to DepthmapRequest's settings") {
     const DepthmapRequest q;
-    check_defaults("depthmap", {{"steps", text(q.steps)},
+    // steps unset: chosen from the camera (one resolvable step apart); --help shows no number.
+    REQUIRE_FALSE(q.steps.has_value());
+    check_defaults("depthmap", {{"steps", ""},
                                 {"smooth", text(q.smooth)},
                                 {"wiener_nsr", text(q.wiener_nsr)},
                                 {"cost_window", text(q.window)}});
