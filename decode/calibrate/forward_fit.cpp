@@ -87,10 +87,43 @@ double core_half_px(const Problem& pb, double scale) {
     return std::max(pb.o.core_cells * pb.cell_px, (2.0 * n + 2.0) / a);
 }
 
+// The core's weight along one mask axis: 1 out to the core half width c, then a cos^2 ramp to 0
+// over kTaperPx (none for the box, whose kernel ends inside c). A spot's core is its kernel times
+// T(u) T(v) at its offsets (u, v) along the mask's axes, the halo the kernel times
+// 1 - T(u) T(v): the split is smooth, so the halo's grid (made along the mask's axes, read at the
+// pixels) holds no step at the core's edge, and the core's edge is the same square of the mask's
+// axes for both, whatever the rotation. With a hard edge along the pixel axes for the core and
+// along the mask's for the halo, the rotated square's slivers were counted twice or not at all.
+constexpr double kTaperPx = 4.0;
+
+struct Taper {
+    double c = 0.0, width = 0.0;
+    double value(double x) const {
+        const double a = std::abs(x) - c;
+        if (a <= 0) return 1.0;
+        if (a >= width) return 0.0;
+        const double cs = std::cos(0.5 * std::numbers::pi * a / width);
+        return cs * cs;
+    }
+    double slope(double x) const {
+        const double a = std::abs(x) - c;
+        if (a <= 0 || a >= width) return 0.0;
+        const double d = -0.5 * std::numbers::pi / width *
+                         std::sin(std::numbers::pi * a / width);  // d/da of cos^2
+        return x < 0 ? -d : d;
+    }
+    double reach() const { return c + width; }
+};
+
+Taper core_taper(const Problem& pb, double scale) {
+    return {core_half_px(pb, scale), pb.family == KernelModel::kBox ? 0.0 : kTaperPx};
+}
+
 // Half width of a spot's core window (pixels): the window is the pixels within this of the
-// spot centre's nearest pixel; the halo holds the kernel beyond it.
-int core_window_px(const Problem& pb, double scale) {
-    return static_cast<int>(std::ceil(core_half_px(pb, scale)));
+// spot centre's nearest pixel, holding the tapered core's square at rotation t.
+int core_window_px(const Problem& pb, double scale, double rotation_rad) {
+    const double turn = std::abs(std::cos(rotation_rad)) + std::abs(std::sin(rotation_rad));
+    return static_cast<int>(std::ceil(core_taper(pb, scale).reach() * turn)) + 1;
 }
 
 double halo_half_px(const Problem& pb, double scale) {
@@ -160,7 +193,8 @@ Plane footprint(const Problem& pb, const double* v, bool opaque_only = true) {
 // Far cheaper than an FFT convolution on a grid padded by the halo's reach.
 Plane halo(const Problem& pb, const Params& p, double median_gain) {
     const double rh = halo_half_px(pb, p.v[kSide]);
-    const int H = core_window_px(pb, p.v[kSide]);
+    const Taper taper = core_taper(pb, p.v[kSide]);
+    const int H = static_cast<int>(std::ceil(taper.reach())) + 1;
     if (rh <= H) return Plane::Zero(pb.rows, pb.cols);
     const ProfileTable table(pb.mask.camera, pb.family, side_m(pb, p.v[kSide]), rh);
     const int h = static_cast<int>(std::floor(rh));
@@ -214,9 +248,10 @@ Plane halo(const Problem& pb, const Params& p, double median_gain) {
     full.noalias() = A * B.transpose();
     for (const Site& s : sites)
         for (long v = std::max(0L, s.v - H); v <= std::min(nv - 1, s.v + H); ++v) {
-            const double a = s.g * table.value(v - s.fv);
+            const double a = s.g * table.value(v - s.fv) * taper.value(v - s.fv);
+            if (a == 0.0) continue;
             for (long u = std::max(0L, s.u - H); u <= std::min(nu - 1, s.u + H); ++u)
-                full(v, u) -= static_cast<float>(a * table.value(u - s.fu));
+                full(v, u) -= static_cast<float>(a * table.value(u - s.fu) * taper.value(u - s.fu));
         }
     Plane out(pb.rows, pb.cols);
     for (int r = 0; r < pb.rows; ++r)
@@ -240,7 +275,8 @@ Evaluation evaluate(const Problem& pb, const Params& p, const Plane& foot, const
     Evaluation e;
     e.model = p.background + p.leak * foot + halo_plane;
     const double s = p.v[kSide];
-    const int half = core_window_px(pb, s);
+    const int half = core_window_px(pb, s, p.v[kRot]);
+    const Taper taper = core_taper(pb, s);
     const ProfileTable q(pb.mask.camera, pb.family, side_m(pb, s), half + 1.0);
     ProfileTable qs;
     if (derivs) {
@@ -274,8 +310,10 @@ Evaluation evaluate(const Problem& pb, const Params& p, const Plane& foot, const
             for (int c = w.c0; c <= w.c1; ++c, ++idx) {
                 const double dx = c - z.x(), dy = r - z.y();
                 const double u = ct * dx - st * dy, v = st * dx + ct * dy;
+                const double tu = taper.value(u), tv = taper.value(v);
+                if (tu == 0.0 || tv == 0.0) continue;
                 if (!derivs) {
-                    const double kv = q.value(u) * q.value(v);
+                    const double kv = tu * q.value(u) * tv * q.value(v);
                     w.k[idx] = kv;
                     e.model(r, c) += g * kv;
                     continue;
@@ -290,6 +328,13 @@ Evaluation evaluate(const Problem& pb, const Params& p, const Plane& foot, const
                     su = qs.value(u);
                     sv = qs.value(v);
                 }
+                // The tapered core T q along each axis, its slope and its side's neighbour.
+                du = tu * du + taper.slope(u) * qu;
+                dv = tv * dv + taper.slope(v) * qv;
+                qu *= tu;
+                qv *= tv;
+                su *= tu;
+                sv *= tv;
                 const double kv = qu * qv;
                 w.k[idx] = kv;
                 e.model(r, c) += g * kv;
