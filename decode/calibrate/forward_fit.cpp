@@ -11,6 +11,7 @@
 #include "core/fft/fft.hpp"
 #include "core/limits/resource_limits.hpp"
 #include "core/units/number_format.hpp"
+#include "decode/calibrate/core_taper.hpp"
 #include "decode/calibrate/grid_read.hpp"
 #include "decode/calibrate/profile_table.hpp"
 #include "decode/calibrate/spots.hpp"
@@ -87,34 +88,8 @@ double core_half_px(const Problem& pb, double scale) {
     return std::max(pb.o.core_cells * pb.cell_px, (2.0 * n + 2.0) / a);
 }
 
-// The core's weight along one mask axis: 1 out to the core half width c, then a cos^2 ramp to 0
-// over kTaperPx (none for the box, whose kernel ends inside c). A spot's core is its kernel times
-// T(u) T(v) at its offsets (u, v) along the mask's axes, the halo the kernel times
-// 1 - T(u) T(v): the split is smooth, so the halo's grid (made along the mask's axes, read at the
-// pixels) holds no step at the core's edge, and the core's edge is the same square of the mask's
-// axes for both, whatever the rotation. With a hard edge along the pixel axes for the core and
-// along the mask's for the halo, the rotated square's slivers were counted twice or not at all.
-constexpr double kTaperPx = 4.0;
-
-struct Taper {
-    double c = 0.0, width = 0.0;
-    double value(double x) const {
-        const double a = std::abs(x) - c;
-        if (a <= 0) return 1.0;
-        if (a >= width) return 0.0;
-        const double cs = std::cos(0.5 * std::numbers::pi * a / width);
-        return cs * cs;
-    }
-    double slope(double x) const {
-        const double a = std::abs(x) - c;
-        if (a <= 0 || a >= width) return 0.0;
-        const double d = -0.5 * std::numbers::pi / width *
-                         std::sin(std::numbers::pi * a / width);  // d/da of cos^2
-        return x < 0 ? -d : d;
-    }
-    double reach() const { return c + width; }
-};
-
+// The core's split from the halo (decode/calibrate/core_taper): 1 out to the core half width,
+// then a ramp of kTaperPx (none for the box, whose kernel ends inside the core).
 Taper core_taper(const Problem& pb, double scale) {
     return {core_half_px(pb, scale), pb.family == KernelModel::kBox ? 0.0 : kTaperPx};
 }
@@ -181,8 +156,8 @@ Plane footprint(const Problem& pb, const double* v, bool opaque_only = true) {
 // a grid along the mask's axes (u, v) = (cos t x - sin t y, sin t x + cos t y) with nodes one
 // pixel apart, covering the frame: there the kernel is separable, so the spots' full kernels are
 // one matrix product A diag(g) B^T (column k of A holds q(v - v_k), of B q(u - u_k), at the
-// spot's own sub-node position), from which each spot's core square (the nodes within the core
-// half width of its nearest node) is then subtracted; each pixel then reads the grid at its
+// spot's own sub-node position), from which each spot's tapered core (on the nodes around it;
+// decode/calibrate/core_taper) is then subtracted; each pixel then reads the grid at its
 // (u, v) by 6-point Lagrange interpolation (decode/calibrate/grid_read). At t = 0 the nodes are
 // the pixels and the read is exact. Along the pixel axes instead (the kernel unrotated), the
 // tails' long arms (sinc^2 along each axis) missed their rows by t x at x pixels from the spot:
