@@ -11,7 +11,6 @@
 #include "core/fft/fft.hpp"
 #include "core/limits/resource_limits.hpp"
 #include "core/units/number_format.hpp"
-#include "decode/calibrate/core_taper.hpp"
 #include "decode/calibrate/grid_read.hpp"
 #include "decode/calibrate/profile_table.hpp"
 #include "decode/calibrate/spots.hpp"
@@ -88,17 +87,10 @@ double core_half_px(const Problem& pb, double scale) {
     return std::max(pb.o.core_cells * pb.cell_px, (2.0 * n + 2.0) / a);
 }
 
-// The core's split from the halo (decode/calibrate/core_taper): 1 out to the core half width,
-// then a ramp of kTaperPx (none for the box, whose kernel ends inside the core).
-Taper core_taper(const Problem& pb, double scale) {
-    return {core_half_px(pb, scale), pb.family == KernelModel::kBox ? 0.0 : kTaperPx};
-}
-
 // Half width of a spot's core window (pixels): the window is the pixels within this of the
-// spot centre's nearest pixel, holding the tapered core's square at rotation t.
-int core_window_px(const Problem& pb, double scale, double rotation_rad) {
-    const double turn = std::abs(std::cos(rotation_rad)) + std::abs(std::sin(rotation_rad));
-    return static_cast<int>(std::ceil(core_taper(pb, scale).reach() * turn)) + 1;
+// spot centre's nearest pixel; the halo holds the kernel beyond it.
+int core_window_px(const Problem& pb, double scale) {
+    return static_cast<int>(std::ceil(core_half_px(pb, scale)));
 }
 
 double halo_half_px(const Problem& pb, double scale) {
@@ -156,8 +148,8 @@ Plane footprint(const Problem& pb, const double* v, bool opaque_only = true) {
 // a grid along the mask's axes (u, v) = (cos t x - sin t y, sin t x + cos t y) with nodes one
 // pixel apart, covering the frame: there the kernel is separable, so the spots' full kernels are
 // one matrix product A diag(g) B^T (column k of A holds q(v - v_k), of B q(u - u_k), at the
-// spot's own sub-node position), from which each spot's tapered core (on the nodes around it;
-// decode/calibrate/core_taper) is then subtracted; each pixel then reads the grid at its
+// spot's own sub-node position), from which each spot's core square (the nodes within the core
+// half width of its nearest node) is then subtracted; each pixel then reads the grid at its
 // (u, v) by 6-point Lagrange interpolation (decode/calibrate/grid_read). At t = 0 the nodes are
 // the pixels and the read is exact. Along the pixel axes instead (the kernel unrotated), the
 // tails' long arms (sinc^2 along each axis) missed their rows by t x at x pixels from the spot:
@@ -168,8 +160,7 @@ Plane footprint(const Problem& pb, const double* v, bool opaque_only = true) {
 // Far cheaper than an FFT convolution on a grid padded by the halo's reach.
 Plane halo(const Problem& pb, const Params& p, double median_gain) {
     const double rh = halo_half_px(pb, p.v[kSide]);
-    const Taper taper = core_taper(pb, p.v[kSide]);
-    const int H = static_cast<int>(std::ceil(taper.reach())) + 1;
+    const int H = core_window_px(pb, p.v[kSide]);
     if (rh <= H) return Plane::Zero(pb.rows, pb.cols);
     const ProfileTable table(pb.mask.camera, pb.family, side_m(pb, p.v[kSide]), rh);
     const int h = static_cast<int>(std::floor(rh));
@@ -195,17 +186,19 @@ Plane halo(const Problem& pb, const Params& p, double median_gain) {
     struct Site {
         long v, u;         // nearest node, grid indices
         double fv, fu, g;  // position in grid indices, gain
+        bool fitted;       // a fitted cell: its core is the model's window, not the halo's
     };
     std::vector<Site> sites;
-    auto add = [&](const Eigen::Vector2d& z, double g) {
+    auto add = [&](const Eigen::Vector2d& z, double g, bool fitted) {
         const Eigen::Vector2d w = to_grid(z.x(), z.y());
         const double fv = w.y() - v0, fu = w.x() - u0;
         const long v = std::lround(fv), u = std::lround(fu);
         if (v < -h || u < -h || v > nv - 1 + h || u > nu - 1 + h || g == 0.0) return;
-        sites.push_back({v, u, fv, fu, g});
+        sites.push_back({v, u, fv, fu, g, fitted});
     };
-    for (std::size_t k = 0; k < pb.cells.size(); ++k) add(centre_of(pb, p.v, pb.cells[k]), p.g[k]);
-    for (const Cell& c : pb.outside) add(centre_of(pb, p.v, c), median_gain);
+    for (std::size_t k = 0; k < pb.cells.size(); ++k)
+        add(centre_of(pb, p.v, pb.cells[k]), p.g[k], true);
+    for (const Cell& c : pb.outside) add(centre_of(pb, p.v, c), median_gain, false);
     const Eigen::Index K = static_cast<Eigen::Index>(sites.size());
     check_memory(double(K) * (nu + nv) * sizeof(double) + 2.0 * double(nu) * nv * sizeof(float),
                  "the calibration model's diffraction halo");
@@ -221,12 +214,13 @@ Plane halo(const Problem& pb, const Params& p, double median_gain) {
     }
     GridF full(nv, nu);
     full.noalias() = A * B.transpose();
+    // The fitted cells' cores are the model's windows; a cell beyond them (no window) keeps its
+    // whole kernel here, so the part of its core that reaches into the frame is not lost.
     for (const Site& s : sites)
-        for (long v = std::max(0L, s.v - H); v <= std::min(nv - 1, s.v + H); ++v) {
-            const double a = s.g * table.value(v - s.fv) * taper.value(v - s.fv);
-            if (a == 0.0) continue;
+        for (long v = std::max(0L, s.v - H); s.fitted && v <= std::min(nv - 1, s.v + H); ++v) {
+            const double a = s.g * table.value(v - s.fv);
             for (long u = std::max(0L, s.u - H); u <= std::min(nu - 1, s.u + H); ++u)
-                full(v, u) -= static_cast<float>(a * table.value(u - s.fu) * taper.value(u - s.fu));
+                full(v, u) -= static_cast<float>(a * table.value(u - s.fu));
         }
     Plane out(pb.rows, pb.cols);
     for (int r = 0; r < pb.rows; ++r)
@@ -250,8 +244,7 @@ Evaluation evaluate(const Problem& pb, const Params& p, const Plane& foot, const
     Evaluation e;
     e.model = p.background + p.leak * foot + halo_plane;
     const double s = p.v[kSide];
-    const int half = core_window_px(pb, s, p.v[kRot]);
-    const Taper taper = core_taper(pb, s);
+    const int half = core_window_px(pb, s);
     const ProfileTable q(pb.mask.camera, pb.family, side_m(pb, s), half + 1.0);
     ProfileTable qs;
     if (derivs) {
@@ -285,10 +278,8 @@ Evaluation evaluate(const Problem& pb, const Params& p, const Plane& foot, const
             for (int c = w.c0; c <= w.c1; ++c, ++idx) {
                 const double dx = c - z.x(), dy = r - z.y();
                 const double u = ct * dx - st * dy, v = st * dx + ct * dy;
-                const double tu = taper.value(u), tv = taper.value(v);
-                if (tu == 0.0 || tv == 0.0) continue;
                 if (!derivs) {
-                    const double kv = tu * q.value(u) * tv * q.value(v);
+                    const double kv = q.value(u) * q.value(v);
                     w.k[idx] = kv;
                     e.model(r, c) += g * kv;
                     continue;
@@ -303,13 +294,6 @@ Evaluation evaluate(const Problem& pb, const Params& p, const Plane& foot, const
                     su = qs.value(u);
                     sv = qs.value(v);
                 }
-                // The tapered core T q along each axis, its slope and its side's neighbour.
-                du = tu * du + taper.slope(u) * qu;
-                dv = tv * dv + taper.slope(v) * qv;
-                qu *= tu;
-                qv *= tv;
-                su *= tu;
-                sv *= tv;
                 const double kv = qu * qv;
                 w.k[idx] = kv;
                 e.model(r, c) += g * kv;

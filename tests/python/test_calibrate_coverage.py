@@ -141,8 +141,8 @@ def test_noiseless_rotated_capture_is_fitted_to_its_truth():
     """The model against the renderer without noise, on the phone camera's 256 x 256 crop of a
     mask tiled 4 x 4 at 0.8 degrees: the fit's pinhole side within 1e-5 of the truth (the noisy
     fit's stated sigma here is 1.3e-4), rotation within 5e-6 deg, pitches within 1e-5 px, optical
-    density within 0.005 (measured: 4.7e-6, 2e-7 deg, 2e-6 px, 0.002). With each halo site on its
-    nearest node, a bilinear read and the core's hard edge along the pixel axes
+    density within 0.005 (measured: 1.8e-6, 1.6e-6 deg, 3e-7 px, 7e-5). With each halo site on
+    its nearest node, a bilinear read and the cores of cells beyond the fitted ones left out
     (docs/calibration.md) the side came out 6.2e-5 small and a pitch 1.1e-5 px large here."""
     cam, ppc = phone(0, 0)
     mask = pinmask.generate(family="random", grid=10, holes=14, spacing=2, tiles=4, seed=5,
