@@ -15,9 +15,10 @@
 // clear pinholes, anti-aliased over one pixel), B the background. Each spot is evaluated in a
 // window of
 // +- core_cells cells, or wider to hold the kernel's central lobes (out to v = 2N + 2); the
-// diffraction tails beyond it (sinc^2 falls as 1/v^2) enter as a halo, the same kernel's tail with
-// each spot on its nearest node of a grid along the mask's axes (the separable kernel makes all the
-// tails one matrix product there; pixels read the grid bilinearly), made from the current
+// diffraction tails beyond it (sinc^2 falls as 1/v^2) enter as a halo, the same kernel's tail
+// with each spot at its own position on a grid along the mask's axes (the separable kernel makes
+// all the tails one matrix product there; pixels read the grid by 6-point Lagrange
+// interpolation), made from the current
 // parameters before each round and held fixed inside it (a fixed point: the tail carries a few
 // percent of the energy). Solver: Levenberg-Marquardt on (x0, y0, t, px, py, s, g_1..g_G, L, B)
 // with the analytic Jacobian (s by a forward difference of the table), weights 1 / var with the

@@ -48,36 +48,40 @@ def profile(x, a, n_f, samples=600):
     return a * np.abs((w[None, :] * np.exp(1j * phase)).sum(axis=1)) ** 2 / 4
 
 
-def spot_centres(mask, rows, cols, rotation_deg, pitch_scale):
-    """(cells, x, y): every open cell of the tiled mask and its spot centre (index coordinates)."""
+def spot_centres(mask, rows, cols, rotation_deg, pitch_scale, shift=(0.0, 0.0)):
+    """(cells, x, y, pitch): every open cell of the tiled mask and its spot centre (index
+    coordinates); `pitch_scale` one scale or (along the mask's columns, along its rows), `shift`
+    (x, y) moves the whole mask on the sensor."""
     cam, pat = mask.camera, mask.pattern
-    pitch = m_u(cam) * cam.pinhole_m * pitch_scale / cam.pixel_pitch_m
+    sx, sy = np.broadcast_to(np.asarray(pitch_scale, float), (2,))
+    pitch = m_u(cam) * cam.pinhole_m / cam.pixel_pitch_m
     t = np.deg2rad(rotation_deg)
     ct, st = np.cos(t), np.sin(t)
     cells = [(r + tr * pat.n, c + tc * pat.n) for tr in range(pat.tiles_rows)
              for tc in range(pat.tiles_cols) for (r, c) in pat.pinholes]
     cr = np.array([c[0] for c in cells], float) + 0.5 - pat.n * pat.tiles_rows / 2
     cc = np.array([c[1] for c in cells], float) + 0.5 - pat.n * pat.tiles_cols / 2
-    x = (cols - 1) / 2 + pitch * (ct * cc + st * cr)
-    y = (rows - 1) / 2 + pitch * (-st * cc + ct * cr)
-    return cells, x, y, pitch
+    x = (cols - 1) / 2 + shift[0] + pitch * (sx * ct * cc + sy * st * cr)
+    y = (rows - 1) / 2 + shift[1] + pitch * (-sx * st * cc + sy * ct * cr)
+    return cells, x, y, pitch * sx
 
 
 def spots(mask, rows, cols, rotation_deg=0.0, pitch_scale=1.0, side_scale=1.0, missing=(),
-          flux=1e6, wavelengths=None, pad=1024):
+          flux=1e6, wavelengths=None, pad=1024, shift=(0.0, 0.0)):
     """The noiseless spots, extrapolated to no wrap-around from pads `pad` and 2 `pad`."""
-    args = (mask, rows, cols, rotation_deg, pitch_scale, side_scale, missing, flux, wavelengths)
+    args = (mask, rows, cols, rotation_deg, pitch_scale, side_scale, missing, flux, wavelengths,
+            shift)
     near = spots_padded(*args, pad)
     return (4 * spots_padded(*args, 2 * pad) - near) / 3
 
 
 def spots_padded(mask, rows, cols, rotation_deg, pitch_scale, side_scale, missing, flux,
-                 wavelengths, pad):
+                 wavelengths, shift, pad):
     """The noiseless spots (counts): `flux` through a pinhole of the design's side (a
     fabricated side s passes s^2 of it), each wavelength (lambda, weight) of `wavelengths`
     (default: the camera's centre wavelength alone) weighted."""
     cam = mask.camera
-    cells, x, y, _ = spot_centres(mask, rows, cols, rotation_deg, pitch_scale)
+    cells, x, y, _ = spot_centres(mask, rows, cols, rotation_deg, pitch_scale, shift)
     keep = np.array([c not in set(missing) for c in cells])
     x, y = x[keep] + pad, y[keep] + pad
     R = scipy.fft.next_fast_len(rows + 2 * pad)
@@ -105,11 +109,14 @@ def spots_padded(mask, rows, cols, rotation_deg, pitch_scale, side_scale, missin
     return img[pad:pad + rows, pad:pad + cols]
 
 
-def film_leak(mask, rows, cols, rotation_deg, pitch_scale, side_scale, od, flux, sub=4):
+def film_leak(mask, rows, cols, rotation_deg, pitch_scale, side_scale, od, flux, sub=4,
+              shift=(0.0, 0.0)):
     """Counts per pixel through the opaque film (transmission 10^-od per unit area) for the
-    light that passes `flux` through a pinhole of the design's side."""
+    light that passes `flux` through a pinhole of the design's side (geometry as spot_centres)."""
     cam, pat = mask.camera, mask.pattern
-    pitch = m_u(cam) * cam.pinhole_m * pitch_scale / cam.pixel_pitch_m
+    sx, sy = np.broadcast_to(np.asarray(pitch_scale, float), (2,))
+    pitch = m_u(cam) * cam.pinhole_m / cam.pixel_pitch_m
+    px, py = pitch * sx, pitch * sy
     side_px = m_u(cam) * cam.pinhole_m * side_scale / cam.pixel_pitch_m
     clear_per_px = flux / (m_u(cam) * cam.pinhole_m / cam.pixel_pitch_m) ** 2
     open_grid = np.zeros((pat.n, pat.n), bool)
@@ -120,18 +127,18 @@ def film_leak(mask, rows, cols, rotation_deg, pitch_scale, side_scale, od, flux,
     nr, nc = pat.n * pat.tiles_rows, pat.n * pat.tiles_cols
     off = (np.arange(sub) + 0.5) / sub - 0.5
     out = np.zeros((rows, cols))
-    xs = (np.arange(cols)[:, None] + off[None, :]).ravel() - (cols - 1) / 2
+    xs = (np.arange(cols)[:, None] + off[None, :]).ravel() - (cols - 1) / 2 - shift[0]
     for r in range(rows):
-        ys = r + off - (rows - 1) / 2
+        ys = r + off - (rows - 1) / 2 - shift[1]
         dx, dy = xs[None, :], ys[:, None]
         # Mask coordinates in cells from the tiled mask's corner (inverse of spot_centres).
-        u = (ct * dx - st * dy) / pitch + nc / 2
-        v = (st * dx + ct * dy) / pitch + nr / 2
+        u = (ct * dx - st * dy) / px + nc / 2
+        v = (st * dx + ct * dy) / py + nr / 2
         inside = (u >= 0) & (u < nc) & (v >= 0) & (v < nr)
         iu, iv = np.floor(u).astype(int), np.floor(v).astype(int)
         opened = inside & open_grid[np.clip(iv, 0, nr - 1) % pat.n, np.clip(iu, 0, nc - 1) % pat.n]
-        h = 0.5 * side_px / pitch
-        clear = opened & (np.abs(u - iu - 0.5) < h) & (np.abs(v - iv - 0.5) < h)
+        clear = (opened & (np.abs(u - iu - 0.5) < 0.5 * side_px / px)
+                 & (np.abs(v - iv - 0.5) < 0.5 * side_px / py))
         opaque = inside & ~clear
         out[r] = opaque.reshape(sub, cols, sub).mean(axis=(0, 2))
     return out * clear_per_px * 10.0 ** -od
