@@ -15,6 +15,7 @@
 #include "cli/options/depth_range_flags.hpp"
 #include "cli/options/flag_names.hpp"
 #include "cli/options/noise_options.hpp"
+#include "cli/options/number_lists.hpp"
 #include "cli/outputs/compare_report.hpp"
 #include "cli/outputs/progress.hpp"
 #include "core/files/output_set.hpp"
@@ -33,7 +34,7 @@ struct Options {
     int baseline_count = CompareRequest{}.baseline_count;
     NoiseFlags noise;
     PriorFlags prior;
-    std::string scenes = "letter-R,usaf,siemens-star";  // CompareRequest's scenes as one list
+    std::string scenes = joined(CompareRequest{}.scenes);
     std::string nsr = CompareRequest{}.wiener_nsr;
     std::string tv_lambda = CompareRequest{}.tv_lambda;
     std::string robust;
@@ -158,7 +159,7 @@ void setup(CLI::App& app) {
     cmd->add_option("--baseline-count", o->baseline_count,
                     "Random valid masks drawn for the random-median baseline (1..10000)")
         ->capture_default_str();
-    add_noise_flags(*cmd, o->noise, "30");
+    add_noise_flags(*cmd, o->noise, joined(CompareRequest::kDefaultSnrDb));
     add_prior_flags(*cmd, o->prior);
     cmd->add_option("--scenes", o->scenes,
                     "Scenes for simulated figures, comma-separated: letter-R, usaf, siemens-star, "

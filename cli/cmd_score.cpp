@@ -8,6 +8,7 @@
 #include "cli/options/depth_range_flags.hpp"
 #include "cli/options/flag_names.hpp"
 #include "cli/options/noise_options.hpp"
+#include "cli/options/number_lists.hpp"
 #include "cli/outputs/robust_decoder_files.hpp"
 #include "io/mask_json.hpp"
 #include "io/score_json.hpp"
@@ -19,10 +20,10 @@ namespace {
 
 struct ScoreOptions {
     std::vector<std::string> masks;
-    std::string scenes = "letter-R,usaf,natural";  // ScoreRequest's scenes as one list
+    std::string scenes = joined(ScoreRequest{}.scenes);
     NoiseFlags noise;
     PriorFlags prior;
-    std::string metrics = "sidelobes,spectrum,analytic,wiener";  // ScoreRequest's metrics
+    std::string metrics = joined(ScoreRequest{}.metrics);
     std::string nsr = ScoreRequest{}.wiener_nsr;
     std::string tv_lambda = ScoreRequest{}.tv_lambda;
     std::string robust, robust_decoder;
@@ -104,7 +105,7 @@ void setup(CLI::App& app) {
                     "Scenes for simulated metrics, comma-separated: letter-R, usaf, "
                     "siemens-star, checker, point, natural, or image files (PNG/TIFF/npy)")
         ->capture_default_str();
-    add_noise_flags(*cmd, o->noise, "20,30,40");
+    add_noise_flags(*cmd, o->noise, joined(ScoreRequest::kDefaultSnrDb));
     add_prior_flags(*cmd, o->prior);
     cmd->add_option("--metrics", o->metrics,
                     "Metrics to compute: sidelobes, spectrum, analytic, wiener, tv, depth (see "

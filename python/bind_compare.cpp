@@ -36,7 +36,8 @@ void bind_compare(py::module_& m) {
            std::optional<double> depth_to) {
             const SensorSettings sensor{read_noise, dark_current, full_well, optical_density, bits};
             CompareRequest q;
-            q.noise = noise_levels_arg(snr_db, photons, sensor, {30.0}, &q.noise_text);
+            q.noise = noise_levels_arg(snr_db, photons, sensor, CompareRequest::kDefaultSnrDb,
+                                       &q.noise_text);
             q.prior = prior_arg(prior, prior_scenes);
             q.scenes = scenes;
             q.wiener_nsr = nsr;

@@ -68,7 +68,8 @@ void bind_score(py::module_& m) {
             q.depth_from_m = depth_from.value_or(0.0);
             q.depth_to_m = depth_to.value_or(0.0);
             const SensorSettings sensor{read_noise, dark_current, full_well, optical_density, bits};
-            q.noise = noise_levels_arg(snr_db, photons, sensor, {20.0, 30.0, 40.0}, &q.noise_text);
+            q.noise = noise_levels_arg(snr_db, photons, sensor, ScoreRequest::kDefaultSnrDb,
+                                       &q.noise_text);
             q.prior = prior_arg(prior, prior_scenes);
             q.scenes = scenes;
             q.noise_seeds = noise_seeds;

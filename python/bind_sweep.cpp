@@ -175,7 +175,7 @@ void bind_sweep(py::module_& m) {
                 for (auto item : best) {
                     const std::string k = py::str(item.first);
                     if (k != "rank" && k != "path" && k != "geometry_hash" && k != "objective" &&
-                        k != "reranked" && k != "upper_bound_psnr_db")
+                        k != "reranked" && k != "upper_bound_analytic_mmse_psnr_db")
                         row[item.first] = item.second;
                 }
                 rows.append(row);

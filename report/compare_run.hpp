@@ -21,6 +21,8 @@ struct CompareRequest {
     std::vector<CompareEntry> entries;  // the given masks, in order; one camera
     std::vector<NoiseLevel> noise;      // levels of the simulated and analytic figures
     std::string noise_text;             // the levels in words ("Gaussian noise at SNR 30 dB")
+    // The Gaussian SNR (dB) both faces compare at when no noise level is given.
+    static inline const std::vector<double> kDefaultSnrDb{30.0};
     PriorSpec prior;
     // search's default re-rank scenes: one mask shows one simulated figure in both.
     std::vector<std::string> scenes{"letter-R", "usaf", "siemens-star"};
@@ -58,7 +60,7 @@ struct CompareReport {
     std::string mmse_basis;                   // what analytic_mmse_psnr_db is computed on
     // The first mask's gain over the random median on the lead figure, in words ("" without it).
     std::string random_gain_text;
-    std::string sim_basis;                    // what the simulated PSNR columns are computed on
+    std::string sim_basis;  // what the simulated PSNR columns are computed on
     // The report's files (path, bytes), not yet written (io/compare_json writes them).
     std::vector<std::pair<std::filesystem::path, std::string>> report_pages;
     std::vector<std::string> report_files;  // written report files (set when written)

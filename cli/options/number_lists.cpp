@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include "cli/options/noise_options.hpp"
 #include "core/errors/error.hpp"
@@ -11,6 +12,23 @@ namespace pinmask::cli {
 
 std::vector<std::string> item_list(const std::string& text, const std::string& flag) {
     return split_list(text, flag, std::numeric_limits<std::size_t>::max());
+}
+
+std::string joined(const std::vector<std::string>& items) {
+    std::string out;
+    for (const std::string& item : items) out += (out.empty() ? "" : ",") + item;
+    return out;
+}
+
+std::string joined(const std::vector<double>& numbers) {
+    std::vector<std::string> items;
+    for (const double v : numbers) {
+        std::ostringstream s;
+        s.precision(17);
+        s << v;
+        items.push_back(s.str());
+    }
+    return joined(items);
 }
 
 std::vector<double> number_list(const std::string& text, const std::string& flag) {

@@ -13,6 +13,11 @@ std::vector<std::string> item_list(const std::string& text, const std::string& f
 
 std::vector<double> number_list(const std::string& text, const std::string& flag);
 
+// The inverse, for a flag's default shown in --help: items joined by commas, numbers in their
+// shortest round-trip form (20, 0.001).
+std::string joined(const std::vector<std::string>& items);
+std::string joined(const std::vector<double>& numbers);
+
 // Whole numbers in 1..1000000.
 std::vector<int> count_list(const std::string& text, const std::string& flag);
 

@@ -25,6 +25,8 @@ struct ScoreRequest {
     std::vector<std::string> scenes{"letter-R", "usaf", "natural"};
     std::vector<NoiseLevel> noise;  // the levels (Gaussian SNRs or photon levels)
     std::string noise_text;         // the levels in words
+    // The Gaussian SNRs (dB) both faces score at when no noise level is given.
+    static inline const std::vector<double> kDefaultSnrDb{20.0, 30.0, 40.0};
     PriorSpec prior;
     std::string wiener_nsr = "0.01";  // a number > 0 or "tuned"
     std::string tv_lambda = "1e-3";   // a number > 0 or "tuned"

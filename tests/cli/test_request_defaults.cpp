@@ -117,6 +117,7 @@ TEST_CASE("score's flags default to ScoreRequest's settings") {
     const ScoreRequest q;
     check_defaults("score", {{"metrics", text(q.metrics)},
                              {"scenes", text(q.scenes)},
+                             {"snr_db", "20,30,40"},  // ScoreRequest::kDefaultSnrDb, as text
                              {"wiener_nsr", q.wiener_nsr},
                              {"tv_lambda", q.tv_lambda},
                              {"tv_iterations", text(q.tv_iterations)},
@@ -128,7 +129,10 @@ TEST_CASE("score's flags default to ScoreRequest's settings") {
 
 TEST_CASE("compare's flags default to CompareRequest's settings") {
     const CompareRequest q;
+    REQUIRE(CompareRequest::kDefaultSnrDb == std::vector<double>{30.0});
+    REQUIRE(ScoreRequest::kDefaultSnrDb == std::vector<double>{20.0, 30.0, 40.0});
     check_defaults("compare", {{"scenes", text(q.scenes)},
+                               {"snr_db", "30"},
                                {"wiener_nsr", q.wiener_nsr},
                                {"tv_lambda", q.tv_lambda},
                                {"tv_iterations", text(q.tv_iterations)},

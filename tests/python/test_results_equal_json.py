@@ -200,4 +200,4 @@ def test_search_equals_cli_json(cli, tmp_path):
     for row in j["ranked"]:
         row["path"] = None
     assert {k: v for k, v in got.items() if k not in ("masks", "log")} == j
-    assert "best_per_holes" in j and "robust_wiener_psnr_db" in j["ranked"][0]
+    assert "best_per_holes" in j and "analytic_robust_mmse_psnr_db" in j["ranked"][0]
