@@ -183,16 +183,11 @@ void add_search(CLI::App& app) {
         "scenes, all inside --time.");
     add_search_flags(cmd, o);
     cmd->add_option("--config", o->config,
-                    "Settings of an earlier run (its search.config.json, or a hand-written "
-                    "subset of its keys); options given here override them")
+                    "Settings of an earlier run (its search.config.json, or a subset of its "
+                    "keys); flags given here override them")
         ->check(CLI::ExistingFile);
     add_cluster_flags(*cmd, *cf);
-    cmd->footer(std::string(kSearchFooter) + "\n" + kRobustFooter +
-                " With --objective robust the search optimises it (the re-ranking then reports "
-                "simulated figures without reordering); with --robust alone every candidate "
-                "reports its robust figure (analytic_robust_mmse_psnr_db or "
-                "analytic_robust_wiener_psnr_db, by "
-                "the filter) beside the nominal one.");
+    cmd->footer(std::string(kSearchFooter) + "\n" + kRobustFooter + kSearchRobustNote);
     cmd->callback([o, cf, cmd] {
         if (!o->config.empty()) apply_config(io::read_search_config(o->config), *cmd, *o);
         run_search(*o, *cf, *cmd);

@@ -176,10 +176,9 @@ void setup(CLI::App& app) {
                     "read noise, same exposure); photon model only");
     cmd->add_option("-o,--output", o->output, "Capture file: .tif/.tiff, .png or .npy")->required();
     cmd->add_option("--threads", o->threads,
-                    "FFTW threads for transforms of >= 512 x 512 (0: all cores). With "
-                    "PINMASK_WISDOM=off the bytes do not depend on it; with the wisdom cache "
-                    "FFTW measures a plan per thread count, and a float32 convolution can differ "
-                    "in the last bits between counts")
+                    "FFTW threads for transforms of >= 512 x 512 (0: all cores); the bytes do "
+                    "not depend on it with PINMASK_WISDOM=off (the wisdom cache plans per count: "
+                    "float32 may differ in the last bits)")
         ->check(CLI::Range(0, 1024))
         ->capture_default_str();
     cmd->add_option("--precision", o->precision,

@@ -117,6 +117,11 @@ inline constexpr const char* kRobustFooter =
     "analytic_robust_wiener_loss_db_snrS (nominal - robust); table column R. search names its "
     "robust figure by its filter: analytic_robust_mmse_psnr_db, analytic_robust_wiener_psnr_db "
     "or analytic_robust_filter_psnr_db.";
+// search's own use of --robust, after kRobustFooter.
+inline constexpr const char* kSearchRobustNote =
+    " With --objective robust the search optimises it (the re-ranking then reports simulated "
+    "figures without reordering); with --robust alone every candidate reports its robust figure "
+    "(analytic_robust_{mmse,wiener}_psnr_db, by the filter) beside the nominal one.";
 
 inline constexpr const char* kSimulateFooter =
     "Model: the cyclic forward model over one period (docs/design.md section 2): capture = "
