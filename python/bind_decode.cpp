@@ -472,7 +472,8 @@ floor, its 5 % quantile, off the PSF, and off the capture too when both hold who
 'none' | 'corner' (mean of the PSF's rows/cols 5..14, off PSF and capture; needs psf=) | a
 number of counts off the capture. downsample: K rounds of 2x2 box
 averaging of capture and PSF (0..12). normalize: 'none' (PSF to unit sum, estimate in capture
-counts) | 'l2' (capture window and PSF each divided by its L2 norm). precision: 'auto' (float32
+counts) | 'l2' (capture window and PSF each divided by its L2 norm, one factor over the
+channels: a colour capture keeps its ratios). precision: 'auto' (float32
 for every method from 256 x 256 decoded pixels) | 'single' | 'double'. threads: FFTW
 threads for transforms of >= 512 x 512 (0: all cores; results do not depend on it).
 nsr_map: wiener only, in place of nsr: a per-frequency NSR on the working grid (the decoded

@@ -45,6 +45,7 @@ is the window's top row, column 0 its left column; a capture identical to the PS
 point at (row floor(H/2), column floor(W/2)), the PSF's centre (deconvwnr convention).
 Units: with --normalize none the PSF is scaled to unit sum and the estimate is in capture
 counts; with --normalize l2 both are divided by their L2 norms (the DiffuserCam tutorial).
+Either way one factor serves every channel: a colour capture keeps its channels' ratios.
 Also written: OUT.config.json (the resolved configuration) next to the output. In the stats,
 everything but "timings_s" is the same, byte for byte, for the same inputs and options.
 Ctrl-C (or SIGTERM) during tv, tvqc or richardson-lucy ends the iteration early: the estimate so
@@ -97,7 +98,8 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeCommand& o) {
                    "frame, PSF zero-padded), or X,Y (top-left column,row of one period)")
         ->capture_default_str();
     cmd.add_option("--method", o.method,
-                   "auto (tv for the linear model, wiener for the cyclic; a flag only one of them reads chooses it: --nsr, --nsr-map wiener, "
+                   "auto (tv for the linear model, wiener for the cyclic; a flag only one of them "
+                   "reads chooses it: --nsr, --nsr-map wiener, "
                    "--lambda, --nonneg, --iters, --tol tv) | wiener (closed form, deconvwnr) | "
                    "tikhonov (closed form) | tv (TV-L2, ADMM) | tvqc (min TV s.t. ||Ax - p||_2 "
                    "<= eps) | richardson-lucy")
@@ -171,7 +173,7 @@ DecodeFlags add_decode_flags(CLI::App& cmd, DecodeCommand& o) {
         ->capture_default_str();
     cmd.add_option("--normalize", o.normalize,
                    "none (PSF scaled to unit sum) | l2 (capture window and PSF each divided by "
-                   "its L2 norm)")
+                   "its L2 norm, one factor over the channels)")
         ->check(CLI::IsMember(name_list(kNormalizeModeNames)))
         ->capture_default_str();
     cmd.add_option("--precision", o.precision,

@@ -233,9 +233,10 @@ PreparedCapture prepare_capture(CaptureDecodeInputs in, const CaptureDecodeOptio
                      "reads it";
         } else if (d.method == DecodeMethod::kTv) {
             // Measured on the window decoded, after the background and the crop.
-            reason = "the linear model: tv solves it with its crop exactly, wiener would read "
-                     "the light beyond the sensor as zero (the window's border band averages " +
-                     format_number(100 * border_fill(capture), 3) + " % of its mean)";
+            reason =
+                "the linear model: tv solves it with its crop exactly, wiener would read "
+                "the light beyond the sensor as zero (the window's border band averages " +
+                format_number(100 * border_fill(capture), 3) + " % of its mean)";
         } else {
             reason = "the cyclic model: the closed form is its exact least-error filter";
         }
@@ -254,21 +255,25 @@ PreparedCapture prepare_capture(CaptureDecodeInputs in, const CaptureDecodeOptio
                  (intensity ? ": an intensity" : ": not an intensity (signed values)")});
     }
 
+    // One factor over the channels (decode/capture/preprocess.hpp channels_l2_norm): a colour
+    // PSF keeps its channels' ratios, so the estimate's colour is the scene's.
     if (o.normalize == NormalizeMode::kL2) {
+        const double capture_norm = channels_l2_norm(capture.channels, "capture window");
         for (Plane& p : capture.channels) {
-            s.capture_l2_norms.push_back(p.matrix().norm());
-            p = l2_normalized(p, "capture window");
+            s.capture_l2_norms.push_back(capture_norm);
+            p /= capture_norm;
         }
-        for (std::size_t ch = 0; ch < noise_sigmas.size(); ++ch)
-            noise_sigmas[ch] /= s.capture_l2_norms[ch];
+        for (double& sigma : noise_sigmas) sigma /= capture_norm;
+        const double psf_norm = channels_l2_norm(psf.channels, "PSF");
         for (Plane& p : psf.channels) {
-            s.psf_l2_norms.push_back(p.matrix().norm());
-            p = l2_normalized(p, "PSF");
+            s.psf_l2_norms.push_back(psf_norm);
+            p /= psf_norm;
         }
     } else {
+        const double psf_sum = channels_mean_sum(psf.channels, "PSF");
         for (Plane& p : psf.channels) {
-            s.psf_sums.push_back(p.sum());
-            p /= s.psf_sums.back();
+            s.psf_sums.push_back(psf_sum);
+            p /= psf_sum;
         }
     }
     for (const ChosenSetting& c : s.chosen)

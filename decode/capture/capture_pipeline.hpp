@@ -7,7 +7,9 @@
 //
 // Units: with normalize kNone the PSF is scaled to unit sum and the estimate is in capture
 // counts; with kL2 the capture window and the PSF are each divided by their L2 norm (the
-// DiffuserCam tutorial's preprocessing, decode/capture/preprocess.hpp).
+// DiffuserCam tutorial's preprocessing, decode/capture/preprocess.hpp). Each is one factor over
+// its channels (the root mean square of their norms, the mean of their sums): the channels of
+// a colour capture keep their ratios.
 // Precision (kAuto): float32 for every method when the decoded window has at least
 // kSinglePrecisionMinPixels pixels, double otherwise. A PSF that float32 cannot hold
 // (single_precision_problem, decode/solvers/precision.hpp: values that cancel) runs in double under

@@ -46,13 +46,29 @@ Plane box_downsample(const Plane& p, int rounds) {
     return out;
 }
 
-Plane l2_normalized(const Plane& p, const char* what) {
-    const double norm = p.matrix().norm();
-    if (!(norm > 0.0) || !std::isfinite(norm)) {
-        throw InvalidInput(std::string(what) + ": L2 norm is " + std::to_string(norm) +
+namespace {
+
+double positive_factor(double v, const char* what, const char* name) {
+    if (!(v > 0.0) || !std::isfinite(v)) {
+        throw InvalidInput(std::string(what) + ": " + name + " is " + std::to_string(v) +
                            ": normalisation needs a finite, non-zero image");
     }
-    return p / norm;
+    return v;
+}
+
+}  // namespace
+
+double channels_l2_norm(const std::vector<Plane>& channels, const char* what) {
+    double squares = 0.0;
+    for (const Plane& p : channels) squares += p.matrix().squaredNorm();
+    return positive_factor(std::sqrt(squares / static_cast<double>(channels.size())), what,
+                           "L2 norm");
+}
+
+double channels_mean_sum(const std::vector<Plane>& channels, const char* what) {
+    double sum = 0.0;
+    for (const Plane& p : channels) sum += p.sum();
+    return positive_factor(sum / static_cast<double>(channels.size()), what, "sum");
 }
 
 }  // namespace pinmask

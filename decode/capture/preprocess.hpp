@@ -1,9 +1,12 @@
 // Preprocessing of lensless captures as the DiffuserCam tutorial describes it (Waller Lab,
 // DiffuserCam-Tutorial GD/ADMM notebooks; see data/real/*/README.md): a scalar background
 // taken from a small patch near the top-left corner of the PSF and subtracted from both the PSF
-// and the capture, k rounds of 2 x 2 box averaging, and division of each by its own L2 norm.
+// and the capture, k rounds of 2 x 2 box averaging, and division of each by its own L2 norm
+// (one factor over a colour image's channels, channels_l2_norm).
 // Values are sensor counts in, dimensionless out (after normalisation).
 #pragma once
+
+#include <vector>
 
 #include "core/image/image.hpp"
 
@@ -29,7 +32,11 @@ Plane box_downsample_2x(const Plane& p);
 // Throws InvalidInput for rounds < 0 or when a round would leave fewer than 1 x 1 pixels.
 Plane box_downsample(const Plane& p, int rounds);
 
-// p / ||p||_2. Throws InvalidInput naming `what` when the norm is zero or not finite.
-Plane l2_normalized(const Plane& p, const char* what);
+// One factor for every channel of an image, so that the channels keep their ratios (a colour
+// PSF's ratios are the sensor's response to a white source; a capture's, the scene's colour):
+// the root mean square of the channels' L2 norms, and the mean of their sums (a mono image: its
+// own norm, its own sum). InvalidInput naming `what` unless finite and > 0.
+double channels_l2_norm(const std::vector<Plane>& channels, const char* what);
+double channels_mean_sum(const std::vector<Plane>& channels, const char* what);
 
 }  // namespace pinmask

@@ -63,12 +63,22 @@ TEST_CASE("box_downsample by k rounds equals a 2^k block mean") {
     CHECK_THROWS_AS(box_downsample(p, 6), InvalidInput);  // 48 -> 0 rows after 6 rounds
 }
 
-TEST_CASE("l2_normalized gives unit norm and refuses a zero image") {
+TEST_CASE("one normalisation factor over the channels, counted by hand") {
+    // Mono: the image's own L2 norm and sum.
     const Plane p = random_plane(9, 17, 6, -1.0, 2.0);
-    const Plane n = l2_normalized(p, "capture");
-    double sq = 0.0;
-    for (Eigen::Index i = 0; i < n.size(); ++i) sq += n.data()[i] * n.data()[i];
-    CHECK_CLOSE(std::sqrt(sq), 1.0, kSumRoundoffTol);
-    CHECK_CLOSE(n(4, 5) / p(4, 5), n(0, 0) / p(0, 0), kSumRoundoffTol);
-    CHECK_THROWS_AS(l2_normalized(Plane::Zero(3, 3), "capture"), InvalidInput);
+    double sq = 0.0, sum = 0.0;
+    for (Eigen::Index i = 0; i < p.size(); ++i) {
+        sq += p.data()[i] * p.data()[i];
+        sum += p.data()[i];
+    }
+    CHECK_CLOSE(channels_l2_norm({p}, "capture"), std::sqrt(sq), kSumRoundoffTol);
+    // Channels of 3 x 4 constants 1, 2, 4: norms sqrt(12) x {1, 2, 4}, sums 12 x {1, 2, 4}; the
+    // root mean square of the norms is sqrt(12 x 21 / 3), the mean sum 12 x 7 / 3.
+    const std::vector<Plane> rgb{Plane::Constant(3, 4, 1.0), Plane::Constant(3, 4, 2.0),
+                                 Plane::Constant(3, 4, 4.0)};
+    CHECK_CLOSE(channels_l2_norm(rgb, "PSF"), std::sqrt(84.0), kSumRoundoffTol);
+    CHECK_CLOSE(channels_mean_sum(rgb, "PSF"), 28.0, kSumRoundoffTol);
+    CHECK_CLOSE(channels_mean_sum({p}, "PSF"), sum, kSumRoundoffTol);
+    CHECK_THROWS_AS(channels_l2_norm({Plane::Zero(3, 3)}, "capture"), InvalidInput);
+    CHECK_THROWS_AS(channels_mean_sum({Plane::Constant(3, 3, -1.0)}, "PSF"), InvalidInput);
 }
