@@ -56,7 +56,7 @@ void run(const SearchCliOptions& o, const ClusterFlags& cf, const CLI::App& cmd,
     const SearchPipelineSummary s = run_search_pipeline(
         p, &interrupted,
         [&](const std::string& phase, double fraction, const std::string& text) {
-            if (!o.quiet && root) bar.update(fraction, phase + ": " + text);
+            if (!o.quiet && root) bar.update(fraction, phase + ": " + text, phase);
         },
         [&](const std::string& phase) {
             if (!o.quiet && root) bar.phase(phase);

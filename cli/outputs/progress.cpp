@@ -29,8 +29,13 @@ void ProgressLine::phase(const std::string& name) {
     plain_done_ = false;
 }
 
-void ProgressLine::update(double fraction, const std::string& text) {
+void ProgressLine::update(double fraction, const std::string& text, const std::string& stage) {
     fraction = std::clamp(fraction, 0.0, 1.0);
+    if (stage != stage_) {
+        stage_ = stage;
+        print_next_ = true;
+        plain_done_ = false;
+    }
     if (!terminal_) {
         const Clock::time_point now = Clock::now();
         const bool done = fraction >= 1.0;

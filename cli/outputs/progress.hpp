@@ -18,8 +18,10 @@ class ProgressLine {
     bool enabled() const { return terminal_; }
     // A named set-up phase ("building scenes"): the bar's text, or a plain line at once.
     void phase(const std::string& name);
-    // fraction in [0, 1]; text follows the bar (or the percentage of a plain line).
-    void update(double fraction, const std::string& text);
+    // fraction in [0, 1]; text follows the bar (or the percentage of a plain line). A new
+    // `stage` (search's "search", then "rerank") starts over without a line of its own: its
+    // first figures and its 100 % print, as after a phase.
+    void update(double fraction, const std::string& text, const std::string& stage = "");
     void finish();
 
   private:
@@ -31,6 +33,7 @@ class ProgressLine {
     bool plain_done_ = false;  // the 100 % plain line was printed
     Clock::time_point last_plain_;
     bool print_next_ = true;  // the next update prints (the first, or the first after a phase)
+    std::string stage_;       // the stage of the last update
 };
 
 }  // namespace pinmask::cli
