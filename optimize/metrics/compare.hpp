@@ -67,7 +67,7 @@ struct CompareRow {
     double peak_to_sidelobe_ratio = 0.0;  // +inf without sidelobes
     double min_abs_pattern_spectrum = 0.0;
     double spectral_flatness = 0.0;
-    double otf_condition_number = 0.0;             // +inf with a spectral zero in the passband
+    double otf_condition_number = 0.0;  // +inf with a spectral zero in the passband
     // First level. Closed form over the prior: the Wiener filter of one NSR (the setting, given
     // or tuned), and the per-frequency optimal (MMSE) filter.
     double analytic_wiener_psnr_db = 0.0, analytic_wiener_nsr = 0.0;

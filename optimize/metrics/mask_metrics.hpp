@@ -107,9 +107,9 @@ struct MaskMetricsOptions {
 };
 
 struct AnalyticFigures {
-    double psnr_db = 0.0;          // the fixed-NSR filter (given, or tuned per mask and level)
-    double nsr = 0.0;              // its NSR
-    double mmse_psnr_db = 0.0;     // the per-frequency optimal (MMSE) Wiener filter
+    double psnr_db = 0.0;       // the fixed-NSR filter (given, or tuned per mask and level)
+    double nsr = 0.0;           // its NSR
+    double mmse_psnr_db = 0.0;  // the per-frequency optimal (MMSE) Wiener filter
 };
 
 // The analytic fixed-NSR figure under fabrication errors (same filter and NSR as
